@@ -1,0 +1,2 @@
+#include <cstdio>
+int main() { std::puts("octrace " OCTRACE_VERSION); return 0; }

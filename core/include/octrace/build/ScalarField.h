@@ -1,0 +1,69 @@
+#pragma once
+/// @file ScalarField.h
+/// A scalar field sampled on a structured grid: the input of the octree builder.
+///
+/// Coordinates (the project's contract): sample (i,j,k) sits at
+///   world = origin + direction * (axisX(i), axisY(j), axisZ(k))
+/// where axisA(n) = n * spacing[A] for a uniform axis, or coords[A][n] for a rectilinear
+/// axis (e.g. uneven ocean depth levels). Rectilinear coordinates are strictly increasing.
+/// Samples are stored x fastest: index = i + dims.x * (j + dims.y * k).
+#include "octrace/util/Math.h"
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace octrace {
+
+class ScalarField {
+public:
+    ScalarField() = default;
+    ScalarField(ScalarField&&) noexcept = default;
+    ScalarField& operator=(ScalarField&&) noexcept = default;
+    ScalarField(const ScalarField&) = delete;             // big buffers: move-only
+    ScalarField& operator=(const ScalarField&) = delete;
+
+    std::string name;    ///< variable name ("TEMP", "density", ...)
+    std::string units;   ///< units of the values ("deg C", "HU", ...); may be empty
+    std::string source;  ///< where it was read from (for messages)
+
+    ivec3 dims{0};                      ///< samples per axis
+    dvec3 origin{0.0};                  ///< world position of sample (0,0,0) before axis offsets
+    dvec3 spacing{1.0};                 ///< uniform spacing per axis (ignored where coords[a] is set)
+    dmat3 direction{1.0};               ///< columns: world direction of the grid axes (orthonormal)
+    std::array<std::vector<double>, 3> coords;  ///< rectilinear axis positions (empty: uniform)
+
+    std::vector<float> values;          ///< dims.x*dims.y*dims.z samples
+    std::vector<std::uint8_t> valid;    ///< 1 = valid sample; empty means every sample is valid
+
+    /// Notes for `info` and stats (e.g. "geographic: lon0=150 lat0=35, vertical scale 30").
+    std::vector<std::string> notes;
+
+    std::size_t sampleCount() const {
+        return std::size_t(dims.x) * std::size_t(dims.y) * std::size_t(dims.z);
+    }
+    std::size_t index(int i, int j, int k) const {
+        return std::size_t(i) + std::size_t(dims.x) * (std::size_t(j) + std::size_t(dims.y) * std::size_t(k));
+    }
+    bool isValid(std::size_t idx) const { return valid.empty() || valid[idx] != 0; }
+    bool isRectilinear(int axis) const { return !coords[axis].empty(); }
+
+    /// Position of grid line n along axis a in the grid's local frame (before direction).
+    double axisPosition(int a, int n) const {
+        return coords[a].empty() ? n * spacing[a] : coords[a][std::size_t(n)];
+    }
+    /// World position of sample (i,j,k).
+    dvec3 worldFromGrid(int i, int j, int k) const;
+    /// Axis-aligned world bounding box of the grid (the 8 corners transformed).
+    Box3 worldBounds() const;
+    /// Minimum and maximum of the valid samples. Throws EmptyResultError if none is valid.
+    std::pair<float, float> validRange() const;
+    std::size_t validCount() const;
+
+    /// Checks internal consistency (sizes, finite geometry, increasing coordinates,
+    /// orthonormal direction). Throws FileError naming `source` and the problem.
+    void validate() const;
+};
+
+}  // namespace octrace

@@ -1,0 +1,117 @@
+#pragma once
+/// @file Octree.h
+/// The voxel octree: a compact node pool (no pointers), children addressed by index.
+///
+/// Layout. Node 0 is the root (level 0); the finest level is `depth`, whose cells are the
+/// voxels. Every inner node stores an 8-bit child mask (bit c set = child c is not empty;
+/// child index c = 4*x + 2*y + z) and the index of its first non-empty child; the non-empty
+/// children of a node are stored contiguously in child-index order, so child c lives at
+/// firstChild + popcount(childMask & ((1 << c) - 1)).
+///   - At levels 0 .. depth-2 the children are nodes (in `nodes`), except those whose
+///     `termMask` bit is set: those are interior "terms" (octants wholly inside the object,
+///     volume form only) and occupy a slot in `nodes` with childMask 0.
+///   - At level depth-1 the children are voxels: firstChild indexes `voxels`.
+/// Leaf kinds: empty (mask bit clear), interior term, boundary voxel. The shell form built
+/// by OctreeBuilder has no terms.
+///
+/// Spaces. World space (the field's units, e.g. km or mm); octree integer space, where the
+/// cube is [0, 2^kIntBits)^3 (`toOctreeSpace`); cell space, where voxel (i,j,k) is
+/// [i, i+1) x [j, j+1) x [k, k+1) with i in [0, 2^depth).
+#include "octrace/util/Math.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace octrace {
+
+struct OctreeNode {
+    std::uint32_t firstChild = 0;
+    std::uint8_t childMask = 0;
+    std::uint8_t termMask = 0;
+    std::uint16_t reserved = 0;
+};
+static_assert(sizeof(OctreeNode) == 8);
+
+/// A boundary voxel: its quantized unit normal (octahedral, 16+16 bits).
+struct Voxel {
+    std::uint32_t normal = 0;
+};
+
+/// Octahedral encoding of a unit vector in 32 bits (max angular error ~0.005 degrees).
+std::uint32_t encodeNormal(vec3 n);
+vec3 decodeNormal(std::uint32_t code);
+
+class Octree {
+public:
+    /// Side of the cube in octree integer space is 2^kIntBits.
+    static constexpr int kIntBits = 14;
+    static constexpr int kMaxDepth = kIntBits;
+
+    Octree() = default;
+    Octree(Octree&&) noexcept = default;
+    Octree& operator=(Octree&&) noexcept = default;
+    Octree(const Octree&) = delete;
+    Octree& operator=(const Octree&) = delete;
+
+    int depth = 0;            ///< level of the voxels (root = 0)
+    dvec3 cubeOrigin{0.0};    ///< world position of the cube's minimum corner
+    double cubeSide = 1.0;    ///< world edge length of the cube
+
+    std::vector<OctreeNode> nodes;  ///< nodes[0] = root
+    std::vector<Voxel> voxels;      ///< boundary voxels
+
+    // Provenance, for info and stats.
+    std::string fieldName, fieldUnits;
+    double iso = 0.0;
+
+    std::size_t boundaryVoxels() const { return voxels.size(); }
+    /// Capacity in bytes of every buffer the octree owns.
+    std::size_t bytes() const;
+    double bytesPerVoxel() const { return voxels.empty() ? 0.0 : double(bytes()) / double(voxels.size()); }
+
+    /// World edge length of one voxel.
+    double voxelSize() const { return cubeSide / double(1u << depth); }
+    /// World -> octree integer space (continuous).
+    dvec3 toOctreeSpace(const dvec3& world) const {
+        return (world - cubeOrigin) * (double(1u << kIntBits) / cubeSide);
+    }
+    dvec3 worldFromOctreeSpace(const dvec3& p) const {
+        return cubeOrigin + p * (cubeSide / double(1u << kIntBits));
+    }
+    /// World box of voxel (i,j,k) (cell space).
+    Box3 voxelBox(const ivec3& cell) const;
+
+    /// Index of the boundary voxel at cell (i,j,k), or 0xFFFFFFFF when that cell is not a
+    /// boundary voxel (or lies outside). O(depth).
+    std::uint32_t findVoxel(const ivec3& cell) const;
+
+    /// Calls f(cell, voxelIndex) for every boundary voxel (depth-first order).
+    template <class F>
+    void forEachVoxel(F&& f) const;
+
+    /// Structural checks (masks, index ranges, every node reachable once). Throws Error.
+    void validate() const;
+};
+
+template <class F>
+void Octree::forEachVoxel(F&& f) const {
+    if (nodes.empty()) return;
+    struct Item { std::uint32_t node; int level; ivec3 cell; };
+    std::vector<Item> stack{{0u, 0, ivec3(0)}};
+    while (!stack.empty()) {
+        Item it = stack.back();
+        stack.pop_back();
+        const OctreeNode& n = nodes[it.node];
+        std::uint32_t slot = n.firstChild;
+        for (int c = 0; c < 8; ++c) {
+            if (!(n.childMask & (1u << c))) continue;
+            ivec3 cc = it.cell * 2 + ivec3((c >> 2) & 1, (c >> 1) & 1, c & 1);
+            if (it.level == depth - 1) f(cc, slot);
+            else if (!(n.termMask & (1u << c))) stack.push_back({slot, it.level + 1, cc});
+            ++slot;
+        }
+    }
+}
+
+}  // namespace octrace

@@ -1,0 +1,35 @@
+#pragma once
+/// @file Frame.h
+/// What a renderer produces: linear RGBA, distance along the ray, and the hit voxel per pixel.
+#include "octrace/util/Math.h"
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace octrace {
+
+/// Marks a pixel whose ray hit nothing.
+inline constexpr std::uint32_t kNoHit = 0xFFFFFFFFu;
+
+class Frame {
+public:
+    Frame() = default;
+    Frame(int width, int height) { resize(width, height); }
+    Frame(Frame&&) noexcept = default;
+    Frame& operator=(Frame&&) noexcept = default;
+    Frame(const Frame&) = default;
+    Frame& operator=(const Frame&) = default;
+
+    void resize(int width, int height);
+
+    int width = 0;
+    int height = 0;
+    std::vector<vec4> rgba;            ///< linear RGB, straight alpha; row 0 at the top
+    std::vector<float> depth;          ///< distance from the eye along the ray (world units); +inf = miss
+    std::vector<std::uint32_t> hitId;  ///< voxel index in the octree's voxel array, kNoHit = miss
+
+    std::size_t pixel(int x, int y) const { return std::size_t(y) * std::size_t(width) + std::size_t(x); }
+};
+
+}  // namespace octrace

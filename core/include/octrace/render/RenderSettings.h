@@ -1,0 +1,19 @@
+#pragma once
+/// @file RenderSettings.h
+#include "octrace/util/Math.h"
+
+#include <string>
+
+namespace octrace {
+
+struct RenderSettings {
+    int threads = 0;                       ///< 0 = all cores; 1 = serial
+    vec4 background{1.0f, 1.0f, 1.0f, 1.0f};  ///< linear RGBA of pixels that miss
+    vec3 colour{0.85f, 0.62f, 0.35f};      ///< surface albedo (linear RGB)
+    dvec3 lightCamera{0.4, 0.6, 1.0};      ///< direction towards the light, camera space (normalised on use)
+    float ambient = 0.15f;
+    float diffuse = 0.85f;
+    std::string colormap;                  ///< empty: uniform colour; else colour by height (see docs)
+};
+
+}  // namespace octrace

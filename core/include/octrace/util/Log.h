@@ -1,0 +1,25 @@
+#pragma once
+/// @file Log.h
+/// One logging facade. The library never prints to stdout; messages go to a sink
+/// (stderr by default) filtered by level. Thread-safe.
+#include <functional>
+#include <string>
+
+namespace octrace::log {
+
+enum class Level { Debug = 0, Info = 1, Warning = 2, Error = 3, Quiet = 4 };
+
+/// Messages below this level are dropped. Default: Info.
+void setLevel(Level level);
+Level level();
+
+/// Replace the sink (e.g. the Qt application shows messages in a panel). Pass {} for stderr.
+void setSink(std::function<void(Level, const std::string&)> sink);
+
+void message(Level level, const std::string& text);
+inline void debug(const std::string& t) { message(Level::Debug, t); }
+inline void info(const std::string& t) { message(Level::Info, t); }
+inline void warning(const std::string& t) { message(Level::Warning, t); }
+inline void error(const std::string& t) { message(Level::Error, t); }
+
+}  // namespace octrace::log

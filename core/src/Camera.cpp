@@ -1,0 +1,50 @@
+#include "octrace/render/Camera.h"
+#include "octrace/util/Error.h"
+
+#include <cmath>
+
+namespace octrace {
+
+void Camera::validate() const {
+    dvec3 v = lookAt - position;
+    if (!(glm::length(v) > 0.0)) throw UsageError("camera position and look-at point coincide");
+    if (!(glm::length(glm::cross(glm::normalize(v), up)) > 1e-9))
+        throw UsageError("camera up vector is zero or parallel to the viewing direction");
+    if (!(fovYDegrees > 0.0 && fovYDegrees < 180.0)) throw UsageError("field of view must be in (0, 180) degrees");
+    if (width <= 0 || height <= 0) throw UsageError("image size must be positive");
+}
+
+void Camera::basis(dvec3& right, dvec3& trueUp, dvec3& back) const {
+    back = glm::normalize(position - lookAt);
+    right = glm::normalize(glm::cross(up, back));
+    trueUp = glm::cross(back, right);
+}
+
+Ray Camera::primaryRay(int x, int y) const {
+    dvec3 right, u, back;
+    basis(right, u, back);
+    double th = std::tan(glm::radians(fovYDegrees) * 0.5);
+    double aspect = double(width) / double(height);
+    double sx = ((x + 0.5) / width * 2.0 - 1.0) * th * aspect;
+    double sy = (1.0 - (y + 0.5) / height * 2.0) * th;
+    return {position, glm::normalize(sx * right + sy * u - back)};
+}
+
+Camera Camera::framing(const Box3& box, int width, int height, double fovYDegrees) {
+    Camera c;
+    c.width = width;
+    c.height = height;
+    c.fovYDegrees = fovYDegrees;
+    c.lookAt = box.centre();
+    c.up = dvec3(0, 0, 1);
+    dvec3 dir = glm::normalize(dvec3(0.55, -1.0, 0.75));  // from south-east, above
+    double radius = 0.5 * glm::length(box.size());
+    double th = std::tan(glm::radians(fovYDegrees) * 0.5);
+    double aspect = double(width) / double(height);
+    double halfAngle = std::atan(th * std::min(1.0, aspect));
+    double dist = radius / std::sin(halfAngle) * 1.02;
+    c.position = c.lookAt + dir * dist;
+    return c;
+}
+
+}  // namespace octrace

@@ -1,0 +1,116 @@
+#include "octrace/octree/Octree.h"
+#include "octrace/util/Error.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <sstream>
+
+namespace octrace {
+
+namespace {
+inline float signNotZero(float v) { return v >= 0.0f ? 1.0f : -1.0f; }
+inline std::uint32_t quant16(float v) {  // [-1,1] -> [0,65535]
+    float c = std::clamp(v, -1.0f, 1.0f);
+    return std::uint32_t(std::lround((c * 0.5f + 0.5f) * 65535.0f));
+}
+inline float dequant16(std::uint32_t q) { return float(q) / 65535.0f * 2.0f - 1.0f; }
+}  // namespace
+
+std::uint32_t encodeNormal(vec3 n) {
+    float l1 = std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
+    if (!(l1 > 0.0f)) return (quant16(0.0f) << 16) | quant16(0.0f);  // decodes to +z
+    float x = n.x / l1, y = n.y / l1;
+    if (n.z < 0.0f) {
+        float ox = (1.0f - std::abs(y)) * signNotZero(x);
+        float oy = (1.0f - std::abs(x)) * signNotZero(y);
+        x = ox;
+        y = oy;
+    }
+    return (quant16(x) << 16) | quant16(y);
+}
+
+vec3 decodeNormal(std::uint32_t code) {
+    float x = dequant16(code >> 16), y = dequant16(code & 0xFFFFu);
+    float z = 1.0f - std::abs(x) - std::abs(y);
+    if (z < 0.0f) {
+        float ox = (1.0f - std::abs(y)) * signNotZero(x);
+        float oy = (1.0f - std::abs(x)) * signNotZero(y);
+        x = ox;
+        y = oy;
+    }
+    return glm::normalize(vec3(x, y, z));
+}
+
+std::size_t Octree::bytes() const {
+    return nodes.capacity() * sizeof(OctreeNode) + voxels.capacity() * sizeof(Voxel);
+}
+
+Box3 Octree::voxelBox(const ivec3& cell) const {
+    double h = voxelSize();
+    Box3 b;
+    b.lo = cubeOrigin + dvec3(cell) * h;
+    b.hi = b.lo + dvec3(h);
+    return b;
+}
+
+std::uint32_t Octree::findVoxel(const ivec3& cell) const {
+    const int n = 1 << depth;
+    if (nodes.empty() || cell.x < 0 || cell.y < 0 || cell.z < 0 || cell.x >= n || cell.y >= n || cell.z >= n)
+        return 0xFFFFFFFFu;
+    std::uint32_t node = 0;
+    for (int level = 0; level < depth; ++level) {
+        int shift = depth - 1 - level;
+        int c = (((cell.x >> shift) & 1) << 2) | (((cell.y >> shift) & 1) << 1) | ((cell.z >> shift) & 1);
+        const OctreeNode& nd = nodes[node];
+        if (!(nd.childMask & (1u << c))) return 0xFFFFFFFFu;
+        std::uint32_t slot = nd.firstChild + std::uint32_t(std::popcount(unsigned(nd.childMask) & ((1u << c) - 1u)));
+        if (level == depth - 1) return slot;
+        if (nd.termMask & (1u << c)) return 0xFFFFFFFFu;  // interior term: not a boundary voxel
+        node = slot;
+    }
+    return 0xFFFFFFFFu;
+}
+
+void Octree::validate() const {
+    auto fail = [](const std::string& w) { throw Error("invalid octree: " + w); };
+    if (depth < 1 || depth > kMaxDepth) fail("depth out of range");
+    if (nodes.empty()) fail("no root node");
+    if (!(cubeSide > 0.0)) fail("cube side not positive");
+    std::vector<std::uint8_t> seenNode(nodes.size(), 0), seenVoxel(voxels.size(), 0);
+    struct Item { std::uint32_t node; int level; };
+    std::vector<Item> stack{{0u, 0}};
+    seenNode[0] = 1;
+    while (!stack.empty()) {
+        Item it = stack.back();
+        stack.pop_back();
+        const OctreeNode& n = nodes[it.node];
+        if (n.termMask & ~n.childMask) fail("term bit without child bit");
+        int count = std::popcount(unsigned(n.childMask));
+        if (it.level == depth - 1) {
+            if (n.termMask) fail("term at the voxel level");
+            if (std::size_t(n.firstChild) + count > voxels.size()) fail("voxel index out of range");
+            for (int i = 0; i < count; ++i) {
+                if (seenVoxel[n.firstChild + i]++) fail("voxel referenced twice");
+            }
+            continue;
+        }
+        if (std::size_t(n.firstChild) + count > nodes.size()) fail("node index out of range");
+        std::uint32_t slot = n.firstChild;
+        for (int c = 0; c < 8; ++c) {
+            if (!(n.childMask & (1u << c))) continue;
+            if (seenNode[slot]++) fail("node referenced twice");
+            if (!(n.termMask & (1u << c))) {
+                if (nodes[slot].childMask == 0) fail("inner node without children");
+                stack.push_back({slot, it.level + 1});
+            }
+            ++slot;
+        }
+    }
+    for (std::size_t i = 0; i < seenNode.size(); ++i)
+        if (!seenNode[i]) fail("unreachable node");
+    for (std::size_t i = 0; i < seenVoxel.size(); ++i)
+        if (!seenVoxel[i]) fail("unreachable voxel");
+}
+
+}  // namespace octrace
