@@ -3,8 +3,8 @@
 /// Builds the shell octree of an isosurface of a ScalarField, top-down, without a dense
 /// 2^depth array: memory grows with the number of boundary voxels.
 ///
-/// The octree's cube is the smallest cube with the field's world bounding box at its minimum
-/// corner... centred on the box (each axis), side = the box's largest extent. A cell at the
+/// The octree's cube is centred on the field's world bounding box, with the box's largest
+/// extent as its side. A cell at the
 /// finest level is a boundary voxel when the trilinear field at its 8 corners has some corner
 /// >= iso and some < iso; it is masked (never boundary) when one of its corners lies outside
 /// the grid or uses a masked sample. Boundary voxels carry the normalised negative gradient

@@ -1,0 +1,40 @@
+#pragma once
+/// @file ImageCompare.h
+/// Quantization of linear colour to 8-bit sRGB, and the difference between two Frames as it
+/// would show in the PNG files written from them. The PNG writer (io) uses the same
+/// functions, so that `--verify` and the tests measure exactly what ends up on disk.
+///
+/// Every function here is stateless and thread-safe.
+#include "octrace/render/Frame.h"
+
+#include <cstdint>
+
+namespace octrace {
+
+/// Linear [0,1] -> 8-bit sRGB code with the exact sRGB transfer function (linear segment below
+/// 0.0031308, 1.055·c^(1/2.4) − 0.055 above), rounded to nearest (ties up). Values below 0
+/// and NaN give 0, values above 1 give 255. Example: 0.5 -> 188.
+std::uint8_t linearToSrgb8(float linear);
+
+/// 8-bit sRGB code -> linear value (the inverse transfer function, exact to float precision).
+/// linearToSrgb8(srgb8ToLinear(k)) == k for every k.
+float srgb8ToLinear(std::uint8_t code);
+
+/// Straight alpha (or any other linear [0,1] quantity) -> 0..255, rounded to nearest, clamped;
+/// NaN gives 0. Alpha is never sRGB-encoded.
+std::uint8_t alphaTo8(float alpha);
+
+/// How far apart two images are once both are quantized as an 8-bit sRGB PNG would be
+/// (RGB through linearToSrgb8, A through alphaTo8).
+struct ImageDifference {
+    std::uint64_t differingPixels = 0;  ///< pixels where any of R, G, B, A differs after quantization
+    double psnrDb = 0.0;                ///< over R, G, B with peak 255; +infinity when identical
+    double maxChannelError = 0.0;       ///< largest |difference| of any of R, G, B, A, in 0..255 units
+};
+
+/// Compares the colour of two frames (depth and hit ids are not looked at).
+/// @throws UsageError if the frames differ in size or their rgba buffers do not hold
+///         width·height pixels.
+ImageDifference compareImages(const Frame& a, const Frame& b);
+
+}  // namespace octrace

@@ -1,0 +1,35 @@
+#pragma once
+/// @file Shading.h
+/// Shading shared by every renderer, so that two renderers that find the same voxel produce
+/// the same pixel bytes.
+#include "octrace/octree/Octree.h"
+#include "octrace/render/Camera.h"
+#include "octrace/render/RenderSettings.h"
+
+#include <string>
+#include <vector>
+
+namespace octrace {
+
+/// Named colour maps for --colormap (linear RGB, t in [0,1]).
+std::vector<std::string> colormapNames();
+/// Throws UsageError for an unknown name.
+vec3 colormap(const std::string& name, float t);
+
+/// Per-frame constants: light in world space, colour settings.
+class Shader {
+public:
+    Shader(const Octree& tree, const Camera& camera, const RenderSettings& settings);
+    /// Two-sided Lambert: ambient + diffuse * |n . l|, times the surface colour.
+    vec4 shade(std::uint32_t voxel, const ivec3& cell) const;
+    /// Distance from the camera along the (unit) ray to where it enters the voxel's box.
+    float distance(const Ray& ray, const ivec3& cell) const;
+
+private:
+    const Octree& tree_;
+    const RenderSettings& settings_;
+    vec3 light_;
+    bool useColormap_;
+};
+
+}  // namespace octrace

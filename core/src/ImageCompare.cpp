@@ -1,0 +1,101 @@
+#include "octrace/render/ImageCompare.h"
+
+#include "octrace/util/Error.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <string>
+
+namespace octrace {
+namespace {
+
+double srgbToLinear(double encoded) {
+    return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
+}
+
+// Quantizing through the inverse: code k starts where the encoded value reaches k − 0.5,
+// i.e. at linear srgbToLinear((k − 0.5)/255). Comparing against these 255 thresholds rounds
+// to nearest without a pow() per channel, and gives the same code on every machine for a
+// given input (no dependence on how the caller's libm rounds pow near a tie).
+struct SrgbTables {
+    std::array<double, 255> thresholds{};  // thresholds[k-1]: smallest linear value with code >= k
+    std::array<float, 256> toLinear{};
+    SrgbTables() {
+        for (int k = 1; k <= 255; ++k) thresholds[std::size_t(k - 1)] = srgbToLinear((k - 0.5) / 255.0);
+        for (int k = 0; k <= 255; ++k) toLinear[std::size_t(k)] = float(srgbToLinear(k / 255.0));
+    }
+};
+
+const SrgbTables& tables() {
+    static const SrgbTables t;
+    return t;
+}
+
+struct Rgba8 {
+    std::array<std::uint8_t, 4> c;
+};
+
+Rgba8 quantize(const vec4& v) {
+    return {{linearToSrgb8(v.r), linearToSrgb8(v.g), linearToSrgb8(v.b), alphaTo8(v.a)}};
+}
+
+void checkFrame(const Frame& f, const char* which) {
+    std::size_t n = std::size_t(std::max(f.width, 0)) * std::size_t(std::max(f.height, 0));
+    if (f.width < 0 || f.height < 0 || f.rgba.size() != n)
+        throw UsageError(std::string("compareImages: frame ") + which + " holds " + std::to_string(f.rgba.size()) +
+                         " colour values for " + std::to_string(f.width) + "x" + std::to_string(f.height) +
+                         " pixels");
+}
+
+}  // namespace
+
+std::uint8_t linearToSrgb8(float linear) {
+    if (!(linear > 0.0f)) return 0;  // also NaN
+    if (linear >= 1.0f) return 255;
+    const auto& t = tables().thresholds;
+    return std::uint8_t(std::upper_bound(t.begin(), t.end(), double(linear)) - t.begin());
+}
+
+float srgb8ToLinear(std::uint8_t code) { return tables().toLinear[code]; }
+
+std::uint8_t alphaTo8(float alpha) {
+    if (!(alpha > 0.0f)) return 0;  // also NaN
+    if (alpha >= 1.0f) return 255;
+    return std::uint8_t(std::floor(double(alpha) * 255.0 + 0.5));
+}
+
+ImageDifference compareImages(const Frame& a, const Frame& b) {
+    checkFrame(a, "a");
+    checkFrame(b, "b");
+    if (a.width != b.width || a.height != b.height)
+        throw UsageError("compareImages: frames differ in size (" + std::to_string(a.width) + "x" +
+                         std::to_string(a.height) + " and " + std::to_string(b.width) + "x" +
+                         std::to_string(b.height) + ")");
+
+    ImageDifference d;
+    std::uint64_t sumSquares = 0;  // exact: at most 3·255² per pixel
+    int maxError = 0;
+    for (std::size_t i = 0; i < a.rgba.size(); ++i) {
+        Rgba8 pa = quantize(a.rgba[i]);
+        Rgba8 pb = quantize(b.rgba[i]);
+        if (pa.c != pb.c) ++d.differingPixels;
+        for (int ch = 0; ch < 4; ++ch) {
+            int e = std::abs(int(pa.c[std::size_t(ch)]) - int(pb.c[std::size_t(ch)]));
+            maxError = std::max(maxError, e);
+            if (ch < 3) sumSquares += std::uint64_t(e * e);
+        }
+    }
+    d.maxChannelError = maxError;
+    if (sumSquares == 0) {
+        d.psnrDb = std::numeric_limits<double>::infinity();
+    } else {
+        double mse = double(sumSquares) / (3.0 * double(a.rgba.size()));
+        d.psnrDb = 10.0 * std::log10(255.0 * 255.0 / mse);
+    }
+    return d;
+}
+
+}  // namespace octrace

@@ -1,0 +1,105 @@
+#include "octrace/render/DiscreteTraversal.h"
+#include "octrace/render/ReferenceTraversal.h"
+#include "octrace/render/Renderer.h"
+#include "octrace/render/Shading.h"
+#include "octrace/util/Error.h"
+#include "octrace/util/Parallel.h"
+#include "octrace/util/Timer.h"
+
+#include <algorithm>
+
+namespace octrace {
+namespace {
+
+constexpr int kTile = 32;
+
+/// Renders tile by tile (in parallel); each pixel is traced on its own by `trace`, which maps
+/// a ray in octree space to a hit. Counters are kept per tile and summed in tile order.
+template <class Trace>
+RenderStats renderPerPixel(const std::string& name, const Octree& tree, const Camera& camera,
+                           const RenderSettings& settings, Frame& frame, const Trace& trace) {
+    camera.validate();
+    Timer timer;
+    frame.resize(camera.width, camera.height);
+    const Shader shader(tree, camera, settings);
+    const int tilesX = (camera.width + kTile - 1) / kTile, tilesY = (camera.height + kTile - 1) / kTile;
+    std::vector<RenderStats> tileStats(std::size_t(tilesX) * tilesY);
+    const double toOS = double(1 << Octree::kIntBits) / tree.cubeSide;
+    parallelFor(tileStats.size(), settings.threads, [&](std::size_t t) {
+        RenderStats& st = tileStats[t];
+        TraversalCounters counters;
+        const int x0 = int(t % std::size_t(tilesX)) * kTile, y0 = int(t / std::size_t(tilesX)) * kTile;
+        const int x1 = std::min(x0 + kTile, camera.width), y1 = std::min(y0 + kTile, camera.height);
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x) {
+                const std::size_t p = frame.pixel(x, y);
+                ++st.pixels;
+                const Ray ray = camera.primaryRay(x, y);
+                bool meets = false;
+                TraversalHit hit = trace(tree.toOctreeSpace(ray.origin), ray.direction * toOS, counters, meets);
+                if (meets) ++st.rays;
+                if (!hit.hit()) {
+                    frame.rgba[p] = settings.background;
+                    continue;
+                }
+                ++st.hits;
+                frame.hitId[p] = hit.voxel;
+                frame.rgba[p] = shader.shade(hit.voxel, hit.cell);
+                frame.depth[p] = shader.distance(ray, hit.cell);
+            }
+        st.nodesVisited = counters.nodes;
+    });
+    RenderStats total;
+    total.renderer = name;
+    for (const auto& s : tileStats) total.add(s);
+    total.renderMs = timer.ms();
+    return total;
+}
+
+class FullRenderer final : public Renderer {
+public:
+    std::string name() const override { return "full"; }
+    RenderStats render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
+                       Frame& frame) const override {
+        return renderPerPixel(name(), tree, camera, settings, frame,
+                              [&](const dvec3& o, const dvec3& d, TraversalCounters& c, bool& meets) {
+                                  QuantizedRay q = quantizeRay(o, d);
+                                  meets = q.meetsCube;
+                                  return traverseDiscrete(tree, q, c);
+                              });
+    }
+};
+
+class ReferenceRenderer final : public Renderer {
+public:
+    explicit ReferenceRenderer(bool quantized) : quantized_(quantized) {}
+    std::string name() const override { return quantized_ ? "reference" : "reference-unquantized"; }
+    RenderStats render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
+                       Frame& frame) const override {
+        return renderPerPixel(name(), tree, camera, settings, frame,
+                              [&](const dvec3& o, const dvec3& d, TraversalCounters& c, bool& meets) {
+                                  QuantizedRay q = quantizeRay(o, d);
+                                  meets = q.meetsCube;
+                                  ReferenceRay r = quantized_ ? referenceRayFromQuantized(q) : referenceRayUnquantized(o, d);
+                                  return traverseReference(tree, r, c);
+                              });
+    }
+
+private:
+    bool quantized_;
+};
+
+}  // namespace
+
+std::vector<std::string> rendererNames() { return {"full", "reference", "reference-unquantized"}; }
+
+std::unique_ptr<Renderer> makeRenderer(const std::string& name) {
+    if (name == "full") return std::make_unique<FullRenderer>();
+    if (name == "reference") return std::make_unique<ReferenceRenderer>(true);
+    if (name == "reference-unquantized") return std::make_unique<ReferenceRenderer>(false);
+    std::string list;
+    for (const auto& n : rendererNames()) list += (list.empty() ? "" : ", ") + n;
+    throw UsageError("unknown renderer '" + name + "' (choose one of: " + list + ")");
+}
+
+}  // namespace octrace

@@ -1,0 +1,83 @@
+#include "octrace/render/Shading.h"
+
+#include "octrace/util/Error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace octrace {
+namespace {
+struct Map {
+    const char* name;
+    std::vector<vec3> stops;  // sRGB control points, evenly spaced
+};
+const std::vector<Map>& maps() {
+    static const std::vector<Map> m = {
+        {"viridis", {{0.267f, 0.005f, 0.329f}, {0.283f, 0.141f, 0.458f}, {0.254f, 0.265f, 0.530f}, {0.207f, 0.372f, 0.553f},
+                     {0.164f, 0.471f, 0.558f}, {0.128f, 0.567f, 0.551f}, {0.135f, 0.659f, 0.518f}, {0.267f, 0.749f, 0.441f},
+                     {0.478f, 0.821f, 0.318f}, {0.741f, 0.873f, 0.150f}, {0.993f, 0.906f, 0.144f}}},
+        {"coolwarm", {{0.230f, 0.299f, 0.754f}, {0.552f, 0.690f, 0.996f}, {0.866f, 0.866f, 0.866f}, {0.956f, 0.604f, 0.486f},
+                      {0.706f, 0.016f, 0.150f}}},
+        {"grey", {{0.1f, 0.1f, 0.1f}, {0.95f, 0.95f, 0.95f}}},
+    };
+    return m;
+}
+float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
+}  // namespace
+
+std::vector<std::string> colormapNames() {
+    std::vector<std::string> n;
+    for (const auto& m : maps()) n.push_back(m.name);
+    return n;
+}
+
+vec3 colormap(const std::string& name, float t) {
+    for (const auto& m : maps()) {
+        if (name != m.name) continue;
+        t = std::clamp(t, 0.0f, 1.0f) * float(m.stops.size() - 1);
+        std::size_t i = std::min(std::size_t(t), m.stops.size() - 2);
+        float f = t - float(i);
+        vec3 c = m.stops[i] * (1.0f - f) + m.stops[i + 1] * f;
+        return vec3(srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z));
+    }
+    throw UsageError("unknown colour map '" + name + "'");
+}
+
+Shader::Shader(const Octree& tree, const Camera& camera, const RenderSettings& settings)
+    : tree_(tree), settings_(settings), useColormap_(!settings.colormap.empty()) {
+    dvec3 right, up, back;
+    camera.basis(right, up, back);
+    dvec3 l = settings.lightCamera;
+    if (!(glm::length(l) > 0.0)) l = dvec3(0.4, 0.6, 1.0);
+    l = glm::normalize(l);
+    light_ = vec3(glm::normalize(l.x * right + l.y * up + l.z * back));
+    if (useColormap_) colormap(settings.colormap, 0.0f);  // validate the name once
+}
+
+vec4 Shader::shade(std::uint32_t voxel, const ivec3& cell) const {
+    vec3 n = decodeNormal(tree_.voxels[voxel].normal);
+    float lambert = std::abs(glm::dot(n, light_));
+    float intensity = settings_.ambient + settings_.diffuse * lambert;
+    vec3 albedo = settings_.colour;
+    if (useColormap_) {
+        // Colour by height (world z) across the cube until a second field can be mapped.
+        float t = (float(cell.z) + 0.5f) / float(1 << tree_.depth);
+        albedo = colormap(settings_.colormap, t);
+    }
+    return vec4(albedo * intensity, 1.0f);
+}
+
+float Shader::distance(const Ray& ray, const ivec3& cell) const {
+    Box3 b = tree_.voxelBox(cell);
+    double tin = 0.0;
+    for (int a = 0; a < 3; ++a) {
+        if (ray.direction[a] == 0.0) continue;
+        double t0 = (b.lo[a] - ray.origin[a]) / ray.direction[a];
+        double t1 = (b.hi[a] - ray.origin[a]) / ray.direction[a];
+        tin = std::max(tin, std::min(t0, t1));
+    }
+    return float(tin);
+}
+
+}  // namespace octrace

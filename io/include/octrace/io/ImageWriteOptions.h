@@ -1,0 +1,13 @@
+#pragma once
+/// @file ImageWriteOptions.h
+/// What the image writers can be asked for beyond the Frame itself.
+
+namespace octrace::io {
+
+struct ImageWriteOptions {
+    /// PNG: always write an alpha channel. Without it, the PNG gets one only when some pixel
+    /// has alpha < 1 (so opaque renders stay RGB). EXR files always carry A.
+    bool alpha = false;
+};
+
+}  // namespace octrace::io

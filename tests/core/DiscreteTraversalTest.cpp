@@ -1,0 +1,277 @@
+#include "TraversalTestUtil.h"
+
+#include "octrace/build/AnalyticField.h"
+#include "octrace/build/OctreeBuilder.h"
+#include "octrace/render/OrderTable.h"
+#include "octrace/util/Parallel.h"
+
+#include <atomic>
+#include <mutex>
+
+using namespace octrace;
+using namespace octrace::testutil;
+
+namespace {
+
+const Octree& sphereTree() {
+    static Octree t = buildShellOctree(makeAnalyticField("sphere", 33), {6, 0.0, 0});
+    return t;
+}
+const Octree& noiseTree() {
+    static Octree t = buildShellOctree(makeAnalyticField("noise", 65, 7), {7, 0.0, 0});
+    return t;
+}
+const Octree& gyroidTree() {
+    // Anisotropic rectilinear grid: uneven z levels, like ocean depths.
+    static Octree t = [] {
+        ScalarField f = makeAnalyticField("gyroid", 40);
+        f.spacing = dvec3(0.05, 0.08, 1.0);
+        f.coords[2].resize(40);
+        for (int k = 0; k < 40; ++k) f.coords[2][std::size_t(k)] = 0.02 * k + 0.004 * k * k;
+        return buildShellOctree(f, {8, 0.0, 0});
+    }();
+    return t;
+}
+
+struct Tally {
+    std::atomic<long> rays{0}, hits{0}, mismatches{0};
+    std::mutex m;
+    std::string first;
+};
+
+/// Runs `count` rays from `gen` (seeded per chunk) through both traversals, in parallel.
+template <class Gen>
+void runRays(const Octree& t, long count, std::uint64_t seed, Gen gen, Tally& tally) {
+    const long chunk = 10000;
+    const std::size_t chunks = std::size_t((count + chunk - 1) / chunk);
+    parallelFor(chunks, 0, [&](std::size_t ci) {
+        std::mt19937_64 rng(seed * 1000003u + ci);
+        long n = std::min(chunk, count - long(ci) * chunk);
+        for (long i = 0; i < n; ++i) {
+            dvec3 o, d;
+            gen(rng, o, d);
+            std::string why;
+            QuantizedRay q = quantizeRay(o, d);
+            TraversalCounters c;
+            if (traverseDiscrete(t, q, c).hit()) ++tally.hits;
+            ++tally.rays;
+            if (!agree(t, o, d, &why)) {
+                if (tally.mismatches++ == 0) {
+                    std::lock_guard<std::mutex> lock(tally.m);
+                    tally.first = why;
+                }
+            }
+        }
+    });
+}
+
+}  // namespace
+
+TEST(OrderTable, MarksExactlyTheChainsAsProducible) {
+    const OrderTable& t = OrderTable::instance();
+    int producible = 0;
+    for (unsigned s = 0; s < 8; ++s)
+        for (unsigned b = 1; b < 256; ++b) {
+            if (!t.producible(s, b)) continue;
+            ++producible;
+            auto e = t.entry(s, b);
+            ASSERT_LE(OrderTable::count(e), 4);
+            unsigned bits = 0;
+            for (int i = 0; i < OrderTable::count(e); ++i) bits |= 1u << OrderTable::child(e, i);
+            EXPECT_EQ(bits, b);
+        }
+    // The paper's example "0b01010011 -> 0,1,4,6" cannot occur: for no sign pattern is that
+    // the visiting order (0 and 1 differ in z, 1 and 4 in x and z: not a monotone walk).
+    for (unsigned s = 0; s < 8; ++s) {
+        auto e = t.entry(s, 0b01010011);
+        bool paperOrder = OrderTable::count(e) == 4 && OrderTable::child(e, 0) == 0 && OrderTable::child(e, 1) == 1 &&
+                          OrderTable::child(e, 2) == 4 && OrderTable::child(e, 3) == 6;
+        EXPECT_FALSE(paperOrder) << "sign " << s;
+    }
+    EXPECT_GT(producible, 8 * 8);
+}
+
+namespace {
+/// Independent exact geometry: the children of the box [0,4)^3 (children of side 2) that the
+/// line P + t*D crosses, with their entry parameters as fractions, under the documented
+/// half-open rule (closed at the side the ray comes from).
+struct Crossing {
+    long num, den;
+    int child;
+};
+std::vector<Crossing> crossedChildren(const ivec3& P, const ivec3& D, bool fromP) {
+    std::vector<Crossing> out;
+    for (int c = 0; c < 8; ++c) {
+        ivec3 lo((c >> 2) & 1, (c >> 1) & 1, c & 1);
+        lo *= 2;
+        // Interval [sn/sd, en/ed) of t; start at -inf, end at +inf.
+        long sn = fromP ? 0 : -1, sd = fromP ? 1 : 0, en = 1, ed = 0;  // den 0 = infinite; a ray starts at P
+        auto lessF = [](long an, long ad, long bn, long bd) {  // a < b, den 0 = +-inf by sign of num
+            if (ad == 0 && bd == 0) return an < bn;
+            if (ad == 0) return an < 0;
+            if (bd == 0) return bn > 0;
+            return an * bd < bn * ad;
+        };
+        bool empty = false;
+        for (int a = 0; a < 3; ++a) {
+            int l = lo[a], h = lo[a] + 2;
+            if (D[a] == 0) {
+                if (!(P[a] >= l && P[a] < h)) empty = true;
+                continue;
+            }
+            long s0n, s0d, e0n, e0d;
+            if (D[a] > 0) { s0n = l - P[a]; e0n = h - P[a]; s0d = e0d = D[a]; }
+            else { s0n = P[a] - h; e0n = P[a] - l; s0d = e0d = -D[a]; }
+            if (lessF(sn, sd, s0n, s0d)) { sn = s0n; sd = s0d; }
+            if (lessF(e0n, e0d, en, ed)) { en = e0n; ed = e0d; }
+        }
+        if (!empty && lessF(sn, sd, en, ed)) out.push_back({sn, sd, c});
+    }
+    std::sort(out.begin(), out.end(), [](const Crossing& a, const Crossing& b) {
+        if (a.den == 0 || b.den == 0) return a.den == 0 && b.den != 0;
+        return a.num * b.den < b.num * a.den;
+    });
+    return out;
+}
+}  // namespace
+
+TEST(OrderTable, EveryEntryEqualsTheChildrenSortedByEntryParameterOfARayProducingIt) {
+    const OrderTable& t = OrderTable::instance();
+    std::vector<std::vector<int>> seen(8 * 256, std::vector<int>{-1});
+    for (int px = -1; px <= 5; ++px)
+        for (int py = -1; py <= 5; ++py)
+            for (int pz = -1; pz <= 5; ++pz)
+                for (int dx = -3; dx <= 3; ++dx)
+                    for (int dy = -3; dy <= 3; ++dy)
+                        for (int dz = -3; dz <= 3; ++dz) {
+                            if (!dx && !dy && !dz) continue;
+                            for (int fromP = 0; fromP < 2; ++fromP) {
+                            ivec3 D(dx, dy, dz);
+                            auto cr = crossedChildren(ivec3(px, py, pz), D, fromP == 1);
+                            if (cr.empty()) continue;
+                            unsigned s = (dx < 0 ? 4u : 0u) | (dy < 0 ? 2u : 0u) | (dz < 0 ? 1u : 0u);
+                            unsigned byte = 0;
+                            std::vector<int> order;
+                            for (const auto& c : cr) {
+                                byte |= 1u << c.child;
+                                order.push_back(c.child);
+                            }
+                            ASSERT_TRUE(t.producible(s, byte)) << "sign " << s << " byte " << byte;
+                            auto e = t.entry(s, byte);
+                            ASSERT_EQ(OrderTable::count(e), int(order.size()));
+                            for (std::size_t i = 0; i < order.size(); ++i)
+                                ASSERT_EQ(OrderTable::child(e, int(i)), order[i]) << "sign " << s << " byte " << byte;
+                            seen[s * 256 + byte] = order;
+                            }
+                        }
+    // Every entry the table calls producible is produced by some ray of this family.
+    int missing = 0;
+    for (unsigned s = 0; s < 8; ++s)
+        for (unsigned b = 1; b < 256; ++b)
+            if (t.producible(s, b) && seen[s * 256 + b].size() == 1 && seen[s * 256 + b][0] == -1) {
+                ++missing;
+                ADD_FAILURE() << "no ray produced sign " << s << " byte " << b;
+            }
+    EXPECT_EQ(missing, 0);
+}
+
+TEST(DiscreteTraversal, MatchesReferenceOnRandomRaysThroughThreeOctrees) {
+    const Octree* trees[] = {&sphereTree(), &noiseTree(), &gyroidTree()};
+    long total = 0, hits = 0;
+    for (int ti = 0; ti < 3; ++ti) {
+        Tally tally;
+        // Half aimed at voxels (mostly hits), half anywhere.
+        const Octree& tr = *trees[ti];
+        runRays(tr, 150000, 11 + ti, [&tr](std::mt19937_64& r, dvec3& o, dvec3& d) { rayAtVoxel(tr, r, o, d); }, tally);
+        runRays(*trees[ti], 150000, 21 + ti, [](std::mt19937_64& r, dvec3& o, dvec3& d) { randomRay(r, o, d); }, tally);
+        EXPECT_EQ(tally.mismatches.load(), 0) << "tree " << ti << ": first mismatch " << tally.first;
+        total += tally.rays;
+        hits += tally.hits;
+    }
+    EXPECT_GE(total, 900000);
+    EXPECT_GE(double(hits) / double(total), 0.5) << hits << " hits of " << total;
+}
+
+TEST(DiscreteTraversal, MatchesReferenceOnRaysThroughNodeCornersAndEdges) {
+    const Octree* trees[] = {&sphereTree(), &noiseTree(), &gyroidTree()};
+    long total = 0;
+    for (int ti = 0; ti < 3; ++ti) {
+        Tally tally;
+        runRays(*trees[ti], 40000, 31 + ti, [](std::mt19937_64& r, dvec3& o, dvec3& d) { latticeRay(r, o, d); }, tally);
+        EXPECT_EQ(tally.mismatches.load(), 0) << "tree " << ti << ": first mismatch " << tally.first;
+        total += tally.rays;
+    }
+    EXPECT_GE(total, 100000);
+}
+
+TEST(DiscreteTraversal, MatchesReferenceWithTheEyeInsideTheCube) {
+    const Octree* trees[] = {&sphereTree(), &noiseTree(), &gyroidTree()};
+    for (int ti = 0; ti < 3; ++ti) {
+        Tally tally;
+        runRays(*trees[ti], 60000, 41 + ti, [](std::mt19937_64& r, dvec3& o, dvec3& d) { insideRay(r, o, d); }, tally);
+        EXPECT_EQ(tally.mismatches.load(), 0) << "tree " << ti << ": first mismatch " << tally.first;
+        EXPECT_GT(tally.hits.load(), 0);
+    }
+}
+
+TEST(DiscreteTraversal, MatchesReferenceOnAxisParallelAndDiagonalRays) {
+    const Octree* trees[] = {&sphereTree(), &noiseTree(), &gyroidTree()};
+    const dvec3 dirs[] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1},
+                          {1, 1, 0}, {1, -1, 0}, {0, 1, 1}, {-1, 0, 1}, {1, 1, 1}, {-1, 1, -1}};
+    for (int ti = 0; ti < 3; ++ti) {
+        Tally tally;
+        for (const dvec3& dir : dirs) {
+            runRays(*trees[ti], 3000, 51 + ti, [dir](std::mt19937_64& r, dvec3& o, dvec3& d) {
+                std::uniform_real_distribution<double> u(0.0, 1.0);
+                std::uniform_int_distribution<int> lattice(0, 64);
+                // Half on lattice lines (exact node faces and edges), half anywhere; eye inside or out.
+                for (int a = 0; a < 3; ++a) o[a] = (r() & 1) ? lattice(r) * (kL / 64) : u(r) * kL;
+                o -= dir * (kL * u(r) * 1.2);
+                d = dir;
+            }, tally);
+        }
+        EXPECT_EQ(tally.mismatches.load(), 0) << "tree " << ti << ": first mismatch " << tally.first;
+        EXPECT_GT(tally.hits.load(), 0);
+    }
+}
+
+TEST(DiscreteTraversal, ProducesOnlyStateBytesTheOrderTableAccepts) {
+    const OrderTable& table = OrderTable::instance();
+    std::mt19937_64 rng(99);
+    long bad = 0, seen = 0;
+    unsigned firstSign = 0, firstByte = 0;
+    auto observe = [&](unsigned s, unsigned b) {
+        ++seen;
+        if (b != 0 && !table.producible(s, b) && bad++ == 0) {
+            firstSign = s;
+            firstByte = b;
+        }
+    };
+    for (int i = 0; i < 60000; ++i) {
+        dvec3 o, d;
+        if (i % 3 == 0) latticeRay(rng, o, d);
+        else if (i % 3 == 1) rayAtVoxel(noiseTree(), rng, o, d);
+        else insideRay(rng, o, d);
+        TraversalCounters c;
+        traverseDiscreteObserved(noiseTree(), quantizeRay(o, d), c, observe);
+    }
+    EXPECT_GT(seen, 100000);
+    EXPECT_EQ(bad, 0) << "sign " << firstSign << " byte " << firstByte;
+}
+
+TEST(DiscreteTraversal, RaysThatMissTheCubeReportNoHitAndRaysBehindTheEyeDoNotCount) {
+    const Octree& t = sphereTree();
+    TraversalCounters c;
+    // Pointing away from the cube.
+    QuantizedRay away = quantizeRay(dvec3(-kL, kL / 2, kL / 2), dvec3(-1, 0, 0));
+    EXPECT_FALSE(away.meetsCube);
+    EXPECT_FALSE(traverseDiscrete(t, away, c).hit());
+    // Passing beside it.
+    QuantizedRay beside = quantizeRay(dvec3(-kL, 2.5 * kL, kL / 2), dvec3(1, 0, 0));
+    EXPECT_FALSE(beside.meetsCube);
+    // From the centre of the sphere outwards: the near wall behind the eye is not hit, the far one is.
+    QuantizedRay out = quantizeRay(dvec3(kL / 2), dvec3(1, 0.1, 0.05));
+    TraversalHit h = traverseDiscrete(t, out, c);
+    ASSERT_TRUE(h.hit());
+    EXPECT_GT(h.cell.x, (1 << t.depth) / 2);
+}

@@ -1,0 +1,134 @@
+#include "octrace/render/ImageCompare.h"
+
+#include "octrace/util/Error.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+using namespace octrace;
+
+namespace {
+
+// The sRGB encoding written out directly, in double precision.
+double srgbEncode(double c) { return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055; }
+
+Frame uniformFrame(int w, int h, vec4 colour) {
+    Frame f(w, h);
+    for (auto& p : f.rgba) p = colour;
+    return f;
+}
+
+}  // namespace
+
+TEST(LinearToSrgb8, MapsHalfLinearTo188) { EXPECT_EQ(linearToSrgb8(0.5f), 188); }
+
+TEST(LinearToSrgb8, MapsEndsAndClampsOutOfRange) {
+    EXPECT_EQ(linearToSrgb8(0.0f), 0);
+    EXPECT_EQ(linearToSrgb8(1.0f), 255);
+    EXPECT_EQ(linearToSrgb8(-0.25f), 0);
+    EXPECT_EQ(linearToSrgb8(7.0f), 255);
+    EXPECT_EQ(linearToSrgb8(std::numeric_limits<float>::infinity()), 255);
+    EXPECT_EQ(linearToSrgb8(-std::numeric_limits<float>::infinity()), 0);
+    EXPECT_EQ(linearToSrgb8(std::numeric_limits<float>::quiet_NaN()), 0);
+}
+
+TEST(LinearToSrgb8, UsesTheLinearSegmentNearBlack) {
+    // 12.92 · 0.002 · 255 = 6.59 -> 7 (a pure power law would give 28).
+    EXPECT_EQ(linearToSrgb8(0.002f), 7);
+}
+
+TEST(LinearToSrgb8, RoundsTheTransferFunctionToNearestOnADenseSweep) {
+    int checked = 0;
+    for (int i = 0; i <= 1000000; ++i) {
+        float c = float(i) / 1000000.0f;
+        double scaled = srgbEncode(double(c)) * 255.0;
+        if (std::abs(scaled - std::floor(scaled) - 0.5) < 1e-6) continue;  // too close to a tie to judge
+        ASSERT_EQ(int(linearToSrgb8(c)), int(std::lround(scaled))) << "linear " << c;
+        ++checked;
+    }
+    EXPECT_GT(checked, 999000);
+}
+
+TEST(LinearToSrgb8, IsMonotonic) {
+    int previous = 0;
+    for (int i = 0; i <= 100000; ++i) {
+        int code = linearToSrgb8(float(i) / 100000.0f);
+        ASSERT_GE(code, previous);
+        previous = code;
+    }
+}
+
+TEST(Srgb8ToLinear, RoundTripsEveryCode) {
+    for (int k = 0; k <= 255; ++k) EXPECT_EQ(int(linearToSrgb8(srgb8ToLinear(std::uint8_t(k)))), k);
+    EXPECT_EQ(srgb8ToLinear(0), 0.0f);
+    EXPECT_EQ(srgb8ToLinear(255), 1.0f);
+}
+
+TEST(AlphaTo8, RoundsLinearlyAndClamps) {
+    EXPECT_EQ(alphaTo8(0.5f), 128);  // 127.5 rounds up
+    EXPECT_EQ(alphaTo8(0.25f), 64);  // 63.75
+    EXPECT_EQ(alphaTo8(1.0f), 255);
+    EXPECT_EQ(alphaTo8(0.0f), 0);
+    EXPECT_EQ(alphaTo8(1.5f), 255);
+    EXPECT_EQ(alphaTo8(-1.0f), 0);
+    EXPECT_EQ(alphaTo8(std::numeric_limits<float>::quiet_NaN()), 0);
+}
+
+TEST(CompareImages, IdenticalFramesHaveInfinitePsnrAndNoDifference) {
+    Frame a = uniformFrame(8, 4, vec4(0.2f, 0.5f, 0.9f, 1.0f));
+    ImageDifference d = compareImages(a, a);
+    EXPECT_EQ(d.differingPixels, 0u);
+    EXPECT_TRUE(std::isinf(d.psnrDb) && d.psnrDb > 0);
+    EXPECT_EQ(d.maxChannelError, 0.0);
+}
+
+TEST(CompareImages, IgnoresDifferencesBelowTheQuantization) {
+    Frame a = uniformFrame(4, 4, vec4(0.5f, 0.5f, 0.5f, 1.0f));
+    Frame b = uniformFrame(4, 4, vec4(0.50001f, 0.49999f, 0.5f, 1.0f));
+    ImageDifference d = compareImages(a, b);
+    EXPECT_EQ(d.differingPixels, 0u);
+    EXPECT_TRUE(std::isinf(d.psnrDb));
+}
+
+TEST(CompareImages, MeasuresOneFullScaleChannelError) {
+    Frame a = uniformFrame(2, 2, vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    Frame b = a;
+    b.rgba[b.pixel(1, 1)].r = 1.0f;
+    ImageDifference d = compareImages(a, b);
+    EXPECT_EQ(d.differingPixels, 1u);
+    EXPECT_EQ(d.maxChannelError, 255.0);
+    // MSE over 4 pixels × 3 channels = 255² / 12, so PSNR = 10·log10(12).
+    EXPECT_NEAR(d.psnrDb, 10.0 * std::log10(12.0), 1e-12);
+}
+
+TEST(CompareImages, CountsAlphaDifferencesButLeavesThemOutOfPsnr) {
+    Frame a = uniformFrame(3, 1, vec4(0.3f, 0.3f, 0.3f, 1.0f));
+    Frame b = a;
+    b.rgba[0].a = 0.0f;
+    ImageDifference d = compareImages(a, b);
+    EXPECT_EQ(d.differingPixels, 1u);
+    EXPECT_EQ(d.maxChannelError, 255.0);
+    EXPECT_TRUE(std::isinf(d.psnrDb));
+}
+
+TEST(CompareImages, MeasuresInSrgbCodesNotLinearUnits) {
+    Frame a = uniformFrame(1, 1, vec4(0.5f, 0.0f, 0.0f, 1.0f));
+    Frame b = uniformFrame(1, 1, vec4(0.25f, 0.0f, 0.0f, 1.0f));
+    ImageDifference d = compareImages(a, b);
+    EXPECT_EQ(d.maxChannelError, double(linearToSrgb8(0.5f) - linearToSrgb8(0.25f)));
+}
+
+TEST(CompareImages, RejectsFramesOfDifferentSize) {
+    EXPECT_THROW(compareImages(Frame(4, 4), Frame(4, 5)), UsageError);
+    Frame broken(2, 2);
+    broken.rgba.pop_back();
+    EXPECT_THROW(compareImages(broken, Frame(2, 2)), UsageError);
+}
+
+TEST(CompareImages, EmptyFramesAreIdentical) {
+    ImageDifference d = compareImages(Frame(), Frame());
+    EXPECT_EQ(d.differingPixels, 0u);
+    EXPECT_TRUE(std::isinf(d.psnrDb));
+}

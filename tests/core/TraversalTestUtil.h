@@ -1,0 +1,101 @@
+#pragma once
+// Ray generators shared by the traversal tests.
+#include "octrace/octree/Octree.h"
+#include "octrace/render/DiscreteTraversal.h"
+#include "octrace/render/ReferenceTraversal.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <sstream>
+
+namespace octrace::testutil {
+
+constexpr double kL = double(1 << Octree::kIntBits);
+
+/// Eye somewhere around the cube (outside), looking at a random point of a random voxel.
+inline void rayAtVoxel(const Octree& t, std::mt19937_64& rng, dvec3& o, dvec3& d) {
+    std::uniform_int_distribution<std::size_t> pick(0, t.voxels.size() - 1);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    // find the cell of a random voxel: walk forEachVoxel is O(n); instead sample cells until one is found
+    static thread_local std::vector<ivec3> cells;
+    static thread_local const Octree* cached = nullptr;
+    if (cached != &t) {
+        cells.clear();
+        cells.resize(t.voxels.size());
+        t.forEachVoxel([&](const ivec3& c, std::uint32_t i) { cells[i] = c; });
+        cached = &t;
+    }
+    ivec3 c = cells[pick(rng)];
+    double vs = kL / double(1 << t.depth);
+    dvec3 target = (dvec3(c) + dvec3(u(rng), u(rng), u(rng))) * vs;
+    dvec3 dir = glm::normalize(dvec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5));
+    o = dvec3(kL * 0.5) + dir * kL * (1.0 + 2.0 * u(rng));
+    d = target - o;
+}
+
+/// Eye anywhere in a box 3x the cube, random direction.
+inline void randomRay(std::mt19937_64& rng, dvec3& o, dvec3& d) {
+    std::uniform_real_distribution<double> u(-1.0, 2.0), n(-1.0, 1.0);
+    o = dvec3(u(rng), u(rng), u(rng)) * kL;
+    d = dvec3(n(rng), n(rng), n(rng));
+}
+
+/// Eye inside the cube, random direction.
+inline void insideRay(std::mt19937_64& rng, dvec3& o, dvec3& d) {
+    std::uniform_real_distribution<double> u(0.0, 1.0), n(-1.0, 1.0);
+    o = dvec3(u(rng), u(rng), u(rng)) * kL;
+    d = dvec3(n(rng), n(rng), n(rng));
+}
+
+/// A ray whose quantized line passes exactly through node corners and edges: both points on
+/// the main planes lie on the lattice of spacing g = 2^(N-l) (the corners of the nodes of
+/// level l), and the offsets between them are 0 or +-g*2^e, so that the line meets lattice
+/// points of that level (u and v planes crossed at the same point: corners and edges).
+/// Random level, main axis and signs.
+inline void latticeRay(std::mt19937_64& rng, dvec3& o, dvec3& d) {
+    std::uniform_int_distribution<int> axis(0, 2), bit(0, 1), ldist(0, 10), pick(0, 4);
+    const int N = Octree::kIntBits;
+    int main = axis(rng), l = ldist(rng);
+    const double g = std::ldexp(1.0, N - l);
+    std::uniform_int_distribution<int> cellIdx(0, (1 << l) - 1), edist(0, l);
+    dvec3 a, b;
+    a[main] = 0;
+    b[main] = kL;
+    for (int q = 0; q < 3; ++q) {
+        if (q == main) continue;
+        a[q] = g * cellIdx(rng);
+        int kind = pick(rng);
+        double delta = kind == 0 ? 0.0 : g * std::ldexp(1.0, edist(rng)) * (bit(rng) ? 1 : -1);
+        if (std::abs(delta) > kL) delta = delta > 0 ? kL : -kL;
+        b[q] = a[q] + delta;
+    }
+    if (bit(rng)) std::swap(a, b);  // direction along main negative
+    d = b - a;
+    o = a - d * 0.25;  // eye before a, outside, on the line (exact: powers of two)
+}
+
+inline std::string describe(const dvec3& o, const dvec3& d) {
+    std::ostringstream s;
+    s.precision(17);
+    s << "o=(" << o.x << "," << o.y << "," << o.z << ") d=(" << d.x << "," << d.y << "," << d.z << ")";
+    return s.str();
+}
+
+/// Traces with both and returns true when they agree (same voxel or both miss).
+inline bool agree(const Octree& t, const dvec3& o, const dvec3& d, std::string* why = nullptr) {
+    QuantizedRay q = quantizeRay(o, d);
+    TraversalCounters c1, c2;
+    TraversalHit a = traverseDiscrete(t, q, c1);
+    TraversalHit b = traverseReference(t, referenceRayFromQuantized(q), c2);
+    if (a.voxel == b.voxel && (!a.hit() || a.cell == b.cell)) return true;
+    if (why) {
+        std::ostringstream s;
+        s << describe(o, d) << " discrete=" << a.voxel << " (" << a.cell.x << "," << a.cell.y << "," << a.cell.z
+          << ") reference=" << b.voxel << " (" << b.cell.x << "," << b.cell.y << "," << b.cell.z << ")";
+        *why = s.str();
+    }
+    return false;
+}
+
+}  // namespace octrace::testutil
