@@ -1,2 +1,65 @@
+// octrace command-line entry point: dispatches to the sub-commands and maps errors to exit
+// codes (0 success, 2 command-line misuse, 1 anything found while reading or writing).
+#include "Commands.h"
+
+#include "octrace/util/Error.h"
+#include "octrace/util/Log.h"
+
 #include <cstdio>
-int main() { std::puts("octrace " OCTRACE_VERSION); return 0; }
+#include <exception>
+#include <string>
+#include <vector>
+
+namespace {
+
+const char* kTopHelp =
+    "octrace " OCTRACE_VERSION " - octree ray casting of scientific volumes\n"
+    "\n"
+    "usage: octrace COMMAND [options]\n"
+    "\n"
+    "commands:\n"
+    "  render INPUT -o OUT   build the isosurface octree of a field and render it to OUT (.png, .exr)\n"
+    "  info INPUT...         describe inputs: format, variables, units, value ranges, grid, bounds\n"
+    "  sample NAME -o OUT    write an analytic sample field (sphere, torus, gyroid, noise) as NRRD\n"
+    "\n"
+    "INPUT is a NetCDF file (.nc, .cdf), a NRRD file (.nrrd, .nhdr), or analytic:NAME[:SAMPLES].\n"
+    "Run 'octrace COMMAND --help' for the options of a command; see docs/user/cli.md.\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (args.empty()) {
+        std::fputs(kTopHelp, stderr);
+        return 2;
+    }
+    const std::string cmd = args[0];
+    std::vector<std::string> rest(args.begin() + 1, args.end());
+    try {
+        if (cmd == "--help" || cmd == "-h" || cmd == "help") {
+            std::fputs(kTopHelp, stdout);
+            return 0;
+        }
+        if (cmd == "--version") {
+            std::puts("octrace " OCTRACE_VERSION);
+            return 0;
+        }
+        if (cmd == "render") return octrace::cli::runRender(rest);
+        if (cmd == "info") return octrace::cli::runInfo(rest);
+        if (cmd == "sample") return octrace::cli::runSample(rest);
+        throw octrace::UsageError("unknown command '" + cmd + "' (commands: render, info, sample)");
+    } catch (const octrace::UsageError& e) {
+        std::fprintf(stderr, "octrace: %s\nTry 'octrace %s --help'.\n", e.what(),
+                     (cmd == "render" || cmd == "info" || cmd == "sample") ? cmd.c_str() : "");
+        return 2;
+    } catch (const octrace::Error& e) {
+        std::fprintf(stderr, "octrace: error: %s\n", e.what());
+        return 1;
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "octrace: error: out of memory\n");
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "octrace: internal error: %s\n", e.what());
+        return 1;
+    }
+}

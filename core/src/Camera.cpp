@@ -37,13 +37,23 @@ Camera Camera::framing(const Box3& box, int width, int height, double fovYDegree
     c.fovYDegrees = fovYDegrees;
     c.lookAt = box.centre();
     c.up = dvec3(0, 0, 1);
-    dvec3 dir = glm::normalize(dvec3(0.55, -1.0, 0.75));  // from south-east, above
-    double radius = 0.5 * glm::length(box.size());
-    double th = std::tan(glm::radians(fovYDegrees) * 0.5);
-    double aspect = double(width) / double(height);
-    double halfAngle = std::atan(th * std::min(1.0, aspect));
-    double dist = radius / std::sin(halfAngle) * 1.02;
-    c.position = c.lookAt + dir * dist;
+    const dvec3 dir = glm::normalize(dvec3(0.55, -1.0, 0.75));  // from south-east, above
+    c.position = c.lookAt + dir;
+    dvec3 right, up, back;
+    c.basis(right, up, back);
+    const double tanV = std::tan(glm::radians(fovYDegrees) * 0.5);
+    const double tanH = tanV * double(width) / double(height);
+    // Smallest distance at which every corner of the box is inside the view, plus a margin.
+    double dist = 0.0;
+    for (int k = 0; k < 8; ++k) {
+        dvec3 p((k & 4) ? box.hi.x : box.lo.x, (k & 2) ? box.hi.y : box.lo.y, (k & 1) ? box.hi.z : box.lo.z);
+        dvec3 o = p - c.lookAt;
+        double z = glm::dot(o, back);
+        dist = std::max(dist, z + std::abs(glm::dot(o, right)) / tanH);
+        dist = std::max(dist, z + std::abs(glm::dot(o, up)) / tanV);
+    }
+    if (!(dist > 0.0)) dist = 1.0;
+    c.position = c.lookAt + back * (dist * 1.08);
     return c;
 }
 

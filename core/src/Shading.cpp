@@ -52,7 +52,13 @@ Shader::Shader(const Octree& tree, const Camera& camera, const RenderSettings& s
     if (!(glm::length(l) > 0.0)) l = dvec3(0.4, 0.6, 1.0);
     l = glm::normalize(l);
     light_ = vec3(glm::normalize(l.x * right + l.y * up + l.z * back));
-    if (useColormap_) colormap(settings.colormap, 0.0f);  // validate the name once
+    if (useColormap_) {
+        colormap(settings.colormap, 0.0f);  // validate the name once
+        ivec3 lo, hi;
+        tree.occupiedCells(lo, hi);
+        zLo_ = lo.z;
+        zHi_ = std::max(hi.z, lo.z);
+    }
 }
 
 vec4 Shader::shade(std::uint32_t voxel, const ivec3& cell) const {
@@ -61,8 +67,8 @@ vec4 Shader::shade(std::uint32_t voxel, const ivec3& cell) const {
     float intensity = settings_.ambient + settings_.diffuse * lambert;
     vec3 albedo = settings_.colour;
     if (useColormap_) {
-        // Colour by height (world z) across the cube until a second field can be mapped.
-        float t = (float(cell.z) + 0.5f) / float(1 << tree_.depth);
+        // Colour by height (world z) over the surface's extent until a second field can be mapped.
+        float t = (float(cell.z - zLo_) + 0.5f) / float(zHi_ - zLo_ + 1);
         albedo = colormap(settings_.colormap, t);
     }
     return vec4(albedo * intensity, 1.0f);

@@ -86,6 +86,13 @@ public:
     /// boundary voxel (or lies outside). O(depth).
     std::uint32_t findVoxel(const ivec3& cell) const;
 
+    /// Smallest cell-space box [lo, hi] (inclusive) holding every boundary voxel; lo > hi
+    /// when there is none. Computed by descending only the nodes on the box's faces' sides:
+    /// O(voxels) at worst.
+    void occupiedCells(ivec3& lo, ivec3& hi) const;
+    /// World box of the occupied cells (the surface's bounding box).
+    Box3 occupiedBounds() const;
+
     /// Calls f(cell, voxelIndex) for every boundary voxel (depth-first order).
     template <class F>
     void forEachVoxel(F&& f) const;

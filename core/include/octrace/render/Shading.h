@@ -11,7 +11,8 @@
 
 namespace octrace {
 
-/// Named colour maps for --colormap (linear RGB, t in [0,1]).
+/// Named colour maps for --colormap (linear RGB, t in [0,1]). With a colour map the surface is
+/// coloured by height: t runs from the lowest to the highest boundary voxel.
 std::vector<std::string> colormapNames();
 /// Throws UsageError for an unknown name.
 vec3 colormap(const std::string& name, float t);
@@ -30,6 +31,7 @@ private:
     const RenderSettings& settings_;
     vec3 light_;
     bool useColormap_;
+    int zLo_ = 0, zHi_ = 0;  // occupied cell range along z, for the colour map
 };
 
 }  // namespace octrace

@@ -1,0 +1,36 @@
+#include "Commands.h"
+#include "Input.h"
+#include "Options.h"
+
+#include "octrace/util/Error.h"
+
+#include <cstdio>
+
+namespace octrace::cli {
+
+int runInfo(const std::vector<std::string>& args) {
+    bool help = false;
+    OptionParser p("info", "octrace info INPUT...");
+    p.add({"help", "", "show this help and exit", [&](const std::string&) { help = true; }});
+    auto inputs = p.parse(args);
+    if (help) {
+        std::fputs(p.help().c_str(), stdout);
+        return 0;
+    }
+    if (inputs.empty()) throw UsageError("info needs at least one INPUT");
+    // Batch: a bad input is reported and the others still described.
+    int status = 0;
+    for (const auto& in : inputs) {
+        try {
+            std::fputs(describe(in).c_str(), stdout);
+        } catch (const UsageError&) {
+            throw;
+        } catch (const Error& e) {
+            std::fprintf(stderr, "octrace: error: %s\n", e.what());
+            status = 1;
+        }
+    }
+    return status;
+}
+
+}  // namespace octrace::cli

@@ -1,0 +1,12 @@
+#pragma once
+#include "octrace/build/ScalarField.h"
+#include "octrace/io/FieldRequest.h"
+
+#include <string>
+
+namespace octrace::cli {
+/// Reads INPUT: a file through io::readField, or "analytic:NAME[:SAMPLES]" (default 65 samples).
+ScalarField loadField(const std::string& input, const io::FieldRequest& req);
+/// Text for `octrace info`.
+std::string describe(const std::string& input);
+}  // namespace octrace::cli

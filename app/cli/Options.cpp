@@ -1,0 +1,136 @@
+#include "Options.h"
+
+#include "octrace/util/Error.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+namespace octrace::cli {
+
+std::vector<std::string> OptionParser::parse(const std::vector<std::string>& args) const {
+    std::vector<std::string> positional;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if (a == "--") {
+            positional.insert(positional.end(), args.begin() + std::ptrdiff_t(i) + 1, args.end());
+            break;
+        }
+        std::string name, value;
+        bool hasValue = false;
+        if (a.rfind("--", 0) == 0) {
+            name = a.substr(2);
+            auto eq = name.find('=');
+            if (eq != std::string::npos) {
+                value = name.substr(eq + 1);
+                name = name.substr(0, eq);
+                hasValue = true;
+            }
+        } else if (a.size() == 2 && a[0] == '-' && a[1] != '-') {
+            name = a.substr(1);
+        } else {
+            positional.push_back(a);
+            continue;
+        }
+        const OptionSpec* spec = nullptr;
+        for (const auto& s : specs_)
+            if (s.name == name) spec = &s;
+        if (!spec) throw UsageError("unknown option '" + a + "' for '" + command_ + "'");
+        if (spec->argument.empty()) {
+            if (hasValue) throw UsageError("option --" + name + " takes no value");
+            spec->apply("");
+            continue;
+        }
+        if (!hasValue) {
+            if (i + 1 >= args.size()) throw UsageError("option --" + name + " needs a value (" + spec->argument + ")");
+            value = args[++i];
+        }
+        spec->apply(value);
+    }
+    return positional;
+}
+
+std::string OptionParser::help() const {
+    std::ostringstream s;
+    s << "usage: " << usage_ << "\n\noptions:\n";
+    for (const auto& o : specs_) {
+        std::string left = (o.name.size() == 1 ? "-" : "--") + o.name + (o.argument.empty() ? "" : " " + o.argument);
+        s << "  " << left;
+        if (left.size() < 28) s << std::string(28 - left.size(), ' ');
+        else s << "\n" << std::string(30, ' ');
+        s << o.help << "\n";
+    }
+    return s.str();
+}
+
+double parseNumber(const std::string& option, const std::string& text) {
+    const char* b = text.c_str();
+    char* end = nullptr;
+    errno = 0;
+    double v = std::strtod(b, &end);
+    if (text.empty() || end != b + text.size() || errno == ERANGE || !std::isfinite(v))
+        throw UsageError("--" + option + ": '" + text + "' is not a finite number");
+    return v;
+}
+
+int parseInt(const std::string& option, const std::string& text, int lo, int hi) {
+    const char* b = text.c_str();
+    char* end = nullptr;
+    errno = 0;
+    long v = std::strtol(b, &end, 10);
+    if (text.empty() || end != b + text.size() || errno == ERANGE)
+        throw UsageError("--" + option + ": '" + text + "' is not an integer");
+    if (v < lo || v > hi) {
+        std::ostringstream s;
+        s << "--" << option << ": " << v << " is out of range [" << lo << ", " << hi << "]";
+        throw UsageError(s.str());
+    }
+    return int(v);
+}
+
+namespace {
+std::vector<std::string> split(const std::string& text, char sep) {
+    std::vector<std::string> parts;
+    std::string cur;
+    for (char c : text) {
+        if (c == sep) {
+            parts.push_back(cur);
+            cur.clear();
+        } else {
+            cur += c;
+        }
+    }
+    parts.push_back(cur);
+    return parts;
+}
+}  // namespace
+
+dvec3 parseVec3(const std::string& option, const std::string& text) {
+    auto p = split(text, ',');
+    if (p.size() != 3) throw UsageError("--" + option + ": expected X,Y,Z, got '" + text + "'");
+    return dvec3(parseNumber(option, p[0]), parseNumber(option, p[1]), parseNumber(option, p[2]));
+}
+
+vec4 parseColour(const std::string& option, const std::string& text, bool allowAlpha) {
+    auto p = split(text, ',');
+    if (p.size() != 3 && !(allowAlpha && p.size() == 4))
+        throw UsageError("--" + option + ": expected R,G,B" + std::string(allowAlpha ? "[,A]" : "") + " in [0,1], got '" +
+                         text + "'");
+    vec4 c(1.0f);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        double v = parseNumber(option, p[i]);
+        if (v < 0.0 || v > 1.0) throw UsageError("--" + option + ": component '" + p[i] + "' is outside [0,1]");
+        c[int(i)] = float(v);
+    }
+    return c;
+}
+
+void parseSize(const std::string& option, const std::string& text, int& w, int& h) {
+    auto x = text.find('x');
+    if (x == std::string::npos) throw UsageError("--" + option + ": expected WxH (e.g. 1600x1200), got '" + text + "'");
+    w = parseInt(option, text.substr(0, x), 1, 16384);
+    h = parseInt(option, text.substr(x + 1), 1, 16384);
+}
+
+}  // namespace octrace::cli

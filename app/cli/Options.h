@@ -1,0 +1,41 @@
+#pragma once
+// GNU-style long option parsing for the octrace CLI: "--name value" or "--name=value",
+// flags without a value, positional arguments. Every option states its default in --help.
+#include "octrace/util/Math.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace octrace::cli {
+
+struct OptionSpec {
+    std::string name;      // without the dashes; "o" is accepted as -o
+    std::string argument;  // empty for a flag
+    std::string help;      // one line; ends with the default
+    std::function<void(const std::string&)> apply;
+};
+
+class OptionParser {
+public:
+    OptionParser(std::string command, std::string usage) : command_(std::move(command)), usage_(std::move(usage)) {}
+    void add(OptionSpec spec) { specs_.push_back(std::move(spec)); }
+    /// Parses args; returns the positional arguments. Throws UsageError.
+    std::vector<std::string> parse(const std::vector<std::string>& args) const;
+    std::string help() const;
+    const std::string& usage() const { return usage_; }
+
+private:
+    std::string command_, usage_;
+    std::vector<OptionSpec> specs_;
+};
+
+// Strict value parsers; they throw UsageError naming the option and the text.
+double parseNumber(const std::string& option, const std::string& text);
+int parseInt(const std::string& option, const std::string& text, int lo, int hi);
+dvec3 parseVec3(const std::string& option, const std::string& text);
+/// "R,G,B" or "R,G,B,A", each in [0,1] (sRGB display values, as a user picks a colour).
+vec4 parseColour(const std::string& option, const std::string& text, bool allowAlpha);
+void parseSize(const std::string& option, const std::string& text, int& w, int& h);
+
+}  // namespace octrace::cli

@@ -1,0 +1,25 @@
+#pragma once
+/// @file FieldReader.h
+/// One entry point for scalar-field inputs: picks the reader from the file's content.
+#include "octrace/build/ScalarField.h"
+#include "octrace/io/FieldRequest.h"
+
+#include <string>
+
+namespace octrace::io {
+
+/// Reads a scalar field from `path`, choosing the reader by the file's first bytes
+/// ("CDF\x01|\x02|\x05" NetCDF classic, HDF5 signature for NetCDF-4, "NRRD"), then by
+/// extension (.nc .cdf .nc4 .nrrd .nhdr).
+/// NRRD holds one unnamed field: a non-empty `req.variable` must equal its name, and a
+/// region is refused (InputError); `req.verticalScale` is ignored there with a warning.
+/// @throws InputError "PATH: no such file" when missing; FormatNotSupported naming the
+///         supported formats; FileError "PATH: file is empty (0 bytes)"; otherwise as the
+///         format's reader (NetcdfReader::read, NrrdReader::read). The result is validated.
+ScalarField readField(const std::string& path, const FieldRequest& req = {});
+
+/// The text `octrace info INPUT` prints: format, variables with units, dims and valid value
+/// range, dims, spacing or axes, origin and world bounds. Throws as readField().
+std::string describeInput(const std::string& path);
+
+}  // namespace octrace::io

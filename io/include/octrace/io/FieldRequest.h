@@ -1,0 +1,32 @@
+#pragma once
+/// @file FieldRequest.h
+/// What a caller asks a field reader for: which variable, which geographic region, which
+/// vertical exaggeration. Plain data, no GDAL or VTK types.
+#include <array>
+#include <string>
+
+namespace octrace::io {
+
+struct FieldRequest {
+    /// Variable to read. Empty: the file's only 3-D variable (an error if it has several).
+    std::string variable;
+    /// When true, only grid points inside `region` are read (geographic grids only).
+    bool hasRegion = false;
+    /// LON0, LON1, LAT0, LAT1 in degrees. LON1 < LON0 crosses the dateline (170,-170 is
+    /// the same region as 170,190). LAT0 < LAT1.
+    double region[4] = {0.0, 0.0, 0.0, 0.0};
+    /// World z = -depth_km * verticalScale. 0 chooses the default (depth extent = a quarter of
+    /// the larger horizontal extent); negative values are refused.
+    double verticalScale = 0.0;
+};
+
+/// Parses "LON0,LON1,LAT0,LAT1" (degrees) and checks the values (see checkRegion).
+/// @throws UsageError naming the text and the problem.
+std::array<double, 4> parseRegion(const std::string& text);
+
+/// Checks LON0..LON1 spans more than 0 and at most 360 degrees once unwrapped, and
+/// -90 <= LAT0 < LAT1 <= 90. `what` prefixes the message (e.g. the input path).
+/// @throws UsageError.
+void checkRegion(const double region[4], const std::string& what);
+
+}  // namespace octrace::io

@@ -1,0 +1,45 @@
+#pragma once
+/// @file NetcdfReader.h
+/// Reads 3-D variables of NetCDF files (classic, 64-bit offset, CDF-5, NetCDF-4/HDF5) through
+/// GDAL's multidimensional API, mapping geographic grids to world kilometres.
+#include "octrace/build/ScalarField.h"
+#include "octrace/io/FieldRequest.h"
+
+#include <string>
+
+namespace octrace::io {
+
+class NetcdfReader {
+public:
+    /// Reads one 3-D variable (`req.variable`, or the file's only 3-D variable).
+    ///
+    /// Geographic grids (1-D longitude, latitude and vertical axes, recognised by units such as
+    /// degrees_east / degrees_north / m with positive="down", by standard_name, or by names
+    /// like lon/lat/depth/lev/z) follow the project's coordinate contract: x = R (lon - lon0)
+    /// cos(lat0), y = R (lat - lat0), z = -depth_km * vertical scale, R = 6371 km, (lon0, lat0)
+    /// the centre of the region (or of the whole grid). Longitudes are unwrapped so the region
+    /// is contiguous (it may cross the dateline or the file's own seam). Every axis is stored
+    /// increasing: uniform axes as origin + spacing, uneven ones (e.g. depth levels) in
+    /// ScalarField::coords. Other grids keep their coordinate variables (or indices) as world
+    /// units. Extra dimensions (e.g. time) are read at index 0 with a warning.
+    ///
+    /// Samples equal to missing_value / _FillValue, outside valid_min/valid_max/valid_range, or
+    /// not finite are invalid; scale_factor / add_offset are applied. ScalarField::notes
+    /// describe the mapping (centre, region, vertical scale).
+    ///
+    /// @throws InputError (missing file, unknown variable, no or several 3-D variables, a
+    ///         region on a non-geographic grid), FormatNotSupported (not NetCDF), FileError
+    ///         (truncated, GDAL cannot open or read it, non-monotonic axes), UsageError (malformed region
+    ///         or negative vertical scale), EmptyResultError (fewer than 2 grid points in the
+    ///         region along an axis, or no valid sample).
+    /// Thread-safe as far as GDAL is: each call opens its own dataset.
+    static ScalarField read(const std::string& path, const FieldRequest& req);
+
+    /// Multi-line human-readable summary for `octrace info`: format, dimensions with their
+    /// axis role and values, every variable with dims, units and valid value range, and the
+    /// world geometry of the default (or first) 3-D variable. Throws as read(), except that a
+    /// variable without valid samples is reported in the text.
+    static std::string describe(const std::string& path);
+};
+
+}  // namespace octrace::io

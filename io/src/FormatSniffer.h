@@ -1,0 +1,18 @@
+#pragma once
+// Tells input formats apart by their first bytes (internal).
+#include <string>
+
+namespace octrace::io::detail {
+
+enum class FileKind { NetCdf, Nrrd, Unknown };
+
+struct Sniffed {
+    FileKind kind = FileKind::Unknown;
+    std::string description;  ///< e.g. "NetCDF-3 classic (CDF-1)"; for Unknown the first bytes, quoted
+};
+
+/// Requires a readable, non-empty file (InputError "PATH: no such file", FileError
+/// "PATH: file is empty (0 bytes)"), then looks at its signature only (not the extension).
+Sniffed sniffFormat(const std::string& path);
+
+}  // namespace octrace::io::detail

@@ -1,0 +1,39 @@
+#pragma once
+// Maps longitude/latitude/depth axes to world kilometres per the project's coordinate contract
+// (internal, no GDAL types, no file access).
+#include "octrace/io/FieldRequest.h"
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace octrace::io::detail {
+
+/// Which stored samples of one file axis make the output axis, in output order.
+struct AxisSelection {
+    std::vector<std::size_t> stored;  ///< index into the file's axis, per output sample
+    std::vector<double> world;        ///< world coordinate per output sample, strictly increasing
+};
+
+struct GeoMapping {
+    AxisSelection x, y, z;            ///< longitude, latitude, vertical
+    double lon0 = 0.0, lat0 = 0.0;    ///< centre of the region (or the grid), degrees
+    double verticalScale = 1.0;
+    std::vector<std::string> notes;
+};
+
+constexpr double kEarthRadiusKm = 6371.0;
+
+/// Selects the grid points inside `req`'s region (all of them without one), unwraps
+/// longitudes so the selection is contiguous, and computes world coordinates.
+/// `depthKm` is positive down. `path` prefixes messages.
+/// @throws UsageError (bad region or vertical scale), FileError (non-finite or non-monotonic
+///         axis values), EmptyResultError (fewer than 2 grid points along an axis).
+GeoMapping mapGeographic(const std::string& path, const std::vector<double>& lon, const std::vector<double>& lat,
+                         const std::vector<double>& depthKm, const FieldRequest& req);
+
+/// A non-geographic axis: every stored sample, in increasing coordinate order (reversed when
+/// the file's coordinates decrease); world = the coordinate. @throws FileError if not monotonic.
+AxisSelection increasingAxis(const std::string& path, const std::string& axisName, const std::vector<double>& values);
+
+}  // namespace octrace::io::detail

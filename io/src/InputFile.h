@@ -1,0 +1,29 @@
+#pragma once
+// Small checks every reader makes before opening a file (internal to octrace_io).
+#include <cstdint>
+#include <string>
+
+namespace octrace::io::detail {
+
+/// Throws InputError "PATH: no such file", "PATH: is a directory" or "PATH: cannot be opened".
+void requireReadableFile(const std::string& path);
+
+/// Size in bytes (0 if it cannot be determined).
+std::uintmax_t fileSize(const std::string& path);
+
+/// Up to `n` first bytes of the file.
+std::string readPrefix(const std::string& path, std::size_t n);
+
+/// `bytes` made safe to quote in a one-line message (non-printable bytes as \xNN).
+std::string quoteBytes(const std::string& bytes);
+
+/// Shortest round-trippable-enough text for messages and notes (%.6g).
+std::string num(double v);
+
+/// Lower case ASCII copy.
+std::string lower(std::string s);
+
+/// Copy without leading and trailing white space.
+std::string trim(const std::string& s);
+
+}  // namespace octrace::io::detail

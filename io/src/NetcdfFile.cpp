@@ -1,0 +1,191 @@
+#include "NetcdfFile.h"
+
+#include "octrace/util/Error.h"
+#include "octrace/util/Log.h"
+
+#include <cpl_error.h>
+#include <gdal_priv.h>
+
+#include <cmath>
+#include <mutex>
+
+namespace octrace::io::detail {
+namespace {
+
+// Sends GDAL's messages to octrace's log instead of stderr, for the current thread and scope.
+class GdalMessages {
+public:
+    GdalMessages() {
+        CPLPushErrorHandler(&handler);
+        CPLErrorReset();
+    }
+    ~GdalMessages() { CPLPopErrorHandler(); }
+    GdalMessages(const GdalMessages&) = delete;
+    GdalMessages& operator=(const GdalMessages&) = delete;
+    static std::string last() {
+        const char* m = CPLGetLastErrorMsg();
+        return m && *m ? std::string(m) : std::string("no detail from GDAL");
+    }
+
+private:
+    static void CPL_STDCALL handler(CPLErr level, CPLErrorNum, const char* msg) {
+        if (level >= CE_Warning) log::debug(std::string("GDAL: ") + (msg ? msg : ""));
+    }
+};
+
+std::string stringAttribute(const GDALMDArray& a, const char* name) {
+    auto attr = a.GetAttribute(name);
+    if (!attr || attr->GetDataType().GetClass() != GEDTC_STRING) return {};
+    const char* s = attr->ReadAsString();
+    return s ? s : "";
+}
+
+std::vector<double> numberAttribute(const GDALMDArray& a, const char* name) {
+    auto attr = a.GetAttribute(name);
+    if (!attr || attr->GetDataType().GetClass() != GEDTC_NUMERIC) return {};
+    return attr->ReadAsDoubleArray();
+}
+
+void collect(const std::shared_ptr<GDALGroup>& group, std::vector<VariableInfo>& out,
+             std::vector<std::shared_ptr<GDALMDArray>>& arrays) {
+    for (const auto& name : group->GetMDArrayNames()) {
+        auto a = group->OpenMDArray(name);
+        if (!a) continue;
+        VariableInfo v;
+        v.name = a->GetFullName();
+        v.shortName = a->GetName();
+        for (const auto& d : a->GetDimensions()) {
+            v.dimNames.push_back(d->GetName());
+            v.dimSizes.push_back(std::size_t(d->GetSize()));
+        }
+        v.numeric = a->GetDataType().GetClass() == GEDTC_NUMERIC;
+        v.dataType = v.numeric ? GDALGetDataTypeName(a->GetDataType().GetNumericDataType()) : "non-numeric";
+        v.units = a->GetUnit();
+        v.longName = stringAttribute(*a, "long_name");
+        v.coordinate = v.dimNames.size() == 1 && v.dimNames[0] == v.shortName;
+        out.push_back(v);
+        arrays.push_back(a);
+    }
+    for (const auto& name : group->GetGroupNames())
+        if (auto sub = group->OpenGroup(name)) collect(sub, out, arrays);
+}
+
+}  // namespace
+
+int VariableInfo::extent() const {
+    int n = 0;
+    for (auto s : dimSizes) n += s > 1 ? 1 : 0;
+    return n;
+}
+
+std::string VariableInfo::signature() const {
+    std::string s = shortName + "(";
+    for (std::size_t d = 0; d < dimNames.size(); ++d) s += (d ? ", " : "") + dimNames[d];
+    return s + ")";
+}
+
+bool SampleRules::isValid(double raw) const {
+    if (!std::isfinite(raw)) return false;
+    for (double m : missing)
+        if (raw == m || (m != 0.0 && std::abs(raw - m) <= 1e-6 * std::abs(m))) return false;
+    return raw >= validMin && raw <= validMax;
+}
+
+struct NetcdfFile::Impl {
+    std::string path;
+    GDALDatasetUniquePtr dataset;
+    std::vector<VariableInfo> variables;
+    std::vector<std::shared_ptr<GDALMDArray>> arrays;  // parallel to variables
+
+    const std::shared_ptr<GDALMDArray>& array(const VariableInfo& v) const {
+        for (std::size_t i = 0; i < variables.size(); ++i)
+            if (variables[i].name == v.name) return arrays[i];
+        throw InputError(path + ": no variable '" + v.name + "'");
+    }
+};
+
+NetcdfFile::NetcdfFile(const std::string& path) : impl_(std::make_unique<Impl>()) {
+    static std::once_flag registered;
+    std::call_once(registered, [] { GDALAllRegister(); });
+    GdalMessages messages;
+    impl_->path = path;
+    const char* const drivers[] = {"netCDF", nullptr};
+    impl_->dataset.reset(GDALDataset::Open(path.c_str(), GDAL_OF_MULTIDIM_RASTER | GDAL_OF_READONLY, drivers));
+    if (!impl_->dataset) {
+        std::string detail = CPLGetLastErrorType() == CE_None ? std::string("the file is truncated or corrupt")
+                                                              : GdalMessages::last();
+        throw FileError(path + ": GDAL's netCDF driver cannot open it: " + detail);
+    }
+    auto root = impl_->dataset->GetRootGroup();
+    if (!root) throw FileError(path + ": GDAL gives no root group: " + GdalMessages::last());
+    collect(root, impl_->variables, impl_->arrays);
+}
+
+NetcdfFile::~NetcdfFile() = default;
+
+const std::vector<VariableInfo>& NetcdfFile::variables() const { return impl_->variables; }
+
+AxisInfo NetcdfFile::axis(const VariableInfo& variable, std::size_t dim) const {
+    GdalMessages messages;
+    auto d = impl_->array(variable)->GetDimensions().at(dim);
+    AxisInfo a;
+    a.name = d->GetName();
+    a.size = std::size_t(d->GetSize());
+    a.gdalType = d->GetType();
+    a.gdalDirection = d->GetDirection();
+    auto iv = d->GetIndexingVariable();
+    if (!iv || iv->GetDimensionCount() != 1 || iv->GetDataType().GetClass() != GEDTC_NUMERIC) return a;
+    a.units = iv->GetUnit();
+    a.positive = stringAttribute(*iv, "positive");
+    a.standardName = stringAttribute(*iv, "standard_name");
+    a.axis = stringAttribute(*iv, "axis");
+    a.longName = stringAttribute(*iv, "long_name");
+    std::vector<double> values(a.size);
+    GUInt64 start = 0;
+    std::size_t count = a.size;
+    if (!iv->Read(&start, &count, nullptr, nullptr, GDALExtendedDataType::Create(GDT_Float64), values.data()))
+        throw FileError(impl_->path + ": cannot read coordinate variable '" + iv->GetName() + "': " + GdalMessages::last());
+    a.values = std::move(values);
+    return a;
+}
+
+SampleRules NetcdfFile::rules(const VariableInfo& variable) const {
+    GdalMessages messages;
+    const auto& a = *impl_->array(variable);
+    SampleRules r;
+    for (const char* name : {"missing_value", "_FillValue"})
+        for (double v : numberAttribute(a, name)) r.missing.push_back(v);
+    bool hasNoData = false;
+    double noData = a.GetNoDataValueAsDouble(&hasNoData);
+    if (hasNoData) r.missing.push_back(noData);
+    if (numberAttribute(a, "_FillValue").empty() &&
+        (variable.dataType == "Float32" || variable.dataType == "Float64"))
+        r.missing.push_back(9.9692099683868690e+36);  // NetCDF's default fill for unwritten floats
+    auto range = numberAttribute(a, "valid_range");
+    auto vmin = numberAttribute(a, "valid_min");
+    auto vmax = numberAttribute(a, "valid_max");
+    if (range.size() == 2) { r.validMin = range[0]; r.validMax = range[1]; }
+    if (!vmin.empty()) r.validMin = vmin[0];
+    if (!vmax.empty()) r.validMax = vmax[0];
+    bool has = false;
+    double scale = a.GetScale(&has);
+    if (has) r.scale = scale;
+    double offset = a.GetOffset(&has);
+    if (has) r.offset = offset;
+    return r;
+}
+
+std::vector<double> NetcdfFile::read(const VariableInfo& variable, const std::vector<std::uint64_t>& start,
+                                     const std::vector<std::size_t>& count) const {
+    GdalMessages messages;
+    std::size_t n = 1;
+    for (auto c : count) n *= c;
+    std::vector<double> buffer(n);
+    std::vector<GUInt64> gstart(start.begin(), start.end());
+    if (!impl_->array(variable)->Read(gstart.data(), count.data(), nullptr, nullptr,
+                                      GDALExtendedDataType::Create(GDT_Float64), buffer.data()))
+        throw FileError(impl_->path + ": cannot read variable '" + variable.shortName + "': " + GdalMessages::last());
+    return buffer;
+}
+
+}  // namespace octrace::io::detail

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs the Debian (bookworm) packages octrace builds and tests with. Idempotent; needs root
+# (or sudo). Nothing is downloaded at build time: these packages are everything.
+set -euo pipefail
+PACKAGES=(
+  cmake ninja-build g++ pkg-config
+  libgdal-dev libvtk9-dev libopenexr-dev libglm-dev libtbb-dev
+  libgtest-dev libbenchmark-dev libpng-dev libzstd-dev
+)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#PACKAGES[@]} packages already installed"
+  exit 0
+fi
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+echo "setup: installing ${missing[*]}"
+$SUDO apt-get update -q
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"

@@ -1,0 +1,121 @@
+#include "IoTestSupport.h"
+
+#include "octrace/io/FieldReader.h"
+#include "octrace/io/NrrdWriter.h"
+#include "octrace/util/Error.h"
+
+using namespace octrace;
+
+namespace {
+
+ScalarField smallField() {
+    ScalarField f;
+    f.name = "blob";
+    f.dims = ivec3(12, 3, 2);
+    f.values.assign(f.sampleCount(), 1.5f);
+    return f;
+}
+
+enum class Kind { Input, FormatNotSupported, File, Empty };
+
+bool isKind(const Error& e, Kind k) {
+    switch (k) {
+        case Kind::FormatNotSupported: return dynamic_cast<const FormatNotSupported*>(&e) != nullptr;
+        case Kind::File: return dynamic_cast<const FileError*>(&e) != nullptr;
+        case Kind::Empty: return dynamic_cast<const EmptyResultError*>(&e) != nullptr;
+        default:
+            return dynamic_cast<const InputError*>(&e) && !dynamic_cast<const FileError*>(&e) &&
+                   !dynamic_cast<const FormatNotSupported*>(&e) && !dynamic_cast<const EmptyResultError*>(&e);
+    }
+}
+
+}  // namespace
+
+TEST(FieldReader, MissingFileSaysNoSuchFile) {
+    std::string path = test::testData("invalid/does_not_exist.nc");
+    EXPECT_THROW_WITH(io::readField(path), InputError, path + ": no such file");
+}
+
+TEST(FieldReader, UnknownFormatNamesTheSupportedOnes) {
+    EXPECT_THROW_WITH(io::readField(test::testData("invalid/invalid_unknown_format.dat")), FormatNotSupported,
+                      "format not recognised (file starts with 'GIF89a\\x01\\x00'); supported: NetCDF");
+}
+
+TEST(FieldReader, DispatchesByContentNotByExtension) {
+    test::TempDir dir;
+    io::NrrdWriter::write(smallField(), dir.file("volume.bin"));
+    ScalarField f = io::readField(dir.file("volume.bin"));
+    EXPECT_EQ(f.name, "blob");
+    EXPECT_EQ(f.dims, ivec3(12, 3, 2));
+    ScalarField g = io::readField(test::testData("netcdf/dateline_cf_nc4.nc"));  // HDF5 signature
+    EXPECT_EQ(g.name, "temp");
+}
+
+TEST(FieldReader, NrrdAcceptsItsOwnNameAndRefusesOthersOrARegion) {
+    test::TempDir dir;
+    io::NrrdWriter::write(smallField(), dir.file("blob.nrrd"));
+    io::FieldRequest r;
+    r.variable = "blob";
+    EXPECT_EQ(io::readField(dir.file("blob.nrrd"), r).name, "blob");
+    r.variable = "TEMP";
+    EXPECT_THROW_WITH(io::readField(dir.file("blob.nrrd"), r), InputError, "no variable 'TEMP' (the NRRD volume holds one field, 'blob')");
+    r.variable.clear();
+    r.hasRegion = true;
+    EXPECT_THROW_WITH(io::readField(dir.file("blob.nrrd"), r), InputError, "a region needs a geographic");
+}
+
+// Every file of tests/data/invalid through the entry point the CLI uses; the table mirrors
+// tests/data/invalid/README.md.
+TEST(FieldReader, EveryInvalidCorpusFileFailsWithItsDocumentedMessage) {
+    struct Case {
+        const char* file;
+        const char* variable;
+        Kind kind;
+        const char* message;
+    };
+    const Case cases[] = {
+        {"invalid_truncated.nrrd", "", Kind::File, "data truncated"},
+        {"invalid_magic.nrrd", "", Kind::FormatNotSupported, "not a NRRD file"},
+        {"invalid_empty.nrrd", "", Kind::File, "file is empty (0 bytes)"},
+        {"invalid_bad_spacing.nhdr", "", Kind::File, "spacing along axis 1 must be positive"},
+        {"invalid_missing_data_file.nhdr", "", Kind::File, "not found"},
+        {"invalid_not_3d.nrrd", "", Kind::File, "expected a 3-D scalar volume"},
+        {"invalid_truncated_gzip.nrrd", "", Kind::File, "gzip data truncated"},
+        {"invalid_sheared.nrrd", "", Kind::File, "not perpendicular"},
+        {"invalid_no_variable.nc", "TEMP", Kind::Input, "no variable 'TEMP'"},
+        {"invalid_no_variable.nc", "", Kind::Input, "no 3-D variable"},
+        {"invalid_all_masked.nc", "", Kind::Empty, "has no valid sample"},
+        {"invalid_truncated.nc", "", Kind::File, "NetCDF data truncated"},
+        {"invalid_truncated_hdf5.nc", "", Kind::File, "GDAL's netCDF driver cannot open it"},
+        {"invalid_not_netcdf.nc", "", Kind::FormatNotSupported, "not a NetCDF file"},
+        {"invalid_unknown_format.dat", "", Kind::FormatNotSupported, "format not recognised"},
+    };
+    for (const auto& c : cases) {
+        std::string path = test::testData(std::string("invalid/") + c.file);
+        io::FieldRequest r;
+        r.variable = c.variable;
+        try {
+            io::readField(path, r);
+            ADD_FAILURE() << c.file << ": no exception";
+        } catch (const Error& e) {
+            std::string msg = e.what();
+            EXPECT_TRUE(isKind(e, c.kind)) << c.file << ": wrong exception type for '" << msg << "'";
+            EXPECT_EQ(msg.rfind(path + ": ", 0), 0u) << c.file << ": message does not start with the path: " << msg;
+            EXPECT_NE(msg.find(c.message), std::string::npos) << c.file << ": '" << msg << "' lacks '" << c.message << "'";
+            EXPECT_EQ(msg.find('\n'), std::string::npos) << c.file << ": message is not one line: " << msg;
+        }
+    }
+}
+
+TEST(FieldReader, DescribeInputCoversNetcdfAndNrrd) {
+    std::string nc = io::describeInput(test::testData("netcdf/dateline_cf.nc"));
+    EXPECT_NE(nc.find("lon = 72: longitude, units 'degree_east', -177.5 .. 177.5, uniform step 5"), std::string::npos) << nc;
+    EXPECT_NE(nc.find("lat = 4: latitude, units 'degrees_north', 30 .. -30, uniform step -20"), std::string::npos) << nc;
+    EXPECT_NE(nc.find("temp(time, depth, lat, lon) Float32 [1 x 3 x 4 x 72], units 'degC'"), std::string::npos) << nc;
+    EXPECT_NE(nc.find("landmask(lat, lon)"), std::string::npos) << nc;
+    EXPECT_NE(nc.find("grid of temp (whole grid):"), std::string::npos) << nc;
+    test::TempDir dir;
+    io::NrrdWriter::write(smallField(), dir.file("blob.nrrd"));
+    std::string nrrd = io::describeInput(dir.file("blob.nrrd"));
+    EXPECT_NE(nrrd.find("blob (12 x 3 x 2): valid range 1.5 .. 1.5"), std::string::npos) << nrrd;
+}
