@@ -7,16 +7,27 @@
 #include "octrace/util/Timer.h"
 
 #include <algorithm>
-#include <atomic>
 #include <bit>
+#include <charconv>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <sstream>
 
 namespace octrace {
 namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+/// Shortest text that reads back as the same value: "0.7" for 0.7f rather than "0.699999988",
+/// and enough digits to tell an iso value from a range end it differs from (the default
+/// six significant digits printed "iso value 0.7 is outside the value range [.., 0.7]").
+template <class T>
+std::string shortest(T v) {
+    char buf[64];
+    auto r = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, r.ptr);
+}
 
 /// Where a position along one grid axis (local frame) falls: sample i0, weight t towards i1.
 struct AxisSample {
@@ -309,10 +320,14 @@ Octree buildShellOctree(const ScalarField& field, const BuildOptions& options, B
     }
     if (!std::isfinite(options.iso)) throw UsageError("iso value must be a finite number");
     auto [vmin, vmax] = field.validRange();
-    if (options.iso < vmin || options.iso > vmax) {
+    // Cells are classified in float, against float(iso): check the range in the same precision,
+    // so that e.g. --iso 0.7 on a field whose largest sample is 0.7f is accepted.
+    const bool isoFitsFloat = std::abs(options.iso) <= double(std::numeric_limits<float>::max());
+    const float isoF = isoFitsFloat ? float(options.iso) : 0.0f;
+    if (!isoFitsFloat || isoF < vmin || isoF > vmax) {
         std::ostringstream s;
-        s << field.source << ": iso value " << options.iso << " is outside the value range [" << vmin << ", " << vmax
-          << "] of '" << field.name << "'";
+        s << field.source << ": iso value " << shortest(options.iso) << " is outside the value range [" << shortest(vmin)
+          << ", " << shortest(vmax) << "] of '" << field.name << "'";
         throw EmptyResultError(s.str());
     }
 
@@ -327,7 +342,7 @@ Octree buildShellOctree(const ScalarField& field, const BuildOptions& options, B
     if (!(tree.cubeSide > 0.0)) throw FileError(field.source + ": the grid has zero extent");
     tree.cubeOrigin = b.centre() - dvec3(0.5 * tree.cubeSide);
 
-    const Builder builder(field, tree, float(options.iso));
+    const Builder builder(field, tree, isoF);
     const int depth = tree.depth;
     // Split the top levels into independent subtrees, build them in parallel, and join them in
     // a fixed order so that the result does not depend on the number of threads.
@@ -337,13 +352,19 @@ Octree buildShellOctree(const ScalarField& field, const BuildOptions& options, B
     std::vector<Pool> pools(count);
     std::vector<OctreeNode> roots(count);
     std::vector<std::uint8_t> present(count, 0);
-    std::atomic<std::size_t> done{0};
+    // The progress callback runs on the worker threads; call it one call at a time and with
+    // non-decreasing fractions (ending at 1), so that callers need no locking of their own.
+    std::mutex progressMutex;
+    std::size_t done = 0;
     const int subSize = 1 << (depth - split);
     parallelFor(count, options.threads, [&](std::size_t i) {
         int x = int(i) / (side * side), y = (int(i) / side) % side, z = int(i) % side;
         present[i] = builder.build(split, ivec3(x, y, z) * subSize, roots[i], pools[i]) ? 1 : 0;
-        std::size_t d = ++done;
-        if (options.progress) options.progress(double(d) / double(count));
+        if (options.progress) {
+            std::lock_guard<std::mutex> lock(progressMutex);
+            ++done;
+            options.progress(double(done) / double(count));
+        }
     });
 
     Pool all;
@@ -377,7 +398,7 @@ Octree buildShellOctree(const ScalarField& field, const BuildOptions& options, B
     OctreeNode root;
     if (!assemble(0, ivec3(0), root) || all.voxels.empty()) {
         std::ostringstream s;
-        s << field.source << ": no cell of '" << field.name << "' straddles iso value " << options.iso << " at depth "
+        s << field.source << ": no cell of '" << field.name << "' straddles iso value " << shortest(options.iso) << " at depth "
           << depth;
         throw EmptyResultError(s.str());
     }

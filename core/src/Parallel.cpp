@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <thread>
 
@@ -23,6 +24,9 @@ void parallelFor(std::size_t count, int threads, const std::function<void(std::s
         return;
     }
     int n = threads <= 0 ? hardwareThreads() : threads;
+    // More threads than cores is allowed (results never depend on it); lift TBB's default
+    // limit for the duration of the call instead of letting it warn and ignore the request.
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(std::max(n, hardwareThreads())));
     tbb::task_arena arena(n);
     arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 1), [&](const tbb::blocked_range<std::size_t>& r) {

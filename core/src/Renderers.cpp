@@ -79,9 +79,13 @@ public:
         return renderPerPixel(name(), tree, camera, settings, frame,
                               [&](const dvec3& o, const dvec3& d, TraversalCounters& c, bool& meets) {
                                   QuantizedRay q = quantizeRay(o, d);
-                                  meets = q.meetsCube;
                                   ReferenceRay r = quantized_ ? referenceRayFromQuantized(q) : referenceRayUnquantized(o, d);
-                                  return traverseReference(tree, r, c);
+                                  TraversalHit hit = traverseReference(tree, r, c);
+                                  // The unquantized ray can graze a cube face from inside where
+                                  // its quantized twin is rounded onto the face (outside): it
+                                  // meets the cube when it hits, so that hits <= rays holds.
+                                  meets = q.meetsCube || hit.hit();
+                                  return hit;
                               });
     }
 

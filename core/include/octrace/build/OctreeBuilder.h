@@ -20,7 +20,8 @@ struct BuildOptions {
     int depth = 8;          ///< 1 .. Octree::kMaxDepth
     double iso = 0.0;
     int threads = 0;        ///< 0 = all cores, 1 = serial (same result either way)
-    /// Called now and then with a fraction in [0,1]; may be empty.
+    /// Called now and then with a fraction in [0,1]; may be empty. It runs on worker threads,
+    /// one call at a time, with fractions that never decrease and end at 1.
     std::function<void(double)> progress;
 };
 
