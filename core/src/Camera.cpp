@@ -20,14 +20,14 @@ void Camera::basis(dvec3& right, dvec3& trueUp, dvec3& back) const {
     trueUp = glm::cross(back, right);
 }
 
-Ray Camera::primaryRay(int x, int y) const {
-    dvec3 right, u, back;
-    basis(right, u, back);
-    double th = std::tan(glm::radians(fovYDegrees) * 0.5);
-    double aspect = double(width) / double(height);
-    double sx = ((x + 0.5) / width * 2.0 - 1.0) * th * aspect;
-    double sy = (1.0 - (y + 0.5) / height * 2.0) * th;
-    return {position, glm::normalize(sx * right + sy * u - back)};
+Ray Camera::primaryRay(int x, int y) const { return RayGenerator(*this)(x, y); }
+
+RayGenerator::RayGenerator(const Camera& camera) : origin_(camera.position) {
+    camera.basis(right_, up_, back_);
+    tan_ = std::tan(glm::radians(camera.fovYDegrees) * 0.5);
+    tanAspect_ = tan_ * (double(camera.width) / double(camera.height));
+    invWidth_ = 1.0 / camera.width;
+    invHeight_ = 1.0 / camera.height;
 }
 
 Camera Camera::framing(const Box3& box, int width, int height, double fovYDegrees) {

@@ -177,7 +177,7 @@ TraversalHit traverse(const Octree& tree, const QuantizedRay& r, TraversalCounte
         }
         const unsigned c = unsigned(OrderTable::child(n.order, n.pos++));
         const OctreeNode& nd = tree.nodes[n.node];
-        const std::uint32_t slot = nd.firstChild + std::uint32_t(std::popcount(unsigned(nd.childMask) & ((1u << c) - 1u)));
+        const std::uint32_t slot = nd.firstChild + childRank(nd.childMask, c);
         const unsigned ci = k.toCanonical[c];
         const unsigned hm = ci >> 2, hu = (ci >> 1) & 1, hv = ci & 1;
         const int lg = N - n.level - 1;
@@ -270,11 +270,14 @@ QuantizedRay quantizeRay(const dvec3& o, const dvec3& d) {
     auto far = [](double x) { return !(x > -2.0 * L && x < 3.0 * L); };
     if (far(u0) || far(u1) || far(v0) || far(v1) || !(om[main] < double(L))) return r;
     const double scale = double(1 << QuantizedRay::kFracBits);
-    r.U0 = std::llround(u0 * scale);
-    r.dU = std::llround(u1 * scale) - r.U0;
-    r.V0 = std::llround(v0 * scale);
-    r.dV = std::llround(v1 * scale) - r.V0;
-    r.eyeM = om[main] > 0.0 ? std::llround(om[main] * scale) : 0;
+    // Round half up (floor(x + 1/2)): cheaper than llround, and the same for both signs' ties
+    // up to the documented rule; |x| < 2^42 so the double is exact before flooring.
+    auto fix = [](double x) { return i64(std::floor(x + 0.5)); };
+    r.U0 = fix(u0 * scale);
+    r.dU = fix(u1 * scale) - r.U0;
+    r.V0 = fix(v0 * scale);
+    r.dV = fix(v1 * scale) - r.V0;
+    r.eyeM = om[main] > 0.0 ? fix(om[main] * scale) : 0;
     // floor of u at the eye's plane: (U0 * 2^(N+Q) + eyeM * dU) / 2^(N+2Q), exactly.
     r.uEyeFloor = floorShift((r.U0 << (N + Q)) + r.eyeM * r.dU, N + 2 * Q);
     r.vEyeFloor = floorShift((r.V0 << (N + Q)) + r.eyeM * r.dV, N + 2 * Q);

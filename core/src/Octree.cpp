@@ -64,7 +64,7 @@ std::uint32_t Octree::findVoxel(const ivec3& cell) const {
         int c = (((cell.x >> shift) & 1) << 2) | (((cell.y >> shift) & 1) << 1) | ((cell.z >> shift) & 1);
         const OctreeNode& nd = nodes[node];
         if (!(nd.childMask & (1u << c))) return 0xFFFFFFFFu;
-        std::uint32_t slot = nd.firstChild + std::uint32_t(std::popcount(unsigned(nd.childMask) & ((1u << c) - 1u)));
+        std::uint32_t slot = nd.firstChild + childRank(nd.childMask, unsigned(c));
         if (level == depth - 1) return slot;
         if (nd.termMask & (1u << c)) return 0xFFFFFFFFu;  // interior term: not a boundary voxel
         node = slot;

@@ -22,6 +22,7 @@ RenderStats renderPerPixel(const std::string& name, const Octree& tree, const Ca
     Timer timer;
     frame.resize(camera.width, camera.height);
     const Shader shader(tree, camera, settings);
+    const RayGenerator rays(camera);
     const int tilesX = (camera.width + kTile - 1) / kTile, tilesY = (camera.height + kTile - 1) / kTile;
     std::vector<RenderStats> tileStats(std::size_t(tilesX) * tilesY);
     const double toOS = double(1 << Octree::kIntBits) / tree.cubeSide;
@@ -34,7 +35,7 @@ RenderStats renderPerPixel(const std::string& name, const Octree& tree, const Ca
             for (int x = x0; x < x1; ++x) {
                 const std::size_t p = frame.pixel(x, y);
                 ++st.pixels;
-                const Ray ray = camera.primaryRay(x, y);
+                const Ray ray = rays(x, y);
                 bool meets = false;
                 TraversalHit hit = trace(tree.toOctreeSpace(ray.origin), ray.direction * toOS, counters, meets);
                 if (meets) ++st.rays;

@@ -151,3 +151,18 @@ TEST(Cli, RendersTheLevitusTemperatureIsosurfaceExactlyAsTheReference) {
     EXPECT_NE(js.find("\"variable\": \"TEMP\""), std::string::npos) << js;
     EXPECT_EQ(js.find("\"hits\": 0,"), std::string::npos) << js;
 }
+
+TEST(Cli, TheCommittedDataSamplesAreWhatOctraceSampleWrites) {
+    Scratch s;
+    for (const char* name : {"sphere", "torus"}) {
+        std::string out = s.path(std::string(name) + ".nrrd");
+        Result r = run({"sample", name, "--samples", "33", "-o", out});
+        ASSERT_EQ(r.code, 0) << r.err;
+        EXPECT_TRUE(slurp(out) == slurp(std::string(OCTRACE_SAMPLES) + "/" + name + ".nrrd")) << name;
+    }
+    // And they render: the torus sample, exactly as the reference.
+    Result r = run({"render", std::string(OCTRACE_SAMPLES) + "/torus.nrrd", "--iso", "0", "--depth", "6", "--size", "120x90",
+                    "--verify", "--stats", s.path("t.json"), "-o", s.path("t.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(slurp(s.path("t.json")).find("\"mismatched_pixels\": 0,"), std::string::npos);
+}

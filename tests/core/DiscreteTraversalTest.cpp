@@ -33,38 +33,6 @@ const Octree& gyroidTree() {
     return t;
 }
 
-struct Tally {
-    std::atomic<long> rays{0}, hits{0}, mismatches{0};
-    std::mutex m;
-    std::string first;
-};
-
-/// Runs `count` rays from `gen` (seeded per chunk) through both traversals, in parallel.
-template <class Gen>
-void runRays(const Octree& t, long count, std::uint64_t seed, Gen gen, Tally& tally) {
-    const long chunk = 10000;
-    const std::size_t chunks = std::size_t((count + chunk - 1) / chunk);
-    parallelFor(chunks, 0, [&](std::size_t ci) {
-        std::mt19937_64 rng(seed * 1000003u + ci);
-        long n = std::min(chunk, count - long(ci) * chunk);
-        for (long i = 0; i < n; ++i) {
-            dvec3 o, d;
-            gen(rng, o, d);
-            std::string why;
-            QuantizedRay q = quantizeRay(o, d);
-            TraversalCounters c;
-            if (traverseDiscrete(t, q, c).hit()) ++tally.hits;
-            ++tally.rays;
-            if (!agree(t, o, d, &why)) {
-                if (tally.mismatches++ == 0) {
-                    std::lock_guard<std::mutex> lock(tally.m);
-                    tally.first = why;
-                }
-            }
-        }
-    });
-}
-
 }  // namespace
 
 TEST(OrderTable, MarksExactlyTheChainsAsProducible) {

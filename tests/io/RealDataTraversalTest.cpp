@@ -5,11 +5,8 @@
 
 #include "octrace/build/OctreeBuilder.h"
 #include "octrace/io/FieldReader.h"
-#include "octrace/util/Parallel.h"
 
-#include <atomic>
 #include <filesystem>
-#include <mutex>
 
 using namespace octrace;
 using namespace octrace::testutil;
@@ -18,38 +15,12 @@ namespace {
 
 std::string shared(const std::string& rel) { return std::string(OCTRACE_SHARED_DATA) + "/" + rel; }
 
-struct Outcome {
-    std::atomic<long> rays{0}, hits{0}, mismatches{0};
-    std::mutex m;
-    std::string first;
-};
-
-template <class Gen>
-void trace(const Octree& t, long count, std::uint64_t seed, Gen gen, Outcome& out) {
-    const long chunk = 10000;
-    parallelFor(std::size_t((count + chunk - 1) / chunk), 0, [&](std::size_t ci) {
-        std::mt19937_64 rng(seed * 7919u + ci);
-        for (long i = 0; i < std::min(chunk, count - long(ci) * chunk); ++i) {
-            dvec3 o, d;
-            gen(rng, o, d);
-            TraversalCounters c;
-            if (traverseDiscrete(t, quantizeRay(o, d), c).hit()) ++out.hits;
-            ++out.rays;
-            std::string why;
-            if (!agree(t, o, d, &why) && out.mismatches++ == 0) {
-                std::lock_guard<std::mutex> lock(out.m);
-                out.first = why;
-            }
-        }
-    });
-}
-
 void checkTree(const Octree& t, long randomRays) {
-    Outcome out;
-    trace(t, randomRays / 2, 1, [&t](std::mt19937_64& r, dvec3& o, dvec3& d) { rayAtVoxel(t, r, o, d); }, out);
-    trace(t, randomRays / 2, 2, [](std::mt19937_64& r, dvec3& o, dvec3& d) { randomRay(r, o, d); }, out);
-    trace(t, 20000, 3, [](std::mt19937_64& r, dvec3& o, dvec3& d) { latticeRay(r, o, d); }, out);
-    trace(t, 20000, 4, [](std::mt19937_64& r, dvec3& o, dvec3& d) { insideRay(r, o, d); }, out);
+    Tally out;
+    runRays(t, randomRays / 2, 1, [&t](std::mt19937_64& r, dvec3& o, dvec3& d) { rayAtVoxel(t, r, o, d); }, out);
+    runRays(t, randomRays / 2, 2, [](std::mt19937_64& r, dvec3& o, dvec3& d) { randomRay(r, o, d); }, out);
+    runRays(t, 20000, 3, [](std::mt19937_64& r, dvec3& o, dvec3& d) { latticeRay(r, o, d); }, out);
+    runRays(t, 20000, 4, [](std::mt19937_64& r, dvec3& o, dvec3& d) { insideRay(r, o, d); }, out);
     EXPECT_EQ(out.mismatches.load(), 0) << "first mismatch: " << out.first;
     EXPECT_GE(double(out.hits) / double(out.rays), 0.4) << out.hits << " hits of " << out.rays;
 }

@@ -33,6 +33,21 @@ struct OctreeNode {
 };
 static_assert(sizeof(OctreeNode) == 8);
 
+namespace detail {
+struct Popcount8 {
+    std::uint8_t v[256];
+    constexpr Popcount8() : v() {
+        for (int i = 0; i < 256; ++i) v[i] = std::uint8_t((i & 1) + ((i >> 1) & 1) + ((i >> 2) & 1) + ((i >> 3) & 1) +
+                                                       ((i >> 4) & 1) + ((i >> 5) & 1) + ((i >> 6) & 1) + ((i >> 7) & 1));
+    }
+};
+inline constexpr Popcount8 kPopcount8{};
+}  // namespace detail
+
+/// Position of child c among the non-empty children of a node with this child mask (a table:
+/// no POPCNT instruction is assumed of the target).
+inline unsigned childRank(unsigned childMask, unsigned c) { return detail::kPopcount8.v[childMask & ((1u << c) - 1u)]; }
+
 /// A boundary voxel: its quantized unit normal (octahedral, 16+16 bits).
 struct Voxel {
     std::uint32_t normal = 0;

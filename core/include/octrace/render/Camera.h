@@ -34,4 +34,20 @@ public:
     static Camera framing(const Box3& box, int width, int height, double fovYDegrees = 30.0);
 };
 
+/// Generates the primary rays of one camera with the per-frame terms computed once; gives
+/// bitwise the same rays as Camera::primaryRay.
+class RayGenerator {
+public:
+    explicit RayGenerator(const Camera& camera);
+    Ray operator()(int x, int y) const {
+        const double sx = ((x + 0.5) * invWidth_ * 2.0 - 1.0) * tanAspect_;
+        const double sy = (1.0 - (y + 0.5) * invHeight_ * 2.0) * tan_;
+        return {origin_, glm::normalize(sx * right_ + sy * up_ - back_)};
+    }
+
+private:
+    dvec3 origin_, right_, up_, back_;
+    double tan_, tanAspect_, invWidth_, invHeight_;
+};
+
 }  // namespace octrace
