@@ -72,6 +72,8 @@ struct NodeState {
     bool partial;          // the eye's plane cuts the node: apply the eye tests
     OrderTable::Entry order;
     int pos;
+    bool lazy;            // guided mode: state not computed yet, path child comes first
+    unsigned pathChild;   // guided mode: the child on the path
 };
 
 struct RayConsts {
@@ -129,98 +131,221 @@ inline unsigned stateByte(const RayConsts& k, const NodeState& n, i64& Wuc, i64&
     return byte;
 }
 
-/// Exact test of the root box [0, 2^N)^3.
-bool rootCrossed(const QuantizedRay& r, i64 cU, i64 cV, i64 Wu0, i64 Wu1, i64 Wv0, i64 Wv1) {
-    const i64 top = L << (N + Q);
+/// Exact test of a node box [m0, m0+s) x [u0, u0+s) x [v0, v0+s) (mirrored lattice): the
+/// same pairwise interval tests as the state byte, for the box itself.
+bool boxCrossed(const QuantizedRay& r, i64 cU, i64 cV, i64 m0, i64 u0, i64 v0, i64 s) {
+    const i64 Wu0 = (r.U0 << N) + m0 * r.dU, Wu1 = (r.U0 << N) + (m0 + s) * r.dU;
+    const i64 Wv0 = (r.V0 << N) + m0 * r.dV, Wv1 = (r.V0 << N) + (m0 + s) * r.dV;
     auto F = [&](i64 a, i64 b) { return ((a << Q) - r.U0) * r.dV - ((b << Q) - r.V0) * r.dU; };
-    return Wu0 < top && Wu1 > -cU && Wv0 < top && Wv1 > -cV && F(0, L) < cU && F(L, 0) > -cV && r.eyeM < (L << Q) &&
-           r.uEyeFloor < L && r.vEyeFloor < L;
+    return Wu0 < ((u0 + s) << (N + Q)) && Wu1 > (u0 << (N + Q)) - cU && Wv0 < ((v0 + s) << (N + Q)) &&
+           Wv1 > (v0 << (N + Q)) - cV && F(u0, v0 + s) < cU && F(u0 + s, v0) > -cV && r.eyeM < ((m0 + s) << Q) &&
+           r.uEyeFloor < u0 + s && r.vEyeFloor < v0 + s;
 }
+
+/// predecessors[s][z]: children that some ray with sign pattern s can visit before child z
+/// (their mirrored bits are a proper subset of z's).
+struct Predecessors {
+    std::array<std::array<std::uint8_t, 8>, 8> mask{};
+    Predecessors() {
+        for (unsigned s = 0; s < 8; ++s)
+            for (unsigned z = 0; z < 8; ++z)
+                for (unsigned y = 0; y < 8; ++y) {
+                    unsigned ym = y ^ s, zm = z ^ s;
+                    if (ym != zm && (ym & zm) == ym) mask[s][z] |= std::uint8_t(1u << y);
+                }
+    }
+};
+const Predecessors& predecessors() {
+    static const Predecessors p;
+    return p;
+}
+
+/// The traversal: a stack of nodes, each with the ordered list of its crossed non-empty
+/// children. Frames may be *lazy* (guided mode): their state byte is computed only if the
+/// search comes back to them, because no non-empty child can precede the path child.
+template <bool kObserve>
+class Engine {
+public:
+    Engine(const Octree& tree, const QuantizedRay& r, TraversalCounters& counters,
+           const std::function<void(unsigned, unsigned)>* observe)
+        : tree_(tree), r_(r), counters_(counters), observe_(observe), order_(OrderTable::instance()) {
+        const Tables& T = tables();
+        k_ = RayConsts{&r, r.dU == 0 ? 1 : 0, r.dV == 0 ? 1 : 0, T.toOriginal[std::size_t(r.main)][r.sign].data(),
+                       T.toCanonical[std::size_t(r.main)][r.sign].data()};
+    }
+
+    /// Puts the node (mirrored box origin, level) at the bottom of the stack with its state
+    /// computed directly from the ray (a few multiplications).
+    void start(std::uint32_t node, int level, i64 m0, i64 u0, i64 v0) {
+        setFrame(node, level, m0, u0, v0);
+        if (!computeOrder(stack_[0])) sp_ = -1;
+    }
+
+    /// Bottom frame without its state byte.
+    void setFrame(std::uint32_t node, int level, i64 m0, i64 u0, i64 v0) {
+        sp_ = 0;
+        NodeState& f = stack_[0];
+        const i64 s = i64(1) << (N - level), h = s >> 1;
+        f.node = node;
+        f.level = level;
+        f.m0 = m0;
+        f.u0 = u0;
+        f.v0 = v0;
+        f.Wu0 = (r_.U0 << N) + m0 * r_.dU;
+        f.Wu1 = (r_.U0 << N) + (m0 + s) * r_.dU;
+        f.Wv0 = (r_.V0 << N) + m0 * r_.dV;
+        f.Wv1 = (r_.V0 << N) + (m0 + s) * r_.dV;
+        f.Fc = (((u0 + h) << Q) - r_.U0) * r_.dV - (((v0 + h) << Q) - r_.V0) * r_.dU;
+        f.partial = (m0 << Q) < r_.eyeM;
+        f.lazy = false;
+        f.pos = 0;
+        f.order = 0;
+    }
+
+    /// Guided mode: frames on this path above `guideLevel` become lazy where they can.
+    void guide(const BranchNode* b) { guide_ = b; }
+    bool resumedOrComputedOnPath() const { return onPathWork_; }
+
+    TraversalHit run() {
+        TraversalHit result;
+        while (sp_ >= 0) {
+            NodeState& n = stack_[sp_];
+            unsigned c;
+            if (n.lazy) {
+                if (n.pos == 0) {
+                    c = n.pathChild;
+                    n.pos = 1;
+                } else {
+                    // The path child held no hit: come back and finish this node properly.
+                    n.lazy = false;
+                    onPathWork_ = true;
+                    computeOrder(n);
+                    // No non-empty child precedes the path child, so it is first in the list.
+                    n.pos = 1;
+                    continue;
+                }
+            } else {
+                if (n.pos >= OrderTable::count(n.order)) {
+                    --sp_;
+                    continue;
+                }
+                c = unsigned(OrderTable::child(n.order, n.pos++));
+            }
+            const OctreeNode& nd = tree_.nodes[n.node];
+            const std::uint32_t slot = nd.firstChild + childRank(nd.childMask, c);
+            const unsigned ci = k_.toCanonical[c];
+            const unsigned hm = ci >> 2, hu = (ci >> 1) & 1, hv = ci & 1;
+            const int lg = N - n.level - 1;
+            const i64 h = i64(1) << lg;
+            if (n.level == tree_.depth - 1) {
+                // Child is a voxel and the first crossed one in order: the hit.
+                i64 mirrored[3];
+                mirrored[r_.main] = n.m0 + hm * h;
+                mirrored[r_.u] = n.u0 + hu * h;
+                mirrored[r_.v] = n.v0 + hv * h;
+                for (int a = 0; a < 3; ++a) {
+                    i64 o = (r_.sign & axisBit(a)) ? L - (mirrored[a] + h) : mirrored[a];
+                    result.cell[a] = int(o >> (N - tree_.depth));
+                }
+                result.voxel = slot;
+                return result;
+            }
+            if (nd.termMask & (1u << c)) continue;  // interior terms: volume form, not drawn by this shell renderer
+            const i64 Wuc = (n.Wu0 + n.Wu1) >> 1, Wvc = (n.Wv0 + n.Wv1) >> 1;
+            NodeState& ch = stack_[sp_ + 1];
+            ch.node = slot;
+            ch.level = n.level + 1;
+            ch.m0 = n.m0 + hm * h;
+            ch.u0 = n.u0 + hu * h;
+            ch.v0 = n.v0 + hv * h;
+            ch.Wu0 = hm ? Wuc : n.Wu0;
+            ch.Wu1 = hm ? n.Wu1 : Wuc;
+            ch.Wv0 = hm ? Wvc : n.Wv0;
+            ch.Wv1 = hm ? n.Wv1 : Wvc;
+            const i64 qa = r_.dV << (Q + lg - 1), qb = r_.dU << (Q + lg - 1);
+            ch.Fc = n.Fc + (hu ? qa : -qa) - (hv ? qb : -qb);
+            ch.partial = n.partial && (ch.m0 << Q) < r_.eyeM;
+            ch.lazy = false;
+            if (guide_ && ch.level < guide_->level && slot == guide_->path[ch.level]) {
+                const unsigned z = guide_->childIndex[ch.level];
+                const unsigned childMask = tree_.nodes[slot].childMask;
+                if ((childMask & predecessors().mask[r_.sign][z]) == 0) {
+                    ch.lazy = true;
+                    ch.pathChild = z;
+                    ch.pos = 0;
+                    ++counters_.statesDeferred;
+                    ++sp_;
+                    continue;
+                }
+                onPathWork_ = true;
+            }
+            if (computeOrder(ch)) ++sp_;
+        }
+        return result;
+    }
+
+    /// The root, lazily when guided and possible; returns false when the ray misses the cube.
+    bool startAtRoot() {
+        if (!r_.meetsCube || tree_.nodes.empty()) return false;
+        if (guide_ && guide_->level > 0) {
+            const unsigned z = guide_->childIndex[0];
+            if ((tree_.nodes[0].childMask & predecessors().mask[r_.sign][z]) == 0) {
+                setFrame(0, 0, 0, 0, 0);
+                NodeState& f = stack_[0];
+                f.lazy = true;
+                f.pathChild = z;
+                ++counters_.statesDeferred;
+                return true;
+            }
+            onPathWork_ = true;
+        }
+        start(0, 0, 0, 0, 0);
+        return true;
+    }
+
+private:
+    bool computeOrder(NodeState& f) {
+        i64 a, b;
+        const unsigned byte = stateByte(k_, f, a, b);
+        ++counters_.nodes;
+        const unsigned orig = k_.toOriginal[byte];
+        if constexpr (kObserve) (*observe_)(r_.sign, orig);
+        f.order = order_.entry(r_.sign, orig & tree_.nodes[f.node].childMask);
+        f.pos = 0;
+        return OrderTable::count(f.order) > 0;
+    }
+
+    const Octree& tree_;
+    const QuantizedRay& r_;
+    TraversalCounters& counters_;
+    const std::function<void(unsigned, unsigned)>* observe_;
+    const OrderTable& order_;
+    RayConsts k_{};
+    const BranchNode* guide_ = nullptr;
+    bool onPathWork_ = false;
+    NodeState stack_[Octree::kMaxDepth + 1];
+    int sp_ = -1;
+};
 
 template <bool kObserve>
 TraversalHit traverse(const Octree& tree, const QuantizedRay& r, TraversalCounters& counters,
                       const std::function<void(unsigned, unsigned)>* observe) {
-    TraversalHit result;
-    if (!r.meetsCube || tree.nodes.empty()) return result;
-    const Tables& T = tables();
-    const OrderTable& order = OrderTable::instance();
-    RayConsts k{&r, r.dU == 0 ? 1 : 0, r.dV == 0 ? 1 : 0, T.toOriginal[std::size_t(r.main)][r.sign].data(),
-                T.toCanonical[std::size_t(r.main)][r.sign].data()};
-    const int depth = tree.depth;
+    Engine<kObserve> e(tree, r, counters, observe);
+    if (!e.startAtRoot()) return TraversalHit{};
+    return e.run();
+}
 
-    NodeState stack[Octree::kMaxDepth + 1];
-    int sp = 0;
-    NodeState& root = stack[0];
-    root.node = 0;
-    root.level = 0;
-    root.m0 = root.u0 = root.v0 = 0;
-    root.Wu0 = r.U0 << N;
-    root.Wu1 = (r.U0 + r.dU) << N;
-    root.Wv0 = r.V0 << N;
-    root.Wv1 = (r.V0 + r.dV) << N;
-    root.Fc = (((L / 2) << Q) - r.U0) * r.dV - (((L / 2) << Q) - r.V0) * r.dU;
-    root.partial = r.eyeM > 0;
-    {
-        i64 Wuc, Wvc;
-        unsigned byte = stateByte(k, root, Wuc, Wvc);
-        ++counters.nodes;
-        unsigned orig = k.toOriginal[byte];
-        if constexpr (kObserve) (*observe)(r.sign, orig);
-        root.order = order.entry(r.sign, orig & tree.nodes[0].childMask);
-        root.pos = 0;
+/// Mirrored lattice origin of a node given by its cell coordinates at `level`.
+void mirroredOrigin(const QuantizedRay& r, const ivec3& cell, int level, i64& m0, i64& u0, i64& v0) {
+    const i64 s = i64(1) << (N - level);
+    i64 o[3];
+    for (int a = 0; a < 3; ++a) {
+        const i64 lo = i64(cell[a]) << (N - level);
+        o[a] = (r.sign & axisBit(a)) ? L - (lo + s) : lo;
     }
-    while (sp >= 0) {
-        NodeState& n = stack[sp];
-        if (n.pos >= OrderTable::count(n.order)) {
-            --sp;
-            continue;
-        }
-        const unsigned c = unsigned(OrderTable::child(n.order, n.pos++));
-        const OctreeNode& nd = tree.nodes[n.node];
-        const std::uint32_t slot = nd.firstChild + childRank(nd.childMask, c);
-        const unsigned ci = k.toCanonical[c];
-        const unsigned hm = ci >> 2, hu = (ci >> 1) & 1, hv = ci & 1;
-        const int lg = N - n.level - 1;
-        const i64 h = i64(1) << lg;
-        if (n.level == depth - 1) {
-            // Child is a voxel and the first crossed one in order: the hit.
-            i64 mm = n.m0 + hm * h, uu = n.u0 + hu * h, vv = n.v0 + hv * h;
-            i64 mirrored[3];
-            mirrored[r.main] = mm;
-            mirrored[r.u] = uu;
-            mirrored[r.v] = vv;
-            for (int a = 0; a < 3; ++a) {
-                i64 o = (r.sign & axisBit(a)) ? L - (mirrored[a] + h) : mirrored[a];
-                result.cell[a] = int(o >> (N - depth));
-            }
-            result.voxel = slot;
-            return result;
-        }
-        if (nd.termMask & (1u << c)) continue;  // interior terms: volume form, not drawn by this shell renderer
-        i64 Wuc = (n.Wu0 + n.Wu1) >> 1, Wvc = (n.Wv0 + n.Wv1) >> 1;
-        NodeState& ch = stack[sp + 1];
-        ch.node = slot;
-        ch.level = n.level + 1;
-        ch.m0 = n.m0 + hm * h;
-        ch.u0 = n.u0 + hu * h;
-        ch.v0 = n.v0 + hv * h;
-        ch.Wu0 = hm ? Wuc : n.Wu0;
-        ch.Wu1 = hm ? n.Wu1 : Wuc;
-        ch.Wv0 = hm ? Wvc : n.Wv0;
-        ch.Wv1 = hm ? n.Wv1 : Wvc;
-        const i64 qa = r.dV << (Q + lg - 1), qb = r.dU << (Q + lg - 1);
-        ch.Fc = n.Fc + (hu ? qa : -qa) - (hv ? qb : -qb);
-        ch.partial = n.partial && (ch.m0 << Q) < r.eyeM;
-        i64 a, b;
-        unsigned byte = stateByte(k, ch, a, b);
-        ++counters.nodes;
-        unsigned orig = k.toOriginal[byte];
-        if constexpr (kObserve) (*observe)(r.sign, orig);
-        ch.order = order.entry(r.sign, orig & tree.nodes[slot].childMask);
-        ch.pos = 0;
-        if (OrderTable::count(ch.order) > 0) ++sp;
-    }
-    return result;
+    m0 = o[r.main];
+    u0 = o[r.u];
+    v0 = o[r.v];
 }
 
 }  // namespace
@@ -262,17 +387,25 @@ QuantizedRay quantizeRay(const dvec3& o, const dvec3& d) {
         om[a] = d[a] < 0.0 ? double(L) - o[a] : o[a];
         dm[a] = std::abs(d[a]);
     }
-    const double t0 = (0.0 - om[main]) / dm[main], t1 = (double(L) - om[main]) / dm[main];
+    if (!(om[main] < double(L))) return r;  // the eye is past the cube's far plane
+    const double inv = 1.0 / dm[main];
+    const double t0 = (0.0 - om[main]) * inv, t1 = (double(L) - om[main]) * inv;
     const double u0 = om[r.u] + t0 * dm[r.u], u1 = om[r.u] + t1 * dm[r.u];
     const double v0 = om[r.v] + t0 * dm[r.v], v1 = om[r.v] + t1 * dm[r.v];
-    // A ray crossing the cube has |u|, |v| within (-L, 2L) on both planes; anything far
-    // outside misses (and would overflow the fixed point).
+    // u and v grow along the (mirrored) ray: a line whose u or v range between the two main
+    // planes lies more than a lattice unit outside [0, L] misses the cube whatever the
+    // rounding (and far-off values would overflow the fixed point).
+    if (!(u1 > -1.0 && u0 < double(L) + 1.0 && v1 > -1.0 && v0 < double(L) + 1.0)) return r;
     auto far = [](double x) { return !(x > -2.0 * L && x < 3.0 * L); };
-    if (far(u0) || far(u1) || far(v0) || far(v1) || !(om[main] < double(L))) return r;
+    if (far(u0) || far(u1) || far(v0) || far(v1)) return r;
     const double scale = double(1 << QuantizedRay::kFracBits);
     // Round half up (floor(x + 1/2)): cheaper than llround, and the same for both signs' ties
     // up to the documented rule; |x| < 2^42 so the double is exact before flooring.
-    auto fix = [](double x) { return i64(std::floor(x + 0.5)); };
+    auto fix = [](double x) {
+        const double y = x + 0.5;
+        i64 t = i64(y);  // truncates towards zero
+        return t - (double(t) > y ? 1 : 0);
+    };
     r.U0 = fix(u0 * scale);
     r.dU = fix(u1 * scale) - r.U0;
     r.V0 = fix(v0 * scale);
@@ -282,7 +415,7 @@ QuantizedRay quantizeRay(const dvec3& o, const dvec3& d) {
     r.uEyeFloor = floorShift((r.U0 << (N + Q)) + r.eyeM * r.dU, N + 2 * Q);
     r.vEyeFloor = floorShift((r.V0 << (N + Q)) + r.eyeM * r.dV, N + 2 * Q);
     i64 cU = r.dU == 0 ? 1 : 0, cV = r.dV == 0 ? 1 : 0;
-    r.meetsCube = rootCrossed(r, cU, cV, r.U0 << N, (r.U0 + r.dU) << N, r.V0 << N, (r.V0 + r.dV) << N);
+    r.meetsCube = boxCrossed(r, cU, cV, 0, 0, 0, L);
     return r;
 }
 
@@ -293,6 +426,71 @@ TraversalHit traverseDiscrete(const Octree& tree, const QuantizedRay& ray, Trave
 TraversalHit traverseDiscreteObserved(const Octree& tree, const QuantizedRay& ray, TraversalCounters& counters,
                                       const std::function<void(unsigned, unsigned)>& observe) {
     return traverse<true>(tree, ray, counters, &observe);
+}
+
+BranchNode branchNode(const Octree& tree, const ivec3& a, const ivec3& b) {
+    BranchNode bn;
+    const int depth = tree.depth;
+    const unsigned diff = unsigned((a.x ^ b.x) | (a.y ^ b.y) | (a.z ^ b.z));
+    const int width = diff ? 32 - std::countl_zero(diff) : 0;
+    const int level = std::min(depth - width, depth - 1);
+    if (level < 0 || tree.nodes.empty()) return bn;
+    std::uint32_t node = 0;
+    bn.path[0] = 0;
+    for (int l = 0; l < level; ++l) {
+        const int shift = depth - 1 - l;
+        const unsigned c = unsigned(((a.x >> shift) & 1) << 2 | ((a.y >> shift) & 1) << 1 | ((a.z >> shift) & 1));
+        const OctreeNode& nd = tree.nodes[node];
+        if (!(nd.childMask & (1u << c)) || (nd.termMask & (1u << c))) return BranchNode{};  // not a voxel's path
+        bn.childIndex[l] = std::uint8_t(c);
+        node = nd.firstChild + childRank(nd.childMask, c);
+        bn.path[l + 1] = node;
+    }
+    bn.level = level;
+    bn.cell = a >> (depth - level);
+    return bn;
+}
+
+TraversalHit traverseFromBranch(const Octree& tree, const QuantizedRay& ray, const BranchNode& branch,
+                                TraversalCounters& counters, bool& fellBack) {
+    fellBack = true;
+    if (!ray.meetsCube || !branch.valid()) return traverseDiscrete(tree, ray, counters);
+    i64 m0, u0, v0;
+    mirroredOrigin(ray, branch.cell, branch.level, m0, u0, v0);
+    if (boxCrossed(ray, ray.dU == 0, ray.dV == 0, m0, u0, v0, i64(1) << (N - branch.level))) {
+        Engine<false> e(tree, ray, counters, nullptr);
+        e.start(branch.path[branch.level], branch.level, m0, u0, v0);
+        TraversalHit hit = e.run();
+        if (hit.hit()) {
+            fellBack = false;
+            return hit;
+        }
+    }
+    return traverseDiscrete(tree, ray, counters);
+}
+
+TraversalHit traverseGuided(const Octree& tree, const QuantizedRay& ray, const BranchNode& branch,
+                            TraversalCounters& counters, bool& certified) {
+    certified = false;
+    if (!ray.meetsCube || !branch.valid()) return traverseDiscrete(tree, ray, counters);
+    i64 m0, u0, v0;
+    mirroredOrigin(ray, branch.cell, branch.level, m0, u0, v0);
+    // Deferring is possible only where no non-empty child can precede the path child; when no
+    // path node allows it, the guided traversal is the full one (skip the set-up).
+    bool anyDeferrable = false;
+    for (int l = 0; l < branch.level && !anyDeferrable; ++l)
+        anyDeferrable = (tree.nodes[branch.path[l]].childMask & predecessors().mask[ray.sign][branch.childIndex[l]]) == 0;
+    if (!anyDeferrable) return traverseDiscrete(tree, ray, counters);
+    // The path frames may be taken on trust only if the ray crosses the branch node (and so
+    // every node above it on the path).
+    if (!boxCrossed(ray, ray.dU == 0, ray.dV == 0, m0, u0, v0, i64(1) << (N - branch.level)))
+        return traverseDiscrete(tree, ray, counters);
+    Engine<false> e(tree, ray, counters, nullptr);
+    e.guide(&branch);
+    if (!e.startAtRoot()) return TraversalHit{};
+    TraversalHit hit = e.run();
+    certified = hit.hit() && !e.resumedOrComputedOnPath();
+    return hit;
 }
 
 }  // namespace octrace

@@ -8,5 +8,6 @@ void Frame::resize(int w, int h) {
     rgba.assign(n, vec4(0.0f));
     depth.assign(n, std::numeric_limits<float>::infinity());
     hitId.assign(n, kNoHit);
+    flags.assign(n, 0);
 }
 }  // namespace octrace

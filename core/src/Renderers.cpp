@@ -1,3 +1,5 @@
+#include "CoherentRenderers.h"
+#include "PixelRays.h"
 #include "octrace/render/DiscreteTraversal.h"
 #include "octrace/render/ReferenceTraversal.h"
 #include "octrace/render/Renderer.h"
@@ -22,10 +24,9 @@ RenderStats renderPerPixel(const std::string& name, const Octree& tree, const Ca
     Timer timer;
     frame.resize(camera.width, camera.height);
     const Shader shader(tree, camera, settings);
-    const RayGenerator rays(camera);
+    const detail::PixelRays rays(tree, camera);
     const int tilesX = (camera.width + kTile - 1) / kTile, tilesY = (camera.height + kTile - 1) / kTile;
     std::vector<RenderStats> tileStats(std::size_t(tilesX) * tilesY);
-    const double toOS = double(1 << Octree::kIntBits) / tree.cubeSide;
     parallelFor(tileStats.size(), settings.threads, [&](std::size_t t) {
         RenderStats& st = tileStats[t];
         TraversalCounters counters;
@@ -35,18 +36,21 @@ RenderStats renderPerPixel(const std::string& name, const Octree& tree, const Ca
             for (int x = x0; x < x1; ++x) {
                 const std::size_t p = frame.pixel(x, y);
                 ++st.pixels;
-                const Ray ray = rays(x, y);
+                const dvec3 dir = rays.direction(x, y);
                 bool meets = false;
-                TraversalHit hit = trace(tree.toOctreeSpace(ray.origin), ray.direction * toOS, counters, meets);
+                TraversalHit hit = trace(rays, dir, counters, meets);
                 if (meets) ++st.rays;
+                ++st.raysFull;
                 if (!hit.hit()) {
+                    frame.flags[p] = Frame::kTraced;
                     frame.rgba[p] = settings.background;
                     continue;
                 }
                 ++st.hits;
+                frame.flags[p] = Frame::kTraced;
                 frame.hitId[p] = hit.voxel;
                 frame.rgba[p] = shader.shade(hit.voxel, hit.cell);
-                frame.depth[p] = shader.distance(ray, hit.cell);
+                frame.depth[p] = shader.distance(rays.world(dir), hit.cell);
             }
         st.nodesVisited = counters.nodes;
     });
@@ -57,20 +61,6 @@ RenderStats renderPerPixel(const std::string& name, const Octree& tree, const Ca
     return total;
 }
 
-class FullRenderer final : public Renderer {
-public:
-    std::string name() const override { return "full"; }
-    RenderStats render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
-                       Frame& frame) const override {
-        return renderPerPixel(name(), tree, camera, settings, frame,
-                              [&](const dvec3& o, const dvec3& d, TraversalCounters& c, bool& meets) {
-                                  QuantizedRay q = quantizeRay(o, d);
-                                  meets = q.meetsCube;
-                                  return traverseDiscrete(tree, q, c);
-                              });
-    }
-};
-
 class ReferenceRenderer final : public Renderer {
 public:
     explicit ReferenceRenderer(bool quantized) : quantized_(quantized) {}
@@ -78,9 +68,10 @@ public:
     RenderStats render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
                        Frame& frame) const override {
         return renderPerPixel(name(), tree, camera, settings, frame,
-                              [&](const dvec3& o, const dvec3& d, TraversalCounters& c, bool& meets) {
-                                  QuantizedRay q = quantizeRay(o, d);
-                                  ReferenceRay r = quantized_ ? referenceRayFromQuantized(q) : referenceRayUnquantized(o, d);
+                              [&](const detail::PixelRays& rays, const dvec3& d, TraversalCounters& c, bool& meets) {
+                                  QuantizedRay q = rays.quantized(d);
+                                  ReferenceRay r = quantized_ ? referenceRayFromQuantized(q)
+                                                              : referenceRayUnquantized(rays.originOS(), d);
                                   TraversalHit hit = traverseReference(tree, r, c);
                                   // The unquantized ray can graze a cube face from inside where
                                   // its quantized twin is rounded onto the face (outside): it
@@ -96,15 +87,32 @@ private:
 
 }  // namespace
 
-std::vector<std::string> rendererNames() { return {"full", "reference", "reference-unquantized"}; }
+std::vector<std::string> rendererNames() {
+    return {"full", "linear", "area", "area+colour", "linear-exact", "area-exact", "reference", "reference-unquantized"};
+}
 
-std::unique_ptr<Renderer> makeRenderer(const std::string& name) {
-    if (name == "full") return std::make_unique<FullRenderer>();
-    if (name == "reference") return std::make_unique<ReferenceRenderer>(true);
-    if (name == "reference-unquantized") return std::make_unique<ReferenceRenderer>(false);
+std::unique_ptr<Renderer> makeRenderer(const std::string& nameIn) {
+    using detail::DiscreteRenderer;
+    std::string name = nameIn;
+    bool colour = false;
+    for (const char* suffix : {"+colour", "+color"}) {
+        const std::string sfx(suffix);
+        if (name.size() > sfx.size() && name.compare(name.size() - sfx.size(), sfx.size(), sfx) == 0) {
+            colour = true;
+            name.erase(name.size() - sfx.size());
+        }
+    }
+    if (name == "full") return std::make_unique<DiscreteRenderer>(DiscreteRenderer::Pattern::Full, false, colour);
+    if (name == "linear") return std::make_unique<DiscreteRenderer>(DiscreteRenderer::Pattern::Linear, false, colour);
+    if (name == "area") return std::make_unique<DiscreteRenderer>(DiscreteRenderer::Pattern::Area, false, colour);
+    if (name == "linear-exact") return std::make_unique<DiscreteRenderer>(DiscreteRenderer::Pattern::Linear, true, colour);
+    if (name == "area-exact") return std::make_unique<DiscreteRenderer>(DiscreteRenderer::Pattern::Area, true, colour);
+    if (!colour && name == "reference") return std::make_unique<ReferenceRenderer>(true);
+    if (!colour && name == "reference-unquantized") return std::make_unique<ReferenceRenderer>(false);
     std::string list;
     for (const auto& n : rendererNames()) list += (list.empty() ? "" : ", ") + n;
-    throw UsageError("unknown renderer '" + name + "' (choose one of: " + list + ")");
+    throw UsageError("unknown renderer '" + nameIn + "' (choose one of: " + list +
+                     "; a discrete renderer takes the suffix +colour for colour coherence)");
 }
 
 }  // namespace octrace

@@ -1,5 +1,6 @@
 #pragma once
 // Ray generators shared by the traversal tests.
+#include "../TestScale.h"
 #include "octrace/octree/Octree.h"
 #include "octrace/render/DiscreteTraversal.h"
 #include "octrace/render/ReferenceTraversal.h"
@@ -107,9 +108,11 @@ struct Tally {
     std::string first;
 };
 
-/// Runs `count` rays from `gen` (seeded per chunk) through both traversals, in parallel.
+/// Runs `count` rays (times OCTRACE_TEST_SCALE, see TestScale.h) from `gen` (seeded per
+/// chunk) through both traversals, in parallel.
 template <class Gen>
 void runRays(const Octree& t, long count, std::uint64_t seed, Gen gen, Tally& tally) {
+    count = scaledCount(count);
     const long chunk = 10000;
     const std::size_t chunks = std::size_t((count + chunk - 1) / chunk);
     parallelFor(chunks, 0, [&](std::size_t ci) {

@@ -39,11 +39,14 @@ public:
 class RayGenerator {
 public:
     explicit RayGenerator(const Camera& camera);
-    Ray operator()(int x, int y) const {
+    Ray operator()(int x, int y) const { return {origin_, glm::normalize(direction(x, y))}; }
+    /// The same direction before normalisation.
+    dvec3 direction(int x, int y) const {
         const double sx = ((x + 0.5) * invWidth_ * 2.0 - 1.0) * tanAspect_;
         const double sy = (1.0 - (y + 0.5) * invHeight_ * 2.0) * tan_;
-        return {origin_, glm::normalize(sx * right_ + sy * up_ - back_)};
+        return sx * right_ + sy * up_ - back_;
     }
+    const dvec3& origin() const { return origin_; }
 
 private:
     dvec3 origin_, right_, up_, back_;

@@ -56,7 +56,8 @@ struct TraversalHit {
 };
 
 struct TraversalCounters {
-    std::uint64_t nodes = 0;  ///< inner nodes whose state byte was computed
+    std::uint64_t nodes = 0;           ///< inner nodes whose state byte was computed
+    std::uint64_t statesDeferred = 0;  ///< guided mode: path nodes whose state was never needed
 };
 
 /// The discrete integer traversal. Thread-safe.
@@ -66,5 +67,35 @@ TraversalHit traverseDiscrete(const Octree& tree, const QuantizedRay& ray, Trave
 /// child numbering, before masking with the node's children). For tests.
 TraversalHit traverseDiscreteObserved(const Octree& tree, const QuantizedRay& ray, TraversalCounters& counters,
                                       const std::function<void(unsigned sign, unsigned stateByte)>& observe);
+
+/// An inner node where a coherent ray starts: the smallest node holding the hit voxels of two
+/// neighbouring rays (the *branch node* of their common path), with its path from the root.
+struct BranchNode {
+    int level = -1;                                  ///< -1: none
+    ivec3 cell{0};                                   ///< its coordinates at its level
+    std::uint32_t path[Octree::kMaxDepth + 1] = {};  ///< node indices: path[0] = root .. path[level]
+    std::uint8_t childIndex[Octree::kMaxDepth] = {}; ///< child of path[i] that leads to path[i+1]
+    bool valid() const { return level >= 0; }
+};
+
+/// Branch node of two boundary voxels (their smallest common ancestor, at most at level
+/// depth-1). Invalid when a cell is not a boundary voxel of the tree.
+BranchNode branchNode(const Octree& tree, const ivec3& cellA, const ivec3& cellB);
+
+/// Paper A's trajectory coherence, approximate: traverses only the branch node's subtree; when
+/// the ray does not cross the node or finds nothing in it, retraces from the root
+/// (fellBack = true). The hit can differ from the full traversal's when something in front of
+/// the branch node lies on this ray but not on the supporting rays.
+TraversalHit traverseFromBranch(const Octree& tree, const QuantizedRay& ray, const BranchNode& branch,
+                                TraversalCounters& counters, bool& fellBack);
+
+/// Trajectory coherence, exact: the full traversal, guided down the branch node's path. At a
+/// path node whose non-empty children cannot precede the path child for this ray's sign
+/// pattern (a property of the tree, not of the ray), nothing can lie in front on that level,
+/// so the node's state byte is not computed unless the search comes back to it. Always
+/// returns the full traversal's hit. certified = the hit was found below the branch node with
+/// no state byte computed above it (the ray skipped the root).
+TraversalHit traverseGuided(const Octree& tree, const QuantizedRay& ray, const BranchNode& branch,
+                            TraversalCounters& counters, bool& certified);
 
 }  // namespace octrace

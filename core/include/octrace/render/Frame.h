@@ -28,6 +28,15 @@ public:
     std::vector<vec4> rgba;            ///< linear RGB, straight alpha; row 0 at the top
     std::vector<float> depth;          ///< distance from the eye along the ray (world units); +inf = miss
     std::vector<std::uint32_t> hitId;  ///< voxel index in the octree's voxel array, kNoHit = miss
+    std::vector<std::uint8_t> flags;   ///< how each pixel was made: PixelFlag bits
+
+    enum PixelFlag : std::uint8_t {
+        kTraced = 1,        ///< traced (not filled by colour coherence)
+        kCommonPath = 2,    ///< started from the branch node of two neighbours
+        kFallback = 4,      ///< started there but retraced from the root
+        kCertified = 8,     ///< exact variant: root skipped
+        kColourFilled = 16  ///< average of two neighbours, not traced (hitId = a neighbour's)
+    };
 
     std::size_t pixel(int x, int y) const { return std::size_t(y) * std::size_t(width) + std::size_t(x); }
 };

@@ -14,6 +14,11 @@ struct RenderSettings {
     float ambient = 0.15f;
     float diffuse = 0.85f;
     std::string colormap;                  ///< empty: uniform colour; else colour by height (see docs)
+    /// Colour coherence (paper A, 5.3) on any renderer: a pixel between two traced neighbours
+    /// whose 8-bit sRGB colours differ by at most colourTolerance in every channel gets their
+    /// average without being traced. Approximate by design.
+    bool colourCoherence = false;
+    float colourTolerance = 3.0f;          ///< in 8-bit sRGB units (0..255)
 };
 
 }  // namespace octrace

@@ -12,12 +12,25 @@ struct RenderStats {
     std::uint64_t rays = 0;           ///< primary rays that meet the scene cube
     std::uint64_t hits = 0;           ///< rays that found a voxel
     std::uint64_t nodesVisited = 0;   ///< inner nodes whose state was evaluated
+    // Coherent renderers:
+    std::uint64_t raysFull = 0;        ///< pixels traced from the root (supporting rays and others)
+    std::uint64_t raysCommonPath = 0;  ///< pixels started from the branch node of two neighbours
+    std::uint64_t fallbacks = 0;       ///< of those, retraced from the root
+    std::uint64_t raysCertified = 0;   ///< exact variants: found below the branch node, root skipped
+    std::uint64_t statesDeferred = 0;  ///< exact variants: path nodes whose state byte was never needed
+    std::uint64_t colourFilled = 0;    ///< pixels filled by colour coherence, not traced
     double renderMs = 0.0;
     void add(const RenderStats& o) {
         pixels += o.pixels;
         rays += o.rays;
         hits += o.hits;
         nodesVisited += o.nodesVisited;
+        raysFull += o.raysFull;
+        raysCommonPath += o.raysCommonPath;
+        fallbacks += o.fallbacks;
+        raysCertified += o.raysCertified;
+        statesDeferred += o.statesDeferred;
+        colourFilled += o.colourFilled;
     }
 };
 

@@ -1,0 +1,239 @@
+// The discrete renderers: full traversal, paper A's trajectory coherence (linear, area) in
+// approximate and exact variants, and colour coherence as an option on any of them.
+//
+// Pixels are computed in phases; within a phase every pixel depends only on pixels of earlier
+// phases, so each phase runs in parallel over rows and the image does not depend on the
+// number of threads. Supporting pixels are every 4th column (and the last), base rows every
+// 4th row (and the last).
+//   linear: 1. x % 4 == 0 full   2. x % 4 == 2 from (x-2, x+2)   3. odd x from (x-1, x+1)
+//   area:   base rows as linear; 4. rows y % 4 == 2 from (y-2, y+2); 5. odd rows from (y-1, y+1)
+//   full:   1. every pixel (with colour coherence: even x, then odd x filled or traced)
+// Colour coherence fills a pixel of the last phase of its row or column pattern when its two
+// partners were both traced and their 8-bit colours agree within the tolerance.
+#include "CoherentRenderers.h"
+#include "PixelRays.h"
+
+#include "octrace/render/DiscreteTraversal.h"
+#include "octrace/render/ImageCompare.h"
+#include "octrace/render/Shading.h"
+#include "octrace/util/Parallel.h"
+#include "octrace/util/Timer.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace octrace::detail {
+namespace {
+
+enum class Start { Root, Branch, Guided };
+
+struct Context {
+    const Octree& tree;
+    const RenderSettings& settings;
+    Frame& frame;
+    const Shader& shader;
+    const PixelRays& rays;
+    std::vector<ivec3>& cells;
+    std::vector<std::uint32_t>& srgb;  // packed 8-bit colour of traced pixels (colour coherence)
+};
+
+/// Traces pixel (x, y) and writes it; `partners` are the two neighbours whose hits give the
+/// branch node (nullptr: from the root).
+void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Start mode, RenderStats& st,
+                TraversalCounters& counters) {
+    Frame& f = c.frame;
+    const std::size_t p = f.pixel(x, y);
+    const dvec3 dir = c.rays.direction(x, y);
+    const QuantizedRay q = c.rays.quantized(dir);
+    if (q.meetsCube) ++st.rays;
+    TraversalHit hit;
+    std::uint8_t flags = Frame::kTraced;
+    const bool usePartners = partners && mode != Start::Root && f.hitId[partners[0]] != kNoHit &&
+                             f.hitId[partners[1]] != kNoHit && q.meetsCube;
+    if (usePartners) {
+        const BranchNode bn = branchNode(c.tree, c.cells[partners[0]], c.cells[partners[1]]);
+        ++st.raysCommonPath;
+        flags |= Frame::kCommonPath;
+        if (mode == Start::Branch) {
+            bool fellBack = false;
+            hit = traverseFromBranch(c.tree, q, bn, counters, fellBack);
+            if (fellBack) {
+                ++st.fallbacks;
+                flags |= Frame::kFallback;
+            }
+        } else {
+            bool certified = false;
+            hit = traverseGuided(c.tree, q, bn, counters, certified);
+            if (certified) {
+                ++st.raysCertified;
+                flags |= Frame::kCertified;
+            }
+        }
+    } else {
+        ++st.raysFull;
+        hit = traverseDiscrete(c.tree, q, counters);
+    }
+    f.flags[p] = flags;
+    if (!hit.hit()) {
+        f.rgba[p] = c.settings.background;
+    } else {
+        ++st.hits;
+        f.hitId[p] = hit.voxel;
+        c.cells[p] = hit.cell;
+        f.rgba[p] = c.shader.shade(hit.voxel, hit.cell);
+        f.depth[p] = c.shader.distance(c.rays.world(dir), hit.cell);
+    }
+    if (!c.srgb.empty()) {
+        const vec4 v = f.rgba[p];
+        c.srgb[p] = std::uint32_t(linearToSrgb8(v.r)) | std::uint32_t(linearToSrgb8(v.g)) << 8 |
+                    std::uint32_t(linearToSrgb8(v.b)) << 16 | std::uint32_t(alphaTo8(v.a)) << 24;
+    }
+}
+
+/// Colour coherence: fills pixel p from its partners when both were traced, both show the
+/// surface, and their colours agree. (Pairs of background pixels are traced: a miss costs
+/// about as much as the test.) The pixel's ray lies between two rays that hit voxels inside
+/// the convex scene cube, so it meets the cube and counts in `rays`.
+bool tryFill(const Context& c, int x, int y, const std::size_t* partners, RenderStats& st) {
+    Frame& f = c.frame;
+    const std::size_t a = partners[0], b = partners[1];
+    if (!(f.flags[a] & Frame::kTraced) || !(f.flags[b] & Frame::kTraced)) return false;
+    if (f.hitId[a] == kNoHit || f.hitId[b] == kNoHit) return false;
+    for (int ch = 0; ch < 4; ++ch) {
+        const int da = int((c.srgb[a] >> (8 * ch)) & 0xFF), db = int((c.srgb[b] >> (8 * ch)) & 0xFF);
+        if (float(std::abs(da - db)) > c.settings.colourTolerance) return false;
+    }
+    const std::size_t p = f.pixel(x, y);
+    f.rgba[p] = 0.5f * (f.rgba[a] + f.rgba[b]);
+    f.depth[p] = 0.5f * (f.depth[a] + f.depth[b]);
+    f.hitId[p] = f.hitId[a];
+    c.cells[p] = c.cells[a];
+    f.flags[p] = Frame::kColourFilled;
+    ++st.rays;
+    ++st.hits;
+    ++st.colourFilled;
+    return true;
+}
+
+}  // namespace
+
+std::string DiscreteRenderer::name() const {
+    std::string n = pattern_ == Pattern::Full ? "full" : pattern_ == Pattern::Linear ? "linear" : "area";
+    if (exact_) n += "-exact";
+    if (colour_) n += "+colour";
+    return n;
+}
+
+RenderStats DiscreteRenderer::render(const Octree& tree, const Camera& camera, const RenderSettings& settingsIn,
+                                     Frame& frame) const {
+    camera.validate();
+    Timer timer;
+    RenderSettings settings = settingsIn;
+    settings.colourCoherence = settingsIn.colourCoherence || colour_;
+    frame.resize(camera.width, camera.height);
+    const Shader shader(tree, camera, settings);
+    const PixelRays rays(tree, camera);
+    std::vector<ivec3> cells(frame.hitId.size(), ivec3(0));
+    std::vector<std::uint32_t> srgb(settings.colourCoherence ? frame.hitId.size() : 0, 0u);
+    const Context ctx{tree, settings, frame, shader, rays, cells, srgb};
+    const int W = camera.width, H = camera.height;
+    const Start mode = pattern_ == Pattern::Full ? Start::Root : exact_ ? Start::Guided : Start::Branch;
+    const bool colour = settings.colourCoherence;
+
+    std::vector<RenderStats> rowStats(static_cast<std::size_t>(H));
+    std::vector<std::uint64_t> rowNodes(static_cast<std::size_t>(H), 0), rowDeferred(static_cast<std::size_t>(H), 0);
+    auto isSupportCol = [&](int x) { return x % 4 == 0 || x == W - 1; };
+    auto isBaseRow = [&](int y) { return y % 4 == 0 || y == H - 1; };
+
+    // One row along its own pattern, all phases while the row is in cache.
+    auto doRow = [&](int y, TraversalCounters& k) {
+        RenderStats& st = rowStats[std::size_t(y)];
+        if (pattern_ == Pattern::Full) {
+            if (!colour) {
+                for (int x = 0; x < W; ++x) tracePixel(ctx, x, y, nullptr, mode, st, k);
+                return;
+            }
+            for (int x = 0; x < W; x += 2) tracePixel(ctx, x, y, nullptr, mode, st, k);
+            if (W % 2 == 0) tracePixel(ctx, W - 1, y, nullptr, mode, st, k);
+            for (int x = 1; x < W - 1; x += 2) {
+                const std::size_t pr[2] = {frame.pixel(x - 1, y), frame.pixel(x + 1, y)};
+                if (!tryFill(ctx, x, y, pr, st)) tracePixel(ctx, x, y, nullptr, mode, st, k);
+            }
+            return;
+        }
+        // 1. supporting columns
+        for (int x = 0; x < W; ++x)
+            if (isSupportCol(x)) tracePixel(ctx, x, y, nullptr, mode, st, k);
+        // 2. middle of each 4-pixel group, from the supporting pixels 2 away
+        for (int x = 2; x < W; x += 4) {
+            if (isSupportCol(x)) continue;
+            const std::size_t pr[2] = {frame.pixel(x - 2, y), frame.pixel(std::min(x + 2, W - 1), y)};
+            tracePixel(ctx, x, y, pr, mode, st, k);
+        }
+        // 3. the two remaining pixels, from their neighbours at distance 1
+        for (int x = 1; x < W; ++x) {
+            if (isSupportCol(x) || x % 4 == 2) continue;
+            const std::size_t pr[2] = {frame.pixel(x - 1, y), frame.pixel(x + 1, y)};
+            if (!(colour && tryFill(ctx, x, y, pr, st))) tracePixel(ctx, x, y, pr, mode, st, k);
+        }
+    };
+    // The rows strictly between base row b and the next base row, from the pixels above and below.
+    auto doBand = [&](int b, TraversalCounters& k) {
+        const int next = std::min(b + 4, H - 1);
+        for (int pass = 0; pass < 2; ++pass)
+            for (int y = b + 1; y < next; ++y) {
+                if ((y % 4 == 2) != (pass == 0)) continue;  // first the middle row, then the others
+                RenderStats& st = rowStats[std::size_t(y)];
+                for (int x = 0; x < W; ++x) {
+                    if (y % 4 == 2) {
+                        const std::size_t pr[2] = {frame.pixel(x, y - 2), frame.pixel(x, std::min(y + 2, H - 1))};
+                        tracePixel(ctx, x, y, pr, mode, st, k);
+                    } else {
+                        const std::size_t pr[2] = {frame.pixel(x, y - 1), frame.pixel(x, y + 1)};
+                        if (!(colour && tryFill(ctx, x, y, pr, st))) tracePixel(ctx, x, y, pr, mode, st, k);
+                    }
+                }
+            }
+    };
+    auto run = [&](std::size_t count, auto body) {
+        parallelFor(count, settings.threads, [&](std::size_t i) {
+            TraversalCounters k;
+            const int y = body(int(i), k);
+            if (y >= 0) {
+                rowNodes[std::size_t(y)] += k.nodes;
+                rowDeferred[std::size_t(y)] += k.statesDeferred;
+            }
+        });
+    };
+    if (pattern_ != Pattern::Area) {
+        run(std::size_t(H), [&](int y, TraversalCounters& k) {
+            doRow(y, k);
+            return y;
+        });
+    } else {
+        // Base rows first (each on its own), then the bands between them.
+        std::vector<int> base;
+        for (int y = 0; y < H; ++y)
+            if (isBaseRow(y)) base.push_back(y);
+        run(base.size(), [&](int i, TraversalCounters& k) {
+            doRow(base[std::size_t(i)], k);
+            return base[std::size_t(i)];
+        });
+        run(base.size(), [&](int i, TraversalCounters& k) {
+            doBand(base[std::size_t(i)], k);
+            return base[std::size_t(i)] + 1 < H ? base[std::size_t(i)] + 1 : -1;  // counters kept on a band row
+        });
+    }
+    RenderStats total;
+    total.renderer = name();
+    for (std::size_t y = 0; y < rowStats.size(); ++y) {
+        rowStats[y].nodesVisited = rowNodes[y];
+        rowStats[y].statesDeferred = rowDeferred[y];
+        rowStats[y].pixels = std::uint64_t(W);
+        total.add(rowStats[y]);
+    }
+    total.renderMs = timer.ms();
+    return total;
+}
+
+}  // namespace octrace::detail

@@ -1,0 +1,20 @@
+#pragma once
+// Private to core: the discrete-traversal renderers (see CoherentRenderers.cpp).
+#include "octrace/render/Renderer.h"
+
+namespace octrace::detail {
+
+class DiscreteRenderer final : public Renderer {
+public:
+    enum class Pattern { Full, Linear, Area };
+    DiscreteRenderer(Pattern pattern, bool exact, bool colour) : pattern_(pattern), exact_(exact), colour_(colour) {}
+    std::string name() const override;
+    RenderStats render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
+                       Frame& frame) const override;
+
+private:
+    Pattern pattern_;
+    bool exact_, colour_;
+};
+
+}  // namespace octrace::detail
