@@ -1,12 +1,16 @@
 #!/usr/bin/env bash
 # Installs the Debian (bookworm) packages octrace builds and tests with. Idempotent; needs root
 # (or sudo). Nothing is downloaded at build time: these packages are everything.
+# Usage: scripts/setup.sh [--fuzz]   (--fuzz: also clang and libFuzzer, for tests/fuzz/run.sh)
 set -euo pipefail
 PACKAGES=(
   cmake ninja-build g++ pkg-config
   libgdal-dev libvtk9-dev libopenexr-dev libglm-dev libtbb-dev
   libgtest-dev libbenchmark-dev libpng-dev libzstd-dev
 )
+if [ "${1:-}" = "--fuzz" ]; then
+  PACKAGES+=(clang libclang-rt-14-dev)
+fi
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

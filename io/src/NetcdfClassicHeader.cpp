@@ -1,38 +1,47 @@
 #include "NetcdfClassicHeader.h"
 
+#include "InputFile.h"
+
 #include "octrace/util/Error.h"
 
 #include <algorithm>
 #include <fstream>
+#include <limits>
 #include <vector>
 
 namespace octrace::io::detail {
 namespace {
 
 // Big-endian fields of the classic format; see the NetCDF "File Format Specification".
+// Every skip is checked against the file's size: a name or attribute length of 2^63 or more
+// would otherwise seek backwards (std::streamoff is signed) and walk the same bytes forever.
 class HeaderStream {
 public:
-    explicit HeaderStream(const std::string& path) : path_(path), in_(path, std::ios::binary) {}
+    HeaderStream(std::istream& in, std::uint64_t size, const std::string& path) : path_(path), in_(in), size_(size) {}
 
     [[noreturn]] void fail(const std::string& what) const { throw FileError(path_ + ": NetCDF header " + what); }
 
     std::uint64_t u32() { return bytes(4); }
     std::uint64_t u64() { return bytes(8); }
     void skip(std::uint64_t n) {
+        if (n > size_ - pos_) fail("is truncated");
         in_.seekg(std::streamoff(n), std::ios::cur);
         if (!in_) fail("is truncated");
+        pos_ += n;
     }
 
 private:
     std::uint64_t bytes(int n) {
         unsigned char b[8];
-        if (!in_.read(reinterpret_cast<char*>(b), n)) fail("is truncated");
+        if (std::uint64_t(n) > size_ - pos_ || !in_.read(reinterpret_cast<char*>(b), n)) fail("is truncated");
+        pos_ += std::uint64_t(n);
         std::uint64_t v = 0;
         for (int i = 0; i < n; ++i) v = (v << 8) | b[i];
         return v;
     }
     std::string path_;
-    std::ifstream in_;
+    std::istream& in_;
+    std::uint64_t size_, pos_ = 0;
 };
 
 constexpr std::uint64_t kDimensionTag = 10, kVariableTag = 11, kAttributeTag = 12;
@@ -47,12 +56,22 @@ std::uint64_t typeSize(std::uint64_t type) {
     }
 }
 
-std::uint64_t pad4(std::uint64_t n) { return (n + 3) / 4 * 4; }
+// Sizes a header announces can overflow 64 bits; saturated, they still exceed any real file,
+// so such a file is reported as truncated instead of wrapping around to a small size.
+constexpr std::uint64_t kMax = std::numeric_limits<std::uint64_t>::max();
+std::uint64_t mulSat(std::uint64_t a, std::uint64_t b) { return b != 0 && a > kMax / b ? kMax : a * b; }
+std::uint64_t addSat(std::uint64_t a, std::uint64_t b) { return a > kMax - b ? kMax : a + b; }
+std::uint64_t pad4(std::uint64_t n) { return n > kMax - 3 ? kMax : (n + 3) / 4 * 4; }
 
 }  // namespace
 
 std::uint64_t classicDataEnd(const std::string& path) {
-    HeaderStream h(path);
+    std::ifstream in(path, std::ios::binary);
+    return classicDataEnd(in, fileSize(path), path);
+}
+
+std::uint64_t classicDataEnd(std::istream& in, std::uint64_t size, const std::string& path) {
+    HeaderStream h(in, size, path);
     std::uint64_t magic = h.u32();
     int version = int(magic & 0xff);
     bool cdf5 = version == 5;
@@ -66,7 +85,7 @@ std::uint64_t classicDataEnd(const std::string& path) {
             name();
             std::uint64_t size = typeSize(h.u32());
             if (size == 0) h.fail("has an attribute of unknown type");
-            h.skip(pad4(count() * size));
+            h.skip(pad4(mulSat(count(), size)));
         }
     };
 
@@ -98,26 +117,27 @@ std::uint64_t classicDataEnd(const std::string& path) {
             std::uint64_t id = count();
             if (id >= dimLength.size()) h.fail("refers to a dimension that does not exist");
             if (dimLength[id] == 0 && r == 0) record = true;
-            else elements *= dimLength[id];
+            else elements = mulSat(elements, dimLength[id]);
         }
         attributes();
         std::uint64_t size = typeSize(h.u32());
         if (size == 0) h.fail("has a variable of unknown type");
         count();  // vsize: may be clamped for huge variables, so recomputed from the dimensions
         std::uint64_t begin = version == 1 ? h.u32() : h.u64();
-        vars.push_back({begin, elements * size, record});
+        vars.push_back({begin, mulSat(elements, size), record});
     }
 
     std::uint64_t recordSize = 0;
     std::size_t recordVars = 0;
     for (const auto& v : vars)
-        if (v.record) { recordSize += pad4(v.bytes); ++recordVars; }
+        if (v.record) { recordSize = addSat(recordSize, pad4(v.bytes)); ++recordVars; }
     if (recordVars == 1) recordSize = std::find_if(vars.begin(), vars.end(), [](const Var& v) { return v.record; })->bytes;
 
     std::uint64_t end = 0;
     for (const auto& v : vars) {
-        if (!v.record) end = std::max(end, v.begin + v.bytes);
-        else if (!streaming && numRecords > 0) end = std::max(end, v.begin + (numRecords - 1) * recordSize + v.bytes);
+        if (!v.record) end = std::max(end, addSat(v.begin, v.bytes));
+        else if (!streaming && numRecords > 0)
+            end = std::max(end, addSat(addSat(v.begin, mulSat(numRecords - 1, recordSize)), v.bytes));
     }
     return end;
 }

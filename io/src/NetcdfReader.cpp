@@ -6,6 +6,7 @@
 #include "InputFile.h"
 #include "NetcdfClassicHeader.h"
 #include "NetcdfFile.h"
+#include "NetcdfInterpretation.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
 
@@ -337,8 +338,9 @@ void describeGrid(std::ostringstream& s, const std::string& path, const NetcdfFi
 
 }  // namespace
 
-ScalarField NetcdfReader::read(const std::string& path, const FieldRequest& req) {
-    openNetcdf(path);
+namespace detail {
+
+ScalarField interpretNetcdf(const std::string& path, const FieldRequest& req) {
     if (req.hasRegion) checkRegion(req.region, path);
     if (!(req.verticalScale >= 0.0) || !std::isfinite(req.verticalScale))
         throw UsageError(path + ": vertical scale must be positive (0 = default), got " + num(req.verticalScale));
@@ -346,8 +348,7 @@ ScalarField NetcdfReader::read(const std::string& path, const FieldRequest& req)
     return readVariable(path, file, chooseVariable(path, file, req.variable), req);
 }
 
-std::string NetcdfReader::describe(const std::string& path) {
-    std::string format = openNetcdf(path);
+std::string describeNetcdf(const std::string& path, const std::string& format) {
     NetcdfFile file(path);
     std::ostringstream s;
     s << path << "\nformat: " << format << ", read through GDAL's netCDF driver\n";
@@ -357,5 +358,14 @@ std::string NetcdfReader::describe(const std::string& path) {
     describeGrid(s, path, file);
     return s.str();
 }
+
+}  // namespace detail
+
+ScalarField NetcdfReader::read(const std::string& path, const FieldRequest& req) {
+    openNetcdf(path);
+    return interpretNetcdf(path, req);
+}
+
+std::string NetcdfReader::describe(const std::string& path) { return describeNetcdf(path, openNetcdf(path)); }
 
 }  // namespace octrace::io

@@ -4,6 +4,7 @@
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -55,19 +56,35 @@ double toDouble(const std::string& s, bool& ok) {
     return v;
 }
 
-// A pattern for snprintf must hold exactly one integer conversion (e.g. "slice.%03d").
+// A pattern for snprintf must hold exactly one integer conversion (e.g. "slice.%03d"), with
+// a width of at most 16: vtkNrrdReader formats the names into a buffer only 20 bytes longer
+// than the pattern (a wider number would be cut, and VTK would open another file than the
+// one checked here), and glibc would pad a width of 10^9 for seconds.
+constexpr int kMaxPatternWidth = 16;
+
 bool safeIntegerPattern(const std::string& f) {
     int conversions = 0;
     for (std::size_t i = 0; i < f.size(); ++i) {
         if (f[i] != '%') continue;
         if (i + 1 < f.size() && f[i + 1] == '%') { ++i; continue; }
         std::size_t j = i + 1;
-        while (j < f.size() && std::string("0123456789-+ #").find(f[j]) != std::string::npos) ++j;
+        while (j < f.size() && std::string("-+ #0").find(f[j]) != std::string::npos) ++j;  // flags
+        int width = 0;
+        for (; j < f.size() && f[j] >= '0' && f[j] <= '9'; ++j)
+            if ((width = width * 10 + (f[j] - '0')) > kMaxPatternWidth) return false;
         if (j >= f.size() || std::string("diuxXo").find(f[j]) == std::string::npos) return false;
         ++conversions;
         i = j;
     }
     return conversions == 1;
+}
+
+// A whole decimal number within +-limit (the numbers of a data file pattern).
+bool boundedInteger(const std::string& s, long long limit, long long& out) {
+    char* end = nullptr;
+    errno = 0;
+    out = std::strtoll(s.c_str(), &end, 10);
+    return !s.empty() && *end == '\0' && errno == 0 && out >= -limit && out <= limit;
 }
 
 class Parser {
@@ -111,6 +128,14 @@ public:
         }
         if (!cur.empty()) out.push_back(cur);
         return out;
+    }
+
+    // A NRRD header is text. vtkNrrdReader handles it as a C string cut at the first NUL byte:
+    // with one in any line, even a comment, its header loop never ends (see NrrdReader.cpp)
+    // and it takes the whole file for the header, so it would read data from the wrong offset.
+    void requireText(const std::string& line, int lineNo) const {
+        if (line.find('\0') != std::string::npos)
+            fail("header line " + std::to_string(lineNo) + " holds a NUL byte: a NRRD header is text");
     }
 
     void needDimension(const std::string& field) const {
@@ -221,15 +246,20 @@ public:
         }
         if (w.size() >= 4) {
             if (!safeIntegerPattern(w[0]))
-                fail("data file pattern '" + w[0] + "' must hold exactly one integer conversion like %d");
-            int lo = std::atoi(w[1].c_str()), hi = std::atoi(w[2].c_str()), step = std::atoi(w[3].c_str());
+                fail("data file pattern '" + w[0] + "' must hold exactly one integer conversion like %03d (width at most " +
+                     std::to_string(kMaxPatternWidth) + ")");
             if (w.size() > 4 && std::atoi(w[4].c_str()) != 3)
                 fail("data file pattern splits along axis " + w[4] + ", only slices along the last axis are supported");
-            if (step <= 0 || hi < lo || (hi - lo) / step > 1000000)
-                fail("data file pattern range " + w[1] + " " + w[2] + " " + w[3] + " is invalid");
-            for (int i = lo; i <= hi; i += step) {
+            // Bounded so that neither this loop nor vtkNrrdReader's own (on int) can overflow.
+            constexpr long long kLimit = 1000000000;
+            long long lo = 0, hi = 0, step = 0;
+            if (!boundedInteger(w[1], kLimit, lo) || !boundedInteger(w[2], kLimit, hi) ||
+                !boundedInteger(w[3], kLimit, step) || step <= 0 || hi < lo || (hi - lo) / step >= 1000000)
+                fail("data file pattern range " + w[1] + " " + w[2] + " " + w[3] +
+                     " is invalid (MIN MAX STEP: integers within +-10^9, MIN <= MAX, STEP > 0, under a million files)");
+            for (long long i = lo; i <= hi; i += step) {
                 char name[4096];
-                std::snprintf(name, sizeof name, w[0].c_str(), i);
+                std::snprintf(name, sizeof name, w[0].c_str(), int(i));
                 addDataFile(name);
             }
             return;
@@ -265,6 +295,7 @@ NrrdHeader NrrdHeader::parse(const std::string& path) {
 
     Parser parser(h);
     std::size_t pos = text.find('\n');
+    parser.requireText(text.substr(0, pos), 1);
     bool blankLineSeen = false;
     int lineNo = 1;
     while (pos != std::string::npos && pos + 1 < text.size()) {
@@ -273,6 +304,7 @@ NrrdHeader NrrdHeader::parse(const std::string& path) {
         std::string line = text.substr(start, pos == std::string::npos ? std::string::npos : pos - start);
         ++lineNo;
         if (!line.empty() && line.back() == '\r') line.pop_back();
+        parser.requireText(line, lineNo);
         if (line.empty()) {
             blankLineSeen = true;
             h.headerBytes = pos == std::string::npos ? text.size() : pos + 1;
@@ -321,9 +353,11 @@ void NrrdHeader::checkData() const {
         std::error_code ec;
         if (!fs::is_regular_file(f, ec)) fail("data file '" + f + "' not found");
     }
-    if (files.size() > 1 && std::size_t(sizes.z) % files.size() != 0)
+    // vtkNrrdReader reads split data as one 2-D slice per file and indexes its file list by
+    // slice: with fewer files than slices it read past the end of that list and crashed.
+    if (files.size() > 1 && std::size_t(sizes.z) != files.size())
         fail("header lists " + std::to_string(files.size()) + " data files for " + std::to_string(sizes.z) +
-             " slices along the last axis");
+             " slices along the last axis (split data must hold one slice per file)");
     if (files.size() > 1 && sizes.x <= 9)
         fail("slices split into several files need more than 9 samples along the first axis");
     std::size_t perFile = sampleCount() / files.size();
@@ -350,8 +384,24 @@ void NrrdHeader::checkData() const {
         if (count < sampleCount())
             fail("data truncated: header says " + shape + " = " + std::to_string(sampleCount()) +
                  " ascii values, found " + std::to_string(count));
+    } else if (encoding == "gzip") {
+        // The exact length is known only after inflating (NrrdReader checks what VTK reports),
+        // but deflate expands at most 1032:1, so a header announcing more than that is refused
+        // here, before VTK allocates the announced volume (a 1 KB file could ask for 32 GiB).
+        constexpr std::uintmax_t kMaxDeflateRatio = 1032;
+        std::uintmax_t need = std::uintmax_t(perFile) * typeSize;
+        for (const auto& f : files) {
+            std::uintmax_t size = fileSize(f);
+            std::uintmax_t have = size > offset ? size - offset : 0;
+            if (need / kMaxDeflateRatio > have) {
+                std::string where = f == path ? "the file's " : "data file '" + f + "': its ";
+                fail("gzip data truncated: header says " + shape + " = " + std::to_string(need) + " bytes" +
+                     (files.size() > 1 ? " per file" : "") + ", " + where + std::to_string(have) +
+                     " bytes of gzip data inflate to at most " + std::to_string(have * kMaxDeflateRatio) +
+                     " (deflate expands at most 1032:1)");
+            }
+        }
     }
-    // gzip: the length is known only after inflating; NrrdReader checks what VTK reports.
 }
 
 }  // namespace octrace::io::detail

@@ -30,6 +30,11 @@ namespace {
 // vtkNrrdReader reads rows bottom-up for left-handed spaces ("3D-left-handed", LAS); octrace
 // keeps the file's sample order so that NRRD's space directions apply unchanged. Created with
 // `new`, never through the object factory (which may hand out the MPI vtkPNrrdReader).
+//
+// It also ends the header text with a newline: vtkNrrdReader's header loop stops at an empty
+// line, and when the last line of a detached header has no newline, std::getline fails at
+// the end without clearing the line, so VTK handled that last line again forever (found by
+// fuzz_nrrd; NrrdHeader refuses NUL bytes, so the text is the whole buffer).
 class FileOrderNrrdReader : public vtkNrrdReader {
 public:
     static FileOrderNrrdReader* New();
@@ -38,6 +43,11 @@ public:
 protected:
     FileOrderNrrdReader() = default;
     int ReadHeader(vtkCharArray* headerBuffer) override {
+        const vtkIdType n = headerBuffer->GetNumberOfTuples();  // the text and its terminating NUL
+        if (n >= 2 && headerBuffer->GetValue(n - 2) != '\n') {
+            headerBuffer->SetValue(n - 1, '\n');
+            headerBuffer->InsertNextValue('\0');
+        }
         int ok = vtkNrrdReader::ReadHeader(headerBuffer);
         this->FileLowerLeft = 1;
         return ok;

@@ -27,6 +27,10 @@ const Case kCases[] = {
     {"invalid_truncated_hdf5.nc", nullptr, "cannot open it"},
     {"invalid_not_netcdf.nc", nullptr, "not a NetCDF file"},
     {"invalid_unknown_format.dat", nullptr, "format not recognised"},
+    {"invalid_nul_in_header.nrrd", nullptr, "holds a NUL byte"},
+    {"invalid_huge_name_length.nc", nullptr, "NetCDF header is truncated"},
+    {"invalid_oversized_gzip.nrrd", nullptr, "gzip data truncated"},
+    {"invalid_fewer_files_than_slices.nhdr", nullptr, "one slice per file"},
 };
 }  // namespace
 

@@ -89,6 +89,10 @@ TEST(FieldReader, EveryInvalidCorpusFileFailsWithItsDocumentedMessage) {
         {"invalid_truncated_hdf5.nc", "", Kind::File, "GDAL's netCDF driver cannot open it"},
         {"invalid_not_netcdf.nc", "", Kind::FormatNotSupported, "not a NetCDF file"},
         {"invalid_unknown_format.dat", "", Kind::FormatNotSupported, "format not recognised"},
+        {"invalid_nul_in_header.nrrd", "", Kind::File, "header line 6 holds a NUL byte"},
+        {"invalid_huge_name_length.nc", "", Kind::File, "NetCDF header is truncated"},
+        {"invalid_oversized_gzip.nrrd", "", Kind::File, "inflate to at most 29928"},
+        {"invalid_fewer_files_than_slices.nhdr", "", Kind::File, "header lists 2 data files for 4 slices"},
     };
     for (const auto& c : cases) {
         std::string path = test::testData(std::string("invalid/") + c.file);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <numbers>
 
 using namespace octrace;
@@ -263,6 +264,45 @@ TEST(NetcdfReader, RefusesVariableWithOnlyMissingValues) {
 TEST(NetcdfReader, RefusesTruncatedClassicFileInsteadOfReadingZeros) {
     EXPECT_THROW_WITH(io::NetcdfReader::read(test::testData("invalid/invalid_truncated.nc"), {}), FileError,
                       "NetCDF data truncated: the header places data up to byte 5000, the file has 3000 bytes");
+}
+
+// Found by fuzz_netcdf_classic_header (docs/dev/fuzzing.md): a name length of 2^64 - 16 is a
+// seek of -16 bytes, and the header walker went round in circles, its list of dimensions
+// growing until memory ran out.
+TEST(NetcdfReader, RefusesAHeaderLengthBeyondTheFileInsteadOfLoopingForever) {
+    EXPECT_THROW_WITH(io::NetcdfReader::read(test::testData("invalid/invalid_huge_name_length.nc"), {}), FileError,
+                      "NetCDF header is truncated");
+}
+
+// Sizes whose product overflows 64 bits must not wrap around to a small end of data.
+TEST(NetcdfReader, RefusesDimensionsWhoseByteCountOverflowsAsTruncated) {
+    auto be32 = [](std::string& s, std::uint32_t v) {
+        for (int i = 3; i >= 0; --i) s += char((v >> (8 * i)) & 0xff);
+    };
+    std::string b("CDF\x01", 4);
+    be32(b, 0);                           // numrecs
+    be32(b, 10);                          // NC_DIMENSION
+    be32(b, 3);
+    for (char n : {'x', 'y', 'z'}) {
+        be32(b, 1);
+        b += n;
+        b += std::string(3, '\0');
+        be32(b, 0xffffffffu);             // (2^32 - 1)^3 doubles: about 2^99 bytes
+    }
+    be32(b, 0), be32(b, 0);               // no global attributes
+    be32(b, 11);                          // NC_VARIABLE
+    be32(b, 1);
+    be32(b, 1), b += "v", b += std::string(3, '\0');
+    be32(b, 3), be32(b, 0), be32(b, 1), be32(b, 2);
+    be32(b, 0), be32(b, 0);               // no attributes
+    be32(b, 6);                           // NC_DOUBLE
+    be32(b, 0xfffffff8u);                 // vsize (clamped)
+    be32(b, std::uint32_t(b.size() + 4)); // begin: just after the header
+    test::TempDir dir;
+    const std::string path = dir.file("overflow.nc");
+    std::ofstream(path, std::ios::binary).write(b.data(), std::streamsize(b.size()));
+    EXPECT_THROW_WITH(io::NetcdfReader::read(path, {}), FileError,
+                      "NetCDF data truncated: the header places data up to byte 18446744073709551615");
 }
 
 TEST(NetcdfReader, RefusesTruncatedNetCdf4File) {

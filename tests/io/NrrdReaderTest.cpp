@@ -3,7 +3,9 @@
 #include "octrace/io/NrrdReader.h"
 #include "octrace/util/Error.h"
 
+#include <fstream>
 #include <numeric>
+#include <vector>
 
 using namespace octrace;
 
@@ -90,6 +92,68 @@ TEST(NrrdReader, RefusesShortGzipStream) {
 TEST(NrrdReader, RefusesShearedSpaceDirections) {
     EXPECT_THROW_WITH(io::NrrdReader::read(test::testData("invalid/invalid_sheared.nrrd")), FileError,
                       "space directions of axes 0 and 1 are not perpendicular (60 degrees)");
+}
+
+// Found by fuzz_nrrd (docs/dev/fuzzing.md): vtkNrrdReader ends the header at a NUL byte and
+// then never returned; the header parser refuses it first, in any line.
+TEST(NrrdReader, RefusesANulByteInTheHeaderInsteadOfHanging) {
+    EXPECT_THROW_WITH(io::NrrdReader::read(test::testData("invalid/invalid_nul_in_header.nrrd")), FileError,
+                      "header line 6 holds a NUL byte: a NRRD header is text");
+    test::TempDir dir;
+    const std::string path = dir.file("nul_in_magic_line.nrrd");
+    const std::string bytes("NRRD0004\0\0\ntype: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\n01234567", 72);
+    std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+    EXPECT_THROW_WITH(io::NrrdReader::read(path), FileError, "header line 1 holds a NUL byte");
+}
+
+// Found by fuzz_nrrd: two files of two slices each; vtkNrrdReader reads one slice per file
+// and indexed its list of two file names with slices 2 and 3 (SEGV).
+TEST(NrrdReader, RefusesSplitDataWithFewerFilesThanSlices) {
+    EXPECT_THROW_WITH(io::NrrdReader::read(test::testData("invalid/invalid_fewer_files_than_slices.nhdr")), FileError,
+                      "header lists 2 data files for 4 slices along the last axis (split data must hold one slice "
+                      "per file)");
+}
+
+// Found by fuzz_nrrd: vtkNrrdReader went round its header loop forever when the last line of a
+// detached header had no newline (a plain and valid way to save one).
+TEST(NrrdReader, ReadsADetachedHeaderWhoseLastLineHasNoNewline) {
+    test::TempDir dir;
+    std::vector<unsigned char> bytes(16 * 8 * 2);
+    std::iota(bytes.begin(), bytes.end(), 0);
+    std::ofstream(dir.file("data.raw"), std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    std::ofstream(dir.file("no_final_newline.nhdr"))
+        << "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 16 8 2\nencoding: raw\ndata file: data.raw";
+    ScalarField f = io::NrrdReader::read(dir.file("no_final_newline.nhdr"));
+    EXPECT_EQ(f.dims, ivec3(16, 8, 2));
+    EXPECT_EQ(sum(f), 255.0 * 256.0 / 2.0);
+    std::ofstream(dir.file("list.nhdr")) << "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 16 8 2\nencoding: raw\n"
+                                            "data file: LIST\ndata.raw\ndata.raw";
+    EXPECT_EQ(io::NrrdReader::read(dir.file("list.nhdr")).dims, ivec3(16, 8, 2));
+}
+
+// Absurd headers are refused before VTK allocates what they announce.
+TEST(NrrdReader, RefusesAGzipVolumeLargerThanItsStreamCanInflateToBeforeAllocatingIt) {
+    EXPECT_THROW_WITH(io::NrrdReader::read(test::testData("invalid/invalid_oversized_gzip.nrrd")), FileError,
+                      "gzip data truncated: header says 2048x2048x1024 double = 34359738368 bytes, the file's 29 bytes "
+                      "of gzip data inflate to at most 29928 (deflate expands at most 1032:1)");
+}
+
+TEST(NrrdReader, RefusesDataFilePatternsThatCouldOverflowOrPadForever) {
+    test::TempDir dir;
+    auto header = [&](const std::string& pattern) {
+        const std::string path = dir.file("pattern.nhdr");
+        std::ofstream(path) << "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 16 16 2\nencoding: raw\ndata file: "
+                            << pattern << "\n";
+        return path;
+    };
+    EXPECT_THROW_WITH(io::NrrdReader::read(header("s%999999999d 1 2 1")), FileError,
+                      "must hold exactly one integer conversion like %03d (width at most 16)");
+    EXPECT_THROW_WITH(io::NrrdReader::read(header("s%d 2147483646 2147483647 1")), FileError,
+                      "data file pattern range 2147483646 2147483647 1 is invalid");
+    EXPECT_THROW_WITH(io::NrrdReader::read(header("s%d -2000000000 2000000000 4000")), FileError, "is invalid");
+    EXPECT_THROW_WITH(io::NrrdReader::read(header("s%d 1 2 x")), FileError, "is invalid");
+    EXPECT_THROW_WITH(io::NrrdReader::read(header("s%03d 1 2 1")), FileError, "s001' not found");
 }
 
 TEST(NrrdReader, ErrorMessagesStartWithThePath) {

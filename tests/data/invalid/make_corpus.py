@@ -50,6 +50,26 @@ write("invalid_sheared.nrrd",
                    "space directions: (1,0,0) (0.5,0.8660254037844386,0) (0,0,1)", "endian: little",
                    "encoding: raw", "space origin: (0,0,0)"])
       + struct.pack("<4096f", *([1.0] * 4096)))
+# A NUL byte in a header comment: vtkNrrdReader ends the header there and never returns
+# (found by fuzz_nrrd, see docs/dev/fuzzing.md).
+write("invalid_nul_in_header.nrrd", b"NRRD0004\ntype: double\ndimension: 3\nsizes: 2 2 2\nencoding: ascii\n"
+                                    b"# a NUL \0 byte\n\n0 1 2 3\n4 5 6 7\n")
+# CDF-5 header whose first dimension name is 2^64 - 16 bytes long: as a signed file offset
+# that is -16, and the header walker went round in circles (found by fuzz_netcdf_classic_header).
+write("invalid_huge_name_length.nc", b"CDF\x05" + bytes(8) + struct.pack(">I", 10) + struct.pack(">Q", 2**40)
+      + struct.pack(">Q", 2**64 - 16))
+# 29 bytes of gzip data whose header announces 2048x2048x1024 doubles (32 GiB): deflate inflates
+# at most 1032:1, so it is refused before VTK allocates the volume.
+write("invalid_oversized_gzip.nrrd",
+      nrrd_header(["type: double", "dimension: 3", "sizes: 2048 2048 1024", "endian: little", "encoding: gzip"])
+      + gzip.compress(bytes(1000), mtime=0))
+# Detached slices named by a pattern with step 2: two files for four slices. vtkNrrdReader
+# reads one slice per file and read past the end of its file list (found by fuzz_nrrd).
+write("invalid_fewer_files_than_slices.nhdr",
+      ("NRRD0004\ntype: uchar\ndimension: 3\nsizes: 12 4 4\nspacings: 1 1 1\nencoding: raw\n"
+       "data file: data_for_invalid_fewer_files_than_slices.%d.raw 1 4 2\n").encode())
+for i in (1, 3):
+    write("data_for_invalid_fewer_files_than_slices.%d.raw" % i, bytes(range(96)))
 # NetCDF files cut short: the first 3000 bytes of the valid fixtures in ../netcdf/.
 for src, dst in (("dateline_cf.nc", "invalid_truncated.nc"), ("dateline_cf_nc4.nc", "invalid_truncated_hdf5.nc")):
     with open(os.path.join(HERE, "..", "netcdf", src), "rb") as f:

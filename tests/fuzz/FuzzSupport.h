@@ -1,0 +1,49 @@
+#pragma once
+// Shared by the libFuzzer targets of tests/fuzz: a private scratch folder and quiet logging.
+// A target may let only octrace::Error escape its parser (caught in the target); anything
+// else (a crash, a sanitizer report, another exception, a leak, a hang) is a finding.
+#include "octrace/util/Log.h"
+
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <system_error>
+
+namespace octrace::fuzz {
+
+/// Drops octrace's log messages (warnings about odd headers are expected by the thousand).
+inline void quietLogs() { log::setLevel(log::Level::Quiet); }
+
+/// A folder of its own under $TMPDIR, removed at exit.
+class ScratchDir {
+public:
+    ScratchDir() {
+        std::string base = (std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") + std::string("/octrace_fuzz_XXXXXX");
+        if (!mkdtemp(base.data())) std::abort();
+        dir_ = base;
+    }
+    ~ScratchDir() {
+        std::error_code ec;
+        std::filesystem::remove_all(dir_, ec);
+    }
+    ScratchDir(const ScratchDir&) = delete;
+    ScratchDir& operator=(const ScratchDir&) = delete;
+
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+    /// Writes `size` bytes to `name` in the folder; returns its path.
+    std::string write(const std::string& name, const void* data, std::size_t size) const {
+        std::string p = path(name);
+        std::ofstream out(p, std::ios::binary | std::ios::trunc);
+        out.write(static_cast<const char*>(data), std::streamsize(size));
+        if (!out) std::abort();
+        return p;
+    }
+
+private:
+    std::filesystem::path dir_;
+};
+
+}  // namespace octrace::fuzz

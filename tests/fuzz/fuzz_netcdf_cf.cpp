@@ -1,0 +1,73 @@
+// Fuzz target: the NetCDF / CF interpretation layer (NetcdfFile over GDAL's multidimensional
+// API, axis roles, geographic mapping across the dateline, uneven depths, masking, packing,
+// non-geographic grids, `octrace info`'s description). The input is the bytes of a NetCDF
+// file (classic or NetCDF-4/HDF5), handed to GDAL as an in-memory file (/vsimem/) after the
+// checks NetcdfReader::read makes on disk (signature; all of a classic file's data present).
+#include "FuzzSupport.h"
+#include "NetcdfClassicHeader.h"
+#include "NetcdfInterpretation.h"
+#include "octrace/util/Error.h"
+
+#include <cpl_vsi.h>
+
+#include <sstream>
+
+namespace {
+
+using octrace::io::FieldRequest;
+
+FieldRequest region(double lon0, double lon1, double lat0, double lat1, double verticalScale) {
+    FieldRequest r;
+    r.hasRegion = true;
+    r.region[0] = lon0;
+    r.region[1] = lon1;
+    r.region[2] = lat0;
+    r.region[3] = lat1;
+    r.verticalScale = verticalScale;
+    return r;
+}
+
+bool passesTheOnDiskChecks(const std::string& bytes) {
+    static const std::string hdf5("\x89HDF\r\n\x1a\n", 8);
+    if (bytes.size() >= 8 && bytes.compare(0, 8, hdf5) == 0) return true;
+    if (bytes.size() < 4 || bytes.compare(0, 3, "CDF") != 0 || (bytes[3] != 1 && bytes[3] != 2 && bytes[3] != 5))
+        return false;
+    std::istringstream in(bytes);
+    try {
+        return octrace::io::detail::classicDataEnd(in, bytes.size(), "fuzz.nc") <= bytes.size();
+    } catch (const octrace::Error&) {
+        return false;
+    }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+    octrace::fuzz::quietLogs();
+    return 0;
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    const std::string bytes(reinterpret_cast<const char*>(data), size);
+    if (!passesTheOnDiskChecks(bytes)) return 0;
+    const char* path = "/vsimem/octrace_fuzz.nc";
+    VSIFCloseL(VSIFileFromMemBuffer(path, reinterpret_cast<GByte*>(const_cast<char*>(bytes.data())), bytes.size(),
+                                    FALSE));
+    const FieldRequest requests[] = {
+        FieldRequest{},
+        region(170.0, -170.0, -60.0, 60.0, 0.0),  // across the dateline
+        region(0.0, 90.0, -45.0, 45.0, 3.0),
+    };
+    for (const auto& req : requests) {
+        try {
+            (void)octrace::io::detail::interpretNetcdf(path, req);
+        } catch (const octrace::Error&) {
+        }
+    }
+    try {
+        (void)octrace::io::detail::describeNetcdf(path, "fuzz");
+    } catch (const octrace::Error&) {
+    }
+    VSIUnlink(path);
+    return 0;
+}

@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (clang, ASan + UBSan, build-fuzz/) and runs each for SECONDS
+# (default 20) on its committed seeds (tests/fuzz/corpus/TARGET) plus the inputs it found
+# before (build-fuzz/corpus/TARGET, not committed). Exits non-zero when a target crashes, hangs
+# (over 10 s on one input), leaks or runs out of memory (the others still run); the reproducer
+# is in build-fuzz/findings/TARGET/. Needs clang (scripts/setup.sh --fuzz). See docs/dev/fuzzing.md.
+# Usage: tests/fuzz/run.sh [SECONDS] [TARGET...]
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+BUILD="$ROOT/build-fuzz"
+SECONDS_PER_TARGET="${1:-20}"
+shift || true
+TARGETS=("$@")
+if [ ${#TARGETS[@]} -eq 0 ]; then
+  TARGETS=(fuzz_nrrd fuzz_netcdf_cf fuzz_netcdf_classic_header fuzz_cli_options)
+fi
+if ! command -v clang++ >/dev/null; then
+  echo "fuzz: clang++ not found; run scripts/setup.sh --fuzz" >&2
+  exit 1
+fi
+
+cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DOCTRACE_FUZZ=ON -DOCTRACE_BUILD_TESTS=OFF >/dev/null
+ninja -C "$BUILD" "${TARGETS[@]}"
+
+# Leaks inside third-party libraries only (the sanitizer build's list, see the file).
+export LSAN_OPTIONS="suppressions=$ROOT/tests/sanitizers/lsan.supp:print_suppressions=0"
+export ASAN_OPTIONS="detect_leaks=1:strict_string_checks=1"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+
+passed=0
+failed=0
+for t in "${TARGETS[@]}"; do
+  work="$BUILD/corpus/$t"
+  findings="$BUILD/findings/$t"
+  mkdir -p "$work" "$findings"
+  args=(-max_total_time="$SECONDS_PER_TARGET" -timeout=10 -rss_limit_mb=2048 -max_len=16384
+        -print_final_stats=1 -artifact_prefix="$findings/")
+  [ -f "$ROOT/tests/fuzz/$t.dict" ] && args+=(-dict="$ROOT/tests/fuzz/$t.dict")
+  echo "fuzz: $t for ${SECONDS_PER_TARGET} s"
+  log="$BUILD/$t.log"
+  if "$BUILD/tests/fuzz/$t" "${args[@]}" "$work" "$ROOT/tests/fuzz/corpus/$t" >"$log" 2>&1; then
+    grep -E "^stat::(number_of_executed_units|average_exec_per_sec|new_units_added|peak_rss_mb)" "$log" |
+      sed "s/^/fuzz: $t: /"
+    echo "fuzz: $t: corpus $(ls "$work" | wc -l) inputs found + $(ls "$ROOT/tests/fuzz/corpus/$t" | wc -l) seeds"
+    passed=$((passed + 1))
+  else
+    echo "fuzz: $t FAILED; its log ($log) ends:" >&2
+    tail -60 "$log" >&2
+    echo "fuzz: reproducer(s) in $findings: $(ls "$findings")" >&2
+    failed=$((failed + 1))
+  fi
+done
+echo "fuzz: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]
