@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <optional>
 #include <sstream>
@@ -51,6 +52,7 @@ struct RenderArgs {
     bool colourCoherence = false;
     float colourTolerance = 3.0f;
     int repeat = 1;
+    std::string baseline;
 };
 
 OptionParser makeParser(RenderArgs& a) {
@@ -122,6 +124,11 @@ OptionParser makeParser(RenderArgs& a) {
            }});
     p.add({"repeat", "N", "render N times and report the fastest as render_ms (benchmarks on a noisy machine; default 1)",
            [&](const std::string& v) { a.repeat = parseInt("repeat", v, 1, 1000); }});
+    p.add({"baseline", "NAME", "also render with renderer NAME, alternating with the main one --repeat times, and report baseline_render_ms and speedup_over_baseline (default: none)",
+           [&](const std::string& v) {
+               makeRenderer(v);
+               a.baseline = v;
+           }});
     p.add({"quiet", "", "print only errors", [&](const std::string&) { a.quiet = true; }});
     p.add({"verbose", "", "print debugging details", [&](const std::string&) { a.verbose = true; }});
     p.add({"help", "", "show this help and exit", [&](const std::string&) { a.help = true; }});
@@ -205,12 +212,19 @@ int runRender(const std::vector<std::string>& args) {
 
     auto renderer = makeRenderer(a.rendererName);
     Frame frame;
+    // With a baseline, the two renderers alternate so that a change in the machine's load hits
+    // both alike; each reports its fastest render.
+    std::unique_ptr<Renderer> baseline = a.baseline.empty() ? nullptr : makeRenderer(a.baseline);
+    Frame baseFrame;
+    double baseMs = std::numeric_limits<double>::infinity();
     RenderStats st = renderer->render(tree, cam, rs, frame);
+    if (baseline) baseMs = baseline->render(tree, cam, rs, baseFrame).renderMs;
     std::vector<double> times{st.renderMs};
     for (int i = 1; i < a.repeat; ++i) {
         RenderStats again = renderer->render(tree, cam, rs, frame);
         times.push_back(again.renderMs);
         st.renderMs = std::min(st.renderMs, again.renderMs);
+        if (baseline) baseMs = std::min(baseMs, baseline->render(tree, cam, rs, baseFrame).renderMs);
     }
     std::sort(times.begin(), times.end());
     if (st.hits == 0) log::warning("the surface is not in view: every pixel is background");
@@ -235,6 +249,11 @@ int runRender(const std::vector<std::string>& args) {
     if (a.repeat > 1) {
         js.set("repeat", a.repeat);
         js.set("render_ms_median", times[times.size() / 2]);
+    }
+    if (baseline) {
+        js.set("baseline", a.baseline);
+        js.set("baseline_render_ms", baseMs);
+        js.set("speedup_over_baseline", st.renderMs > 0 ? baseMs / st.renderMs : 0.0);
     }
     js.set("us_per_ray", st.rays ? st.renderMs * 1000.0 / double(st.rays) : 0.0);
     js.set("rays_full", st.raysFull);
