@@ -8,8 +8,14 @@ set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bash "$ROOT/scripts/setup.sh" --fuzz
 bash "$ROOT/scripts/build.sh"
-(cd "$ROOT/build" && ctest --output-on-failure -j 2 --timeout 1500)
+LOG="$(mktemp)"
+trap 'rm -f "$LOG"' EXIT
+(cd "$ROOT/build" && ctest --output-on-failure -j 2 --timeout 1500) | tee "$LOG"
 echo "test: sanitizer build (ASan + UBSan)"
-bash "$ROOT/scripts/test-sanitizers.sh"
+bash "$ROOT/scripts/test-sanitizers.sh" | tee -a "$LOG"
 echo "test: fuzz smoke run"
-bash "$ROOT/tests/fuzz/run.sh" "${OCTRACE_FUZZ_SECONDS:-15}"
+bash "$ROOT/tests/fuzz/run.sh" "${OCTRACE_FUZZ_SECONDS:-15}" | tee -a "$LOG"
+# One closing line over the three parts (each part already stopped the run if it failed).
+total=$(grep -Eo 'tests failed out of [0-9]+' "$LOG" | awk '{s += $5} END {print s + 0}')
+fuzz=$(grep -Eo '^fuzz: [0-9]+ passed' "$LOG" | awk '{s += $2} END {print s + 0}')
+echo "all: $((total + fuzz)) passed, 0 failed"
