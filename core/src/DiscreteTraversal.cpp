@@ -348,26 +348,33 @@ void mirroredOrigin(const QuantizedRay& r, const ivec3& cell, int level, i64& m0
     v0 = o[r.v];
 }
 
+/// Exact test whether the ray crosses the branch node; gives the node's mirrored origin.
+bool branchCrossed(const QuantizedRay& r, const BranchNode& b, i64& m0, i64& u0, i64& v0) {
+    mirroredOrigin(r, b.cell, b.level, m0, u0, v0);
+    return boxCrossed(r, r.dU == 0, r.dV == 0, m0, u0, v0, i64(1) << (N - b.level));
+}
+
+}  // namespace
+
+namespace {
+/// A point given in mirrored (main, u, v) coordinates, back in original octree space.
+dvec3 unmirror(const QuantizedRay& r, double mm, double uu, double vv) {
+    dvec3 p;
+    p[r.main] = (r.sign & axisBit(r.main)) ? double(L) - mm : mm;
+    p[r.u] = (r.sign & axisBit(r.u)) ? double(L) - uu : uu;
+    p[r.v] = (r.sign & axisBit(r.v)) ? double(L) - vv : vv;
+    return p;
+}
 }  // namespace
 
 dvec3 QuantizedRay::lowerPoint() const {
-    dvec3 p;
     const double s = 1.0 / double(1 << kFracBits);
-    double mm = 0.0, uu = double(U0) * s, vv = double(V0) * s;
-    p[main] = (sign & axisBit(main)) ? double(L) - mm : mm;
-    p[u] = (sign & axisBit(u)) ? double(L) - uu : uu;
-    p[v] = (sign & axisBit(v)) ? double(L) - vv : vv;
-    return p;
+    return unmirror(*this, 0.0, double(U0) * s, double(V0) * s);
 }
 
 dvec3 QuantizedRay::upperPoint() const {
-    dvec3 p;
     const double s = 1.0 / double(1 << kFracBits);
-    double mm = double(L), uu = double(U0 + dU) * s, vv = double(V0 + dV) * s;
-    p[main] = (sign & axisBit(main)) ? double(L) - mm : mm;
-    p[u] = (sign & axisBit(u)) ? double(L) - uu : uu;
-    p[v] = (sign & axisBit(v)) ? double(L) - vv : vv;
-    return p;
+    return unmirror(*this, double(L), double(U0 + dU) * s, double(V0 + dV) * s);
 }
 
 double QuantizedRay::eyeParameter() const { return std::ldexp(double(eyeM), -(N + Q)); }
@@ -456,8 +463,7 @@ TraversalHit traverseFromBranch(const Octree& tree, const QuantizedRay& ray, con
     fellBack = true;
     if (!ray.meetsCube || !branch.valid()) return traverseDiscrete(tree, ray, counters);
     i64 m0, u0, v0;
-    mirroredOrigin(ray, branch.cell, branch.level, m0, u0, v0);
-    if (boxCrossed(ray, ray.dU == 0, ray.dV == 0, m0, u0, v0, i64(1) << (N - branch.level))) {
+    if (branchCrossed(ray, branch, m0, u0, v0)) {
         Engine<false> e(tree, ray, counters, nullptr);
         e.start(branch.path[branch.level], branch.level, m0, u0, v0);
         TraversalHit hit = e.run();
@@ -473,8 +479,6 @@ TraversalHit traverseGuided(const Octree& tree, const QuantizedRay& ray, const B
                             TraversalCounters& counters, bool& certified) {
     certified = false;
     if (!ray.meetsCube || !branch.valid()) return traverseDiscrete(tree, ray, counters);
-    i64 m0, u0, v0;
-    mirroredOrigin(ray, branch.cell, branch.level, m0, u0, v0);
     // Deferring is possible only where no non-empty child can precede the path child; when no
     // path node allows it, the guided traversal is the full one (skip the set-up).
     bool anyDeferrable = false;
@@ -483,8 +487,8 @@ TraversalHit traverseGuided(const Octree& tree, const QuantizedRay& ray, const B
     if (!anyDeferrable) return traverseDiscrete(tree, ray, counters);
     // The path frames may be taken on trust only if the ray crosses the branch node (and so
     // every node above it on the path).
-    if (!boxCrossed(ray, ray.dU == 0, ray.dV == 0, m0, u0, v0, i64(1) << (N - branch.level)))
-        return traverseDiscrete(tree, ray, counters);
+    i64 m0, u0, v0;
+    if (!branchCrossed(ray, branch, m0, u0, v0)) return traverseDiscrete(tree, ray, counters);
     Engine<false> e(tree, ray, counters, nullptr);
     e.guide(&branch);
     if (!e.startAtRoot()) return TraversalHit{};

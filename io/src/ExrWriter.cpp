@@ -88,13 +88,7 @@ std::vector<std::uint8_t> ExrWriter::encode(const Frame& frame, const ImageWrite
 }
 
 void ExrWriter::write(const Frame& frame, const std::string& path, const ImageWriteOptions& options) {
-    std::vector<std::uint8_t> bytes;
-    try {
-        bytes = encode(frame, options);
-    } catch (const OutputError& e) {
-        throw OutputError("cannot write '" + path + "': " + e.what());
-    }
-    writeFileAtomically(path, bytes);
+    detail::encodeAndWrite(path, [&] { return encode(frame, options); });
 }
 
 }  // namespace octrace::io

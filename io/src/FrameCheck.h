@@ -1,9 +1,12 @@
 #pragma once
 // Private to the image writers: the checks every writer makes before encoding a Frame.
+#include "octrace/io/AtomicFile.h"
 #include "octrace/render/Frame.h"
 #include "octrace/util/Error.h"
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 namespace octrace::io::detail {
 
@@ -20,6 +23,19 @@ inline void checkFrameForWriting(const Frame& frame, const char* format, bool ne
     if (needsDepth && frame.depth.size() != n)
         throw OutputError(std::string(format) + ": the frame holds " + std::to_string(frame.depth.size()) +
                           " depth values for " + size + " pixels");
+}
+
+/// Encodes in memory with `encode()` (throwing OutputError), then writes the bytes to `path`
+/// atomically; an encoding failure is reported with the path and leaves no file.
+template <class Encode>
+void encodeAndWrite(const std::string& path, Encode encode) {
+    std::vector<std::uint8_t> bytes;
+    try {
+        bytes = encode();
+    } catch (const OutputError& e) {
+        throw OutputError("cannot write '" + path + "': " + e.what());
+    }
+    writeFileAtomically(path, bytes);
 }
 
 }  // namespace octrace::io::detail

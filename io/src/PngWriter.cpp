@@ -120,13 +120,7 @@ std::vector<std::uint8_t> PngWriter::encode(const Frame& frame, const ImageWrite
 }
 
 void PngWriter::write(const Frame& frame, const std::string& path, const ImageWriteOptions& options) {
-    std::vector<std::uint8_t> bytes;
-    try {
-        bytes = encode(frame, options);
-    } catch (const OutputError& e) {
-        throw OutputError("cannot write '" + path + "': " + e.what());
-    }
-    writeFileAtomically(path, bytes);
+    detail::encodeAndWrite(path, [&] { return encode(frame, options); });
 }
 
 }  // namespace octrace::io
