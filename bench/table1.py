@@ -19,6 +19,8 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RENDERERS = ["full", "linear", "area", "area+colour", "linear-exact", "area-exact"]
+DIRECT = ["direct", "direct-f2b"]  # object-order renderers: no rays, so no us per ray
+CROSSOVER_DEPTHS = [7, 8, 9, 10, 11]  # scene T, single thread: where does ray casting win?
 # Paper A, Table 1 (Athlon 1800): seconds (us per ray) for full, linear, area, area+colour, direct.
 PAPER = {
     ("T", 7): (107632, "1.73 (2.52)", "1.34 (1.95)", "1.14 (1.66)", "0.88 (1.28)", "0.19"),
@@ -73,10 +75,20 @@ def main():
     for s in scenes:
         for depth in ([7] if args.quick else s["depths"]):
             for threads in (1, 2):
-                for r in RENDERERS:
+                for r in RENDERERS + DIRECT:
                     results[(s["key"], depth, r, threads)] = run(args, s, depth, r, threads, threads == 1, outdir)
                     print("%s depth %d %-13s threads %d: %.1f ms" % (s["key"], depth, r, threads,
                           results[(s["key"], depth, r, threads)]["render_ms"]), flush=True)
+    crossover = {}
+    for s in scenes:
+        if s["key"] != "T" or args.quick:
+            continue
+        for depth in CROSSOVER_DEPTHS:
+            for r in DIRECT:
+                crossover[(depth, r)] = (results.get((s["key"], depth, r, 1)) or
+                                         run(args, s, depth, r, 1, False, outdir))
+                print("crossover depth %d %s: %.2fx over full" % (depth, r, crossover[(depth, r)]["speedup_over_baseline"]),
+                      flush=True)
     if args.quick:
         return 0
 
@@ -92,8 +104,8 @@ def main():
     for threads in (1, 2):
         L.append("## %s\n" % ("Single thread" if threads == 1 else "2 threads"))
         L.append("Time in seconds (us per ray). Paper's figures in the second line of each row.\n")
-        L.append("| scene | depth | boundary voxels | rays | " + " | ".join(RENDERERS) + " | direct |")
-        L.append("|---|---|---|---|" + "---|" * len(RENDERERS) + "---|")
+        L.append("| scene | depth | boundary voxels | rays | " + " | ".join(RENDERERS + DIRECT) + " |")
+        L.append("|---|---|---|---|" + "---|" * len(RENDERERS + DIRECT))
         for s in scenes:
             for depth in s["depths"]:
                 first = results[(s["key"], depth, "full", threads)]
@@ -101,42 +113,68 @@ def main():
                 for r in RENDERERS:
                     d = results[(s["key"], depth, r, threads)]
                     cells.append("%.3f (%.3f)" % (d["render_ms"] / 1000.0, d["us_per_ray"]))
-                L.append("| %s | %d | %s | %s | %s | pending |" % (s["name"], depth, format(first["boundary_voxels"], ","),
+                for r in DIRECT:
+                    cells.append("%.3f" % (results[(s["key"], depth, r, threads)]["render_ms"] / 1000.0))
+                L.append("| %s | %d | %s | %s | %s |" % (s["name"], depth, format(first["boundary_voxels"], ","),
                          format(first["rays"], ","), " | ".join(cells)))
                 p = PAPER.get((s["key"], depth))
                 if p:
-                    L.append("| *paper* | | *%s* | *685,729* | *%s* | *%s* | *%s* | *%s* | | | *%s* |" % (
+                    L.append("| *paper* | | *%s* | *685,729* | *%s* | *%s* | *%s* | *%s* | | | *%s* | |" % (
                         format(p[0], ","), p[1], p[2], p[3], p[4], p[5]))
         L.append("")
         L.append("Speed-up over `full`: `full` rendered alternately with the renderer in the same process")
         L.append("(`--baseline full`), fastest of each, full / renderer:\n")
-        L.append("| scene | depth | " + " | ".join(RENDERERS[1:]) + " |")
-        L.append("|---|---|" + "---|" * (len(RENDERERS) - 1))
+        L.append("| scene | depth | " + " | ".join(RENDERERS[1:] + DIRECT) + " |")
+        L.append("|---|---|" + "---|" * (len(RENDERERS) - 1 + len(DIRECT)))
         for s in scenes:
             for depth in s["depths"]:
                 L.append("| %s | %d | %s |" % (s["name"], depth, " | ".join(
-                    "%.2fx" % results[(s["key"], depth, r, threads)]["speedup_over_baseline"] for r in RENDERERS[1:])))
+                    "%.2fx" % results[(s["key"], depth, r, threads)]["speedup_over_baseline"]
+                    for r in RENDERERS[1:] + DIRECT)))
         L.append("")
     L.append("## Exactness (single-thread runs, `--verify`)\n")
     L.append("`mismatched` = traced pixels whose hit voxel differs from the exact reference (the same as")
     L.append("`full`); for `area+colour` the colour-filled pixels are judged by the image difference instead.")
     L.append("`certified` = exact variants: rays found below the branch node without computing any state")
     L.append("byte above it. PSNR against the reference image (inf = identical).\n")
-    L.append("| scene | depth | renderer | common-path rays | fallbacks | certified | colour-filled | mismatched (%) | PSNR dB | max channel error |")
-    L.append("|---|---|---|---|---|---|---|---|---|---|")
+    L.append("`hit agreement` = of the pixels that either hits, the share both hit; `depth error` = largest")
+    L.append("depth difference where both hit, in voxel diagonals.\n")
+    L.append("| scene | depth | renderer | common-path rays | fallbacks | certified | colour-filled | mismatched (%) | PSNR dB | max channel error | hit agreement | depth error |")
+    L.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for s in scenes:
         for depth in s["depths"]:
-            for r in RENDERERS:
+            for r in RENDERERS + DIRECT:
                 d = results[(s["key"], depth, r, 1)]
                 psnr = d.get("psnr_db")
-                L.append("| %s | %d | %s | %s | %s | %s | %s | %d (%.4f%%) | %s | %d |" % (
+                L.append("| %s | %d | %s | %s | %s | %s | %s | %d (%.4f%%) | %s | %d | %.6f | %.3f |" % (
                     s["name"], depth, r, format(d["rays_common_path"], ","), format(d["fallbacks"], ","),
                     format(d["rays_certified"], ","), format(d["colour_filled"], ","), d["mismatched_pixels"],
                     100.0 * d["mismatched_pixels"] / d["pixels"], "inf" if psnr is None else "%.1f" % psnr,
-                    d["max_channel_error"]))
+                    d["max_channel_error"], d["hit_agreement"], d["depth_max_error_voxel_diagonals"]))
     L.append("")
-    L.append("Rows not reproduced yet: " + "; ".join(PENDING) + ". The `direct` column waits for the")
-    L.append("back-to-front renderer.")
+    if crossover:
+        L.append("## Direct against ray casting by depth (scene T, single thread)\n")
+        L.append("Speed-up of the direct renderers over `full` (alternating in one process); below 1 ray")
+        L.append("casting wins. The direct renderers draw every boundary voxel (back to front) or every")
+        L.append("unoccluded one (front to back), so their time grows with the voxel count, about 4x per")
+        L.append("level, while a ray's cost grows by one node per level.\n")
+        L.append("| depth | boundary voxels | full s | direct s | direct-f2b s | direct / full | direct-f2b / full |")
+        L.append("|---|---|---|---|---|---|---|")
+        cross = {r: None for r in DIRECT}
+        for depth in CROSSOVER_DEPTHS:
+            a, b = crossover[(depth, "direct")], crossover[(depth, "direct-f2b")]
+            for r, d in (("direct", a), ("direct-f2b", b)):
+                if cross[r] is None and d["speedup_over_baseline"] < 1.0:
+                    cross[r] = depth
+            L.append("| %d | %s | %.3f | %.3f | %.3f | %.2fx | %.2fx |" % (
+                depth, format(a["boundary_voxels"], ","), a["baseline_render_ms"] / 1000.0, a["render_ms"] / 1000.0,
+                b["render_ms"] / 1000.0, a["speedup_over_baseline"], b["speedup_over_baseline"]))
+        L.append("")
+        for r in DIRECT:
+            L.append("- `%s`: %s" % (r, "ray casting (`full`) is faster from depth %d on." % cross[r] if cross[r]
+                                      else "faster than `full` at every depth measured (up to %d)." % CROSSOVER_DEPTHS[-1]))
+        L.append("")
+    L.append("Rows not reproduced yet: " + "; ".join(PENDING) + ".")
     with open(os.path.join(ROOT, "docs", "benchmarks", "table1.md"), "w") as f:
         f.write("\n".join(L) + "\n")
     print("wrote docs/benchmarks/table1.md")

@@ -44,6 +44,8 @@ struct RenderArgs {
     int depth = 8, threads = 0, width = 1600, height = 1200;
     std::optional<dvec3> cameraPos, lookAt, up;
     double fov = 30.0;
+    bool ortho = false;
+    std::optional<double> orthoHeight;
     bool verify = false, help = false, quiet = false, verbose = false;
     vec4 background{1.0f, 1.0f, 1.0f, 1.0f};
     vec3 colour{0.85f, 0.62f, 0.35f};
@@ -81,6 +83,17 @@ OptionParser makeParser(RenderArgs& a) {
            [&](const std::string& v) {
                a.fov = parseNumber("fov", v);
                if (!(a.fov > 0.0 && a.fov < 180.0)) throw UsageError("--fov: must be in (0, 180) degrees, got " + v);
+           }});
+    p.add({"projection", "perspective|ortho", "camera projection; ortho draws every ray parallel to the view direction (default perspective)",
+           [&](const std::string& v) {
+               if (v == "perspective") a.ortho = false;
+               else if (v == "ortho" || v == "orthographic") a.ortho = true;
+               else throw UsageError("--projection: choose perspective or ortho, got '" + v + "'");
+           }});
+    p.add({"ortho-height", "H", "height of the orthographic view window in world units (default: framing the surface)",
+           [&](const std::string& v) {
+               a.orthoHeight = parseNumber("ortho-height", v);
+               if (!(*a.orthoHeight > 0.0)) throw UsageError("--ortho-height: must be positive, got " + v);
            }});
     p.add({"threads", "N", "worker threads, 0 = all cores (default 0); the image does not depend on it",
            [&](const std::string& v) { a.threads = parseInt("threads", v, 0, 1024); }});
@@ -163,6 +176,7 @@ int runRender(const std::vector<std::string>& args) {
             throw UsageError("-o " + a.output + ": unknown image format '" + ext + "' (use " + joinNames(io::imageExtensions()) + ")");
     }
     a.input = positional[0];
+    if (a.orthoHeight && !a.ortho) throw UsageError("--ortho-height needs --projection ortho");
     if (a.quiet) log::setLevel(log::Level::Error);
     if (a.verbose) log::setLevel(log::Level::Debug);
     const int threads = a.threads == 0 ? hardwareThreads() : a.threads;
@@ -199,6 +213,12 @@ int runRender(const std::vector<std::string>& args) {
     if (a.up) cam.up = *a.up;
     if (a.cameraPos) cam.position = *a.cameraPos;
     else if (a.lookAt) cam.position = cam.lookAt + (Camera::framing(bounds, a.width, a.height, a.fov).position - bounds.centre());
+    if (a.ortho) {
+        cam.validate();
+        cam.frameOrthographic(bounds);
+        if (a.cameraPos) cam.position = *a.cameraPos;  // the user's view plane, even if it cuts the surface
+        if (a.orthoHeight) cam.orthoHeight = *a.orthoHeight;
+    }
     cam.validate();
 
     RenderSettings rs;
@@ -255,7 +275,10 @@ int runRender(const std::vector<std::string>& args) {
         js.set("baseline_render_ms", baseMs);
         js.set("speedup_over_baseline", st.renderMs > 0 ? baseMs / st.renderMs : 0.0);
     }
-    js.set("us_per_ray", st.rays ? st.renderMs * 1000.0 / double(st.rays) : 0.0);
+    // A direct renderer traces no rays: no figure per ray (null), its footprints instead.
+    js.set("us_per_ray", renderer->tracesRays() ? (st.rays ? st.renderMs * 1000.0 / double(st.rays) : 0.0)
+                                                : std::numeric_limits<double>::quiet_NaN());
+    js.set("voxels_splatted", st.voxelsSplatted);
     js.set("rays_full", st.raysFull);
     js.set("rays_common_path", st.raysCommonPath);
     js.set("fallbacks", st.fallbacks);
@@ -279,7 +302,9 @@ int runRender(const std::vector<std::string>& args) {
     js.set("camera_pos", vec(cam.position));
     js.set("look_at", vec(cam.lookAt));
     js.set("up", vec(cam.up));
-    js.set("fov", cam.fovYDegrees);
+    js.set("projection", std::string(cam.orthographic() ? "ortho" : "perspective"));
+    if (cam.orthographic()) js.set("ortho_height", cam.orthoHeight);
+    else js.set("fov", cam.fovYDegrees);
     js.set("cube_origin", vec(tree.cubeOrigin));
     js.set("cube_side", tree.cubeSide);
     js.set("surface_bounds_min", vec(bounds.lo));
@@ -290,9 +315,12 @@ int runRender(const std::vector<std::string>& args) {
 
     std::ostringstream summary;
     summary.precision(4);
-    summary << a.output << ": " << cam.width << "x" << cam.height << ", " << st.renderer << ", " << st.renderMs << " ms ("
-            << (st.rays ? st.renderMs * 1000.0 / double(st.rays) : 0.0) << " us/ray over " << st.rays << " rays), "
-            << tree.boundaryVoxels() << " boundary voxels at depth " << tree.depth << " built in " << report.buildMs << " ms";
+    summary << a.output << ": " << cam.width << "x" << cam.height << ", " << st.renderer << ", " << st.renderMs << " ms (";
+    if (renderer->tracesRays())
+        summary << (st.rays ? st.renderMs * 1000.0 / double(st.rays) : 0.0) << " us/ray over " << st.rays << " rays), ";
+    else
+        summary << st.voxelsSplatted << " voxel footprints drawn), ";
+    summary << tree.boundaryVoxels() << " boundary voxels at depth " << tree.depth << " built in " << report.buildMs << " ms";
 
     if (a.verify) {
         auto ref = makeRenderer("reference");
@@ -318,8 +346,24 @@ int runRender(const std::vector<std::string>& args) {
         std::uint64_t qdiff = 0;
         for (std::size_t i = 0; i < rf.hitId.size(); ++i) qdiff += rf.hitId[i] != uf.hitId[i];
         js.set("unquantized_mismatched_pixels", qdiff);
+        // Hit agreement, for renderers that do not trace the reference's rays (direct): over the
+        // pixels that either renderer hits, the share that both hit; and where both hit, how far
+        // apart the depths are, in voxel diagonals.
+        std::uint64_t either = 0, both = 0;
+        double depthErr = 0.0;
+        for (std::size_t i = 0; i < rf.hitId.size(); ++i) {
+            const bool h = frame.hitId[i] != kNoHit, r = rf.hitId[i] != kNoHit;
+            either += h || r;
+            both += h && r;
+            if (h && r) depthErr = std::max(depthErr, double(std::abs(frame.depth[i] - rf.depth[i])));
+        }
+        const double agreement = either ? double(both) / double(either) : 1.0;
+        const double diagonals = depthErr / (tree.voxelSize() * std::sqrt(3.0));
+        js.set("hit_agreement", agreement);
+        js.set("depth_max_error_voxel_diagonals", diagonals);
         summary << "; verify: " << mismatched << " pixels differ from the reference (" << qdiff
-                << " from the unquantized rays)";
+                << " from the unquantized rays), hit agreement " << agreement * 100.0 << "%, depth within "
+                << diagonals << " voxel diagonals";
         if (mismatched != 0) log::warning(std::to_string(mismatched) + " pixels differ from the reference traversal");
     }
     log::info(summary.str());

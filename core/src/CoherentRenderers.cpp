@@ -44,7 +44,7 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
     Frame& f = c.frame;
     const std::size_t p = f.pixel(x, y);
     const dvec3 dir = c.rays.direction(x, y);
-    const QuantizedRay q = c.rays.quantized(dir);
+    const QuantizedRay q = c.rays.quantized(x, y, dir);
     if (q.meetsCube) ++st.rays;
     TraversalHit hit;
     std::uint8_t flags = Frame::kTraced;
@@ -81,7 +81,7 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
         f.hitId[p] = hit.voxel;
         c.cells[p] = hit.cell;
         f.rgba[p] = c.shader.shade(hit.voxel, hit.cell);
-        f.depth[p] = c.shader.distance(c.rays.world(dir), hit.cell);
+        f.depth[p] = c.shader.distance(c.rays.world(x, y, dir), hit.cell);
     }
     if (!c.srgb.empty()) {
         const vec4 v = f.rgba[p];

@@ -10,17 +10,18 @@ namespace octrace::detail {
 
 class PixelRays {
 public:
-    PixelRays(const Octree& tree, const Camera& camera) : gen_(camera), originOS_(tree.toOctreeSpace(camera.position)) {}
+    PixelRays(const Octree& tree, const Camera& camera) : tree_(tree), gen_(camera) {}
     /// Unnormalised world direction of pixel (x, y) (quantization only needs its ratios).
     dvec3 direction(int x, int y) const { return gen_.direction(x, y); }
-    QuantizedRay quantized(const dvec3& direction) const { return quantizeRay(originOS_, direction); }
-    const dvec3& originOS() const { return originOS_; }
+    /// Ray origin of pixel (x, y) in octree space.
+    dvec3 originOS(int x, int y) const { return tree_.toOctreeSpace(gen_.origin(x, y)); }
+    QuantizedRay quantized(int x, int y, const dvec3& direction) const { return quantizeRay(originOS(x, y), direction); }
     /// The world ray (unit direction), for the distance of a hit.
-    Ray world(const dvec3& direction) const { return {gen_.origin(), glm::normalize(direction)}; }
+    Ray world(int x, int y, const dvec3& direction) const { return {gen_.origin(x, y), glm::normalize(direction)}; }
 
 private:
+    const Octree& tree_;
     RayGenerator gen_;
-    dvec3 originOS_;
 };
 
 }  // namespace octrace::detail

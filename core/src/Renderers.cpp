@@ -1,4 +1,5 @@
 #include "CoherentRenderers.h"
+#include "DirectRenderer.h"
 #include "PixelRays.h"
 #include "octrace/render/DiscreteTraversal.h"
 #include "octrace/render/ReferenceTraversal.h"
@@ -38,7 +39,7 @@ RenderStats renderPerPixel(const std::string& name, const Octree& tree, const Ca
                 ++st.pixels;
                 const dvec3 dir = rays.direction(x, y);
                 bool meets = false;
-                TraversalHit hit = trace(rays, dir, counters, meets);
+                TraversalHit hit = trace(rays, x, y, dir, counters, meets);
                 if (meets) ++st.rays;
                 ++st.raysFull;
                 if (!hit.hit()) {
@@ -50,7 +51,7 @@ RenderStats renderPerPixel(const std::string& name, const Octree& tree, const Ca
                 frame.flags[p] = Frame::kTraced;
                 frame.hitId[p] = hit.voxel;
                 frame.rgba[p] = shader.shade(hit.voxel, hit.cell);
-                frame.depth[p] = shader.distance(rays.world(dir), hit.cell);
+                frame.depth[p] = shader.distance(rays.world(x, y, dir), hit.cell);
             }
         st.nodesVisited = counters.nodes;
     });
@@ -68,10 +69,10 @@ public:
     RenderStats render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
                        Frame& frame) const override {
         return renderPerPixel(name(), tree, camera, settings, frame,
-                              [&](const detail::PixelRays& rays, const dvec3& d, TraversalCounters& c, bool& meets) {
-                                  QuantizedRay q = rays.quantized(d);
+                              [&](const detail::PixelRays& rays, int x, int y, const dvec3& d, TraversalCounters& c, bool& meets) {
+                                  QuantizedRay q = rays.quantized(x, y, d);
                                   ReferenceRay r = quantized_ ? referenceRayFromQuantized(q)
-                                                              : referenceRayUnquantized(rays.originOS(), d);
+                                                              : referenceRayUnquantized(rays.originOS(x, y), d);
                                   TraversalHit hit = traverseReference(tree, r, c);
                                   // The unquantized ray can graze a cube face from inside where
                                   // its quantized twin is rounded onto the face (outside): it
@@ -88,7 +89,7 @@ private:
 }  // namespace
 
 std::vector<std::string> rendererNames() {
-    return {"full", "linear", "area", "area+colour", "linear-exact", "area-exact", "reference", "reference-unquantized"};
+    return {"full", "linear", "area", "area+colour", "linear-exact", "area-exact", "reference", "reference-unquantized", "direct", "direct-f2b"};
 }
 
 std::unique_ptr<Renderer> makeRenderer(const std::string& nameIn) {
@@ -109,6 +110,8 @@ std::unique_ptr<Renderer> makeRenderer(const std::string& nameIn) {
     if (name == "area-exact") return std::make_unique<DiscreteRenderer>(DiscreteRenderer::Pattern::Area, true, colour);
     if (!colour && name == "reference") return std::make_unique<ReferenceRenderer>(true);
     if (!colour && name == "reference-unquantized") return std::make_unique<ReferenceRenderer>(false);
+    if (!colour && name == "direct") return std::make_unique<detail::DirectRenderer>(false);
+    if (!colour && name == "direct-f2b") return std::make_unique<detail::DirectRenderer>(true);
     std::string list;
     for (const auto& n : rendererNames()) list += (list.empty() ? "" : ", ") + n;
     throw UsageError("unknown renderer '" + nameIn + "' (choose one of: " + list +

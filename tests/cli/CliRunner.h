@@ -58,8 +58,15 @@ private:
 inline Result run(const std::vector<std::string>& args) {
     Scratch s;
     std::string cmd = quoteArg(OCTRACE_BINARY);
-    for (const auto& a : args) cmd += " " + quoteArg(a);
-    cmd += " > " + quoteArg(s.path("stdout")) + " 2> " + quoteArg(s.path("stderr")) + " < /dev/null";
+    for (const auto& a : args) {
+        cmd += ' ';
+        cmd += quoteArg(a);
+    }
+    cmd += " > ";
+    cmd += quoteArg(s.path("stdout"));
+    cmd += " 2> ";
+    cmd += quoteArg(s.path("stderr"));
+    cmd += " < /dev/null";
     int st = std::system(cmd.c_str());
     Result r;
     r.code = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + (WIFSIGNALED(st) ? WTERMSIG(st) : 0);

@@ -21,7 +21,7 @@ TEST(Cli, RenderHelpStatesADefaultForEveryOptionThatHasOne) {
     ASSERT_EQ(h.code, 0);
     for (const char* opt : {"--var", "--iso", "--depth", "--renderer", "--size", "--camera-pos", "--look-at", "--up", "--fov",
                             "--threads", "--stats", "--verify", "--background", "--light", "--colour", "--colormap",
-                            "--region", "--vertical-scale"})
+                            "--region", "--vertical-scale", "--projection", "--ortho-height"})
         EXPECT_NE(h.out.find(opt), std::string::npos) << opt;
     // Every option line that takes a value says its default (or that it is required).
     std::istringstream in(h.out);
@@ -165,4 +165,38 @@ TEST(Cli, TheCommittedDataSamplesAreWhatOctraceSampleWrites) {
                     "--verify", "--stats", s.path("t.json"), "-o", s.path("t.png")});
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(slurp(s.path("t.json")).find("\"mismatched_pixels\": 0,"), std::string::npos);
+}
+
+TEST(Cli, DirectRendererReportsHitAgreementAndDepthErrorAgainstTheReference) {
+    Scratch s;
+    for (const char* projection : {"perspective", "ortho"}) {
+        const std::string stats = s.path(std::string("direct_") + projection + ".json");
+        Result r = run({"render", "analytic:torus:33", "--iso", "0", "--depth", "6", "--size", "160x120", "--renderer",
+                        "direct", "--projection", projection, "--verify", "--stats", stats, "-o",
+                        s.path(std::string("direct_") + projection + ".png")});
+        ASSERT_EQ(r.code, 0) << r.err;
+        const std::string js = slurp(stats);
+        std::smatch m;
+        ASSERT_TRUE(std::regex_search(js, m, std::regex("\"hit_agreement\": ([0-9.e+-]+)"))) << js;
+        EXPECT_GE(std::stod(m[1]), 0.99) << js;
+        ASSERT_TRUE(std::regex_search(js, m, std::regex("\"depth_max_error_voxel_diagonals\": ([0-9.e+-]+)"))) << js;
+        EXPECT_LE(std::stod(m[1]), 1.0) << js;
+        EXPECT_NE(js.find("\"us_per_ray\": null"), std::string::npos) << js;
+        EXPECT_TRUE(std::regex_search(js, std::regex("\"projection\": \"([a-z]+)\"")));
+        EXPECT_NE(js.find(projection, js.find("\"projection\"")), std::string::npos) << js;
+        EXPECT_NE(r.err.find("voxel footprints drawn"), std::string::npos) << r.err;
+    }
+}
+
+TEST(Cli, ProjectionMistakesAreUsageErrors) {
+    Scratch s;
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"--projection", "fisheye"}, {"--ortho-height", "-1"}, {"--ortho-height", "2"}}) {
+        std::vector<std::string> cmd{"render", "analytic:sphere:9", "--depth", "3", "-o", s.path("x.png")};
+        cmd.insert(cmd.end(), args.begin(), args.end());
+        Result r = run(cmd);
+        EXPECT_EQ(r.code, 2) << args[0] << " " << args[1] << ": " << r.err;
+        EXPECT_NE(r.err.find(args[0]), std::string::npos) << r.err;
+    }
+    EXPECT_EQ(countEntries(s.dir()), 0);
 }

@@ -1,6 +1,11 @@
 #pragma once
 /// @file Camera.h
-/// Pinhole camera in world units. Pixel centres at +0.5; image row 0 is at the top.
+/// Pinhole (perspective) or orthographic camera in world units. Pixel centres at +0.5; image
+/// row 0 is at the top.
+///
+/// Orthographic: every ray has the viewing direction; its origin is on the plane through
+/// `position` perpendicular to it, offset by the pixel's place in a window `orthoHeight` world
+/// units high (width by the aspect ratio). Nothing behind that plane is drawn.
 #include "octrace/util/Math.h"
 
 namespace octrace {
@@ -15,12 +20,16 @@ public:
     dvec3 position{0.0, 0.0, 1.0};
     dvec3 lookAt{0.0};
     dvec3 up{0.0, 1.0, 0.0};
-    double fovYDegrees = 30.0;  ///< vertical field of view
+    double fovYDegrees = 30.0;  ///< vertical field of view (perspective)
+    enum class Projection { Perspective, Orthographic };
+    Projection projection = Projection::Perspective;
+    double orthoHeight = 1.0;   ///< world height of the view window (orthographic)
     int width = 640;
     int height = 480;
 
     /// Throws UsageError when position == lookAt, up is parallel to the view direction,
-    /// the field of view is outside (0,180) or the size is not positive.
+    /// the field of view is outside (0,180), the orthographic height is not positive or the
+    /// size is not positive.
     void validate() const;
 
     /// Primary ray through the centre of pixel (x, y); y = 0 is the top row.
@@ -32,6 +41,11 @@ public:
     /// A camera that frames the box: looking from the south-east-above direction
     /// (the viewer sees the box from +x,-y,+z), with the whole box in view.
     static Camera framing(const Box3& box, int width, int height, double fovYDegrees = 30.0);
+    /// Makes this camera orthographic with the window height that shows the whole box from the
+    /// current position and direction, and moves the position back along the viewing
+    /// direction so that the box lies in front of the ray origins.
+    void frameOrthographic(const Box3& box);
+    bool orthographic() const { return projection == Projection::Orthographic; }
 };
 
 /// Generates the primary rays of one camera with the per-frame terms computed once; gives
@@ -39,18 +53,41 @@ public:
 class RayGenerator {
 public:
     explicit RayGenerator(const Camera& camera);
-    Ray operator()(int x, int y) const { return {origin_, glm::normalize(direction(x, y))}; }
+    Ray operator()(int x, int y) const { return {origin(x, y), glm::normalize(direction(x, y))}; }
     /// The same direction before normalisation.
     dvec3 direction(int x, int y) const {
-        const double sx = ((x + 0.5) * invWidth_ * 2.0 - 1.0) * tanAspect_;
-        const double sy = (1.0 - (y + 0.5) * invHeight_ * 2.0) * tan_;
-        return sx * right_ + sy * up_ - back_;
+        if (ortho_) return -back_;
+        return screenX(x) * right_ + screenY(y) * up_ - back_;
     }
-    const dvec3& origin() const { return origin_; }
+    /// Origin of the ray of pixel (x, y): the eye (perspective) or a point of the view plane.
+    dvec3 origin(int x, int y) const {
+        if (!ortho_) return eye_;
+        return eye_ + screenX(x) * right_ + screenY(y) * up_;
+    }
+    bool orthographic() const { return ortho_; }
+    const dvec3& eye() const { return eye_; }
+    const dvec3& right() const { return right_; }
+    const dvec3& up() const { return up_; }
+    const dvec3& back() const { return back_; }
+    /// Pixel coordinates (continuous, pixel centres at +0.5) of a point given in camera
+    /// coordinates (along right, up, back from the eye); perspective needs back < 0.
+    void toPixel(double cx, double cy, double cz, double& px, double& py) const {
+        if (!ortho_) {
+            cx /= -cz;
+            cy /= -cz;
+        }
+        px = (cx / halfW_ + 1.0) * 0.5 / invWidth_;
+        py = (1.0 - cy / halfH_) * 0.5 / invHeight_;
+    }
 
 private:
-    dvec3 origin_, right_, up_, back_;
-    double tan_, tanAspect_, invWidth_, invHeight_;
+    // Offsets of the pixel centre on the view plane at unit distance (perspective) or in
+    // world units (orthographic), along right and up.
+    double screenX(int x) const { return ((x + 0.5) * invWidth_ * 2.0 - 1.0) * halfW_; }
+    double screenY(int y) const { return (1.0 - (y + 0.5) * invHeight_ * 2.0) * halfH_; }
+    dvec3 eye_, right_, up_, back_;
+    double halfH_, halfW_, invWidth_, invHeight_;
+    bool ortho_;
 };
 
 }  // namespace octrace

@@ -19,6 +19,8 @@ struct RenderStats {
     std::uint64_t raysCertified = 0;   ///< exact variants: found below the branch node, root skipped
     std::uint64_t statesDeferred = 0;  ///< exact variants: path nodes whose state byte was never needed
     std::uint64_t colourFilled = 0;    ///< pixels filled by colour coherence, not traced
+    // Direct renderers (they trace no rays: rays = 0):
+    std::uint64_t voxelsSplatted = 0;  ///< voxel footprints drawn, counted once per screen tile they cover
     double renderMs = 0.0;
     void add(const RenderStats& o) {
         pixels += o.pixels;
@@ -31,6 +33,7 @@ struct RenderStats {
         raysCertified += o.raysCertified;
         statesDeferred += o.statesDeferred;
         colourFilled += o.colourFilled;
+        voxelsSplatted += o.voxelsSplatted;
     }
 };
 

@@ -18,6 +18,9 @@ class Renderer {
 public:
     virtual ~Renderer() = default;
     virtual std::string name() const = 0;
+    /// False for the direct (object-order) renderers: they trace no rays, RenderStats::rays is
+    /// 0 and us-per-ray figures do not apply.
+    virtual bool tracesRays() const { return true; }
     /// Renders into `frame` (resized to the camera's size). Deterministic: the result does not
     /// depend on settings.threads. Thread-safe for distinct frames.
     virtual RenderStats render(const Octree& octree, const Camera& camera, const RenderSettings& settings,

@@ -1,0 +1,19 @@
+#pragma once
+// Private to core: the direct (object-order) renderers, see DirectRenderer.cpp.
+#include "octrace/render/Renderer.h"
+
+namespace octrace::detail {
+
+class DirectRenderer final : public Renderer {
+public:
+    explicit DirectRenderer(bool frontToBack) : frontToBack_(frontToBack) {}
+    std::string name() const override;
+    bool tracesRays() const override { return false; }
+    RenderStats render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
+                       Frame& frame) const override;
+
+private:
+    bool frontToBack_;
+};
+
+}  // namespace octrace::detail

@@ -1,0 +1,121 @@
+#pragma once
+// Shared by the renderer tests: analytic scenes in [-1,1]^3 (a sphere of radius 0.7, a torus,
+// value noise), test cameras, and bitwise frame comparison.
+#include "octrace/build/AnalyticField.h"
+#include "octrace/build/OctreeBuilder.h"
+#include "octrace/render/Renderer.h"
+
+#include <cstring>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace octrace::test {
+
+using namespace octrace;
+
+inline const Octree& sphereTree() {
+    static const Octree t = buildShellOctree(makeAnalyticField("sphere", 33), {7, 0.0, 0});
+    return t;
+}
+inline const Octree& torusTree() {
+    static const Octree t = buildShellOctree(makeAnalyticField("torus", 33), {6, 0.0, 0});
+    return t;
+}
+inline const Octree& noiseTree() {
+    static const Octree t = buildShellOctree(makeAnalyticField("noise", 65, 7), {8, 0.0, 0});
+    return t;
+}
+
+inline Box3 cubeOf(const Octree& t) { return Box3{t.cubeOrigin, t.cubeOrigin + dvec3(t.cubeSide)}; }
+
+inline Camera makeCamera(dvec3 position, dvec3 lookAt, dvec3 up, double fov, int w, int h) {
+    Camera c;
+    c.position = position;
+    c.lookAt = lookAt;
+    c.up = up;
+    c.fovYDegrees = fov;
+    c.width = w;
+    c.height = h;
+    return c;
+}
+
+struct NamedCamera {
+    std::string name;
+    Camera camera;
+};
+
+/// Cameras in general position, for a scene in [-1,1]^3.
+inline std::vector<NamedCamera> generalTestCameras(const Octree& t) {
+    return {
+        {"framing", Camera::framing(cubeOf(t), 120, 90)},
+        {"inside", makeCamera({0.35, -0.2, 0.15}, {-0.5, 0.6, -0.1}, {0, 0, 1}, 70, 90, 70)},
+        {"close, oblique", makeCamera({-1.3, 1.1, -0.9}, {0.1, -0.05, 0.2}, {0, 1, 0}, 50, 80, 64)},
+    };
+}
+
+/// Cameras whose eye lies on the octree lattice (planes of every level), looking along an axis:
+/// rays through voxel edges and corners, exactly axis-parallel rays.
+inline std::vector<NamedCamera> latticeTestCameras(const Octree&) {
+    return {
+        // Odd sizes: the centre pixel's ray is exactly along the axis.
+        {"along -z", makeCamera({0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 30, 101, 75)},
+        {"along +x", makeCamera({-4, 0, 0}, {0, 0, 0}, {0, 0, 1}, 35, 75, 61)},
+        // The eye at the cube's centre: a lattice point of every level.
+        {"at the centre", makeCamera({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 90, 65, 65)},
+    };
+}
+
+inline std::vector<NamedCamera> allTestCameras(const Octree& t) {
+    auto a = generalTestCameras(t), b = latticeTestCameras(t);
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+}
+
+inline RenderStats render(const std::string& renderer, const Octree& t, const Camera& c, Frame& f,
+                   const RenderSettings& settings = RenderSettings{}) {
+    return makeRenderer(renderer)->render(t, c, settings, f);
+}
+
+inline bool tracesRays(const std::string& name) { return makeRenderer(name)->tracesRays(); }
+
+inline bool sameFloatBits(float a, float b) { return std::memcmp(&a, &b, sizeof(float)) == 0; }
+
+/// Pixels where hit id, colour or depth differ in any bit.
+struct FrameDiff {
+    std::size_t hitId = 0, rgba = 0, depth = 0;
+    std::string first;
+    bool identical() const { return hitId == 0 && rgba == 0 && depth == 0; }
+};
+
+inline FrameDiff diffFrames(const Frame& a, const Frame& b) {
+    FrameDiff d;
+    if (a.width != b.width || a.height != b.height) {
+        d.hitId = d.rgba = d.depth = std::size_t(-1);
+        d.first = "sizes differ";
+        return d;
+    }
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            const std::size_t p = a.pixel(x, y);
+            bool bad = false;
+            if (a.hitId[p] != b.hitId[p]) ++d.hitId, bad = true;
+            if (std::memcmp(&a.rgba[p], &b.rgba[p], sizeof(vec4)) != 0) ++d.rgba, bad = true;
+            if (!sameFloatBits(a.depth[p], b.depth[p])) ++d.depth, bad = true;
+            if (bad && d.first.empty()) {
+                std::ostringstream s;
+                s << "pixel (" << x << "," << y << "): hit " << a.hitId[p] << " vs " << b.hitId[p] << ", depth "
+                  << a.depth[p] << " vs " << b.depth[p];
+                d.first = s.str();
+            }
+        }
+    return d;
+}
+
+inline std::size_t hitCount(const Frame& f) {
+    std::size_t n = 0;
+    for (auto id : f.hitId) n += id != kNoHit;
+    return n;
+}
+
+}  // namespace octrace::test
