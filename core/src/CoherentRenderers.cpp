@@ -15,7 +15,9 @@
 
 #include "octrace/render/DiscreteTraversal.h"
 #include "octrace/render/ImageCompare.h"
+#include "octrace/render/Lod.h"
 #include "octrace/render/Shading.h"
+#include "octrace/util/Error.h"
 #include "octrace/util/Parallel.h"
 #include "octrace/util/Timer.h"
 
@@ -35,6 +37,7 @@ struct Context {
     const PixelRays& rays;
     std::vector<ivec3>& cells;
     std::vector<std::uint32_t>& srgb;  // packed 8-bit colour of traced pixels (colour coherence)
+    const LodCut& cut;
 };
 
 /// Traces pixel (x, y) and writes it; `partners` are the two neighbours whose hits give the
@@ -71,7 +74,7 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
         }
     } else {
         ++st.raysFull;
-        hit = traverseDiscrete(c.tree, q, counters);
+        hit = traverseDiscrete(c.tree, q, counters, &c.cut);
     }
     f.flags[p] = flags;
     if (!hit.hit()) {
@@ -80,8 +83,8 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
         ++st.hits;
         f.hitId[p] = hit.voxel;
         c.cells[p] = hit.cell;
-        f.rgba[p] = c.shader.shade(hit.voxel, hit.cell);
-        f.depth[p] = c.shader.distance(c.rays.world(x, y, dir), hit.cell);
+        f.rgba[p] = c.shader.shade(hit);
+        f.depth[p] = c.shader.distance(c.rays.world(x, y, dir), hit);
     }
     if (!c.srgb.empty()) {
         const vec4 v = f.rgba[p];
@@ -135,7 +138,10 @@ RenderStats DiscreteRenderer::render(const Octree& tree, const Camera& camera, c
     const PixelRays rays(tree, camera);
     std::vector<ivec3> cells(frame.hitId.size(), ivec3(0));
     std::vector<std::uint32_t> srgb(settings.colourCoherence ? frame.hitId.size() : 0, 0u);
-    const Context ctx{tree, settings, frame, shader, rays, cells, srgb};
+    const LodCut cut(tree, camera, settings.lodPixels, settings.level);
+    if (cut.active() && pattern_ != Pattern::Full)
+        throw UsageError("renderer " + name() + " has no multi-resolution mode (--lod, --level): use full, direct or direct-f2b");
+    const Context ctx{tree, settings, frame, shader, rays, cells, srgb, cut};
     const int W = camera.width, H = camera.height;
     const Start mode = pattern_ == Pattern::Full ? Start::Root : exact_ ? Start::Guided : Start::Branch;
     const bool colour = settings.colourCoherence;

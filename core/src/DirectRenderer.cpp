@@ -23,6 +23,7 @@
 // number of threads.
 #include "DirectRenderer.h"
 
+#include "octrace/render/Lod.h"
 #include "octrace/render/Shading.h"
 #include "octrace/util/Parallel.h"
 #include "octrace/util/Timer.h"
@@ -58,9 +59,9 @@ struct Rect {
 
 class TileRenderer {
 public:
-    TileRenderer(const Octree& tree, const Camera& camera, const Shader& shader, bool f2b, Frame& frame, int x0, int y0,
-                 int x1, int y1)
-        : tree_(tree), gen_(camera), shader_(shader), f2b_(f2b), frame_(frame),
+    TileRenderer(const Octree& tree, const Camera& camera, const Shader& shader, const LodCut& cut, bool f2b, Frame& frame,
+                 int x0, int y0, int x1, int y1)
+        : tree_(tree), gen_(camera), shader_(shader), cut_(cut), f2b_(f2b), frame_(frame),
           tx0_(x0), ty0_(y0), tx1_(x1), ty1_(y1), tw_(x1 - x0 + 1) {
         const int n = tw_ * (y1 - y0 + 1);
         invDir_.resize(std::size_t(n));
@@ -161,13 +162,17 @@ private:
             if (r.empty()) continue;
             if (f2b_ && whollyCovered(r)) continue;
             const std::uint32_t slot = node.firstChild + childRank(node.childMask, c);
-            if (level + 1 == tree_.depth) splat(slot, childCell, childLo, childSide, r, st);
-            else if (!(node.termMask & (1u << c))) visit(slot, level + 1, childCell, st);
+            if (level + 1 == tree_.depth) splat(slot, kNoHit, childCell, childLo, childSide, r, st);
+            else if (node.termMask & (1u << c)) continue;
+            else if (cut_.stops(level + 1, childCell)) splat(tree_.summaries[slot].firstVoxel, slot, childCell, childLo, childSide, r, st);
+            else visit(slot, level + 1, childCell, st);
         }
     }
 
-    /// Writes the voxel into every pixel of r whose ray meets its box.
-    void splat(std::uint32_t voxel, const ivec3& cell, const dvec3& lo, double side, const Rect& r, RenderStats& st) {
+    /// Writes the voxel (or, multi-resolution, the inner node drawn whole) into every pixel of
+    /// r whose ray meets its box.
+    void splat(std::uint32_t voxel, std::uint32_t node, const ivec3& cell, const dvec3& lo, double side, const Rect& r,
+               RenderStats& st) {
         const dvec3 hi = lo + dvec3(side);
         bool shaded = false;
         vec4 colour{};
@@ -191,7 +196,7 @@ private:
                 }
                 if (!inside || tmin > tmax || tmax < 0.0) continue;
                 if (!shaded) {
-                    colour = shader_.shade(voxel, cell);
+                    colour = node == kNoHit ? shader_.shade(voxel, cell) : shader_.shadeNode(node);
                     shaded = true;
                     ++st.voxelsSplatted;
                 }
@@ -210,6 +215,7 @@ private:
     const Octree& tree_;
     const RayGenerator gen_;
     const Shader& shader_;
+    const LodCut& cut_;
     const bool f2b_;
     Frame& frame_;
     const int tx0_, ty0_, tx1_, ty1_, tw_;
@@ -233,12 +239,13 @@ RenderStats DirectRenderer::render(const Octree& tree, const Camera& camera, con
     frame.resize(camera.width, camera.height);
     std::fill(frame.rgba.begin(), frame.rgba.end(), settings.background);
     const Shader shader(tree, camera, settings);
+    const LodCut cut(tree, camera, settings.lodPixels, settings.level);
     const int tilesX = (camera.width + kTile - 1) / kTile, tilesY = (camera.height + kTile - 1) / kTile;
     std::vector<RenderStats> tileStats(std::size_t(tilesX) * std::size_t(tilesY));
     parallelFor(tileStats.size(), settings.threads, [&](std::size_t t) {
         const int x0 = int(t % std::size_t(tilesX)) * kTile, y0 = int(t / std::size_t(tilesX)) * kTile;
         const int x1 = std::min(x0 + kTile, camera.width) - 1, y1 = std::min(y0 + kTile, camera.height) - 1;
-        TileRenderer tile(tree, camera, shader, frontToBack_, frame, x0, y0, x1, y1);
+        TileRenderer tile(tree, camera, shader, cut, frontToBack_, frame, x0, y0, x1, y1);
         RenderStats& st = tileStats[t];
         tile.run(st);
         st.pixels = std::uint64_t(x1 - x0 + 1) * std::uint64_t(y1 - y0 + 1);

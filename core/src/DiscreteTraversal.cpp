@@ -1,5 +1,6 @@
 #include "octrace/render/DiscreteTraversal.h"
 
+#include "octrace/render/Lod.h"
 #include "octrace/render/OrderTable.h"
 
 #include <array>
@@ -202,6 +203,8 @@ public:
         f.order = 0;
     }
 
+    void setCut(const LodCut* cut) { cut_ = cut && cut->active() ? cut : nullptr; }
+
     /// Guided mode: frames on this path above `guideLevel` become lazy where they can.
     void guide(const BranchNode* b) { guide_ = b; }
     bool resumedOrComputedOnPath() const { return onPathWork_; }
@@ -251,6 +254,26 @@ public:
                 return result;
             }
             if (nd.termMask & (1u << c)) continue;  // interior terms: volume form, not drawn by this shell renderer
+            if (cut_) {
+                // Multi-resolution: the crossed non-empty child may be drawn as a whole.
+                const int level = n.level + 1;
+                i64 mirrored[3];
+                mirrored[r_.main] = n.m0 + hm * h;
+                mirrored[r_.u] = n.u0 + hu * h;
+                mirrored[r_.v] = n.v0 + hv * h;
+                ivec3 cell;
+                for (int a = 0; a < 3; ++a) {
+                    const i64 o = (r_.sign & axisBit(a)) ? L - (mirrored[a] + h) : mirrored[a];
+                    cell[a] = int(o >> (N - level));
+                }
+                if (cut_->stops(level, cell)) {
+                    result.voxel = tree_.summaries[slot].firstVoxel;
+                    result.cell = cell;
+                    result.node = slot;
+                    result.level = level;
+                    return result;
+                }
+            }
             const i64 Wuc = (n.Wu0 + n.Wu1) >> 1, Wvc = (n.Wv0 + n.Wv1) >> 1;
             NodeState& ch = stack_[sp_ + 1];
             ch.node = slot;
@@ -322,6 +345,7 @@ private:
     const OrderTable& order_;
     RayConsts k_{};
     const BranchNode* guide_ = nullptr;
+    const LodCut* cut_ = nullptr;
     bool onPathWork_ = false;
     NodeState stack_[Octree::kMaxDepth + 1];
     int sp_ = -1;
@@ -329,8 +353,9 @@ private:
 
 template <bool kObserve>
 TraversalHit traverse(const Octree& tree, const QuantizedRay& r, TraversalCounters& counters,
-                      const std::function<void(unsigned, unsigned)>* observe) {
+                      const std::function<void(unsigned, unsigned)>* observe, const LodCut* cut = nullptr) {
     Engine<kObserve> e(tree, r, counters, observe);
+    e.setCut(cut);
     if (!e.startAtRoot()) return TraversalHit{};
     return e.run();
 }
@@ -426,8 +451,9 @@ QuantizedRay quantizeRay(const dvec3& o, const dvec3& d) {
     return r;
 }
 
-TraversalHit traverseDiscrete(const Octree& tree, const QuantizedRay& ray, TraversalCounters& counters) {
-    return traverse<false>(tree, ray, counters, nullptr);
+TraversalHit traverseDiscrete(const Octree& tree, const QuantizedRay& ray, TraversalCounters& counters,
+                              const LodCut* cut) {
+    return traverse<false>(tree, ray, counters, nullptr, cut);
 }
 
 TraversalHit traverseDiscreteObserved(const Octree& tree, const QuantizedRay& ray, TraversalCounters& counters,

@@ -43,7 +43,53 @@ vec3 decodeNormal(std::uint32_t code) {
 }
 
 std::size_t Octree::bytes() const {
-    return nodes.capacity() * sizeof(OctreeNode) + voxels.capacity() * sizeof(Voxel);
+    return nodes.capacity() * sizeof(OctreeNode) + voxels.capacity() * sizeof(Voxel) +
+           summaries.capacity() * sizeof(NodeSummary);
+}
+
+void Octree::computeSummaries() {
+    summaries.assign(nodes.size(), NodeSummary{});
+    if (nodes.empty()) return;
+    struct Sum {
+        dvec3 normal{0.0};
+        double z = 0.0;
+        std::uint64_t count = 0;
+        std::uint32_t first = 0;
+    };
+    // Post-order over the tree (depth <= kMaxDepth: plain recursion).
+    auto visit = [&](auto&& self, std::uint32_t node, int level, const ivec3& cell) -> Sum {
+        const OctreeNode& n = nodes[node];
+        Sum s;
+        std::uint32_t slot = n.firstChild;
+        for (int c = 0; c < 8; ++c) {
+            if (!(n.childMask & (1u << c))) continue;
+            const ivec3 cc = cell * 2 + ivec3((c >> 2) & 1, (c >> 1) & 1, c & 1);
+            Sum k;
+            if (level == depth - 1) {
+                k.normal = dvec3(decodeNormal(voxels[slot].normal));
+                k.z = double(cc.z) + 0.5;
+                k.count = 1;
+                k.first = slot;
+            } else if (!(n.termMask & (1u << c))) {
+                k = self(self, slot, level + 1, cc);
+                k.z *= double(k.count);
+            }
+            if (k.count && !s.count) s.first = k.first;
+            s.normal += k.normal;
+            s.z += k.z;
+            s.count += k.count;
+            ++slot;
+        }
+        NodeSummary& out = summaries[node];
+        const double len = glm::length(s.normal);
+        out.normal = encodeNormal(len > 1e-12 ? vec3(s.normal / len) : vec3(0, 0, 1));
+        out.voxelCount = std::uint32_t(std::min<std::uint64_t>(s.count, 0xFFFFFFFFu));
+        out.firstVoxel = s.first;
+        s.z = s.count ? s.z / double(s.count) : 0.0;
+        out.meanZ = float(s.z);
+        return s;
+    };
+    visit(visit, 0u, 0, ivec3(0));
 }
 
 Box3 Octree::voxelBox(const ivec3& cell) const {

@@ -1,5 +1,7 @@
 #include "octrace/render/ReferenceTraversal.h"
 
+#include "octrace/render/Lod.h"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -54,6 +56,7 @@ struct Walker {
     const ReferenceRay& ray;
     TraversalCounters& counters;
     long double voxelSize;
+    const LodCut* cut;
 
     bool visit(std::uint32_t node, int level, const long double lo[3], TraversalHit& hit) {
         ++counters.nodes;
@@ -87,6 +90,17 @@ struct Walker {
                 return true;
             }
             if (nd.termMask & (1u << k.child)) continue;
+            if (cut) {
+                ivec3 cell;
+                for (int a = 0; a < 3; ++a) cell[a] = int(std::lround(k.lo[a] / half));
+                if (cut->stops(level + 1, cell)) {
+                    hit.voxel = tree.summaries[k.slot].firstVoxel;
+                    hit.cell = cell;
+                    hit.node = k.slot;
+                    hit.level = level + 1;
+                    return true;
+                }
+            }
             if (visit(k.slot, level + 1, k.lo, hit)) return true;
         }
         return false;
@@ -131,13 +145,14 @@ ReferenceRay referenceRayUnquantized(const dvec3& o, const dvec3& d) {
     return fromPoints(p0, p1, tEye, sign);
 }
 
-TraversalHit traverseReference(const Octree& tree, const ReferenceRay& ray, TraversalCounters& counters) {
+TraversalHit traverseReference(const Octree& tree, const ReferenceRay& ray, TraversalCounters& counters,
+                               const LodCut* cut) {
     TraversalHit hit;
     if (!ray.valid || tree.nodes.empty()) return hit;
     const long double lo[3] = {0, 0, 0};
     Param start;
     if (!boxInterval(ray, lo, kL, start)) return hit;
-    Walker w{tree, ray, counters, std::ldexp(1.0L, N - tree.depth)};
+    Walker w{tree, ray, counters, std::ldexp(1.0L, N - tree.depth), cut && cut->active() ? cut : nullptr};
     w.visit(0, 0, lo, hit);
     return hit;
 }

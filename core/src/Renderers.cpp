@@ -2,6 +2,7 @@
 #include "DirectRenderer.h"
 #include "PixelRays.h"
 #include "octrace/render/DiscreteTraversal.h"
+#include "octrace/render/Lod.h"
 #include "octrace/render/ReferenceTraversal.h"
 #include "octrace/render/Renderer.h"
 #include "octrace/render/Shading.h"
@@ -50,8 +51,8 @@ RenderStats renderPerPixel(const std::string& name, const Octree& tree, const Ca
                 ++st.hits;
                 frame.flags[p] = Frame::kTraced;
                 frame.hitId[p] = hit.voxel;
-                frame.rgba[p] = shader.shade(hit.voxel, hit.cell);
-                frame.depth[p] = shader.distance(rays.world(x, y, dir), hit.cell);
+                frame.rgba[p] = shader.shade(hit);
+                frame.depth[p] = shader.distance(rays.world(x, y, dir), hit);
             }
         st.nodesVisited = counters.nodes;
     });
@@ -68,12 +69,13 @@ public:
     std::string name() const override { return quantized_ ? "reference" : "reference-unquantized"; }
     RenderStats render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
                        Frame& frame) const override {
+        const LodCut cut(tree, camera, settings.lodPixels, settings.level);
         return renderPerPixel(name(), tree, camera, settings, frame,
                               [&](const detail::PixelRays& rays, int x, int y, const dvec3& d, TraversalCounters& c, bool& meets) {
                                   QuantizedRay q = rays.quantized(x, y, d);
                                   ReferenceRay r = quantized_ ? referenceRayFromQuantized(q)
                                                               : referenceRayUnquantized(rays.originOS(x, y), d);
-                                  TraversalHit hit = traverseReference(tree, r, c);
+                                  TraversalHit hit = traverseReference(tree, r, c, &cut);
                                   // The unquantized ray can graze a cube face from inside where
                                   // its quantized twin is rounded onto the face (outside): it
                                   // meets the cube when it hits, so that hits <= rays holds.

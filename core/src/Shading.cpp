@@ -62,20 +62,38 @@ Shader::Shader(const Octree& tree, const Camera& camera, const RenderSettings& s
 }
 
 vec4 Shader::shade(std::uint32_t voxel, const ivec3& cell) const {
-    vec3 n = decodeNormal(tree_.voxels[voxel].normal);
+    return shadeNormal(decodeNormal(tree_.voxels[voxel].normal), float(cell.z) + 0.5f);
+}
+
+vec4 Shader::shadeNode(std::uint32_t node) const {
+    const NodeSummary& s = tree_.summaries[node];
+    return shadeNormal(decodeNormal(s.normal), s.meanZ);
+}
+
+vec4 Shader::shadeNormal(vec3 n, float zCells) const {
     float lambert = std::abs(glm::dot(n, light_));
     float intensity = settings_.ambient + settings_.diffuse * lambert;
     vec3 albedo = settings_.colour;
     if (useColormap_) {
         // Colour by height (world z) over the surface's extent until a second field can be mapped.
-        float t = (float(cell.z - zLo_) + 0.5f) / float(zHi_ - zLo_ + 1);
+        float t = (zCells - float(zLo_)) / float(zHi_ - zLo_ + 1);
         albedo = colormap(settings_.colormap, t);
     }
     return vec4(albedo * intensity, 1.0f);
 }
 
-float Shader::distance(const Ray& ray, const ivec3& cell) const {
-    Box3 b = tree_.voxelBox(cell);
+float Shader::distance(const Ray& ray, const ivec3& cell) const { return distanceToBox(ray, tree_.voxelBox(cell)); }
+
+float Shader::distance(const Ray& ray, const TraversalHit& hit) const {
+    if (!hit.nodeHit()) return distance(ray, hit.cell);
+    const double side = tree_.cubeSide / double(1u << hit.level);
+    Box3 b;
+    b.lo = tree_.cubeOrigin + dvec3(hit.cell) * side;
+    b.hi = b.lo + dvec3(side);
+    return distanceToBox(ray, b);
+}
+
+float Shader::distanceToBox(const Ray& ray, const Box3& b) const {
     double tin = 0.0;
     for (int a = 0; a < 3; ++a) {
         if (ray.direction[a] == 0.0) continue;

@@ -19,6 +19,7 @@
 /// [i, i+1) x [j, j+1) x [k, k+1) with i in [0, 2^depth).
 #include "octrace/util/Math.h"
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -53,6 +54,15 @@ struct Voxel {
     std::uint32_t normal = 0;
 };
 
+/// What an inner node carries for multi-resolution rendering: the average of its subtree's
+/// boundary voxels. A renderer that stops at the node draws it as a solid box with these.
+struct NodeSummary {
+    std::uint32_t normal = 0;      ///< average unit normal (octahedral code); +z when they cancel
+    std::uint32_t voxelCount = 0;  ///< boundary voxels below
+    std::uint32_t firstVoxel = 0;  ///< a boundary voxel below (the first depth-first): the hit id shown
+    float meanZ = 0.0f;            ///< mean voxel-centre z in cell space (colour by height)
+};
+
 /// Octahedral encoding of a unit vector in 32 bits (max angular error ~0.005 degrees).
 std::uint32_t encodeNormal(vec3 n);
 vec3 decodeNormal(std::uint32_t code);
@@ -75,6 +85,8 @@ public:
 
     std::vector<OctreeNode> nodes;  ///< nodes[0] = root
     std::vector<Voxel> voxels;      ///< boundary voxels
+    /// Per node (same index as `nodes`), filled by computeSummaries(); empty until then.
+    std::vector<NodeSummary> summaries;
 
     // Provenance, for info and stats.
     std::string fieldName, fieldUnits;
@@ -111,6 +123,14 @@ public:
     /// Calls f(cell, voxelIndex) for every boundary voxel (depth-first order).
     template <class F>
     void forEachVoxel(F&& f) const;
+
+    /// Fills `summaries` bottom-up in O(nodes + voxels). Needed by --lod / --level.
+    void computeSummaries();
+    bool hasSummaries() const { return !nodes.empty() && summaries.size() == nodes.size(); }
+    /// Fraction of the node's cell-space volume (8^(depth-level) cells) that is boundary voxels.
+    double occupancy(std::uint32_t node, int level) const {
+        return double(summaries[node].voxelCount) / std::ldexp(1.0, 3 * (depth - level));
+    }
 
     /// Structural checks (masks, index ranges, every node reachable once). Throws Error.
     void validate() const;

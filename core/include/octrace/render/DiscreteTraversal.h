@@ -50,9 +50,12 @@ struct QuantizedRay {
 QuantizedRay quantizeRay(const dvec3& originOS, const dvec3& directionOS);
 
 struct TraversalHit {
-    std::uint32_t voxel = kNoHit;  ///< index into Octree::voxels
-    ivec3 cell{0};                 ///< voxel coordinates in cell space
+    std::uint32_t voxel = kNoHit;  ///< index into Octree::voxels (for a node hit: its summary's firstVoxel)
+    ivec3 cell{0};                 ///< voxel coordinates in cell space (for a node hit: at its level)
+    std::uint32_t node = kNoHit;   ///< multi-resolution: the inner node drawn instead of a voxel
+    int level = 0;                 ///< the node's level (node hits only)
     bool hit() const { return voxel != kNoHit; }
+    bool nodeHit() const { return node != kNoHit; }
 };
 
 struct TraversalCounters {
@@ -60,8 +63,12 @@ struct TraversalCounters {
     std::uint64_t statesDeferred = 0;  ///< guided mode: path nodes whose state was never needed
 };
 
-/// The discrete integer traversal. Thread-safe.
-TraversalHit traverseDiscrete(const Octree& tree, const QuantizedRay& ray, TraversalCounters& counters);
+class LodCut;
+
+/// The discrete integer traversal. Thread-safe. With a cut (Lod.h), it stops at the first
+/// crossed non-empty node the cut says to stop at and returns it as a node hit.
+TraversalHit traverseDiscrete(const Octree& tree, const QuantizedRay& ray, TraversalCounters& counters,
+                              const LodCut* cut = nullptr);
 
 /// Same traversal, reporting every state byte it computes (sign pattern, byte in original
 /// child numbering, before masking with the node's children). For tests.

@@ -29,7 +29,9 @@ ReferenceRay referenceRayFromQuantized(const QuantizedRay& q);
 /// The unquantized ray (octree space), with the same main-axis parameterisation.
 ReferenceRay referenceRayUnquantized(const dvec3& originOS, const dvec3& directionOS);
 
-/// Thread-safe. counters.nodes counts the nodes whose children were tested.
-TraversalHit traverseReference(const Octree& tree, const ReferenceRay& ray, TraversalCounters& counters);
+/// Thread-safe. counters.nodes counts the nodes whose children were tested. With a cut
+/// (Lod.h), stops where it says, as the discrete traversal does.
+TraversalHit traverseReference(const Octree& tree, const ReferenceRay& ray, TraversalCounters& counters,
+                               const LodCut* cut = nullptr);
 
 }  // namespace octrace

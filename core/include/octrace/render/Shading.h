@@ -4,6 +4,7 @@
 /// the same pixel bytes.
 #include "octrace/octree/Octree.h"
 #include "octrace/render/Camera.h"
+#include "octrace/render/DiscreteTraversal.h"
 #include "octrace/render/RenderSettings.h"
 
 #include <string>
@@ -25,8 +26,17 @@ public:
     vec4 shade(std::uint32_t voxel, const ivec3& cell) const;
     /// Distance from the camera along the (unit) ray to where it enters the voxel's box.
     float distance(const Ray& ray, const ivec3& cell) const;
+    /// An inner node drawn whole (multi-resolution): its summary's normal and mean height.
+    vec4 shadeNode(std::uint32_t node) const;
+    /// Either kind of hit.
+    vec4 shade(const TraversalHit& hit) const {
+        return hit.nodeHit() ? shadeNode(hit.node) : shade(hit.voxel, hit.cell);
+    }
+    float distance(const Ray& ray, const TraversalHit& hit) const;
 
 private:
+    vec4 shadeNormal(vec3 n, float zCells) const;
+    float distanceToBox(const Ray& ray, const Box3& b) const;
     const Octree& tree_;
     const RenderSettings& settings_;
     vec3 light_;
