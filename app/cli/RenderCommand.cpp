@@ -189,12 +189,9 @@ int runRender(const std::vector<std::string>& args) {
     if (a.level > a.depth) throw UsageError("--level " + std::to_string(a.level) + " is deeper than --depth " + std::to_string(a.depth));
     const bool multires = a.lod > 0.0 || (a.level >= 0 && a.level < a.depth);
     if (multires) {
-        for (const std::string& r : {a.rendererName, a.baseline}) {
-            if (r.empty()) continue;
-            const std::string base = r.substr(0, r.find('+'));
-            if (base != "full" && base != "direct" && base != "direct-f2b" && base != "reference")
+        for (const std::string& r : {a.rendererName, a.baseline})
+            if (!r.empty() && !makeRenderer(r)->multiResolution())
                 throw UsageError("--lod/--level: renderer " + r + " has no multi-resolution mode (use full, direct or direct-f2b)");
-        }
     }
     if (a.quiet) log::setLevel(log::Level::Error);
     if (a.verbose) log::setLevel(log::Level::Debug);

@@ -9,6 +9,7 @@ public:
     enum class Pattern { Full, Linear, Area };
     DiscreteRenderer(Pattern pattern, bool exact, bool colour) : pattern_(pattern), exact_(exact), colour_(colour) {}
     std::string name() const override;
+    bool multiResolution() const override { return pattern_ == Pattern::Full; }
     RenderStats render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
                        Frame& frame) const override;
 

@@ -90,6 +90,27 @@ private:
 
 }  // namespace
 
+int renderProgressive(const Renderer& renderer, const Octree& tree, const Camera& camera, const RenderSettings& settings,
+                      Frame& frame, const std::function<bool(const Frame&, double)>& onFrame,
+                      const std::vector<double>& lodPasses) {
+    int delivered = 0;
+    RenderSettings s = settings;
+    if (renderer.multiResolution()) {
+        for (double pixels : lodPasses) {
+            if (!(pixels > 0.0)) continue;
+            s.lodPixels = pixels;
+            renderer.render(tree, camera, s, frame);
+            ++delivered;
+            if (!onFrame(frame, pixels)) return delivered;
+        }
+    }
+    s.lodPixels = 0.0;
+    s.level = -1;
+    renderer.render(tree, camera, s, frame);
+    onFrame(frame, 0.0);
+    return delivered + 1;
+}
+
 std::vector<std::string> rendererNames() {
     return {"full", "linear", "area", "area+colour", "linear-exact", "area-exact", "reference", "reference-unquantized", "direct", "direct-f2b"};
 }

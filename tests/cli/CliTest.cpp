@@ -21,7 +21,7 @@ TEST(Cli, RenderHelpStatesADefaultForEveryOptionThatHasOne) {
     ASSERT_EQ(h.code, 0);
     for (const char* opt : {"--var", "--iso", "--depth", "--renderer", "--size", "--camera-pos", "--look-at", "--up", "--fov",
                             "--threads", "--stats", "--verify", "--background", "--light", "--colour", "--colormap",
-                            "--region", "--vertical-scale", "--projection", "--ortho-height"})
+                            "--region", "--vertical-scale", "--projection", "--ortho-height", "--lod", "--level"})
         EXPECT_NE(h.out.find(opt), std::string::npos) << opt;
     // Every option line that takes a value says its default (or that it is required).
     std::istringstream in(h.out);
@@ -199,4 +199,26 @@ TEST(Cli, ProjectionMistakesAreUsageErrors) {
         EXPECT_NE(r.err.find(args[0]), std::string::npos) << r.err;
     }
     EXPECT_EQ(countEntries(s.dir()), 0);
+}
+
+TEST(Cli, MultiResolutionRendersTheSameCutAsTheReferenceAndReportsItsDifference) {
+    Scratch s;
+    const std::string stats = s.path("lod.json");
+    Result r = run({"render", "analytic:noise:33", "--iso", "0", "--depth", "7", "--size", "200x150", "--lod", "6", "--verify",
+                    "--stats", stats, "-o", s.path("lod.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const std::string js = slurp(stats);
+    EXPECT_NE(js.find("\"mismatched_pixels\": 0,"), std::string::npos) << js;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(js, m, std::regex("\"lod_psnr_db\": ([0-9.e+-]+)"))) << js;
+    EXPECT_GT(std::stod(m[1]), 10.0);
+    EXPECT_NE(js.find("\"lod\": 6,"), std::string::npos) << js;
+    // Renderers without a multi-resolution mode, and levels below the octree, are refused up front.
+    Result bad = run({"render", "analytic:noise:33", "--iso", "0", "--depth", "7", "--renderer", "area", "--lod", "2", "-o",
+                      s.path("bad.png")});
+    EXPECT_EQ(bad.code, 2);
+    EXPECT_NE(bad.err.find("multi-resolution"), std::string::npos) << bad.err;
+    Result deep = run({"render", "analytic:noise:33", "--depth", "5", "--level", "6", "-o", s.path("deep.png")});
+    EXPECT_EQ(deep.code, 2);
+    EXPECT_NE(deep.err.find("--level"), std::string::npos) << deep.err;
 }

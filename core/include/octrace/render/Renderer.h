@@ -8,6 +8,7 @@
 #include "octrace/render/RenderSettings.h"
 #include "octrace/render/RenderStats.h"
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -21,11 +22,24 @@ public:
     /// False for the direct (object-order) renderers: they trace no rays, RenderStats::rays is
     /// 0 and us-per-ray figures do not apply.
     virtual bool tracesRays() const { return true; }
+    /// Whether RenderSettings::lodPixels / level are honoured (Lod.h); the others throw
+    /// UsageError when asked for a cut.
+    virtual bool multiResolution() const { return true; }
     /// Renders into `frame` (resized to the camera's size). Deterministic: the result does not
     /// depend on settings.threads. Thread-safe for distinct frames.
     virtual RenderStats render(const Octree& octree, const Camera& camera, const RenderSettings& settings,
                                Frame& frame) const = 0;
 };
+
+/// Progressive rendering for interactive use: a coarse frame first, then finer ones. Renders
+/// with each of `lodPasses` (pixels, coarse to fine) and finally exactly, calling
+/// onFrame(frame, lodPixels) after each (0 for the exact one); stops early when it returns
+/// false. A renderer without multi-resolution renders only the exact frame. Needs
+/// Octree::computeSummaries. Returns the number of frames delivered.
+int renderProgressive(const Renderer& renderer, const Octree& octree, const Camera& camera,
+                      const RenderSettings& settings, Frame& frame,
+                      const std::function<bool(const Frame&, double lodPixels)>& onFrame,
+                      const std::vector<double>& lodPasses = {8.0, 4.0, 2.0});
 
 /// Names accepted by makeRenderer, in the order the help text lists them.
 std::vector<std::string> rendererNames();
