@@ -8,4 +8,5 @@ namespace octrace::cli {
 int runRender(const std::vector<std::string>& args);
 int runInfo(const std::vector<std::string>& args);
 int runSample(const std::vector<std::string>& args);
+int runExport(const std::vector<std::string>& args);
 }  // namespace octrace::cli

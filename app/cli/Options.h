@@ -24,6 +24,7 @@ public:
     std::vector<std::string> parse(const std::vector<std::string>& args) const;
     std::string help() const;
     const std::string& usage() const { return usage_; }
+    const std::string& command() const { return command_; }
 
 private:
     std::string command_, usage_;

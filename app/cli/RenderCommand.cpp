@@ -1,57 +1,39 @@
 // octrace render: read a field, build the shell octree of an isosurface, render, write the
 // image (and optionally stats JSON), optionally verify against the reference traversal.
 #include "Commands.h"
-#include "Input.h"
 #include "Options.h"
 #include "StatsJson.h"
+#include "SurfaceOptions.h"
 
-#include "octrace/build/OctreeBuilder.h"
 #include "octrace/io/AtomicFile.h"
 #include "octrace/io/ImageWriter.h"
 #include "octrace/render/ImageCompare.h"
 #include "octrace/render/Renderer.h"
-#include "octrace/render/Shading.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
 #include "octrace/util/Parallel.h"
 #include "octrace/util/Timer.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <cstdio>
 #include <optional>
 #include <sstream>
 
 namespace octrace::cli {
 namespace {
 
-float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
-vec4 displayToLinear(vec4 c) { return vec4(srgbToLinear(c.r), srgbToLinear(c.g), srgbToLinear(c.b), c.a); }
-
-std::string joinNames(const std::vector<std::string>& names) {
-    std::string s;
-    for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
-    return s;
-}
-
-struct RenderArgs {
-    std::string input, output, statsPath, rendererName = "full";
-    io::FieldRequest request;
-    std::optional<double> iso;
-    int depth = 8, threads = 0, width = 1600, height = 1200;
+struct RenderArgs : SurfaceArgs {
+    std::string output, statsPath, rendererName = "full";
+    int width = 1600, height = 1200;
     std::optional<dvec3> cameraPos, lookAt, up;
     double fov = 30.0;
     bool ortho = false;
     double lod = 0.0;
     int level = -1;
     std::optional<double> orthoHeight;
-    bool verify = false, help = false, quiet = false, verbose = false;
+    bool verify = false;
     vec4 background{1.0f, 1.0f, 1.0f, 1.0f};
-    vec3 colour{0.85f, 0.62f, 0.35f};
-    std::string colormap;
     std::optional<dvec3> light;
     bool colourCoherence = false;
     float colourTolerance = 3.0f;
@@ -63,12 +45,7 @@ OptionParser makeParser(RenderArgs& a) {
     OptionParser p("render", "octrace render INPUT -o OUT.(png|exr) [options]");
     p.add({"o", "FILE", "output image; format from the extension: " + joinNames(io::imageExtensions()) + " (required)",
            [&](const std::string& v) { a.output = v; }});
-    p.add({"var", "NAME", "variable to draw (default: the file's only 3-D variable)",
-           [&](const std::string& v) { a.request.variable = v; }});
-    p.add({"iso", "VALUE", "iso value of the surface (default: middle of the variable's valid range)",
-           [&](const std::string& v) { a.iso = parseNumber("iso", v); }});
-    p.add({"depth", "N", "octree depth, voxels = 2^N per cube edge (1.." + std::to_string(Octree::kMaxDepth) + ", default 8)",
-           [&](const std::string& v) { a.depth = parseInt("depth", v, 1, Octree::kMaxDepth); }});
+    addSurfaceOptions(p, a);
     p.add({"renderer", "NAME", "renderer: " + joinNames(rendererNames()) + " (default full)",
            [&](const std::string& v) {
                makeRenderer(v);  // validates the name
@@ -104,8 +81,7 @@ OptionParser makeParser(RenderArgs& a) {
            }});
     p.add({"level", "L", "draw the octree at level L (1..depth) at the finest, for previews; renderers as --lod (default: the voxels)",
            [&](const std::string& v) { a.level = parseInt("level", v, 1, Octree::kMaxDepth); }});
-    p.add({"threads", "N", "worker threads, 0 = all cores (default 0); the image does not depend on it",
-           [&](const std::string& v) { a.threads = parseInt("threads", v, 0, 1024); }});
+    addThreadsOption(p, a, "the image");
     p.add({"stats", "FILE.json", "write timings and counters as JSON (keys: docs/user/cli.md)",
            [&](const std::string& v) { a.statsPath = v; }});
     p.add({"verify", "", "also trace every pixel with the reference traversal and report the differences",
@@ -117,14 +93,7 @@ OptionParser makeParser(RenderArgs& a) {
                a.light = parseVec3("light", v);
                if (!(glm::length(*a.light) > 0.0)) throw UsageError("--light: direction must not be zero");
            }});
-    p.add({"colour", "R,G,B", "surface colour, sRGB components in [0,1] (default 0.85,0.62,0.35)",
-           [&](const std::string& v) { a.colour = vec3(parseColour("colour", v, false)); }});
-    p.add({"color", "R,G,B", "same as --colour (default 0.85,0.62,0.35)", [&](const std::string& v) { a.colour = vec3(parseColour("color", v, false)); }});
-    p.add({"colormap", "NAME", "colour the surface by height with a map: " + joinNames(colormapNames()) + " (default: none, --colour)",
-           [&](const std::string& v) {
-               colormap(v, 0.0f);
-               a.colormap = v;
-           }});
+    addColourOptions(p, a);
     p.add({"colour-coherence", "", "colour coherence on any discrete renderer: a pixel between two traced neighbours of nearly the same colour gets their average untraced (default off; on in area+colour)",
            [&](const std::string&) { a.colourCoherence = true; }});
     p.add({"colour-tolerance", "T", "largest difference per 8-bit sRGB channel for colour coherence, 0..255 (default 3)",
@@ -133,17 +102,7 @@ OptionParser makeParser(RenderArgs& a) {
                if (t < 0.0 || t > 255.0) throw UsageError("--colour-tolerance: must be in [0, 255], got " + v);
                a.colourTolerance = float(t);
            }});
-    p.add({"region", "LON0,LON1,LAT0,LAT1", "geographic subregion in degrees, NetCDF only (default: the whole grid)",
-           [&](const std::string& v) {
-               auto r = io::parseRegion(v);
-               a.request.hasRegion = true;
-               for (int i = 0; i < 4; ++i) a.request.region[i] = r[std::size_t(i)];
-           }});
-    p.add({"vertical-scale", "S", "vertical exaggeration of depth, NetCDF only (default: depth extent = 1/4 of the larger horizontal extent)",
-           [&](const std::string& v) {
-               a.request.verticalScale = parseNumber("vertical-scale", v);
-               if (!(a.request.verticalScale > 0.0)) throw UsageError("--vertical-scale: must be positive, got " + v);
-           }});
+    addGeographicOptions(p, a);
     p.add({"repeat", "N", "render N times and report the fastest as render_ms (benchmarks on a noisy machine; default 1)",
            [&](const std::string& v) { a.repeat = parseInt("repeat", v, 1, 1000); }});
     p.add({"baseline", "NAME", "also render with renderer NAME, alternating with the main one --repeat times, and report baseline_render_ms and speedup_over_baseline (default: none)",
@@ -151,30 +110,15 @@ OptionParser makeParser(RenderArgs& a) {
                makeRenderer(v);
                a.baseline = v;
            }});
-    p.add({"quiet", "", "print only errors", [&](const std::string&) { a.quiet = true; }});
-    p.add({"verbose", "", "print debugging details", [&](const std::string&) { a.verbose = true; }});
-    p.add({"help", "", "show this help and exit", [&](const std::string&) { a.help = true; }});
+    addMessageOptions(p, a);
     return p;
-}
-
-/// Progress on stderr while building, only when stderr is a terminal.
-std::function<void(double)> progressPrinter(bool quiet) {
-    if (quiet || !isatty(2)) return {};
-    return [](double f) { std::fprintf(stderr, "\roctrace: building octree %3d%%", int(f * 100.0 + 0.5)); };
 }
 
 }  // namespace
 
 int runRender(const std::vector<std::string>& args) {
     RenderArgs a;
-    OptionParser parser = makeParser(a);
-    auto positional = parser.parse(args);
-    if (a.help) {
-        std::fputs(parser.help().c_str(), stdout);
-        return 0;
-    }
-    if (positional.size() != 1) throw UsageError("render needs exactly one INPUT (got " + std::to_string(positional.size()) + ")");
-    if (a.output.empty()) throw UsageError("render needs an output image: -o OUT.png or -o OUT.exr");
+    if (!parseCommandLine(makeParser(a), args, a, a.output, "an output image: -o OUT.png or -o OUT.exr")) return 0;
     {
         // Check the output extension before the long work.
         std::string ext = a.output.substr(a.output.find_last_of('.') == std::string::npos ? a.output.size() : a.output.find_last_of('.'));
@@ -184,7 +128,6 @@ int runRender(const std::vector<std::string>& args) {
         if (!known)
             throw UsageError("-o " + a.output + ": unknown image format '" + ext + "' (use " + joinNames(io::imageExtensions()) + ")");
     }
-    a.input = positional[0];
     if (a.orthoHeight && !a.ortho) throw UsageError("--ortho-height needs --projection ortho");
     if (a.level > a.depth) throw UsageError("--level " + std::to_string(a.level) + " is deeper than --depth " + std::to_string(a.depth));
     const bool multires = a.lod > 0.0 || (a.level >= 0 && a.level < a.depth);
@@ -193,32 +136,14 @@ int runRender(const std::vector<std::string>& args) {
             if (!r.empty() && !makeRenderer(r)->multiResolution())
                 throw UsageError("--lod/--level: renderer " + r + " has no multi-resolution mode (use full, direct or direct-f2b)");
     }
-    if (a.quiet) log::setLevel(log::Level::Error);
-    if (a.verbose) log::setLevel(log::Level::Debug);
     const int threads = a.threads == 0 ? hardwareThreads() : a.threads;
 
-    // Load.
-    Timer t;
-    ScalarField field = loadField(a.input, a.request);
-    const double loadMs = t.ms();
-    auto [vmin, vmax] = field.validRange();
-    double iso = a.iso ? *a.iso : 0.5 * (double(vmin) + double(vmax));
-    if (!a.iso) {
-        std::ostringstream s;
-        s << "no --iso given: using " << iso << ", the middle of the range [" << vmin << ", " << vmax << "] of '" << field.name << "'";
-        log::info(s.str());
-    }
-    for (const auto& n : field.notes) log::debug(n);
-
-    // Build.
-    BuildOptions bo;
-    bo.depth = a.depth;
-    bo.iso = iso;
-    bo.threads = a.threads;
-    bo.progress = progressPrinter(a.quiet);
-    BuildReport report;
-    Octree tree = buildShellOctree(field, bo, &report);
-    if (bo.progress) std::fputs("\n", stderr);
+    // Load and build.
+    Surface surface = buildSurface(a);
+    const ScalarField& field = surface.field;
+    const double iso = surface.iso, loadMs = surface.loadMs;
+    const BuildReport& report = surface.report;
+    Octree& tree = surface.tree;
     if (multires) tree.computeSummaries();
     const std::size_t rssAfterBuild = peakRssBytes();
 
@@ -241,8 +166,7 @@ int runRender(const std::vector<std::string>& args) {
     RenderSettings rs;
     rs.threads = a.threads;
     rs.background = displayToLinear(a.background);
-    rs.colour = vec3(displayToLinear(vec4(a.colour, 1.0f)));
-    rs.colormap = a.colormap;
+    applyColour(a, rs);
     if (a.light) rs.lightCamera = *a.light;
     rs.colourCoherence = a.colourCoherence;
     rs.colourTolerance = a.colourTolerance;

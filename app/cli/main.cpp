@@ -19,6 +19,7 @@ const char* kTopHelp =
     "\n"
     "commands:\n"
     "  render INPUT -o OUT   build the isosurface octree of a field and render it to OUT (.png, .exr)\n"
+    "  export INPUT -o OUT   build the isosurface octree and write it as surfels to a point cloud (.ply)\n"
     "  info INPUT...         describe inputs: format, variables, units, value ranges, grid, bounds\n"
     "  sample NAME -o OUT    write an analytic sample field (sphere, torus, gyroid, noise) as NRRD\n"
     "\n"
@@ -47,10 +48,11 @@ int main(int argc, char** argv) {
         if (cmd == "render") return octrace::cli::runRender(rest);
         if (cmd == "info") return octrace::cli::runInfo(rest);
         if (cmd == "sample") return octrace::cli::runSample(rest);
-        throw octrace::UsageError("unknown command '" + cmd + "' (commands: render, info, sample)");
+        if (cmd == "export") return octrace::cli::runExport(rest);
+        throw octrace::UsageError("unknown command '" + cmd + "' (commands: render, export, info, sample)");
     } catch (const octrace::UsageError& e) {
         std::fprintf(stderr, "octrace: %s\nTry 'octrace %s --help'.\n", e.what(),
-                     (cmd == "render" || cmd == "info" || cmd == "sample") ? cmd.c_str() : "");
+                     (cmd == "render" || cmd == "export" || cmd == "info" || cmd == "sample") ? cmd.c_str() : "");
         return 2;
     } catch (const octrace::Error& e) {
         std::fprintf(stderr, "octrace: error: %s\n", e.what());

@@ -44,21 +44,31 @@ vec3 colormap(const std::string& name, float t) {
     throw UsageError("unknown colour map '" + name + "'");
 }
 
+Albedo::Albedo(const Octree& tree, const RenderSettings& settings)
+    : colour_(settings.colour), colormap_(settings.colormap) {
+    if (colormap_.empty()) return;
+    colormap(colormap_, 0.0f);  // validate the name once
+    ivec3 lo, hi;
+    tree.occupiedCells(lo, hi);
+    zLo_ = lo.z;
+    zHi_ = std::max(hi.z, lo.z);
+}
+
+vec3 Albedo::at(float zCells) const {
+    if (colormap_.empty()) return colour_;
+    // Colour by height (world z) over the surface's extent until a second field can be mapped.
+    const float t = (zCells - float(zLo_)) / float(zHi_ - zLo_ + 1);
+    return colormap(colormap_, t);
+}
+
 Shader::Shader(const Octree& tree, const Camera& camera, const RenderSettings& settings)
-    : tree_(tree), settings_(settings), useColormap_(!settings.colormap.empty()) {
+    : tree_(tree), settings_(settings), albedo_(tree, settings) {
     dvec3 right, up, back;
     camera.basis(right, up, back);
     dvec3 l = settings.lightCamera;
     if (!(glm::length(l) > 0.0)) l = dvec3(0.4, 0.6, 1.0);
     l = glm::normalize(l);
     light_ = vec3(glm::normalize(l.x * right + l.y * up + l.z * back));
-    if (useColormap_) {
-        colormap(settings.colormap, 0.0f);  // validate the name once
-        ivec3 lo, hi;
-        tree.occupiedCells(lo, hi);
-        zLo_ = lo.z;
-        zHi_ = std::max(hi.z, lo.z);
-    }
 }
 
 vec4 Shader::shade(std::uint32_t voxel, const ivec3& cell) const {
@@ -73,13 +83,7 @@ vec4 Shader::shadeNode(std::uint32_t node) const {
 vec4 Shader::shadeNormal(vec3 n, float zCells) const {
     float lambert = std::abs(glm::dot(n, light_));
     float intensity = settings_.ambient + settings_.diffuse * lambert;
-    vec3 albedo = settings_.colour;
-    if (useColormap_) {
-        // Colour by height (world z) over the surface's extent until a second field can be mapped.
-        float t = (zCells - float(zLo_)) / float(zHi_ - zLo_ + 1);
-        albedo = colormap(settings_.colormap, t);
-    }
-    return vec4(albedo * intensity, 1.0f);
+    return vec4(albedo_.at(zCells) * intensity, 1.0f);
 }
 
 float Shader::distance(const Ray& ray, const ivec3& cell) const { return distanceToBox(ray, tree_.voxelBox(cell)); }

@@ -9,7 +9,7 @@ TEST(Cli, HelpAndVersionExitZero) {
     Result v = run({"--version"});
     EXPECT_EQ(v.code, 0);
     EXPECT_NE(v.out.find("octrace "), std::string::npos);
-    for (const char* cmd : {"render", "info", "sample"}) {
+    for (const char* cmd : {"render", "export", "info", "sample"}) {
         Result h = run({cmd, "--help"});
         EXPECT_EQ(h.code, 0) << cmd;
         EXPECT_NE(h.out.find("usage:"), std::string::npos) << cmd;
@@ -57,6 +57,18 @@ TEST(Cli, CommandLineMistakesExitTwoWithAUsageHint) {
         {"render", "analytic:sphere", "-o", "x.png", "--region", "1,2,3"},
         {"render", "analytic:sphere", "-o", "x.jpg"},
         {"render", "analytic:sphere", "-o", "x.png", "--depth"},
+        {"export"},
+        {"export", "analytic:sphere"},
+        {"export", "analytic:sphere", "analytic:torus", "-o", "x.ply"},
+        {"export", "analytic:sphere", "-o", "x.obj"},
+        {"export", "analytic:sphere", "-o", "x.ply", "--format", "obj"},
+        {"export", "analytic:sphere", "-o", "x.ply", "--bogus"},
+        {"export", "analytic:sphere", "-o", "x.ply", "--level", "0"},
+        {"export", "analytic:sphere", "-o", "x.ply", "--depth", "5", "--level", "6"},
+        {"export", "analytic:sphere", "-o", "x.ply", "--ascii=yes"},
+        {"export", "analytic:sphere", "-o", "x.ply", "--colormap", "rainbowish"},
+        {"export", "analytic:sphere", "-o", "x.ply", "--iso", "abc"},
+        {"export", "analytic:sphere", "-o", "x.ply", "--region", "0,10,0,10"},
         {"info"},
     };
     for (const auto& c : cases) {
@@ -66,6 +78,8 @@ TEST(Cli, CommandLineMistakesExitTwoWithAUsageHint) {
         EXPECT_EQ(r.code, 2) << joined << "\n" << r.err;
         EXPECT_NE(r.err.find("--help"), std::string::npos) << joined << "\n" << r.err;
         EXPECT_FALSE(std::filesystem::exists("x.png"));
+        EXPECT_FALSE(std::filesystem::exists("x.ply"));
+        EXPECT_FALSE(std::filesystem::exists("x.obj"));
     }
 }
 

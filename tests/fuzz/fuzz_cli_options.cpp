@@ -1,7 +1,7 @@
 // Fuzz target: the CLI's option parsing (app/cli: OptionParser and the value parsers of
 // numbers, integers, vectors, colours, sizes, regions, renderer and colormap names) through
 // the real commands. The input is a command line, arguments separated by NUL bytes, the
-// first one the command (render, info, sample). "--help" goes first, so that a command line
+// first one the command (render, export, info, sample). "--help" goes first, so that a command line
 // that parses prints the help and returns instead of reading or writing files; every option
 // after it is still parsed and checked.
 #include "Commands.h"
@@ -28,6 +28,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     args[0] = "--help";
     try {
         if (command == "render") octrace::cli::runRender(args);
+        else if (command == "export") octrace::cli::runExport(args);
         else if (command == "info") octrace::cli::runInfo(args);
         else if (command == "sample") octrace::cli::runSample(args);
     } catch (const octrace::UsageError&) {

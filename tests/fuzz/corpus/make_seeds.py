@@ -166,6 +166,9 @@ CLI = {
                        "0.85,0.62,0.35", "--color=1,1,1", "--vertical-scale", "50", "--quiet", "--verbose", "--",
                        "-o"],
     "render_dateline": ["render", "a.nc", "--region=170,-170,-60,60", "--depth", "14", "-o", "a.png"],
+    "export_levitus": ["export", "levitus.cdf", "--var", "TEMP", "--iso", "10", "--region", "120,180,10,60",
+                       "--depth", "8", "--level", "5", "--format", "ply", "--ascii", "--colormap", "viridis",
+                       "-o", "temp10.ply"],
     "info": ["info", "a.nc", "b.nrrd", "analytic:sphere"],
     "sample": ["sample", "noise", "-o", "n.nrrd", "--samples", "17", "--seed", "1073741824"],
 }

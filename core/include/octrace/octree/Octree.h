@@ -122,7 +122,16 @@ public:
 
     /// Calls f(cell, voxelIndex) for every boundary voxel (depth-first order).
     template <class F>
-    void forEachVoxel(F&& f) const;
+    void forEachVoxel(F&& f) const {
+        forEachAtLevel(depth, f);
+    }
+    /// Calls f(cell, index) for every non-empty octant at `level` (cell coordinates at that
+    /// level, 0 .. 2^level - 1), in the depth-first order of forEachVoxel: at level == depth
+    /// the boundary voxels (index into `voxels`), at 0 <= level < depth the nodes (index into
+    /// `nodes` and `summaries`; interior terms included, their subtrees not entered). Nothing
+    /// for a level outside [0, depth].
+    template <class F>
+    void forEachAtLevel(int level, F&& f) const;
 
     /// Fills `summaries` bottom-up in O(nodes + voxels). Needed by --lod / --level.
     void computeSummaries();
@@ -137,8 +146,12 @@ public:
 };
 
 template <class F>
-void Octree::forEachVoxel(F&& f) const {
-    if (nodes.empty()) return;
+void Octree::forEachAtLevel(int level, F&& f) const {
+    if (nodes.empty() || level < 0 || level > depth) return;
+    if (level == 0) {
+        if (depth > 0) f(ivec3(0), 0u);
+        return;
+    }
     struct Item { std::uint32_t node; int level; ivec3 cell; };
     std::vector<Item> stack{{0u, 0, ivec3(0)}};
     while (!stack.empty()) {
@@ -149,7 +162,7 @@ void Octree::forEachVoxel(F&& f) const {
         for (int c = 0; c < 8; ++c) {
             if (!(n.childMask & (1u << c))) continue;
             ivec3 cc = it.cell * 2 + ivec3((c >> 2) & 1, (c >> 1) & 1, c & 1);
-            if (it.level == depth - 1) f(cc, slot);
+            if (it.level + 1 == level) f(cc, slot);
             else if (!(n.termMask & (1u << c))) stack.push_back({slot, it.level + 1, cc});
             ++slot;
         }

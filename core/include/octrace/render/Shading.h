@@ -18,6 +18,24 @@ std::vector<std::string> colormapNames();
 /// Throws UsageError for an unknown name.
 vec3 colormap(const std::string& name, float t);
 
+/// The surface's colour before lighting, linear RGB: RenderSettings::colour, or with a colour
+/// map the map's colour for the height, from the lowest to the highest boundary voxel. Shared
+/// by Shader and the surfel export (Surfels.h), so that both colour a voxel alike.
+/// Thread-safe once constructed.
+class Albedo {
+public:
+    /// Throws UsageError for an unknown colour map name.
+    Albedo(const Octree& tree, const RenderSettings& settings);
+    /// `zCells`: height in cell space (a voxel's centre is at cell.z + 0.5; a node's is its
+    /// summary's meanZ).
+    vec3 at(float zCells) const;
+
+private:
+    vec3 colour_;
+    std::string colormap_;   // empty: uniform colour_
+    int zLo_ = 0, zHi_ = 0;  // occupied cell range along z, for the colour map
+};
+
 /// Per-frame constants: light in world space, colour settings.
 class Shader {
 public:
@@ -40,8 +58,7 @@ private:
     const Octree& tree_;
     const RenderSettings& settings_;
     vec3 light_;
-    bool useColormap_;
-    int zLo_ = 0, zHi_ = 0;  // occupied cell range along z, for the colour map
+    Albedo albedo_;
 };
 
 }  // namespace octrace

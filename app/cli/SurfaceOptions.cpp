@@ -1,0 +1,129 @@
+#include "SurfaceOptions.h"
+
+#include "Input.h"
+
+#include "octrace/render/Shading.h"
+#include "octrace/util/Error.h"
+#include "octrace/util/Log.h"
+#include "octrace/util/Timer.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <sstream>
+
+namespace octrace::cli {
+namespace {
+
+float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
+
+/// Progress on stderr while building, only when stderr is a terminal.
+std::function<void(double)> progressPrinter(bool quiet) {
+    if (quiet || !isatty(2)) return {};
+    return [](double f) { std::fprintf(stderr, "\roctrace: building octree %3d%%", int(f * 100.0 + 0.5)); };
+}
+
+}  // namespace
+
+std::string joinNames(const std::vector<std::string>& names) {
+    std::string s;
+    for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+    return s;
+}
+
+vec4 displayToLinear(vec4 c) { return vec4(srgbToLinear(c.r), srgbToLinear(c.g), srgbToLinear(c.b), c.a); }
+
+void addSurfaceOptions(OptionParser& p, SurfaceArgs& a) {
+    p.add({"var", "NAME", "variable to draw (default: the file's only 3-D variable)",
+           [&](const std::string& v) { a.request.variable = v; }});
+    p.add({"iso", "VALUE", "iso value of the surface (default: middle of the variable's valid range)",
+           [&](const std::string& v) { a.iso = parseNumber("iso", v); }});
+    p.add({"depth", "N", "octree depth, voxels = 2^N per cube edge (1.." + std::to_string(Octree::kMaxDepth) + ", default 8)",
+           [&](const std::string& v) { a.depth = parseInt("depth", v, 1, Octree::kMaxDepth); }});
+}
+
+void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result) {
+    p.add({"threads", "N", "worker threads, 0 = all cores (default 0); " + result + " does not depend on it",
+           [&](const std::string& v) { a.threads = parseInt("threads", v, 0, 1024); }});
+}
+
+void addColourOptions(OptionParser& p, SurfaceArgs& a) {
+    p.add({"colour", "R,G,B", "surface colour, sRGB components in [0,1] (default 0.85,0.62,0.35)",
+           [&](const std::string& v) { a.colour = vec3(parseColour("colour", v, false)); }});
+    p.add({"color", "R,G,B", "same as --colour (default 0.85,0.62,0.35)", [&](const std::string& v) { a.colour = vec3(parseColour("color", v, false)); }});
+    p.add({"colormap", "NAME", "colour the surface by height with a map: " + joinNames(colormapNames()) + " (default: none, --colour)",
+           [&](const std::string& v) {
+               colormap(v, 0.0f);
+               a.colormap = v;
+           }});
+}
+
+void addGeographicOptions(OptionParser& p, SurfaceArgs& a) {
+    p.add({"region", "LON0,LON1,LAT0,LAT1", "geographic subregion in degrees, NetCDF only (default: the whole grid)",
+           [&](const std::string& v) {
+               auto r = io::parseRegion(v);
+               a.request.hasRegion = true;
+               for (int i = 0; i < 4; ++i) a.request.region[i] = r[std::size_t(i)];
+           }});
+    p.add({"vertical-scale", "S", "vertical exaggeration of depth, NetCDF only (default: depth extent = 1/4 of the larger horizontal extent)",
+           [&](const std::string& v) {
+               a.request.verticalScale = parseNumber("vertical-scale", v);
+               if (!(a.request.verticalScale > 0.0)) throw UsageError("--vertical-scale: must be positive, got " + v);
+           }});
+}
+
+void addMessageOptions(OptionParser& p, SurfaceArgs& a) {
+    p.add({"quiet", "", "print only errors", [&](const std::string&) { a.quiet = true; }});
+    p.add({"verbose", "", "print debugging details", [&](const std::string&) { a.verbose = true; }});
+    p.add({"help", "", "show this help and exit", [&](const std::string&) { a.help = true; }});
+}
+
+bool parseCommandLine(const OptionParser& p, const std::vector<std::string>& args, SurfaceArgs& a,
+                      const std::string& output, const std::string& missingOutput) {
+    const std::vector<std::string> positional = p.parse(args);
+    if (a.help) {
+        std::fputs(p.help().c_str(), stdout);
+        return false;
+    }
+    if (positional.size() != 1)
+        throw UsageError(p.command() + " needs exactly one INPUT (got " + std::to_string(positional.size()) + ")");
+    if (output.empty()) throw UsageError(p.command() + " needs " + missingOutput);
+    a.input = positional[0];
+    return true;
+}
+
+Surface buildSurface(const SurfaceArgs& a) {
+    if (a.quiet) log::setLevel(log::Level::Error);
+    if (a.verbose) log::setLevel(log::Level::Debug);
+    Surface s;
+    Timer t;
+    s.field = loadField(a.input, a.request);
+    s.loadMs = t.ms();
+    auto [vmin, vmax] = s.field.validRange();
+    s.iso = a.iso ? *a.iso : 0.5 * (double(vmin) + double(vmax));
+    if (!a.iso) {
+        std::ostringstream m;
+        m << "no --iso given: using " << s.iso << ", the middle of the range [" << vmin << ", " << vmax << "] of '"
+          << s.field.name << "'";
+        log::info(m.str());
+    }
+    for (const auto& n : s.field.notes) log::debug(n);
+
+    BuildOptions bo;
+    bo.depth = a.depth;
+    bo.iso = s.iso;
+    bo.threads = a.threads;
+    bo.progress = progressPrinter(a.quiet);
+    s.tree = buildShellOctree(s.field, bo, &s.report);
+    if (bo.progress) std::fputs("\n", stderr);
+    return s;
+}
+
+void applyColour(const SurfaceArgs& a, RenderSettings& settings) {
+    settings.colour = vec3(displayToLinear(vec4(a.colour, 1.0f)));
+    settings.colormap = a.colormap;
+}
+
+}  // namespace octrace::cli

@@ -1,0 +1,70 @@
+#pragma once
+// What the commands that build a surface (render, export) share: the options that choose the
+// field, its isosurface and its colour, with the same names, help and checks, and the
+// load-and-build step behind them.
+#include "Options.h"
+
+#include "octrace/build/OctreeBuilder.h"
+#include "octrace/build/ScalarField.h"
+#include "octrace/io/FieldRequest.h"
+#include "octrace/octree/Octree.h"
+#include "octrace/render/RenderSettings.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace octrace::cli {
+
+struct SurfaceArgs {
+    std::string input;
+    io::FieldRequest request;
+    std::optional<double> iso;
+    int depth = 8, threads = 0;
+    vec3 colour{0.85f, 0.62f, 0.35f};  // sRGB display values, as the user gives them
+    std::string colormap;
+    bool help = false, quiet = false, verbose = false;
+};
+
+/// "a, b, c".
+std::string joinNames(const std::vector<std::string>& names);
+/// sRGB display colour (as a user picks it) -> linear, alpha unchanged.
+vec4 displayToLinear(vec4 c);
+
+// Each adds its options to `p`, writing into `a`; the help lines state the defaults of SurfaceArgs.
+/// --var, --iso, --depth.
+void addSurfaceOptions(OptionParser& p, SurfaceArgs& a);
+/// --threads; `result` names what does not depend on it ("the image").
+void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result);
+/// --colour, --color, --colormap.
+void addColourOptions(OptionParser& p, SurfaceArgs& a);
+/// --region, --vertical-scale.
+void addGeographicOptions(OptionParser& p, SurfaceArgs& a);
+/// --quiet, --verbose, --help.
+void addMessageOptions(OptionParser& p, SurfaceArgs& a);
+
+/// The start of every surface command: parses `args` with `p` (which writes into `a`). With
+/// --help, prints the help on stdout and returns false. Otherwise checks that there is exactly
+/// one INPUT (stored in a.input) and that `output` (filled by the parse) is not empty, else
+/// throws UsageError "<command> needs " + `missingOutput`; returns true.
+bool parseCommandLine(const OptionParser& p, const std::vector<std::string>& args, SurfaceArgs& a,
+                      const std::string& output, const std::string& missingOutput);
+
+/// A field and the shell octree of its isosurface.
+struct Surface {
+    ScalarField field;
+    double iso = 0.0;
+    Octree tree;
+    BuildReport report;
+    double loadMs = 0.0;
+};
+
+/// Applies --quiet / --verbose to the log, reads a.input, chooses the iso value when none was
+/// given (the middle of the valid range, said on stderr) and builds the shell octree (progress
+/// on stderr when it is a terminal). Throws as loadField() and buildShellOctree().
+Surface buildSurface(const SurfaceArgs& a);
+
+/// The colour options as RenderSettings::colour (linear RGB) and RenderSettings::colormap.
+void applyColour(const SurfaceArgs& a, RenderSettings& settings);
+
+}  // namespace octrace::cli

@@ -1,0 +1,64 @@
+#include "octrace/render/Surfels.h"
+
+#include "octrace/render/ImageCompare.h"
+#include "octrace/render/Shading.h"
+#include "octrace/util/Error.h"
+#include "octrace/util/Parallel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace octrace {
+
+float surfelRadius(double side) { return float(0.5 * std::sqrt(3.0) * side); }
+
+std::vector<Surfel> extractSurfels(const Octree& tree, const RenderSettings& settings, int level) {
+    if (level < 0) level = tree.depth;
+    if (level > tree.depth)
+        throw UsageError("surfels at level " + std::to_string(level) + ": the octree has depth " +
+                         std::to_string(tree.depth));
+    const bool voxels = level == tree.depth;
+    if (!voxels && !tree.hasSummaries())
+        throw UsageError("surfels at level " + std::to_string(level) + " need the node summaries (Octree::computeSummaries)");
+    const Albedo albedo(tree, settings);
+
+    // The order first (one cheap serial walk), then the surfels in parallel.
+    struct Item {
+        ivec3 cell;
+        std::uint32_t index;
+    };
+    std::vector<Item> items;
+    items.reserve(voxels ? tree.voxels.size() : 0);
+    tree.forEachAtLevel(level, [&](const ivec3& cell, std::uint32_t index) {
+        if (voxels || tree.summaries[index].voxelCount > 0) items.push_back({cell, index});
+    });
+
+    const double side = tree.cubeSide / std::ldexp(1.0, level);
+    const float radius = surfelRadius(side);
+    std::vector<Surfel> out(items.size());
+    constexpr std::size_t kChunk = 4096;
+    parallelFor((items.size() + kChunk - 1) / kChunk, settings.threads, [&](std::size_t chunk) {
+        const std::size_t end = std::min(items.size(), (chunk + 1) * kChunk);
+        for (std::size_t i = chunk * kChunk; i < end; ++i) {
+            const Item& it = items[i];
+            Surfel& s = out[i];
+            s.position = vec3(tree.cubeOrigin + (dvec3(it.cell) + 0.5) * side);
+            s.radius = radius;
+            float zCells;
+            if (voxels) {
+                s.normal = decodeNormal(tree.voxels[it.index].normal);
+                zCells = float(it.cell.z) + 0.5f;
+            } else {
+                const NodeSummary& summary = tree.summaries[it.index];
+                s.normal = decodeNormal(summary.normal);
+                zCells = summary.meanZ;
+            }
+            const vec3 c = albedo.at(zCells);
+            s.rgba = {linearToSrgb8(c.r), linearToSrgb8(c.g), linearToSrgb8(c.b), 255};
+        }
+    });
+    return out;
+}
+
+}  // namespace octrace
