@@ -63,19 +63,7 @@ public:
                  int x0, int y0, int x1, int y1)
         : tree_(tree), gen_(camera), shader_(shader), cut_(cut), f2b_(f2b), frame_(frame),
           tx0_(x0), ty0_(y0), tx1_(x1), ty1_(y1), tw_(x1 - x0 + 1) {
-        const int n = tw_ * (y1 - y0 + 1);
-        invDir_.resize(std::size_t(n));
-        origin_.resize(std::size_t(n));
-        dirLength_.resize(std::size_t(n));
-        if (f2b_) covered_.assign(std::size_t(n), 0);
-        for (int y = y0; y <= y1; ++y)
-            for (int x = x0; x <= x1; ++x) {
-                const std::size_t i = local(x, y);
-                const dvec3 d = gen_.direction(x, y);
-                invDir_[i] = dvec3(1.0 / d.x, 1.0 / d.y, 1.0 / d.z);  // +-inf for a zero component
-                origin_[i] = gen_.origin(x, y);
-                dirLength_[i] = glm::length(d);
-            }
+        if (f2b_) covered_.assign(std::size_t(tw_) * std::size_t(y1 - y0 + 1), 0);
         for (int a = 0; a < 3; ++a) {
             axisR_[a] = gen_.right()[a];
             axisU_[a] = gen_.up()[a];
@@ -95,6 +83,21 @@ public:
     }
 
 private:
+    /// The tile's per-pixel ray terms, computed at the first voxel drawn (most tiles of a
+    /// typical view show only background and never need them).
+    void prepareRays() {
+        const std::size_t n = std::size_t(tw_) * std::size_t(ty1_ - ty0_ + 1);
+        invDir_.resize(n);
+        if (gen_.orthographic()) origin_.resize(n);
+        for (int y = ty0_; y <= ty1_; ++y)
+            for (int x = tx0_; x <= tx1_; ++x) {
+                const std::size_t i = local(x, y);
+                const dvec3 d = gen_.direction(x, y);
+                invDir_[i] = dvec3(1.0 / d.x, 1.0 / d.y, 1.0 / d.z);  // +-inf for a zero component
+                if (gen_.orthographic()) origin_[i] = gen_.origin(x, y);
+            }
+    }
+
     std::size_t local(int x, int y) const { return std::size_t(y - ty0_) * std::size_t(tw_) + std::size_t(x - tx0_); }
 
     /// Pixels of the tile that the box's projection may cover; the whole tile when the box
@@ -174,13 +177,15 @@ private:
     void splat(std::uint32_t voxel, std::uint32_t node, const ivec3& cell, const dvec3& lo, double side, const Rect& r,
                RenderStats& st) {
         const dvec3 hi = lo + dvec3(side);
+        if (invDir_.empty()) prepareRays();
+        const bool ortho = gen_.orthographic();
         bool shaded = false;
         vec4 colour{};
         for (int y = r.y0; y <= r.y1; ++y)
             for (int x = r.x0; x <= r.x1; ++x) {
                 const std::size_t i = local(x, y);
                 if (f2b_ && covered_[i]) continue;
-                const dvec3& o = origin_[i];
+                const dvec3& o = ortho ? origin_[i] : gen_.eye();
                 const dvec3& inv = invDir_[i];
                 double tmin = -std::numeric_limits<double>::infinity(), tmax = std::numeric_limits<double>::infinity();
                 bool inside = true;
@@ -202,7 +207,7 @@ private:
                 }
                 const std::size_t p = frame_.pixel(x, y);
                 frame_.rgba[p] = colour;
-                frame_.depth[p] = float(std::max(tmin, 0.0) * dirLength_[i]);
+                frame_.depth[p] = float(std::max(tmin, 0.0) * glm::length(gen_.direction(x, y)));
                 frame_.hitId[p] = voxel;
                 frame_.flags[p] = Frame::kSplatted;
                 if (f2b_) {
@@ -220,7 +225,6 @@ private:
     Frame& frame_;
     const int tx0_, ty0_, tx1_, ty1_, tw_;
     std::vector<dvec3> invDir_, origin_;
-    std::vector<double> dirLength_;
     std::vector<std::uint8_t> covered_;
     std::size_t coveredCount_ = 0;
     double axisR_[3], axisU_[3], axisB_[3];
