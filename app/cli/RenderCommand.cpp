@@ -37,6 +37,7 @@ struct RenderArgs : SurfaceArgs {
     std::optional<dvec3> light;
     bool colourCoherence = false;
     float colourTolerance = 3.0f;
+    bool colourFillsBackground = false;
     int repeat = 1;
     std::string baseline;
 };
@@ -96,6 +97,8 @@ OptionParser makeParser(RenderArgs& a) {
     addColourOptions(p, a);
     p.add({"colour-coherence", "", "colour coherence on any discrete renderer: a pixel between two traced neighbours of nearly the same colour gets their average untraced (default off; on in area+colour)",
            [&](const std::string&) { a.colourCoherence = true; }});
+    p.add({"colour-fill-background", "", "colour coherence also between two background pixels, as paper A does: the pixel between is taken as background untraced (default off: only between surface pixels)",
+           [&](const std::string&) { a.colourFillsBackground = true; }});
     p.add({"colour-tolerance", "T", "largest difference per 8-bit sRGB channel for colour coherence, 0..255 (default 3)",
            [&](const std::string& v) {
                double t = parseNumber("colour-tolerance", v);
@@ -170,6 +173,7 @@ int runRender(const std::vector<std::string>& args) {
     if (a.light) rs.lightCamera = *a.light;
     rs.colourCoherence = a.colourCoherence;
     rs.colourTolerance = a.colourTolerance;
+    rs.colourFillsBackground = a.colourFillsBackground;
     rs.lodPixels = a.lod;
     rs.level = a.level;
 

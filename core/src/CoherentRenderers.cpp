@@ -40,12 +40,25 @@ struct Context {
     const LodCut& cut;
 };
 
+std::uint32_t packSrgb(const vec4& v) {
+    return std::uint32_t(linearToSrgb8(v.r)) | std::uint32_t(linearToSrgb8(v.g)) << 8 |
+           std::uint32_t(linearToSrgb8(v.b)) << 16 | std::uint32_t(alphaTo8(v.a)) << 24;
+}
+
 /// Traces pixel (x, y) and writes it; `partners` are the two neighbours whose hits give the
 /// branch node (nullptr: from the root).
 void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Start mode, RenderStats& st,
                 TraversalCounters& counters) {
     Frame& f = c.frame;
     const std::size_t p = f.pixel(x, y);
+    if (!c.rays.mayMeetCube(x, y)) {
+        // Outside the cube's outline: background, no ray to quantize.
+        ++st.raysFull;
+        f.flags[p] = Frame::kTraced;
+        f.rgba[p] = c.settings.background;
+        if (!c.srgb.empty()) c.srgb[p] = packSrgb(f.rgba[p]);
+        return;
+    }
     const dvec3 dir = c.rays.direction(x, y);
     const QuantizedRay q = c.rays.quantized(x, y, dir);
     if (q.meetsCube) ++st.rays;
@@ -86,35 +99,39 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
         f.rgba[p] = c.shader.shade(hit);
         f.depth[p] = c.shader.distance(c.rays.world(x, y, dir), hit);
     }
-    if (!c.srgb.empty()) {
-        const vec4 v = f.rgba[p];
-        c.srgb[p] = std::uint32_t(linearToSrgb8(v.r)) | std::uint32_t(linearToSrgb8(v.g)) << 8 |
-                    std::uint32_t(linearToSrgb8(v.b)) << 16 | std::uint32_t(alphaTo8(v.a)) << 24;
-    }
+    if (!c.srgb.empty()) c.srgb[p] = packSrgb(f.rgba[p]);
 }
 
-/// Colour coherence: fills pixel p from its partners when both were traced, both show the
-/// surface, and their colours agree. (Pairs of background pixels are traced: a miss costs
-/// about as much as the test.) The pixel's ray lies between two rays that hit voxels inside
-/// the convex scene cube, so it meets the cube and counts in `rays`.
+/// Colour coherence: fills pixel p from its partners when both were traced and their colours
+/// agree. Both showing the surface: the average colour and depth, the first partner's hit id.
+/// Both background (paper A fills any pair of close colours): the background, no hit. Either
+/// way only the ray's quantization is computed, to count it in `rays` when it meets the cube.
 bool tryFill(const Context& c, int x, int y, const std::size_t* partners, RenderStats& st) {
     Frame& f = c.frame;
     const std::size_t a = partners[0], b = partners[1];
     if (!(f.flags[a] & Frame::kTraced) || !(f.flags[b] & Frame::kTraced)) return false;
-    if (f.hitId[a] == kNoHit || f.hitId[b] == kNoHit) return false;
+    const bool hitA = f.hitId[a] != kNoHit, hitB = f.hitId[b] != kNoHit;
+    if (hitA != hitB) return false;
+    if (!hitA && !c.settings.colourFillsBackground) return false;
     for (int ch = 0; ch < 4; ++ch) {
         const int da = int((c.srgb[a] >> (8 * ch)) & 0xFF), db = int((c.srgb[b] >> (8 * ch)) & 0xFF);
         if (float(std::abs(da - db)) > c.settings.colourTolerance) return false;
     }
     const std::size_t p = f.pixel(x, y);
+    f.flags[p] = Frame::kColourFilled;
+    ++st.colourFilled;
+    if (!hitA) {
+        f.rgba[p] = c.settings.background;
+        if (c.rays.quantized(x, y, c.rays.direction(x, y)).meetsCube) ++st.rays;
+        return true;
+    }
+    // The ray lies between two rays that hit voxels inside the convex scene cube: it meets it.
     f.rgba[p] = 0.5f * (f.rgba[a] + f.rgba[b]);
     f.depth[p] = 0.5f * (f.depth[a] + f.depth[b]);
     f.hitId[p] = f.hitId[a];
     c.cells[p] = c.cells[a];
-    f.flags[p] = Frame::kColourFilled;
     ++st.rays;
     ++st.hits;
-    ++st.colourFilled;
     return true;
 }
 

@@ -354,6 +354,7 @@ private:
 template <bool kObserve>
 TraversalHit traverse(const Octree& tree, const QuantizedRay& r, TraversalCounters& counters,
                       const std::function<void(unsigned, unsigned)>* observe, const LodCut* cut = nullptr) {
+    if (!r.meetsCube || tree.nodes.empty()) return TraversalHit{};  // before setting up the engine
     Engine<kObserve> e(tree, r, counters, observe);
     e.setCut(cut);
     if (!e.startAtRoot()) return TraversalHit{};

@@ -6,11 +6,14 @@
 #include "octrace/render/Camera.h"
 #include "octrace/render/DiscreteTraversal.h"
 
+#include <utility>
+#include <vector>
+
 namespace octrace::detail {
 
 class PixelRays {
 public:
-    PixelRays(const Octree& tree, const Camera& camera) : tree_(tree), gen_(camera) {}
+    PixelRays(const Octree& tree, const Camera& camera);
     /// Unnormalised world direction of pixel (x, y) (quantization only needs its ratios).
     dvec3 direction(int x, int y) const { return gen_.direction(x, y); }
     /// Ray origin of pixel (x, y) in octree space.
@@ -18,10 +21,19 @@ public:
     QuantizedRay quantized(int x, int y, const dvec3& direction) const { return quantizeRay(originOS(x, y), direction); }
     /// The world ray (unit direction), for the distance of a hit.
     Ray world(int x, int y, const dvec3& direction) const { return {gen_.origin(x, y), glm::normalize(direction)}; }
+    /// False only when the pixel's ray cannot meet the scene cube: the pixel lies more than a
+    /// pixel outside the cube's projected outline (the convex hull of its projected corners).
+    /// Always true when the cube reaches behind a perspective eye. A renderer may then draw
+    /// the background without quantizing the ray: the ray would not meet the cube.
+    bool mayMeetCube(int x, int y) const {
+        const auto& s = spans_[std::size_t(y)];
+        return x >= s.first && x <= s.second;
+    }
 
 private:
     const Octree& tree_;
     RayGenerator gen_;
+    std::vector<std::pair<int, int>> spans_;  // per row: pixels that may see the cube
 };
 
 }  // namespace octrace::detail

@@ -19,6 +19,9 @@ struct RenderSettings {
     /// average without being traced. Approximate by design.
     bool colourCoherence = false;
     float colourTolerance = 3.0f;          ///< in 8-bit sRGB units (0..255)
+    /// Colour coherence also between two background pixels (the middle one is then taken as
+    /// background untraced); off: only between two surface pixels.
+    bool colourFillsBackground = false;
     /// Multi-resolution (Lod.h; needs Octree::computeSummaries): stop descending at a node
     /// whose projected size is below lodPixels pixels (0 = exact), and at level `level` at the
     /// latest (< 0 = down to the voxels). Supported by full, reference and the direct renderers.
