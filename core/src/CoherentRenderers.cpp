@@ -51,19 +51,21 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
                 TraversalCounters& counters) {
     Frame& f = c.frame;
     const std::size_t p = f.pixel(x, y);
-    if (!c.rays.mayMeetCube(x, y)) {
-        // Outside the cube's outline: background, no ray to quantize.
+    auto background = [&] {
         ++st.raysFull;
         f.flags[p] = Frame::kTraced;
         f.rgba[p] = c.settings.background;
         if (!c.srgb.empty()) c.srgb[p] = packSrgb(f.rgba[p]);
-        return;
-    }
+    };
+    // Outside the cube's outline: no ray to quantize.
+    if (!c.rays.mayMeetCube(x, y)) return background();
     const dvec3 dir = c.rays.direction(x, y);
     const QuantizedRay q = c.rays.quantized(x, y, dir);
     if (q.meetsCube) ++st.rays;
     TraversalHit hit;
     std::uint8_t flags = Frame::kTraced;
+    // Meets the cube perhaps, but not the surface's bounding box: nothing to find.
+    if (!c.rays.mayHitSurface(x, y)) return background();
     const bool usePartners = partners && mode != Start::Root && f.hitId[partners[0]] != kNoHit &&
                              f.hitId[partners[1]] != kNoHit && q.meetsCube;
     if (usePartners) {

@@ -5,8 +5,23 @@
 
 namespace octrace::detail {
 
-PixelRays::PixelRays(const Octree& tree, const Camera& camera)
-    : tree_(tree), gen_(camera), spans_(std::size_t(std::max(camera.height, 0)), {0, camera.width - 1}) {
+PixelRays::PixelRays(const Octree& tree, const Camera& camera) : tree_(tree), gen_(camera) {
+    const Box3 cube{tree.cubeOrigin, tree.cubeOrigin + dvec3(tree.cubeSide)};
+    cubeSpans_ = outline(cube, camera.width, camera.height);
+    ivec3 lo, hi;
+    tree.occupiedCells(lo, hi);
+    if (lo.x > hi.x) {
+        surfaceSpans_.assign(std::size_t(std::max(camera.height, 0)), {1, 0});  // no surface at all
+        return;
+    }
+    const double v = tree.voxelSize();
+    surfaceSpans_ = outline(Box3{tree.cubeOrigin + dvec3(lo) * v, tree.cubeOrigin + dvec3(hi + 1) * v}, camera.width,
+                            camera.height);
+}
+
+PixelRays::Spans PixelRays::outline(const Box3& box, int width, int height) const {
+    Spans spans(std::size_t(std::max(height, 0)), {0, width - 1});
+    const double size = std::max({box.hi.x - box.lo.x, box.hi.y - box.lo.y, box.hi.z - box.lo.z});
     // The cube's corners in pixel coordinates.
     struct P {
         double x, y;
@@ -14,22 +29,22 @@ PixelRays::PixelRays(const Octree& tree, const Camera& camera)
     std::vector<P> pts;
     int behind = 0;
     for (int k = 0; k < 8; ++k) {
-        const dvec3 c = tree.cubeOrigin + tree.cubeSide * dvec3((k >> 2) & 1, (k >> 1) & 1, k & 1);
+        const dvec3 c((k & 4) ? box.hi.x : box.lo.x, (k & 2) ? box.hi.y : box.lo.y, (k & 1) ? box.hi.z : box.lo.z);
         behind += glm::dot(c - gen_.eye(), gen_.back()) > 0.0;
     }
     if (behind == 8) {  // the whole cube behind the eye (or the orthographic view plane)
-        std::fill(spans_.begin(), spans_.end(), std::pair<int, int>{1, 0});
-        return;
+        std::fill(spans.begin(), spans.end(), std::pair<int, int>{1, 0});
+        return spans;
     }
     for (int k = 0; k < 8; ++k) {
-        const dvec3 corner = tree.cubeOrigin + tree.cubeSide * dvec3((k >> 2) & 1, (k >> 1) & 1, k & 1);
+        const dvec3 corner((k & 4) ? box.hi.x : box.lo.x, (k & 2) ? box.hi.y : box.lo.y, (k & 1) ? box.hi.z : box.lo.z);
         const dvec3 rel = corner - gen_.eye();
         const double cx = glm::dot(rel, gen_.right()), cy = glm::dot(rel, gen_.up()), cz = glm::dot(rel, gen_.back());
         // A corner at or behind the eye plane: the outline is unbounded; keep every pixel.
-        if (!gen_.orthographic() && !(cz < -1e-9 * tree.cubeSide)) return;
+        if (!gen_.orthographic() && !(cz < -1e-9 * size)) return spans;
         P p;
         gen_.toPixel(cx, cy, cz, p.x, p.y);
-        if (!std::isfinite(p.x) || !std::isfinite(p.y)) return;
+        if (!std::isfinite(p.x) || !std::isfinite(p.y)) return spans;
         pts.push_back(p);
     }
     // Convex hull (monotone chain), counter-clockwise in pixel coordinates.
@@ -48,7 +63,7 @@ PixelRays::PixelRays(const Octree& tree, const Camera& camera)
     hull.resize(k > 1 ? k - 1 : k);
     // Per row, the hull's x extent over the band of pixel centres within one pixel of the row's
     // centre, widened by one more pixel: rounding can never exclude a pixel whose ray meets it.
-    for (int y = 0; y < camera.height; ++y) {
+    for (int y = 0; y < height; ++y) {
         const double b0 = y + 0.5 - 1.0, b1 = y + 0.5 + 1.0;
         double lo = std::numeric_limits<double>::infinity(), hi = -lo;
         for (std::size_t i = 0; i < hull.size(); ++i) {
@@ -66,14 +81,14 @@ PixelRays::PixelRays(const Octree& tree, const Camera& camera)
                 }
         }
         if (!(lo <= hi)) {
-            spans_[std::size_t(y)] = {1, 0};  // the band misses the outline
+            spans[std::size_t(y)] = {1, 0};  // the band misses the outline
             continue;
         }
         // Pixel x has its centre at x + 0.5.
         const double x0 = std::floor(lo - 0.5) - 1.0, x1 = std::ceil(hi - 0.5) + 1.0;
-        spans_[std::size_t(y)] = {int(std::clamp(x0, -1.0, double(camera.width))),
-                                  int(std::clamp(x1, -1.0, double(camera.width)))};
+        spans[std::size_t(y)] = {int(std::clamp(x0, -1.0, double(width))), int(std::clamp(x1, -1.0, double(width)))};
     }
+    return spans;
 }
 
 }  // namespace octrace::detail

@@ -26,14 +26,22 @@ public:
     /// Always true when the cube reaches behind a perspective eye. A renderer may then draw
     /// the background without quantizing the ray: the ray would not meet the cube.
     bool mayMeetCube(int x, int y) const {
-        const auto& s = spans_[std::size_t(y)];
+        const auto& s = cubeSpans_[std::size_t(y)];
+        return x >= s.first && x <= s.second;
+    }
+    /// False only when the pixel's ray cannot hit a boundary voxel: outside the projected
+    /// outline of the surface's bounding box (Octree::occupiedCells), in the same way.
+    bool mayHitSurface(int x, int y) const {
+        const auto& s = surfaceSpans_[std::size_t(y)];
         return x >= s.first && x <= s.second;
     }
 
 private:
     const Octree& tree_;
     RayGenerator gen_;
-    std::vector<std::pair<int, int>> spans_;  // per row: pixels that may see the cube
+    using Spans = std::vector<std::pair<int, int>>;  // per row: pixels that may see the box
+    Spans outline(const Box3& box, int width, int height) const;
+    Spans cubeSpans_, surfaceSpans_;
 };
 
 }  // namespace octrace::detail

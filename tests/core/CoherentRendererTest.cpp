@@ -156,3 +156,26 @@ TEST(CoherentRenderers, ColourCoherenceFillsOnlyBetweenTracedSurfacePixelsWithin
     s.colourTolerance = 3.0f;
     EXPECT_GT(makeRenderer("full")->render(t, cam, s, f).colourFilled, 0u);
 }
+
+TEST(CoherentRenderers, ColourCoherenceBetweenBackgroundPixelsFillsBackgroundAndStillCountsTheRays) {
+    const Octree& t = tree(1);
+    const Camera cam = cameras(t)[0];
+    Frame full, surfaceOnly, withBackground;
+    const RenderStats sf = draw("full", t, cam, full);
+    RenderSettings s;
+    const RenderStats a = makeRenderer("area+colour")->render(t, cam, s, surfaceOnly);
+    s.colourFillsBackground = true;
+    const RenderStats b = makeRenderer("area+colour")->render(t, cam, s, withBackground);
+    EXPECT_GT(b.colourFilled, a.colourFilled);
+    EXPECT_EQ(b.rays, sf.rays);  // filled background pixels still count when their ray meets the cube
+    std::size_t filledBackground = 0;
+    for (std::size_t i = 0; i < withBackground.flags.size(); ++i)
+        if ((withBackground.flags[i] & Frame::kColourFilled) && withBackground.hitId[i] == kNoHit) {
+            ++filledBackground;
+            EXPECT_EQ(withBackground.rgba[i], s.background);
+            EXPECT_TRUE(std::isinf(withBackground.depth[i]));
+        }
+    EXPECT_GT(filledBackground, 0u);
+    const ImageDifference d = compareImages(withBackground, full);
+    EXPECT_GE(d.psnrDb, 40.0) << d.differingPixels << " pixels differ";
+}
