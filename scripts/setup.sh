@@ -3,9 +3,10 @@
 # (or sudo). Nothing is downloaded at build time: these packages are everything.
 # Usage: scripts/setup.sh [--fuzz]   (--fuzz: also clang and libFuzzer, for tests/fuzz/run.sh)
 set -euo pipefail
+# libgdcm-tools: Debian's GDCM CMake package (libgdcm-dev) imports its tools and fails without them.
 PACKAGES=(
   cmake ninja-build g++ pkg-config
-  libgdal-dev libvtk9-dev libopenexr-dev libglm-dev libtbb-dev
+  libgdal-dev libgdcm-dev libgdcm-tools libvtk9-dev libopenexr-dev libglm-dev libtbb-dev
   libgtest-dev libbenchmark-dev libpng-dev libzstd-dev
 )
 if [ "${1:-}" = "--fuzz" ]; then

@@ -1,6 +1,7 @@
 #include "Commands.h"
 #include "Input.h"
 #include "Options.h"
+#include "SurfaceOptions.h"
 
 #include "octrace/util/Error.h"
 
@@ -10,7 +11,9 @@ namespace octrace::cli {
 
 int runInfo(const std::vector<std::string>& args) {
     bool help = false;
-    OptionParser p("info", "octrace info INPUT...");
+    io::FieldRequest request;
+    OptionParser p("info", "octrace info INPUT... [--series UID|INDEX|DESCRIPTION]");
+    addSeriesOption(p, request);
     p.add({"help", "", "show this help and exit", [&](const std::string&) { help = true; }});
     auto inputs = p.parse(args);
     if (help) {
@@ -22,7 +25,7 @@ int runInfo(const std::vector<std::string>& args) {
     int status = 0;
     for (const auto& in : inputs) {
         try {
-            std::fputs(describe(in).c_str(), stdout);
+            std::fputs(describe(in, request).c_str(), stdout);
         } catch (const UsageError&) {
             throw;
         } catch (const Error& e) {

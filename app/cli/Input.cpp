@@ -26,14 +26,15 @@ ScalarField analytic(const std::string& input) {
 ScalarField loadField(const std::string& input, const io::FieldRequest& req) {
     if (!isAnalytic(input)) return io::readField(input, req);
     if (req.hasRegion) throw UsageError("--region applies to geographic NetCDF inputs, not to " + input);
+    if (!req.series.empty()) throw UsageError("--series applies to DICOM inputs, not to " + input);
     ScalarField f = analytic(input);
     if (!req.variable.empty() && req.variable != f.name)
         throw InputError(input + ": no variable '" + req.variable + "' (it has: " + f.name + ")");
     return f;
 }
 
-std::string describe(const std::string& input) {
-    if (!isAnalytic(input)) return io::describeInput(input);
+std::string describe(const std::string& input, const io::FieldRequest& req) {
+    if (!isAnalytic(input)) return io::describeInput(input, req);
     ScalarField f = analytic(input);
     auto [lo, hi] = f.validRange();
     Box3 b = f.worldBounds();

@@ -106,6 +106,7 @@ OptionParser makeParser(RenderArgs& a) {
                a.colourTolerance = float(t);
            }});
     addGeographicOptions(p, a);
+    addSeriesOption(p, a.request);
     p.add({"repeat", "N", "render N times and report the fastest as render_ms (benchmarks on a noisy machine; default 1)",
            [&](const std::string& v) { a.repeat = parseInt("repeat", v, 1, 1000); }});
     p.add({"baseline", "NAME", "also render with renderer NAME, alternating with the main one --repeat times, and report baseline_render_ms and speedup_over_baseline (default: none)",

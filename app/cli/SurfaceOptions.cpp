@@ -74,6 +74,14 @@ void addGeographicOptions(OptionParser& p, SurfaceArgs& a) {
            }});
 }
 
+void addSeriesOption(OptionParser& p, io::FieldRequest& request) {
+    p.add({"series", "UID|INDEX|DESCRIPTION", "DICOM series to read: its UID, its number in `octrace info`'s list or its description (default: the largest)",
+           [&](const std::string& v) {
+               if (v.empty()) throw UsageError("--series: empty (give a UID, an index or a description)");
+               request.series = v;
+           }});
+}
+
 void addMessageOptions(OptionParser& p, SurfaceArgs& a) {
     p.add({"quiet", "", "print only errors", [&](const std::string&) { a.quiet = true; }});
     p.add({"verbose", "", "print debugging details", [&](const std::string&) { a.verbose = true; }});

@@ -40,6 +40,8 @@ void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result
 void addColourOptions(OptionParser& p, SurfaceArgs& a);
 /// --region, --vertical-scale.
 void addGeographicOptions(OptionParser& p, SurfaceArgs& a);
+/// --series (DICOM).
+void addSeriesOption(OptionParser& p, io::FieldRequest& request);
 /// --quiet, --verbose, --help.
 void addMessageOptions(OptionParser& p, SurfaceArgs& a);
 

@@ -2,6 +2,7 @@
 
 #include "FormatSniffer.h"
 #include "InputFile.h"
+#include "octrace/io/DicomReader.h"
 #include "octrace/io/NetcdfReader.h"
 #include "octrace/io/NrrdReader.h"
 #include "octrace/util/Error.h"
@@ -15,38 +16,67 @@ namespace {
 using detail::FileKind;
 
 const char* kSupported = "supported: NetCDF (.nc, .cdf, .nc4: classic, 64-bit offset, CDF-5, NetCDF-4/HDF5), "
-                         "NRRD (.nrrd, .nhdr)";
+                         "NRRD (.nrrd, .nhdr), DICOM (a file, a folder or a DICOMDIR)";
 
 FileKind kindOf(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) return FileKind::Dicom;  // a folder of DICOM files
     detail::Sniffed s = detail::sniffFormat(path);
     if (s.kind != FileKind::Unknown) return s.kind;
     // No known signature: trust the extension so the format's reader can say what is wrong.
     std::string ext = detail::lower(std::filesystem::path(path).extension().string());
     if (ext == ".nrrd" || ext == ".nhdr") return FileKind::Nrrd;
     if (ext == ".nc" || ext == ".cdf" || ext == ".nc4" || ext == ".netcdf") return FileKind::NetCdf;
+    if (ext == ".dcm" || ext == ".dicom" || std::filesystem::path(path).filename() == "DICOMDIR") return FileKind::Dicom;
     throw FormatNotSupported(path + ": format not recognised (file starts with '" + s.description + "'); " + kSupported);
 }
 
-ScalarField readNrrd(const std::string& path, const FieldRequest& req) {
-    if (req.hasRegion)
-        throw InputError(path + ": a region needs a geographic (NetCDF longitude/latitude) grid, NRRD volumes have none");
-    ScalarField f = NrrdReader::read(path);
+/// What a volume without geographic axes (NRRD, DICOM) does with a request: one field whose
+/// name `--var` must match, no region, no vertical scale.
+ScalarField checkVolume(ScalarField f, const std::string& path, const FieldRequest& req, const std::string& format) {
     if (!req.variable.empty() && req.variable != f.name)
-        throw InputError(path + ": no variable '" + req.variable + "' (the NRRD volume holds one field, '" + f.name + "')");
-    if (req.verticalScale != 0.0) log::warning(path + ": vertical scale ignored for a NRRD volume");
+        throw InputError(path + ": no variable '" + req.variable + "' (the " + format + " volume holds one field, '" + f.name + "')");
+    if (req.verticalScale != 0.0) log::warning(path + ": vertical scale ignored for a " + format + " volume");
     return f;
+}
+
+void refuseRegion(const std::string& path, const FieldRequest& req, const std::string& format) {
+    if (req.hasRegion)
+        throw InputError(path + ": a region needs a geographic (NetCDF longitude/latitude) grid, " + format + " volumes have none");
+}
+
+void refuseSeries(const std::string& path, const FieldRequest& req) {
+    if (!req.series.empty()) throw InputError(path + ": --series chooses a DICOM series, this input is not DICOM");
 }
 
 }  // namespace
 
 ScalarField readField(const std::string& path, const FieldRequest& req) {
-    ScalarField f = kindOf(path) == FileKind::Nrrd ? readNrrd(path, req) : NetcdfReader::read(path, req);
+    ScalarField f;
+    switch (kindOf(path)) {
+        case FileKind::Nrrd:
+            refuseSeries(path, req);
+            refuseRegion(path, req, "NRRD");
+            f = checkVolume(NrrdReader::read(path), path, req, "NRRD");
+            break;
+        case FileKind::Dicom:
+            refuseRegion(path, req, "DICOM");
+            f = checkVolume(DicomReader::read(path, req.series), path, req, "DICOM");
+            break;
+        default:
+            refuseSeries(path, req);
+            f = NetcdfReader::read(path, req);
+    }
     f.validate();
     return f;
 }
 
-std::string describeInput(const std::string& path) {
-    return kindOf(path) == FileKind::Nrrd ? NrrdReader::describe(path) : NetcdfReader::describe(path);
+std::string describeInput(const std::string& path, const FieldRequest& req) {
+    switch (kindOf(path)) {
+        case FileKind::Nrrd: refuseSeries(path, req); return NrrdReader::describe(path);
+        case FileKind::Dicom: return DicomReader::describe(path, req.series);
+        default: refuseSeries(path, req); return NetcdfReader::describe(path);
+    }
 }
 
 }  // namespace octrace::io

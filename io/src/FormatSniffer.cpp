@@ -18,6 +18,7 @@ Sniffed sniffFormat(const std::string& path) {
     for (std::size_t at : {0u, 512u, 1024u, 2048u})  // HDF5 allows a user block before the signature
         if (head.size() >= at + 8 && head.compare(at, 8, hdf5) == 0) return {FileKind::NetCdf, "NetCDF-4 / HDF5"};
     if (head.compare(0, 4, "NRRD") == 0) return {FileKind::Nrrd, "NRRD"};
+    if (head.size() >= 132 && head.compare(128, 4, "DICM") == 0) return {FileKind::Dicom, "DICOM"};
     return {FileKind::Unknown, quoteBytes(head.substr(0, 8))};
 }
 

@@ -4,7 +4,7 @@
 
 namespace octrace::io::detail {
 
-enum class FileKind { NetCdf, Nrrd, Unknown };
+enum class FileKind { NetCdf, Nrrd, Dicom, Unknown };
 
 struct Sniffed {
     FileKind kind = FileKind::Unknown;

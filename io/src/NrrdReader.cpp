@@ -1,5 +1,6 @@
 #include "octrace/io/NrrdReader.h"
 
+#include "FieldText.h"
 #include "InputFile.h"
 #include "NrrdHeader.h"
 #include "octrace/util/Error.h"
@@ -203,25 +204,7 @@ std::string NrrdReader::describe(const std::string& path) {
     s << "format: NRRD (" << h.magic << "), " << h.type << ", " << h.encoding << " encoding, "
       << (h.dataFiles.empty() ? std::string("attached data")
                               : std::to_string(h.dataFiles.size()) + " detached data file(s)") << "\n";
-    auto [lo, hi] = f.validRange();
-    s << "variables:\n  " << f.name << " (" << f.dims.x << " x " << f.dims.y << " x " << f.dims.z << ")"
-      << (f.units.empty() ? std::string() : ", units '" + f.units + "'") << ": valid range " << detail::num(lo)
-      << " .. " << detail::num(hi) << " (" << f.validCount() << " of " << f.sampleCount() << " samples valid)\n";
-    s << "dims: " << f.dims.x << " x " << f.dims.y << " x " << f.dims.z << "\n";
-    s << "spacing: " << detail::num(f.spacing.x) << " x " << detail::num(f.spacing.y) << " x " << detail::num(f.spacing.z) << "\n";
-    s << "origin: (" << detail::num(f.origin.x) << ", " << detail::num(f.origin.y) << ", " << detail::num(f.origin.z) << ")\n";
-    if (f.direction != dmat3(1.0)) {
-        s << "direction (columns):";
-        for (int a = 0; a < 3; ++a) {
-            const dvec3& d = f.direction[a];
-            s << " (" << detail::num(d.x) << ", " << detail::num(d.y) << ", " << detail::num(d.z) << ")";
-        }
-        s << "\n";
-    }
-    Box3 b = f.worldBounds();
-    s << "world bounds: (" << detail::num(b.lo.x) << ", " << detail::num(b.lo.y) << ", " << detail::num(b.lo.z) << ") .. ("
-      << detail::num(b.hi.x) << ", " << detail::num(b.hi.y) << ", " << detail::num(b.hi.z) << ")\n";
-    for (const auto& n : f.notes) s << "note: " << n << "\n";
+    s << detail::describeVolume(f);
     return s.str();
 }
 

@@ -31,6 +31,12 @@ const Case kCases[] = {
     {"invalid_huge_name_length.nc", nullptr, "NetCDF header is truncated"},
     {"invalid_oversized_gzip.nrrd", nullptr, "gzip data truncated"},
     {"invalid_fewer_files_than_slices.nhdr", nullptr, "one slice per file"},
+    {"invalid_no_dicom_images", nullptr, "no DICOM image"},
+    {"invalid_not_an_image.dcm", nullptr, "a DICOM file without an image"},
+    {"invalid_mixed_sizes", nullptr, "mixed image sizes in one series"},
+    {"invalid_huge_frame_count.dcm", nullptr, "header declares 100000 frame(s)"},
+    {"invalid_zero_pixel_spacing.dcm", nullptr, "PixelSpacing 0\\0.5 must be positive"},
+    {"invalid_nan_position.dcm", nullptr, "is not 3 finite numbers"},
 };
 }  // namespace
 

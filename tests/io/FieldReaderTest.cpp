@@ -93,6 +93,12 @@ TEST(FieldReader, EveryInvalidCorpusFileFailsWithItsDocumentedMessage) {
         {"invalid_huge_name_length.nc", "", Kind::File, "NetCDF header is truncated"},
         {"invalid_oversized_gzip.nrrd", "", Kind::File, "inflate to at most 29928"},
         {"invalid_fewer_files_than_slices.nhdr", "", Kind::File, "header lists 2 data files for 4 slices"},
+        {"invalid_no_dicom_images", "", Kind::File, "no DICOM image"},
+        {"invalid_not_an_image.dcm", "", Kind::File, "a DICOM file without an image (no Rows/Columns)"},
+        {"invalid_mixed_sizes", "", Kind::File, "mixed image sizes in one series"},
+        {"invalid_huge_frame_count.dcm", "", Kind::File, "header declares 100000 frame(s) of 64x64 x 16 bits"},
+        {"invalid_zero_pixel_spacing.dcm", "", Kind::File, "PixelSpacing 0\\0.5 must be positive"},
+        {"invalid_nan_position.dcm", "", Kind::File, "ImagePositionPatient 'NaN\\0\\1' of frame 2 is not 3 finite numbers"},
     };
     for (const auto& c : cases) {
         std::string path = test::testData(std::string("invalid/") + c.file);

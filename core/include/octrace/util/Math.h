@@ -5,6 +5,7 @@
 #include <cstdint>
 
 namespace octrace {
+using dvec2 = glm::dvec2;
 using vec3 = glm::vec3;
 using vec4 = glm::vec4;
 using dvec3 = glm::dvec3;

@@ -9,17 +9,20 @@
 namespace octrace::io {
 
 /// Reads a scalar field from `path`, choosing the reader by the file's first bytes
-/// ("CDF\x01|\x02|\x05" NetCDF classic, HDF5 signature for NetCDF-4, "NRRD"), then by
-/// extension (.nc .cdf .nc4 .nrrd .nhdr).
-/// NRRD holds one unnamed field: a non-empty `req.variable` must equal its name, and a
+/// ("CDF\x01|\x02|\x05" NetCDF classic, HDF5 signature for NetCDF-4, "NRRD", "DICM" at
+/// byte 128), then by extension (.nc .cdf .nc4 .nrrd .nhdr .dcm, DICOMDIR); a folder is read
+/// as DICOM (DicomReader).
+/// NRRD and DICOM hold one field: a non-empty `req.variable` must equal its name, and a
 /// region is refused (InputError); `req.verticalScale` is ignored there with a warning.
+/// `req.series` is refused (InputError) for anything but DICOM.
 /// @throws InputError "PATH: no such file" when missing; FormatNotSupported naming the
 ///         supported formats; FileError "PATH: file is empty (0 bytes)"; otherwise as the
-///         format's reader (NetcdfReader::read, NrrdReader::read). The result is validated.
+///         format's reader (NetcdfReader::read, NrrdReader::read, DicomReader::read). The result is validated.
 ScalarField readField(const std::string& path, const FieldRequest& req = {});
 
 /// The text `octrace info INPUT` prints: format, variables with units, dims and valid value
-/// range, dims, spacing or axes, origin and world bounds. Throws as readField().
-std::string describeInput(const std::string& path);
+/// range, dims, spacing or axes, origin and world bounds; for DICOM every series, then the
+/// one `req.series` chooses. Only `req.series` of the request is used. Throws as readField().
+std::string describeInput(const std::string& path, const FieldRequest& req = {});
 
 }  // namespace octrace::io

@@ -1,7 +1,7 @@
 #pragma once
 /// @file FieldRequest.h
 /// What a caller asks a field reader for: which variable, which geographic region, which
-/// vertical exaggeration. Plain data, no GDAL or VTK types.
+/// vertical exaggeration, which DICOM series. Plain data, no GDAL or VTK types.
 #include <array>
 #include <string>
 
@@ -18,6 +18,9 @@ struct FieldRequest {
     /// World z = -depth_km * verticalScale. 0 chooses the default (depth extent = a quarter of
     /// the larger horizontal extent); negative values are refused.
     double verticalScale = 0.0;
+    /// DICOM series to read: SeriesInstanceUID, 1-based index in `octrace info`'s list, or
+    /// SeriesDescription. Empty: the largest series. Refused for other formats.
+    std::string series;
 };
 
 /// Parses "LON0,LON1,LAT0,LAT1" (degrees) and checks the values (see checkRegion).

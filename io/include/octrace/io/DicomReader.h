@@ -1,0 +1,62 @@
+#pragma once
+/// @file DicomReader.h
+/// Reads DICOM image series (CT, MR, ...; any transfer syntax GDCM decodes: uncompressed
+/// little or big endian, JPEG baseline/lossless, JPEG-LS, JPEG 2000, RLE; single- or
+/// multi-frame) into a ScalarField. No GDCM type appears here.
+#include "octrace/build/ScalarField.h"
+
+#include <string>
+#include <vector>
+
+namespace octrace::io {
+
+/// One series found under an input, as `octrace info` lists it.
+struct DicomSeriesInfo {
+    std::string uid;          ///< SeriesInstanceUID
+    std::string modality;     ///< "CT", "MR", ...
+    std::string description;  ///< SeriesDescription (may be empty)
+    int seriesNumber = 0;     ///< SeriesNumber (0 when absent)
+    int columns = 0, rows = 0;
+    int slices = 0;           ///< images: frames summed over the files
+    int files = 0;
+    /// columns * rows * slices: the measure of "the largest series".
+    double samples() const { return double(columns) * double(rows) * double(slices); }
+};
+
+class DicomReader {
+public:
+    /// Every image series under `path`, in the order `--series INDEX` counts them (1-based):
+    /// by SeriesNumber, then UID. `path` is a DICOM file, a folder (searched recursively; files
+    /// starting with the DICOM preamble "DICM" at byte 128, or named *.dcm, are read) or a
+    /// DICOMDIR (the folder it sits in is searched). Only headers are read.
+    /// @throws InputError if `path` does not exist; FileError "no DICOM image" when nothing
+    ///         under it is a DICOM image; FileError for a broken single file.
+    static std::vector<DicomSeriesInfo> listSeries(const std::string& path);
+
+    /// Reads one series as a volume. `series` chooses it: a SeriesInstanceUID, an index of
+    /// listSeries() (1-based) or a SeriesDescription; empty = the largest series (said with
+    /// log::info when there are several).
+    ///
+    /// Slices are ordered by ImagePositionPatient projected on the slice normal (row x column
+    /// direction of ImageOrientationPatient), never by file name or InstanceNumber; their
+    /// spacing comes from the positions. Geometry is LPS patient space in mm: origin = the
+    /// first slice's position, direction columns = row direction, column direction, normal,
+    /// spacing = PixelSpacing (column spacing along x) and the slice distance. Uneven slice
+    /// distances (a missing slice) are kept as a rectilinear z axis, with a warning. A stack
+    /// sheared by gantry tilt is resampled slice by slice onto the orthogonal grid (bilinear
+    /// in plane; points outside a slice are masked), with a warning. Multi-frame images take
+    /// per-frame positions, orientation, spacing and rescale from the Per-frame / Shared
+    /// Functional Groups. CT values are Hounsfield units (RescaleSlope/Intercept of each
+    /// image; units "HU"); other modalities keep their stored values. The field's name is
+    /// the modality.
+    /// @throws InputError for an unknown `series`; FileError naming the file for a broken
+    ///         or unsupported series (undecodable or truncated pixel data, mixed sizes or
+    ///         orientations, absurd headers: checked before any large allocation).
+    /// Thread-safe (no shared state).
+    static ScalarField read(const std::string& path, const std::string& series = {});
+
+    /// `octrace info` text: the series list, then the chosen series as read().
+    static std::string describe(const std::string& path, const std::string& series = {});
+};
+
+}  // namespace octrace::io

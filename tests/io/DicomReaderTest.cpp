@@ -1,0 +1,208 @@
+// DICOM series: the real files of ../shared/data/medical (skipped when absent) and the
+// synthetic fixtures of tests/data/dicom (make_fixtures.py there says what each holds).
+#include "IoTestSupport.h"
+
+#include "octrace/io/DicomReader.h"
+#include "octrace/io/FieldReader.h"
+#include "octrace/util/Error.h"
+
+#include <algorithm>
+#include <filesystem>
+
+using namespace octrace;
+
+namespace {
+
+bool anyWarningContains(const test::LogCapture& log, const std::string& text) {
+    return std::any_of(log.warnings.begin(), log.warnings.end(),
+                       [&](const std::string& w) { return w.find(text) != std::string::npos; });
+}
+
+void expectSameVoxels(const ScalarField& a, const ScalarField& b, const std::string& what) {
+    EXPECT_EQ(a.dims, b.dims) << what;
+    EXPECT_TRUE(a.values == b.values) << what << ": voxels differ";
+    EXPECT_EQ(a.origin, b.origin) << what;
+    EXPECT_EQ(a.direction, b.direction) << what;
+    EXPECT_EQ(a.spacing, b.spacing) << what;
+}
+
+void expectNear(dvec3 a, dvec3 b, double tol, const std::string& what) {
+    EXPECT_LT(glm::length(a - b), tol) << what << ": (" << a.x << ", " << a.y << ", " << a.z << ") vs (" << b.x << ", "
+                                       << b.y << ", " << b.z << ")";
+}
+
+}  // namespace
+
+// The four compressed variants hold the same pixels; the uncompressed "anatomical" one is
+// another series (its own SeriesInstanceUID) with other pixels (gdcmconv --raw of its first
+// file differs from all four) at the same positions: same geometry, different voxels.
+TEST(DicomReader, TheTransferSyntaxesOfTheSagittalMrGiveIdenticalVoxelsAndGeometry) {
+    OCTRACE_SHARED_FILE_OR_SKIP(rle, "medical/d2n_mr_sag_4slices_compressed_rle");
+    const ScalarField ref = io::DicomReader::read(rle);
+    EXPECT_EQ(ref.dims, ivec3(256, 256, 4));
+    EXPECT_EQ(ref.name, "MR");
+    EXPECT_EQ(ref.units, "");
+    // IOP 0\1\0\0\0\-1: rows run anterior->posterior (+y), columns downwards (-z); the slice
+    // normal row x column is -x, and the positions step +1 mm in x: ordered along -x, so the
+    // first slice is the one at x = -100.79 and the spacing is 1 mm.
+    expectNear(ref.direction[0], dvec3(0, 1, 0), 1e-12, "row direction");
+    expectNear(ref.direction[1], dvec3(0, 0, -1), 1e-12, "column direction");
+    expectNear(ref.direction[2], dvec3(-1, 0, 0), 1e-12, "slice normal");
+    expectNear(ref.origin, dvec3(-100.79415804148, -161.07467269897, 130.05125403404), 1e-9, "origin");
+    EXPECT_NEAR(ref.spacing.z, 1.0, 1e-9);
+    EXPECT_DOUBLE_EQ(ref.spacing.x, 1.0);
+    for (const char* variant : {"compressed_jpegls", "compressed_j2k", "compressed_jpeg"}) {
+        const std::string path = test::sharedData(std::string("medical/d2n_mr_sag_4slices_") + variant);
+        ASSERT_FALSE(path.empty()) << variant;
+        expectSameVoxels(io::DicomReader::read(path), ref, variant);
+    }
+    const std::string plain = test::sharedData("medical/d2n_mr_sag_4slices_anatomical");
+    ASSERT_FALSE(plain.empty());
+    const ScalarField anatomical = io::DicomReader::read(plain);
+    EXPECT_EQ(anatomical.dims, ref.dims);
+    EXPECT_EQ(anatomical.origin, ref.origin);
+    EXPECT_EQ(anatomical.direction, ref.direction);
+    EXPECT_EQ(anatomical.spacing, ref.spacing);
+}
+
+TEST(DicomReader, TheFiveMultiFrameMrEncodingsGiveIdenticalVoxels) {
+    OCTRACE_SHARED_FILE_OR_SKIP(plain, "medical/emri_small.dcm");
+    test::LogCapture log;
+    const ScalarField ref = io::DicomReader::read(plain);
+    EXPECT_EQ(ref.dims, ivec3(64, 64, 10));
+    // No positions in the file: frames stacked SpacingBetweenSlices (1.2 mm) apart, with a warning.
+    EXPECT_NEAR(ref.spacing.z, 1.2, 1e-12);
+    EXPECT_TRUE(anyWarningContains(log, "no ImagePositionPatient")) << log.warnings.size();
+    auto [lo, hi] = ref.validRange();
+    EXPECT_EQ(lo, 0.0f);
+    EXPECT_EQ(hi, 467.0f);
+    for (const char* f : {"emri_small_RLE.dcm", "emri_small_jpeg_ls_lossless.dcm", "emri_small_big_endian.dcm",
+                          "emri_small_jpeg_2k_lossless.dcm"}) {
+        const std::string path = test::sharedData(std::string("medical/") + f);
+        ASSERT_FALSE(path.empty()) << f;
+        expectSameVoxels(io::DicomReader::read(path), ref, f);
+    }
+}
+
+TEST(DicomReader, RefusesTheTruncatedJpeg2000StreamNamingTheFile) {
+    OCTRACE_SHARED_FILE_OR_SKIP(path, "medical/emri_small_jpeg_2k_lossless_too_short.dcm");
+    EXPECT_THROW_WITH(io::readField(path), FileError, path + ": cannot decode its JPEG 2000 pixel data");
+}
+
+TEST(DicomReader, ResamplesTheGantryTiltedCtOntoAnOrthogonalGridWithAWarning) {
+    OCTRACE_SHARED_FILE_OR_SKIP(path, "medical/d2n_ct_gantrytilt_4slices");
+    test::LogCapture log;
+    const ScalarField f = io::DicomReader::read(path);
+    EXPECT_TRUE(anyWarningContains(log, "gantry tilt of 14 degrees")) << (log.warnings.empty() ? "" : log.warnings[0]);
+    // IOP 1\0\0\0\0.970296\-0.241922; positions step 5 mm in z. Normal = row x column =
+    // (0, 0.241922, 0.970296); the step along it is 5 * 0.970296 = 4.85148 mm, and in the
+    // plane 5 * -0.241922 = -1.20961 mm along the column direction per slice: over 3 slices
+    // 3.62883 mm = 8.68 rows of 0.41796875 mm, so the grid grows from 512 to 521 rows.
+    expectNear(f.direction[2], dvec3(0.0, 0.2419218955997, 0.970295726276), 1e-9, "slice normal");
+    EXPECT_NEAR(f.spacing.z, 5.0 * 0.970295726276, 1e-6);
+    EXPECT_DOUBLE_EQ(f.spacing.x, 0.41796875);
+    EXPECT_EQ(f.dims, ivec3(512, 521, 4));
+    EXPECT_TRUE(f.coords[2].empty());
+    // The grid starts where the last slice's shift puts it: first position + 3 * -1.20961 mm
+    // along the column direction.
+    const dvec3 first(-106.791015625, -256.61886606561, -61.951915066986);
+    expectNear(f.origin, first + f.direction[1] * (3.0 * 5.0 * -0.2419218955997), 1e-6, "origin");
+    EXPECT_EQ(f.units, "HU");
+    // Stored 0..254 (BitsStored 12), RescaleIntercept -1024: Hounsfield units -1024..-770.
+    auto [lo, hi] = f.validRange();
+    EXPECT_EQ(lo, -1024.0f);
+    EXPECT_EQ(hi, -770.0f);
+    // Points outside a slice are masked: the slices are shifted against each other.
+    EXPECT_LT(f.validCount(), f.sampleCount());
+    EXPECT_GT(f.validCount(), 4u * 512u * 500u);
+}
+
+TEST(DicomReader, ReadsIdenticalVoxelsWhateverTheFileNamesAndTheirOrder) {
+    OCTRACE_SHARED_FILE_OR_SKIP(series, "medical/d2n_mr_sag_4slices_anatomical");
+    test::TempDir dir;
+    std::vector<std::filesystem::path> files;
+    for (const auto& e : std::filesystem::directory_iterator(series)) files.push_back(e.path());
+    std::sort(files.begin(), files.end());
+    ASSERT_EQ(files.size(), 4u);
+    // Names that sort in the reverse order of the positions (and a subfolder), no extension.
+    const char* names[] = {"z9", "m5", "sub/b2", "a0"};
+    std::filesystem::create_directories(dir.file("sub"));
+    for (std::size_t i = 0; i < files.size(); ++i) std::filesystem::copy_file(files[i], dir.file(names[i]));
+    expectSameVoxels(io::DicomReader::read(dir.file("")), io::DicomReader::read(series), "shuffled copy");
+}
+
+TEST(DicomReader, TakesPerFramePositionsAndRescaleFromTheFunctionalGroups) {
+    const std::string path = test::testData("dicom/enhanced_ct_3frames.dcm");
+    const ScalarField f = io::readField(path);
+    // Frames stored at z = 4, 2, 0 with intercepts -1000, -1010, -1020 and stored values
+    // 100 * frame + pixel index; ordered by position, the first slice is the third frame.
+    EXPECT_EQ(f.dims, ivec3(4, 4, 3));
+    EXPECT_EQ(f.origin, dvec3(-10.0, -20.0, 0.0));
+    EXPECT_EQ(f.spacing, dvec3(0.25, 0.5, 2.0));  // PixelSpacing 0.5\0.25 = (rows, columns)
+    EXPECT_EQ(f.values[f.index(0, 0, 0)], 200.0f - 1020.0f);
+    EXPECT_EQ(f.values[f.index(3, 1, 0)], 207.0f - 1020.0f);
+    EXPECT_EQ(f.values[f.index(0, 0, 1)], 100.0f - 1010.0f);
+    EXPECT_EQ(f.values[f.index(3, 3, 2)], 15.0f - 1000.0f);
+    EXPECT_EQ(f.units, "HU");
+}
+
+TEST(DicomReader, KeepsTheTruePositionsOfASeriesWithAMissingSliceAsARectilinearAxis) {
+    const std::string path = test::testData("dicom/missing_slice");
+    test::LogCapture log;
+    const ScalarField f = io::readField(path);
+    EXPECT_TRUE(anyWarningContains(log, "a missing slice?"));
+    ASSERT_TRUE(f.isRectilinear(2));
+    EXPECT_EQ(f.coords[2], (std::vector<double>{0.0, 2.0, 4.0, 8.0}));
+    for (int k = 0; k < 4; ++k) EXPECT_EQ(f.values[f.index(0, 0, k)], float(f.coords[2][std::size_t(k)] * 10.0)) << k;
+    EXPECT_EQ(f.units, "");  // MR: values as stored
+}
+
+TEST(DicomReader, ListsEverySeriesAndReadsTheLargestUnlessOneIsChosen) {
+    const std::string path = test::testData("dicom/two_series");
+    const auto list = io::DicomReader::listSeries(path);
+    ASSERT_EQ(list.size(), 2u);
+    EXPECT_EQ(list[0].modality, "MR");
+    EXPECT_EQ(list[0].description, "small mr");
+    EXPECT_EQ(list[0].slices, 2);
+    EXPECT_EQ(list[1].uid, "1.2.826.0.1.3680043.9.7777.32");
+    EXPECT_EQ(list[1].columns, 6);
+    EXPECT_EQ(list[1].slices, 3);
+    EXPECT_EQ(io::DicomReader::read(path).name, "CT");
+    for (const char* choice : {"1", "small mr", "1.2.826.0.1.3680043.9.7777.31"})
+        EXPECT_EQ(io::DicomReader::read(path, choice).dims, ivec3(4, 4, 2)) << choice;
+    EXPECT_THROW_WITH(io::DicomReader::read(path, "3"), InputError, path + ": no series '3'");
+    const std::string text = io::DicomReader::describe(path, "2");
+    EXPECT_NE(text.find("series 1: 1.2.826.0.1.3680043.9.7777.31 (MR, 'small mr', 4x4x2, 2 files)"), std::string::npos) << text;
+    EXPECT_NE(text.find("chosen: series 2"), std::string::npos) << text;
+}
+
+TEST(DicomReader, SeriesIsRefusedForOtherFormats) {
+    io::FieldRequest r;
+    r.series = "1";
+    EXPECT_THROW_WITH(io::readField(test::testData("netcdf/dateline_cf.nc"), r), InputError, "--series chooses a DICOM series");
+}
+
+TEST(DicomReader, RefusesBrokenSeriesWithOneLineNamingTheInput) {
+    struct Case {
+        const char* input;
+        const char* message;
+    };
+    const Case cases[] = {
+        {"invalid_no_dicom_images", "no DICOM image"},
+        {"invalid_not_an_image.dcm", "a DICOM file without an image (no Rows/Columns)"},
+        {"invalid_mixed_sizes", "mixed image sizes in one series"},
+        {"invalid_huge_frame_count.dcm", "header declares 100000 frame(s) of 64x64 x 16 bits, which need at least 819200000 bytes, but only 8192 bytes follow the header"},
+        {"invalid_zero_pixel_spacing.dcm", "PixelSpacing 0\\0.5 must be positive"},
+        {"invalid_nan_position.dcm", "ImagePositionPatient 'NaN\\0\\1' of frame 2 is not 3 finite numbers"},
+    };
+    for (const Case& c : cases) {
+        const std::string path = test::testData(std::string("invalid/") + c.input);
+        EXPECT_THROW_WITH(io::readField(path), FileError, path + ": ");
+        EXPECT_THROW_WITH(io::readField(path), FileError, c.message);
+    }
+}
+
+TEST(DicomReader, ASingleImageIsNotAVolume) {
+    OCTRACE_SHARED_FILE_OR_SKIP(path, "medical/CT_small.dcm");
+    EXPECT_THROW_WITH(io::readField(path), FileError, "holds a single 128x128 image");
+}
