@@ -3,6 +3,7 @@
 #include "Options.h"
 
 #include "octrace/util/Error.h"
+#include "octrace/util/Memory.h"
 
 #include <cstdio>
 
@@ -10,7 +11,11 @@ namespace octrace::cli {
 
 int runInfo(const std::vector<std::string>& args) {
     bool help = false;
+    std::uint64_t budget = 0;
     OptionParser p("info", "octrace info INPUT...");
+    p.add({"max-memory", "SIZE", "memory budget for reading each input: bytes, K, M, G, T (powers of 1024) or N% of the "
+           "physical memory (default " + std::to_string(kDefaultMemoryBudgetPercent) + "%)",
+           [&](const std::string& v) { budget = parseByteSize("max-memory", v); }});
     p.add({"help", "", "show this help and exit", [&](const std::string&) { help = true; }});
     auto inputs = p.parse(args);
     if (help) {
@@ -18,11 +23,12 @@ int runInfo(const std::vector<std::string>& args) {
         return 0;
     }
     if (inputs.empty()) throw UsageError("info needs at least one INPUT");
+    if (budget == 0) budget = defaultMemoryBudget();
     // Batch: a bad input is reported and the others still described.
     int status = 0;
     for (const auto& in : inputs) {
         try {
-            std::fputs(describe(in).c_str(), stdout);
+            std::fputs(describe(in, budget).c_str(), stdout);
         } catch (const UsageError&) {
             throw;
         } catch (const Error& e) {

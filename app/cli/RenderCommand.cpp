@@ -13,6 +13,7 @@
 #include "octrace/render/Shading.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
+#include "octrace/util/Memory.h"
 #include "octrace/util/Parallel.h"
 #include "octrace/util/Timer.h"
 
@@ -53,6 +54,7 @@ struct RenderArgs {
     float colourTolerance = 3.0f;
     int repeat = 1;
     std::string baseline;
+    std::uint64_t maxMemory = 0;  // 0: defaultMemoryBudget()
 };
 
 OptionParser makeParser(RenderArgs& a) {
@@ -129,6 +131,10 @@ OptionParser makeParser(RenderArgs& a) {
                makeRenderer(v);
                a.baseline = v;
            }});
+    p.add({"max-memory", "SIZE", "memory budget for reading the field, building the octree and rendering: bytes, K, M, G, T "
+           "(powers of 1024) or N% of the physical memory; a larger job is refused up front (default " +
+           std::to_string(kDefaultMemoryBudgetPercent) + "%)",
+           [&](const std::string& v) { a.maxMemory = parseByteSize("max-memory", v); }});
     p.add({"quiet", "", "print only errors", [&](const std::string&) { a.quiet = true; }});
     p.add({"verbose", "", "print debugging details", [&](const std::string&) { a.verbose = true; }});
     p.add({"help", "", "show this help and exit", [&](const std::string&) { a.help = true; }});
@@ -167,6 +173,15 @@ int runRender(const std::vector<std::string>& args) {
     if (a.verbose) log::setLevel(log::Level::Debug);
     const int threads = a.threads == 0 ? hardwareThreads() : a.threads;
 
+    const std::uint64_t budget = a.maxMemory ? a.maxMemory : defaultMemoryBudget();
+    a.request.memoryBudget = budget;
+    // The frames (the image, the baseline's, with --verify the two references) and the encoded
+    // file (at most 24 bytes a pixel): checked first alone, after the build with the rest.
+    const std::uint64_t frameBytes = Frame::bytesFor(a.width, a.height) * (1 + !a.baseline.empty() + 2 * a.verify) +
+                                     std::uint64_t(a.width) * std::uint64_t(a.height) * 24;
+    const std::string rendering = "rendering " + std::to_string(a.width) + "x" + std::to_string(a.height);
+    checkMemoryBudget(a.input + ": " + rendering, frameBytes, budget);
+
     // Load.
     Timer t;
     ScalarField field = loadField(a.input, a.request);
@@ -186,10 +201,13 @@ int runRender(const std::vector<std::string>& args) {
     bo.iso = iso;
     bo.threads = a.threads;
     bo.progress = progressPrinter(a.quiet);
+    bo.memoryBudget = budget;
     BuildReport report;
     Octree tree = buildShellOctree(field, bo, &report);
     if (bo.progress) std::fputs("\n", stderr);
     const std::size_t rssAfterBuild = peakRssBytes();
+    checkMemoryBudget(a.input + ": " + rendering + " beside the field and the octree",
+                      frameBytes + tree.bytes() + field.values.capacity() * sizeof(float) + field.valid.capacity(), budget);
 
     // Camera.
     // Frame the surface (not the whole grid) unless told otherwise.

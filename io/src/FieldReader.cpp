@@ -30,7 +30,7 @@ FileKind kindOf(const std::string& path) {
 ScalarField readNrrd(const std::string& path, const FieldRequest& req) {
     if (req.hasRegion)
         throw InputError(path + ": a region needs a geographic (NetCDF longitude/latitude) grid, NRRD volumes have none");
-    ScalarField f = NrrdReader::read(path);
+    ScalarField f = NrrdReader::read(path, req.memoryBudget);
     if (!req.variable.empty() && req.variable != f.name)
         throw InputError(path + ": no variable '" + req.variable + "' (the NRRD volume holds one field, '" + f.name + "')");
     if (req.verticalScale != 0.0) log::warning(path + ": vertical scale ignored for a NRRD volume");
@@ -45,8 +45,9 @@ ScalarField readField(const std::string& path, const FieldRequest& req) {
     return f;
 }
 
-std::string describeInput(const std::string& path) {
-    return kindOf(path) == FileKind::Nrrd ? NrrdReader::describe(path) : NetcdfReader::describe(path);
+std::string describeInput(const std::string& path, std::uint64_t memoryBudget) {
+    return kindOf(path) == FileKind::Nrrd ? NrrdReader::describe(path, memoryBudget)
+                                          : NetcdfReader::describe(path, memoryBudget);
 }
 
 }  // namespace octrace::io

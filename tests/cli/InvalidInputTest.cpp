@@ -31,6 +31,21 @@ const Case kCases[] = {
     {"invalid_huge_name_length.nc", nullptr, "NetCDF header is truncated"},
     {"invalid_oversized_gzip.nrrd", nullptr, "gzip data truncated"},
     {"invalid_fewer_files_than_slices.nhdr", nullptr, "one slice per file"},
+    {"invalid_huge_sizes.nrrd", nullptr, "octrace reads along one axis"},
+    {"invalid_too_many_samples.nrrd", nullptr, "exceed the supported 2^32 samples"},
+    {"invalid_size_overflow.nrrd", nullptr, "octrace reads along one axis"},
+    {"invalid_negative_spacing.nrrd", nullptr, "must be positive"},
+    {"invalid_infinite_spacing.nrrd", nullptr, "must be positive"},
+    {"invalid_nan_origin.nrrd", nullptr, "is not a finite number"},
+    {"invalid_zero_space_direction.nrrd", nullptr, "has zero length"},
+    {"invalid_infinite_extent.nrrd", nullptr, "go beyond the supported"},
+    {"invalid_tiny_extent.nrrd", nullptr, "too small to place the grid"},
+    {"invalid_billion_points.nc", nullptr, "NetCDF data truncated"},
+    {"invalid_size_overflow.nc", nullptr, "NetCDF data truncated"},
+    {"invalid_billion_points_nc4.nc", nullptr, "octrace reads along one axis"},
+    {"invalid_nan_coordinate.nc", nullptr, "non-finite value"},
+    {"invalid_repeated_coordinate.nc", nullptr, "not strictly monotonic"},
+    {"invalid_infinite_extent.nc", nullptr, "must be positive and finite"},
 };
 }  // namespace
 

@@ -142,7 +142,9 @@ TEST(CoherentRenderers, ColourCoherenceFillsOnlyBetweenTracedSurfacePixelsWithin
     RenderStats st = makeRenderer("area+colour")->render(t, cam, s, f);
     EXPECT_GT(st.colourFilled, 0u);
     for (std::size_t i = 0; i < f.flags.size(); ++i)
-        if (f.flags[i] & Frame::kColourFilled) EXPECT_NE(f.hitId[i], kNoHit);
+        if (f.flags[i] & Frame::kColourFilled) {
+            EXPECT_NE(f.hitId[i], kNoHit);
+        }
     // Approximate by design: judged by the image difference (the bar: PSNR >= 40 dB).
     const ImageDifference d = compareImages(f, full);
     EXPECT_GE(d.psnrDb, 40.0) << d.differingPixels << " pixels differ, max " << d.maxChannelError;

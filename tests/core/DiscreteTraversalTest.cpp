@@ -286,7 +286,9 @@ TEST(TrajectoryCoherence, GuidedTraversalEqualsFullTraversalForAnyBranchNode) {
             ++total;
             certified += cert;
             if (g.voxel != full.voxel && bad++ == 0) first = describe(o, d);
-            if (cert) EXPECT_TRUE(full.hit());
+            if (cert) {
+                EXPECT_TRUE(full.hit());
+            }
         }
         EXPECT_EQ(bad, 0) << "tree " << ti << ": " << first;
         EXPECT_GT(certified, 0) << "tree " << ti;

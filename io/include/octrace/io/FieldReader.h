@@ -4,6 +4,7 @@
 #include "octrace/build/ScalarField.h"
 #include "octrace/io/FieldRequest.h"
 
+#include <cstdint>
 #include <string>
 
 namespace octrace::io {
@@ -15,11 +16,14 @@ namespace octrace::io {
 /// region is refused (InputError); `req.verticalScale` is ignored there with a warning.
 /// @throws InputError "PATH: no such file" when missing; FormatNotSupported naming the
 ///         supported formats; FileError "PATH: file is empty (0 bytes)"; otherwise as the
-///         format's reader (NetcdfReader::read, NrrdReader::read). The result is validated.
+///         format's reader (NetcdfReader::read, NrrdReader::read), LimitError when the samples
+///         would need more than `req.memoryBudget`. The result is validated.
 ScalarField readField(const std::string& path, const FieldRequest& req = {});
 
 /// The text `octrace info INPUT` prints: format, variables with units, dims and valid value
-/// range, dims, spacing or axes, origin and world bounds. Throws as readField().
-std::string describeInput(const std::string& path);
+/// range, dims, spacing or axes, origin and world bounds. What would need more than
+/// `memoryBudget` bytes (0 = no limit) to read is left out of the text (NetCDF) or refused
+/// (NRRD, LimitError). Throws as readField().
+std::string describeInput(const std::string& path, std::uint64_t memoryBudget = 0);
 
 }  // namespace octrace::io

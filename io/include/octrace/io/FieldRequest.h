@@ -3,6 +3,7 @@
 /// What a caller asks a field reader for: which variable, which geographic region, which
 /// vertical exaggeration. Plain data, no GDAL or VTK types.
 #include <array>
+#include <cstdint>
 #include <string>
 
 namespace octrace::io {
@@ -18,6 +19,10 @@ struct FieldRequest {
     /// World z = -depth_km * verticalScale. 0 chooses the default (depth extent = a quarter of
     /// the larger horizontal extent); negative values are refused.
     double verticalScale = 0.0;
+    /// Memory budget in bytes (see octrace/util/Memory.h); 0 = no limit. A read whose samples
+    /// (with the reader's own buffers) would need more is refused with LimitError before
+    /// anything that size is allocated.
+    std::uint64_t memoryBudget = 0;
 };
 
 /// Parses "LON0,LON1,LAT0,LAT1" (degrees) and checks the values (see checkRegion).
