@@ -4,6 +4,7 @@
 #include "SurfaceOptions.h"
 
 #include "octrace/util/Error.h"
+#include "octrace/util/Memory.h"
 
 #include <cstdio>
 
@@ -14,6 +15,9 @@ int runInfo(const std::vector<std::string>& args) {
     io::FieldRequest request;
     OptionParser p("info", "octrace info INPUT... [--series UID|INDEX|DESCRIPTION]");
     addSeriesOption(p, request);
+    p.add({"max-memory", "SIZE", "memory budget for reading each input: bytes, K, M, G, T (powers of 1024) or N% of the "
+           "physical memory (default " + std::to_string(kDefaultMemoryBudgetPercent) + "%)",
+           [&](const std::string& v) { request.memoryBudget = parseByteSize("max-memory", v); }});
     p.add({"help", "", "show this help and exit", [&](const std::string&) { help = true; }});
     auto inputs = p.parse(args);
     if (help) {
@@ -21,6 +25,7 @@ int runInfo(const std::vector<std::string>& args) {
         return 0;
     }
     if (inputs.empty()) throw UsageError("info needs at least one INPUT");
+    if (request.memoryBudget == 0) request.memoryBudget = defaultMemoryBudget();
     // Batch: a bad input is reported and the others still described.
     int status = 0;
     for (const auto& in : inputs) {

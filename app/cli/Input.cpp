@@ -4,6 +4,7 @@
 #include "octrace/build/AnalyticField.h"
 #include "octrace/io/FieldReader.h"
 #include "octrace/util/Error.h"
+#include "octrace/util/Memory.h"
 
 #include <sstream>
 
@@ -11,7 +12,7 @@ namespace octrace::cli {
 namespace {
 bool isAnalytic(const std::string& input) { return input.rfind("analytic:", 0) == 0; }
 
-ScalarField analytic(const std::string& input) {
+ScalarField analytic(const std::string& input, std::uint64_t memoryBudget) {
     std::string spec = input.substr(9);
     int n = 65;
     auto colon = spec.find(':');
@@ -19,6 +20,8 @@ ScalarField analytic(const std::string& input) {
         n = parseInt("input", spec.substr(colon + 1), 2, 1024);
         spec = spec.substr(0, colon);
     }
+    const std::uint64_t samples = std::uint64_t(n) * std::uint64_t(n) * std::uint64_t(n);
+    checkMemoryBudget(input + ": generating " + std::to_string(n) + "^3 samples", samples * sizeof(float), memoryBudget);
     return makeAnalyticField(spec, n);
 }
 }  // namespace
@@ -27,7 +30,7 @@ ScalarField loadField(const std::string& input, const io::FieldRequest& req) {
     if (!isAnalytic(input)) return io::readField(input, req);
     if (req.hasRegion) throw UsageError("--region applies to geographic NetCDF inputs, not to " + input);
     if (!req.series.empty()) throw UsageError("--series applies to DICOM inputs, not to " + input);
-    ScalarField f = analytic(input);
+    ScalarField f = analytic(input, req.memoryBudget);
     if (!req.variable.empty() && req.variable != f.name)
         throw InputError(input + ": no variable '" + req.variable + "' (it has: " + f.name + ")");
     return f;
@@ -35,7 +38,7 @@ ScalarField loadField(const std::string& input, const io::FieldRequest& req) {
 
 std::string describe(const std::string& input, const io::FieldRequest& req) {
     if (!isAnalytic(input)) return io::describeInput(input, req);
-    ScalarField f = analytic(input);
+    ScalarField f = analytic(input, req.memoryBudget);
     auto [lo, hi] = f.validRange();
     Box3 b = f.worldBounds();
     std::ostringstream s;

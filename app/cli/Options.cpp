@@ -1,7 +1,9 @@
 #include "Options.h"
 
 #include "octrace/util/Error.h"
+#include "octrace/util/Memory.h"
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -131,6 +133,39 @@ void parseSize(const std::string& option, const std::string& text, int& w, int& 
     if (x == std::string::npos) throw UsageError("--" + option + ": expected WxH (e.g. 1600x1200), got '" + text + "'");
     w = parseInt(option, text.substr(0, x), 1, 16384);
     h = parseInt(option, text.substr(x + 1), 1, 16384);
+}
+
+std::uint64_t parseByteSize(const std::string& option, const std::string& text) {
+    const char* b = text.c_str();
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(b, &end);
+    std::string suffix(end);
+    for (char& c : suffix) c = char(std::tolower(static_cast<unsigned char>(c)));
+    const auto bad = [&](const std::string& why) {
+        throw UsageError("--" + option + ": '" + text + "' " + why +
+                         " (expected bytes with an optional K, M, G, T or KiB, MiB, GiB, TiB, e.g. 8G, or N% of the memory)");
+    };
+    if (text.empty() || end == b || errno == ERANGE || !std::isfinite(v) || std::isspace(static_cast<unsigned char>(*b)))
+        bad("is not a memory size");
+    if (!(v > 0.0)) bad("must be positive");
+    double bytes = v;
+    if (suffix == "%") {
+        if (v > 100.0) bad("is more than 100%");
+        const std::uint64_t physical = physicalMemoryBytes();
+        if (physical == 0) bad("is a share of the physical memory, which cannot be read here");
+        bytes = v / 100.0 * double(physical);
+    } else {
+        const char* units[] = {"", "k", "m", "g", "t"};
+        int power = -1;
+        for (int i = 0; i < 5; ++i)
+            if (suffix == units[i] || (i > 0 && suffix == std::string(units[i]) + "ib")) power = i;
+        if (power < 0) bad("has an unknown unit '" + std::string(end) + "'");
+        bytes = std::ldexp(v, 10 * power);
+    }
+    if (bytes < 1.0) bad("is less than one byte");
+    if (bytes >= 1.8e19) bad("is too large");
+    return std::uint64_t(bytes);
 }
 
 }  // namespace octrace::cli

@@ -3,6 +3,7 @@
 // flags without a value, positional arguments. Every option states its default in --help.
 #include "octrace/util/Math.h"
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -38,5 +39,8 @@ dvec3 parseVec3(const std::string& option, const std::string& text);
 /// "R,G,B" or "R,G,B,A", each in [0,1] (sRGB display values, as a user picks a colour).
 vec4 parseColour(const std::string& option, const std::string& text, bool allowAlpha);
 void parseSize(const std::string& option, const std::string& text, int& w, int& h);
+/// A memory size: a positive number of bytes with an optional suffix K, M, G, T or KiB, MiB,
+/// GiB, TiB (all powers of 1024, any case; "1.5G" is allowed), or N% of the physical memory.
+std::uint64_t parseByteSize(const std::string& option, const std::string& text);
 
 }  // namespace octrace::cli

@@ -11,6 +11,7 @@
 #include "octrace/render/Renderer.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
+#include "octrace/util/Memory.h"
 #include "octrace/util/Parallel.h"
 #include "octrace/util/Timer.h"
 
@@ -142,6 +143,14 @@ int runRender(const std::vector<std::string>& args) {
     }
     const int threads = a.threads == 0 ? hardwareThreads() : a.threads;
 
+    // The frames (the image, the baseline's, with --verify the two references) and the encoded
+    // file (at most 24 bytes a pixel): checked first alone, after the build with the rest.
+    const std::uint64_t budget = memoryBudget(a);
+    const std::uint64_t frameBytes = Frame::bytesFor(a.width, a.height) * (1 + !a.baseline.empty() + 2 * a.verify) +
+                                     std::uint64_t(a.width) * std::uint64_t(a.height) * 24;
+    const std::string rendering = "rendering " + std::to_string(a.width) + "x" + std::to_string(a.height);
+    checkMemoryBudget(a.input + ": " + rendering, frameBytes, budget);
+
     // Load and build.
     Surface surface = buildSurface(a);
     const ScalarField& field = surface.field;
@@ -150,6 +159,8 @@ int runRender(const std::vector<std::string>& args) {
     Octree& tree = surface.tree;
     if (multires) tree.computeSummaries();
     const std::size_t rssAfterBuild = peakRssBytes();
+    checkMemoryBudget(a.input + ": " + rendering + " beside the field and the octree",
+                      frameBytes + tree.bytes() + field.values.capacity() * sizeof(float) + field.valid.capacity(), budget);
 
     // Camera.
     // Frame the surface (not the whole grid) unless told otherwise.

@@ -5,6 +5,7 @@
 #include "octrace/render/Shading.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
+#include "octrace/util/Memory.h"
 #include "octrace/util/Timer.h"
 
 #include <unistd.h>
@@ -83,6 +84,10 @@ void addSeriesOption(OptionParser& p, io::FieldRequest& request) {
 }
 
 void addMessageOptions(OptionParser& p, SurfaceArgs& a) {
+    p.add({"max-memory", "SIZE", "memory budget for reading the field, building the octree and the output: bytes, K, M, G, T "
+           "(powers of 1024) or N% of the physical memory; a larger job is refused up front (default " +
+           std::to_string(kDefaultMemoryBudgetPercent) + "%)",
+           [&](const std::string& v) { a.maxMemory = parseByteSize("max-memory", v); }});
     p.add({"quiet", "", "print only errors", [&](const std::string&) { a.quiet = true; }});
     p.add({"verbose", "", "print debugging details", [&](const std::string&) { a.verbose = true; }});
     p.add({"help", "", "show this help and exit", [&](const std::string&) { a.help = true; }});
@@ -102,12 +107,17 @@ bool parseCommandLine(const OptionParser& p, const std::vector<std::string>& arg
     return true;
 }
 
+std::uint64_t memoryBudget(const SurfaceArgs& a) { return a.maxMemory ? a.maxMemory : defaultMemoryBudget(); }
+
 Surface buildSurface(const SurfaceArgs& a) {
     if (a.quiet) log::setLevel(log::Level::Error);
     if (a.verbose) log::setLevel(log::Level::Debug);
+    const std::uint64_t budget = memoryBudget(a);
+    io::FieldRequest request = a.request;
+    request.memoryBudget = budget;
     Surface s;
     Timer t;
-    s.field = loadField(a.input, a.request);
+    s.field = loadField(a.input, request);
     s.loadMs = t.ms();
     auto [vmin, vmax] = s.field.validRange();
     s.iso = a.iso ? *a.iso : 0.5 * (double(vmin) + double(vmax));
@@ -124,6 +134,7 @@ Surface buildSurface(const SurfaceArgs& a) {
     bo.iso = s.iso;
     bo.threads = a.threads;
     bo.progress = progressPrinter(a.quiet);
+    bo.memoryBudget = budget;
     s.tree = buildShellOctree(s.field, bo, &s.report);
     if (bo.progress) std::fputs("\n", stderr);
     return s;

@@ -10,6 +10,7 @@
 #include "octrace/octree/Octree.h"
 #include "octrace/render/RenderSettings.h"
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,6 +25,7 @@ struct SurfaceArgs {
     vec3 colour{0.85f, 0.62f, 0.35f};  // sRGB display values, as the user gives them
     std::string colormap;
     bool help = false, quiet = false, verbose = false;
+    std::uint64_t maxMemory = 0;  // --max-memory; 0: defaultMemoryBudget()
 };
 
 /// "a, b, c".
@@ -42,8 +44,10 @@ void addColourOptions(OptionParser& p, SurfaceArgs& a);
 void addGeographicOptions(OptionParser& p, SurfaceArgs& a);
 /// --series (DICOM).
 void addSeriesOption(OptionParser& p, io::FieldRequest& request);
-/// --quiet, --verbose, --help.
+/// --max-memory, --quiet, --verbose, --help.
 void addMessageOptions(OptionParser& p, SurfaceArgs& a);
+/// The memory budget in bytes: --max-memory, or the default share of physical memory.
+std::uint64_t memoryBudget(const SurfaceArgs& a);
 
 /// The start of every surface command: parses `args` with `p` (which writes into `a`). With
 /// --help, prints the help on stdout and returns false. Otherwise checks that there is exactly
@@ -63,7 +67,8 @@ struct Surface {
 
 /// Applies --quiet / --verbose to the log, reads a.input, chooses the iso value when none was
 /// given (the middle of the valid range, said on stderr) and builds the shell octree (progress
-/// on stderr when it is a terminal). Throws as loadField() and buildShellOctree().
+/// on stderr when it is a terminal), within memoryBudget(a): a read or build that would need
+/// more is refused (LimitError). Throws as loadField() and buildShellOctree().
 Surface buildSurface(const SurfaceArgs& a);
 
 /// The colour options as RenderSettings::colour (linear RGB) and RenderSettings::colormap.

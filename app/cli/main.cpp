@@ -2,6 +2,7 @@
 // codes (0 success, 2 command-line misuse, 1 anything found while reading or writing).
 #include "Commands.h"
 
+#include "octrace/io/AtomicFile.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
 
@@ -29,6 +30,8 @@ const char* kTopHelp =
 }  // namespace
 
 int main(int argc, char** argv) {
+    // Ctrl-C or a kill while an output is being written must not leave its temporary behind.
+    octrace::io::removeTemporariesOnSignals();
     std::vector<std::string> args(argv + 1, argv + argc);
     if (args.empty()) {
         std::fputs(kTopHelp, stderr);

@@ -38,6 +38,15 @@ MinMaxPyramid::MinMaxPyramid(const float* samples, ivec3 dims) : samples_(sample
     }
 }
 
+std::uint64_t MinMaxPyramid::bytesFor(ivec3 dims) {
+    std::uint64_t bytes = 0;
+    while (dims.x > 1 || dims.y > 1 || dims.z > 1) {  // the levels of the constructor
+        dims = (dims + 1) / 2;
+        bytes += 2 * sizeof(float) * std::uint64_t(dims.x) * std::uint64_t(dims.y) * std::uint64_t(dims.z);
+    }
+    return bytes;
+}
+
 void MinMaxPyramid::query(ivec3 lo, ivec3 hi, float& mn, float& mx) const {
     mn = std::numeric_limits<float>::infinity();
     mx = -mn;

@@ -2,6 +2,7 @@
 // Private to core: min/max of valid samples over index boxes, for pruning the octree build.
 #include "octrace/build/ScalarField.h"
 
+#include <cstdint>
 #include <vector>
 
 namespace octrace::detail {
@@ -15,6 +16,8 @@ public:
     /// Min and max over the valid samples of the inclusive index box [lo, hi] (conservative:
     /// may cover a few more samples). Returns min > max when no sample is valid.
     void query(ivec3 lo, ivec3 hi, float& mn, float& mx) const;
+    /// Bytes the pyramid of a field of these dims allocates (for memory estimates).
+    static std::uint64_t bytesFor(ivec3 dims);
 
 private:
     struct Level {

@@ -3,15 +3,18 @@
 #include "MinMaxPyramid.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
+#include "octrace/util/Memory.h"
 #include "octrace/util/Parallel.h"
 #include "octrace/util/Timer.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <charconv>
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <sstream>
 
 namespace octrace {
@@ -39,11 +42,9 @@ struct AxisSample {
 /// Everything the build needs to evaluate the trilinear field at world points.
 class FieldSampler {
 public:
-    FieldSampler(const ScalarField& f, const dvec3& cubeOrigin, double h, int depth)
-        : f_(f), cubeOrigin_(cubeOrigin), h_(h) {
-        samples_.resize(f.values.size());
-        for (std::size_t i = 0; i < f.values.size(); ++i)
-            samples_[i] = (f.isValid(i) && std::isfinite(f.values[i])) ? f.values[i] : kNaN;
+    /// `samples`: the field's values with NaN at masked samples (SampleGrid; not owned).
+    FieldSampler(const ScalarField& f, const std::vector<float>& samples, const dvec3& cubeOrigin, double h, int depth)
+        : f_(f), cubeOrigin_(cubeOrigin), h_(h), samples_(samples) {
         dmat3 d = f.direction;
         separable_ = true;
         for (int c = 0; c < 3; ++c)
@@ -59,8 +60,8 @@ public:
         }
     }
 
-    const std::vector<float>& samples() const { return samples_; }
-    bool separable() const { return separable_; }
+    /// Bytes of the per-depth axis tables (for memory estimates).
+    static std::uint64_t tableBytes(int depth) { return 3 * ((std::uint64_t(1) << depth) + 1) * sizeof(AxisSample); }
 
     /// Continuous position along axis a (local frame) -> samples and weight.
     AxisSample locate(int a, double u) const {
@@ -186,24 +187,116 @@ private:
     const ScalarField& f_;
     dvec3 cubeOrigin_;
     double h_;
-    std::vector<float> samples_;
+    const std::vector<float>& samples_;
     bool separable_ = false;
     dmat3 inverse_{1.0};
     std::vector<AxisSample> table_[3];
 };
+
+/// What every depth's build reads: the field's values with NaN at masked samples, and their
+/// min/max pyramid (which points into the samples: neither copied nor moved).
+struct SampleGrid {
+    explicit SampleGrid(const ScalarField& f) : samples(maskedSamples(f)), pyramid(samples.data(), f.dims) {}
+    SampleGrid(const SampleGrid&) = delete;
+    SampleGrid& operator=(const SampleGrid&) = delete;
+
+    static std::uint64_t bytesFor(ivec3 dims) {
+        return saturatingMultiply(sizeof(float), std::uint64_t(dims.x) * std::uint64_t(dims.y) * std::uint64_t(dims.z)) +
+               detail::MinMaxPyramid::bytesFor(dims);
+    }
+    static std::vector<float> maskedSamples(const ScalarField& f) {
+        std::vector<float> s(f.values.size());
+        for (std::size_t i = 0; i < f.values.size(); ++i) s[i] = (f.isValid(i) && std::isfinite(f.values[i])) ? f.values[i] : kNaN;
+        return s;
+    }
+
+    std::vector<float> samples;
+    detail::MinMaxPyramid pyramid;
+};
+
+/// Counts the bytes the build allocates against the budget, before allocating them; shared by
+/// the worker threads. The first allocation that would go over stops every worker: each
+/// throws the same LimitError at its next allocation, so whichever one parallelFor passes on
+/// says the same thing.
+class MemoryGuard {
+public:
+    MemoryGuard(const ScalarField& f, int depth, std::uint64_t budget, std::uint64_t base, std::uint64_t estimate)
+        : field_(f), depth_(depth), budget_(budget), estimate_(estimate), used_(base) {}
+
+    void allocate(std::uint64_t bytes) {
+        if (stopped_.load(std::memory_order_relaxed)) fail();
+        if (used_.fetch_add(bytes) + bytes > budget_) {
+            used_.fetch_sub(bytes);
+            stopped_.store(true);
+            fail();
+        }
+    }
+    void release(std::uint64_t bytes) { used_.fetch_sub(bytes); }
+
+private:
+    [[noreturn]] void fail() const {
+        throw LimitError(field_.source + ": building the octree of '" + field_.name + "' at depth " + std::to_string(depth_) +
+                         " stopped before going over the memory budget of " + formatBytes(budget_) +
+                         " (--max-memory; it was estimated at " + formatBytes(estimate_) +
+                         "); try a smaller --depth or a larger --max-memory");
+    }
+
+    const ScalarField& field_;
+    int depth_;
+    std::uint64_t budget_, estimate_;
+    std::atomic<std::uint64_t> used_;
+    std::atomic<bool> stopped_{false};
+};
+
+/// push_back that asks the guard (if any) before the vector grows, doubling as std::vector
+/// does; while it grows, the old and the new buffer both exist.
+template <class T>
+void push(std::vector<T>& v, const T& x, MemoryGuard* guard) {
+    if (guard && v.size() == v.capacity()) {
+        const std::size_t oldCapacity = v.capacity(), newCapacity = std::max<std::size_t>(16, 2 * oldCapacity);
+        guard->allocate(newCapacity * sizeof(T));
+        v.reserve(newCapacity);
+        guard->release(oldCapacity * sizeof(T));
+    }
+    v.push_back(x);
+}
+
+template <class T>
+void shrink(std::vector<T>& v, MemoryGuard* guard) {
+    if (v.capacity() == v.size()) return;
+    const std::size_t oldCapacity = v.capacity();
+    if (guard) guard->allocate(v.size() * sizeof(T));
+    v.shrink_to_fit();
+    if (guard) guard->release(oldCapacity * sizeof(T));
+}
+
+template <class T>
+void reserveExactly(std::vector<T>& v, std::size_t n, MemoryGuard* guard) {
+    if (guard) guard->allocate(n * sizeof(T));
+    v.reserve(n);
+}
 
 /// Nodes and voxels of one subtree, with local indices (levels kept to relocate them).
 struct Pool {
     std::vector<OctreeNode> nodes;
     std::vector<std::uint8_t> levels;
     std::vector<Voxel> voxels;
+
+    std::uint64_t bytes() const {
+        return nodes.capacity() * sizeof(OctreeNode) + levels.capacity() + voxels.capacity() * sizeof(Voxel);
+    }
+    void shrink(MemoryGuard* guard) {
+        ::octrace::shrink(nodes, guard);
+        ::octrace::shrink(levels, guard);
+        ::octrace::shrink(voxels, guard);
+    }
 };
 
 class Builder {
 public:
-    Builder(const ScalarField& f, const Octree& tree, float iso)
-        : tree_(tree), iso_(iso), sampler_(f, tree.cubeOrigin, tree.voxelSize(), tree.depth),
-          pyramid_(sampler_.samples().data(), f.dims) {}
+    Builder(const ScalarField& f, const SampleGrid& grid, const Octree& tree, float iso, MemoryGuard* guard)
+        : tree_(tree), iso_(iso), sampler_(f, grid.samples, tree.cubeOrigin, tree.voxelSize(), tree.depth),
+          pyramid_(grid.pyramid), guard_(guard) {}
 
     /// Builds the node at `level` whose minimum cell is c0; false when it holds no boundary voxel.
     bool build(int level, const ivec3& c0, OctreeNode& out, Pool& pool) const {
@@ -228,8 +321,8 @@ public:
         out.childMask = std::uint8_t(mask);
         for (int c = 0; c < 8; ++c)
             if (mask & (1u << c)) {
-                pool.nodes.push_back(kids[c]);
-                pool.levels.push_back(std::uint8_t(level + 1));
+                push(pool.nodes, kids[c], guard_);
+                push(pool.levels, std::uint8_t(level + 1), guard_);
             }
         return true;
     }
@@ -263,7 +356,7 @@ private:
         out.firstChild = std::uint32_t(pool.voxels.size());
         out.childMask = std::uint8_t(mask);
         for (int c = 0; c < 8; ++c)
-            if (mask & (1u << c)) pool.voxels.push_back(vox[c]);
+            if (mask & (1u << c)) push(pool.voxels, vox[c], guard_);
         return true;
     }
 
@@ -291,7 +384,8 @@ private:
     const Octree& tree_;
     float iso_;
     FieldSampler sampler_;
-    detail::MinMaxPyramid pyramid_;
+    const detail::MinMaxPyramid& pyramid_;
+    MemoryGuard* guard_;
 };
 
 void appendPool(Pool& dst, const Pool& src, OctreeNode& subRoot, int subRootLevel, int depth) {
@@ -309,40 +403,49 @@ void appendPool(Pool& dst, const Pool& src, OctreeNode& subRoot, int subRootLeve
     subRoot = relocate(subRoot, subRootLevel);
 }
 
-}  // namespace
-
-Octree buildShellOctree(const ScalarField& field, const BuildOptions& options, BuildReport* report) {
-    Timer timer;
-    if (options.depth < 1 || options.depth > Octree::kMaxDepth) {
+/// The iso value in the precision cells are classified in; throws for a bad depth or iso.
+float checkedIso(const ScalarField& field, int depth, double iso) {
+    if (depth < 1 || depth > Octree::kMaxDepth) {
         std::ostringstream s;
-        s << "octree depth must be in 1.." << Octree::kMaxDepth << ", got " << options.depth;
+        s << "octree depth must be in 1.." << Octree::kMaxDepth << ", got " << depth;
         throw UsageError(s.str());
     }
-    if (!std::isfinite(options.iso)) throw UsageError("iso value must be a finite number");
+    if (!std::isfinite(iso)) throw UsageError("iso value must be a finite number");
     auto [vmin, vmax] = field.validRange();
     // Cells are classified in float, against float(iso): check the range in the same precision,
     // so that e.g. --iso 0.7 on a field whose largest sample is 0.7f is accepted.
-    const bool isoFitsFloat = std::abs(options.iso) <= double(std::numeric_limits<float>::max());
-    const float isoF = isoFitsFloat ? float(options.iso) : 0.0f;
+    const bool isoFitsFloat = std::abs(iso) <= double(std::numeric_limits<float>::max());
+    const float isoF = isoFitsFloat ? float(iso) : 0.0f;
     if (!isoFitsFloat || isoF < vmin || isoF > vmax) {
         std::ostringstream s;
-        s << field.source << ": iso value " << shortest(options.iso) << " is outside the value range [" << shortest(vmin)
-          << ", " << shortest(vmax) << "] of '" << field.name << "'";
+        s << field.source << ": iso value " << shortest(iso) << " is outside the value range [" << shortest(vmin) << ", "
+          << shortest(vmax) << "] of '" << field.name << "'";
         throw EmptyResultError(s.str());
     }
+    return isoF;
+}
 
+/// An empty octree of `depth` whose cube is centred on the field's world bounding box, with
+/// the box's largest extent as its side.
+Octree emptyTree(const ScalarField& field, int depth, double iso) {
     Octree tree;
-    tree.depth = options.depth;
-    tree.iso = options.iso;
+    tree.depth = depth;
+    tree.iso = iso;
     tree.fieldName = field.name;
     tree.fieldUnits = field.units;
     Box3 b = field.worldBounds();
     dvec3 ext = b.size();
     tree.cubeSide = std::max(ext.x, std::max(ext.y, ext.z));
     if (!(tree.cubeSide > 0.0)) throw FileError(field.source + ": the grid has zero extent");
+    if (!std::isfinite(tree.cubeSide)) throw FileError(field.source + ": the grid's world extent is not finite");
     tree.cubeOrigin = b.centre() - dvec3(0.5 * tree.cubeSide);
+    return tree;
+}
 
-    const Builder builder(field, tree, isoF);
+/// The build proper, at tree.depth, over `grid`; `guard` may be null (no budget).
+void buildInto(Octree& tree, const ScalarField& field, const SampleGrid& grid, float isoF, int threads,
+               const std::function<void(double)>& progress, MemoryGuard* guard) {
+    const Builder builder(field, grid, tree, isoF, guard);
     const int depth = tree.depth;
     // Split the top levels into independent subtrees, build them in parallel, and join them in
     // a fixed order so that the result does not depend on the number of threads.
@@ -357,17 +460,39 @@ Octree buildShellOctree(const ScalarField& field, const BuildOptions& options, B
     std::mutex progressMutex;
     std::size_t done = 0;
     const int subSize = 1 << (depth - split);
-    parallelFor(count, options.threads, [&](std::size_t i) {
+    parallelFor(count, threads, [&](std::size_t i) {
         int x = int(i) / (side * side), y = (int(i) / side) % side, z = int(i) % side;
         present[i] = builder.build(split, ivec3(x, y, z) * subSize, roots[i], pools[i]) ? 1 : 0;
-        if (options.progress) {
+        pools[i].shrink(guard);  // up to half of each buffer is spare capacity: join without it
+        if (progress) {
             std::lock_guard<std::mutex> lock(progressMutex);
             ++done;
-            options.progress(double(done) / double(count));
+            progress(double(done) / double(count));
         }
     });
 
+    // The joined octree gets buffers of its exact size: the subtrees' nodes and voxels, plus
+    // one node per distinct ancestor of a non-empty subtree at levels 1..split, plus the root.
+    std::size_t nodeCount = 1, voxelCount = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+        nodeCount += pools[i].nodes.size() + (split > 0 ? present[i] : 0);  // depth 1: the subtree is the root
+        voxelCount += pools[i].voxels.size();
+    }
+    for (int level = 1; level < split; ++level) {
+        std::vector<std::uint8_t> seen(std::size_t(1) << (3 * level), 0);
+        for (std::size_t i = 0; i < count; ++i) {
+            if (!present[i]) continue;
+            const int shift = split - level, n = 1 << level;
+            const int x = (int(i) / (side * side)) >> shift, y = ((int(i) / side) % side) >> shift, z = (int(i) % side) >> shift;
+            std::uint8_t& s = seen[std::size_t(x) * n * n + std::size_t(y) * n + std::size_t(z)];
+            nodeCount += s ? 0 : 1;
+            s = 1;
+        }
+    }
     Pool all;
+    reserveExactly(all.nodes, nodeCount, guard);
+    reserveExactly(all.levels, nodeCount, guard);
+    reserveExactly(all.voxels, voxelCount, guard);
     all.nodes.push_back(OctreeNode{});  // root slot
     all.levels.push_back(0);
     // Assemble levels 0..split-1 from the subtree roots, recursively, children contiguous.
@@ -377,6 +502,7 @@ Octree buildShellOctree(const ScalarField& field, const BuildOptions& options, B
             if (!present[i]) return false;
             out = roots[i];
             appendPool(all, pools[i], out, split, depth);
+            if (guard) guard->release(pools[i].bytes());
             pools[i] = Pool{};
             return true;
         }
@@ -398,15 +524,149 @@ Octree buildShellOctree(const ScalarField& field, const BuildOptions& options, B
     OctreeNode root;
     if (!assemble(0, ivec3(0), root) || all.voxels.empty()) {
         std::ostringstream s;
-        s << field.source << ": no cell of '" << field.name << "' straddles iso value " << shortest(options.iso) << " at depth "
+        s << field.source << ": no cell of '" << field.name << "' straddles iso value " << shortest(tree.iso) << " at depth "
           << depth;
         throw EmptyResultError(s.str());
     }
     all.nodes[0] = root;
     tree.nodes = std::move(all.nodes);
     tree.voxels = std::move(all.voxels);
-    tree.nodes.shrink_to_fit();
+    tree.nodes.shrink_to_fit();  // no-ops: reserved exactly
     tree.voxels.shrink_to_fit();
+}
+
+// Memory estimates (see estimateBuildMemory in the header).
+constexpr int kProbeDepth = 6;
+constexpr double kEstimateMargin = 1.25;
+
+std::uint64_t fieldBytes(const ScalarField& f) {
+    std::uint64_t n = f.values.capacity() * sizeof(float) + f.valid.capacity();
+    for (const auto& c : f.coords) n += c.capacity() * sizeof(double);
+    return n;
+}
+
+std::uint64_t samplerBytes(const ScalarField& f, int depth) {
+    return SampleGrid::bytesFor(f.dims) + FieldSampler::tableBytes(depth);
+}
+
+/// Depth at which a voxel is as small as the grid's finest mean sample spacing: deeper, the
+/// trilinear field has no more detail and a surface's voxels quadruple per level.
+int gridDepth(const ScalarField& f, double cubeSide) {
+    double finest = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a)
+        finest = std::min(finest, std::abs(f.axisPosition(a, f.dims[a] - 1) - f.axisPosition(a, 0)) / double(f.dims[a] - 1));
+    if (!(finest > 0.0)) return Octree::kMaxDepth;
+    return std::clamp(int(std::ceil(std::log2(cubeSide / finest))), 0, Octree::kMaxDepth);
+}
+
+std::uint64_t toBytes(double bytes) { return bytes >= 1.8e19 ? std::numeric_limits<std::uint64_t>::max() : std::uint64_t(bytes); }
+
+std::vector<BuildMemoryEstimate> estimateWithGrid(const ScalarField& field, const SampleGrid& grid, double iso, float isoF,
+                                                  int maxDepth, int threads) {
+    // Exact counts up to the probe depth, from octrees that small (a few ms).
+    const int probe = std::min(maxDepth, kProbeDepth);
+    std::vector<double> voxels(std::size_t(probe) + 1, 0.0), nodes(std::size_t(probe) + 1, 0.0);
+    double cubeSide = 0.0;
+    for (int d = 1; d <= probe; ++d) {
+        Octree t = emptyTree(field, d, iso);
+        cubeSide = t.cubeSide;
+        try {
+            buildInto(t, field, grid, isoF, threads, {}, nullptr);
+        } catch (const EmptyResultError&) {
+            continue;  // nothing at this depth: the surface is finer than its voxels
+        }
+        voxels[std::size_t(d)] = double(t.voxels.size());
+        nodes[std::size_t(d)] = double(t.nodes.size());
+    }
+    const double vp = std::max(1.0, voxels[std::size_t(probe)]);
+    const double before = probe > 1 ? voxels[std::size_t(probe) - 1] : 0.0;
+    const double rate = before > 0.0 ? std::clamp(vp / before, 4.0, 8.0) : 8.0;
+    const double nodesPerVoxel = voxels[std::size_t(probe)] > 0.0 ? std::max(nodes[std::size_t(probe)] / vp, 1.0 / 3.0) : 1.0;
+    const int resolved = gridDepth(field, cubeSide);
+
+    std::vector<BuildMemoryEstimate> out(static_cast<std::size_t>(maxDepth));
+    for (int d = 1; d <= maxDepth; ++d) {
+        BuildMemoryEstimate& e = out[std::size_t(d) - 1];
+        e.depth = d;
+        e.fieldBytes = fieldBytes(field);
+        e.samplerBytes = samplerBytes(field, d);
+        double v = 0.0, n = 0.0;
+        if (d <= probe) {
+            v = voxels[std::size_t(d)];
+            n = nodes[std::size_t(d)];
+        } else {
+            const int rough = std::clamp(resolved - probe, 0, d - probe);  // levels still resolving the grid's detail
+            v = vp * std::pow(rate, rough) * std::pow(4.0, d - probe - rough) * kEstimateMargin;
+            n = v * nodesPerVoxel;
+        }
+        e.boundaryVoxels = v;
+        // Subtree buffers (shrunk) and the joined octree exist together while joining.
+        e.octreeBytes = toBytes(2.0 * (v * double(sizeof(Voxel)) + n * double(sizeof(OctreeNode) + 1)));
+    }
+    return out;
+}
+
+std::string aboutCount(double n) {
+    char buf[48];
+    if (n >= 1e9) std::snprintf(buf, sizeof buf, "%.3g billion", n / 1e9);
+    else if (n >= 1e6) std::snprintf(buf, sizeof buf, "%.3g million", n / 1e6);
+    else std::snprintf(buf, sizeof buf, "%.0f", n);
+    return buf;
+}
+
+/// Refuses a build whose estimate exceeds the budget, naming the largest depth that fits.
+void refuseOverBudget(const ScalarField& field, const std::vector<BuildMemoryEstimate>& est, std::uint64_t budget) {
+    const BuildMemoryEstimate& e = est.back();
+    if (e.total() <= budget) return;
+    std::ostringstream s;
+    if (est.size() == 1 && e.octreeBytes == 0) {  // checked before the sampler is made
+        s << field.source << ": building the octree of '" << field.name << "' needs more than the memory budget of "
+          << formatBytes(budget) << " (--max-memory) at any depth: the field and the sampler alone need about "
+          << formatBytes(e.total());
+        throw LimitError(s.str());
+    }
+    s << field.source << ": the octree of '" << field.name << "' at depth " << e.depth << " needs about "
+      << formatBytes(e.total()) << " (field " << formatBytes(e.fieldBytes) << ", sampler " << formatBytes(e.samplerBytes)
+      << ", octree " << formatBytes(e.octreeBytes) << " for about " << aboutCount(e.boundaryVoxels)
+      << " boundary voxels), more than the memory budget of " << formatBytes(budget) << " (--max-memory); ";
+    int fits = 0;
+    for (const auto& x : est)
+        if (x.total() <= budget) fits = x.depth;
+    if (fits > 0) s << "the largest depth that fits is " << fits << " (about " << formatBytes(est[std::size_t(fits) - 1].total()) << ")";
+    else s << "no depth fits: the field and the sampler alone need " << formatBytes(est.front().fieldBytes + est.front().samplerBytes);
+    throw LimitError(s.str());
+}
+
+}  // namespace
+
+std::vector<BuildMemoryEstimate> estimateBuildMemory(const ScalarField& field, double iso, int maxDepth, int threads) {
+    const float isoF = checkedIso(field, maxDepth, iso);
+    emptyTree(field, maxDepth, iso);  // checks the extent
+    const SampleGrid grid(field);
+    return estimateWithGrid(field, grid, iso, isoF, maxDepth, threads);
+}
+
+Octree buildShellOctree(const ScalarField& field, const BuildOptions& options, BuildReport* report) {
+    Timer timer;
+    const float isoF = checkedIso(field, options.depth, options.iso);
+    Octree tree = emptyTree(field, options.depth, options.iso);
+    const std::uint64_t budget = options.memoryBudget;
+    if (budget) {
+        // Before copying the samples: is there room for the copy and its pyramid at all?
+        BuildMemoryEstimate fixed;
+        fixed.depth = options.depth;
+        fixed.fieldBytes = fieldBytes(field);
+        fixed.samplerBytes = samplerBytes(field, 1);
+        if (fixed.total() > budget) refuseOverBudget(field, {fixed}, budget);
+    }
+    const SampleGrid grid(field);
+    std::optional<MemoryGuard> guard;
+    if (budget) {
+        auto est = estimateWithGrid(field, grid, options.iso, isoF, options.depth, options.threads);
+        refuseOverBudget(field, est, budget);
+        guard.emplace(field, options.depth, budget, est.back().fieldBytes + est.back().samplerBytes, est.back().total());
+    }
+    buildInto(tree, field, grid, isoF, options.threads, options.progress, guard ? &*guard : nullptr);
     if (report) {
         report->buildMs = timer.ms();
         report->boundaryVoxels = tree.voxels.size();

@@ -1,6 +1,7 @@
 #include "octrace/build/ScalarField.h"
 #include "octrace/util/Error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -43,18 +44,23 @@ std::pair<float, float> ScalarField::validRange() const {
 }
 
 void ScalarField::validate() const {
+    validateGeometry();
+    if (values.size() != sampleCount()) {
+        std::ostringstream s;
+        s << source << ": expected " << sampleCount() << " samples, got " << values.size();
+        throw FileError(s.str());
+    }
+    if (!valid.empty() && valid.size() != values.size())
+        throw FileError(source + ": validity mask size does not match the samples");
+}
+
+void ScalarField::validateGeometry() const {
     auto fail = [&](const std::string& what) { throw FileError(source + ": " + what); };
     if (dims.x < 2 || dims.y < 2 || dims.z < 2) {
         std::ostringstream s;
         s << "grid of '" << name << "' must have at least 2 samples per axis, has " << dims.x << "x" << dims.y << "x" << dims.z;
         fail(s.str());
     }
-    if (values.size() != sampleCount()) {
-        std::ostringstream s;
-        s << "expected " << sampleCount() << " samples, got " << values.size();
-        fail(s.str());
-    }
-    if (!valid.empty() && valid.size() != values.size()) fail("validity mask size does not match the samples");
     for (int a = 0; a < 3; ++a) {
         if (!std::isfinite(origin[a])) fail("origin is not finite");
         if (coords[a].empty()) {
@@ -70,6 +76,27 @@ void ScalarField::validate() const {
                 if (n > 0 && !(coords[a][n] > coords[a][n - 1])) fail("rectilinear coordinates must be strictly increasing");
             }
         }
+    }
+    // Geometry the octree, the camera and the rays can work with in double precision: world
+    // coordinates within +-1e30, and an extent neither denormal nor lost in its position
+    // (spacings of 1e-310 or an origin of 1e20 under a grid of 1 made the camera fail).
+    const Box3 b = worldBounds();
+    double side = 0.0, far = 0.0;
+    for (int a = 0; a < 3; ++a) {
+        side = std::max(side, b.hi[a] - b.lo[a]);
+        far = std::max(far, std::max(std::abs(b.lo[a]), std::abs(b.hi[a])));
+    }
+    if (!std::isfinite(side) || !std::isfinite(far) || far > kMaxWorldCoordinate) {
+        std::ostringstream s;
+        s << "world bounds " << b.lo.x << ".." << b.hi.x << " x " << b.lo.y << ".." << b.hi.y << " x " << b.lo.z << ".."
+          << b.hi.z << " go beyond the supported +-" << kMaxWorldCoordinate << " (origin or spacing absurd)";
+        fail(s.str());
+    }
+    if (side < kMinWorldExtent || side < far * 1e-9) {
+        std::ostringstream s;
+        s << "world extent " << side << " is too small to place the grid (at least " << kMinWorldExtent
+          << " and a billionth of its largest coordinate, " << far << ", are needed)";
+        fail(s.str());
     }
     dmat3 g = glm::transpose(direction) * direction;
     for (int r = 0; r < 3; ++r)

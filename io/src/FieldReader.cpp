@@ -57,7 +57,7 @@ ScalarField readField(const std::string& path, const FieldRequest& req) {
         case FileKind::Nrrd:
             refuseSeries(path, req);
             refuseRegion(path, req, "NRRD");
-            f = checkVolume(NrrdReader::read(path), path, req, "NRRD");
+            f = checkVolume(NrrdReader::read(path, req.memoryBudget), path, req, "NRRD");
             break;
         case FileKind::Dicom:
             refuseRegion(path, req, "DICOM");
@@ -73,9 +73,9 @@ ScalarField readField(const std::string& path, const FieldRequest& req) {
 
 std::string describeInput(const std::string& path, const FieldRequest& req) {
     switch (kindOf(path)) {
-        case FileKind::Nrrd: refuseSeries(path, req); return NrrdReader::describe(path);
+        case FileKind::Nrrd: refuseSeries(path, req); return NrrdReader::describe(path, req.memoryBudget);
         case FileKind::Dicom: return DicomReader::describe(path, req.series);
-        default: refuseSeries(path, req); return NetcdfReader::describe(path);
+        default: refuseSeries(path, req); return NetcdfReader::describe(path, req.memoryBudget);
     }
 }
 

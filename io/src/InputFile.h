@@ -5,6 +5,11 @@
 
 namespace octrace::io::detail {
 
+/// Most points octrace reads along one grid axis or dimension: 2^24. The finest octree has
+/// 2^14 cells per edge, so a longer axis is of no use to it, and its coordinates alone would
+/// take 128 MiB; a header announcing one (10^9, say) is refused before anything is read.
+constexpr std::uint64_t kMaxAxisPoints = std::uint64_t(1) << 24;
+
 /// Throws InputError "PATH: no such file", "PATH: is a directory" or "PATH: cannot be opened".
 void requireReadableFile(const std::string& path);
 

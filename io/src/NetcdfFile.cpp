@@ -1,12 +1,17 @@
 #include "NetcdfFile.h"
 
+#include "InputFile.h"
+
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
+#include "octrace/util/Memory.h"
 
 #include <cpl_error.h>
 #include <gdal_priv.h>
 
 #include <cmath>
+#include <cstddef>
+#include <limits>
 #include <mutex>
 
 namespace octrace::io::detail {
@@ -130,6 +135,9 @@ AxisInfo NetcdfFile::axis(const VariableInfo& variable, std::size_t dim) const {
     auto d = impl_->array(variable)->GetDimensions().at(dim);
     AxisInfo a;
     a.name = d->GetName();
+    if (d->GetSize() > kMaxAxisPoints)
+        throw FileError(impl_->path + ": dimension '" + d->GetName() + "' has " + std::to_string(d->GetSize()) +
+                        " points, more than the " + std::to_string(kMaxAxisPoints) + " (2^24) octrace reads along one axis");
     a.size = std::size_t(d->GetSize());
     a.gdalType = d->GetType();
     a.gdalDirection = d->GetDirection();
@@ -178,8 +186,11 @@ SampleRules NetcdfFile::rules(const VariableInfo& variable) const {
 std::vector<double> NetcdfFile::read(const VariableInfo& variable, const std::vector<std::uint64_t>& start,
                                      const std::vector<std::size_t>& count) const {
     GdalMessages messages;
-    std::size_t n = 1;
-    for (auto c : count) n *= c;
+    std::uint64_t n = 1;
+    for (auto c : count) n = saturatingMultiply(n, c);
+    if (n > std::uint64_t(std::numeric_limits<std::ptrdiff_t>::max()) / sizeof(double))
+        throw FileError(impl_->path + ": variable '" + variable.shortName + "' is too large to read (" + std::to_string(n) +
+                        " samples)");
     std::vector<double> buffer(n);
     std::vector<GUInt64> gstart(start.begin(), start.end());
     if (!impl_->array(variable)->Read(gstart.data(), count.data(), nullptr, nullptr,

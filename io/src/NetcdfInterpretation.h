@@ -7,6 +7,7 @@
 #include "octrace/build/ScalarField.h"
 #include "octrace/io/FieldRequest.h"
 
+#include <cstdint>
 #include <string>
 
 namespace octrace::io::detail {
@@ -16,6 +17,6 @@ namespace octrace::io::detail {
 ScalarField interpretNetcdf(const std::string& gdalPath, const FieldRequest& req);
 
 /// NetcdfReader::describe without the on-disk checks; `format` names the format in the text.
-std::string describeNetcdf(const std::string& gdalPath, const std::string& format);
+std::string describeNetcdf(const std::string& gdalPath, const std::string& format, std::uint64_t memoryBudget = 0);
 
 }  // namespace octrace::io::detail

@@ -9,6 +9,7 @@
 #include "NetcdfInterpretation.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
+#include "octrace/util/Memory.h"
 
 #include <algorithm>
 #include <array>
@@ -19,6 +20,9 @@ namespace octrace::io {
 namespace {
 
 using namespace detail;
+
+// A sample's float and mask byte, and the double GDAL reads it into.
+constexpr std::uint64_t kReadBytesPerSample = sizeof(float) + 1 + sizeof(double);
 
 // Checks the signature (and, for classic files, that the data the header announces are all
 // there); returns the format's name.
@@ -238,6 +242,11 @@ ScalarField readVariable(const std::string& path, const NetcdfFile& file, const 
     if (double(f.dims.x) * double(f.dims.y) * double(f.dims.z) > 4294967296.0)
         throw InputError(path + ": variable '" + var.shortName + "' has more than the supported 2^32 samples" +
                          " in the requested grid; choose a smaller region");
+    f.validateGeometry();
+    // The samples and their mask, and the hyperslab GDAL reads them into (as double).
+    checkMemoryBudget(path + ": reading '" + var.shortName + "' (" + std::to_string(f.dims.x) + "x" +
+                          std::to_string(f.dims.y) + "x" + std::to_string(f.dims.z) + " samples)",
+                      saturatingMultiply(f.sampleCount(), kReadBytesPerSample), req.memoryBudget);
     readSamples(file, var, L, file.rules(var), f);
     if (!var.longName.empty()) f.notes.push_back(var.shortName + ": " + var.longName);
     f.notes.insert(f.notes.end(), L.notes.begin(), L.notes.end());
@@ -275,16 +284,17 @@ void describeAxes(std::ostringstream& s, const NetcdfFile& file) {
         }
 }
 
-void describeVariable(std::ostringstream& s, const NetcdfFile& file, const VariableInfo& v) {
+void describeVariable(std::ostringstream& s, const NetcdfFile& file, const VariableInfo& v, std::uint64_t budget) {
     s << "  " << v.signature() << " " << v.dataType << " [";
     for (std::size_t d = 0; d < v.dimSizes.size(); ++d) s << (d ? " x " : "") << v.dimSizes[d];
     s << "]";
     if (!v.units.empty()) s << ", units '" << v.units << "'";
     if (!v.longName.empty()) s << ", '" << v.longName << "'";
-    std::size_t total = 1;
-    for (auto n : v.dimSizes) total *= n;
-    if (total > 200'000'000u) {
-        s << ", value range not computed (" << total << " samples)\n";
+    std::uint64_t total = 1;
+    for (auto n : v.dimSizes) total = saturatingMultiply(total, n);
+    if (total > 200'000'000u || (budget && saturatingMultiply(total, sizeof(double)) > budget)) {
+        s << ", value range not computed (" << total << " samples" << (total > 200'000'000u ? "" : ", over the memory budget")
+          << ")\n";
         return;
     }
     std::vector<std::uint64_t> start(v.dimSizes.size(), 0);
@@ -304,7 +314,7 @@ void describeVariable(std::ostringstream& s, const NetcdfFile& file, const Varia
     s << " (" << valid << " of " << total << " samples valid)\n";
 }
 
-void describeGrid(std::ostringstream& s, const std::string& path, const NetcdfFile& file) {
+void describeGrid(std::ostringstream& s, const std::string& path, const NetcdfFile& file, std::uint64_t budget) {
     auto vols = volumes(file);
     if (vols.empty()) {
         s << "no 3-D variable: nothing to render\n";
@@ -313,10 +323,14 @@ void describeGrid(std::ostringstream& s, const std::string& path, const NetcdfFi
     s << (vols.size() == 1 ? "grid of " : "grid of the first 3-D variable, ") << vols[0]->shortName << " (whole grid):\n";
     FieldRequest req;
     req.variable = vols[0]->name;
+    req.memoryBudget = budget;
     ScalarField f;
     try {
         f = readVariable(path, file, *vols[0], req);
     } catch (const EmptyResultError& e) {
+        s << "  " << e.what() << "\n";
+        return;
+    } catch (const LimitError& e) {
         s << "  " << e.what() << "\n";
         return;
     }
@@ -348,14 +362,14 @@ ScalarField interpretNetcdf(const std::string& path, const FieldRequest& req) {
     return readVariable(path, file, chooseVariable(path, file, req.variable), req);
 }
 
-std::string describeNetcdf(const std::string& path, const std::string& format) {
+std::string describeNetcdf(const std::string& path, const std::string& format, std::uint64_t memoryBudget) {
     NetcdfFile file(path);
     std::ostringstream s;
     s << path << "\nformat: " << format << ", read through GDAL's netCDF driver\n";
     describeAxes(s, file);
     s << "variables:\n";
-    for (const auto* v : dataVariables(file)) describeVariable(s, file, *v);
-    describeGrid(s, path, file);
+    for (const auto* v : dataVariables(file)) describeVariable(s, file, *v, memoryBudget);
+    describeGrid(s, path, file, memoryBudget);
     return s.str();
 }
 
@@ -366,6 +380,8 @@ ScalarField NetcdfReader::read(const std::string& path, const FieldRequest& req)
     return interpretNetcdf(path, req);
 }
 
-std::string NetcdfReader::describe(const std::string& path) { return describeNetcdf(path, openNetcdf(path)); }
+std::string NetcdfReader::describe(const std::string& path, std::uint64_t memoryBudget) {
+    return describeNetcdf(path, openNetcdf(path), memoryBudget);
+}
 
 }  // namespace octrace::io

@@ -168,9 +168,13 @@ public:
                 fail("'sizes' has " + std::to_string(w.size()) + " values, expected " + std::to_string(h_.dimension));
             for (int a = 0; a < 3; ++a) {
                 char* end = nullptr;
-                long n = std::strtol(w[std::size_t(a)].c_str(), &end, 10);
-                if (*end != '\0' || n <= 0 || n > (1L << 30))
+                errno = 0;
+                long long n = std::strtoll(w[std::size_t(a)].c_str(), &end, 10);
+                if (*end != '\0' || n <= 0)
                     fail("size of axis " + std::to_string(a) + " must be a positive integer, is '" + w[std::size_t(a)] + "'");
+                if (errno == ERANGE || std::uint64_t(n) > kMaxAxisPoints)
+                    fail("size of axis " + std::to_string(a) + " is " + w[std::size_t(a)] + ", more than the " +
+                         std::to_string(kMaxAxisPoints) + " (2^24) octrace reads along one axis");
                 h_.sizes[a] = int(n);
             }
         } else if (name == "spacings") {

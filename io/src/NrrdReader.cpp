@@ -5,6 +5,7 @@
 #include "NrrdHeader.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
+#include "octrace/util/Memory.h"
 
 #include <vtkCallbackCommand.h>
 #include <vtkCharArray.h>
@@ -171,7 +172,7 @@ void setGeometry(const detail::NrrdHeader& h, ScalarField& f) {
 
 }  // namespace
 
-ScalarField NrrdReader::read(const std::string& path) {
+ScalarField NrrdReader::read(const std::string& path, std::uint64_t memoryBudget) {
     detail::requireReadableFile(path);
     auto header = detail::NrrdHeader::parse(path);
     header.checkData();
@@ -182,6 +183,12 @@ ScalarField NrrdReader::read(const std::string& path) {
     if (auto it = header.keyValues.find("units"); it != header.keyValues.end()) f.units = it->second;
     f.dims = header.sizes;
     setGeometry(header, f);
+    f.validateGeometry();
+    // VTK's array of the file's type, our floats, and a validity mask when samples can be NaN.
+    const std::uint64_t bytesPerSample = header.typeSize + sizeof(float) + (header.type == "float" || header.type == "double");
+    checkMemoryBudget(path + ": reading " + std::to_string(header.sizes.x) + "x" + std::to_string(header.sizes.y) + "x" +
+                          std::to_string(header.sizes.z) + " " + header.type + " samples",
+                      saturatingMultiply(header.sampleCount(), bytesPerSample), memoryBudget);
     f.values = decodeSamples(header);
 
     std::size_t bad = 0;
@@ -196,8 +203,8 @@ ScalarField NrrdReader::read(const std::string& path) {
     return f;
 }
 
-std::string NrrdReader::describe(const std::string& path) {
-    ScalarField f = read(path);
+std::string NrrdReader::describe(const std::string& path, std::uint64_t memoryBudget) {
+    ScalarField f = read(path, memoryBudget);
     auto h = detail::NrrdHeader::parse(path);
     std::ostringstream s;
     s << path << "\n";

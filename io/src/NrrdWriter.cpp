@@ -1,16 +1,15 @@
 #include "octrace/io/NrrdWriter.h"
 
+#include "octrace/io/AtomicFile.h"
 #include "octrace/util/Error.h"
 
 #include <bit>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
+#include <span>
 #include <sstream>
-
-namespace fs = std::filesystem;
+#include <vector>
 
 namespace octrace::io {
 namespace {
@@ -71,38 +70,20 @@ void NrrdWriter::write(const ScalarField& field, const std::string& path) {
     if (!field.units.empty()) h << "units:=" << oneLine(field.units) << "\n";
     h << "\n";
 
-    std::vector<float> data(field.values);
-    for (std::size_t i = 0; i < data.size(); ++i)
-        if (!field.isValid(i)) data[i] = std::nanf("");
-    if constexpr (std::endian::native == std::endian::big) {
-        for (float& v : data) {
-            std::uint32_t u;
-            std::memcpy(&u, &v, 4);
-            u = __builtin_bswap32(u);
-            std::memcpy(&v, &u, 4);
-        }
+    // One buffer of header and samples, written to a temporary name and renamed
+    // (writeFileAtomically: also removed if the program is interrupted meanwhile).
+    const std::string text = h.str();
+    std::vector<std::uint8_t> bytes(text.size() + field.values.size() * sizeof(float));
+    std::memcpy(bytes.data(), text.data(), text.size());
+    std::uint8_t* samples = bytes.data() + text.size();
+    for (std::size_t i = 0; i < field.values.size(); ++i) {
+        float v = field.isValid(i) ? field.values[i] : std::nanf("");
+        std::uint32_t u;
+        std::memcpy(&u, &v, 4);
+        if constexpr (std::endian::native == std::endian::big) u = __builtin_bswap32(u);
+        std::memcpy(samples + 4 * i, &u, 4);
     }
-
-    std::string tmp = path + ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) throw OutputError(path + ": cannot create '" + tmp + "'");
-        std::string text = h.str();
-        out.write(text.data(), std::streamsize(text.size()));
-        out.write(reinterpret_cast<const char*>(data.data()), std::streamsize(data.size() * sizeof(float)));
-        out.close();
-        if (!out) {
-            std::error_code ec;
-            fs::remove(tmp, ec);
-            throw OutputError(path + ": write failed (disk full?)");
-        }
-    }
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw OutputError(path + ": cannot rename the temporary file into place");
-    }
+    writeFileAtomically(path, std::span<const std::uint8_t>(bytes));
 }
 
 }  // namespace octrace::io

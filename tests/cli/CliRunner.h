@@ -2,6 +2,8 @@
 // Runs the octrace executable as a user would and captures exit code, stdout and stderr.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -58,15 +60,11 @@ private:
 inline Result run(const std::vector<std::string>& args) {
     Scratch s;
     std::string cmd = quoteArg(OCTRACE_BINARY);
-    for (const auto& a : args) {
-        cmd += ' ';
-        cmd += quoteArg(a);
-    }
-    cmd += " > ";
-    cmd += quoteArg(s.path("stdout"));
-    cmd += " 2> ";
-    cmd += quoteArg(s.path("stderr"));
-    cmd += " < /dev/null";
+    // Appended piece by piece: `" " + std::string` makes gcc 12 warn (a -Wrestrict false positive).
+    for (const auto& a : args) cmd.append(" ").append(quoteArg(a));
+    cmd.append(" > ").append(quoteArg(s.path("stdout")));
+    cmd.append(" 2> ").append(quoteArg(s.path("stderr")));
+    cmd.append(" < /dev/null");
     int st = std::system(cmd.c_str());
     Result r;
     r.code = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + (WIFSIGNALED(st) ? WTERMSIG(st) : 0);
@@ -74,6 +72,64 @@ inline Result run(const std::vector<std::string>& args) {
     r.err = slurp(s.path("stderr"));
     return r;
 }
+
+/// `octrace ARGS...` started in the background; its stdout and stderr go to files in `logs`.
+class Child {
+public:
+    Child(const std::vector<std::string>& args, const Scratch& logs) {
+        std::vector<std::string> all{OCTRACE_BINARY};
+        all.insert(all.end(), args.begin(), args.end());
+        std::vector<char*> argv;
+        for (auto& a : all) argv.push_back(a.data());
+        argv.push_back(nullptr);
+        const std::string out = logs.path("stdout"), err = logs.path("stderr");
+        pid_ = ::fork();
+        if (pid_ == 0) {
+            // Only async-signal-safe calls between fork and exec.
+            const int o = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+            const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+            const int in = ::open("/dev/null", O_RDONLY);
+            if (o < 0 || e < 0 || in < 0 || ::dup2(o, 1) < 0 || ::dup2(e, 2) < 0 || ::dup2(in, 0) < 0) ::_exit(126);
+            ::execv(argv[0], argv.data());
+            ::_exit(127);
+        }
+    }
+    ~Child() {
+        if (pid_ > 0 && !reaped_) {
+            ::kill(pid_, SIGKILL);
+            ::waitpid(pid_, nullptr, 0);
+        }
+    }
+    Child(const Child&) = delete;
+    Child& operator=(const Child&) = delete;
+
+    pid_t pid() const { return pid_; }
+    /// Waits until the child ends (or, with `orStopped`, stops) and returns waitpid's status;
+    /// `usage` (optional) receives what the child used (ru_maxrss: its peak resident memory).
+    int wait(bool orStopped = false, rusage* usage = nullptr) {
+        int status = 0;
+        rusage ignored{};
+        ::wait4(pid_, &status, orStopped ? WUNTRACED : 0, usage ? usage : &ignored);
+        reaped_ = !(orStopped && WIFSTOPPED(status));
+        return status;
+    }
+    /// True once the child has ended (without reaping it).
+    bool ended() const {
+        siginfo_t info{};
+        return ::waitid(P_PID, id_t(pid_), &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid != 0;
+    }
+    /// Resident memory in bytes (0 once it has ended).
+    std::size_t residentBytes() const {
+        std::ifstream in("/proc/" + std::to_string(pid_) + "/statm");
+        std::size_t pages = 0, resident = 0;
+        in >> pages >> resident;
+        return resident * std::size_t(::sysconf(_SC_PAGESIZE));
+    }
+
+private:
+    pid_t pid_ = -1;
+    bool reaped_ = false;
+};
 
 inline std::string sharedData(const std::string& rel) { return std::string(OCTRACE_SHARED_DATA) + "/" + rel; }
 inline bool haveShared(const std::string& rel) { return std::filesystem::exists(sharedData(rel)); }

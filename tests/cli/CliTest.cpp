@@ -21,7 +21,8 @@ TEST(Cli, RenderHelpStatesADefaultForEveryOptionThatHasOne) {
     ASSERT_EQ(h.code, 0);
     for (const char* opt : {"--var", "--iso", "--depth", "--renderer", "--size", "--camera-pos", "--look-at", "--up", "--fov",
                             "--threads", "--stats", "--verify", "--background", "--light", "--colour", "--colormap",
-                            "--region", "--vertical-scale", "--projection", "--ortho-height", "--lod", "--level"})
+                            "--region", "--vertical-scale", "--projection", "--ortho-height", "--lod", "--level",
+                            "--max-memory"})
         EXPECT_NE(h.out.find(opt), std::string::npos) << opt;
     // Every option line that takes a value says its default (or that it is required).
     std::istringstream in(h.out);

@@ -37,6 +37,21 @@ const Case kCases[] = {
     {"invalid_huge_frame_count.dcm", nullptr, "header declares 100000 frame(s)"},
     {"invalid_zero_pixel_spacing.dcm", nullptr, "PixelSpacing 0\\0.5 must be positive"},
     {"invalid_nan_position.dcm", nullptr, "is not 3 finite numbers"},
+    {"invalid_huge_sizes.nrrd", nullptr, "octrace reads along one axis"},
+    {"invalid_too_many_samples.nrrd", nullptr, "exceed the supported 2^32 samples"},
+    {"invalid_size_overflow.nrrd", nullptr, "octrace reads along one axis"},
+    {"invalid_negative_spacing.nrrd", nullptr, "must be positive"},
+    {"invalid_infinite_spacing.nrrd", nullptr, "must be positive"},
+    {"invalid_nan_origin.nrrd", nullptr, "is not a finite number"},
+    {"invalid_zero_space_direction.nrrd", nullptr, "has zero length"},
+    {"invalid_infinite_extent.nrrd", nullptr, "go beyond the supported"},
+    {"invalid_tiny_extent.nrrd", nullptr, "too small to place the grid"},
+    {"invalid_billion_points.nc", nullptr, "NetCDF data truncated"},
+    {"invalid_size_overflow.nc", nullptr, "NetCDF data truncated"},
+    {"invalid_billion_points_nc4.nc", nullptr, "octrace reads along one axis"},
+    {"invalid_nan_coordinate.nc", nullptr, "non-finite value"},
+    {"invalid_repeated_coordinate.nc", nullptr, "not strictly monotonic"},
+    {"invalid_infinite_extent.nc", nullptr, "must be positive and finite"},
 };
 }  // namespace
 

@@ -16,6 +16,11 @@ namespace octrace::fuzz {
 /// Drops octrace's log messages (warnings about odd headers are expected by the thousand).
 inline void quietLogs() { log::setLevel(log::Level::Quiet); }
 
+/// The memory budget the readers get, as the CLI always gives one (--max-memory): a header
+/// announcing more samples than that is refused, as a user would see it, instead of being
+/// an out-of-memory finding (run.sh stops a target at 2 GiB).
+inline constexpr std::uint64_t kMemoryBudget = std::uint64_t(1) << 30;
+
 /// A folder of its own under $TMPDIR, removed at exit.
 class ScratchDir {
 public:

@@ -58,14 +58,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         region(170.0, -170.0, -60.0, 60.0, 0.0),  // across the dateline
         region(0.0, 90.0, -45.0, 45.0, 3.0),
     };
-    for (const auto& req : requests) {
+    for (auto req : requests) {
+        req.memoryBudget = octrace::fuzz::kMemoryBudget;
         try {
             (void)octrace::io::detail::interpretNetcdf(path, req);
         } catch (const octrace::Error&) {
         }
     }
     try {
-        (void)octrace::io::detail::describeNetcdf(path, "fuzz");
+        (void)octrace::io::detail::describeNetcdf(path, "fuzz", octrace::fuzz::kMemoryBudget);
     } catch (const octrace::Error&) {
     }
     VSIUnlink(path);

@@ -30,7 +30,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string path = scratch().write("input.nrrd", data, size);
     try {
-        octrace::ScalarField f = octrace::io::NrrdReader::read(path);
+        octrace::ScalarField f = octrace::io::NrrdReader::read(path, octrace::fuzz::kMemoryBudget);
         (void)f;
     } catch (const octrace::Error&) {
         // A clean refusal: what we want for broken input.

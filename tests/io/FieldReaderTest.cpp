@@ -99,6 +99,21 @@ TEST(FieldReader, EveryInvalidCorpusFileFailsWithItsDocumentedMessage) {
         {"invalid_huge_frame_count.dcm", "", Kind::File, "header declares 100000 frame(s) of 64x64 x 16 bits"},
         {"invalid_zero_pixel_spacing.dcm", "", Kind::File, "PixelSpacing 0\\0.5 must be positive"},
         {"invalid_nan_position.dcm", "", Kind::File, "ImagePositionPatient 'NaN\\0\\1' of frame 2 is not 3 finite numbers"},
+        {"invalid_huge_sizes.nrrd", "", Kind::File, "size of axis 0 is 1000000000, more than the 16777216 (2^24)"},
+        {"invalid_too_many_samples.nrrd", "", Kind::File, "sizes 4000 x 4000 x 4000 exceed the supported 2^32 samples"},
+        {"invalid_size_overflow.nrrd", "", Kind::File, "size of axis 0 is 18446744073709551617, more than"},
+        {"invalid_negative_spacing.nrrd", "", Kind::File, "spacing along axis 2 must be positive, is '-2'"},
+        {"invalid_infinite_spacing.nrrd", "", Kind::File, "spacing along axis 1 must be positive, is 'inf'"},
+        {"invalid_nan_origin.nrrd", "", Kind::File, "'space origin': 'nan' is not a finite number"},
+        {"invalid_zero_space_direction.nrrd", "", Kind::File, "space direction of axis 1 has zero length"},
+        {"invalid_infinite_extent.nrrd", "", Kind::File, "world bounds 0..inf x 0..7 x 0..7 go beyond the supported +-1e+30"},
+        {"invalid_tiny_extent.nrrd", "", Kind::File, "world extent 7e-310 is too small to place the grid"},
+        {"invalid_billion_points.nc", "", Kind::File, "the header places data up to byte 16000000116, the file has 132 bytes"},
+        {"invalid_size_overflow.nc", "", Kind::File, "the header places data up to byte 18446744073709551615"},
+        {"invalid_billion_points_nc4.nc", "", Kind::File, "dimension 'lon' has 1000000000 points, more than the 16777216"},
+        {"invalid_nan_coordinate.nc", "", Kind::File, "latitude axis holds a non-finite value"},
+        {"invalid_repeated_coordinate.nc", "", Kind::File, "vertical values are not strictly monotonic (0.01 then 0.01"},
+        {"invalid_infinite_extent.nc", "", Kind::File, "spacing along axis 0 must be positive and finite, is inf"},
     };
     for (const auto& c : cases) {
         std::string path = test::testData(std::string("invalid/") + c.file);

@@ -12,6 +12,11 @@ using namespace octrace;
 
 namespace {
 
+// Reading tests/data/invalid/FILE throws FileError with `message` in it.
+void expectCorpusRefusal(const std::string& file, const std::string& message) {
+    EXPECT_THROW_WITH(io::NetcdfReader::read(test::testData("invalid/" + file), {}), FileError, message);
+}
+
 constexpr double kKmPerDegree = 6371.0 * std::numbers::pi / 180.0;
 
 io::FieldRequest request(const std::string& var, double lon0, double lon1, double lat0, double lat1) {
@@ -303,6 +308,44 @@ TEST(NetcdfReader, RefusesDimensionsWhoseByteCountOverflowsAsTruncated) {
     std::ofstream(path, std::ios::binary).write(b.data(), std::streamsize(b.size()));
     EXPECT_THROW_WITH(io::NetcdfReader::read(path, {}), FileError,
                       "NetCDF data truncated: the header places data up to byte 18446744073709551615");
+}
+
+// The absurd headers of tests/data/invalid: refused before anything of the announced size is
+// allocated (the NetCDF-4 one used to make GDAL read 10^9 longitudes: 8 GB).
+TEST(NetcdfReader, RefusesADimensionOfABillionPointsBeforeReadingItsCoordinates) {
+    const std::string path = test::testData("invalid/invalid_billion_points_nc4.nc");
+    EXPECT_THROW_WITH(io::NetcdfReader::read(path, {}), FileError,
+                      path + ": dimension 'lon' has 1000000000 points, more than the 16777216 (2^24) octrace reads along one axis");
+    EXPECT_THROW_WITH(io::NetcdfReader::describe(path), FileError, "dimension 'lon' has 1000000000 points");
+}
+
+TEST(NetcdfReader, RefusesClassicHeadersAnnouncingABillionPointsOrAnOverflowingSize) {
+    expectCorpusRefusal("invalid_billion_points.nc",
+                        "NetCDF data truncated: the header places data up to byte 16000000116, the file has 132 bytes");
+    expectCorpusRefusal("invalid_size_overflow.nc",
+                        "NetCDF data truncated: the header places data up to byte 18446744073709551615, the file has 200 bytes");
+}
+
+TEST(NetcdfReader, RefusesNaNRepeatedOrOverflowingCoordinates) {
+    expectCorpusRefusal("invalid_nan_coordinate.nc", "latitude axis holds a non-finite value");
+    expectCorpusRefusal("invalid_repeated_coordinate.nc",
+                        "vertical values are not strictly monotonic (0.01 then 0.01 at index 1)");
+    expectCorpusRefusal("invalid_infinite_extent.nc", "spacing along axis 0 must be positive and finite, is inf");
+}
+
+TEST(NetcdfReader, RefusesSamplesBeyondTheMemoryBudgetAndDescribeLeavesThemOut) {
+    const std::string path = test::testData("netcdf/dateline_cf.nc");
+    io::FieldRequest r;
+    r.memoryBudget = 1024;
+    // 72 x 4 x 3 samples of 13 bytes: a float, a mask byte, and GDAL's double.
+    EXPECT_THROW_WITH(io::NetcdfReader::read(path, r), LimitError,
+                      path + ": reading 'temp' (72x4x3 samples) needs about 11 KiB, more than the memory budget of 1 KiB");
+    r.memoryBudget = 72 * 4 * 3 * 13;
+    EXPECT_EQ(io::NetcdfReader::read(path, r).dims, ivec3(72, 4, 3));
+    std::string text = io::NetcdfReader::describe(path, 5000);
+    EXPECT_NE(text.find("value range not computed (864 samples, over the memory budget)"), std::string::npos) << text;
+    EXPECT_NE(text.find("landmask(lat, lon) Int16 [4 x 72]: valid range"), std::string::npos) << text;
+    EXPECT_NE(text.find("needs about 11 KiB, more than the memory budget of 4.9 KiB"), std::string::npos) << text;
 }
 
 TEST(NetcdfReader, RefusesTruncatedNetCdf4File) {

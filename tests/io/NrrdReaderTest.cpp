@@ -3,6 +3,8 @@
 #include "octrace/io/NrrdReader.h"
 #include "octrace/util/Error.h"
 
+#include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <numeric>
 #include <vector>
@@ -11,6 +13,11 @@ using namespace octrace;
 
 namespace {
 double sum(const ScalarField& f) { return std::accumulate(f.values.begin(), f.values.end(), 0.0); }
+
+// Reading tests/data/invalid/FILE throws FileError with `message` in it.
+void expectCorpusRefusal(const std::string& file, const std::string& message) {
+    EXPECT_THROW_WITH(io::NrrdReader::read(test::testData("invalid/" + file)), FileError, message);
+}
 }  // namespace
 
 // Expected values below were computed independently with numpy from the raw/gzip bytes.
@@ -154,6 +161,54 @@ TEST(NrrdReader, RefusesDataFilePatternsThatCouldOverflowOrPadForever) {
     EXPECT_THROW_WITH(io::NrrdReader::read(header("s%d -2000000000 2000000000 4000")), FileError, "is invalid");
     EXPECT_THROW_WITH(io::NrrdReader::read(header("s%d 1 2 x")), FileError, "is invalid");
     EXPECT_THROW_WITH(io::NrrdReader::read(header("s%03d 1 2 1")), FileError, "s001' not found");
+}
+
+// The absurd headers of tests/data/invalid: refused from the header alone. None of these
+// files holds data for what it announces, so a reader that allocated first would be caught
+// by the sanitizer build (allocator out of memory) or take gigabytes here.
+TEST(NrrdReader, RefusesDimensionsOfABillionOrSampleCountsBeyondTwoToTheThirtyTwo) {
+    expectCorpusRefusal("invalid_huge_sizes.nrrd",
+                        "size of axis 0 is 1000000000, more than the 16777216 (2^24) octrace reads along one axis");
+    expectCorpusRefusal("invalid_too_many_samples.nrrd", "sizes 4000 x 4000 x 4000 exceed the supported 2^32 samples");
+    expectCorpusRefusal("invalid_size_overflow.nrrd",
+                        "size of axis 0 is 18446744073709551617, more than the 16777216 (2^24)");
+}
+
+TEST(NrrdReader, RefusesNegativeInfiniteOrZeroSpacingAndANaNOrigin) {
+    expectCorpusRefusal("invalid_negative_spacing.nrrd", "spacing along axis 2 must be positive, is '-2'");
+    expectCorpusRefusal("invalid_infinite_spacing.nrrd", "spacing along axis 1 must be positive, is 'inf'");
+    expectCorpusRefusal("invalid_zero_space_direction.nrrd",
+                        "space direction of axis 1 has zero length (spacing must be positive)");
+    expectCorpusRefusal("invalid_nan_origin.nrrd", "'space origin': 'nan' is not a finite number");
+}
+
+// Finite spacings can still make a grid no double-precision camera can frame: 7 x 1e308
+// overflows, 7 x 1e-310 is denormal (the render used to fail with "camera position and
+// look-at point coincide", exit 2, as if the command line were wrong).
+TEST(NrrdReader, RefusesAGridWhoseWorldExtentOverflowsOrIsDenormal) {
+    expectCorpusRefusal("invalid_infinite_extent.nrrd",
+                        "world bounds 0..inf x 0..7 x 0..7 go beyond the supported +-1e+30 (origin or spacing absurd)");
+    expectCorpusRefusal("invalid_tiny_extent.nrrd", "world extent 7e-310 is too small to place the grid");
+}
+
+// A 1024^3 float volume whose 4 GiB of data are there (a sparse file): over a 1 GiB budget it
+// is refused before VTK decodes it.
+TEST(NrrdReader, RefusesSamplesBeyondTheMemoryBudgetBeforeDecodingThem) {
+    test::TempDir dir;
+    const std::string path = dir.file("big.nrrd");
+    const std::string header = "NRRD0004\ntype: float\ndimension: 3\nsizes: 1024 1024 1024\nendian: little\nencoding: raw\n\n";
+    std::ofstream(path, std::ios::binary) << header;
+    std::filesystem::resize_file(path, header.size() + (std::uintmax_t(4) << 30));
+    EXPECT_THROW_WITH(io::NrrdReader::read(path, std::uint64_t(1) << 30), LimitError,
+                      path + ": reading 1024x1024x1024 float samples needs about 9 GiB, more than the memory budget of "
+                             "1 GiB (--max-memory)");
+    EXPECT_THROW_WITH(io::NrrdReader::describe(path, std::uint64_t(1) << 30), LimitError, "needs about 9 GiB");
+    // Within the budget it is read as usual.
+    const std::string small = dir.file("small.nrrd");
+    std::ofstream(small, std::ios::binary) << "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\n"
+                                           << std::string(64, '\x07');
+    EXPECT_EQ(io::NrrdReader::read(small, 64 * 6).dims, ivec3(4));
+    EXPECT_THROW_WITH(io::NrrdReader::read(small, 64 * 5 - 1), LimitError, "4x4x4 uint8 samples needs about 320 bytes");
 }
 
 TEST(NrrdReader, ErrorMessagesStartWithThePath) {

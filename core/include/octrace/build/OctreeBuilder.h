@@ -12,7 +12,9 @@
 #include "octrace/build/ScalarField.h"
 #include "octrace/octree/Octree.h"
 
+#include <cstdint>
 #include <functional>
+#include <vector>
 
 namespace octrace {
 
@@ -23,7 +25,37 @@ struct BuildOptions {
     /// Called now and then with a fraction in [0,1]; may be empty. It runs on worker threads,
     /// one call at a time, with fractions that never decrease and end at 1.
     std::function<void(double)> progress;
+    /// Memory budget in bytes for the field and the build together; 0 = no limit. With one,
+    /// the build first estimates its peak (estimateBuildMemory) and refuses a depth whose
+    /// estimate exceeds the budget, naming the largest depth that fits; then it counts every
+    /// buffer it allocates and stops as soon as they would go over (both throw LimitError),
+    /// so an estimate that was too low still ends with a message instead of the OOM killer.
+    std::uint64_t memoryBudget = 0;
 };
+
+/// What buildShellOctree allocates at one depth, at its peak (bytes, allocated rather than
+/// resident: the figures err on the high side).
+struct BuildMemoryEstimate {
+    int depth = 0;
+    std::uint64_t fieldBytes = 0;    ///< the field itself (samples, mask, axes): alive during the build
+    std::uint64_t samplerBytes = 0;  ///< the builder's NaN-masked copy of the samples, its min/max pyramid, axis tables
+    double boundaryVoxels = 0.0;     ///< estimated boundary voxels at this depth
+    std::uint64_t octreeBytes = 0;   ///< the subtrees' buffers and the joined octree (both exist while joining)
+    std::uint64_t total() const { return fieldBytes + samplerBytes + octreeBytes; }
+};
+
+/// Estimates the peak memory of buildShellOctree(field, {depth, iso}) for every depth
+/// 1..maxDepth (element depth-1). The field and the sampler are counted exactly. Boundary
+/// voxels are counted exactly up to depth 6 by building those small octrees; deeper, the
+/// count is extrapolated with the growth rate measured between depths 5 and 6 (at least 4:
+/// a smooth surface's voxels quadruple per level) down to the grid's own resolution, then
+/// by 4 per level, plus 25 %. At depths 7 to 11 this was 1.25 times the true count on the
+/// analytic fields and 1.3 to 2.4 times on the CT, MRI and ocean data of ../shared/data
+/// (docs/dev/reliability.md); where it is too low (a surface finer than depth 6 shows), the
+/// running check of buildShellOctree stops the build at the budget.
+/// Throws as buildShellOctree (depth or iso out of range, empty grid); a surface that only
+/// appears deeper than depth 6 counts as one voxel there. Thread-safe.
+std::vector<BuildMemoryEstimate> estimateBuildMemory(const ScalarField& field, double iso, int maxDepth, int threads = 0);
 
 struct BuildReport {
     double buildMs = 0.0;
@@ -32,7 +64,8 @@ struct BuildReport {
 };
 
 /// Throws UsageError for a depth out of range, EmptyResultError when iso is outside the valid
-/// value range or no cell straddles it. The field must have passed validate().
+/// value range or no cell straddles it, LimitError when the memory budget is too small (see
+/// BuildOptions::memoryBudget). The field must have passed validate().
 Octree buildShellOctree(const ScalarField& field, const BuildOptions& options, BuildReport* report = nullptr);
 
 }  // namespace octrace

@@ -62,8 +62,16 @@ public:
     std::size_t validCount() const;
 
     /// Checks internal consistency (sizes, finite geometry, increasing coordinates,
-    /// orthonormal direction). Throws FileError naming `source` and the problem.
+    /// orthonormal direction, world coordinates within +-kMaxWorldCoordinate, a largest
+    /// extent of at least kMinWorldExtent and of a billionth of the largest coordinate).
+    /// Throws FileError naming `source` and the problem.
     void validate() const;
+    /// The same checks but those of the samples and the mask: readers call it before they
+    /// allocate the samples, so that an absurd header costs no memory.
+    void validateGeometry() const;
+
+    static constexpr double kMaxWorldCoordinate = 1e30;
+    static constexpr double kMinWorldExtent = 1e-30;
 };
 
 }  // namespace octrace

@@ -40,6 +40,12 @@ public:
     };
 
     std::size_t pixel(int x, int y) const { return std::size_t(y) * std::size_t(width) + std::size_t(x); }
+
+    /// Bytes the buffers of a width x height frame take (for memory budgets).
+    static std::uint64_t bytesFor(int width, int height) {
+        return std::uint64_t(width) * std::uint64_t(height) *
+               (sizeof(vec4) + sizeof(float) + sizeof(std::uint32_t) + sizeof(std::uint8_t));
+    }
 };
 
 }  // namespace octrace

@@ -43,6 +43,13 @@ public:
     using InputError::InputError;
 };
 
+/// The job would need more than a limit it was given allows (the memory budget, see
+/// util/Memory.h): refused before the work, or stopped cleanly while the limit is crossed.
+class LimitError : public Error {
+public:
+    using Error::Error;
+};
+
 /// Writing an output failed.
 class OutputError : public Error {
 public:

@@ -20,4 +20,16 @@ void writeFileAtomically(const std::string& path, std::span<const std::uint8_t> 
 /// Same, for text (e.g. the stats JSON).
 void writeFileAtomically(const std::string& path, std::string_view text);
 
+/// Makes SIGINT, SIGTERM and SIGHUP first remove the temporaries of the
+/// writeFileAtomically() calls in progress, then end the process as the signal's default
+/// action would (so its exit status still names the signal: a shell reports 130 for SIGINT,
+/// 143 for SIGTERM). Signals that are ignored when it is called (e.g. under nohup) stay
+/// ignored; a second signal during the clean-up ends the process at once.
+/// For programs only: a library must not change how its host handles signals, so octrace
+/// calls it from the CLI's main() alone. Call it once, early, before other threads start.
+/// The handler only reads fixed buffers (no locks, no allocation) and calls unlink() and
+/// raise(), which are async-signal-safe. A temporary whose name is longer than 4095 bytes,
+/// or beyond the 16th written at the same time, is not removed on a signal.
+void removeTemporariesOnSignals();
+
 }  // namespace octrace::io

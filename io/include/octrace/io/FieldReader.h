@@ -4,6 +4,7 @@
 #include "octrace/build/ScalarField.h"
 #include "octrace/io/FieldRequest.h"
 
+#include <cstdint>
 #include <string>
 
 namespace octrace::io {
@@ -17,12 +18,16 @@ namespace octrace::io {
 /// `req.series` is refused (InputError) for anything but DICOM.
 /// @throws InputError "PATH: no such file" when missing; FormatNotSupported naming the
 ///         supported formats; FileError "PATH: file is empty (0 bytes)"; otherwise as the
-///         format's reader (NetcdfReader::read, NrrdReader::read, DicomReader::read). The result is validated.
+///         format's reader (NetcdfReader::read, NrrdReader::read, DicomReader::read), LimitError
+///         when the samples would need more than `req.memoryBudget` (NRRD, NetCDF). The result
+///         is validated.
 ScalarField readField(const std::string& path, const FieldRequest& req = {});
 
 /// The text `octrace info INPUT` prints: format, variables with units, dims and valid value
 /// range, dims, spacing or axes, origin and world bounds; for DICOM every series, then the
-/// one `req.series` chooses. Only `req.series` of the request is used. Throws as readField().
+/// one `req.series` chooses. What would need more than `req.memoryBudget` bytes (0 = no
+/// limit) to read is left out of the text (NetCDF) or refused (NRRD, LimitError). Only
+/// `series` and `memoryBudget` of the request are used. Throws as readField().
 std::string describeInput(const std::string& path, const FieldRequest& req = {});
 
 }  // namespace octrace::io

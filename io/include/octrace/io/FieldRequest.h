@@ -3,6 +3,7 @@
 /// What a caller asks a field reader for: which variable, which geographic region, which
 /// vertical exaggeration, which DICOM series. Plain data, no GDAL or VTK types.
 #include <array>
+#include <cstdint>
 #include <string>
 
 namespace octrace::io {
@@ -21,6 +22,10 @@ struct FieldRequest {
     /// DICOM series to read: SeriesInstanceUID, 1-based index in `octrace info`'s list, or
     /// SeriesDescription. Empty: the largest series. Refused for other formats.
     std::string series;
+    /// Memory budget in bytes (see octrace/util/Memory.h); 0 = no limit. A read whose samples
+    /// (with the reader's own buffers) would need more is refused with LimitError before
+    /// anything that size is allocated.
+    std::uint64_t memoryBudget = 0;
 };
 
 /// Parses "LON0,LON1,LAT0,LAT1" (degrees) and checks the values (see checkRegion).

@@ -5,6 +5,7 @@
 #include "octrace/build/ScalarField.h"
 #include "octrace/io/FieldRequest.h"
 
+#include <cstdint>
 #include <string>
 
 namespace octrace::io {
@@ -31,15 +32,17 @@ public:
     ///         region on a non-geographic grid), FormatNotSupported (not NetCDF), FileError
     ///         (truncated, GDAL cannot open or read it, non-monotonic axes), UsageError (malformed region
     ///         or negative vertical scale), EmptyResultError (fewer than 2 grid points in the
-    ///         region along an axis, or no valid sample).
+    ///         region along an axis, or no valid sample), LimitError (the samples would need
+    ///         more than `req.memoryBudget` bytes: refused before they are allocated).
     /// Thread-safe as far as GDAL is: each call opens its own dataset.
     static ScalarField read(const std::string& path, const FieldRequest& req);
 
     /// Multi-line human-readable summary for `octrace info`: format, dimensions with their
     /// axis role and values, every variable with dims, units and valid value range, and the
     /// world geometry of the default (or first) 3-D variable. Throws as read(), except that a
-    /// variable without valid samples is reported in the text.
-    static std::string describe(const std::string& path);
+    /// variable without valid samples, or one too large for `memoryBudget` bytes (0 = no
+    /// limit), is reported in the text.
+    static std::string describe(const std::string& path, std::uint64_t memoryBudget = 0);
 };
 
 }  // namespace octrace::io

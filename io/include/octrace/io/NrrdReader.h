@@ -4,6 +4,7 @@
 /// raw, gzip or ascii encoding; any scalar type) into a ScalarField.
 #include "octrace/build/ScalarField.h"
 
+#include <cstdint>
 #include <string>
 
 namespace octrace::io {
@@ -19,12 +20,14 @@ public:
     /// @throws InputError if the file is missing, FormatNotSupported if it is not NRRD,
     ///         FileError if it is broken (truncated data, missing data file, bad spacing,
     ///         sheared directions, not 3-D, unsupported encoding or type).
+    ///         LimitError if decoding the samples would need more than `memoryBudget` bytes
+    ///         (0 = no limit), before they are allocated.
     /// Thread-safe (no shared state).
-    static ScalarField read(const std::string& path);
+    static ScalarField read(const std::string& path, std::uint64_t memoryBudget = 0);
 
     /// Multi-line human-readable summary (format, type, encoding, dims, geometry, value range)
     /// for `octrace info`. Reads the data to find the value range. Throws as read().
-    static std::string describe(const std::string& path);
+    static std::string describe(const std::string& path, std::uint64_t memoryBudget = 0);
 };
 
 }  // namespace octrace::io
