@@ -94,6 +94,7 @@ private:
                 const std::size_t i = local(x, y);
                 const dvec3 d = gen_.direction(x, y);
                 invDir_[i] = dvec3(1.0 / d.x, 1.0 / d.y, 1.0 / d.z);  // +-inf for a zero component
+                axisParallel_ = axisParallel_ || d.x == 0.0 || d.y == 0.0 || d.z == 0.0;
                 if (gen_.orthographic()) origin_[i] = gen_.origin(x, y);
             }
     }
@@ -179,27 +180,41 @@ private:
         const dvec3 hi = lo + dvec3(side);
         if (invDir_.empty()) prepareRays();
         const bool ortho = gen_.orthographic();
+        // Perspective rays share the eye: the box's offsets from it are per voxel, and with no
+        // axis-parallel ray in the tile the slab test needs no special case.
+        const bool fast = !ortho && !axisParallel_;
+        const dvec3 L = lo - gen_.eye(), H = hi - gen_.eye();
         bool shaded = false;
         vec4 colour{};
         for (int y = r.y0; y <= r.y1; ++y)
             for (int x = r.x0; x <= r.x1; ++x) {
                 const std::size_t i = local(x, y);
                 if (f2b_ && covered_[i]) continue;
-                const dvec3& o = ortho ? origin_[i] : gen_.eye();
                 const dvec3& inv = invDir_[i];
-                double tmin = -std::numeric_limits<double>::infinity(), tmax = std::numeric_limits<double>::infinity();
-                bool inside = true;
-                for (int a = 0; a < 3 && inside; ++a) {
-                    if (std::isinf(inv[a])) {
-                        inside = o[a] >= lo[a] && o[a] <= hi[a];
-                        continue;
+                double tmin, tmax;
+                if (fast) {
+                    const double ax = L.x * inv.x, bx = H.x * inv.x, ay = L.y * inv.y, by = H.y * inv.y;
+                    const double az = L.z * inv.z, bz = H.z * inv.z;
+                    tmin = std::max({std::min(ax, bx), std::min(ay, by), std::min(az, bz)});
+                    tmax = std::min({std::max(ax, bx), std::max(ay, by), std::max(az, bz)});
+                } else {
+                    const dvec3& o = ortho ? origin_[i] : gen_.eye();
+                    tmin = -std::numeric_limits<double>::infinity();
+                    tmax = std::numeric_limits<double>::infinity();
+                    bool inside = true;
+                    for (int a = 0; a < 3 && inside; ++a) {
+                        if (std::isinf(inv[a])) {
+                            inside = o[a] >= lo[a] && o[a] <= hi[a];
+                            continue;
+                        }
+                        double t0 = (lo[a] - o[a]) * inv[a], t1 = (hi[a] - o[a]) * inv[a];
+                        if (t0 > t1) std::swap(t0, t1);
+                        tmin = std::max(tmin, t0);
+                        tmax = std::min(tmax, t1);
                     }
-                    double t0 = (lo[a] - o[a]) * inv[a], t1 = (hi[a] - o[a]) * inv[a];
-                    if (t0 > t1) std::swap(t0, t1);
-                    tmin = std::max(tmin, t0);
-                    tmax = std::min(tmax, t1);
+                    if (!inside) continue;
                 }
-                if (!inside || tmin > tmax || tmax < 0.0) continue;
+                if (tmin > tmax || tmax < 0.0) continue;
                 if (!shaded) {
                     colour = node == kNoHit ? shader_.shade(voxel, cell) : shader_.shadeNode(node);
                     shaded = true;
@@ -227,6 +242,7 @@ private:
     std::vector<dvec3> invDir_, origin_;
     std::vector<std::uint8_t> covered_;
     std::size_t coveredCount_ = 0;
+    bool axisParallel_ = false;  // some ray of the tile has a zero direction component
     double axisR_[3], axisU_[3], axisB_[3];
     int orthoNear_ = 0;
     std::vector<double> levelSide_;
