@@ -31,6 +31,10 @@ RayGenerator::RayGenerator(const Camera& camera) : eye_(camera.position), ortho_
     halfW_ = halfH_ * (double(camera.width) / double(camera.height));
     invWidth_ = 1.0 / camera.width;
     invHeight_ = 1.0 / camera.height;
+    pixelX0_ = 0.5 * camera.width;
+    pixelY0_ = 0.5 * camera.height;
+    pixelScaleX_ = 0.5 * camera.width / halfW_;
+    pixelScaleY_ = 0.5 * camera.height / halfH_;
 }
 
 Camera Camera::framing(const Box3& box, int width, int height, double fovYDegrees) {

@@ -73,11 +73,12 @@ public:
     /// coordinates (along right, up, back from the eye); perspective needs back < 0.
     void toPixel(double cx, double cy, double cz, double& px, double& py) const {
         if (!ortho_) {
-            cx /= -cz;
-            cy /= -cz;
+            const double w = -1.0 / cz;
+            cx *= w;
+            cy *= w;
         }
-        px = (cx / halfW_ + 1.0) * 0.5 / invWidth_;
-        py = (1.0 - cy / halfH_) * 0.5 / invHeight_;
+        px = pixelX0_ + cx * pixelScaleX_;
+        py = pixelY0_ - cy * pixelScaleY_;
     }
 
 private:
@@ -87,6 +88,7 @@ private:
     double screenY(int y) const { return (1.0 - (y + 0.5) * invHeight_ * 2.0) * halfH_; }
     dvec3 eye_, right_, up_, back_;
     double halfH_, halfW_, invWidth_, invHeight_;
+    double pixelX0_, pixelY0_, pixelScaleX_, pixelScaleY_;  // toPixel: image centre, pixels per unit
     bool ortho_;
 };
 
