@@ -37,6 +37,11 @@ const Case kCases[] = {
     {"invalid_huge_frame_count.dcm", nullptr, "header declares 100000 frame(s)"},
     {"invalid_zero_pixel_spacing.dcm", nullptr, "PixelSpacing 0\\0.5 must be positive"},
     {"invalid_nan_position.dcm", nullptr, "is not 3 finite numbers"},
+    {"invalid_length_past_end.dcm", nullptr, "element (0028,1052) DS declares 8456 bytes, only 104 remain in the file"},
+    {"invalid_meta_group_only.dcm", nullptr, "the file ends after its file meta group (no data set)"},
+    {"invalid_unterminated_fragments.dcm", nullptr, "encapsulated pixel data have no sequence delimitation"},
+    {"invalid_vr_mismatch.dcm", nullptr, "element (0028,0103) has VR UI, the DICOM dictionary's is US"},
+    {"invalid_enhanced_without_orientation.dcm", nullptr, "multi-frame image with functional groups but no ImageOrientationPatient"},
 };
 }  // namespace
 
