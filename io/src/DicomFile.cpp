@@ -1,8 +1,11 @@
 #include "DicomFile.h"
 
+#include "DicomValidator.h"
 #include "InputFile.h"
 #include "octrace/util/Error.h"
 
+#include <gdcmDicts.h>
+#include <gdcmGlobal.h>
 #include <gdcmImage.h>
 #include <gdcmImageReader.h>
 #include <gdcmReader.h>
@@ -12,6 +15,7 @@
 #include <gdcmTrace.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -116,6 +120,33 @@ std::string printable(const std::string& text) {
     return out;
 }
 
+// GDCM's image reader takes attributes through gdcm::Attribute<>, which asserts (and so
+// aborts the process: Debian builds GDCM with assertions on) when an element's explicit VR
+// is not compatible with the one its dictionary gives (found by fuzz_dicom: a
+// PixelRepresentation of VR UI). Such an element is refused first, wherever GDCM has parsed
+// it: at the top level and in nested items (depth bounded as in DicomValidator.h).
+void checkDictionaryVrs(const std::string& file, const gdcm::DataSet& ds, int depth) {
+    static const gdcm::Dict& dict = gdcm::Global::GetInstance().GetDicts().GetPublicDict();
+    for (const gdcm::DataElement& de : ds.GetDES()) {
+        const gdcm::Tag& tag = de.GetTag();
+        const gdcm::VR vr = de.GetVR();  // INVALID in implicit VR
+        if (!tag.IsPrivate() && vr != gdcm::VR::INVALID && vr != gdcm::VR::UN) {
+            const gdcm::VR want = dict.GetDictEntry(tag).GetVR();
+            if (want != gdcm::VR::INVALID && want != gdcm::VR::UN && want != gdcm::VR::VR_END && !want.Compatible(vr)) {
+                char name[16];
+                std::snprintf(name, sizeof name, "(%04X,%04X)", tag.GetGroup(), tag.GetElement());
+                throw FileError(file + ": element " + name + " has VR " + gdcm::VR::GetVRString(vr) +
+                                ", the DICOM dictionary's is " + gdcm::VR::GetVRString(want));
+            }
+        }
+        // Only sequences GDCM has parsed already (GetValueAsSQ() would parse UN values).
+        if (depth >= kMaxDicomSequenceDepth || de.IsEmpty() || de.GetByteValue()) continue;
+        if (const auto* sq = dynamic_cast<const gdcm::SequenceOfItems*>(&de.GetValue()))
+            for (gdcm::SequenceOfItems::SizeType i = 1; i <= sq->GetNumberOfItems(); ++i)
+                checkDictionaryVrs(file, sq->GetItem(i).GetNestedDataSet(), depth + 1);
+    }
+}
+
 struct Context {
     const std::string& file;
     Attributes& attrs;
@@ -217,6 +248,8 @@ bool isDicomDir(const std::string& file) {
 
 std::optional<DicomHeader> readDicomHeader(const std::string& file, std::string& whyNot) {
     silenceGdcm();
+    // Our structure walk first: GDCM aborts the process on some corrupt files.
+    if (!validateDicomFile(file, whyNot)) return std::nullopt;
     gdcm::Reader reader;
     reader.SetFileName(file.c_str());
     // Skipping the pixel data's value stops the reader just before it: the stream position
@@ -225,6 +258,7 @@ std::optional<DicomHeader> readDicomHeader(const std::string& file, std::string&
         whyNot = "not a DICOM file GDCM can parse";
         return std::nullopt;
     }
+    checkDictionaryVrs(file, reader.GetFile().GetDataSet(), 0);
     Attributes attrs(reader.GetFile());
     const Context c{file, attrs};
     DicomHeader h;
@@ -263,6 +297,12 @@ std::optional<DicomHeader> readDicomHeader(const std::string& file, std::string&
     checkPixelDataFits(c, h, encapsulated, size > at ? size - at : 0);
 
     for (std::size_t n = 0; n < h.frames.size(); ++n) h.frames[n] = readFrame(c, n);
+    // For an image with functional groups GDCM's image reader computes the slice spacing from
+    // the orientation in them (or at the top level) and asserts, aborting the process, when
+    // there is none (found by fuzz_dicom).
+    const bool groups = perFrameItems > 0 || attrs.items(kSharedGroups) > 0;
+    if (groups && !h.frames[0].hasOrientation)
+        c.fail("multi-frame image with functional groups but no ImageOrientationPatient (neither in them nor at the top level)");
     for (gdcm::Tag t : {kSpacingBetweenSlices, kSliceThickness}) {
         if (auto s = c.frameNumbers(0, kPixelMeasures, t, 1, t == kSliceThickness ? "SliceThickness" : "SpacingBetweenSlices"))
             if ((*s)[0] > 0.0 && h.sliceSpacing == 0.0) h.sliceSpacing = (*s)[0];
@@ -272,6 +312,8 @@ std::optional<DicomHeader> readDicomHeader(const std::string& file, std::string&
 
 std::vector<float> decodeDicomFrames(const DicomHeader& h) {
     silenceGdcm();
+    // Again: the file is opened anew, and GDCM must never see a broken structure.
+    if (std::string whyNot; !validateDicomFile(h.file, whyNot)) throw FileError(h.file + ": " + whyNot);
     gdcm::ImageReader reader;
     reader.SetFileName(h.file.c_str());
     if (!reader.Read()) throw FileError(h.file + ": GDCM cannot read its image (pixel data missing or broken)");

@@ -19,14 +19,17 @@ bool isDicomDir(const std::string& file);
 /// Reads the attributes octrace uses, stopping before the pixel data. Returns nothing when the
 /// file is not DICOM or not an image (no Rows/Columns: a DICOMDIR, a report...), with the
 /// reason in `whyNot`. Per-frame geometry and rescale come from the Per-frame Functional
-/// Groups, then the Shared Functional Groups, then the top-level attributes.
-/// @throws FileError "FILE: ..." for an image header octrace refuses (absurd sizes or frame
+/// Groups, then the Shared Functional Groups, then the top-level attributes. The file's
+/// structure is checked by validateDicomFile() (DicomValidator.h) before GDCM opens it.
+/// @throws FileError "FILE: DICOM structure broken at byte N: ..." for a broken structure;
+///         FileError "FILE: ..." for an image header octrace refuses (absurd sizes or frame
 ///         counts, pixel data that cannot fit in the file, zero/negative or non-finite pixel
 ///         spacing, non-finite positions, colour images): before any large allocation.
 std::optional<DicomHeader> readDicomHeader(const std::string& file, std::string& whyNot);
 
 /// Stored values of every frame of `h.file` (frame after frame, x fastest), decoded whatever
-/// the transfer syntax. The rescale is not applied.
+/// the transfer syntax. The rescale is not applied. The structure is checked again (the file
+/// is opened anew) before GDCM reads it.
 /// @throws FileError "FILE: ..." when the pixel data are missing, truncated or cannot be
 ///         decoded, or do not match the header.
 std::vector<float> decodeDicomFrames(const DicomHeader& h);

@@ -86,7 +86,10 @@ TEST(DicomReader, TheFiveMultiFrameMrEncodingsGiveIdenticalVoxels) {
 
 TEST(DicomReader, RefusesTheTruncatedJpeg2000StreamNamingTheFile) {
     OCTRACE_SHARED_FILE_OR_SKIP(path, "medical/emri_small_jpeg_2k_lossless_too_short.dcm");
-    EXPECT_THROW_WITH(io::readField(path), FileError, path + ": cannot decode its JPEG 2000 pixel data");
+    // The file is 8 bytes short: the sequence delimitation after its last fragment. The
+    // structure walk refuses it before GDCM (which would read on and fail to decode it).
+    EXPECT_THROW_WITH(io::readField(path), FileError,
+                      path + ": DICOM structure broken at byte 40316: encapsulated pixel data have no sequence delimitation");
 }
 
 TEST(DicomReader, ResamplesTheGantryTiltedCtOntoAnOrthogonalGridWithAWarning) {
@@ -194,12 +197,36 @@ TEST(DicomReader, RefusesBrokenSeriesWithOneLineNamingTheInput) {
         {"invalid_huge_frame_count.dcm", "header declares 100000 frame(s) of 64x64 x 16 bits, which need at least 819200000 bytes, but only 8192 bytes follow the header"},
         {"invalid_zero_pixel_spacing.dcm", "PixelSpacing 0\\0.5 must be positive"},
         {"invalid_nan_position.dcm", "ImagePositionPatient 'NaN\\0\\1' of frame 2 is not 3 finite numbers"},
+        // GDCM aborts the process on these five; our structure walk (three), VR check and header checks refuse them first.
+        {"invalid_length_past_end.dcm",
+         "DICOM structure broken at byte 492: element (0028,1052) DS declares 8456 bytes, only 104 remain in the file"},
+        {"invalid_meta_group_only.dcm", "DICOM structure broken at byte 256: the file ends after its file meta group (no data set)"},
+        {"invalid_unterminated_fragments.dcm",
+         "DICOM structure broken at byte 434: encapsulated pixel data have no sequence delimitation (FFFE,E0DD)"},
+        {"invalid_vr_mismatch.dcm", "element (0028,0103) has VR UI, the DICOM dictionary's is US"},
+        {"invalid_enhanced_without_orientation.dcm", "multi-frame image with functional groups but no ImageOrientationPatient (neither in them nor at the top level)"},
     };
     for (const Case& c : cases) {
         const std::string path = test::testData(std::string("invalid/") + c.input);
         EXPECT_THROW_WITH(io::readField(path), FileError, path + ": ");
         EXPECT_THROW_WITH(io::readField(path), FileError, c.message);
     }
+}
+
+// fuzz_dicom's first finding as it was found: the two_series folder with one slice's
+// RescaleIntercept declaring 8,456 bytes (GDCM aborted the whole process on it). The folder
+// is refused, naming the folder and the broken file.
+TEST(DicomReader, RefusesAFolderHoldingAFileWhoseLengthRunsPastItsEndInsteadOfAborting) {
+    test::TempDir dir;
+    const std::string series = test::testData("dicom/two_series");
+    std::filesystem::copy(series, dir.file("two_series"), std::filesystem::copy_options::recursive);
+    const std::string broken = dir.file("two_series/sub/ct0.dcm");
+    std::filesystem::copy_file(test::testData("invalid/invalid_length_past_end.dcm"), broken,
+                               std::filesystem::copy_options::overwrite_existing);
+    const std::string folder = dir.file("two_series");
+    EXPECT_THROW_WITH(io::DicomReader::read(folder), FileError,
+                      folder + ": " + broken + ": DICOM structure broken at byte 492: element (0028,1052) DS declares 8456 bytes");
+    EXPECT_THROW_WITH(io::DicomReader::listSeries(folder), FileError, broken + ": DICOM structure broken at byte 492");
 }
 
 TEST(DicomReader, ASingleImageIsNotAVolume) {

@@ -44,12 +44,12 @@ def dataset(elements):
     return b"".join(element(g, e, vr, v) for (g, e), (vr, v) in sorted(elements.items()))
 
 
-def part10(elements, sop_class):
+def part10(elements, sop_class, transfer_syntax="1.2.840.10008.1.2.1"):
     meta_body = dataset({
         (0x0002, 0x0001): ("OB", b"\0\1"),
         (0x0002, 0x0002): ("UI", sop_class),
         (0x0002, 0x0003): ("UI", "1.2.826.0.1.3680043.9.7777.1"),
-        (0x0002, 0x0010): ("UI", "1.2.840.10008.1.2.1"),
+        (0x0002, 0x0010): ("UI", transfer_syntax),
     })
     meta = element(0x0002, 0x0000, "UL", len(meta_body)) + meta_body
     return b"\0" * 128 + b"DICM" + meta + dataset(elements)
@@ -160,6 +160,42 @@ def main():
     write(os.path.join(INVALID, "invalid_nan_position.dcm"),
           enhanced_ct([ds(0, 0, 0), "NaN\\0\\1"], [0, 0]), ENHANCED_CT)
 
+    # Files on which GDCM (Debian builds it with assertions on) aborts the process; octrace's
+    # own structure walk (io/src/DicomValidator.*) refuses them before GDCM opens them.
+    # fuzz_dicom's first finding: two_series' sub/ct0.dcm whose RescaleIntercept (DS, 8 bytes
+    # at the end of the header) declares 8,456 bytes; GDCM's retry hits assert(is.good()) in
+    # FileMetaInformation::ReadCompat.
+    ct0 = part10(slice_at("1.2.826.0.1.3680043.9.7777.32", "CT", 6, 6, 0, 0, description="large ct", number=2,
+                          extra={(0x0028, 0x1052): ("DS", ds(-1024)), (0x0028, 0x1053): ("DS", ds(1))}), CT_IMAGE)
+    at = ct0.index(struct.pack("<HH", 0x0028, 0x1052) + b"DS")
+    assert struct.unpack("<H", ct0[at + 6:at + 8])[0] == 8
+    with open(os.path.join(INVALID, "invalid_length_past_end.dcm"), "wb") as f:
+        f.write(ct0[:at + 6] + struct.pack("<H", 8456) + ct0[at + 8:])
+    # An MR slice whose PixelRepresentation has VR UI instead of US (found by fuzz_dicom):
+    # gdcm::Attribute<0x0028,0x0103> asserts that the VRs are compatible while GDCM's image
+    # reader reads it. Structurally sound: DicomFile refuses it with GDCM's dictionary.
+    mr = slice_at("1.2.826.0.1.3680043.9.7777.80", "MR", 4, 4, 0, 0)
+    mr[(0x0028, 0x0103)] = ("UI", struct.pack("<H", 1))
+    write(os.path.join(INVALID, "invalid_vr_mismatch.dcm"), mr, MR_IMAGE)
+    # An enhanced CT without any ImageOrientationPatient (found by fuzz_dicom): GDCM's image
+    # reader computes the slice spacing from it and asserts "b1 && cosines.size() == 6".
+    e = enhanced_ct([ds(0, 0, 0), ds(0, 0, 1)], [0, 0])
+    e[(0x5200, 0x9229)] = ("SQ", [{(0x0028, 0x9110): ("SQ", [{(0x0028, 0x0030): ("DS", ds(0.5, 0.5))}])}])
+    write(os.path.join(INVALID, "invalid_enhanced_without_orientation.dcm"), e, ENHANCED_CT)
+    # The meta group and nothing after it (a truncation found by DicomValidatorTest): GDCM's
+    # meta reader asserts "Should not happen" when no tag follows.
+    with open(os.path.join(INVALID, "invalid_meta_group_only.dcm"), "wb") as f:
+        f.write(part10({}, CT_IMAGE))
+    # JPEG-compressed pixel data cut after the (empty) offset table, without the sequence
+    # delimitation (a truncation found by DicomValidatorTest): GDCM makes up an empty
+    # fragment and asserts "ValueField" while decoding.
+    jpeg = image("1.2.826.0.1.3680043.9.7777.70", "MR", 4, 4, [0] * 16)
+    jpeg.pop((0x7FE0, 0x0010))
+    head = part10(jpeg, MR_IMAGE, "1.2.840.10008.1.2.4.50")
+    with open(os.path.join(INVALID, "invalid_unterminated_fragments.dcm"), "wb") as f:
+        f.write(head + struct.pack("<HH", 0x7FE0, 0x0010) + b"OB\0\0" + struct.pack("<I", 0xFFFFFFFF) +
+                struct.pack("<HHI", 0xFFFE, 0xE000, 0))
+
 
 def seeds():
     """Seeds of tests/fuzz/corpus/fuzz_dicom: the fixtures above (a folder's files joined by the
@@ -174,7 +210,9 @@ def seeds():
         open(os.path.join(out, name), "wb").write(folder_bytes(os.path.join(INVALID, name)))
     for name in ["enhanced_ct_3frames.dcm"]:
         shutil.copy(os.path.join(HERE, name), out)
-    for name in ["invalid_nan_position.dcm", "invalid_zero_pixel_spacing.dcm", "invalid_huge_frame_count.dcm"]:
+    for name in ["invalid_nan_position.dcm", "invalid_zero_pixel_spacing.dcm", "invalid_huge_frame_count.dcm",
+                 "invalid_length_past_end.dcm", "invalid_meta_group_only.dcm", "invalid_unterminated_fragments.dcm", "invalid_vr_mismatch.dcm",
+                 "invalid_enhanced_without_orientation.dcm"]:
         shutil.copy(os.path.join(INVALID, name), out)
     tilted = [part10(slice_at("1.2.826.0.1.3680043.9.7777.60", "CT", 4, 4, k, 0,
                               extra={(0x0020, 0x0032): ("DS", ds(-10, -20 + 0.25 * k, k))}), CT_IMAGE) for k in range(4)]
