@@ -64,8 +64,9 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
     if (q.meetsCube) ++st.rays;
     TraversalHit hit;
     std::uint8_t flags = Frame::kTraced;
-    // Meets the cube perhaps, but not the surface's bounding box: nothing to find.
-    if (!c.rays.mayHitSurface(x, y)) return background();
+    // Meets the cube perhaps, but not the surface's bounding box: nothing to find. (A node drawn
+    // whole by a multi-resolution cut reaches beyond that box: then only the cube's outline.)
+    if (!c.cut.active() && !c.rays.mayHitSurface(x, y)) return background();
     const bool usePartners = partners && mode != Start::Root && f.hitId[partners[0]] != kNoHit &&
                              f.hitId[partners[1]] != kNoHit && q.meetsCube;
     if (usePartners) {

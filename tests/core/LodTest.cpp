@@ -91,6 +91,19 @@ TEST(Lod, AverageNormalOfAFlatPatchIsItsNormal) {
 }
 
 TEST(Lod, FullAndReferenceDrawTheSameCutTreeBitForBit) {
+    // A sphere's coarse nodes reach beyond its bounding box: a cut must not be clipped by it.
+    {
+        Octree sphere = buildShellOctree(makeAnalyticField("sphere", 33), {6, 0.0, 0});
+        sphere.computeSummaries();
+        for (const NamedCamera& nc : generalTestCameras(sphere)) {
+            SCOPED_TRACE("sphere, level 2, " + nc.name);
+            Frame full, ref;
+            makeRenderer("full")->render(sphere, nc.camera, lodSettings(0.0, 2), full);
+            makeRenderer("reference")->render(sphere, nc.camera, lodSettings(0.0, 2), ref);
+            const FrameDiff d = diffFrames(full, ref);
+            EXPECT_TRUE(d.identical()) << d.first;
+        }
+    }
     const Octree& t = summarized();
     for (const auto& [pixels, level] : {std::pair{2.0, -1}, {6.0, -1}, {0.0, 4}, {3.0, 5}})
         for (const NamedCamera& nc : allTestCameras(t)) {
