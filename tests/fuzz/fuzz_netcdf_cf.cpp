@@ -10,6 +10,7 @@
 
 #include <cpl_vsi.h>
 
+#include <cstdlib>
 #include <sstream>
 
 namespace {
@@ -29,7 +30,10 @@ FieldRequest region(double lon0, double lon1, double lat0, double lat1, double v
 
 bool passesTheOnDiskChecks(const std::string& bytes) {
     static const std::string hdf5("\x89HDF\r\n\x1a\n", 8);
-    if (bytes.size() >= 8 && bytes.compare(0, 8, hdf5) == 0) return true;
+    // HDF5 itself can hang on corrupt files (docs/dev/fuzzing.md, "Open"): the CI smoke run
+    // sets OCTRACE_FUZZ_NO_HDF5 so that it cannot stop on one of those; long runs fuzz both.
+    static const bool noHdf5 = std::getenv("OCTRACE_FUZZ_NO_HDF5") != nullptr;
+    if (bytes.size() >= 8 && bytes.compare(0, 8, hdf5) == 0) return !noHdf5;
     if (bytes.size() < 4 || bytes.compare(0, 3, "CDF") != 0 || (bytes[3] != 1 && bytes[3] != 2 && bytes[3] != 5))
         return false;
     std::istringstream in(bytes);
