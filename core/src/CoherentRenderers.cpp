@@ -64,9 +64,9 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
     if (q.meetsCube) ++st.rays;
     TraversalHit hit;
     std::uint8_t flags = Frame::kTraced;
-    // Meets the cube perhaps, but not the surface's bounding box: nothing to find. (A node drawn
-    // whole by a multi-resolution cut reaches beyond that box: then only the cube's outline.)
-    if (!c.cut.active() && !c.rays.mayHitSurface(x, y)) return background();
+    // Meets the cube perhaps, but not the surface's bounding box (rounded out to the nodes a
+    // multi-resolution cut may draw whole): nothing to find.
+    if (!c.rays.mayHitSurface(x, y)) return background();
     const bool usePartners = partners && mode != Start::Root && f.hitId[partners[0]] != kNoHit &&
                              f.hitId[partners[1]] != kNoHit && q.meetsCube;
     if (usePartners) {
@@ -155,10 +155,10 @@ RenderStats DiscreteRenderer::render(const Octree& tree, const Camera& camera, c
     settings.colourCoherence = settingsIn.colourCoherence || colour_;
     frame.resize(camera.width, camera.height);
     const Shader shader(tree, camera, settings);
-    const PixelRays rays(tree, camera);
+    const LodCut cut(tree, camera, settings.lodPixels, settings.level);
+    const PixelRays rays(tree, camera, cut.coarsestLevel());
     std::vector<ivec3> cells(frame.hitId.size(), ivec3(0));
     std::vector<std::uint32_t> srgb(settings.colourCoherence ? frame.hitId.size() : 0, 0u);
-    const LodCut cut(tree, camera, settings.lodPixels, settings.level);
     if (cut.active() && pattern_ != Pattern::Full)
         throw UsageError("renderer " + name() + " has no multi-resolution mode (--lod, --level): use full, direct or direct-f2b");
     const Context ctx{tree, settings, frame, shader, rays, cells, srgb, cut};

@@ -5,7 +5,7 @@
 
 namespace octrace::detail {
 
-PixelRays::PixelRays(const Octree& tree, const Camera& camera) : tree_(tree), gen_(camera) {
+PixelRays::PixelRays(const Octree& tree, const Camera& camera, int surfaceLevel) : tree_(tree), gen_(camera) {
     const Box3 cube{tree.cubeOrigin, tree.cubeOrigin + dvec3(tree.cubeSide)};
     cubeSpans_ = outline(cube, camera.width, camera.height);
     ivec3 lo, hi;
@@ -13,6 +13,11 @@ PixelRays::PixelRays(const Octree& tree, const Camera& camera) : tree_(tree), ge
     if (lo.x > hi.x) {
         surfaceSpans_.assign(std::size_t(std::max(camera.height, 0)), {1, 0});  // no surface at all
         return;
+    }
+    if (surfaceLevel >= 0 && surfaceLevel < tree.depth) {
+        const int shift = tree.depth - surfaceLevel;
+        lo = ivec3(lo.x >> shift, lo.y >> shift, lo.z >> shift) * (1 << shift);
+        hi = (ivec3(hi.x >> shift, hi.y >> shift, hi.z >> shift) + 1) * (1 << shift) - 1;
     }
     const double v = tree.voxelSize();
     surfaceSpans_ = outline(Box3{tree.cubeOrigin + dvec3(lo) * v, tree.cubeOrigin + dvec3(hi + 1) * v}, camera.width,

@@ -13,7 +13,10 @@ namespace octrace::detail {
 
 class PixelRays {
 public:
-    PixelRays(const Octree& tree, const Camera& camera);
+    /// `surfaceLevel`: the surface's bounding box is rounded out to the node grid of that level
+    /// (a multi-resolution cut draws nodes down from it whole: LodCut::coarsestLevel); < 0 or
+    /// the tree's depth: the voxels' own box.
+    PixelRays(const Octree& tree, const Camera& camera, int surfaceLevel = -1);
     /// Unnormalised world direction of pixel (x, y) (quantization only needs its ratios).
     dvec3 direction(int x, int y) const { return gen_.direction(x, y); }
     /// Ray origin of pixel (x, y) in octree space.

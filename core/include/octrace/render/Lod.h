@@ -25,6 +25,9 @@ public:
     LodCut(const Octree& tree, const Camera& camera, double pixels, int level);
 
     bool active() const { return active_; }
+    /// The coarsest level at which stops() can be true for any node (the tree's depth when the
+    /// cut is inactive): every node drawn whole lies on the node grid of that level or finer.
+    int coarsestLevel() const { return coarsest_; }
     /// Whether a traversal that reaches the (non-empty, crossed) node at `level` with cell
     /// coordinates `cell` (at that level) stops there. Never at the voxel level.
     bool stops(int level, const ivec3& cell) const {
@@ -38,7 +41,7 @@ public:
 
 private:
     bool active_ = false, perspective_ = false;
-    int depth_ = 0, maxLevel_ = 0;
+    int depth_ = 0, maxLevel_ = 0, coarsest_ = Octree::kMaxDepth;
     dvec3 eye_{0.0};   // octree integer space
     double k2_ = 0.0;  // (pixels * pixel size at unit distance)^2
     std::array<double, Octree::kMaxDepth + 1> sides_{};
