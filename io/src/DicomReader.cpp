@@ -6,9 +6,11 @@
 #include "InputFile.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
+#include "octrace/util/Memory.h"
 
 #include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -157,7 +159,17 @@ std::vector<float> decodeSlices(const std::vector<DicomHeader>& headers, const d
     return stored;
 }
 
-ScalarField assemble(const Series& series, const std::string& path) {
+// What reading the series costs at its peak: the stored slices as floats, the resampled grid
+// and its mask when tilted, and one file's decoded bytes and floats (files are decoded one by one).
+std::uint64_t peakBytes(const Series& series, double stored, double samples, bool tilted) {
+    double file = 0.0;
+    for (const DicomHeader& h : series.headers)
+        file = std::max(file, double(h.rows) * double(h.columns) * double(h.frames.size()) * (h.bitsAllocated / 8.0 + sizeof(float)));
+    const double total = stored * sizeof(float) + (tilted ? samples * (sizeof(float) + 1.0) : 0.0) + file;
+    return total >= 1.8e19 ? std::numeric_limits<std::uint64_t>::max() : std::uint64_t(total);
+}
+
+ScalarField assemble(const Series& series, const std::string& path, std::uint64_t memoryBudget) {
     detail::SeriesLayout L = detail::layoutSeries(series.headers, path);
     const double stored = double(L.sliceDims.x) * double(L.sliceDims.y) * double(L.sliceDims.z);
     ivec3 dims = L.sliceDims;
@@ -167,6 +179,10 @@ ScalarField assemble(const Series& series, const std::string& path) {
     if (std::max(stored, samples) > kMaxSamples)
         throw FileError(path + ": series " + series.info.uid + " is " + std::to_string(dims.x) + "x" + std::to_string(dims.y) +
                         "x" + std::to_string(dims.z) + " samples, more than octrace reads (" + detail::num(kMaxSamples) + ")");
+
+    checkMemoryBudget(path + ": reading DICOM series " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
+                          std::to_string(dims.z),
+                      peakBytes(series, stored, samples, L.tilted), memoryBudget);
 
     const bool ct = series.info.modality == "CT";
     ScalarField f;
@@ -192,7 +208,7 @@ ScalarField assemble(const Series& series, const std::string& path) {
     return f;
 }
 
-ScalarField readScanned(const Scan& s, const std::string& path, const std::string& want) {
+ScalarField readScanned(const Scan& s, const std::string& path, const std::string& want, std::uint64_t memoryBudget) {
     const std::size_t chosen = chooseSeries(s, want, path);
     const DicomSeriesInfo& info = s.series[chosen].info;
     // Said when there was a choice to make; a folder of one series gets a debugging line.
@@ -200,7 +216,7 @@ ScalarField readScanned(const Scan& s, const std::string& path, const std::strin
                              ", " + seriesLine(info);
     if (s.series.size() > 1) log::info(said + (want.empty() ? ": the largest; choose another with --series" : ""));
     else log::debug(said);
-    return assemble(s.series[chosen], path);
+    return assemble(s.series[chosen], path, memoryBudget);
 }
 
 }  // namespace
@@ -211,16 +227,16 @@ std::vector<DicomSeriesInfo> DicomReader::listSeries(const std::string& path) {
     return list;
 }
 
-ScalarField DicomReader::read(const std::string& path, const std::string& series) {
-    return readScanned(scan(path), path, series);
+ScalarField DicomReader::read(const std::string& path, const std::string& series, std::uint64_t memoryBudget) {
+    return readScanned(scan(path), path, series, memoryBudget);
 }
 
-std::string DicomReader::describe(const std::string& path, const std::string& series) {
+std::string DicomReader::describe(const std::string& path, const std::string& series, std::uint64_t memoryBudget) {
     const Scan s = scan(path);
     std::ostringstream out;
     out << path << "\nformat: DICOM, " << s.series.size() << " image series\n";
     for (std::size_t i = 0; i < s.series.size(); ++i) out << "series " << i + 1 << ": " << seriesLine(s.series[i].info) << "\n";
-    const ScalarField f = readScanned(s, path, series);
+    const ScalarField f = readScanned(s, path, series, memoryBudget);
     out << "chosen: series " << chooseSeries(s, series, path) + 1 << "\n" << detail::describeVolume(f);
     return out.str();
 }

@@ -5,10 +5,12 @@
 #include "octrace/io/DicomReader.h"
 #include "octrace/io/NetcdfReader.h"
 #include "octrace/io/NrrdReader.h"
+#include "octrace/io/VolumeReader.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
 
 #include <filesystem>
+#include <optional>
 
 namespace octrace::io {
 namespace {
@@ -16,7 +18,8 @@ namespace {
 using detail::FileKind;
 
 const char* kSupported = "supported: NetCDF (.nc, .cdf, .nc4: classic, 64-bit offset, CDF-5, NetCDF-4/HDF5), "
-                         "NRRD (.nrrd, .nhdr), DICOM (a file, a folder or a DICOMDIR)";
+                         "NRRD (.nrrd, .nhdr), DICOM (a file, a folder or a DICOMDIR), MetaImage (.mhd, .mha), "
+                         "NIfTI (.nii, .nii.gz, .hdr), VTK image data (.vti)";
 
 FileKind kindOf(const std::string& path) {
     std::error_code ec;
@@ -27,6 +30,9 @@ FileKind kindOf(const std::string& path) {
     std::string ext = detail::lower(std::filesystem::path(path).extension().string());
     if (ext == ".nrrd" || ext == ".nhdr") return FileKind::Nrrd;
     if (ext == ".nc" || ext == ".cdf" || ext == ".nc4" || ext == ".netcdf") return FileKind::NetCdf;
+    if (ext == ".mhd" || ext == ".mha") return FileKind::MetaImage;
+    if (ext == ".nii" || ext == ".hdr" || detail::lower(path).ends_with(".nii.gz")) return FileKind::Nifti;
+    if (ext == ".vti") return FileKind::Vti;
     if (ext == ".dcm" || ext == ".dicom" || std::filesystem::path(path).filename() == "DICOMDIR") return FileKind::Dicom;
     throw FormatNotSupported(path + ": format not recognised (file starts with '" + s.description + "'); " + kSupported);
 }
@@ -49,11 +55,29 @@ void refuseSeries(const std::string& path, const FieldRequest& req) {
     if (!req.series.empty()) throw InputError(path + ": --series chooses a DICOM series, this input is not DICOM");
 }
 
+std::optional<VolumeReader::Format> volumeFormat(FileKind kind) {
+    switch (kind) {
+        case FileKind::MetaImage: return VolumeReader::Format::MetaImage;
+        case FileKind::Nifti: return VolumeReader::Format::Nifti;
+        case FileKind::Vti: return VolumeReader::Format::Vti;
+        default: return std::nullopt;
+    }
+}
+
 }  // namespace
 
 ScalarField readField(const std::string& path, const FieldRequest& req) {
     ScalarField f;
-    switch (kindOf(path)) {
+    const FileKind kind = kindOf(path);
+    if (auto format = volumeFormat(kind)) {
+        const char* name = VolumeReader::formatName(*format);
+        refuseSeries(path, req);
+        refuseRegion(path, req, name);
+        f = checkVolume(VolumeReader::read(path, *format, req.memoryBudget), path, req, name);
+        f.validate();
+        return f;
+    }
+    switch (kind) {
         case FileKind::Nrrd:
             refuseSeries(path, req);
             refuseRegion(path, req, "NRRD");
@@ -61,7 +85,7 @@ ScalarField readField(const std::string& path, const FieldRequest& req) {
             break;
         case FileKind::Dicom:
             refuseRegion(path, req, "DICOM");
-            f = checkVolume(DicomReader::read(path, req.series), path, req, "DICOM");
+            f = checkVolume(DicomReader::read(path, req.series, req.memoryBudget), path, req, "DICOM");
             break;
         default:
             refuseSeries(path, req);
@@ -72,9 +96,14 @@ ScalarField readField(const std::string& path, const FieldRequest& req) {
 }
 
 std::string describeInput(const std::string& path, const FieldRequest& req) {
-    switch (kindOf(path)) {
+    const FileKind kind = kindOf(path);
+    if (auto format = volumeFormat(kind)) {
+        refuseSeries(path, req);
+        return VolumeReader::describe(path, *format, req.memoryBudget);
+    }
+    switch (kind) {
         case FileKind::Nrrd: refuseSeries(path, req); return NrrdReader::describe(path, req.memoryBudget);
-        case FileKind::Dicom: return DicomReader::describe(path, req.series);
+        case FileKind::Dicom: return DicomReader::describe(path, req.series, req.memoryBudget);
         default: refuseSeries(path, req); return NetcdfReader::describe(path, req.memoryBudget);
     }
 }

@@ -3,6 +3,9 @@
 #include "InputFile.h"
 #include "octrace/util/Error.h"
 
+#include <algorithm>
+#include <cstdint>
+
 namespace octrace::io::detail {
 
 Sniffed sniffFormat(const std::string& path) {
@@ -19,6 +22,23 @@ Sniffed sniffFormat(const std::string& path) {
         if (head.size() >= at + 8 && head.compare(at, 8, hdf5) == 0) return {FileKind::NetCdf, "NetCDF-4 / HDF5"};
     if (head.compare(0, 4, "NRRD") == 0) return {FileKind::Nrrd, "NRRD"};
     if (head.size() >= 132 && head.compare(128, 4, "DICM") == 0) return {FileKind::Dicom, "DICOM"};
+    // NIfTI-1 (sizeof_hdr 348, magic "n+1" or "ni1" at 344) and NIfTI-2 (540, "n+2" at 4), either byte order.
+    const auto int32At0 = [&](std::uint32_t v) {
+        const std::uint32_t be = (v >> 24) | ((v >> 8) & 0xff00u) | ((v << 8) & 0xff0000u) | (v << 24);
+        std::uint32_t x = 0;
+        for (int i = 0; i < 4; ++i) x |= std::uint32_t(static_cast<unsigned char>(head[std::size_t(i)])) << (8 * i);
+        return x == v || x == be;
+    };
+    if (head.size() >= 348 && int32At0(348) && (head.compare(344, 4, std::string("n+1\0", 4)) == 0 || head.compare(344, 4, std::string("ni1\0", 4)) == 0))
+        return {FileKind::Nifti, "NIfTI-1"};
+    if (head.size() >= 540 && int32At0(540) && head.compare(4, 3, "n+2") == 0) return {FileKind::Nifti, "NIfTI-2"};
+    if ((head.compare(0, 5, "<?xml") == 0 || head.compare(0, 8, "<VTKFile") == 0) &&
+        head.find("type=\"ImageData\"") != std::string::npos)
+        return {FileKind::Vti, "VTK XML image data"};
+    // MetaImage: text starting with one of the keys that open such headers.
+    const std::string first = lower(trim(head.substr(0, std::min(head.find('='), std::size_t(32)))));
+    if (head.find('=') != std::string::npos && (first == "objecttype" || first == "ndims" || first == "comment"))
+        return {FileKind::MetaImage, "MetaImage"};
     return {FileKind::Unknown, quoteBytes(head.substr(0, 8))};
 }
 

@@ -4,7 +4,7 @@
 
 namespace octrace::io::detail {
 
-enum class FileKind { NetCdf, Nrrd, Dicom, Unknown };
+enum class FileKind { NetCdf, Nrrd, Dicom, MetaImage, Nifti, Vti, Unknown };
 
 struct Sniffed {
     FileKind kind = FileKind::Unknown;

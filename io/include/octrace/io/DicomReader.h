@@ -5,6 +5,7 @@
 /// multi-frame) into a ScalarField. No GDCM type appears here.
 #include "octrace/build/ScalarField.h"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -52,11 +53,14 @@ public:
     /// @throws InputError for an unknown `series`; FileError naming the file for a broken
     ///         or unsupported series (undecodable or truncated pixel data, mixed sizes or
     ///         orientations, absurd headers: checked before any large allocation).
+    ///         LimitError when the slices, the volume and the largest file's decoding buffers
+    ///         would need more than `memoryBudget` bytes (0 = no limit), found from the headers
+    ///         before any of it is allocated.
     /// Thread-safe (no shared state).
-    static ScalarField read(const std::string& path, const std::string& series = {});
+    static ScalarField read(const std::string& path, const std::string& series = {}, std::uint64_t memoryBudget = 0);
 
     /// `octrace info` text: the series list, then the chosen series as read().
-    static std::string describe(const std::string& path, const std::string& series = {});
+    static std::string describe(const std::string& path, const std::string& series = {}, std::uint64_t memoryBudget = 0);
 };
 
 }  // namespace octrace::io

@@ -1,0 +1,181 @@
+#include "MetaImageHeader.h"
+
+#include "InputFile.h"
+#include "octrace/util/Error.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <vector>
+
+namespace octrace::io::detail {
+namespace {
+
+// A header is a few hundred bytes; anything longer before ElementDataFile is not one.
+constexpr std::size_t kMaxHeaderBytes = 65536;
+
+// Element types of MetaIO (metaTypes.h) and their sizes.
+std::size_t elementSize(const std::string& t) {
+    if (t == "MET_CHAR" || t == "MET_UCHAR") return 1;
+    if (t == "MET_SHORT" || t == "MET_USHORT") return 2;
+    if (t == "MET_INT" || t == "MET_UINT" || t == "MET_FLOAT") return 4;
+    if (t == "MET_LONG_LONG" || t == "MET_ULONG_LONG" || t == "MET_DOUBLE") return 8;
+    return 0;
+}
+
+struct Parser {
+    const std::string& path;
+    [[noreturn]] void fail(const std::string& what) const { throw FileError(path + ": MetaImage header: " + what); }
+
+    std::vector<double> numbers(const std::string& key, const std::string& value, std::size_t count) const {
+        std::istringstream in(value);
+        std::vector<double> v;
+        for (std::string item; in >> item;) {
+            char* end = nullptr;
+            errno = 0;
+            const double x = std::strtod(item.c_str(), &end);
+            if (*end != '\0' || errno == ERANGE || !std::isfinite(x))
+                fail(key + " '" + quoteBytes(value) + "' is not " + std::to_string(count) + " finite numbers");
+            v.push_back(x);
+        }
+        if (v.size() != count) fail(key + " '" + quoteBytes(value) + "' is not " + std::to_string(count) + " numbers");
+        return v;
+    }
+    bool boolean(const std::string& key, const std::string& value) const {
+        const std::string v = lower(value);
+        if (v == "true" || v == "1") return true;
+        if (v == "false" || v == "0") return false;
+        fail(key + " '" + quoteBytes(value) + "' is neither True nor False");
+    }
+};
+
+}  // namespace
+
+MetaImageHeader MetaImageHeader::parseText(const std::string& path, const std::string& text) {
+    const Parser p{path};
+    MetaImageHeader h;
+    h.path = path;
+    bool sawNDims = false, sawDims = false, sawKey = false, sawSpacing = false;
+    std::size_t pos = 0;
+    for (;;) {
+        if (pos >= text.size()) {
+            if (!sawKey) throw FormatNotSupported(path + ": not a MetaImage header (no 'Key = Value' line)");
+            p.fail(text.size() >= kMaxHeaderBytes ? "no ElementDataFile line in the first 64 KiB"
+                                                  : "no ElementDataFile line (it must end the header)");
+        }
+        std::size_t end = text.find('\n', pos);
+        const bool lastLine = end == std::string::npos;
+        if (lastLine) end = text.size();
+        std::string line = text.substr(pos, end - pos);
+        pos = end + 1;
+        if (line.find('\0') != std::string::npos) {
+            if (!sawKey) throw FormatNotSupported(path + ": not a MetaImage header (binary data)");
+            p.fail("NUL byte in the header before ElementDataFile");
+        }
+        line = trim(line);
+        if (line.empty()) continue;
+        const std::size_t eq = line.find('=');
+        if (eq == std::string::npos) {
+            if (!sawKey) throw FormatNotSupported(path + ": not a MetaImage header (first line '" + quoteBytes(line.substr(0, 40)) + "')");
+            p.fail("line '" + quoteBytes(line.substr(0, 60)) + "' is not 'Key = Value'");
+        }
+        const std::string key = trim(line.substr(0, eq)), value = trim(line.substr(eq + 1));
+        const std::string k = lower(key);
+        sawKey = true;
+        if (k == "objecttype") {
+            if (lower(value) != "image") p.fail("ObjectType '" + quoteBytes(value) + "' is not Image");
+        } else if (k == "ndims") {
+            if (value != "3") p.fail("NDims " + quoteBytes(value) + ": octrace reads 3-D images only");
+            sawNDims = true;
+        } else if (k == "dimsize") {
+            const std::vector<double> d = p.numbers(key, value, 3);
+            for (int a = 0; a < 3; ++a) {
+                if (d[std::size_t(a)] < 1 || d[std::size_t(a)] > double(kMaxAxisPoints) || d[std::size_t(a)] != std::floor(d[std::size_t(a)]))
+                    p.fail("DimSize '" + quoteBytes(value) + "': each must be an integer in 1.." + std::to_string(kMaxAxisPoints));
+                h.dims[a] = int(d[std::size_t(a)]);
+            }
+            sawDims = true;
+        } else if (k == "elementspacing" || (k == "elementsize" && !sawSpacing)) {
+            sawSpacing = sawSpacing || k == "elementspacing";
+            const std::vector<double> s = p.numbers(key, value, 3);
+            for (int a = 0; a < 3; ++a) h.spacing[a] = s[std::size_t(a)];
+            if (!(h.spacing.x > 0.0 && h.spacing.y > 0.0 && h.spacing.z > 0.0)) p.fail(key + " '" + value + "' must be positive");
+        } else if (k == "offset" || k == "position" || k == "origin") {
+            const std::vector<double> o = p.numbers(key, value, 3);
+            h.origin = dvec3(o[0], o[1], o[2]);
+        } else if (k == "transformmatrix" || k == "rotation" || k == "orientation") {
+            const std::vector<double> m = p.numbers(key, value, 9);
+            // As ITK's MetaImageIO reads it: values 3a..3a+2 are the world direction of axis a.
+            for (int a = 0; a < 3; ++a)
+                h.direction[a] = dvec3(m[std::size_t(3 * a)], m[std::size_t(3 * a + 1)], m[std::size_t(3 * a + 2)]);
+            h.hasDirection = true;
+        } else if (k == "elementtype") {
+            h.elementType = value;
+            h.typeSize = elementSize(value);
+            if (h.typeSize == 0) p.fail("ElementType '" + quoteBytes(value) + "' is not one octrace reads (MET_CHAR .. MET_DOUBLE)");
+        } else if (k == "elementnumberofchannels") {
+            if (value != "1") p.fail("ElementNumberOfChannels " + quoteBytes(value) + ": a volume needs one value per sample");
+        } else if (k == "compresseddata") {
+            h.compressed = p.boolean(key, value);
+        } else if (k == "binarydatabyteordermsb" || k == "elementbyteordermsb") {
+            h.bigEndian = p.boolean(key, value);
+        } else if (k == "binarydata") {
+            if (!p.boolean(key, value)) p.fail("BinaryData False (ASCII samples) is not supported");
+        } else if (k == "headersize") {
+            char* stop = nullptr;
+            const long long n = std::strtoll(value.c_str(), &stop, 10);
+            if (*stop != '\0' || value.empty() || n < 0)
+                p.fail("HeaderSize '" + quoteBytes(value) + "' is not supported (a byte count, not -1)");
+            h.dataOffset = std::uint64_t(n);
+        } else if (k == "anatomicalorientation") {
+            h.anatomicalOrientation = value;
+        } else if (k == "elementdatafile") {
+            if (!sawNDims || !sawDims || h.typeSize == 0) p.fail("NDims, DimSize and ElementType must come before ElementDataFile");
+            if (value.empty()) p.fail("ElementDataFile is empty");
+            if (lower(value) == "list" || value.find('%') != std::string::npos || value.find(' ') != std::string::npos)
+                p.fail("ElementDataFile '" + quoteBytes(value) + "': lists and patterns of slice files are not supported");
+            if (value == "LOCAL") {
+                if (lastLine) p.fail("no data after ElementDataFile = LOCAL");
+                h.dataFile = "LOCAL";
+                h.dataOffset = pos;  // the samples follow the header line
+            } else {
+                std::filesystem::path f(value);
+                if (f.is_relative()) f = std::filesystem::path(path).parent_path() / f;
+                h.dataFile = f.lexically_normal().string();
+            }
+            return h;
+        }
+        // Other keys (Comment, CenterOfRotation, ElementMin, ...) do not change the samples.
+    }
+}
+
+MetaImageHeader MetaImageHeader::parse(const std::string& path) {
+    requireReadableFile(path);
+    const std::string head = readPrefix(path, kMaxHeaderBytes);
+    if (head.empty()) throw FileError(path + ": file is empty (0 bytes)");
+    return parseText(path, head);
+}
+
+void MetaImageHeader::checkData() const {
+    const std::string file = dataFile == "LOCAL" ? path : dataFile;
+    if (file != path) {
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(file, ec)) throw FileError(path + ": data file '" + file + "' not found");
+        requireReadableFile(file);
+    }
+    const std::uintmax_t size = fileSize(file);
+    const std::uintmax_t start = std::min<std::uintmax_t>(dataOffset, size);
+    if (compressed) {
+        if (size <= start) throw FileError(path + ": no compressed data in '" + file + "'");
+        return;
+    }
+    const std::uint64_t need = std::uint64_t(sampleCount()) * typeSize;
+    if (size - start < need)
+        throw FileError(path + ": data truncated: " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
+                        std::to_string(dims.z) + " " + elementType + " need " + std::to_string(need) + " bytes, '" + file +
+                        "' holds " + std::to_string(size - start) + " from byte " + std::to_string(start));
+}
+
+}  // namespace octrace::io::detail

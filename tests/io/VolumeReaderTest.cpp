@@ -1,0 +1,226 @@
+// MetaImage, NIfTI and VTK image data: written from NRRD samples and generated volumes with
+// non-trivial origin, spacing and direction, read back through readField().
+#include "IoTestSupport.h"
+
+#include "octrace/io/FieldReader.h"
+#include "octrace/io/NrrdReader.h"
+#include "octrace/io/VolumeReader.h"
+#include "octrace/io/VolumeWriter.h"
+#include "octrace/util/Error.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+#include <fstream>
+
+using namespace octrace;
+
+namespace {
+
+const char* kExtensions[] = {".mhd", ".mha", ".nii", ".nii.gz", ".vti"};
+
+// NIfTI keeps its matrices in float32, so positions come back to float precision there.
+double positionTolerance(const std::string& ext, const ScalarField& f) {
+    if (ext.rfind(".nii", 0) != 0) return 1e-9;
+    const Box3 b = f.worldBounds();
+    return 4e-7 * std::max(glm::length(b.hi), glm::length(b.lo)) + 1e-6;
+}
+
+// A rotation by 30 degrees about (1,2,3) (every column has three non-zero components),
+// optionally followed by a mirror of the first axis (a reflection: determinant -1).
+dmat3 rotated(bool mirror) {
+    dmat3 d(glm::rotate(glm::dmat4(1.0), glm::radians(30.0), glm::normalize(dvec3(1, 2, 3))));
+    if (mirror) d[0] = -d[0];
+    return d;
+}
+
+ScalarField generated() {
+    ScalarField f;
+    f.name = "density";
+    f.dims = ivec3(17, 11, 7);
+    f.origin = dvec3(-12.5, 300.25, 7.125);
+    f.spacing = dvec3(0.5, 1.25, 3.0);
+    f.direction = rotated(false);
+    f.values.resize(f.sampleCount());
+    for (int k = 0; k < 7; ++k)
+        for (int j = 0; j < 11; ++j)
+            for (int i = 0; i < 17; ++i) f.values[f.index(i, j, k)] = float(i + 100 * j + 10000 * k) * 0.5f - 300.0f;
+    return f;
+}
+
+// Same samples at the same world positions: every sample of `in` maps (through its world
+// position) onto the sample of `out` with the same value. `sameOrder` also asks for the same
+// storage order (a reader may reverse slices, e.g. NIfTI with qfac -1, and stay right).
+void expectSameVolume(const ScalarField& in, const ScalarField& out, double tolerance, const std::string& what,
+                      bool sameOrder = true) {
+    SCOPED_TRACE(what);
+    ASSERT_EQ(in.dims, out.dims);
+    ASSERT_EQ(in.values.size(), out.values.size());
+    if (sameOrder) EXPECT_TRUE(in.values == out.values) << "samples differ";
+    std::size_t misplaced = 0;
+    double worst = 0.0;
+    for (int k = 0; k < in.dims.z; ++k)
+        for (int j = 0; j < in.dims.y; ++j)
+            for (int i = 0; i < in.dims.x; ++i) {
+                const dvec3 local = glm::transpose(out.direction) * (in.worldFromGrid(i, j, k) - out.origin) / out.spacing;
+                const ivec3 n(glm::round(local));
+                worst = std::max(worst, glm::length((local - dvec3(n)) * out.spacing));
+                if (glm::any(glm::lessThan(n, ivec3(0))) || glm::any(glm::greaterThanEqual(n, out.dims)) ||
+                    in.values[in.index(i, j, k)] != out.values[out.index(n.x, n.y, n.z)])
+                    ++misplaced;
+            }
+    EXPECT_EQ(misplaced, 0u) << "samples whose world position holds another value";
+    EXPECT_LT(worst, tolerance) << "largest distance between a sample and its original";
+}
+
+// With a reflection (determinant -1), VTK's NIfTI reader hands the slices over in reverse order.
+void roundTrip(const ScalarField& out, const std::string& name) {
+    test::TempDir dir;
+    const bool reflection = glm::determinant(out.direction) < 0.0;
+    for (const std::string ext : kExtensions) {
+        const std::string path = dir.file(name + ext);
+        io::VolumeWriter::write(out, path);
+        const ScalarField in = io::readField(path);
+        expectSameVolume(in, out, positionTolerance(ext, out), path, !(reflection && ext.rfind(".nii", 0) == 0));
+    }
+}
+
+void writeText(const std::string& path, const std::string& text) {
+    std::ofstream(path, std::ios::binary) << text;
+}
+
+}  // namespace
+
+TEST(VolumeReader, GeneratedRotatedAnisotropicVolumeRoundTripsInEveryFormat) { roundTrip(generated(), "generated"); }
+
+TEST(VolumeReader, MirroredDirectionRoundTrips) {
+    // A reflection: NIfTI keeps it in the sform only (a qform cannot hold it).
+    ScalarField f = generated();
+    f.direction = rotated(true);
+    roundTrip(f, "mirrored");
+}
+
+TEST(VolumeReader, NiftiQformAloneAndSformAloneAreHonoured) {
+    const ScalarField out = generated();
+    test::TempDir dir;
+    io::VolumeWriteOptions qformOnly, sformOnly;
+    qformOnly.niftiSform = false;
+    sformOnly.niftiQform = false;
+    io::VolumeWriter::write(out, dir.file("q.nii"), qformOnly);
+    io::VolumeWriter::write(out, dir.file("s.nii"), sformOnly);
+    const ScalarField q = io::readField(dir.file("q.nii")), s = io::readField(dir.file("s.nii"));
+    expectSameVolume(q, out, positionTolerance(".nii", out), "qform only");
+    expectSameVolume(s, out, positionTolerance(".nii", out), "sform only");
+    EXPECT_NE(q.notes.front().find("qform"), std::string::npos) << q.notes.front();
+    EXPECT_NE(s.notes.front().find("sform"), std::string::npos) << s.notes.front();
+}
+
+TEST(VolumeReader, InvalidSamplesComeBackInvalid) {
+    ScalarField f = generated();
+    f.valid.assign(f.sampleCount(), 1);
+    f.valid[f.index(3, 4, 5)] = 0;
+    test::TempDir dir;
+    for (const char* ext : kExtensions) {
+        io::VolumeWriter::write(f, dir.file(std::string("holes") + ext));
+        const ScalarField in = io::readField(dir.file(std::string("holes") + ext));
+        ASSERT_EQ(in.valid.size(), f.sampleCount()) << ext;
+        EXPECT_EQ(in.validCount(), f.sampleCount() - 1) << ext;
+        EXPECT_FALSE(in.isValid(in.index(3, 4, 5))) << ext;
+    }
+}
+
+// The real CT samples, moved and turned: every format gives back the NRRD's voxels.
+TEST(VolumeReader, ChestCtFromNrrdRoundTripsWithObliqueGeometry) {
+    OCTRACE_SHARED_FILE_OR_SKIP(path, "medical/lidc2_chest_ct.nrrd");
+    ScalarField f = io::NrrdReader::read(path);
+    f.origin = dvec3(-180.0, 95.5, -320.25);
+    f.direction = rotated(false);
+    roundTrip(f, "lidc2");
+}
+
+TEST(VolumeReader, HeadFromDetachedNrrdSlicesRoundTrips) {
+    OCTRACE_SHARED_FILE_OR_SKIP(path, "medical/headsq_raw/quarter.nhdr");
+    ScalarField f = io::NrrdReader::read(path);
+    f.origin = dvec3(12.0, -7.5, 40.0);
+    f.direction = rotated(true);
+    roundTrip(f, "headsq");
+}
+
+TEST(VolumeReader, MetaImageWrittenByHandFollowsItsTransformMatrix) {
+    // 3x2x2 shorts; axis 0 along world y, axis 1 along world -x (ITK order: one axis per triple).
+    test::TempDir dir;
+    writeText(dir.file("hand.mhd"), "ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = False\n"
+                                    "TransformMatrix = 0 1 0 -1 0 0 0 0 1\nOffset = 10 20 30\nElementSpacing = 0.5 2 4\n"
+                                    "DimSize = 3 2 2\nElementType = MET_SHORT\nElementDataFile = hand.raw\n");
+    std::vector<std::int16_t> raw(12);
+    for (int i = 0; i < 12; ++i) raw[std::size_t(i)] = std::int16_t(i * 10 - 50);
+    writeText(dir.file("hand.raw"), std::string(reinterpret_cast<const char*>(raw.data()), raw.size() * 2));
+    const ScalarField f = io::readField(dir.file("hand.mhd"));
+    ASSERT_EQ(f.dims, ivec3(3, 2, 2));
+    for (int i = 0; i < 12; ++i) EXPECT_EQ(f.values[std::size_t(i)], float(i * 10 - 50));  // file order kept
+    const dvec3 p = f.worldFromGrid(2, 1, 1);
+    EXPECT_NEAR(glm::length(p - dvec3(10.0 - 2.0, 20.0 + 1.0, 30.0 + 4.0)), 0.0, 1e-12);
+}
+
+TEST(VolumeReader, DescribeNamesTheFormat) {
+    test::TempDir dir;
+    const ScalarField f = generated();
+    for (const char* ext : kExtensions) io::VolumeWriter::write(f, dir.file(std::string("d") + ext));
+    EXPECT_NE(io::describeInput(dir.file("d.mhd")).find("format: MetaImage"), std::string::npos);
+    EXPECT_NE(io::describeInput(dir.file("d.nii.gz")).find("format: NIfTI"), std::string::npos);
+    EXPECT_NE(io::describeInput(dir.file("d.vti")).find("format: VTK image data"), std::string::npos);
+}
+
+TEST(VolumeReader, BrokenFilesAreRefusedWithOneLine) {
+    test::TempDir dir;
+    const ScalarField f = generated();
+    for (const char* ext : kExtensions) io::VolumeWriter::write(f, dir.file(std::string("ok") + ext));
+    // Truncated data of each format.
+    std::filesystem::resize_file(dir.file("ok.raw"), 100);
+    EXPECT_THROW_WITH(io::readField(dir.file("ok.mhd")), FileError, "data truncated");
+    std::filesystem::resize_file(dir.file("ok.mha"), 600);
+    EXPECT_THROW_WITH(io::readField(dir.file("ok.mha")), FileError, "data truncated");
+    std::filesystem::resize_file(dir.file("ok.nii"), 1000);
+    EXPECT_THROW_WITH(io::readField(dir.file("ok.nii")), FileError, "NIfTI data truncated");
+    std::filesystem::resize_file(dir.file("ok.nii.gz"), 300);
+    EXPECT_THROW(io::readField(dir.file("ok.nii.gz")), FileError);
+    std::filesystem::resize_file(dir.file("ok.vti"), 700);
+    EXPECT_THROW(io::readField(dir.file("ok.vti")), FileError);
+    // Headers octrace refuses.
+    const std::string head = "ObjectType = Image\nNDims = 3\nDimSize = 3 2 2\nElementType = MET_SHORT\n";
+    writeText(dir.file("missing.mhd"), head + "ElementDataFile = nowhere.raw\n");
+    EXPECT_THROW_WITH(io::readField(dir.file("missing.mhd")), FileError, "not found");
+    writeText(dir.file("rgb.mhd"), head + "ElementNumberOfChannels = 3\nElementDataFile = ok.raw\n");
+    EXPECT_THROW_WITH(io::readField(dir.file("rgb.mhd")), FileError, "one value per sample");
+    writeText(dir.file("flat.mhd"), "NDims = 2\nDimSize = 3 2\nElementType = MET_SHORT\nElementDataFile = ok.raw\n");
+    EXPECT_THROW_WITH(io::readField(dir.file("flat.mhd")), FileError, "3-D");
+    writeText(dir.file("list.mhd"), head + "ElementDataFile = LIST\n");
+    EXPECT_THROW_WITH(io::readField(dir.file("list.mhd")), FileError, "lists and patterns");
+    writeText(dir.file("sheared.mhd"), head + "TransformMatrix = 1 0 0 1 1 0 0 0 1\nElementDataFile = ok.raw\n");
+    EXPECT_THROW_WITH(io::readField(dir.file("sheared.mhd")), FileError, "sheared");
+    writeText(dir.file("huge.mha"), "NDims = 3\nDimSize = 16777216 16777216 2\nElementType = MET_DOUBLE\nElementDataFile = LOCAL\nxx");
+    EXPECT_THROW_WITH(io::readField(dir.file("huge.mha")), FileError, "data truncated");
+    writeText(dir.file("noise.nii"), std::string(400, 'x'));
+    EXPECT_THROW(io::readField(dir.file("noise.nii")), InputError);
+    writeText(dir.file("noise.vti"), "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\"><ImageData WholeExtent=\"0 9");
+    EXPECT_THROW(io::readField(dir.file("noise.vti")), InputError);
+}
+
+TEST(VolumeReader, MemoryBudgetRefusesBeforeDecoding) {
+    test::TempDir dir;
+    const ScalarField f = generated();
+    io::FieldRequest req;
+    req.memoryBudget = 1000;  // the volume needs 1309 samples x 9 bytes
+    for (const char* ext : kExtensions) {
+        io::VolumeWriter::write(f, dir.file(std::string("b") + ext));
+        EXPECT_THROW_WITH(io::readField(dir.file(std::string("b") + ext), req), LimitError, "memory budget");
+    }
+}
+
+TEST(VolumeReader, SeriesAndRegionAreRefused) {
+    test::TempDir dir;
+    io::VolumeWriter::write(generated(), dir.file("v.vti"));
+    io::FieldRequest req;
+    req.series = "1";
+    EXPECT_THROW_WITH(io::readField(dir.file("v.vti"), req), InputError, "not DICOM");
+}
