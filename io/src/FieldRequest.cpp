@@ -1,5 +1,6 @@
 #include "octrace/io/FieldRequest.h"
 
+#include "CfTime.h"
 #include "InputFile.h"
 #include "octrace/util/Error.h"
 
@@ -9,24 +10,52 @@
 
 namespace octrace::io {
 
-std::array<double, 4> parseRegion(const std::string& text) {
-    std::array<double, 4> r{};
+namespace {
+
+// "A,B,..." as exactly N finite numbers; `what` names the option, `form` the expected text.
+template <std::size_t N>
+std::array<double, N> parseNumbers(const std::string& text, const std::string& what, const std::string& form) {
+    std::array<double, N> r{};
     std::stringstream in(text);
     std::string item;
-    int n = 0;
+    std::size_t n = 0;
     while (std::getline(in, item, ',')) {
         item = detail::trim(item);
         char* end = nullptr;
         double v = std::strtod(item.c_str(), &end);
         if (item.empty() || *end != '\0' || !std::isfinite(v))
-            throw UsageError("region '" + text + "': '" + item + "' is not a number (expected LON0,LON1,LAT0,LAT1 in degrees)");
-        if (n < 4) r[std::size_t(n)] = v;
+            throw UsageError(what + " '" + text + "': '" + item + "' is not a number (expected " + form + ")");
+        if (n < N) r[n] = v;
         ++n;
     }
-    if (n != 4)
-        throw UsageError("region '" + text + "': expected 4 values LON0,LON1,LAT0,LAT1 in degrees, got " + std::to_string(n));
+    if (n != N)
+        throw UsageError(what + " '" + text + "': expected " + std::to_string(N) + " values " + form + ", got " +
+                         std::to_string(n));
+    return r;
+}
+
+}  // namespace
+
+std::array<double, 4> parseRegion(const std::string& text) {
+    auto r = parseNumbers<4>(text, "region", "LON0,LON1,LAT0,LAT1 in degrees");
     checkRegion(r.data(), "region '" + text + "'");
     return r;
+}
+
+std::array<double, 2> parseDepthRange(const std::string& text) {
+    auto r = parseNumbers<2>(text, "depth range", "Z0,Z1 in metres");
+    if (!(r[0] < r[1]))
+        throw UsageError("depth range '" + text + "': Z0 must be less than Z1 (metres, positive down)");
+    return r;
+}
+
+void checkTimeText(const std::string& text) {
+    if (text.empty()) throw UsageError("--time: empty (give a time index or a date YYYY-MM-DD)");
+    if (text.find_first_not_of("0123456789") == std::string::npos) {
+        if (text.size() > 9) throw UsageError("--time: index " + text + " is too large");
+        return;
+    }
+    (void)detail::parseIsoDate(text, "--time");
 }
 
 void checkRegion(const double region[4], const std::string& what) {

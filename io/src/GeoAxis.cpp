@@ -35,6 +35,17 @@ double lengthToKm(const std::string& units) {
     return 0.0;
 }
 
+// dbar per unit for pressure units; 0 when not a pressure.
+double pressureToDbar(const std::string& units) {
+    std::string u = squeeze(units);
+    if (isOneOf(u, {"dbar", "decibar", "decibars", "db"})) return 1.0;
+    if (isOneOf(u, {"bar", "bars"})) return 10.0;
+    if (isOneOf(u, {"hpa", "mbar", "millibar", "millibars"})) return 0.01;
+    if (isOneOf(u, {"pa", "pascal", "pascals"})) return 1e-4;
+    if (isOneOf(u, {"kpa"})) return 0.1;
+    return 0.0;
+}
+
 bool nameIs(const std::string& name, std::initializer_list<const char*> list) { return isOneOf(lower(name), list); }
 
 AxisClass vertical(const AxisInfo& a) {
@@ -43,12 +54,14 @@ AxisClass vertical(const AxisInfo& a) {
     std::string pos = lower(trim(a.positive));
     std::string sn = lower(a.standardName);
     std::string name = lower(a.name);
+    c.toDbar = pressureToDbar(a.units);
     if (pos == "down" || pos == "up") {
         c.positiveDown = pos == "down";
     } else if (a.gdalDirection == "DOWN" || a.gdalDirection == "UP") {
         c.positiveDown = a.gdalDirection == "DOWN";
-    } else if (sn.find("depth") != std::string::npos || name.find("depth") != std::string::npos) {
-        c.positiveDown = true;
+    } else if (c.toDbar > 0.0 || sn.find("pressure") != std::string::npos ||
+               sn.find("depth") != std::string::npos || name.find("depth") != std::string::npos) {
+        c.positiveDown = true;  // CF: pressure increases downward without a `positive` attribute
     } else if (sn.find("height") != std::string::npos || sn.find("altitude") != std::string::npos ||
                name.find("height") != std::string::npos || name.find("alt") == 0 || name.find("elev") == 0) {
         c.positiveDown = false;
@@ -60,8 +73,10 @@ AxisClass vertical(const AxisInfo& a) {
         c.toKm = 0.001;
         std::string why = "vertical axis '" + a.name + "' units '" + a.units + "' taken as metres";
         c.note = c.note.empty() ? why : c.note + "; " + why;
-    } else if (isOneOf(squeeze(a.units), {"dbar", "decibar", "decibars", "db"})) {
-        c.note = "vertical axis '" + a.name + "' in " + a.units + " taken as metres (1 dbar ~ 1 m)";
+    }
+    if (c.toDbar > 0.0) {
+        c.toKm = 0.001 * c.toDbar;  // 1 dbar ~ 1 m of sea water (1 % off at 5000 m)
+        c.note = "vertical axis '" + a.name + "' is pressure in " + a.units + ", placed at 1 m per dbar";
     }
     return c;
 }
@@ -86,7 +101,8 @@ AxisClass classifyAxis(const AxisInfo& a) {
     if (sn == "longitude" || sn == "grid_longitude") return role(AxisRole::Longitude);
     if (sn == "latitude" || sn == "grid_latitude") return role(AxisRole::Latitude);
     // GDAL's VERTICAL type alone is not enough: it calls any axis in metres vertical.
-    if (sn == "depth" || sn == "altitude" || sn == "height" || axis == "z" || !trim(a.positive).empty() ||
+    if (sn == "depth" || sn == "altitude" || sn == "height" || sn == "sea_water_pressure" || axis == "z" ||
+        !trim(a.positive).empty() || pressureToDbar(a.units) > 0.0 ||
         a.gdalDirection == "UP" || a.gdalDirection == "DOWN")
         return vertical(a);
     bool degrees = squeeze(a.units).rfind("degree", 0) == 0;

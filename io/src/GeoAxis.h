@@ -11,7 +11,8 @@ enum class AxisRole { Longitude, Latitude, Vertical, Time, Other };
 struct AxisInfo {
     std::string name;           ///< dimension name
     std::size_t size = 0;
-    std::string units, positive, standardName, axis, longName;  ///< coordinate variable attributes
+    std::string units, positive, standardName, axis, longName, calendar, bounds;  ///< coordinate variable attributes
+    std::string coordinateVariable;  ///< name of the variable the values come from (empty: none)
     std::string gdalType, gdalDirection;  ///< GDAL's guess (e.g. HORIZONTAL_X / EAST), may be empty
     std::vector<double> values;  ///< coordinate values; empty when there is no coordinate variable
 };
@@ -20,6 +21,7 @@ struct AxisClass {
     AxisRole role = AxisRole::Other;
     bool positiveDown = true;  ///< vertical only: larger values are deeper
     double toKm = 0.001;       ///< vertical only: factor from the file's units to km
+    double toDbar = 0.0;       ///< vertical only: factor from the file's units to dbar for a pressure axis, else 0
     std::string note;          ///< assumption made, for ScalarField::notes (may be empty)
 };
 

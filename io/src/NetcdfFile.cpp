@@ -67,12 +67,52 @@ void collect(const std::shared_ptr<GDALGroup>& group, std::vector<VariableInfo>&
         v.dataType = v.numeric ? GDALGetDataTypeName(a->GetDataType().GetNumericDataType()) : "non-numeric";
         v.units = a->GetUnit();
         v.longName = stringAttribute(*a, "long_name");
+        v.standardName = stringAttribute(*a, "standard_name");
+        v.coordinates = stringAttribute(*a, "coordinates");
+        v.bounds = stringAttribute(*a, "bounds");
         v.coordinate = v.dimNames.size() == 1 && v.dimNames[0] == v.shortName;
         out.push_back(v);
         arrays.push_back(a);
     }
     for (const auto& name : group->GetGroupNames())
         if (auto sub = group->OpenGroup(name)) collect(sub, out, arrays);
+}
+
+std::vector<std::string> words(const std::string& s) {
+    std::vector<std::string> out;
+    std::string w;
+    for (char c : s + " ") {
+        if (c == ' ' || c == '\t' || c == '\n') {
+            if (!w.empty()) out.push_back(w);
+            w.clear();
+        } else {
+            w += c;
+        }
+    }
+    return out;
+}
+
+// CF auxiliary variables: those another variable names as its coordinates or bounds.
+void markAuxiliary(std::vector<VariableInfo>& vars) {
+    for (const auto& v : vars) {
+        auto names = words(v.coordinates);
+        if (!v.bounds.empty()) names.push_back(v.bounds);
+        for (const auto& n : names)
+            for (auto& w : vars)
+                if (w.shortName == n && &w != &v) w.auxiliary = true;
+    }
+}
+
+// NetCDF's default fill values (netcdf.h NC_FILL_*), which mark unwritten samples when a
+// variable has no _FillValue. Bytes have none by the NetCDF User's Guide's convention.
+bool defaultFill(const std::string& type, double& fill) {
+    if (type == "Int16") fill = -32767.0;
+    else if (type == "UInt16") fill = 65535.0;
+    else if (type == "Int32") fill = -2147483647.0;
+    else if (type == "UInt32") fill = 4294967295.0;
+    else if (type == "Float32" || type == "Float64") fill = 9.9692099683868690e+36;
+    else return false;
+    return true;
 }
 
 }  // namespace
@@ -124,6 +164,7 @@ NetcdfFile::NetcdfFile(const std::string& path) : impl_(std::make_unique<Impl>()
     auto root = impl_->dataset->GetRootGroup();
     if (!root) throw FileError(path + ": GDAL gives no root group: " + GdalMessages::last());
     collect(root, impl_->variables, impl_->arrays);
+    markAuxiliary(impl_->variables);
 }
 
 NetcdfFile::~NetcdfFile() = default;
@@ -142,12 +183,23 @@ AxisInfo NetcdfFile::axis(const VariableInfo& variable, std::size_t dim) const {
     a.gdalType = d->GetType();
     a.gdalDirection = d->GetDirection();
     auto iv = d->GetIndexingVariable();
-    if (!iv || iv->GetDimensionCount() != 1 || iv->GetDataType().GetClass() != GEDTC_NUMERIC) return a;
+    if (!iv || iv->GetDimensionCount() != 1 || iv->GetDataType().GetClass() != GEDTC_NUMERIC) {
+        iv.reset();
+        for (const auto& n : words(variable.coordinates))
+            for (std::size_t i = 0; i < impl_->variables.size() && !iv; ++i) {
+                const VariableInfo& c = impl_->variables[i];
+                if (c.shortName == n && c.numeric && c.dimNames.size() == 1 && c.dimNames[0] == a.name) iv = impl_->arrays[i];
+            }
+    }
+    if (!iv) return a;
+    a.coordinateVariable = iv->GetName();
     a.units = iv->GetUnit();
     a.positive = stringAttribute(*iv, "positive");
     a.standardName = stringAttribute(*iv, "standard_name");
     a.axis = stringAttribute(*iv, "axis");
     a.longName = stringAttribute(*iv, "long_name");
+    a.calendar = stringAttribute(*iv, "calendar");
+    a.bounds = stringAttribute(*iv, "bounds");
     std::vector<double> values(a.size);
     GUInt64 start = 0;
     std::size_t count = a.size;
@@ -166,9 +218,8 @@ SampleRules NetcdfFile::rules(const VariableInfo& variable) const {
     bool hasNoData = false;
     double noData = a.GetNoDataValueAsDouble(&hasNoData);
     if (hasNoData) r.missing.push_back(noData);
-    if (numberAttribute(a, "_FillValue").empty() &&
-        (variable.dataType == "Float32" || variable.dataType == "Float64"))
-        r.missing.push_back(9.9692099683868690e+36);  // NetCDF's default fill for unwritten floats
+    double fill = 0.0;
+    if (!hasNoData && numberAttribute(a, "_FillValue").empty() && defaultFill(variable.dataType, fill)) r.missing.push_back(fill);
     auto range = numberAttribute(a, "valid_range");
     auto vmin = numberAttribute(a, "valid_min");
     auto vmax = numberAttribute(a, "valid_max");
@@ -181,6 +232,20 @@ SampleRules NetcdfFile::rules(const VariableInfo& variable) const {
     double offset = a.GetOffset(&has);
     if (has) r.offset = offset;
     return r;
+}
+
+std::string NetcdfFile::attributeText(const VariableInfo& variable, const char* name) const {
+    GdalMessages messages;
+    auto attr = impl_->array(variable)->GetAttribute(name);
+    if (!attr) return {};
+    if (attr->GetDataType().GetClass() == GEDTC_STRING) {
+        const char* s = attr->ReadAsString();
+        return s ? s : "";
+    }
+    if (attr->GetDataType().GetClass() != GEDTC_NUMERIC) return {};
+    std::string out;
+    for (double v : attr->ReadAsDoubleArray()) out += (out.empty() ? "" : " ") + num(v);
+    return out;
 }
 
 std::vector<double> NetcdfFile::read(const VariableInfo& variable, const std::vector<std::uint64_t>& start,

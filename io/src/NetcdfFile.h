@@ -18,8 +18,12 @@ struct VariableInfo {
     std::vector<std::size_t> dimSizes;
     std::string dataType;    ///< "Float32", ...
     std::string units, longName;
+    std::string standardName;  ///< CF standard_name, may be empty
+    std::string coordinates;   ///< CF `coordinates` attribute: names of auxiliary coordinate variables
+    std::string bounds;        ///< CF `bounds` attribute: name of the cell-boundary variable
     bool numeric = false;
     bool coordinate = false; ///< 1-D variable named after its own dimension
+    bool auxiliary = false;  ///< named by another variable's `coordinates` or `bounds` attribute
 
     /// Dimensions with more than one sample.
     int extent() const;
@@ -46,8 +50,12 @@ public:
 
     /// Every array of every group.
     const std::vector<VariableInfo>& variables() const;
-    /// Dimension `dim` of `variable` and its coordinate variable.
+    /// Dimension `dim` of `variable` and its coordinate variable: the 1-D variable named after
+    /// the dimension, else a 1-D variable over that dimension named in `variable`'s CF
+    /// `coordinates` attribute (an auxiliary coordinate variable).
     AxisInfo axis(const VariableInfo& variable, std::size_t dim) const;
+    /// Attribute `name` of `variable` as text ("-32767", "0.01 0.5", a string); empty if absent.
+    std::string attributeText(const VariableInfo& variable, const char* name) const;
     SampleRules rules(const VariableInfo& variable) const;
     /// A hyperslab as double, C order over the variable's dimensions. Throws FileError.
     std::vector<double> read(const VariableInfo& variable, const std::vector<std::uint64_t>& start,

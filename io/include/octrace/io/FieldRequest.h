@@ -19,6 +19,14 @@ struct FieldRequest {
     /// World z = -depth_km * verticalScale. 0 chooses the default (depth extent = a quarter of
     /// the larger horizontal extent); negative values are refused.
     double verticalScale = 0.0;
+    /// Time step of a variable with a time axis (NetCDF only): a 0-based index ("3") or an ISO
+    /// date ("1990-07-15", "1990-07-15T12:00"), decoded in the axis's CF calendar; a date
+    /// selects the nearest step. Empty: the first step.
+    std::string time;
+    /// When true, only depth levels in depthRange[0]..depthRange[1] (metres, positive down,
+    /// inclusive) are read (geographic grids only).
+    bool hasDepthRange = false;
+    double depthRange[2] = {0.0, 0.0};
     /// DICOM series to read: SeriesInstanceUID, 1-based index in `octrace info`'s list, or
     /// SeriesDescription. Empty: the largest series. Refused for other formats.
     std::string series;
@@ -31,6 +39,13 @@ struct FieldRequest {
 /// Parses "LON0,LON1,LAT0,LAT1" (degrees) and checks the values (see checkRegion).
 /// @throws UsageError naming the text and the problem.
 std::array<double, 4> parseRegion(const std::string& text);
+
+/// Parses "Z0,Z1" (metres, positive down, Z0 < Z1). @throws UsageError.
+std::array<double, 2> parseDepthRange(const std::string& text);
+
+/// Checks that `text` is a time index (digits) or an ISO date YYYY-MM-DD[THH:MM[:SS]].
+/// @throws UsageError.
+void checkTimeText(const std::string& text);
 
 /// Checks LON0..LON1 spans more than 0 and at most 360 degrees once unwrapped, and
 /// -90 <= LAT0 < LAT1 <= 90. `what` prefixes the message (e.g. the input path).
