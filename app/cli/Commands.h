@@ -9,4 +9,5 @@ int runRender(const std::vector<std::string>& args);
 int runInfo(const std::vector<std::string>& args);
 int runSample(const std::vector<std::string>& args);
 int runExport(const std::vector<std::string>& args);
+int runBuild(const std::vector<std::string>& args);
 }  // namespace octrace::cli

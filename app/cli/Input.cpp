@@ -3,9 +3,12 @@
 #include "Options.h"
 #include "octrace/build/AnalyticField.h"
 #include "octrace/io/FieldReader.h"
+#include "octrace/io/OctreeFile.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Memory.h"
 
+#include <algorithm>
+#include <cctype>
 #include <sstream>
 
 namespace octrace::cli {
@@ -26,6 +29,15 @@ ScalarField analytic(const std::string& input, std::uint64_t memoryBudget) {
 }
 }  // namespace
 
+bool isOctreeInput(const std::string& input) {
+    if (isAnalytic(input)) return false;
+    std::string ext = input.size() >= 4 ? input.substr(input.size() - 4) : std::string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext == ".oct" || io::isOctreeFile(input);
+}
+
+Octree loadOctree(const std::string& input, std::uint64_t memoryBudget) { return io::readOctreeFile(input, memoryBudget); }
+
 ScalarField loadField(const std::string& input, const io::FieldRequest& req) {
     if (!isAnalytic(input)) return io::readField(input, req);
     if (req.hasRegion) throw UsageError("--region applies to geographic NetCDF inputs, not to " + input);
@@ -37,6 +49,10 @@ ScalarField loadField(const std::string& input, const io::FieldRequest& req) {
 }
 
 std::string describe(const std::string& input, const io::FieldRequest& req) {
+    if (isOctreeInput(input)) {
+        if (!req.series.empty()) throw UsageError("--series applies to DICOM inputs, not to the octree file " + input);
+        return io::describeOctreeFile(input, req.memoryBudget);
+    }
     if (!isAnalytic(input)) return io::describeInput(input, req);
     ScalarField f = analytic(input, req.memoryBudget);
     auto [lo, hi] = f.validRange();

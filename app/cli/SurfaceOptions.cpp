@@ -26,6 +26,37 @@ std::function<void(double)> progressPrinter(bool quiet) {
     return [](double f) { std::fprintf(stderr, "\roctrace: building octree %3d%%", int(f * 100.0 + 0.5)); };
 }
 
+/// buildSurface for an octree file: the octree as it is, the field empty but for its name.
+void loadOctreeSurface(const SurfaceArgs& a, std::uint64_t budget, Surface& s) {
+    const io::FieldRequest none;
+    const char* given = !a.request.variable.empty() ? "--var"
+                        : a.iso                     ? "--iso"
+                        : a.depthGiven              ? "--depth"
+                        : a.request.hasRegion       ? "--region"
+                        : !a.request.series.empty() ? "--series"
+                        : a.request.verticalScale != none.verticalScale ? "--vertical-scale"
+                                                                         : nullptr;
+    if (given)
+        throw UsageError(std::string(given) + " does not apply to the octree file " + a.input +
+                         " (its field, iso value and depth were fixed when it was built: see octrace info)");
+    Timer t;
+    s.tree = loadOctree(a.input, budget);
+    s.loadMs = t.ms();
+    s.iso = s.tree.iso;
+    s.field.name = s.tree.fieldName;
+    s.field.units = s.tree.fieldUnits;
+    s.field.source = a.input;
+    s.report.boundaryVoxels = s.tree.voxels.size();
+    s.report.nodes = s.tree.nodes.size();
+}
+
+/// What an octree was made from, for its file's header: input, variable, the reader's notes.
+std::string sourceDescription(const std::string& input, const ScalarField& f) {
+    std::string s = input + ", variable " + f.name;
+    for (const auto& n : f.notes) s += "; " + n;
+    return s;
+}
+
 }  // namespace
 
 std::string joinNames(const std::vector<std::string>& names) {
@@ -42,7 +73,10 @@ void addSurfaceOptions(OptionParser& p, SurfaceArgs& a) {
     p.add({"iso", "VALUE", "iso value of the surface (default: middle of the variable's valid range)",
            [&](const std::string& v) { a.iso = parseNumber("iso", v); }});
     p.add({"depth", "N", "octree depth, voxels = 2^N per cube edge (1.." + std::to_string(Octree::kMaxDepth) + ", default 8)",
-           [&](const std::string& v) { a.depth = parseInt("depth", v, 1, Octree::kMaxDepth); }});
+           [&](const std::string& v) {
+               a.depth = parseInt("depth", v, 1, Octree::kMaxDepth);
+               a.depthGiven = true;
+           }});
 }
 
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result) {
@@ -117,6 +151,10 @@ Surface buildSurface(const SurfaceArgs& a) {
     request.memoryBudget = budget;
     Surface s;
     Timer t;
+    if (isOctreeInput(a.input)) {
+        loadOctreeSurface(a, budget, s);
+        return s;
+    }
     s.field = loadField(a.input, request);
     s.loadMs = t.ms();
     auto [vmin, vmax] = s.field.validRange();
@@ -136,6 +174,7 @@ Surface buildSurface(const SurfaceArgs& a) {
     bo.progress = progressPrinter(a.quiet);
     bo.memoryBudget = budget;
     s.tree = buildShellOctree(s.field, bo, &s.report);
+    s.tree.source = sourceDescription(a.input, s.field);
     if (bo.progress) std::fputs("\n", stderr);
     return s;
 }

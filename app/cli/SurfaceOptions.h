@@ -22,6 +22,7 @@ struct SurfaceArgs {
     io::FieldRequest request;
     std::optional<double> iso;
     int depth = 8, threads = 0;
+    bool depthGiven = false;  // --depth given (an octree file input fixes the depth)
     vec3 colour{0.85f, 0.62f, 0.35f};  // sRGB display values, as the user gives them
     std::string colormap;
     bool help = false, quiet = false, verbose = false;
@@ -65,7 +66,9 @@ struct Surface {
     double loadMs = 0.0;
 };
 
-/// Applies --quiet / --verbose to the log, reads a.input, chooses the iso value when none was
+/// Applies --quiet / --verbose to the log. An octree file (.oct) is read as it is (options that
+/// choose the field or the depth are refused: UsageError; a volume octree gives its shell).
+/// Otherwise reads a.input, chooses the iso value when none was
 /// given (the middle of the valid range, said on stderr) and builds the shell octree (progress
 /// on stderr when it is a terminal), within memoryBudget(a): a read or build that would need
 /// more is refused (LimitError). Throws as loadField() and buildShellOctree().

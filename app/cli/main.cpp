@@ -21,10 +21,12 @@ const char* kTopHelp =
     "commands:\n"
     "  render INPUT -o OUT   build the isosurface octree of a field and render it to OUT (.png, .exr)\n"
     "  export INPUT -o OUT   build the isosurface octree and write it as surfels to a point cloud (.ply)\n"
+    "  build INPUT -o OUT    build the octree and write it to an octree file (.oct), an INPUT of every command\n"
     "  info INPUT...         describe inputs: format, variables, units, value ranges, grid, bounds\n"
     "  sample NAME -o OUT    write an analytic sample field (sphere, torus, gyroid, noise) as NRRD\n"
     "\n"
-    "INPUT is a NetCDF file (.nc, .cdf), a NRRD file (.nrrd, .nhdr), or analytic:NAME[:SAMPLES].\n"
+    "INPUT is a NetCDF file (.nc, .cdf), a NRRD file (.nrrd, .nhdr), a DICOM file or folder, an octree\n"
+    "file (.oct), or analytic:NAME[:SAMPLES].\n"
     "Run 'octrace COMMAND --help' for the options of a command; see docs/user/cli.md.\n";
 
 }  // namespace
@@ -52,10 +54,11 @@ int main(int argc, char** argv) {
         if (cmd == "info") return octrace::cli::runInfo(rest);
         if (cmd == "sample") return octrace::cli::runSample(rest);
         if (cmd == "export") return octrace::cli::runExport(rest);
-        throw octrace::UsageError("unknown command '" + cmd + "' (commands: render, export, info, sample)");
+        if (cmd == "build") return octrace::cli::runBuild(rest);
+        throw octrace::UsageError("unknown command '" + cmd + "' (commands: render, export, build, info, sample)");
     } catch (const octrace::UsageError& e) {
         std::fprintf(stderr, "octrace: %s\nTry 'octrace %s --help'.\n", e.what(),
-                     (cmd == "render" || cmd == "export" || cmd == "info" || cmd == "sample") ? cmd.c_str() : "");
+                     (cmd == "render" || cmd == "export" || cmd == "build" || cmd == "info" || cmd == "sample") ? cmd.c_str() : "");
         return 2;
     } catch (const octrace::Error& e) {
         std::fprintf(stderr, "octrace: error: %s\n", e.what());

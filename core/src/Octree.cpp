@@ -132,9 +132,10 @@ void Octree::validate() const {
         stack.pop_back();
         const OctreeNode& n = nodes[it.node];
         if (n.termMask & ~n.childMask) fail("term bit without child bit");
+        if (n.termMask && form != OctreeForm::Volume) fail("interior term in a shell octree");
         int count = std::popcount(unsigned(n.childMask));
         if (it.level == depth - 1) {
-            if (n.termMask) fail("term at the voxel level");
+            if (n.termMask && form != OctreeForm::Volume) fail("interior voxel in a shell octree");
             if (std::size_t(n.firstChild) + count > voxels.size()) fail("voxel index out of range");
             for (int i = 0; i < count; ++i) {
                 if (seenVoxel[n.firstChild + i]++) fail("voxel referenced twice");
@@ -149,6 +150,8 @@ void Octree::validate() const {
             if (!(n.termMask & (1u << c))) {
                 if (nodes[slot].childMask == 0) fail("inner node without children");
                 stack.push_back({slot, it.level + 1});
+            } else if (nodes[slot].childMask != 0 || nodes[slot].termMask != 0) {
+                fail("interior term with children");
             }
             ++slot;
         }

@@ -193,6 +193,7 @@ TEST(Octree, HandlesInteriorTermsInTheVolumeForm) {
     // Depth 2 by hand: root children 0 (a node with voxels 0 and 7) and 7 (an interior term).
     Octree t;
     t.depth = 2;
+    t.form = OctreeForm::Volume;
     t.nodes.resize(3);
     t.nodes[0].childMask = 0b10000001;
     t.nodes[0].termMask = 0b10000000;
@@ -287,7 +288,7 @@ TEST(Octree, ValidateRejectsBadMasksAndGeometry) {
         Octree t = copyOf(noiseTree());
         const std::uint32_t leafParent = nodeAtLevel(t, t.depth - 1);
         t.nodes[leafParent].termMask = t.nodes[leafParent].childMask & std::uint8_t(-t.nodes[leafParent].childMask);
-        expectInvalid(t, "term at the voxel level");
+        expectInvalid(t, "interior voxel in a shell octree");  // allowed in the volume form only
     }
     for (int depth : {0, Octree::kMaxDepth + 1}) {
         Octree t = copyOf(noiseTree());

@@ -13,6 +13,10 @@
 ///   - At level depth-1 the children are voxels: firstChild indexes `voxels`.
 /// Leaf kinds: empty (mask bit clear), interior term, boundary voxel. The shell form built
 /// by OctreeBuilder has no terms.
+///   - Volume form (OctreeForm::Volume, see build/Volume.h): the solid's interior is kept as
+///     terms; at level depth-1 a term bit marks an *interior voxel*, which occupies a slot in
+///     `voxels` like a boundary voxel (its normal is unused, 0). Renderers draw the shell form:
+///     a volume octree is turned into one by extractShell (Volume.h) first.
 ///
 /// Spaces. World space (the field's units, e.g. km or mm); octree integer space, where the
 /// cube is [0, 2^kIntBits)^3 (`toOctreeSpace`); cell space, where voxel (i,j,k) is
@@ -48,6 +52,9 @@ inline constexpr Popcount8 kPopcount8{};
 /// Position of child c among the non-empty children of a node with this child mask (a table:
 /// no POPCNT instruction is assumed of the target).
 inline unsigned childRank(unsigned childMask, unsigned c) { return detail::kPopcount8.v[childMask & ((1u << c) - 1u)]; }
+
+/// What an octree holds: the boundary voxels only (shell) or the solid with its interior.
+enum class OctreeForm : std::uint8_t { Shell = 0, Volume = 1 };
 
 /// A boundary voxel: its quantized unit normal (octahedral, 16+16 bits).
 struct Voxel {
@@ -88,9 +95,13 @@ public:
     /// Per node (same index as `nodes`), filled by computeSummaries(); empty until then.
     std::vector<NodeSummary> summaries;
 
+    OctreeForm form = OctreeForm::Shell;
+
     // Provenance, for info and stats.
     std::string fieldName, fieldUnits;
     double iso = 0.0;
+    bool insideBelow = false;  ///< volume form: the solid is value < iso (else value >= iso)
+    std::string source;        ///< what it was made from (input, region, operations), for info
 
     std::size_t boundaryVoxels() const { return voxels.size(); }
     /// Capacity in bytes of every buffer the octree owns.

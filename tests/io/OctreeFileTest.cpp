@@ -1,0 +1,164 @@
+// .oct octree files: exact round trips (shell and volume form), every flipped byte and every
+// truncation refused, future versions refused, CRC-32C against its published check value.
+#include "Crc32c.h"
+#include "IoTestSupport.h"
+#include "octrace/build/AnalyticField.h"
+#include "octrace/build/OctreeBuilder.h"
+#include "octrace/io/OctreeFile.h"
+#include "octrace/util/Error.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <tuple>
+
+using namespace octrace;
+
+namespace {
+
+Octree smallTree(const std::string& name = "torus", int samples = 17, int depth = 4) {
+    const ScalarField f = makeAnalyticField(name, samples);
+    BuildOptions o;
+    o.depth = depth;
+    o.iso = 0.0;
+    Octree t = buildShellOctree(f, o);
+    t.source = "analytic:" + name;
+    return t;
+}
+
+/// Every voxel's cell and normal, every term's cell and level: what a file must keep.
+std::map<std::tuple<int, int, int, int>, std::uint32_t> contents(const Octree& t) {
+    std::map<std::tuple<int, int, int, int>, std::uint32_t> m;
+    for (int level = 1; level <= t.depth; ++level)
+        t.forEachAtLevel(level, [&](const ivec3& c, std::uint32_t i) {
+            if (level == t.depth) m[{level, c.x, c.y, c.z}] = t.voxels[i].normal;
+            else if (t.nodes[i].childMask == 0) m[{level, c.x, c.y, c.z}] = 0xFFFFFFFFu;  // a term
+        });
+    return m;
+}
+
+void expectSame(const Octree& a, const Octree& b) {
+    EXPECT_EQ(a.depth, b.depth);
+    EXPECT_EQ(a.form, b.form);
+    EXPECT_EQ(a.cubeOrigin, b.cubeOrigin);
+    EXPECT_EQ(a.cubeSide, b.cubeSide);
+    EXPECT_EQ(a.iso, b.iso);
+    EXPECT_EQ(a.insideBelow, b.insideBelow);
+    EXPECT_EQ(a.fieldName, b.fieldName);
+    EXPECT_EQ(a.fieldUnits, b.fieldUnits);
+    EXPECT_EQ(a.source, b.source);
+    EXPECT_EQ(a.nodes.size(), b.nodes.size());
+    EXPECT_EQ(a.voxels.size(), b.voxels.size());
+    EXPECT_EQ(contents(a), contents(b));
+}
+
+}  // namespace
+
+TEST(Crc32c, MatchesThePublishedCheckValue) {
+    // RFC 3720 B.4 / the CRC catalogue: CRC-32C("123456789") = 0xE3069283.
+    const char* s = "123456789";
+    EXPECT_EQ(io::detail::crc32c(s, 9), 0xE3069283u);
+    // 32 bytes of zeros (RFC 3720 B.4): 0x8A9136AA; and continuing a CRC in pieces.
+    const std::vector<std::uint8_t> zeros(32, 0);
+    EXPECT_EQ(io::detail::crc32c(zeros.data(), zeros.size()), 0x8A9136AAu);
+    EXPECT_EQ(io::detail::crc32c(s + 4, 5, io::detail::crc32c(s, 4)), 0xE3069283u);
+}
+
+TEST(OctreeFile, RoundTripsExactly) {
+    for (const char* name : {"sphere", "torus", "gyroid", "noise"}) {
+        const Octree t = smallTree(name, 33, 6);
+        const auto bytes = io::encodeOctreeFile(t);
+        io::OctreeFileInfo info;
+        const Octree back = io::decodeOctreeFile(bytes, "mem.oct", 0, &info);
+        SCOPED_TRACE(name);
+        expectSame(t, back);
+        EXPECT_EQ(info.version, io::kOctreeFileVersion);
+        EXPECT_EQ(info.voxels, t.voxels.size());
+        EXPECT_EQ(info.fileBytes, bytes.size());
+        // Written again, the same bytes.
+        EXPECT_EQ(io::encodeOctreeFile(back), bytes);
+    }
+}
+
+TEST(OctreeFile, RoundTripsTheVolumeFormWithTerms) {
+    // Depth 2 by hand: a node with a boundary voxel and an interior voxel, and an interior term.
+    Octree t;
+    t.depth = 2;
+    t.form = OctreeForm::Volume;
+    t.insideBelow = true;
+    t.cubeSide = 2.5;
+    t.nodes.resize(3);
+    t.nodes[0].childMask = 0b10000001;
+    t.nodes[0].termMask = 0b10000000;
+    t.nodes[0].firstChild = 1;
+    t.nodes[1].childMask = 0b10000001;
+    t.nodes[1].termMask = 0b00000001;
+    t.voxels.resize(2);
+    t.voxels[1].normal = 12345;
+    t.validate();
+    const auto bytes = io::encodeOctreeFile(t);
+    expectSame(t, io::decodeOctreeFile(bytes, "v.oct"));
+}
+
+TEST(OctreeFile, EveryFlippedByteIsDetected) {
+    const auto bytes = io::encodeOctreeFile(smallTree());
+    ASSERT_LT(bytes.size(), 4000u) << "a small file keeps this test quick";
+    for (std::size_t i = 0; i < bytes.size(); ++i)
+        for (std::uint8_t flip : {std::uint8_t(0x01), std::uint8_t(0x80), std::uint8_t(0xFF)}) {
+            auto b = bytes;
+            b[i] ^= flip;
+            try {
+                io::decodeOctreeFile(b, "flipped.oct");
+                ADD_FAILURE() << "byte " << i << " xor " << int(flip) << " was not detected";
+            } catch (const InputError& e) {
+                EXPECT_NE(std::string(e.what()).find("flipped.oct: "), std::string::npos) << e.what();
+            }
+        }
+}
+
+TEST(OctreeFile, EveryTruncationIsDetected) {
+    const auto bytes = io::encodeOctreeFile(smallTree());
+    for (std::size_t n = 0; n < bytes.size(); ++n) {
+        std::vector<std::uint8_t> b(bytes.begin(), bytes.begin() + std::ptrdiff_t(n));
+        EXPECT_THROW(io::decodeOctreeFile(b, "short.oct"), FileError) << "cut at " << n;
+    }
+    auto longer = bytes;
+    longer.push_back(0);
+    EXPECT_THROW_WITH(io::decodeOctreeFile(longer, "long.oct"), FileError, "long.oct: 1 unexpected bytes after the last chunk");
+}
+
+TEST(OctreeFile, RefusesAFutureVersionAndOtherFiles) {
+    auto bytes = io::encodeOctreeFile(smallTree());
+    bytes[8] = 2;  // version, little-endian, right after the 8-byte signature
+    EXPECT_THROW_WITH(io::decodeOctreeFile(bytes, "new.oct"), FileError, "new.oct: written by a newer octrace (octree file format version 2; this octrace reads versions 1 to 1)");
+    const std::string text = "CDF\x01 not an octree";
+    std::vector<std::uint8_t> other(text.begin(), text.end());
+    EXPECT_THROW(io::decodeOctreeFile(other, "x.oct"), FormatNotSupported);
+}
+
+TEST(OctreeFile, RefusesAnOctreeOverTheMemoryBudget) {
+    const auto bytes = io::encodeOctreeFile(smallTree());
+    EXPECT_THROW_WITH(io::decodeOctreeFile(bytes, "big.oct", 1000), LimitError, "big.oct: reading an octree of");
+}
+
+TEST(OctreeFile, WritesAtomicallyAndReadsBack) {
+    test::TempDir dir;
+    const std::string path = dir.file("t.oct");
+    const Octree t = smallTree();
+    io::writeOctreeFile(path, t);
+    EXPECT_TRUE(io::isOctreeFile(path));
+    expectSame(t, io::readOctreeFile(path));
+    const io::OctreeFileInfo info = io::readOctreeFileInfo(path);
+    EXPECT_EQ(info.fileBytes, std::filesystem::file_size(path));
+    ASSERT_EQ(info.chunks.size(), 2u);
+    EXPECT_EQ(info.chunks[0].tag, "TREE");
+    EXPECT_EQ(info.chunks[1].tag, "NORM");
+    // A failed write (the target is a folder) leaves what was there untouched.
+    std::filesystem::create_directories(dir.file("d.oct"));
+    EXPECT_THROW(io::writeOctreeFile(dir.file("d.oct"), t), OutputError);
+    EXPECT_TRUE(std::filesystem::is_directory(dir.file("d.oct")));
+    EXPECT_THROW_WITH(io::readOctreeFile(dir.file("none.oct")), InputError, "none.oct: no such file");
+}
+
