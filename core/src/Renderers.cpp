@@ -1,6 +1,7 @@
 #include "CoherentRenderers.h"
 #include "DirectRenderer.h"
 #include "PixelRays.h"
+#include "SphereRenderers.h"
 #include "octrace/render/DiscreteTraversal.h"
 #include "octrace/render/Lod.h"
 #include "octrace/render/ReferenceTraversal.h"
@@ -56,11 +57,7 @@ RenderStats renderPerPixel(const std::string& name, const Octree& tree, const Ca
             }
         st.nodesVisited = counters.nodes;
     });
-    RenderStats total;
-    total.renderer = name;
-    for (const auto& s : tileStats) total.add(s);
-    total.renderMs = timer.ms();
-    return total;
+    return RenderStats::total(name, tileStats, timer.ms());
 }
 
 class ReferenceRenderer final : public Renderer {
@@ -82,6 +79,13 @@ public:
                                   meets = q.meetsCube || hit.hit();
                                   return hit;
                               });
+    }
+    bool drawsSpheres() const override { return quantized_; }
+    /// Sphere scenes: the recursive parametric traversal of the object octree.
+    RenderStats renderSpheres(const ObjectOctree& tree, const Camera& camera, const RenderSettings& settings,
+                              Frame& frame) const override {
+        if (!quantized_) return Renderer::renderSpheres(tree, camera, settings, frame);
+        return detail::renderSphereScene(detail::SphereTracer::Reference, name(), tree, camera, settings, frame);
     }
 
 private:
@@ -112,7 +116,7 @@ int renderProgressive(const Renderer& renderer, const Octree& tree, const Camera
 }
 
 std::vector<std::string> rendererNames() {
-    return {"full", "linear", "area", "area+colour", "linear-exact", "area-exact", "reference", "reference-unquantized", "direct", "direct-f2b"};
+    return {"full", "linear", "area", "area+colour", "linear-exact", "area-exact", "reference", "reference-unquantized", "direct", "direct-f2b", "samet", "beam"};
 }
 
 std::unique_ptr<Renderer> makeRenderer(const std::string& nameIn) {
@@ -135,6 +139,8 @@ std::unique_ptr<Renderer> makeRenderer(const std::string& nameIn) {
     if (!colour && name == "reference-unquantized") return std::make_unique<ReferenceRenderer>(false);
     if (!colour && name == "direct") return std::make_unique<detail::DirectRenderer>(false);
     if (!colour && name == "direct-f2b") return std::make_unique<detail::DirectRenderer>(true);
+    if (!colour)
+        if (auto r = detail::makeSphereRenderer(name)) return r;
     std::string list;
     for (const auto& n : rendererNames()) list += (list.empty() ? "" : ", ") + n;
     throw UsageError("unknown renderer '" + nameIn + "' (choose one of: " + list +

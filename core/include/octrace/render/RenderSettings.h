@@ -27,6 +27,14 @@ struct RenderSettings {
     /// latest (< 0 = down to the voxels). Supported by full, reference and the direct renderers.
     double lodPixels = 0.0;
     int level = -1;
+    /// Sphere scenes (object octree, SphereRenderers.cpp): rays per pixel on a regular
+    /// sqrt(samples) x sqrt(samples) grid (1, 4, 9, 16, ...: a square), averaged.
+    int samples = 1;
+    /// Whitted depth: reflected / transmitted rays spawned after a primary hit, at most this
+    /// many deep (0 = local shading only).
+    int bounces = 2;
+    /// Shadow rays towards the (directional) light.
+    bool shadows = true;
 };
 
 }  // namespace octrace

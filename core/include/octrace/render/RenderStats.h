@@ -2,6 +2,7 @@
 /// @file RenderStats.h
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace octrace {
 
@@ -21,6 +22,10 @@ struct RenderStats {
     std::uint64_t colourFilled = 0;    ///< pixels filled by colour coherence, not traced
     // Direct renderers (they trace no rays: rays = 0):
     std::uint64_t voxelsSplatted = 0;  ///< voxel footprints drawn, counted once per screen tile they cover
+    // Sphere scenes (object octree):
+    std::uint64_t intersections = 0;   ///< ray-sphere tests of the primary rays
+    std::uint64_t secondaryRays = 0;   ///< shadow, reflected and transmitted rays (Samet)
+    std::uint64_t beams = 0;           ///< beam renderer: beams (node, screen rectangle) processed
     double renderMs = 0.0;
     void add(const RenderStats& o) {
         pixels += o.pixels;
@@ -34,6 +39,17 @@ struct RenderStats {
         statesDeferred += o.statesDeferred;
         colourFilled += o.colourFilled;
         voxelsSplatted += o.voxelsSplatted;
+        intersections += o.intersections;
+        secondaryRays += o.secondaryRays;
+        beams += o.beams;
+    }
+    /// The sum of per-tile (or per-thread) counters in their order, named and timed.
+    static RenderStats total(const std::string& renderer, const std::vector<RenderStats>& parts, double renderMs) {
+        RenderStats t;
+        t.renderer = renderer;
+        for (const auto& p : parts) t.add(p);
+        t.renderMs = renderMs;
+        return t;
     }
 };
 

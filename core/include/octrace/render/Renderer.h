@@ -7,6 +7,7 @@
 #include "octrace/render/Frame.h"
 #include "octrace/render/RenderSettings.h"
 #include "octrace/render/RenderStats.h"
+#include "octrace/scene/ObjectOctree.h"
 
 #include <functional>
 #include <memory>
@@ -29,6 +30,16 @@ public:
     /// depend on settings.threads. Thread-safe for distinct frames.
     virtual RenderStats render(const Octree& octree, const Camera& camera, const RenderSettings& settings,
                                Frame& frame) const = 0;
+    /// Whether renderSpheres draws sphere scenes (reference, samet, beam).
+    virtual bool drawsSpheres() const { return false; }
+    /// Whether render() draws the voxel octree (false for samet and beam for now).
+    virtual bool drawsVoxels() const { return true; }
+    /// Renders a sphere scene through its object octree: hitId is the sphere index of the
+    /// pixel's first sample, depth that sample's distance, rgba the average of the samples
+    /// (RenderSettings::samples), shaded with Whitted's rays (bounces, shadows). Deterministic
+    /// and thread-safe like render(). Throws UsageError for renderers that do not draw spheres.
+    virtual RenderStats renderSpheres(const ObjectOctree& tree, const Camera& camera, const RenderSettings& settings,
+                                      Frame& frame) const;
 };
 
 /// Progressive rendering for interactive use: a coarse frame first, then finer ones. Renders

@@ -1,0 +1,210 @@
+// Sphere scenes, the object octree and its three tracers (reference, samet, beam).
+#include "octrace/render/Renderer.h"
+#include "octrace/scene/ObjectOctree.h"
+#include "octrace/scene/Spheres.h"
+#include "octrace/util/Error.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace octrace;
+
+namespace {
+dvec3 randomUnit(std::mt19937_64& rng) {
+    std::normal_distribution<double> n;
+    return glm::normalize(dvec3(n(rng), n(rng), n(rng)));
+}
+Camera cameraFor(const ObjectOctree& t, int w, int h) { return Camera::framing(t.scene.bounds(), w, h, 30.0); }
+}  // namespace
+
+TEST(SphereFlake, HasHainesCountsAndTangentChildren) {
+    // SPD balls: 10, 91, 820, 7381 spheres at levels 1..4.
+    EXPECT_EQ(makeSphereFlake(1).spheres.size(), 10u);
+    EXPECT_EQ(makeSphereFlake(2).spheres.size(), 91u);
+    EXPECT_EQ(makeSphereFlake(3).spheres.size(), 820u);
+    const SphereSet f = makeSphereFlake(4);
+    EXPECT_EQ(f.spheres.size(), 7381u);
+    // The root: radius 0.5 at the origin; its 9 children of radius 1/6 touch it, 6 on the
+    // equator (z = 0) and 3 above.
+    EXPECT_DOUBLE_EQ(f.spheres[0].radius, 0.5);
+    const SphereSet one = makeSphereFlake(1);
+    int equator = 0, above = 0;
+    for (std::size_t i = 1; i < one.spheres.size(); ++i) {
+        const Sphere& s = one.spheres[i];
+        EXPECT_NEAR(s.radius, 0.5 / 3.0, 1e-15);
+        EXPECT_NEAR(glm::length(s.centre), 0.5 + 0.5 / 3.0, 1e-12);
+        if (std::abs(s.centre.z) < 1e-12) ++equator;
+        else if (s.centre.z > 0.0) ++above;
+    }
+    EXPECT_EQ(equator, 6);
+    EXPECT_EQ(above, 3);
+    EXPECT_THROW(makeSphereFlake(7), UsageError);
+}
+
+TEST(RandomSpheres, AreReproducibleFromTheSeed) {
+    const SphereSet a = makeRandomSpheres(100, 7), b = makeRandomSpheres(100, 7), c = makeRandomSpheres(100, 8);
+    ASSERT_EQ(a.spheres.size(), 100u);
+    EXPECT_EQ(a.spheres[42].centre, b.spheres[42].centre);
+    EXPECT_NE(a.spheres[42].centre, c.spheres[42].centre);
+    EXPECT_THROW(makeRandomSpheres(0, 1), UsageError);
+}
+
+TEST(ObjectOctree, SplitsWhileANodeHoldsMoreThanTheThreshold) {
+    ObjectOctreeOptions o;
+    o.leafObjects = 4;
+    const ObjectOctree t = ObjectOctree::build(makeRandomSpheres(2000, 3, 0.01), o);
+    t.validate();
+    EXPECT_GT(t.nodes.size(), 8u);
+    for (const ObjectNode& n : t.nodes)
+        if (n.leaf()) EXPECT_TRUE(int(n.objectCount) <= 4 || n.level == o.maxDepth);
+    // Every sphere is listed in every leaf its box meets (spot check by the leaf of its centre).
+    for (std::uint32_t i = 0; i < 2000; i += 37) {
+        const std::uint32_t leaf = t.locateLeaf(t.scene.spheres[i].centre, dvec3(1, 1, 1));
+        const ObjectNode& n = t.nodes[leaf];
+        bool found = false;
+        for (std::uint32_t k = 0; k < n.objectCount; ++k) found = found || t.objects[n.firstObject + k] == i;
+        EXPECT_TRUE(found) << i;
+    }
+    EXPECT_THROW(ObjectOctree::build(makeRandomSpheres(10, 3), {0, 10, 0}), UsageError);
+}
+
+TEST(ObjectOctree, FaceNeighbourIsTheAdjacentNodeOfEqualOrLargerSize) {
+    const ObjectOctree t = ObjectOctree::build(makeSphereFlake(3), {2, 8, 0});
+    int checked = 0;
+    for (std::uint32_t n = 1; n < t.nodes.size(); ++n) {
+        const Box3 b = t.nodeBox(n);
+        for (int axis = 0; axis < 3; ++axis)
+            for (bool pos : {false, true}) {
+                const std::uint32_t nb = t.faceNeighbour(n, axis, pos);
+                const double face = pos ? b.hi[axis] : b.lo[axis];
+                if (face == t.cube().lo[axis] || face == t.cube().hi[axis]) {
+                    EXPECT_EQ(nb, 0xFFFFFFFFu);
+                    continue;
+                }
+                ASSERT_NE(nb, 0xFFFFFFFFu);
+                const Box3 o = t.nodeBox(nb);
+                EXPECT_EQ(pos ? o.lo[axis] : o.hi[axis], face);  // shares the face
+                EXPECT_LE(t.nodes[nb].level, t.nodes[n].level);  // equal or larger
+                for (int a = 0; a < 3; ++a)
+                    if (a != axis) EXPECT_TRUE(o.lo[a] <= b.lo[a] && o.hi[a] >= b.hi[a]);  // covers the face
+                ++checked;
+            }
+    }
+    EXPECT_GT(checked, 1000);
+}
+
+TEST(ObjectOctree, ReferenceAndSametFindTheBruteForceHitOnRandomRays) {
+    for (int leafObjects : {1, 8}) {
+        const ObjectOctree t = ObjectOctree::build(makeRandomSpheres(500, 11, 0.05), {leafObjects, 10, 0});
+        std::mt19937_64 rng(5);
+        std::uniform_real_distribution<double> u(-0.5, 1.5);
+        int hits = 0;
+        for (int i = 0; i < 20000; ++i) {
+            const dvec3 o(u(rng), u(rng), u(rng));
+            const dvec3 d = randomUnit(rng);
+            ObjectTraceCounters c;
+            const SphereHit b = traceBruteForce(t.scene, o, d, 0.0);
+            const SphereHit r = traceReference(t, o, d, 0.0, c);
+            const SphereHit s = traceSamet(t, o, d, 0.0, c);
+            ASSERT_EQ(r.sphere, b.sphere) << i;
+            ASSERT_EQ(s.sphere, b.sphere) << i;
+            if (b.hit()) EXPECT_EQ(r.t, b.t);
+            hits += b.hit();
+        }
+        EXPECT_GT(hits, 2000);
+    }
+}
+
+TEST(ObjectOctree, SametHandlesAxisParallelRays) {
+    const ObjectOctree t = ObjectOctree::build(makeSphereFlake(2), {2, 8, 0});
+    for (int a = 0; a < 3; ++a)
+        for (double x = -0.9; x < 0.9; x += 0.01) {
+            dvec3 o(x, 0.3 * x, -2.0), d(0, 0, 1);
+            if (a == 1) { o = dvec3(x, -2.0, 0.1); d = dvec3(0, 1, 0); }
+            if (a == 2) { o = dvec3(-2.0, x, x * 0.5); d = dvec3(1, 0, 0); }
+            ObjectTraceCounters c;
+            EXPECT_EQ(traceSamet(t, o, d, 0.0, c).sphere, traceBruteForce(t.scene, o, d, 0.0).sphere);
+        }
+}
+
+TEST(SphereRenderers, SametAndBeamGiveTheReferenceHitForEveryRay) {
+    for (const char* scene : {"flake", "random"}) {
+        ObjectOctree t = ObjectOctree::build(std::string(scene) == "flake" ? makeSphereFlake(3) : makeRandomSpheres(3000, 2, 0.03));
+        for (bool ortho : {false, true}) {
+            Camera cam = cameraFor(t, 160, 120);
+            if (ortho) cam.frameOrthographic(t.scene.bounds());
+            RenderSettings rs;
+            rs.threads = 2;
+            Frame ref, samet, beam;
+            const RenderStats rst = makeRenderer("reference")->renderSpheres(t, cam, rs, ref);
+            makeRenderer("samet")->renderSpheres(t, cam, rs, samet);
+            const RenderStats bst = makeRenderer("beam")->renderSpheres(t, cam, rs, beam);
+            EXPECT_GT(rst.hits, 2000u) << scene;
+            EXPECT_EQ(bst.hits, rst.hits);
+            EXPECT_EQ(samet.hitId, ref.hitId) << scene << ortho;
+            EXPECT_EQ(beam.hitId, ref.hitId) << scene << ortho;
+            EXPECT_EQ(beam.rgba, ref.rgba);
+            // Brute force on a sample of pixels.
+            const RayGenerator gen(cam);
+            for (int y = 0; y < cam.height; y += 7)
+                for (int x = 0; x < cam.width; x += 5) {
+                    const Ray r = gen(x, y);
+                    EXPECT_EQ(ref.hitId[ref.pixel(x, y)], traceBruteForce(t.scene, r.origin, r.direction, 0.0).sphere);
+                }
+        }
+    }
+}
+
+TEST(SphereRenderers, SupersamplingTracesTheRaysOfTheFinerGrid) {
+    ObjectOctree t = ObjectOctree::build(makeSphereFlake(2));
+    Camera cam = cameraFor(t, 40, 30), fine = cameraFor(t, 80, 60);
+    RenderSettings rs, four;
+    rs.bounces = 0;
+    four = rs;
+    four.samples = 4;
+    Frame a, b, f;
+    const RenderStats sa = makeRenderer("beam")->renderSpheres(t, cam, four, a);
+    makeRenderer("samet")->renderSpheres(t, cam, four, b);
+    const RenderStats sf = makeRenderer("reference")->renderSpheres(t, fine, rs, f);
+    EXPECT_EQ(a.rgba, b.rgba);
+    EXPECT_EQ(sa.hits, sf.hits);
+    EXPECT_EQ(sa.pixels, 40u * 30u);
+    EXPECT_EQ(sa.rays, sf.rays);
+    for (int y = 0; y < 30; ++y)
+        for (int x = 0; x < 40; ++x) EXPECT_EQ(a.hitId[a.pixel(x, y)], f.hitId[f.pixel(2 * x, 2 * y)]);
+    four.samples = 3;
+    EXPECT_THROW(makeRenderer("beam")->renderSpheres(t, cam, four, a), UsageError);
+}
+
+TEST(SphereRenderers, WhittedRaysChangeTheMirrorsAndShadowsDarken) {
+    ObjectOctree t = ObjectOctree::build(makeSphereFlake(2));
+    Camera cam = cameraFor(t, 64, 48);
+    RenderSettings flat, whitted;
+    flat.bounces = 0;
+    flat.shadows = false;
+    Frame a, b;
+    makeRenderer("samet")->renderSpheres(t, cam, flat, a);
+    const RenderStats st = makeRenderer("samet")->renderSpheres(t, cam, whitted, b);
+    EXPECT_EQ(a.hitId, b.hitId);
+    EXPECT_NE(a.rgba, b.rgba);
+    EXPECT_GT(st.secondaryRays, st.hits);
+}
+
+TEST(SphereRenderers, VoxelRenderersRefuseSphereScenesAndBackwards) {
+    ObjectOctree t = ObjectOctree::build(makeSphereFlake(1));
+    Frame f;
+    EXPECT_THROW(makeRenderer("full")->renderSpheres(t, cameraFor(t, 8, 8), {}, f), UsageError);
+    Octree empty;
+    EXPECT_THROW(makeRenderer("beam")->render(empty, cameraFor(t, 8, 8), {}, f), UsageError);
+}
+
+TEST(SphereDistanceField, IsNegativeInsideAndCentredOnZero) {
+    const SphereSet s = makeSphereFlake(1);
+    const ScalarField f = sphereDistanceField(s, 65);
+    auto [lo, hi] = f.validRange();
+    EXPECT_FLOAT_EQ(lo, -hi);
+    EXPECT_EQ(std::max({f.dims.x, f.dims.y, f.dims.z}), 65);
+    EXPECT_THROW(sphereDistanceField(s, 2000, 1000), LimitError);
+}
