@@ -3,11 +3,14 @@
 # (or sudo). Nothing is downloaded at build time: these packages are everything.
 # Usage: scripts/setup.sh [--fuzz]   (--fuzz: also clang and libFuzzer, for tests/fuzz/run.sh)
 set -euo pipefail
+# qt6-base-dev ... libgl1-mesa-dri: octrace-studio (optional: without Qt 6 only the CLI builds);
+# xvfb, xauth and Mesa's llvmpipe (libgl1-mesa-dri) run its tests without a display.
 # libgdcm-tools: Debian's GDCM CMake package (libgdcm-dev) imports its tools and fails without them.
 PACKAGES=(
   cmake ninja-build g++ pkg-config
   libgdal-dev libgdcm-dev libgdcm-tools libvtk9-dev libopenexr-dev libglm-dev libtbb-dev
   libgtest-dev libbenchmark-dev libpng-dev libzstd-dev
+  qt6-base-dev libqt6opengl6-dev libgl-dev libxkbcommon-dev xvfb xauth libgl1-mesa-dri
 )
 if [ "${1:-}" = "--fuzz" ]; then
   PACKAGES+=(clang libclang-rt-14-dev)

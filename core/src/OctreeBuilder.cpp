@@ -294,9 +294,15 @@ struct Pool {
 
 class Builder {
 public:
-    Builder(const ScalarField& f, const SampleGrid& grid, const Octree& tree, float iso, MemoryGuard* guard)
+    Builder(const ScalarField& f, const SampleGrid& grid, const Octree& tree, float iso, MemoryGuard* guard,
+            const std::function<bool()>& cancelled)
         : tree_(tree), iso_(iso), sampler_(f, grid.samples, tree.cubeOrigin, tree.voxelSize(), tree.depth),
-          pyramid_(grid.pyramid), guard_(guard) {}
+          pyramid_(grid.pyramid), guard_(guard), cancelled_(cancelled), source_(f.source) {}
+
+    /// Throws CancelledError when the caller asked the build to stop.
+    void checkCancelled() const {
+        if (cancelled_ && cancelled_()) throw CancelledError(source_ + ": octree build cancelled");
+    }
 
     /// Builds the node at `level` whose minimum cell is c0; false when it holds no boundary voxel.
     bool build(int level, const ivec3& c0, OctreeNode& out, Pool& pool) const {
@@ -307,6 +313,7 @@ public:
         float mn, mx;
         pyramid_.query(lo, hi, mn, mx);
         if (!(mn <= mx) || mx < iso_ || mn >= iso_) return false;
+        if (level == depth - 4) checkCancelled();  // every 16^3 cells that hold the surface
         if (level == depth - 1) return buildLeafParent(c0, out, pool);
         OctreeNode kids[8];
         unsigned mask = 0;
@@ -386,6 +393,8 @@ private:
     FieldSampler sampler_;
     const detail::MinMaxPyramid& pyramid_;
     MemoryGuard* guard_;
+    const std::function<bool()>& cancelled_;
+    const std::string& source_;
 };
 
 void appendPool(Pool& dst, const Pool& src, OctreeNode& subRoot, int subRootLevel, int depth) {
@@ -444,8 +453,9 @@ Octree emptyTree(const ScalarField& field, int depth, double iso) {
 
 /// The build proper, at tree.depth, over `grid`; `guard` may be null (no budget).
 void buildInto(Octree& tree, const ScalarField& field, const SampleGrid& grid, float isoF, int threads,
-               const std::function<void(double)>& progress, MemoryGuard* guard) {
-    const Builder builder(field, grid, tree, isoF, guard);
+               const BuildOptions& options, MemoryGuard* guard) {
+    const std::function<void(double)>& progress = options.progress;
+    const Builder builder(field, grid, tree, isoF, guard, options.cancelled);
     const int depth = tree.depth;
     // Split the top levels into independent subtrees, build them in parallel, and join them in
     // a fixed order so that the result does not depend on the number of threads.
@@ -461,6 +471,7 @@ void buildInto(Octree& tree, const ScalarField& field, const SampleGrid& grid, f
     std::size_t done = 0;
     const int subSize = 1 << (depth - split);
     parallelFor(count, threads, [&](std::size_t i) {
+        builder.checkCancelled();
         int x = int(i) / (side * side), y = (int(i) / side) % side, z = int(i) % side;
         present[i] = builder.build(split, ivec3(x, y, z) * subSize, roots[i], pools[i]) ? 1 : 0;
         pools[i].shrink(guard);  // up to half of each buffer is spare capacity: join without it
@@ -666,7 +677,7 @@ Octree buildShellOctree(const ScalarField& field, const BuildOptions& options, B
         refuseOverBudget(field, est, budget);
         guard.emplace(field, options.depth, budget, est.back().fieldBytes + est.back().samplerBytes, est.back().total());
     }
-    buildInto(tree, field, grid, isoF, options.threads, options.progress, guard ? &*guard : nullptr);
+    buildInto(tree, field, grid, isoF, options.threads, options, guard ? &*guard : nullptr);
     if (report) {
         report->buildMs = timer.ms();
         report->boundaryVoxels = tree.voxels.size();

@@ -608,6 +608,34 @@ TEST(OctreeBuilder, ReportsProgressInOrderOneCallAtATimeEndingAtOne) {
     }
 }
 
+TEST(OctreeBuilder, StopsWithCancelledErrorSoonAfterTheCallerAsksAndBuildsAsBeforeWhenNeverAsked) {
+    // The studio's Cancel button: the hook is polled inside the subtrees, not only between them.
+    const ScalarField f = makeAnalyticField("sphere", 65);
+    for (int threads : {1, 0}) {
+        std::atomic<int> polls{0};
+        BuildOptions o;
+        o.depth = 9;
+        o.threads = threads;
+        o.cancelled = [&] { return polls.fetch_add(1) >= 3; };
+        int progressCalls = 0;
+        o.progress = [&](double) { ++progressCalls; };
+        EXPECT_THROW(buildShellOctree(f, o), CancelledError) << threads << " threads";
+        // Asked after the third poll: at most one subtree of the 64 was finished (serially).
+        EXPECT_LE(progressCalls, threads == 1 ? 1 : 8) << threads << " threads";
+    }
+    // Never asked to stop: the same tree as without the hook.
+    BuildOptions plain;
+    plain.depth = 7;
+    BuildOptions hooked = plain;
+    int polls = 0;
+    hooked.threads = 1;
+    hooked.cancelled = [&] { return ++polls < 0; };
+    const Octree a = buildShellOctree(f, plain), b = buildShellOctree(f, hooked);
+    EXPECT_GT(polls, 64);
+    EXPECT_EQ(a.voxels.size(), b.voxels.size());
+    EXPECT_EQ(a.nodes.size(), b.nodes.size());
+}
+
 TEST(OctreeBuilder, ReportsAnEmptyResultForAnAllMaskedFieldAndForAnIsoNoCellStraddles) {
     ScalarField f = makeAnalyticField("sphere", 9);
     f.valid.assign(f.sampleCount(), 0);

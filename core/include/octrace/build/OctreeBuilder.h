@@ -25,6 +25,11 @@ struct BuildOptions {
     /// Called now and then with a fraction in [0,1]; may be empty. It runs on worker threads,
     /// one call at a time, with fractions that never decrease and end at 1.
     std::function<void(double)> progress;
+    /// Asked now and then, from worker threads and possibly concurrently (so it must be
+    /// thread-safe, e.g. read a std::atomic<bool>); may be empty. When it returns true the
+    /// build stops within a few thousand cells and throws CancelledError. For interactive
+    /// programs (the studio's Cancel button).
+    std::function<bool()> cancelled;
     /// Memory budget in bytes for the field and the build together; 0 = no limit. With one,
     /// the build first estimates its peak (estimateBuildMemory) and refuses a depth whose
     /// estimate exceeds the budget, naming the largest depth that fits; then it counts every
@@ -65,7 +70,7 @@ struct BuildReport {
 
 /// Throws UsageError for a depth out of range, EmptyResultError when iso is outside the valid
 /// value range or no cell straddles it, LimitError when the memory budget is too small (see
-/// BuildOptions::memoryBudget). The field must have passed validate().
+/// BuildOptions::memoryBudget), CancelledError when BuildOptions::cancelled says so. The field must have passed validate().
 Octree buildShellOctree(const ScalarField& field, const BuildOptions& options, BuildReport* report = nullptr);
 
 }  // namespace octrace

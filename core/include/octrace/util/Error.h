@@ -50,6 +50,13 @@ public:
     using Error::Error;
 };
 
+/// The caller asked the work to stop (e.g. BuildOptions::cancelled, a Cancel button): not a
+/// failure of the input or of the program.
+class CancelledError : public Error {
+public:
+    using Error::Error;
+};
+
 /// Writing an output failed.
 class OutputError : public Error {
 public:
