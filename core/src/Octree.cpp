@@ -132,7 +132,7 @@ void Octree::validate() const {
         stack.pop_back();
         const OctreeNode& n = nodes[it.node];
         if (n.termMask & ~n.childMask) fail("term bit without child bit");
-        if (n.termMask && form != OctreeForm::Volume) fail("interior term in a shell octree");
+        if (n.termMask && form != OctreeForm::Volume && it.level != depth - 1) fail("interior term in a shell octree");
         int count = std::popcount(unsigned(n.childMask));
         if (it.level == depth - 1) {
             if (n.termMask && form != OctreeForm::Volume) fail("interior voxel in a shell octree");
