@@ -33,6 +33,7 @@ OptionParser makeParser(BuildArgs& a) {
            [&](const std::string& v) { a.statsPath = v; }});
     addThreadsOption(p, a, "the file");
     addGeographicOptions(p, a);
+    addCityOptions(p, a);
     addSeriesOption(p, a.request);
     addMessageOptions(p, a);
     return p;

@@ -39,6 +39,7 @@ OptionParser makeParser(ExportArgs& a) {
     addThreadsOption(p, a, "the output");
     addColourOptions(p, a);
     addGeographicOptions(p, a);
+    addCityOptions(p, a);
     addSeriesOption(p, a.request);
     addMessageOptions(p, a);
     return p;

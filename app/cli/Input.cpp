@@ -2,6 +2,7 @@
 
 #include "Options.h"
 #include "octrace/build/AnalyticField.h"
+#include "octrace/io/CityReader.h"
 #include "octrace/io/FieldReader.h"
 #include "octrace/io/OctreeFile.h"
 #include "octrace/util/Error.h"
@@ -48,11 +49,12 @@ ScalarField loadField(const std::string& input, const io::FieldRequest& req) {
     return f;
 }
 
-std::string describe(const std::string& input, const io::FieldRequest& req) {
+std::string describe(const std::string& input, const io::FieldRequest& req, const io::CityRequest& city) {
     if (isOctreeInput(input)) {
         if (!req.series.empty()) throw UsageError("--series applies to DICOM inputs, not to the octree file " + input);
         return io::describeOctreeFile(input, req.memoryBudget);
     }
+    if (io::isCityInput(input)) return io::describeCityInput(input, city);
     if (!isAnalytic(input)) return io::describeInput(input, req);
     ScalarField f = analytic(input, req.memoryBudget);
     auto [lo, hi] = f.validRange();

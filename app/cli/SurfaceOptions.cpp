@@ -2,6 +2,7 @@
 
 #include "Input.h"
 
+#include "octrace/build/CityVoxelizer.h"
 #include "octrace/render/Shading.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
@@ -50,6 +51,27 @@ void loadOctreeSurface(const SurfaceArgs& a, std::uint64_t budget, Surface& s) {
     s.report.nodes = s.tree.nodes.size();
 }
 
+/// buildSurface for a city input: the model read and voxelized; the field empty but for its name.
+void buildCitySurface(const SurfaceArgs& a, Surface& s) {
+    if (!a.request.variable.empty() || a.iso)
+        throw UsageError(std::string(a.iso ? "--iso" : "--var") + " does not apply to the city input " + a.input +
+                         " (its buildings and terrain are voxelized as surfaces)");
+    if (a.request.hasRegion || !a.request.series.empty())
+        throw UsageError(std::string(a.request.hasRegion ? "--region" : "--series") + " does not apply to the city input " + a.input);
+    Timer t;
+    const CityModel model = io::readCityModel(a.input, a.city);
+    s.loadMs = t.ms();
+    for (const auto& n : model.notes) log::warning(n);
+    CityBuildOptions o;
+    o.depth = a.depth;
+    o.threads = a.threads;
+    s.tree = voxelizeCity(model, o, &s.report);
+    s.field.name = s.tree.fieldName;
+    s.field.source = a.input;
+    s.tree.source = a.input + " (" + std::to_string(model.objects.size()) + " objects, " + std::to_string(model.triangles.size()) +
+                    " triangles, CRS " + (model.crs.empty() ? std::string("none") : model.crs) + ")";
+}
+
 /// What an octree was made from, for its file's header: input, variable, the reader's notes.
 std::string sourceDescription(const std::string& input, const ScalarField& f) {
     std::string s = input + ", variable " + f.name;
@@ -85,9 +107,15 @@ void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result
 }
 
 void addColourOptions(OptionParser& p, SurfaceArgs& a) {
-    p.add({"colour", "R,G,B", "surface colour, sRGB components in [0,1] (default 0.85,0.62,0.35)",
-           [&](const std::string& v) { a.colour = vec3(parseColour("colour", v, false)); }});
-    p.add({"color", "R,G,B", "same as --colour (default 0.85,0.62,0.35)", [&](const std::string& v) { a.colour = vec3(parseColour("color", v, false)); }});
+    p.add({"colour", "R,G,B", "surface colour, sRGB components in [0,1], also over a city's own colours (default 0.85,0.62,0.35; city inputs: per object and texture)",
+           [&](const std::string& v) {
+               a.colour = vec3(parseColour("colour", v, false));
+               a.colourGiven = true;
+           }});
+    p.add({"color", "R,G,B", "same as --colour (default 0.85,0.62,0.35)", [&](const std::string& v) {
+               a.colour = vec3(parseColour("color", v, false));
+               a.colourGiven = true;
+           }});
     p.add({"colormap", "NAME", "colour the surface by height with a map: " + joinNames(colormapNames()) + " (default: none, --colour)",
            [&](const std::string& v) {
                colormap(v, 0.0f);
@@ -106,6 +134,23 @@ void addGeographicOptions(OptionParser& p, SurfaceArgs& a) {
            [&](const std::string& v) {
                a.request.verticalScale = parseNumber("vertical-scale", v);
                if (!(a.request.verticalScale > 0.0)) throw UsageError("--vertical-scale: must be positive, got " + v);
+           }});
+}
+
+void addCityOptions(OptionParser& p, SurfaceArgs& a) {
+    p.add({"lod-select", "LOD", "city inputs: level of detail to voxelize, e.g. 1, 2 or 2.2 (a prefix takes its sublevels; default: each object's highest)",
+           [&](const std::string& v) {
+               if (v.empty() || v.find_first_not_of("0123456789.") != std::string::npos)
+                   throw UsageError("--lod-select: expected a level of detail such as 1, 2 or 2.2, got '" + v + "'");
+               a.city.lod = v;
+               a.cityGiven = true;
+           }});
+    p.add({"crs", "CRS", "city inputs: projected coordinate reference system to bring everything into, e.g. EPSG:28992 "
+           "(default: the input's own when projected, else the UTM zone of its centre)",
+           [&](const std::string& v) {
+               if (v.empty()) throw UsageError("--crs: empty (give e.g. EPSG:28992)");
+               a.city.crs = v;
+               a.cityGiven = true;
            }});
 }
 
@@ -152,9 +197,15 @@ Surface buildSurface(const SurfaceArgs& a) {
     Surface s;
     Timer t;
     if (isOctreeInput(a.input)) {
+        if (a.cityGiven) throw UsageError("--lod-select and --crs apply to city inputs, not to the octree file " + a.input);
         loadOctreeSurface(a, budget, s);
         return s;
     }
+    if (io::isCityInput(a.input)) {
+        buildCitySurface(a, s);
+        return s;
+    }
+    if (a.cityGiven) throw UsageError("--lod-select and --crs apply to city inputs (CityJSON), not to " + a.input);
     s.field = loadField(a.input, request);
     s.loadMs = t.ms();
     auto [vmin, vmax] = s.field.validRange();
@@ -182,6 +233,7 @@ Surface buildSurface(const SurfaceArgs& a) {
 void applyColour(const SurfaceArgs& a, RenderSettings& settings) {
     settings.colour = vec3(displayToLinear(vec4(a.colour, 1.0f)));
     settings.colormap = a.colormap;
+    settings.voxelColours = !a.colourGiven;
 }
 
 }  // namespace octrace::cli

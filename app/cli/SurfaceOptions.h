@@ -6,6 +6,7 @@
 
 #include "octrace/build/OctreeBuilder.h"
 #include "octrace/build/ScalarField.h"
+#include "octrace/io/CityReader.h"
 #include "octrace/io/FieldRequest.h"
 #include "octrace/octree/Octree.h"
 #include "octrace/render/RenderSettings.h"
@@ -24,9 +25,12 @@ struct SurfaceArgs {
     int depth = 8, threads = 0;
     bool depthGiven = false;  // --depth given (an octree file input fixes the depth)
     vec3 colour{0.85f, 0.62f, 0.35f};  // sRGB display values, as the user gives them
+    bool colourGiven = false;          // --colour: also over a city's per-voxel colours
     std::string colormap;
     bool help = false, quiet = false, verbose = false;
     std::uint64_t maxMemory = 0;  // --max-memory; 0: defaultMemoryBudget()
+    io::CityRequest city;         // --lod-select, --crs (city inputs)
+    bool cityGiven = false;       // one of them was given
 };
 
 /// "a, b, c".
@@ -43,6 +47,8 @@ void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result
 void addColourOptions(OptionParser& p, SurfaceArgs& a);
 /// --region, --vertical-scale.
 void addGeographicOptions(OptionParser& p, SurfaceArgs& a);
+/// --lod-select, --crs (city inputs).
+void addCityOptions(OptionParser& p, SurfaceArgs& a);
 /// --series (DICOM).
 void addSeriesOption(OptionParser& p, io::FieldRequest& request);
 /// --max-memory, --quiet, --verbose, --help.
@@ -66,7 +72,9 @@ struct Surface {
     double loadMs = 0.0;
 };
 
-/// Applies --quiet / --verbose to the log. An octree file (.oct) is read as it is (options that
+/// Applies --quiet / --verbose to the log. A city input (CityJSON) is read into one projected
+/// CRS and voxelized (CityVoxelizer.h) with its per-voxel colours; --var and --iso are refused.
+/// An octree file (.oct) is read as it is (options that
 /// choose the field or the depth are refused: UsageError; a volume octree gives its shell).
 /// Otherwise reads a.input, chooses the iso value when none was
 /// given (the middle of the valid range, said on stderr) and builds the shell octree (progress

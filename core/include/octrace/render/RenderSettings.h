@@ -14,6 +14,9 @@ struct RenderSettings {
     float ambient = 0.15f;
     float diffuse = 0.85f;
     std::string colormap;                  ///< empty: uniform colour; else colour by height (see docs)
+    /// Use the octree's per-voxel colours (Octree::colours) when it has them and no colour
+    /// map is set; false: the uniform colour.
+    bool voxelColours = true;
     /// Colour coherence (paper A, 5.3) on any renderer: a pixel between two traced neighbours
     /// whose 8-bit sRGB colours differ by at most colourTolerance in every channel gets their
     /// average without being traced. Approximate by design.
