@@ -13,7 +13,7 @@ namespace octrace::cli {
 int runInfo(const std::vector<std::string>& args) {
     bool help = false;
     io::FieldRequest request;
-    OptionParser p("info", "octrace info INPUT... [--series UID|INDEX|DESCRIPTION] [--crs CRS] [--lod-select LOD]");
+    OptionParser p("info", "octrace info INPUT... [--series UID|INDEX|DESCRIPTION] [--crs CRS] [--lod-select LOD] [--dem RASTER] [--texture RASTER]");
     addSeriesOption(p, request);
     SurfaceArgs city;
     addCityOptions(p, city);

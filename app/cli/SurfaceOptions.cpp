@@ -63,7 +63,9 @@ void buildCitySurface(const SurfaceArgs& a, Surface& s) {
         throw UsageError(std::string(a.request.hasRegion ? "--region" : !a.request.series.empty() ? "--series" : "--form/--inside") +
                          " does not apply to the city input " + a.input + " (it is voxelized as a shell of surfaces)");
     Timer t;
-    const CityModel model = io::readCityModel(a.input, a.city);
+    io::CityRequest request = a.city;
+    request.maxSamples = (1 << std::min(a.depth, 12)) + 1;  // the octree resolves no finer
+    const CityModel model = io::readCityModel(a.input, request);
     s.loadMs = t.ms();
     for (const auto& n : model.notes) log::warning(n);
     CityBuildOptions o;
@@ -165,6 +167,18 @@ void addCityOptions(OptionParser& p, SurfaceArgs& a) {
                a.city.lod = v;
                a.cityGiven = true;
            }});
+    p.add({"dem", "RASTER", "city inputs: a DEM raster (GeoTIFF or any GDAL raster, any CRS) added as terrain (default: none)",
+           [&](const std::string& v) {
+               if (v.empty()) throw UsageError("--dem: empty (give a raster file)");
+               a.city.dem = v;
+               a.cityGiven = true;
+           }});
+    p.add({"texture", "RASTER", "city inputs: a colour raster (orthophoto, map; any GDAL raster, any CRS) draped on the terrain (default: none, colours per object type)",
+           [&](const std::string& v) {
+               if (v.empty()) throw UsageError("--texture: empty (give a raster file)");
+               a.city.texture = v;
+               a.cityGiven = true;
+           }});
     p.add({"crs", "CRS", "city inputs: projected coordinate reference system to bring everything into, e.g. EPSG:28992 "
            "(default: the input's own when projected, else the UTM zone of its centre)",
            [&](const std::string& v) {
@@ -218,7 +232,7 @@ Surface buildSurface(const SurfaceArgs& a) {
     Surface s;
     Timer t;
     if (isOctreeInput(a.input)) {
-        if (a.cityGiven) throw UsageError("--lod-select and --crs apply to city inputs, not to the octree file " + a.input);
+        if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem and --texture apply to city inputs, not to the octree file " + a.input);
         loadOctreeSurface(a, budget, s);
         return s;
     }
@@ -226,7 +240,7 @@ Surface buildSurface(const SurfaceArgs& a) {
         buildCitySurface(a, s);
         return s;
     }
-    if (a.cityGiven) throw UsageError("--lod-select and --crs apply to city inputs (CityJSON), not to " + a.input);
+    if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem and --texture apply to city inputs (CityJSON, DEM rasters), not to " + a.input);
     s.field = loadField(a.input, request);
     s.loadMs = t.ms();
     auto [vmin, vmax] = s.field.validRange();

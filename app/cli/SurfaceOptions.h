@@ -29,7 +29,7 @@ struct SurfaceArgs {
     std::string colormap;
     bool help = false, quiet = false, verbose = false;
     std::uint64_t maxMemory = 0;  // --max-memory; 0: defaultMemoryBudget()
-    io::CityRequest city;         // --lod-select, --crs (city inputs)
+    io::CityRequest city;         // --lod-select, --crs, --dem, --texture (city inputs)
     bool cityGiven = false;       // one of them was given
     OctreeForm form = OctreeForm::Shell;  // --form
     bool insideBelow = false;             // --inside below
@@ -53,7 +53,7 @@ void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result
 void addColourOptions(OptionParser& p, SurfaceArgs& a);
 /// --region, --vertical-scale.
 void addGeographicOptions(OptionParser& p, SurfaceArgs& a);
-/// --lod-select, --crs (city inputs).
+/// --lod-select, --crs, --dem, --texture (city inputs).
 void addCityOptions(OptionParser& p, SurfaceArgs& a);
 /// --series (DICOM).
 void addSeriesOption(OptionParser& p, io::FieldRequest& request);

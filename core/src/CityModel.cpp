@@ -55,6 +55,21 @@ bool inTriangle(const dvec2& p, const dvec2& a, const dvec2& b, const dvec2& c) 
     return cross(a, b, p) >= 0 && cross(b, c, p) >= 0 && cross(c, a, p) >= 0;
 }
 
+/// Box of the vertices of the triangles `keep` accepts.
+template <class F>
+Box3 boundsWhere(const CityModel& m, F keep) {
+    Box3 b;
+    b.lo = dvec3(std::numeric_limits<double>::infinity());
+    b.hi = -b.lo;
+    for (const auto& t : m.triangles)
+        if (keep(t))
+            for (auto i : t.v) {
+                b.lo = glm::min(b.lo, m.vertices[i]);
+                b.hi = glm::max(b.hi, m.vertices[i]);
+            }
+    return b;
+}
+
 }  // namespace
 
 std::uint32_t CityTexture::at(double x, double y) const {
@@ -64,16 +79,22 @@ std::uint32_t CityTexture::at(double x, double y) const {
     return rgba[std::size_t(int(fj)) * std::size_t(width) + std::size_t(int(fi))];
 }
 
-Box3 CityModel::bounds() const {
-    Box3 b;
-    b.lo = dvec3(std::numeric_limits<double>::infinity());
-    b.hi = -b.lo;
-    for (const auto& t : triangles)
-        for (auto i : t.v) {
-            b.lo = glm::min(b.lo, vertices[i]);
-            b.hi = glm::max(b.hi, vertices[i]);
-        }
-    return b;
+Box3 CityModel::bounds() const { return boundsWhere(*this, [](const CityTriangle&) { return true; }); }
+
+void CityModel::append(const CityModel& other) {
+    const std::uint32_t v0 = std::uint32_t(vertices.size()), o0 = std::uint32_t(objects.size());
+    vertices.insert(vertices.end(), other.vertices.begin(), other.vertices.end());
+    objects.insert(objects.end(), other.objects.begin(), other.objects.end());
+    for (CityTriangle t : other.triangles) {
+        for (auto& i : t.v) i += v0;
+        t.object += o0;
+        triangles.push_back(t);
+    }
+    notes.insert(notes.end(), other.notes.begin(), other.notes.end());
+}
+
+Box3 CityModel::bounds(CityRole role) const {
+    return boundsWhere(*this, [&](const CityTriangle& t) { return objects[t.object].role == role; });
 }
 
 std::size_t CityModel::objectCount(CityRole role) const {

@@ -1,6 +1,7 @@
 #include "octrace/io/CityReader.h"
 
 #include "CityJson.h"
+#include "CityRaster.h"
 #include "InputFile.h"
 #include "octrace/util/Error.h"
 
@@ -126,14 +127,36 @@ void toProjectedCrs(CityModel& m, const std::string& requested, const std::strin
 bool isCityInput(const std::string& path) {
     const std::string name = detail::lower(std::filesystem::path(path).filename().string());
     if (name.ends_with(".scene.json")) return false;
-    return extensionOf(path) == ".json";
+    return extensionOf(path) == ".json" || detail::isRasterExtension(path);
 }
 
 CityModel readCityModel(const std::string& path, const CityRequest& req) {
     if (!req.crs.empty()) spatialReference(req.crs, "--crs");  // a bad --crs before the long read
-    CityModel m = detail::parseCityJson(readAll(path), path, req.lod);
+    CityModel m;
+    if (detail::isRasterExtension(path)) {
+        m.source = path;
+        detail::addDemTerrain(m, path, req.maxSamples);
+    } else {
+        m = detail::parseCityJson(readAll(path), path, req.lod);
+    }
     toProjectedCrs(m, req.crs, path);
+    if (!req.dem.empty()) {
+        CityModel dem;
+        detail::addDemTerrain(dem, req.dem, req.maxSamples);
+        toProjectedCrs(dem, m.crs, req.dem);
+        m.append(dem);
+    }
     if (m.triangles.empty()) throw EmptyResultError(path + ": no surface with area to voxelize");
+    if (!req.texture.empty()) {
+        if (m.crs.empty()) throw InputError(req.texture + ": the scene has no CRS to place the texture in (give --crs)");
+        Box3 terrain = m.bounds(CityRole::Terrain);
+        if (!(terrain.hi.x >= terrain.lo.x)) throw InputError(req.texture + ": the scene has no terrain to drape the texture on");
+        // A margin: voxel centres at the terrain's edge may lie half a voxel outside it.
+        const double margin = 0.02 * std::max(terrain.size().x, terrain.size().y);
+        terrain.lo -= dvec3(margin, margin, 0.0);
+        terrain.hi += dvec3(margin, margin, 0.0);
+        m.texture = detail::readTexture(req.texture, m.crs, terrain, req.maxSamples);
+    }
     return m;
 }
 
@@ -144,11 +167,12 @@ std::string describeCityInput(const std::string& path, const CityRequest& req) {
     const Box3 b = m.bounds();
     std::ostringstream s;
     s.precision(10);
-    s << path << "\n  format: CityJSON\n  crs: " << (m.crs.empty() ? "(none)" : m.crs) << "\n  objects: " << m.objects.size()
+    s << path << "\n  format: " << (detail::isRasterExtension(path) ? "DEM raster (GDAL), terrain" : "CityJSON") << "\n  crs: " << (m.crs.empty() ? "(none)" : m.crs) << "\n  objects: " << m.objects.size()
       << " (" << m.objectCount(CityRole::Solid) << " solids, " << m.objectCount(CityRole::Terrain) << " terrain)\n";
     for (const auto& [type, n] : types) s << "    " << type << ": " << n << "\n";
     s << "  triangles: " << m.triangles.size() << "\n  world bounds: [" << b.lo.x << ", " << b.hi.x << "] x [" << b.lo.y
       << ", " << b.hi.y << "] x [" << b.lo.z << ", " << b.hi.z << "]\n";
+    if (!m.texture.empty()) s << "  texture: " << req.texture << ", " << m.texture.width << " x " << m.texture.height << " pixels of " << m.texture.pixel.x << "\n";
     for (const auto& n : m.notes) s << "  note: " << n << "\n";
     return s.str();
 }

@@ -46,7 +46,7 @@ TEST(CliCity, OptionsThatDoNotApplyAndBadValuesAreRefused) {
     EXPECT_NE(r.err.find("--lod-select: expected a level of detail"), std::string::npos) << r.err;
     r = run({"render", "analytic:sphere:17", "--crs", "EPSG:28992", "-o", s.path("a.png")});
     EXPECT_EQ(r.code, 2);
-    EXPECT_NE(r.err.find("--lod-select and --crs apply to city inputs"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--lod-select, --crs, --dem and --texture apply to city inputs"), std::string::npos) << r.err;
     r = run({"render", kCube, "--crs", "EPSG:999999", "-o", s.path("a.png")});
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("unknown coordinate reference system 'EPSG:999999'"), std::string::npos) << r.err;
@@ -69,4 +69,24 @@ TEST(CliCity, AnOctreeFileKeepsTheColoursAndTheCrs) {
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("COLR"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("EPSG:28992"), std::string::npos) << r.out;
+}
+
+TEST(CliCity, RendersADemWithATextureInAnotherCrs) {
+    if (!haveShared("city/lux_elev_srtm.tif")) GTEST_SKIP() << "shared data absent: " << sharedData("city/lux_elev_srtm.tif");
+    Scratch s;
+    const std::string texture = std::string(OCTRACE_TEST_DATA) + "/city/lux_checker_4326.tif";
+    Result r = run({"render", sharedData("city/lux_elev_srtm.tif"), "--texture", texture, "--depth", "7", "--size", "200x150",
+                    "--verify", "--stats", s.path("st.json"), "-o", s.path("tex.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(slurp(s.path("st.json")).find("\"mismatched_pixels\": 0,"), std::string::npos);
+    r = run({"render", sharedData("city/lux_elev_srtm.tif"), "--depth", "7", "--size", "200x150", "-o", s.path("plain.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(slurp(s.path("tex.png")) != slurp(s.path("plain.png")));
+    r = run({"info", sharedData("city/lux_elev_srtm.tif"), "--texture", texture});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("crs: EPSG:32632"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("texture: "), std::string::npos) << r.out;
+    r = run({"render", sharedData("city/lux_elev_srtm.tif"), "--texture", kCube, "-o", s.path("bad.png")});
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("GDAL cannot open it as a raster"), std::string::npos) << r.err;
 }

@@ -52,8 +52,13 @@ struct CityModel {
     /// footprint without height), one line each, for the log and `octrace info`.
     std::vector<std::string> notes;
 
-    /// Box of every vertex that a triangle uses (lo > hi when there is none).
+    /// Box of every vertex that a triangle uses (lo > hi when there is none); with `role`, only
+    /// the triangles of objects of that role.
     Box3 bounds() const;
+    Box3 bounds(CityRole role) const;
+    /// Appends another model's objects, triangles and notes (the same CRS is the caller's
+    /// business); the texture is kept.
+    void append(const CityModel& other);
     std::size_t objectCount(CityRole role) const;
 
     /// Appends a planar polygon of `object`: `rings[0]` the outer ring, the others holes (any

@@ -1,7 +1,9 @@
 #pragma once
 /// @file CityReader.h
 /// One entry point for city inputs (terrain and buildings), read into a CityModel in one
-/// projected CRS: CityJSON (.json, .city.json).
+/// projected CRS: CityJSON (.json, .city.json), a DEM raster through GDAL (.tif, .tiff, .dem,
+/// .asc, .img, .hgt, .bil, .vrt) as terrain; optionally a second DEM under it and a colour
+/// raster draped on the terrain.
 #include "octrace/build/CityModel.h"
 
 #include <string>
@@ -15,10 +17,16 @@ struct CityRequest {
     /// Target CRS (anything OSR's SetFromUserInput takes: "EPSG:28992", a WKT, a PROJ string);
     /// empty: the input's own CRS when it is projected, else the UTM zone of its centre.
     std::string crs;
+    /// A DEM raster to add as terrain (any GDAL raster, any CRS: reprojected); empty: none.
+    std::string dem;
+    /// A colour raster (any GDAL raster, any CRS) draped on the terrain; empty: none.
+    std::string texture;
+    /// Most DEM samples and texture pixels read per edge (the octree resolves no more).
+    int maxSamples = 4097;
 };
 
-/// Whether `path` is read as a city input: by its extension (.json but not .scene.json,
-/// .city.json). Does not open the file.
+/// Whether `path` is read as a city input: by its extension (.json but not .scene.json, or
+/// a DEM raster's). Does not open the file.
 bool isCityInput(const std::string& path);
 
 /// Reads `path` into a model in the request's CRS. What cannot be used (an open shell, a
