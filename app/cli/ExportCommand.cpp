@@ -38,7 +38,7 @@ OptionParser makeParser(ExportArgs& a) {
            [&](const std::string&) { a.ascii = true; }});
     addThreadsOption(p, a, "the output");
     addColourOptions(p, a);
-    addGeographicOptions(p, a);
+    addGeographicOptions(p, a.request);
     addSeriesOption(p, a.request);
     addMessageOptions(p, a);
     return p;
