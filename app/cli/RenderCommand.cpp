@@ -48,6 +48,7 @@ OptionParser makeParser(RenderArgs& a) {
     p.add({"o", "FILE", "output image; format from the extension: " + joinNames(io::imageExtensions()) + " (required)",
            [&](const std::string& v) { a.output = v; }});
     addSurfaceOptions(p, a);
+    addFormOptions(p, a);
     p.add({"renderer", "NAME", "renderer: " + joinNames(rendererNames()) + " (default full)",
            [&](const std::string& v) {
                makeRenderer(v);  // validates the name

@@ -2,6 +2,7 @@
 
 #include "Input.h"
 
+#include "octrace/build/Volume.h"
 #include "octrace/render/Shading.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
@@ -28,12 +29,16 @@ std::function<void(double)> progressPrinter(bool quiet) {
 
 /// buildSurface for an octree file: the octree as it is, the field empty but for its name.
 void loadOctreeSurface(const SurfaceArgs& a, std::uint64_t budget, Surface& s) {
-    const char* given = a.iso ? "--iso" : a.depthGiven ? "--depth" : fieldOptionGiven(a.request);
+    const char* given = a.iso          ? "--iso"
+                        : a.depthGiven ? "--depth"
+                        : a.formGiven  ? "--form/--inside"
+                                       : fieldOptionGiven(a.request);
     if (given)
         throw UsageError(std::string(given) + " does not apply to the octree file " + a.input +
                          " (its field, iso value and depth were fixed when it was built: see octrace info)");
     Timer t;
     s.tree = loadOctree(a.input, budget);
+    if (!a.keepVolume) s.tree = extractShell(s.tree);
     s.loadMs = t.ms();
     s.iso = s.tree.iso;
     s.field.name = s.tree.fieldName;
@@ -77,6 +82,22 @@ void addSurfaceOptions(OptionParser& p, SurfaceArgs& a) {
            [&](const std::string& v) {
                a.depth = parseInt("depth", v, 1, Octree::kMaxDepth);
                a.depthGiven = true;
+           }});
+}
+
+void addFormOptions(OptionParser& p, SurfaceArgs& a) {
+    p.add({"form", "shell|volume", "octree form: the isosurface's boundary voxels (shell), or the solid it bounds with its "
+           "interior and caps where the grid ends (volume) (default shell)",
+           [&](const std::string& v) {
+               if (v != "shell" && v != "volume") throw UsageError("--form: expected shell or volume, got '" + v + "'");
+               a.form = v == "volume" ? OctreeForm::Volume : OctreeForm::Shell;
+               a.formGiven = true;
+           }});
+    p.add({"inside", "above|below", "volume form: the solid is where the value is >= iso (above) or < iso (below) (default above)",
+           [&](const std::string& v) {
+               if (v != "above" && v != "below") throw UsageError("--inside: expected above or below, got '" + v + "'");
+               a.insideBelow = v == "below";
+               a.formGiven = true;
            }});
 }
 
@@ -171,6 +192,7 @@ std::uint64_t memoryBudget(const SurfaceArgs& a) { return a.maxMemory ? a.maxMem
 Surface buildSurface(const SurfaceArgs& a) {
     if (a.quiet) log::setLevel(log::Level::Error);
     if (a.verbose) log::setLevel(log::Level::Debug);
+    if (a.insideBelow && a.form != OctreeForm::Volume) throw UsageError("--inside applies to --form volume");
     const std::uint64_t budget = memoryBudget(a);
     io::FieldRequest request = a.request;
     request.memoryBudget = budget;
@@ -198,8 +220,11 @@ Surface buildSurface(const SurfaceArgs& a) {
     bo.threads = a.threads;
     bo.progress = progressPrinter(a.quiet);
     bo.memoryBudget = budget;
-    s.tree = buildShellOctree(s.field, bo, &s.report);
+    bo.form = a.form;
+    bo.insideBelow = a.insideBelow;
+    s.tree = buildOctree(s.field, bo, &s.report);
     s.tree.source = sourceDescription(a.input, s.field);
+    if (!a.keepVolume) s.tree = extractShell(s.tree);
     if (bo.progress) std::fputs("\n", stderr);
     return s;
 }

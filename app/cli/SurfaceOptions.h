@@ -27,6 +27,10 @@ struct SurfaceArgs {
     std::string colormap;
     bool help = false, quiet = false, verbose = false;
     std::uint64_t maxMemory = 0;  // --max-memory; 0: defaultMemoryBudget()
+    OctreeForm form = OctreeForm::Shell;  // --form
+    bool insideBelow = false;             // --inside below
+    bool formGiven = false;               // --form or --inside given
+    bool keepVolume = false;  // set by the command: buildSurface keeps a volume octree as it is (build, csg)
 };
 
 /// "a, b, c".
@@ -39,6 +43,8 @@ vec4 displayToLinear(vec4 c);
 void addVariableOption(OptionParser& p, io::FieldRequest& request);
 /// --var, --iso, --depth.
 void addSurfaceOptions(OptionParser& p, SurfaceArgs& a);
+/// --form shell|volume, --inside above|below.
+void addFormOptions(OptionParser& p, SurfaceArgs& a);
 /// --threads; `result` names what does not depend on it ("the image").
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result);
 /// --colour, --color, --colormap.
@@ -71,11 +77,12 @@ struct Surface {
 };
 
 /// Applies --quiet / --verbose to the log. An octree file (.oct) is read as it is (options that
-/// choose the field or the depth are refused: UsageError; a volume octree gives its shell).
+/// choose the field or the depth are refused: UsageError).
 /// Otherwise reads a.input, chooses the iso value when none was
-/// given (the middle of the valid range, said on stderr) and builds the shell octree (progress
-/// on stderr when it is a terminal), within memoryBudget(a): a read or build that would need
-/// more is refused (LimitError). Throws as loadField() and buildShellOctree().
+/// given (the middle of the valid range, said on stderr) and builds the octree in a.form
+/// (progress on stderr when it is a terminal), within memoryBudget(a): a read or build that
+/// would need more is refused (LimitError). A volume octree becomes its shell (extractShell)
+/// unless a.keepVolume. Throws as loadField() and buildOctree().
 Surface buildSurface(const SurfaceArgs& a);
 
 /// The colour options as RenderSettings::colour (linear RGB) and RenderSettings::colormap.
