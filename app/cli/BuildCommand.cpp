@@ -34,7 +34,7 @@ OptionParser makeParser(BuildArgs& a) {
     p.add({"stats", "FILE.json", "write timings and sizes as JSON (keys: docs/user/cli.md)",
            [&](const std::string& v) { a.statsPath = v; }});
     addThreadsOption(p, a, "the file");
-    addGeographicOptions(p, a);
+    addGeographicOptions(p, a.request);
     addCityOptions(p, a);
     addSeriesOption(p, a.request);
     addMessageOptions(p, a);

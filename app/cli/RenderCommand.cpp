@@ -107,7 +107,7 @@ OptionParser makeParser(RenderArgs& a) {
                if (t < 0.0 || t > 255.0) throw UsageError("--colour-tolerance: must be in [0, 255], got " + v);
                a.colourTolerance = float(t);
            }});
-    addGeographicOptions(p, a);
+    addGeographicOptions(p, a.request);
     addCityOptions(p, a);
     addSeriesOption(p, a.request);
     p.add({"repeat", "N", "render N times and report the fastest as render_ms (benchmarks on a noisy machine; default 1)",

@@ -30,15 +30,10 @@ std::function<void(double)> progressPrinter(bool quiet) {
 
 /// buildSurface for an octree file: the octree as it is, the field empty but for its name.
 void loadOctreeSurface(const SurfaceArgs& a, std::uint64_t budget, Surface& s) {
-    const io::FieldRequest none;
-    const char* given = !a.request.variable.empty() ? "--var"
-                        : a.iso                     ? "--iso"
-                        : a.depthGiven              ? "--depth"
-                        : a.formGiven               ? "--form/--inside"
-                        : a.request.hasRegion       ? "--region"
-                        : !a.request.series.empty() ? "--series"
-                        : a.request.verticalScale != none.verticalScale ? "--vertical-scale"
-                                                                         : nullptr;
+    const char* given = a.iso          ? "--iso"
+                        : a.depthGiven ? "--depth"
+                        : a.formGiven  ? "--form/--inside"
+                                       : fieldOptionGiven(a.request);
     if (given)
         throw UsageError(std::string(given) + " does not apply to the octree file " + a.input +
                          " (its field, iso value and depth were fixed when it was built: see octrace info)");
@@ -56,12 +51,10 @@ void loadOctreeSurface(const SurfaceArgs& a, std::uint64_t budget, Surface& s) {
 
 /// buildSurface for a city input: the model read and voxelized; the field empty but for its name.
 void buildCitySurface(const SurfaceArgs& a, Surface& s) {
-    if (!a.request.variable.empty() || a.iso)
-        throw UsageError(std::string(a.iso ? "--iso" : "--var") + " does not apply to the city input " + a.input +
+    const char* given = a.iso ? "--iso" : a.formGiven ? "--form/--inside" : fieldOptionGiven(a.request);
+    if (given)
+        throw UsageError(std::string(given) + " does not apply to the city input " + a.input +
                          " (its buildings and terrain are voxelized as surfaces)");
-    if (a.request.hasRegion || !a.request.series.empty() || a.formGiven)
-        throw UsageError(std::string(a.request.hasRegion ? "--region" : !a.request.series.empty() ? "--series" : "--form/--inside") +
-                         " does not apply to the city input " + a.input + " (it is voxelized as a shell of surfaces)");
     Timer t;
     io::CityRequest request = a.city;
     request.maxSamples = (1 << std::min(a.depth, 12)) + 1;  // the octree resolves no finer
@@ -95,9 +88,17 @@ std::string joinNames(const std::vector<std::string>& names) {
 
 vec4 displayToLinear(vec4 c) { return vec4(srgbToLinear(c.r), srgbToLinear(c.g), srgbToLinear(c.b), c.a); }
 
+void addVariableOption(OptionParser& p, io::FieldRequest& request) {
+    p.add({"var", "NAME", "variable to draw, by name or CF standard_name; sound_speed is derived from temperature and "
+           "salinity when the file has none (default: the file's only 3-D variable)",
+           [&](const std::string& v) {
+               if (v.empty()) throw UsageError("--var: empty (give a variable name)");
+               request.variable = v;
+           }});
+}
+
 void addSurfaceOptions(OptionParser& p, SurfaceArgs& a) {
-    p.add({"var", "NAME", "variable to draw (default: the file's only 3-D variable)",
-           [&](const std::string& v) { a.request.variable = v; }});
+    addVariableOption(p, a.request);
     p.add({"iso", "VALUE", "iso value of the surface (default: middle of the variable's valid range)",
            [&](const std::string& v) { a.iso = parseNumber("iso", v); }});
     p.add({"depth", "N", "octree depth, voxels = 2^N per cube edge (1.." + std::to_string(Octree::kMaxDepth) + ", default 8)",
@@ -145,17 +146,30 @@ void addColourOptions(OptionParser& p, SurfaceArgs& a) {
            }});
 }
 
-void addGeographicOptions(OptionParser& p, SurfaceArgs& a) {
+void addGeographicOptions(OptionParser& p, io::FieldRequest& request) {
     p.add({"region", "LON0,LON1,LAT0,LAT1", "geographic subregion in degrees, NetCDF only (default: the whole grid)",
            [&](const std::string& v) {
                auto r = io::parseRegion(v);
-               a.request.hasRegion = true;
-               for (int i = 0; i < 4; ++i) a.request.region[i] = r[std::size_t(i)];
+               request.hasRegion = true;
+               for (int i = 0; i < 4; ++i) request.region[i] = r[std::size_t(i)];
+           }});
+    p.add({"depth-range", "Z0,Z1", "depth levels from Z0 to Z1 metres (positive down), NetCDF only (default: every level)",
+           [&](const std::string& v) {
+               auto r = io::parseDepthRange(v);
+               request.hasDepthRange = true;
+               request.depthRange[0] = r[0];
+               request.depthRange[1] = r[1];
+           }});
+    p.add({"time", "INDEX|DATE", "time step, NetCDF only: a 0-based index or a date YYYY-MM-DD[THH:MM[:SS]] in the file's "
+           "calendar, nearest step (default: the first)",
+           [&](const std::string& v) {
+               io::checkTimeText(v);
+               request.time = v;
            }});
     p.add({"vertical-scale", "S", "vertical exaggeration of depth, NetCDF only (default: depth extent = 1/4 of the larger horizontal extent)",
            [&](const std::string& v) {
-               a.request.verticalScale = parseNumber("vertical-scale", v);
-               if (!(a.request.verticalScale > 0.0)) throw UsageError("--vertical-scale: must be positive, got " + v);
+               request.verticalScale = parseNumber("vertical-scale", v);
+               if (!(request.verticalScale > 0.0)) throw UsageError("--vertical-scale: must be positive, got " + v);
            }});
 }
 
@@ -218,6 +232,17 @@ bool parseCommandLine(const OptionParser& p, const std::vector<std::string>& arg
     if (output.empty()) throw UsageError(p.command() + " needs " + missingOutput);
     a.input = positional[0];
     return true;
+}
+
+const char* fieldOptionGiven(const io::FieldRequest& request) {
+    const io::FieldRequest none;
+    return !request.variable.empty()                    ? "--var"
+           : request.hasRegion                          ? "--region"
+           : request.hasDepthRange                      ? "--depth-range"
+           : !request.time.empty()                      ? "--time"
+           : !request.series.empty()                    ? "--series"
+           : request.verticalScale != none.verticalScale ? "--vertical-scale"
+                                                         : nullptr;
 }
 
 std::uint64_t memoryBudget(const SurfaceArgs& a) { return a.maxMemory ? a.maxMemory : defaultMemoryBudget(); }

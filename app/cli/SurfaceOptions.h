@@ -43,6 +43,8 @@ std::string joinNames(const std::vector<std::string>& names);
 vec4 displayToLinear(vec4 c);
 
 // Each adds its options to `p`, writing into `a`; the help lines state the defaults of SurfaceArgs.
+/// --var.
+void addVariableOption(OptionParser& p, io::FieldRequest& request);
 /// --var, --iso, --depth.
 void addSurfaceOptions(OptionParser& p, SurfaceArgs& a);
 /// --form shell|volume, --inside above|below.
@@ -51,8 +53,10 @@ void addFormOptions(OptionParser& p, SurfaceArgs& a);
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result);
 /// --colour, --color, --colormap.
 void addColourOptions(OptionParser& p, SurfaceArgs& a);
-/// --region, --vertical-scale.
-void addGeographicOptions(OptionParser& p, SurfaceArgs& a);
+/// --region, --depth-range, --time, --vertical-scale.
+void addGeographicOptions(OptionParser& p, io::FieldRequest& request);
+/// The first option of `request` that chooses part of a field ("--var", "--region", ...), or null.
+const char* fieldOptionGiven(const io::FieldRequest& request);
 /// --lod-select, --crs, --dem, --texture (city inputs).
 void addCityOptions(OptionParser& p, SurfaceArgs& a);
 /// --series (DICOM).
