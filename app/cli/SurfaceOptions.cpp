@@ -155,7 +155,7 @@ Surface buildSurface(const SurfaceArgs& a) {
         loadOctreeSurface(a, budget, s);
         return s;
     }
-    s.field = loadField(a.input, request);
+    s.field = loadField(a.input, request, a.depth);
     s.loadMs = t.ms();
     auto [vmin, vmax] = s.field.validRange();
     s.iso = a.iso ? *a.iso : 0.5 * (double(vmin) + double(vmax));

@@ -31,7 +31,7 @@ struct ObjectNode {
 struct ObjectOctreeOptions {
     /// Split a node while it holds more spheres than this. Default 8: paper B splits "while a
     /// node holds more objects than a threshold" without giving it; 8 keeps the analytic tests
-    /// per occupied leaf few while the tree stays small (docs/dev/spheres-and-beams.md).
+    /// per occupied leaf few while the tree stays small (docs/dev/spheres.md).
     int leafObjects = 8;
     int maxDepth = 10;  ///< 1 .. kMaxDepth; overlapping spheres stop the splitting there
     std::uint64_t memoryBudget = 0;  ///< bytes, 0 = no limit (LimitError when exceeded)
