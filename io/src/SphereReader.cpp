@@ -328,7 +328,7 @@ void parseCif(std::string_view text, const std::string& name, std::uint64_t memo
     forEachAtomSiteRow(text, name, [&](const std::vector<std::string_view>& tags, const std::vector<CifTokens::Token>& row) {
         auto find = [&](std::string_view item) -> const CifTokens::Token* {
             for (std::size_t i = 0; i < tags.size(); ++i)
-                if (iequals(tags[i].substr(11), item)) return &row[i];
+                if (tags[i].size() > 11 && iequalsPrefix(tags[i], "_atom_site.") && iequals(tags[i].substr(11), item)) return &row[i];
             return nullptr;
         };
         auto unknown = [](const CifTokens::Token* v) { return !v || (!v->quoted && (v->text == "." || v->text == "?")); };

@@ -1,7 +1,8 @@
 #pragma once
 /// @file ObjectOctree.h
 /// Paper B's object octree over a SphereSet: a node is split into its 8 octants while it holds
-/// more than `leafObjects` spheres (and is above `maxDepth`); leaves keep the list of the
+/// more than `leafObjects` spheres (and is above `maxDepth`, and the split would not copy its
+/// list into the children more than 4 times over: spheres that overlap too much stay together); leaves keep the list of the
 /// spheres whose bounding box meets them; every node keeps its parent, for Samet's neighbour
 /// finding. Rays meet the spheres analytically.
 ///
