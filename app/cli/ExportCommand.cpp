@@ -27,6 +27,7 @@ OptionParser makeParser(ExportArgs& a) {
     p.add({"o", "FILE", "output point cloud; format from --format or the extension: .ply (required)",
            [&](const std::string& v) { a.output = v; }});
     addSurfaceOptions(p, a);
+    addFormOptions(p, a);
     p.add({"level", "L", "one surfel per non-empty octree node at level L (1..depth), for previews (default: one per boundary voxel)",
            [&](const std::string& v) { a.level = parseInt("level", v, 1, Octree::kMaxDepth); }});
     p.add({"format", "NAME", "output format: ply (default: from the extension of -o)",
@@ -38,7 +39,7 @@ OptionParser makeParser(ExportArgs& a) {
            [&](const std::string&) { a.ascii = true; }});
     addThreadsOption(p, a, "the output");
     addColourOptions(p, a);
-    addGeographicOptions(p, a);
+    addGeographicOptions(p, a.request);
     addSeriesOption(p, a.request);
     addMessageOptions(p, a);
     return p;

@@ -2,6 +2,7 @@
 
 #include "Input.h"
 
+#include "octrace/build/Volume.h"
 #include "octrace/render/Shading.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
@@ -74,20 +75,17 @@ std::function<void(double)> progressPrinter(bool quiet) {
 
 /// buildSurface for an octree file: the octree as it is, the field empty but for its name.
 void loadOctreeSurface(const SurfaceArgs& a, std::uint64_t budget, Surface& s) {
-    const io::FieldRequest none;
-    const char* given = !a.request.variable.empty() ? "--var"
-                        : a.iso || !a.isoPreset.empty() ? "--iso"
-                        : !a.windowName.empty()     ? "--window"
-                        : a.depthGiven              ? "--depth"
-                        : a.request.hasRegion       ? "--region"
-                        : !a.request.series.empty() ? "--series"
-                        : a.request.verticalScale != none.verticalScale ? "--vertical-scale"
-                                                                         : nullptr;
+    const char* given = a.iso || !a.isoPreset.empty() ? "--iso"
+                        : !a.windowName.empty()         ? "--window"
+                        : a.depthGiven                  ? "--depth"
+                        : a.formGiven                   ? "--form/--inside"
+                                                        : fieldOptionGiven(a.request);
     if (given)
         throw UsageError(std::string(given) + " does not apply to the octree file " + a.input +
                          " (its field, iso value and depth were fixed when it was built: see octrace info)");
     Timer t;
     s.tree = loadOctree(a.input, budget);
+    if (!a.keepVolume) s.tree = extractShell(s.tree);
     s.loadMs = t.ms();
     s.iso = s.tree.iso;
     s.field.name = s.tree.fieldName;
@@ -114,9 +112,17 @@ std::string joinNames(const std::vector<std::string>& names) {
 
 vec4 displayToLinear(vec4 c) { return vec4(srgbToLinear(c.r), srgbToLinear(c.g), srgbToLinear(c.b), c.a); }
 
+void addVariableOption(OptionParser& p, io::FieldRequest& request) {
+    p.add({"var", "NAME", "variable to draw, by name or CF standard_name; sound_speed is derived from temperature and "
+           "salinity when the file has none (default: the file's only 3-D variable)",
+           [&](const std::string& v) {
+               if (v.empty()) throw UsageError("--var: empty (give a variable name)");
+               request.variable = v;
+           }});
+}
+
 void addSurfaceOptions(OptionParser& p, SurfaceArgs& a) {
-    p.add({"var", "NAME", "variable to draw (default: the file's only 3-D variable)",
-           [&](const std::string& v) { a.request.variable = v; }});
+    addVariableOption(p, a.request);
     std::string presets;
     for (const auto& pr : ctIsoPresets()) presets += std::string(presets.empty() ? "" : ", ") + pr.name + " " + huText(pr.hu);
     p.add({"iso", "VALUE|NAME", "iso value of the surface, or a CT preset in Hounsfield units: " + presets +
@@ -130,6 +136,22 @@ void addSurfaceOptions(OptionParser& p, SurfaceArgs& a) {
            [&](const std::string& v) {
                a.depth = parseInt("depth", v, 1, Octree::kMaxDepth);
                a.depthGiven = true;
+           }});
+}
+
+void addFormOptions(OptionParser& p, SurfaceArgs& a) {
+    p.add({"form", "shell|volume", "octree form: the isosurface's boundary voxels (shell), or the solid it bounds with its "
+           "interior and caps where the grid ends (volume) (default shell)",
+           [&](const std::string& v) {
+               if (v != "shell" && v != "volume") throw UsageError("--form: expected shell or volume, got '" + v + "'");
+               a.form = v == "volume" ? OctreeForm::Volume : OctreeForm::Shell;
+               a.formGiven = true;
+           }});
+    p.add({"inside", "above|below", "volume form: the solid is where the value is >= iso (above) or < iso (below) (default above)",
+           [&](const std::string& v) {
+               if (v != "above" && v != "below") throw UsageError("--inside: expected above or below, got '" + v + "'");
+               a.insideBelow = v == "below";
+               a.formGiven = true;
            }});
 }
 
@@ -163,17 +185,30 @@ void addColourOptions(OptionParser& p, SurfaceArgs& a) {
            }});
 }
 
-void addGeographicOptions(OptionParser& p, SurfaceArgs& a) {
+void addGeographicOptions(OptionParser& p, io::FieldRequest& request) {
     p.add({"region", "LON0,LON1,LAT0,LAT1", "geographic subregion in degrees, NetCDF only (default: the whole grid)",
            [&](const std::string& v) {
                auto r = io::parseRegion(v);
-               a.request.hasRegion = true;
-               for (int i = 0; i < 4; ++i) a.request.region[i] = r[std::size_t(i)];
+               request.hasRegion = true;
+               for (int i = 0; i < 4; ++i) request.region[i] = r[std::size_t(i)];
+           }});
+    p.add({"depth-range", "Z0,Z1", "depth levels from Z0 to Z1 metres (positive down), NetCDF only (default: every level)",
+           [&](const std::string& v) {
+               auto r = io::parseDepthRange(v);
+               request.hasDepthRange = true;
+               request.depthRange[0] = r[0];
+               request.depthRange[1] = r[1];
+           }});
+    p.add({"time", "INDEX|DATE", "time step, NetCDF only: a 0-based index or a date YYYY-MM-DD[THH:MM[:SS]] in the file's "
+           "calendar, nearest step (default: the first)",
+           [&](const std::string& v) {
+               io::checkTimeText(v);
+               request.time = v;
            }});
     p.add({"vertical-scale", "S", "vertical exaggeration of depth, NetCDF only (default: depth extent = 1/4 of the larger horizontal extent)",
            [&](const std::string& v) {
-               a.request.verticalScale = parseNumber("vertical-scale", v);
-               if (!(a.request.verticalScale > 0.0)) throw UsageError("--vertical-scale: must be positive, got " + v);
+               request.verticalScale = parseNumber("vertical-scale", v);
+               if (!(request.verticalScale > 0.0)) throw UsageError("--vertical-scale: must be positive, got " + v);
            }});
 }
 
@@ -209,11 +244,23 @@ bool parseCommandLine(const OptionParser& p, const std::vector<std::string>& arg
     return true;
 }
 
+const char* fieldOptionGiven(const io::FieldRequest& request) {
+    const io::FieldRequest none;
+    return !request.variable.empty()                    ? "--var"
+           : request.hasRegion                          ? "--region"
+           : request.hasDepthRange                      ? "--depth-range"
+           : !request.time.empty()                      ? "--time"
+           : !request.series.empty()                    ? "--series"
+           : request.verticalScale != none.verticalScale ? "--vertical-scale"
+                                                         : nullptr;
+}
+
 std::uint64_t memoryBudget(const SurfaceArgs& a) { return a.maxMemory ? a.maxMemory : defaultMemoryBudget(); }
 
 Surface buildSurface(const SurfaceArgs& a) {
     if (a.quiet) log::setLevel(log::Level::Error);
     if (a.verbose) log::setLevel(log::Level::Debug);
+    if (a.insideBelow && a.form != OctreeForm::Volume) throw UsageError("--inside applies to --form volume");
     const std::uint64_t budget = memoryBudget(a);
     io::FieldRequest request = a.request;
     request.memoryBudget = budget;
@@ -245,10 +292,13 @@ Surface buildSurface(const SurfaceArgs& a) {
     bo.threads = a.threads;
     bo.progress = progressPrinter(a.quiet);
     bo.memoryBudget = budget;
+    bo.form = a.form;
+    bo.insideBelow = a.insideBelow;
     chooseWindow(a, s);
     bo.voxelValues = s.window.valid();
-    s.tree = buildShellOctree(s.field, bo, &s.report);
+    s.tree = buildOctree(s.field, bo, &s.report);
     s.tree.source = sourceDescription(a.input, s.field);
+    if (!a.keepVolume) s.tree = extractShell(s.tree);
     if (bo.progress) std::fputs("\n", stderr);
     return s;
 }
