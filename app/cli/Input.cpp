@@ -124,7 +124,7 @@ std::string describe(const std::string& input, const io::FieldRequest& req) {
         return io::describeOctreeFile(input, req.memoryBudget);
     }
     if (isSphereInput(input)) {
-        if (!req.series.empty()) throw UsageError("--series applies to DICOM inputs, not to " + input);
+        if (const char* given = fieldOptionGiven(req)) throw UsageError(std::string(given) + " does not apply to the sphere scene " + input);
         return describeSpheres(input, loadSpheres(input, req.memoryBudget));
     }
     if (!isAnalytic(input)) return io::describeInput(input, req);

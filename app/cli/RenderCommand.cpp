@@ -253,9 +253,15 @@ void setRepeatStats(StatsJson& js, const RenderArgs& a, const RepeatedRender& r)
 int renderObjectOctree(const RenderArgs& a) {
     if (a.quiet) log::setLevel(log::Level::Error);
     if (a.verbose) log::setLevel(log::Level::Debug);
-    if (a.iso || a.depthGiven || !a.request.variable.empty())
-        throw UsageError(std::string(a.iso ? "--iso" : a.depthGiven ? "--depth" : "--var") +
-                         " applies to voxel octrees; the object octree of " + a.input + " traces the spheres themselves (--octree voxel voxelizes them)");
+    const char* voxelOption = a.iso || !a.isoPreset.empty() ? "--iso"
+                              : a.depthGiven                 ? "--depth"
+                              : !a.request.variable.empty()  ? "--var"
+                              : a.formGiven                  ? "--form"
+                              : !a.windowName.empty()        ? "--window"
+                                                             : nullptr;
+    if (voxelOption)
+        throw UsageError(std::string(voxelOption) + " applies to voxel octrees; the object octree of " + a.input +
+                         " traces the spheres themselves (--octree voxel voxelizes them)");
     if (a.lod > 0.0 || a.level >= 0) throw UsageError("--lod/--level: the object octree has no multi-resolution mode");
     if (a.colourCoherence) throw UsageError("--colour-coherence applies to the voxel renderers");
     const int threads = a.threads == 0 ? hardwareThreads() : a.threads;
