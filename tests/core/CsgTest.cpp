@@ -171,7 +171,7 @@ TEST(Solid, ParsesEachKindAndRefusesBadSpecs) {
     EXPECT_NEAR(h.distance(dvec3(5, 5, 3)), 2.0, 1e-12);
     EXPECT_EQ(h.describe(), "halfspace:0,0,1,0,0,1");
     EXPECT_NEAR(parseSolid("sphere:1,0,0,2").distance(dvec3(1, 0, 0)), -2.0, 1e-12);
-    const Solid b = box();
+    const Solid b = parseSolid("box:0,0,0,0.9,0.9,0.9");
     EXPECT_NEAR(b.distance(dvec3(0.45, 0.45, 0.1)), -0.1, 1e-12);
     EXPECT_NEAR(b.normal(dvec3(0.45, 0.45, 0.1)).z, -1.0, 1e-12);
     EXPECT_NEAR(b.distance(dvec3(1.2, 0.45, 0.45)), 0.3, 1e-12);
