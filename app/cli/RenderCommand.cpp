@@ -182,7 +182,7 @@ int runRender(const std::vector<std::string>& args) {
     RenderSettings rs;
     rs.threads = a.threads;
     rs.background = displayToLinear(a.background);
-    applyColour(a, rs);
+    applyColour(a, surface, rs);
     if (a.light) rs.lightCamera = *a.light;
     rs.colourCoherence = a.colourCoherence;
     rs.colourTolerance = a.colourTolerance;
@@ -216,6 +216,12 @@ int runRender(const std::vector<std::string>& args) {
     js.set("variable", field.name);
     js.set("units", field.units);
     js.set("iso", iso);
+    if (surface.window.valid()) {
+        js.set("window_centre", surface.window.centre);
+        js.set("window_width", surface.window.width);
+        js.set("window_source", surface.windowSource);
+        js.set("window_inverted", surface.invertedGrey);
+    }
     js.set("depth", tree.depth);
     js.set("width", cam.width);
     js.set("height", cam.height);

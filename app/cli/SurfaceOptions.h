@@ -4,6 +4,7 @@
 // load-and-build step behind them.
 #include "Options.h"
 
+#include "octrace/build/CtPresets.h"
 #include "octrace/build/OctreeBuilder.h"
 #include "octrace/build/ScalarField.h"
 #include "octrace/io/FieldRequest.h"
@@ -21,6 +22,12 @@ struct SurfaceArgs {
     std::string input;
     io::FieldRequest request;
     std::optional<double> iso;
+    std::string isoPreset;  ///< --iso NAME (CtPresets.h): resolved once the field is read
+    /// --window: "" (not given: the file's window, if any, unless --colour or --colormap),
+    /// "none", a preset name (CtPresets.h), or the centre and width given as numbers.
+    std::string windowName;
+    ValueWindow window;
+    bool colourGiven = false;  ///< --colour / --color given
     int depth = 8, threads = 0;
     bool depthGiven = false;  // --depth given (an octree file input fixes the depth)
     vec3 colour{0.85f, 0.62f, 0.35f};  // sRGB display values, as the user gives them
@@ -47,7 +54,7 @@ void addSurfaceOptions(OptionParser& p, SurfaceArgs& a);
 void addFormOptions(OptionParser& p, SurfaceArgs& a);
 /// --threads; `result` names what does not depend on it ("the image").
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result);
-/// --colour, --color, --colormap.
+/// --colour, --color, --colormap, --window.
 void addColourOptions(OptionParser& p, SurfaceArgs& a);
 /// --region, --depth-range, --time, --vertical-scale.
 void addGeographicOptions(OptionParser& p, io::FieldRequest& request);
@@ -74,18 +81,27 @@ struct Surface {
     Octree tree;
     BuildReport report;
     double loadMs = 0.0;
+    /// The display window that colours the surface (invalid: --colour / --colormap), and
+    /// whether its grey is inverted (MONOCHROME1); the octree then has voxel values.
+    ValueWindow window;
+    bool invertedGrey = false;
+    std::string windowSource;  ///< where the window comes from, for messages and stats
 };
 
 /// Applies --quiet / --verbose to the log. An octree file (.oct) is read as it is (options that
 /// choose the field or the depth are refused: UsageError).
 /// Otherwise reads a.input, chooses the iso value when none was
-/// given (the middle of the valid range, said on stderr) and builds the octree in a.form
-/// (progress on stderr when it is a terminal), within memoryBudget(a): a read or build that
-/// would need more is refused (LimitError). A volume octree becomes its shell (extractShell)
-/// unless a.keepVolume. Throws as loadField() and buildOctree().
+/// given (the middle of the valid range, said on stderr) or resolves a preset (--iso skin:
+/// InputError unless the field is in HU), chooses the display window (--window, else the
+/// file's own unless a colour was given; presets need HU too) and builds the octree in a.form
+/// (with voxel values when a window colours it; progress on stderr when it is a terminal),
+/// within memoryBudget(a): a read or build that would need more is refused (LimitError). A
+/// volume octree becomes its shell (extractShell) unless a.keepVolume. Throws as loadField()
+/// and buildOctree().
 Surface buildSurface(const SurfaceArgs& a);
 
-/// The colour options as RenderSettings::colour (linear RGB) and RenderSettings::colormap.
-void applyColour(const SurfaceArgs& a, RenderSettings& settings);
+/// The colour options as RenderSettings::colour (linear RGB), RenderSettings::colormap and the
+/// surface's display window (RenderSettings::window, invertedGrey).
+void applyColour(const SurfaceArgs& a, const Surface& s, RenderSettings& settings);
 
 }  // namespace octrace::cli

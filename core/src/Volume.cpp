@@ -72,6 +72,7 @@ Octree copyOctree(const Octree& tree) {
     Octree t = emptyOctreeLike(tree);
     t.nodes = tree.nodes;
     t.voxels = tree.voxels;
+    t.voxelValues = tree.voxelValues;
     t.summaries = tree.summaries;
     return t;
 }
@@ -81,6 +82,7 @@ Octree extractShell(const Octree& volume) {
     Octree out = emptyOctreeLike(volume);
     out.form = OctreeForm::Shell;
     out.nodes.push_back(OctreeNode{});  // the root's slot
+    const bool values = !volume.voxelValues.empty();
     // Post-order as the builder: a node's children are pushed together after their subtrees.
     auto copy = [&](auto&& self, std::uint32_t node, int level, OctreeNode& dst) -> bool {
         const OctreeNode& nd = volume.nodes[node];
@@ -92,6 +94,7 @@ Octree extractShell(const Octree& volume) {
                 if (!(nd.childMask & (1u << c))) continue;
                 if (!(nd.termMask & (1u << c))) {
                     out.voxels.push_back(volume.voxels[slot]);
+                    if (values) out.voxelValues.push_back(volume.voxelValues[slot]);
                     mask |= 1u << c;
                 }
                 ++slot;
@@ -121,6 +124,7 @@ Octree extractShell(const Octree& volume) {
     out.nodes[0] = root;
     out.nodes.shrink_to_fit();
     out.voxels.shrink_to_fit();
+    out.voxelValues.shrink_to_fit();
     return out;
 }
 
