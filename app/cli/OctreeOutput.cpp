@@ -18,7 +18,7 @@ void addOctreeFileOptions(OptionParser& p, OctreeFileArgs& a) {
     p.add({"stats", "FILE.json", "write timings and sizes as JSON (keys: docs/user/cli.md)",
            [&](const std::string& v) { a.statsPath = v; }});
     addThreadsOption(p, a, "the file");
-    addGeographicOptions(p, a);
+    addGeographicOptions(p, a.request);
     addSeriesOption(p, a.request);
     addMessageOptions(p, a);
 }

@@ -23,6 +23,7 @@ inline void childMasks(const Octant kinds[8], unsigned& mask, unsigned& terms) {
 struct TreeAssembly {
     std::vector<OctreeNode> nodes{OctreeNode{}};  // slot 0: the root, filled by finish()
     std::vector<Voxel> voxels;
+    std::vector<float> values;  // Octree::voxelValues, when the leaves give them
 
     /// The node whose children are `kids` of kinds `kinds`: Empty when all are, Term when all
     /// are terms (eight terms make one), else its children are appended and `out` set.
@@ -41,8 +42,8 @@ struct TreeAssembly {
     }
 
     /// The node at level depth-1 with voxels `mask`, of which `interior` are interior voxels
-    /// (all eight interior: a term).
-    Octant leaf(unsigned mask, unsigned interior, const Voxel vox[8], OctreeNode& out) {
+    /// (all eight interior: a term); `vals` (may be null) their Octree::voxelValues.
+    Octant leaf(unsigned mask, unsigned interior, const Voxel vox[8], OctreeNode& out, const float* vals = nullptr) {
         if (!mask) return Octant::Empty;
         if (mask == 0xFFu && interior == 0xFFu) return Octant::Term;
         out = OctreeNode{};
@@ -50,7 +51,10 @@ struct TreeAssembly {
         out.childMask = std::uint8_t(mask);
         out.termMask = std::uint8_t(interior);
         for (int c = 0; c < 8; ++c)
-            if (mask & (1u << c)) voxels.push_back((interior & (1u << c)) ? Voxel{} : vox[c]);
+            if (mask & (1u << c)) {
+                voxels.push_back((interior & (1u << c)) ? Voxel{} : vox[c]);
+                if (vals) values.push_back(vals[c]);
+            }
         return Octant::Node;
     }
 
@@ -61,8 +65,10 @@ struct TreeAssembly {
         nodes[0] = root;
         nodes.shrink_to_fit();
         voxels.shrink_to_fit();
+        values.shrink_to_fit();
         tree.nodes = std::move(nodes);
         tree.voxels = std::move(voxels);
+        tree.voxelValues = values.size() == tree.voxels.size() ? std::move(values) : std::vector<float>{};
         return true;
     }
 };

@@ -73,6 +73,7 @@ Octree copyOctree(const Octree& tree) {
     Octree t = emptyOctreeLike(tree);
     t.nodes = tree.nodes;
     t.voxels = tree.voxels;
+    t.voxelValues = tree.voxelValues;
     t.summaries = tree.summaries;
     return t;
 }
@@ -83,21 +84,24 @@ Octree extractShell(const Octree& volume) {
     out.form = OctreeForm::Shell;
     detail::TreeAssembly pool;
     using detail::Octant;
+    const bool values = !volume.voxelValues.empty();
     auto copy = [&](auto&& self, std::uint32_t node, int level, OctreeNode& dst) -> Octant {
         const OctreeNode& nd = volume.nodes[node];
         std::uint32_t slot = nd.firstChild;
         if (level == volume.depth - 1) {
             unsigned mask = 0;
             Voxel vox[8];
+            float val[8] = {};
             for (int c = 0; c < 8; ++c) {
                 if (!(nd.childMask & (1u << c))) continue;
                 if (!(nd.termMask & (1u << c))) {
                     vox[c] = volume.voxels[slot];
+                    if (values) val[c] = volume.voxelValues[slot];
                     mask |= 1u << c;
                 }
                 ++slot;
             }
-            return pool.leaf(mask, 0u, vox, dst);
+            return pool.leaf(mask, 0u, vox, dst, values ? val : nullptr);
         }
         OctreeNode kids[8];
         Octant kinds[8] = {};
@@ -110,7 +114,7 @@ Octree extractShell(const Octree& volume) {
     };
     OctreeNode root;
     if (volume.nodes.empty() || !pool.finish(copy(copy, 0u, 0, root), root, out))
-        throw EmptyResultError(volume.source + ": the solid has no boundary voxel");
+        throw EmptyResultError(std::string(volume.source).append(": the solid has no boundary voxel"));
     return out;
 }
 

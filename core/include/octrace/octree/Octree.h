@@ -92,6 +92,10 @@ public:
 
     std::vector<OctreeNode> nodes;  ///< nodes[0] = root
     std::vector<Voxel> voxels;      ///< boundary voxels
+    /// Per boundary voxel (same index as `voxels`): the field's value just inside the surface,
+    /// which a display window colours by (RenderSettings::window). Filled when the build asks
+    /// for it (BuildOptions::voxelValues); empty otherwise (and in octree files).
+    std::vector<float> voxelValues;
     /// Per node (same index as `nodes`), filled by computeSummaries(); empty until then.
     std::vector<NodeSummary> summaries;
 
