@@ -123,6 +123,47 @@ data:
       1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24 ;
 }
 """,
+    # CF ocean model output: 365_day time axis, height positive up, potential temperature in
+    # kelvin and salinity by standard_name (--var sound_speed derives from them), packed salinity.
+    "cf_ocean_noleap": """netcdf cf_ocean_noleap {
+dimensions:
+  time = 2 ; z = 3 ; lat = 3 ; lon = 4 ;
+variables:
+  double time(time) ; time:units = "days since 2000-01-01" ; time:calendar = "365_day" ; time:axis = "T" ;
+  double z(z) ; z:units = "m" ; z:positive = "up" ; z:standard_name = "height" ;
+  float lat(lat) ; lat:units = "degrees_north" ;
+  float lon(lon) ; lon:units = "degrees_east" ;
+  float thetao(time, z, lat, lon) ; thetao:standard_name = "sea_water_potential_temperature" ; thetao:units = "K" ;
+    thetao:_FillValue = 1.e+20f ;
+  short so(time, z, lat, lon) ; so:standard_name = "sea_water_salinity" ; so:scale_factor = 0.001f ;
+    so:add_offset = 30.f ; so:missing_value = -1s ; so:valid_min = 0s ;
+data:
+  time = 0, 59 ; z = 0, -100, -2000 ; lat = -10, 0, 10 ; lon = 170, 175, 180, 185 ;
+  thetao = 300, 300, 300, 300, 299, 299, 299, 299, 298, 298, 298, 1.e+20, 290, 290, 290, 290, 289, 289, 289,
+    289, 288, 288, 288, 288, 276, 276, 276, 276, 276, 276, 276, 276, 275, 275, 275, 275,
+    301, 301, 301, 301, 300, 300, 300, 300, 299, 299, 299, 1.e+20, 291, 291, 291, 291, 290, 290, 290,
+    290, 289, 289, 289, 289, 277, 277, 277, 277, 277, 277, 277, 277, 276, 276, 276, 276 ;
+  so = 4000, 4100, 4200, 4300, 4400, 4500, 4600, 4700, 4800, 4900, 5000, -1, 4000, 4100, 4200, 4300, 4400,
+    4500, 4600, 4700, 4800, 4900, 5000, 5100, 4000, 4100, 4200, 4300, 4400, 4500, 4600, 4700, 4800, 4900,
+    5000, 5100, 4000, 4100, 4200, 4300, 4400, 4500, 4600, 4700, 4800, 4900, 5000, -1, 4000, 4100, 4200,
+    4300, 4400, 4500, 4600, 4700, 4800, 4900, 5000, 5100, 4000, 4100, 4200, 4300, 4400, 4500, 4600, 4700,
+    4800, 4900, 5000, 5100 ;
+}
+""",
+    # A curvilinear grid (2-D nav_lat/nav_lon named by `coordinates`), refused with their names.
+    "cf_curvilinear": """netcdf cf_curvilinear {
+dimensions:
+  deptht = 2 ; y = 2 ; x = 3 ;
+variables:
+  float deptht(deptht) ; deptht:units = "m" ; deptht:positive = "down" ;
+  float nav_lat(y, x) ; nav_lat:units = "degrees_north" ;
+  float nav_lon(y, x) ; nav_lon:units = "degrees_east" ;
+  float votemper(deptht, y, x) ; votemper:coordinates = "nav_lon nav_lat" ; votemper:units = "degC" ;
+data:
+  deptht = 5, 50 ; nav_lat = 40, 40.2, 40.4, 41, 41.2, 41.4 ; nav_lon = 140, 141, 142, 139.8, 140.8, 141.8 ;
+  votemper = 20, 19, 18, 17, 16, 15, 10, 9, 8, 7, 6, 5 ;
+}
+""",
 }
 classic = "fuzz_netcdf_classic_header"
 cf = "fuzz_netcdf_cf"
