@@ -46,6 +46,13 @@ OptionParser makeParser(ExportArgs& a) {
     return p;
 }
 
+std::string windowNumber(double v) {
+    std::ostringstream s;
+    s.precision(10);
+    s << v;
+    return s.str();
+}
+
 /// The header comments: where the surfels come from and what their attributes mean.
 std::vector<std::string> provenance(const ExportArgs& a, const Surface& s, int level) {
     std::ostringstream iso;
@@ -60,7 +67,11 @@ std::vector<std::string> provenance(const ExportArgs& a, const Surface& s, int l
         "depth: " + std::to_string(s.tree.depth) + ", level: " + std::to_string(level),
         "position: box centre in world units; radius: half the box diagonal",
         "colour: 8-bit sRGB albedo without lighting, " +
-            (a.colormap.empty() ? "uniform" : "colour map " + a.colormap + " by height"),
+            (s.window.valid() ? "grey by the display window centre " + windowNumber(s.window.centre) + " width " +
+                                    windowNumber(s.window.width) + " (" + s.windowSource + ")" +
+                                    (s.invertedGrey ? ", inverted (MONOCHROME1)" : "") + " of the value under the surface"
+             : a.colormap.empty() ? "uniform"
+                                  : "colour map " + a.colormap + " by height"),
     };
     for (const auto& n : s.field.notes) c.push_back("note: " + n);
     return c;
@@ -87,7 +98,7 @@ int runExport(const std::vector<std::string>& args) {
     if (level < tree.depth) tree.computeSummaries();
     RenderSettings rs;
     rs.threads = a.threads;
-    applyColour(a, rs);
+    applyColour(a, surface, rs);
     const std::vector<Surfel> surfels = extractSurfels(tree, rs, level);
 
     io::PlyWriteOptions options;

@@ -53,7 +53,8 @@ vec3 decodeNormal(std::uint32_t code) {
 
 std::size_t Octree::bytes() const {
     return nodes.capacity() * sizeof(OctreeNode) + voxels.capacity() * sizeof(Voxel) +
-           summaries.capacity() * sizeof(NodeSummary) + colours.capacity() * sizeof(std::uint32_t);
+           summaries.capacity() * sizeof(NodeSummary) + colours.capacity() * sizeof(std::uint32_t) +
+           voxelValues.capacity() * sizeof(float);
 }
 
 void Octree::computeSummaries() {
@@ -132,6 +133,7 @@ void Octree::validate() const {
     if (depth < 1 || depth > kMaxDepth) fail("depth out of range");
     if (nodes.empty()) fail("no root node");
     if (!(cubeSide > 0.0)) fail("cube side not positive");
+    if (!voxelValues.empty() && voxelValues.size() != voxels.size()) fail("voxel values do not match the voxels");
     std::vector<std::uint8_t> seenNode(nodes.size(), 0), seenVoxel(voxels.size(), 0);
     struct Item { std::uint32_t node; int level; };
     std::vector<Item> stack{{0u, 0}};

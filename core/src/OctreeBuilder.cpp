@@ -1,6 +1,7 @@
 #include "octrace/build/OctreeBuilder.h"
 
 #include "MinMaxPyramid.h"
+#include "TreeAssembly.h"
 #include "octrace/build/Volume.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
@@ -309,9 +310,7 @@ struct Pool {
     }
 };
 
-/// What a built octant is: nothing of the surface (or solid), a node with children, or (volume
-/// form) an interior term wholly inside the solid.
-enum class Octant : std::uint8_t { Empty, Node, Term };
+using detail::Octant;
 
 class Builder {
 public:
@@ -359,11 +358,8 @@ public:
     /// the pool): Empty when all are, Term when all are terms (eight terms make one).
     static Octant emitNode(const Octant kinds[8], const OctreeNode kids[8], int childLevel, OctreeNode& out, Pool& pool,
                            MemoryGuard* guard) {
-        unsigned mask = 0, terms = 0;
-        for (int c = 0; c < 8; ++c) {
-            if (kinds[c] != Octant::Empty) mask |= 1u << c;
-            if (kinds[c] == Octant::Term) terms |= 1u << c;
-        }
+        unsigned mask, terms;
+        detail::childMasks(kinds, mask, terms);
         if (!mask) return Octant::Empty;
         if (terms == 0xFFu) return Octant::Term;
         out = OctreeNode{};
@@ -768,6 +764,32 @@ void refuseOverBudget(const ScalarField& field, const std::vector<BuildMemoryEst
     throw LimitError(s.str());
 }
 
+/// BuildOptions::voxelValues.
+void sampleVoxelValues(Octree& tree, const ScalarField& field, const SampleGrid& grid, float isoF, int threads) {
+    std::vector<ivec3> cells(tree.voxels.size());
+    tree.forEachVoxel([&](const ivec3& c, std::uint32_t i) { cells[i] = c; });
+    const FieldSampler sampler(field, grid.samples, tree.cubeOrigin, tree.voxelSize(), tree.depth);
+    const double h = tree.voxelSize();
+    auto valueAt = [&](const dvec3& p) {
+        AxisSample s[3];
+        sampler.locateWorld(p, s);
+        return sampler.trilinear(s[0], s[1], s[2]);
+    };
+    tree.voxelValues.assign(cells.size(), isoF);
+    constexpr std::size_t kChunk = 4096;
+    parallelFor((cells.size() + kChunk - 1) / kChunk, threads, [&](std::size_t chunk) {
+        const std::size_t end = std::min(cells.size(), (chunk + 1) * kChunk);
+        for (std::size_t i = chunk * kChunk; i < end; ++i) {
+            const dvec3 centre = tree.cubeOrigin + (dvec3(cells[i]) + 0.5) * h;
+            // The normal points towards lower values: inside (>= iso) is against it.
+            const dvec3 inside = centre - dvec3(decodeNormal(tree.voxels[i].normal)) * h;
+            float v = valueAt(inside);
+            if (std::isnan(v)) v = valueAt(centre);
+            if (!std::isnan(v)) tree.voxelValues[i] = v;
+        }
+    });
+}
+
 }  // namespace
 
 std::vector<BuildMemoryEstimate> estimateBuildMemory(const ScalarField& field, double iso, int maxDepth, int threads) {
@@ -806,6 +828,7 @@ Octree buildOctree(const ScalarField& field, const BuildOptions& options, BuildR
         guard.emplace(field, options.depth, budget, est.back().fieldBytes + est.back().samplerBytes, est.back().total());
     }
     buildInto(tree, field, grid, isoF, options.threads, options, guard ? &*guard : nullptr);
+    if (options.voxelValues) sampleVoxelValues(tree, field, grid, isoF, options.threads);
     if (report) {
         report->buildMs = timer.ms();
         report->boundaryVoxels = tree.form == OctreeForm::Volume ? countVoxels(tree).boundary : tree.voxels.size();

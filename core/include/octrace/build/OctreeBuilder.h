@@ -36,6 +36,11 @@ struct BuildOptions {
     /// buffer it allocates and stops as soon as they would go over (both throw LimitError),
     /// so an estimate that was too low still ends with a message instead of the OOM killer.
     std::uint64_t memoryBudget = 0;
+    /// Also fill Octree::voxelValues: per boundary voxel the trilinear field one voxel edge
+    /// inside the surface (from the voxel's centre against its normal, towards values >= iso),
+    /// or at the centre where that point is masked or outside the grid. What a display window
+    /// colours by: the tissue under the surface rather than the iso value itself.
+    bool voxelValues = false;
     /// buildOctree only: the shell (boundary voxels) or the volume form (the solid bounded by
     /// the isosurface, interior kept: build/Volume.h).
     OctreeForm form = OctreeForm::Shell;

@@ -103,6 +103,10 @@ public:
     /// Every renderer shades through Albedo (Shading.h), so all of them use it alike.
     std::vector<std::uint32_t> colours;
     bool hasColours() const { return !voxels.empty() && colours.size() == voxels.size(); }
+    /// Per boundary voxel (same index as `voxels`): the field's value just inside the surface,
+    /// which a display window colours by (RenderSettings::window). Filled when the build asks
+    /// for it (BuildOptions::voxelValues); empty otherwise (and in octree files).
+    std::vector<float> voxelValues;
     /// Per node (same index as `nodes`), filled by computeSummaries(); empty until then.
     std::vector<NodeSummary> summaries;
 
