@@ -279,6 +279,18 @@ void addCityOptions(OptionParser& p, SurfaceArgs& a) {
                a.city.texture = v;
                a.cityGiven = true;
            }});
+    p.add({"height-attr", "NAME", "footprint inputs: the attribute holding each building's height (default: the first of height, HEIGHT, hauteur, HAUTEUR, measuredHeight)",
+           [&](const std::string& v) {
+               if (v.empty()) throw UsageError("--height-attr: empty (give an attribute name)");
+               a.city.heightAttr = v;
+               a.cityGiven = true;
+           }});
+    p.add({"base-attr", "NAME", "footprint inputs: the attribute holding each building's ground height (default: the lowest --dem height under it, else 0)",
+           [&](const std::string& v) {
+               if (v.empty()) throw UsageError("--base-attr: empty (give an attribute name)");
+               a.city.baseAttr = v;
+               a.cityGiven = true;
+           }});
     p.add({"crs", "CRS", "city inputs: projected coordinate reference system to bring everything into, e.g. EPSG:28992 "
            "(default: the input's own when projected, else the UTM zone of its centre)",
            [&](const std::string& v) {
@@ -348,7 +360,7 @@ Surface buildSurface(const SurfaceArgs& a) {
     Surface s;
     Timer t;
     if (isOctreeInput(a.input)) {
-        if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem and --texture apply to city inputs, not to the octree file " + a.input);
+        if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem, --texture, --height-attr and --base-attr apply to city inputs, not to the octree file " + a.input);
         loadOctreeSurface(a, budget, s);
         finishSurface(a, s);
         return s;
@@ -357,7 +369,7 @@ Surface buildSurface(const SurfaceArgs& a) {
         buildCitySurface(a, s);
         return s;
     }
-    if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem and --texture apply to city inputs (CityJSON, DEM rasters), not to " + a.input);
+    if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem, --texture, --height-attr and --base-attr apply to city inputs (CityJSON, footprints, DEM rasters), not to " + a.input);
     s.field = loadField(a.input, request, a.depth);
     s.loadMs = t.ms();
     auto [vmin, vmax] = s.field.validRange();
