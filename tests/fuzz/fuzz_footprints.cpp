@@ -2,8 +2,8 @@
 // and base attributes, polygon extrusion and triangulation, and the voxelizer at a small
 // depth. The input is the bytes of a .geojson file.
 #include "FootprintReader.h"
+#include "CityFuzz.h"
 #include "FuzzSupport.h"
-#include "octrace/build/CityVoxelizer.h"
 #include "octrace/util/Error.h"
 
 #include <cpl_vsi.h>
@@ -27,11 +27,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         try {
             octrace::CityModel m;
             octrace::io::detail::addFootprints(m, path, req);
-            octrace::CityBuildOptions o;
-            o.depth = 5;
-            o.threads = 1;
-            octrace::Octree t = octrace::voxelizeCity(m, o);
-            t.validate();
+            octrace::fuzz::voxelizeSmall(m);
         } catch (const octrace::Error&) {
             // A clean refusal: what we want for broken input.
         }
