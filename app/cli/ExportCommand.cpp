@@ -38,6 +38,7 @@ OptionParser makeParser(ExportArgs& a) {
            [&](const std::string&) { a.ascii = true; }});
     addThreadsOption(p, a, "the output");
     addColourOptions(p, a);
+    addLayerOptions(p, a);
     addGeographicOptions(p, a);
     addSeriesOption(p, a.request);
     addMessageOptions(p, a);
@@ -85,7 +86,7 @@ int runExport(const std::vector<std::string>& args) {
     if (level < tree.depth) tree.computeSummaries();
     RenderSettings rs;
     rs.threads = a.threads;
-    applyColour(a, rs);
+    applyColour(a, surface.tree, rs);
     const std::vector<Surfel> surfels = extractSurfels(tree, rs, level);
 
     io::PlyWriteOptions options;

@@ -2,6 +2,7 @@
 
 #include "Input.h"
 
+#include "octrace/build/Layers.h"
 #include "octrace/render/Shading.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
@@ -13,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <optional>
 #include <sstream>
 
 namespace octrace::cli {
@@ -33,6 +35,8 @@ void loadOctreeSurface(const SurfaceArgs& a, std::uint64_t budget, Surface& s) {
                         : a.iso                     ? "--iso"
                         : a.depthGiven              ? "--depth"
                         : a.request.hasRegion       ? "--region"
+                        : !a.colourBy.empty()       ? "--colour-by"
+                        : a.floor                   ? "--floor"
                         : !a.request.series.empty() ? "--series"
                         : a.request.verticalScale != none.verticalScale ? "--vertical-scale"
                                                                          : nullptr;
@@ -55,6 +59,19 @@ std::string sourceDescription(const std::string& input, const ScalarField& f) {
     std::string s = input + ", variable " + f.name;
     for (const auto& n : f.notes) s += "; " + n;
     return s;
+}
+
+/// --colour-by: the second variable, read with the same request (region, depth range, time)
+/// and checked to lie on the field's grid.
+ScalarField loadColourBy(const SurfaceArgs& a, const io::FieldRequest& request, const ScalarField& field) {
+    io::FieldRequest second = request;
+    second.variable = a.colourBy;
+    ScalarField by = loadField(a.input, second);
+    if (by.dims != field.dims || by.origin != field.origin || by.spacing != field.spacing || by.coords != field.coords ||
+        by.direction != field.direction)
+        throw InputError(a.input + ": --colour-by " + a.colourBy + " is not on the grid of '" + field.name +
+                         "' (both variables must share their coordinates)");
+    return by;
 }
 
 }  // namespace
@@ -88,11 +105,37 @@ void addColourOptions(OptionParser& p, SurfaceArgs& a) {
     p.add({"colour", "R,G,B", "surface colour, sRGB components in [0,1] (default 0.85,0.62,0.35)",
            [&](const std::string& v) { a.colour = vec3(parseColour("colour", v, false)); }});
     p.add({"color", "R,G,B", "same as --colour (default 0.85,0.62,0.35)", [&](const std::string& v) { a.colour = vec3(parseColour("color", v, false)); }});
-    p.add({"colormap", "NAME", "colour the surface by height with a map: " + joinNames(colormapNames()) + " (default: none, --colour)",
+    p.add({"colormap", "NAME", "colour map: " + joinNames(colormapNames()) + "; colours by --colour-by's variable, else by height "
+           "(default: with --colour-by the variable's map from its standard_name or name, thermal/haline/speed/viridis; else none, --colour)",
            [&](const std::string& v) {
                colormap(v, 0.0f);
                a.colormap = v;
            }});
+    p.add({"colour-range", "MIN,MAX", "values of --colour-by mapped onto the colour map's ends (default: the surface voxels' range)",
+           [&](const std::string& v) {
+               const std::size_t comma = v.find(',');
+               if (comma == std::string::npos || v.find(',', comma + 1) != std::string::npos)
+                   throw UsageError("--colour-range: expected MIN,MAX, got '" + v + "'");
+               const double lo = parseNumber("colour-range", v.substr(0, comma)), hi = parseNumber("colour-range", v.substr(comma + 1));
+               if (!(lo < hi) || !std::isfinite(lo) || !std::isfinite(hi) || std::abs(lo) > 3e38 || std::abs(hi) > 3e38)
+                   throw UsageError("--colour-range: MIN must be below MAX, both finite, got '" + v + "'");
+               a.colourMin = float(lo);
+               a.colourMax = float(hi);
+           }});
+    p.add({"masked-colour", "R,G,B", "colour of surface voxels where --colour-by's variable is masked, sRGB in [0,1] (default 0.6,0.6,0.6)",
+           [&](const std::string& v) { a.maskedColour = vec3(parseColour("masked-colour", v, false)); }});
+    p.add({"floor-colour", "R,G,B", "colour of the sea floor and land (--floor), sRGB in [0,1] (default 0.55,0.5,0.45)",
+           [&](const std::string& v) { a.floorColour = vec3(parseColour("floor-colour", v, false)); }});
+}
+
+void addLayerOptions(OptionParser& p, SurfaceArgs& a) {
+    p.add({"colour-by", "VAR", "colour the isosurface by a second variable of the same file, sampled at each voxel (default: none)",
+           [&](const std::string& v) {
+               if (v.empty()) throw UsageError("--colour-by: empty variable name");
+               a.colourBy = v;
+           }});
+    p.add({"floor", "", "also draw the sea floor and land where the variable is masked, under the isosurface (default off)",
+           [&](const std::string&) { a.floor = true; }});
 }
 
 void addGeographicOptions(OptionParser& p, SurfaceArgs& a) {
@@ -166,6 +209,8 @@ Surface buildSurface(const SurfaceArgs& a) {
         log::info(m.str());
     }
     for (const auto& n : s.field.notes) log::debug(n);
+    std::optional<ScalarField> colourBy;
+    if (!a.colourBy.empty()) colourBy = loadColourBy(a, request, s.field);
 
     BuildOptions bo;
     bo.depth = a.depth;
@@ -176,12 +221,34 @@ Surface buildSurface(const SurfaceArgs& a) {
     s.tree = buildShellOctree(s.field, bo, &s.report);
     s.tree.source = sourceDescription(a.input, s.field);
     if (bo.progress) std::fputs("\n", stderr);
+    if (colourBy) {
+        s.tree.voxelValues = sampleAtVoxels(s.tree, *colourBy, a.threads);
+        s.tree.valueName = colourBy->name;
+        s.tree.valueUnits = colourBy->units;
+        s.tree.valueStandardName = colourBy->standardName;
+    }
+    if (a.floor) {
+        BuildOptions fo = bo;
+        fo.iso = 0.5;
+        fo.progress = {};
+        Octree floor = buildShellOctree(solidFromMask(s.field), fo);
+        setMaterial(floor, VoxelMaterial::Floor);
+        s.tree = mergeShells(s.tree, floor);
+        s.report.boundaryVoxels = s.tree.voxels.size();
+        s.report.nodes = s.tree.nodes.size();
+    }
     return s;
 }
 
-void applyColour(const SurfaceArgs& a, RenderSettings& settings) {
+void applyColour(const SurfaceArgs& a, const Octree& tree, RenderSettings& settings) {
     settings.colour = vec3(displayToLinear(vec4(a.colour, 1.0f)));
     settings.colormap = a.colormap;
+    if (settings.colormap.empty() && !tree.voxelValues.empty())
+        settings.colormap = defaultColormap(tree.valueStandardName, tree.valueName);
+    settings.colourMin = a.colourMin;
+    settings.colourMax = a.colourMax;
+    settings.maskedColour = vec3(displayToLinear(vec4(a.maskedColour, 1.0f)));
+    settings.floorColour = vec3(displayToLinear(vec4(a.floorColour, 1.0f)));
 }
 
 }  // namespace octrace::cli

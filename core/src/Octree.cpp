@@ -44,7 +44,24 @@ vec3 decodeNormal(std::uint32_t code) {
 
 std::size_t Octree::bytes() const {
     return nodes.capacity() * sizeof(OctreeNode) + voxels.capacity() * sizeof(Voxel) +
-           summaries.capacity() * sizeof(NodeSummary);
+           summaries.capacity() * sizeof(NodeSummary) + voxelValues.capacity() * sizeof(float) + voxelMaterials.capacity();
+}
+
+Octree Octree::emptyCopy() const {
+    Octree o;
+    o.depth = depth;
+    o.cubeOrigin = cubeOrigin;
+    o.cubeSide = cubeSide;
+    o.form = form;
+    o.fieldName = fieldName;
+    o.fieldUnits = fieldUnits;
+    o.iso = iso;
+    o.insideBelow = insideBelow;
+    o.source = source;
+    o.valueName = valueName;
+    o.valueUnits = valueUnits;
+    o.valueStandardName = valueStandardName;
+    return o;
 }
 
 void Octree::computeSummaries() {
@@ -123,6 +140,8 @@ void Octree::validate() const {
     if (depth < 1 || depth > kMaxDepth) fail("depth out of range");
     if (nodes.empty()) fail("no root node");
     if (!(cubeSide > 0.0)) fail("cube side not positive");
+    if (!voxelValues.empty() && voxelValues.size() != voxels.size()) fail("voxel values do not match the voxels");
+    if (!voxelMaterials.empty() && voxelMaterials.size() != voxels.size()) fail("voxel materials do not match the voxels");
     std::vector<std::uint8_t> seenNode(nodes.size(), 0), seenVoxel(voxels.size(), 0);
     struct Item { std::uint32_t node; int level; };
     std::vector<Item> stack{{0u, 0}};

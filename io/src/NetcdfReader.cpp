@@ -228,6 +228,7 @@ ScalarField readVariable(const std::string& path, const NetcdfFile& file, const 
     f.source = path;
     f.name = var.shortName;
     f.units = var.units;
+    f.standardName = var.standardName;
     for (int a = 0; a < 3; ++a) {
         const auto& w = L.axes[std::size_t(a)].world;
         f.dims[a] = int(w.size());

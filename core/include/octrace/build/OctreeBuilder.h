@@ -73,4 +73,10 @@ struct BuildReport {
 /// BuildOptions::memoryBudget), CancelledError when BuildOptions::cancelled says so. The field must have passed validate().
 Octree buildShellOctree(const ScalarField& field, const BuildOptions& options, BuildReport* report = nullptr);
 
+/// The trilinear value of `field` at the world centre of every boundary voxel of `tree`, by
+/// voxel index (for Octree::voxelValues: colour a surface by a second variable). NaN where the
+/// interpolation uses a masked sample or the centre lies outside the field's grid. The field
+/// must pass validate() (else FileError). Thread-safe; `threads` as BuildOptions::threads.
+std::vector<float> sampleAtVoxels(const Octree& tree, const ScalarField& field, int threads = 0);
+
 }  // namespace octrace

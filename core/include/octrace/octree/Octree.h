@@ -70,6 +70,10 @@ struct NodeSummary {
     float meanZ = 0.0f;            ///< mean voxel-centre z in cell space (colour by height)
 };
 
+/// What a boundary voxel is a part of (Octree::voxelMaterials): the isosurface, or the sea
+/// floor / land drawn under it (build/Layers.h). Renderers colour a material through Shading.h.
+enum class VoxelMaterial : std::uint8_t { Surface = 0, Floor = 1 };
+
 /// Octahedral encoding of a unit vector in 32 bits (max angular error ~0.005 degrees).
 std::uint32_t encodeNormal(vec3 n);
 vec3 decodeNormal(std::uint32_t code);
@@ -97,11 +101,29 @@ public:
 
     OctreeForm form = OctreeForm::Shell;
 
+    /// Optional per-voxel attributes, same index as `voxels`; empty = absent. Shading.h colours
+    /// with them, so every renderer does. Operations that make a new voxel array (CSG, octree
+    /// files) do not carry them.
+    /// A second variable sampled at each voxel's centre (colour by; sampleAtVoxels in
+    /// OctreeBuilder.h); NaN where the sample touches a masked cell or lies outside its grid.
+    std::vector<float> voxelValues;
+    std::string valueName, valueUnits, valueStandardName;  ///< of voxelValues
+    /// Material of each voxel (values of VoxelMaterial); empty = every voxel VoxelMaterial::Surface.
+    std::vector<std::uint8_t> voxelMaterials;
+    VoxelMaterial material(std::uint32_t voxel) const {
+        return voxelMaterials.empty() ? VoxelMaterial::Surface : VoxelMaterial(voxelMaterials[voxel]);
+    }
+
     // Provenance, for info and stats.
     std::string fieldName, fieldUnits;
     double iso = 0.0;
     bool insideBelow = false;  ///< volume form: the solid is value < iso (else value >= iso)
     std::string source;        ///< what it was made from (input, region, operations), for info
+
+    /// An octree with this one's depth, cube, form and provenance (field, iso, source, the
+    /// voxel values' name and units) but no nodes, voxels or per-voxel attributes: the start
+    /// of an operation that makes a new node pool over the same cube.
+    Octree emptyCopy() const;
 
     std::size_t boundaryVoxels() const { return voxels.size(); }
     /// Capacity in bytes of every buffer the octree owns.

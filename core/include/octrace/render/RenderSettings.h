@@ -2,6 +2,7 @@
 /// @file RenderSettings.h
 #include "octrace/util/Math.h"
 
+#include <limits>
 #include <string>
 
 namespace octrace {
@@ -13,7 +14,16 @@ struct RenderSettings {
     dvec3 lightCamera{0.4, 0.6, 1.0};      ///< direction towards the light, camera space (normalised on use)
     float ambient = 0.15f;
     float diffuse = 0.85f;
-    std::string colormap;                  ///< empty: uniform colour; else colour by height (see docs)
+    /// Colour map (Shading.h colormapNames). With Octree::voxelValues the surface is coloured by
+    /// them (empty: viridis); without, an empty name means the uniform `colour` and a name
+    /// colours by height.
+    std::string colormap;
+    /// The voxel values mapped onto the colour map's ends; NaN: the lowest / highest value of
+    /// the surface's voxels.
+    float colourMin = std::numeric_limits<float>::quiet_NaN();
+    float colourMax = std::numeric_limits<float>::quiet_NaN();
+    vec3 maskedColour{0.319f, 0.319f, 0.319f};  ///< linear RGB (sRGB 0.6 grey) of voxels whose value is NaN (masked)
+    vec3 floorColour{0.263f, 0.214f, 0.171f};  ///< linear RGB (sRGB 0.55,0.5,0.45) of VoxelMaterial::Floor voxels
     /// Colour coherence (paper A, 5.3) on any renderer: a pixel between two traced neighbours
     /// whose 8-bit sRGB colours differ by at most colourTolerance in every channel gets their
     /// average without being traced. Approximate by design.

@@ -12,27 +12,45 @@
 
 namespace octrace {
 
-/// Named colour maps for --colormap (linear RGB, t in [0,1]). With a colour map the surface is
-/// coloured by height: t runs from the lowest to the highest boundary voxel.
+/// Named colour maps for --colormap (linear RGB, t in [0,1]): viridis, the cmocean maps
+/// thermal, haline and speed, grey (cmocean gray; "gray" is accepted too) and coolwarm. The
+/// tables and where they come from: scripts/colormaps.py.
 std::vector<std::string> colormapNames();
 /// Throws UsageError for an unknown name.
 vec3 colormap(const std::string& name, float t);
+/// The colour map for a variable, by its CF standard_name (sea water temperature: thermal,
+/// salinity: haline, speed of sound: speed), else by its name (TEMP, SALT, sound_speed, ...);
+/// viridis for anything else.
+std::string defaultColormap(const std::string& standardName, const std::string& name);
 
-/// The surface's colour before lighting, linear RGB: RenderSettings::colour, or with a colour
-/// map the map's colour for the height, from the lowest to the highest boundary voxel. Shared
-/// by Shader and the surfel export (Surfels.h), so that both colour a voxel alike.
+/// The surface's colour before lighting, linear RGB, per voxel:
+///  - VoxelMaterial::Floor voxels: RenderSettings::floorColour;
+///  - with Octree::voxelValues: the colour map's colour for the voxel's value over
+///    [colourMin, colourMax] (NaN ends: the surface voxels' own range), maskedColour for NaN;
+///  - otherwise RenderSettings::colour, or with a colour map its colour for the height, from
+///    the lowest to the highest boundary voxel.
+/// Shared by Shader and the surfel export (Surfels.h), so that both colour a voxel alike.
 /// Thread-safe once constructed.
 class Albedo {
 public:
     /// Throws UsageError for an unknown colour map name.
     Albedo(const Octree& tree, const RenderSettings& settings);
+    /// `voxel`: index in tree.voxels (a node drawn whole: its summary's firstVoxel).
     /// `zCells`: height in cell space (a voxel's centre is at cell.z + 0.5; a node's is its
     /// summary's meanZ).
-    vec3 at(float zCells) const;
+    vec3 at(std::uint32_t voxel, float zCells) const;
+    /// Colouring by voxel values, over [low(), high()] with colormapName().
+    bool byValue() const { return values_ != nullptr; }
+    float low() const { return lo_; }
+    float high() const { return hi_; }
+    const std::string& colormapName() const { return colormap_; }
 
 private:
-    vec3 colour_;
+    const Octree& tree_;
+    vec3 colour_, masked_, floor_;
     std::string colormap_;   // empty: uniform colour_
+    const std::vector<float>* values_ = nullptr;  // colour by value
+    float lo_ = 0.0f, hi_ = 1.0f;  // value range
     int zLo_ = 0, zHi_ = 0;  // occupied cell range along z, for the colour map
 };
 
@@ -53,7 +71,7 @@ public:
     float distance(const Ray& ray, const TraversalHit& hit) const;
 
 private:
-    vec4 shadeNormal(vec3 n, float zCells) const;
+    vec4 shadeNormal(vec3 n, vec3 albedo) const;
     float distanceToBox(const Ray& ray, const Box3& b) const;
     const Octree& tree_;
     const RenderSettings& settings_;
