@@ -6,6 +6,7 @@
 #include "StatsJson.h"
 #include "SurfaceOptions.h"
 
+#include "octrace/build/Volume.h"
 #include "octrace/io/AtomicFile.h"
 #include "octrace/io/OctreeFile.h"
 #include "octrace/util/Error.h"
@@ -27,12 +28,13 @@ OptionParser makeParser(BuildArgs& a) {
     OptionParser p("build", "octrace build INPUT -o OUT.oct [options]");
     p.add({"o", "FILE", "output octree file (.oct; written atomically) (required)", [&](const std::string& v) { a.output = v; }});
     addSurfaceOptions(p, a);
+    addFormOptions(p, a);
     p.add({"compression", "LEVEL", "zstd compression level of the file's chunks, 1..22 (default 19)",
            [&](const std::string& v) { a.level = parseInt("compression", v, 1, 22); }});
     p.add({"stats", "FILE.json", "write timings and sizes as JSON (keys: docs/user/cli.md)",
            [&](const std::string& v) { a.statsPath = v; }});
     addThreadsOption(p, a, "the file");
-    addGeographicOptions(p, a);
+    addGeographicOptions(p, a.request);
     addSeriesOption(p, a.request);
     addMessageOptions(p, a);
     return p;
@@ -42,6 +44,7 @@ OptionParser makeParser(BuildArgs& a) {
 
 int runBuild(const std::vector<std::string>& args) {
     BuildArgs a;
+    a.keepVolume = true;
     if (!parseCommandLine(makeParser(a), args, a, a.output, "an output file: -o OUT.oct")) return 0;
     Surface s = buildSurface(a);
     Timer t;
@@ -69,6 +72,7 @@ int runBuild(const std::vector<std::string>& args) {
         js.set("encode_ms", encodeMs);
         js.set("write_ms", writeMs);
         js.set("voxels", std::uint64_t(tree.voxels.size()));
+        js.set("boundary_voxels", std::uint64_t(countVoxels(tree).boundary));
         js.set("octree_nodes", std::uint64_t(tree.nodes.size()));
         js.set("octree_bytes", std::uint64_t(tree.bytes()));
         js.set("bytes_per_voxel", tree.bytesPerVoxel());

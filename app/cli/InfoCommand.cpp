@@ -13,7 +13,9 @@ namespace octrace::cli {
 int runInfo(const std::vector<std::string>& args) {
     bool help = false;
     io::FieldRequest request;
-    OptionParser p("info", "octrace info INPUT... [--series UID|INDEX|DESCRIPTION]");
+    OptionParser p("info", "octrace info INPUT... [--var NAME] [--region ...] [--depth-range Z0,Z1] [--time INDEX|DATE] [--series ...]");
+    addVariableOption(p, request);
+    addGeographicOptions(p, request);
     addSeriesOption(p, request);
     p.add({"max-memory", "SIZE", "memory budget for reading each input: bytes, K, M, G, T (powers of 1024) or N% of the "
            "physical memory (default " + std::to_string(kDefaultMemoryBudgetPercent) + "%)",

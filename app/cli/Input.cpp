@@ -1,6 +1,7 @@
 #include "Input.h"
 
 #include "Options.h"
+#include "SurfaceOptions.h"
 #include "octrace/build/AnalyticField.h"
 #include "octrace/io/FieldReader.h"
 #include "octrace/io/OctreeFile.h"
@@ -41,6 +42,8 @@ Octree loadOctree(const std::string& input, std::uint64_t memoryBudget) { return
 ScalarField loadField(const std::string& input, const io::FieldRequest& req) {
     if (!isAnalytic(input)) return io::readField(input, req);
     if (req.hasRegion) throw UsageError("--region applies to geographic NetCDF inputs, not to " + input);
+    if (req.hasDepthRange) throw UsageError("--depth-range applies to geographic NetCDF inputs, not to " + input);
+    if (!req.time.empty()) throw UsageError("--time applies to NetCDF inputs with a time axis, not to " + input);
     if (!req.series.empty()) throw UsageError("--series applies to DICOM inputs, not to " + input);
     ScalarField f = analytic(input, req.memoryBudget);
     if (!req.variable.empty() && req.variable != f.name)
@@ -50,7 +53,9 @@ ScalarField loadField(const std::string& input, const io::FieldRequest& req) {
 
 std::string describe(const std::string& input, const io::FieldRequest& req) {
     if (isOctreeInput(input)) {
-        if (!req.series.empty()) throw UsageError("--series applies to DICOM inputs, not to the octree file " + input);
+        if (const char* given = fieldOptionGiven(req))
+            throw UsageError(std::string(given) + " does not apply to the octree file " + input +
+                             " (its field was fixed when it was built)");
         return io::describeOctreeFile(input, req.memoryBudget);
     }
     if (!isAnalytic(input)) return io::describeInput(input, req);

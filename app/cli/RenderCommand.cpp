@@ -49,6 +49,7 @@ OptionParser makeParser(RenderArgs& a) {
     p.add({"o", "FILE", "output image; format from the extension: " + joinNames(io::imageExtensions()) + " (required)",
            [&](const std::string& v) { a.output = v; }});
     addSurfaceOptions(p, a);
+    addFormOptions(p, a);
     p.add({"renderer", "NAME", "renderer: " + joinNames(rendererNames()) + " (default full)",
            [&](const std::string& v) {
                makeRenderer(v);  // validates the name
@@ -108,7 +109,7 @@ OptionParser makeParser(RenderArgs& a) {
                if (t < 0.0 || t > 255.0) throw UsageError("--colour-tolerance: must be in [0, 255], got " + v);
                a.colourTolerance = float(t);
            }});
-    addGeographicOptions(p, a);
+    addGeographicOptions(p, a.request);
     addSeriesOption(p, a.request);
     p.add({"repeat", "N", "render N times and report the fastest as render_ms (benchmarks on a noisy machine; default 1)",
            [&](const std::string& v) { a.repeat = parseInt("repeat", v, 1, 1000); }});
@@ -183,7 +184,7 @@ int runRender(const std::vector<std::string>& args) {
     RenderSettings rs;
     rs.threads = a.threads;
     rs.background = displayToLinear(a.background);
-    applyColour(a, surface.tree, rs);
+    applyColour(a, surface, rs);
     if (a.light) rs.lightCamera = *a.light;
     rs.colourCoherence = a.colourCoherence;
     rs.colourTolerance = a.colourTolerance;
@@ -217,6 +218,12 @@ int runRender(const std::vector<std::string>& args) {
     js.set("variable", field.name);
     js.set("units", field.units);
     js.set("iso", iso);
+    if (surface.window.valid()) {
+        js.set("window_centre", surface.window.centre);
+        js.set("window_width", surface.window.width);
+        js.set("window_source", surface.windowSource);
+        js.set("window_inverted", surface.invertedGrey);
+    }
     js.set("depth", tree.depth);
     js.set("width", cam.width);
     js.set("height", cam.height);

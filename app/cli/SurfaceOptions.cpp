@@ -3,6 +3,7 @@
 #include "Input.h"
 
 #include "octrace/build/Layers.h"
+#include "octrace/build/Volume.h"
 #include "octrace/render/Shading.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
@@ -20,6 +21,52 @@
 namespace octrace::cli {
 namespace {
 
+std::string huText(double hu) {
+    std::ostringstream s;
+    s << hu;
+    return s.str();
+}
+
+/// --window's value: a preset (its window), "none" (invalid window) or "C,W".
+ValueWindow parseWindow(const std::string& v) {
+    if (v == "none") return {};
+    if (auto w = ctWindowPreset(v)) return *w;
+    const std::size_t comma = v.find(',');
+    if (comma == std::string::npos || v.find(',', comma + 1) != std::string::npos) {
+        std::string names;
+        for (const auto& w : ctWindowPresets()) names += std::string(w.name) + ", ";
+        throw UsageError("--window: give a preset (" + names + "none) or CENTRE,WIDTH, got '" + v + "'");
+    }
+    ValueWindow w{parseNumber("window", v.substr(0, comma)), parseNumber("window", v.substr(comma + 1))};
+    if (!(w.width > 0.0)) throw UsageError("--window: the width must be positive, got '" + v + "'");
+    return w;
+}
+
+/// Refuses a CT preset (`option` NAME) for a field whose values are not Hounsfield units.
+void requireHounsfield(const ScalarField& f, const std::string& input, const std::string& option) {
+    if (f.units == "HU") return;
+    throw InputError(input + ": " + option + " is a CT preset in Hounsfield units, but the values of '" + f.name + "' are " +
+                     (f.units.empty() ? std::string("not in HU (no units: not a CT series)") : "in " + f.units) +
+                     "; give a number instead");
+}
+
+/// The surface's display window (see buildSurface).
+void chooseWindow(const SurfaceArgs& a, Surface& s) {
+    if (!a.windowName.empty()) {
+        if (ctWindowPreset(a.windowName)) requireHounsfield(s.field, a.input, "--window " + a.windowName);
+        s.window = a.window;
+        s.windowSource = "--window " + a.windowName;
+    } else if (!a.colourGiven && a.colormap.empty() && a.colourBy.empty() && s.field.window.valid()) {
+        s.window = s.field.window;
+        s.windowSource = "the file's display window";
+        std::ostringstream m;
+        m << "colouring by the file's display window, centre " << s.window.centre << " width " << s.window.width
+          << " (--window none for a uniform colour)";
+        log::info(m.str());
+    }
+    s.invertedGrey = s.window.valid() && s.field.invertedGrey;
+}
+
 float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
 /// Progress on stderr while building, only when stderr is a terminal.
@@ -30,21 +77,19 @@ std::function<void(double)> progressPrinter(bool quiet) {
 
 /// buildSurface for an octree file: the octree as it is, the field empty but for its name.
 void loadOctreeSurface(const SurfaceArgs& a, std::uint64_t budget, Surface& s) {
-    const io::FieldRequest none;
-    const char* given = !a.request.variable.empty() ? "--var"
-                        : a.iso                     ? "--iso"
-                        : a.depthGiven              ? "--depth"
-                        : a.request.hasRegion       ? "--region"
-                        : !a.colourBy.empty()       ? "--colour-by"
-                        : a.floor                   ? "--floor"
-                        : !a.request.series.empty() ? "--series"
-                        : a.request.verticalScale != none.verticalScale ? "--vertical-scale"
-                                                                         : nullptr;
+    const char* given = a.iso || !a.isoPreset.empty() ? "--iso"
+                        : !a.windowName.empty()         ? "--window"
+                        : a.depthGiven                  ? "--depth"
+                        : a.formGiven                   ? "--form/--inside"
+                        : !a.colourBy.empty()           ? "--colour-by"
+                        : a.floor                       ? "--floor"
+                                                        : fieldOptionGiven(a.request);
     if (given)
         throw UsageError(std::string(given) + " does not apply to the octree file " + a.input +
                          " (its field, iso value and depth were fixed when it was built: see octrace info)");
     Timer t;
     s.tree = loadOctree(a.input, budget);
+    if (!a.keepVolume) s.tree = extractShell(s.tree);
     s.loadMs = t.ms();
     s.iso = s.tree.iso;
     s.field.name = s.tree.fieldName;
@@ -84,15 +129,46 @@ std::string joinNames(const std::vector<std::string>& names) {
 
 vec4 displayToLinear(vec4 c) { return vec4(srgbToLinear(c.r), srgbToLinear(c.g), srgbToLinear(c.b), c.a); }
 
+void addVariableOption(OptionParser& p, io::FieldRequest& request) {
+    p.add({"var", "NAME", "variable to draw, by name or CF standard_name; sound_speed is derived from temperature and "
+           "salinity when the file has none (default: the file's only 3-D variable)",
+           [&](const std::string& v) {
+               if (v.empty()) throw UsageError("--var: empty (give a variable name)");
+               request.variable = v;
+           }});
+}
+
 void addSurfaceOptions(OptionParser& p, SurfaceArgs& a) {
-    p.add({"var", "NAME", "variable to draw (default: the file's only 3-D variable)",
-           [&](const std::string& v) { a.request.variable = v; }});
-    p.add({"iso", "VALUE", "iso value of the surface (default: middle of the variable's valid range)",
-           [&](const std::string& v) { a.iso = parseNumber("iso", v); }});
+    addVariableOption(p, a.request);
+    std::string presets;
+    for (const auto& pr : ctIsoPresets()) presets += std::string(presets.empty() ? "" : ", ") + pr.name + " " + huText(pr.hu);
+    p.add({"iso", "VALUE|NAME", "iso value of the surface, or a CT preset in Hounsfield units: " + presets +
+           " (default: middle of the variable's valid range)",
+           [&](const std::string& v) {
+               a.isoPreset.clear();
+               if (ctIsoPreset(v)) a.isoPreset = v;
+               else a.iso = parseNumber("iso", v);
+           }});
     p.add({"depth", "N", "octree depth, voxels = 2^N per cube edge (1.." + std::to_string(Octree::kMaxDepth) + ", default 8)",
            [&](const std::string& v) {
                a.depth = parseInt("depth", v, 1, Octree::kMaxDepth);
                a.depthGiven = true;
+           }});
+}
+
+void addFormOptions(OptionParser& p, SurfaceArgs& a) {
+    p.add({"form", "shell|volume", "octree form: the isosurface's boundary voxels (shell), or the solid it bounds with its "
+           "interior and caps where the grid ends (volume) (default shell)",
+           [&](const std::string& v) {
+               if (v != "shell" && v != "volume") throw UsageError("--form: expected shell or volume, got '" + v + "'");
+               a.form = v == "volume" ? OctreeForm::Volume : OctreeForm::Shell;
+               a.formGiven = true;
+           }});
+    p.add({"inside", "above|below", "volume form: the solid is where the value is >= iso (above) or < iso (below) (default above)",
+           [&](const std::string& v) {
+               if (v != "above" && v != "below") throw UsageError("--inside: expected above or below, got '" + v + "'");
+               a.insideBelow = v == "below";
+               a.formGiven = true;
            }});
 }
 
@@ -103,8 +179,22 @@ void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result
 
 void addColourOptions(OptionParser& p, SurfaceArgs& a) {
     p.add({"colour", "R,G,B", "surface colour, sRGB components in [0,1] (default 0.85,0.62,0.35)",
-           [&](const std::string& v) { a.colour = vec3(parseColour("colour", v, false)); }});
-    p.add({"color", "R,G,B", "same as --colour (default 0.85,0.62,0.35)", [&](const std::string& v) { a.colour = vec3(parseColour("color", v, false)); }});
+           [&](const std::string& v) {
+               a.colour = vec3(parseColour("colour", v, false));
+               a.colourGiven = true;
+           }});
+    p.add({"color", "R,G,B", "same as --colour (default 0.85,0.62,0.35)", [&](const std::string& v) {
+               a.colour = vec3(parseColour("color", v, false));
+               a.colourGiven = true;
+           }});
+    std::string windows;
+    for (const auto& w : ctWindowPresets())
+        windows += std::string(windows.empty() ? "" : ", ") + w.name + " " + huText(w.window.centre) + "/" +
+                   huText(w.window.width);
+    p.add({"window", "NAME|C,W|none", "grey the surface by a display window applied to the value just under it: a CT preset "
+           "(centre/width in HU: " + windows + "), a centre and width, or none (default: the window stored in a DICOM file, "
+           "unless --colour, --colormap or --colour-by is given)",
+           [&](const std::string& v) { a.windowName = v, a.window = parseWindow(v); }});
     p.add({"colormap", "NAME", "colour map: " + joinNames(colormapNames()) + "; colours by --colour-by's variable, else by height "
            "(default: with --colour-by the variable's map from its standard_name or name, thermal/haline/speed/viridis; else none, --colour)",
            [&](const std::string& v) {
@@ -138,17 +228,30 @@ void addLayerOptions(OptionParser& p, SurfaceArgs& a) {
            [&](const std::string&) { a.floor = true; }});
 }
 
-void addGeographicOptions(OptionParser& p, SurfaceArgs& a) {
+void addGeographicOptions(OptionParser& p, io::FieldRequest& request) {
     p.add({"region", "LON0,LON1,LAT0,LAT1", "geographic subregion in degrees, NetCDF only (default: the whole grid)",
            [&](const std::string& v) {
                auto r = io::parseRegion(v);
-               a.request.hasRegion = true;
-               for (int i = 0; i < 4; ++i) a.request.region[i] = r[std::size_t(i)];
+               request.hasRegion = true;
+               for (int i = 0; i < 4; ++i) request.region[i] = r[std::size_t(i)];
+           }});
+    p.add({"depth-range", "Z0,Z1", "depth levels from Z0 to Z1 metres (positive down), NetCDF only (default: every level)",
+           [&](const std::string& v) {
+               auto r = io::parseDepthRange(v);
+               request.hasDepthRange = true;
+               request.depthRange[0] = r[0];
+               request.depthRange[1] = r[1];
+           }});
+    p.add({"time", "INDEX|DATE", "time step, NetCDF only: a 0-based index or a date YYYY-MM-DD[THH:MM[:SS]] in the file's "
+           "calendar, nearest step (default: the first)",
+           [&](const std::string& v) {
+               io::checkTimeText(v);
+               request.time = v;
            }});
     p.add({"vertical-scale", "S", "vertical exaggeration of depth, NetCDF only (default: depth extent = 1/4 of the larger horizontal extent)",
            [&](const std::string& v) {
-               a.request.verticalScale = parseNumber("vertical-scale", v);
-               if (!(a.request.verticalScale > 0.0)) throw UsageError("--vertical-scale: must be positive, got " + v);
+               request.verticalScale = parseNumber("vertical-scale", v);
+               if (!(request.verticalScale > 0.0)) throw UsageError("--vertical-scale: must be positive, got " + v);
            }});
 }
 
@@ -184,14 +287,29 @@ bool parseCommandLine(const OptionParser& p, const std::vector<std::string>& arg
     return true;
 }
 
+const char* fieldOptionGiven(const io::FieldRequest& request) {
+    const io::FieldRequest none;
+    return !request.variable.empty()                    ? "--var"
+           : request.hasRegion                          ? "--region"
+           : request.hasDepthRange                      ? "--depth-range"
+           : !request.time.empty()                      ? "--time"
+           : !request.series.empty()                    ? "--series"
+           : request.verticalScale != none.verticalScale ? "--vertical-scale"
+                                                         : nullptr;
+}
+
 std::uint64_t memoryBudget(const SurfaceArgs& a) { return a.maxMemory ? a.maxMemory : defaultMemoryBudget(); }
 
 Surface buildSurface(const SurfaceArgs& a) {
     if (a.quiet) log::setLevel(log::Level::Error);
     if (a.verbose) log::setLevel(log::Level::Debug);
+    if (a.insideBelow && a.form != OctreeForm::Volume) throw UsageError("--inside applies to --form volume");
     const std::uint64_t budget = memoryBudget(a);
     io::FieldRequest request = a.request;
     request.memoryBudget = budget;
+    if (a.window.valid() && (a.colourGiven || !a.colormap.empty()))
+        throw UsageError("--window " + a.windowName + " and " + (a.colourGiven ? "--colour" : "--colormap") +
+                         " both colour the surface: give one");
     Surface s;
     Timer t;
     if (isOctreeInput(a.input)) {
@@ -201,14 +319,17 @@ Surface buildSurface(const SurfaceArgs& a) {
     s.field = loadField(a.input, request);
     s.loadMs = t.ms();
     auto [vmin, vmax] = s.field.validRange();
-    s.iso = a.iso ? *a.iso : 0.5 * (double(vmin) + double(vmax));
-    if (!a.iso) {
+    if (!a.isoPreset.empty()) requireHounsfield(s.field, a.input, "--iso " + a.isoPreset);
+    s.iso = !a.isoPreset.empty() ? *ctIsoPreset(a.isoPreset) : a.iso ? *a.iso : 0.5 * (double(vmin) + double(vmax));
+    if (!a.iso && a.isoPreset.empty()) {
         std::ostringstream m;
         m << "no --iso given: using " << s.iso << ", the middle of the range [" << vmin << ", " << vmax << "] of '"
           << s.field.name << "'";
         log::info(m.str());
     }
     for (const auto& n : s.field.notes) log::debug(n);
+    if (!a.colourBy.empty() && !a.windowName.empty())
+        throw UsageError("--window and --colour-by both colour the surface: give one of them");
     std::optional<ScalarField> colourBy;
     if (!a.colourBy.empty()) colourBy = loadColourBy(a, request, s.field);
 
@@ -218,8 +339,13 @@ Surface buildSurface(const SurfaceArgs& a) {
     bo.threads = a.threads;
     bo.progress = progressPrinter(a.quiet);
     bo.memoryBudget = budget;
-    s.tree = buildShellOctree(s.field, bo, &s.report);
+    bo.form = a.form;
+    bo.insideBelow = a.insideBelow;
+    chooseWindow(a, s);
+    bo.voxelValues = s.window.valid();
+    s.tree = buildOctree(s.field, bo, &s.report);
     s.tree.source = sourceDescription(a.input, s.field);
+    if (!a.keepVolume) s.tree = extractShell(s.tree);
     if (bo.progress) std::fputs("\n", stderr);
     if (colourBy) {
         s.tree.voxelValues = sampleAtVoxels(s.tree, *colourBy, a.threads);
@@ -231,6 +357,8 @@ Surface buildSurface(const SurfaceArgs& a) {
         BuildOptions fo = bo;
         fo.iso = 0.5;
         fo.progress = {};
+        fo.form = OctreeForm::Shell;
+        fo.voxelValues = false;
         Octree floor = buildShellOctree(solidFromMask(s.field), fo);
         setMaterial(floor, VoxelMaterial::Floor);
         s.tree = mergeShells(s.tree, floor);
@@ -240,11 +368,13 @@ Surface buildSurface(const SurfaceArgs& a) {
     return s;
 }
 
-void applyColour(const SurfaceArgs& a, const Octree& tree, RenderSettings& settings) {
+void applyColour(const SurfaceArgs& a, const Surface& s, RenderSettings& settings) {
     settings.colour = vec3(displayToLinear(vec4(a.colour, 1.0f)));
     settings.colormap = a.colormap;
-    if (settings.colormap.empty() && !tree.voxelValues.empty())
-        settings.colormap = defaultColormap(tree.valueStandardName, tree.valueName);
+    settings.window = s.window;
+    settings.invertedGrey = s.invertedGrey;
+    if (settings.colormap.empty() && !s.tree.voxelValues.empty() && !s.window.valid())
+        settings.colormap = defaultColormap(s.tree.valueStandardName, s.tree.valueName);
     settings.colourMin = a.colourMin;
     settings.colourMax = a.colourMax;
     settings.maskedColour = vec3(displayToLinear(vec4(a.maskedColour, 1.0f)));

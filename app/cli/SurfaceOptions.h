@@ -4,6 +4,7 @@
 // load-and-build step behind them.
 #include "Options.h"
 
+#include "octrace/build/CtPresets.h"
 #include "octrace/build/OctreeBuilder.h"
 #include "octrace/build/ScalarField.h"
 #include "octrace/io/FieldRequest.h"
@@ -22,6 +23,12 @@ struct SurfaceArgs {
     std::string input;
     io::FieldRequest request;
     std::optional<double> iso;
+    std::string isoPreset;  ///< --iso NAME (CtPresets.h): resolved once the field is read
+    /// --window: "" (not given: the file's window, if any, unless --colour or --colormap),
+    /// "none", a preset name (CtPresets.h), or the centre and width given as numbers.
+    std::string windowName;
+    ValueWindow window;
+    bool colourGiven = false;  ///< --colour / --color given
     int depth = 8, threads = 0;
     bool depthGiven = false;  // --depth given (an octree file input fixes the depth)
     vec3 colour{0.85f, 0.62f, 0.35f};  // sRGB display values, as the user gives them
@@ -33,6 +40,10 @@ struct SurfaceArgs {
     bool floor = false;                // --floor: sea floor / land from the validity mask
     bool help = false, quiet = false, verbose = false;
     std::uint64_t maxMemory = 0;  // --max-memory; 0: defaultMemoryBudget()
+    OctreeForm form = OctreeForm::Shell;  // --form
+    bool insideBelow = false;             // --inside below
+    bool formGiven = false;               // --form or --inside given
+    bool keepVolume = false;  // set by the command: buildSurface keeps a volume octree as it is (build, csg)
 };
 
 /// "a, b, c".
@@ -41,16 +52,22 @@ std::string joinNames(const std::vector<std::string>& names);
 vec4 displayToLinear(vec4 c);
 
 // Each adds its options to `p`, writing into `a`; the help lines state the defaults of SurfaceArgs.
+/// --var.
+void addVariableOption(OptionParser& p, io::FieldRequest& request);
 /// --var, --iso, --depth.
 void addSurfaceOptions(OptionParser& p, SurfaceArgs& a);
+/// --form shell|volume, --inside above|below.
+void addFormOptions(OptionParser& p, SurfaceArgs& a);
 /// --threads; `result` names what does not depend on it ("the image").
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result);
-/// --colour, --color, --colormap, --colour-range, --masked-colour, --floor-colour.
+/// --colour, --color, --colormap, --window, --colour-range, --masked-colour, --floor-colour.
 void addColourOptions(OptionParser& p, SurfaceArgs& a);
 /// --colour-by, --floor: what is drawn besides the isosurface.
 void addLayerOptions(OptionParser& p, SurfaceArgs& a);
-/// --region, --vertical-scale.
-void addGeographicOptions(OptionParser& p, SurfaceArgs& a);
+/// --region, --depth-range, --time, --vertical-scale.
+void addGeographicOptions(OptionParser& p, io::FieldRequest& request);
+/// The first option of `request` that chooses part of a field ("--var", "--region", ...), or null.
+const char* fieldOptionGiven(const io::FieldRequest& request);
 /// --series (DICOM).
 void addSeriesOption(OptionParser& p, io::FieldRequest& request);
 /// --max-memory, --quiet, --verbose, --help.
@@ -73,19 +90,31 @@ struct Surface {
     Octree tree;
     BuildReport report;
     double loadMs = 0.0;
+    /// The display window that colours the surface (invalid: --colour / --colormap), and
+    /// whether its grey is inverted (MONOCHROME1); the octree then has voxel values.
+    ValueWindow window;
+    bool invertedGrey = false;
+    std::string windowSource;  ///< where the window comes from, for messages and stats
 };
 
 /// Applies --quiet / --verbose to the log. An octree file (.oct) is read as it is (options that
-/// choose the field or the depth are refused: UsageError; a volume octree gives its shell).
+/// choose the field or the depth are refused: UsageError).
 /// Otherwise reads a.input, chooses the iso value when none was
-/// given (the middle of the valid range, said on stderr) and builds the shell octree (progress
-/// on stderr when it is a terminal), within memoryBudget(a): a read or build that would need
-/// more is refused (LimitError). --colour-by reads the second variable with the same request
-/// and refuses (InputError) one on another grid. Throws as loadField() and buildShellOctree().
+/// given (the middle of the valid range, said on stderr) or resolves a preset (--iso skin:
+/// InputError unless the field is in HU), chooses the display window (--window, else the
+/// file's own unless a colour was given; presets need HU too) and builds the octree in a.form
+/// (with voxel values when a window colours it; progress on stderr when it is a terminal),
+/// within memoryBudget(a): a read or build that would need more is refused (LimitError). A
+/// volume octree becomes its shell (extractShell) unless a.keepVolume. --colour-by reads the
+/// second variable with the same request (InputError for one on another grid; UsageError
+/// beside --window) and samples it at the voxels; --floor merges in the sea floor and land.
+/// Throws as loadField() and buildOctree().
 Surface buildSurface(const SurfaceArgs& a);
 
-/// The colour options as RenderSettings (linear RGB); the colour map by default, with values
-/// on `tree`, is the one for their variable (defaultColormap in Shading.h).
-void applyColour(const SurfaceArgs& a, const Octree& tree, RenderSettings& settings);
+/// The colour options as RenderSettings (linear RGB): colour, colour map (by default, with
+/// voxel values of a second variable, the one for that variable: defaultColormap in
+/// Shading.h), its range, the masked and floor colours, and the surface's display window
+/// (RenderSettings::window, invertedGrey).
+void applyColour(const SurfaceArgs& a, const Surface& s, RenderSettings& settings);
 
 }  // namespace octrace::cli

@@ -69,9 +69,10 @@ std::string defaultColormap(const std::string& standardName, const std::string& 
 
 Albedo::Albedo(const Octree& tree, const RenderSettings& settings)
     : tree_(tree), colour_(settings.colour), masked_(settings.maskedColour), floor_(settings.floorColour),
-      colormap_(settings.colormap) {
-    if (!tree.voxelValues.empty()) {
+      window_(settings.window), inverted_(settings.invertedGrey), colormap_(settings.colormap) {
+    if (!tree.voxelValues.empty() && tree.voxelValues.size() == tree.voxels.size()) {
         values_ = &tree.voxelValues;
+        if (window_.valid()) return;
         if (colormap_.empty()) colormap_ = "viridis";
         float lo = std::numeric_limits<float>::infinity(), hi = -lo;
         for (std::size_t i = 0; i < values_->size(); ++i) {
@@ -97,6 +98,7 @@ vec3 Albedo::at(std::uint32_t voxel, float zCells) const {
     if (!tree_.voxelMaterials.empty() && tree_.material(voxel) == VoxelMaterial::Floor) return floor_;
     if (values_) {
         const float v = (*values_)[voxel];
+        if (window_.valid()) return vec3(srgbToLinear(window_.grey(v, inverted_)));
         if (std::isnan(v)) return masked_;
         return colormap(colormap_, hi_ != lo_ ? (v - lo_) / (hi_ - lo_) : 0.5f);
     }

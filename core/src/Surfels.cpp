@@ -46,11 +46,10 @@ std::vector<Surfel> extractSurfels(const Octree& tree, const RenderSettings& set
             s.position = vec3(tree.cubeOrigin + (dvec3(it.cell) + 0.5) * side);
             s.radius = radius;
             float zCells;
-            std::uint32_t voxel;
+            std::uint32_t voxel = it.index;
             if (voxels) {
                 s.normal = decodeNormal(tree.voxels[it.index].normal);
                 zCells = float(it.cell.z) + 0.5f;
-                voxel = it.index;
             } else {
                 const NodeSummary& summary = tree.summaries[it.index];
                 s.normal = decodeNormal(summary.normal);

@@ -78,20 +78,6 @@ void collect(const std::shared_ptr<GDALGroup>& group, std::vector<VariableInfo>&
         if (auto sub = group->OpenGroup(name)) collect(sub, out, arrays);
 }
 
-std::vector<std::string> words(const std::string& s) {
-    std::vector<std::string> out;
-    std::string w;
-    for (char c : s + " ") {
-        if (c == ' ' || c == '\t' || c == '\n') {
-            if (!w.empty()) out.push_back(w);
-            w.clear();
-        } else {
-            w += c;
-        }
-    }
-    return out;
-}
-
 // CF auxiliary variables: those another variable names as its coordinates or bounds.
 void markAuxiliary(std::vector<VariableInfo>& vars) {
     for (const auto& v : vars) {

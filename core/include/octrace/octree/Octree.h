@@ -96,19 +96,22 @@ public:
 
     std::vector<OctreeNode> nodes;  ///< nodes[0] = root
     std::vector<Voxel> voxels;      ///< boundary voxels
+    /// Per boundary voxel (same index as `voxels`), empty when absent (and in octree files): a
+    /// value that Shading.h colours the voxel by. Either the field's own value just inside the
+    /// surface, greyed by a display window (RenderSettings::window; filled when the build asks
+    /// for it, BuildOptions::voxelValues), or a second variable sampled at the voxel's centre
+    /// and mapped by a colour map (colour by: sampleAtVoxels in OctreeBuilder.h; NaN where the
+    /// sample touches a masked cell or lies outside its grid; valueName etc. say what it is).
+    std::vector<float> voxelValues;
     /// Per node (same index as `nodes`), filled by computeSummaries(); empty until then.
     std::vector<NodeSummary> summaries;
 
     OctreeForm form = OctreeForm::Shell;
 
-    /// Optional per-voxel attributes, same index as `voxels`; empty = absent. Shading.h colours
-    /// with them, so every renderer does. Operations that make a new voxel array (CSG, octree
-    /// files) do not carry them.
-    /// A second variable sampled at each voxel's centre (colour by; sampleAtVoxels in
-    /// OctreeBuilder.h); NaN where the sample touches a masked cell or lies outside its grid.
-    std::vector<float> voxelValues;
-    std::string valueName, valueUnits, valueStandardName;  ///< of voxelValues
-    /// Material of each voxel (values of VoxelMaterial); empty = every voxel VoxelMaterial::Surface.
+    /// What voxelValues are when they are a second variable (colour by); empty otherwise.
+    std::string valueName, valueUnits, valueStandardName;
+    /// Per boundary voxel (same index as `voxels`): its material (values of VoxelMaterial);
+    /// empty = every voxel VoxelMaterial::Surface (and in octree files). Shading.h colours by it.
     std::vector<std::uint8_t> voxelMaterials;
     VoxelMaterial material(std::uint32_t voxel) const {
         return voxelMaterials.empty() ? VoxelMaterial::Surface : VoxelMaterial(voxelMaterials[voxel]);

@@ -1,5 +1,6 @@
 #pragma once
 /// @file RenderSettings.h
+#include "octrace/build/ScalarField.h"
 #include "octrace/util/Math.h"
 
 #include <limits>
@@ -14,7 +15,7 @@ struct RenderSettings {
     dvec3 lightCamera{0.4, 0.6, 1.0};      ///< direction towards the light, camera space (normalised on use)
     float ambient = 0.15f;
     float diffuse = 0.85f;
-    /// Colour map (Shading.h colormapNames). With Octree::voxelValues the surface is coloured by
+    /// Colour map (Shading.h colormapNames). With Octree::voxelValues and no `window` the surface is coloured by
     /// them (empty: viridis); without, an empty name means the uniform `colour` and a name
     /// colours by height.
     std::string colormap;
@@ -24,6 +25,11 @@ struct RenderSettings {
     float colourMax = std::numeric_limits<float>::quiet_NaN();
     vec3 maskedColour{0.319f, 0.319f, 0.319f};  ///< linear RGB (sRGB 0.6 grey) of voxels whose value is NaN (masked)
     vec3 floorColour{0.263f, 0.214f, 0.171f};  ///< linear RGB (sRGB 0.55,0.5,0.45) of VoxelMaterial::Floor voxels
+    /// When valid, and the octree has voxel values (Octree::voxelValues), each voxel is grey
+    /// by the window applied to its value (instead of `colour` or the colour map);
+    /// `invertedGrey`: low values bright (DICOM MONOCHROME1).
+    ValueWindow window;
+    bool invertedGrey = false;
     /// Colour coherence (paper A, 5.3) on any renderer: a pixel between two traced neighbours
     /// whose 8-bit sRGB colours differ by at most colourTolerance in every channel gets their
     /// average without being traced. Approximate by design.

@@ -25,8 +25,11 @@ std::string defaultColormap(const std::string& standardName, const std::string& 
 
 /// The surface's colour before lighting, linear RGB, per voxel:
 ///  - VoxelMaterial::Floor voxels: RenderSettings::floorColour;
-///  - with Octree::voxelValues: the colour map's colour for the voxel's value over
-///    [colourMin, colourMax] (NaN ends: the surface voxels' own range), maskedColour for NaN;
+///  - with Octree::voxelValues and a display window (RenderSettings::window): the window's
+///    grey of the voxel's value;
+///  - with Octree::voxelValues and no window: the colour map's colour for the voxel's value
+///    over [colourMin, colourMax] (NaN ends: the surface voxels' own range), maskedColour for
+///    NaN;
 ///  - otherwise RenderSettings::colour, or with a colour map its colour for the height, from
 ///    the lowest to the highest boundary voxel.
 /// Shared by Shader and the surfel export (Surfels.h), so that both colour a voxel alike.
@@ -39,8 +42,8 @@ public:
     /// `zCells`: height in cell space (a voxel's centre is at cell.z + 0.5; a node's is its
     /// summary's meanZ).
     vec3 at(std::uint32_t voxel, float zCells) const;
-    /// Colouring by voxel values, over [low(), high()] with colormapName().
-    bool byValue() const { return values_ != nullptr; }
+    /// Colouring by voxel values with the colour map, over [low(), high()] with colormapName().
+    bool byValue() const { return values_ != nullptr && !window_.valid(); }
     float low() const { return lo_; }
     float high() const { return hi_; }
     const std::string& colormapName() const { return colormap_; }
@@ -48,8 +51,10 @@ public:
 private:
     const Octree& tree_;
     vec3 colour_, masked_, floor_;
+    const std::vector<float>* values_ = nullptr;  // the octree's voxel values (window or colour map)
+    ValueWindow window_;
+    bool inverted_ = false;
     std::string colormap_;   // empty: uniform colour_
-    const std::vector<float>* values_ = nullptr;  // colour by value
     float lo_ = 0.0f, hi_ = 1.0f;  // value range
     int zLo_ = 0, zHi_ = 0;  // occupied cell range along z, for the colour map
 };
