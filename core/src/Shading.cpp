@@ -70,10 +70,13 @@ std::string defaultColormap(const std::string& standardName, const std::string& 
 Albedo::Albedo(const Octree& tree, const RenderSettings& settings)
     : tree_(tree), colour_(settings.colour), masked_(settings.maskedColour), floor_(settings.floorColour),
       window_(settings.window), inverted_(settings.invertedGrey), colormap_(settings.colormap) {
-    if (!tree.voxelValues.empty() && tree.voxelValues.size() == tree.voxels.size()) {
+    const bool hasValues = !tree.voxelValues.empty() && tree.voxelValues.size() == tree.voxels.size();
+    if (hasValues && window_.valid()) {
         values_ = &tree.voxelValues;
-        if (window_.valid()) return;
-        if (colormap_.empty()) colormap_ = "viridis";
+        return;
+    }
+    if (hasValues && !colormap_.empty()) {
+        values_ = &tree.voxelValues;
         float lo = std::numeric_limits<float>::infinity(), hi = -lo;
         for (std::size_t i = 0; i < values_->size(); ++i) {
             const float v = (*values_)[i];

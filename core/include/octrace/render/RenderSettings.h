@@ -15,9 +15,8 @@ struct RenderSettings {
     dvec3 lightCamera{0.4, 0.6, 1.0};      ///< direction towards the light, camera space (normalised on use)
     float ambient = 0.15f;
     float diffuse = 0.85f;
-    /// Colour map (Shading.h colormapNames). With Octree::voxelValues and no `window` the surface is coloured by
-    /// them (empty: viridis); without, an empty name means the uniform `colour` and a name
-    /// colours by height.
+    /// Colour map (Shading.h colormapNames); empty: the uniform `colour`. With
+    /// Octree::voxelValues and no `window` it colours by the values, else by height.
     std::string colormap;
     /// The voxel values mapped onto the colour map's ends; NaN: the lowest / highest value of
     /// the surface's voxels.

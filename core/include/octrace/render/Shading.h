@@ -27,7 +27,7 @@ std::string defaultColormap(const std::string& standardName, const std::string& 
 ///  - VoxelMaterial::Floor voxels: RenderSettings::floorColour;
 ///  - with Octree::voxelValues and a display window (RenderSettings::window): the window's
 ///    grey of the voxel's value;
-///  - with Octree::voxelValues and no window: the colour map's colour for the voxel's value
+///  - with Octree::voxelValues, no window and a colour map: the map's colour for the voxel's value
 ///    over [colourMin, colourMax] (NaN ends: the surface voxels' own range), maskedColour for
 ///    NaN;
 ///  - otherwise RenderSettings::colour, or with a colour map its colour for the height, from
