@@ -4,6 +4,7 @@
 
 #include "octrace/build/Layers.h"
 #include "octrace/build/Volume.h"
+#include "octrace/csg/Csg.h"
 #include "octrace/render/Shading.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
@@ -89,13 +90,26 @@ void loadOctreeSurface(const SurfaceArgs& a, std::uint64_t budget, Surface& s) {
                          " (its field, iso value and depth were fixed when it was built: see octrace info)");
     Timer t;
     s.tree = loadOctree(a.input, budget);
-    if (!a.keepVolume) s.tree = extractShell(s.tree);
     s.loadMs = t.ms();
+    if (!a.cuts.empty() && s.tree.form != OctreeForm::Volume)
+        throw InputError(a.input + ": a shell octree cannot be cut (--cut needs the volume form: octrace build --form volume)");
     s.iso = s.tree.iso;
     s.field.name = s.tree.fieldName;
     s.field.units = s.tree.fieldUnits;
     s.field.source = a.input;
-    s.report.boundaryVoxels = s.tree.voxels.size();
+}
+
+/// The cuts (--cut, --clip), then the shell unless the command keeps the volume.
+void finishSurface(const SurfaceArgs& a, Surface& s) {
+    if (!a.cuts.empty()) {
+        Timer t;
+        for (const Solid& cut : a.cuts)
+            s.tree = csg(CsgOperand::of(s.tree), a.clip ? CsgOp::Intersection : CsgOp::Difference, CsgOperand::of(cut));
+        log::debug("cuts applied in " + std::to_string(t.ms()) + " ms");
+        s.report.buildMs += t.ms();
+    }
+    if (!a.keepVolume) s.tree = extractShell(s.tree);
+    s.report.boundaryVoxels = countVoxels(s.tree).boundary;
     s.report.nodes = s.tree.nodes.size();
 }
 
@@ -111,7 +125,7 @@ std::string sourceDescription(const std::string& input, const ScalarField& f) {
 ScalarField loadColourBy(const SurfaceArgs& a, const io::FieldRequest& request, const ScalarField& field) {
     io::FieldRequest second = request;
     second.variable = a.colourBy;
-    ScalarField by = loadField(a.input, second);
+    ScalarField by = loadField(a.input, second, a.depth);
     if (by.dims != field.dims || by.origin != field.origin || by.spacing != field.spacing || by.coords != field.coords ||
         by.direction != field.direction)
         throw InputError(a.input + ": --colour-by " + a.colourBy + " is not on the grid of '" + field.name +
@@ -156,6 +170,15 @@ void addSurfaceOptions(OptionParser& p, SurfaceArgs& a) {
            }});
 }
 
+void addInsideOption(OptionParser& p, SurfaceArgs& a, const std::string& applies) {
+    p.add({"inside", "above|below", applies + ": the solid is where the value is >= iso (above) or < iso (below) (default above)",
+           [&](const std::string& v) {
+               if (v != "above" && v != "below") throw UsageError("--inside: expected above or below, got '" + v + "'");
+               a.insideBelow = v == "below";
+               a.formGiven = true;
+           }});
+}
+
 void addFormOptions(OptionParser& p, SurfaceArgs& a) {
     p.add({"form", "shell|volume", "octree form: the isosurface's boundary voxels (shell), or the solid it bounds with its "
            "interior and caps where the grid ends (volume) (default shell)",
@@ -164,12 +187,12 @@ void addFormOptions(OptionParser& p, SurfaceArgs& a) {
                a.form = v == "volume" ? OctreeForm::Volume : OctreeForm::Shell;
                a.formGiven = true;
            }});
-    p.add({"inside", "above|below", "volume form: the solid is where the value is >= iso (above) or < iso (below) (default above)",
-           [&](const std::string& v) {
-               if (v != "above" && v != "below") throw UsageError("--inside: expected above or below, got '" + v + "'");
-               a.insideBelow = v == "below";
-               a.formGiven = true;
-           }});
+    addInsideOption(p, a, "volume form");
+    p.add({"cut", "SOLID", "cut a solid away: box:X0,Y0,Z0,X1,Y1,Z1, sphere:X,Y,Z,R, cylinder:X0,Y0,Z0,X1,Y1,Z1,R or "
+           "halfspace:X,Y,Z,NX,NY,NZ in world units; repeatable; builds the volume form (default: none)",
+           [&](const std::string& v) { a.cuts.push_back(parseSolid(v)); }});
+    p.add({"clip", "", "keep only what lies inside the --cut solids instead of cutting them away (default off)",
+           [&](const std::string&) { a.clip = true; }});
 }
 
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result) {
@@ -303,7 +326,9 @@ std::uint64_t memoryBudget(const SurfaceArgs& a) { return a.maxMemory ? a.maxMem
 Surface buildSurface(const SurfaceArgs& a) {
     if (a.quiet) log::setLevel(log::Level::Error);
     if (a.verbose) log::setLevel(log::Level::Debug);
-    if (a.insideBelow && a.form != OctreeForm::Volume) throw UsageError("--inside applies to --form volume");
+    if (a.insideBelow && a.form != OctreeForm::Volume && a.cuts.empty())
+        throw UsageError("--inside applies to --form volume (or --cut)");
+    if (a.clip && a.cuts.empty()) throw UsageError("--clip needs a --cut solid");
     const std::uint64_t budget = memoryBudget(a);
     io::FieldRequest request = a.request;
     request.memoryBudget = budget;
@@ -314,9 +339,10 @@ Surface buildSurface(const SurfaceArgs& a) {
     Timer t;
     if (isOctreeInput(a.input)) {
         loadOctreeSurface(a, budget, s);
+        finishSurface(a, s);
         return s;
     }
-    s.field = loadField(a.input, request);
+    s.field = loadField(a.input, request, a.depth);
     s.loadMs = t.ms();
     auto [vmin, vmax] = s.field.validRange();
     if (!a.isoPreset.empty()) requireHounsfield(s.field, a.input, "--iso " + a.isoPreset);
@@ -339,14 +365,14 @@ Surface buildSurface(const SurfaceArgs& a) {
     bo.threads = a.threads;
     bo.progress = progressPrinter(a.quiet);
     bo.memoryBudget = budget;
-    bo.form = a.form;
+    bo.form = a.cuts.empty() ? a.form : OctreeForm::Volume;
     bo.insideBelow = a.insideBelow;
     chooseWindow(a, s);
     bo.voxelValues = s.window.valid();
     s.tree = buildOctree(s.field, bo, &s.report);
     s.tree.source = sourceDescription(a.input, s.field);
-    if (!a.keepVolume) s.tree = extractShell(s.tree);
     if (bo.progress) std::fputs("\n", stderr);
+    finishSurface(a, s);
     if (colourBy) {
         s.tree.voxelValues = sampleAtVoxels(s.tree, *colourBy, a.threads);
         s.tree.valueName = colourBy->name;

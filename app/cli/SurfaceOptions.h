@@ -7,6 +7,7 @@
 #include "octrace/build/CtPresets.h"
 #include "octrace/build/OctreeBuilder.h"
 #include "octrace/build/ScalarField.h"
+#include "octrace/csg/Solid.h"
 #include "octrace/io/FieldRequest.h"
 #include "octrace/octree/Octree.h"
 #include "octrace/render/RenderSettings.h"
@@ -44,6 +45,8 @@ struct SurfaceArgs {
     bool insideBelow = false;             // --inside below
     bool formGiven = false;               // --form or --inside given
     bool keepVolume = false;  // set by the command: buildSurface keeps a volume octree as it is (build, csg)
+    std::vector<Solid> cuts;  // --cut, in order
+    bool clip = false;        // --clip: keep the inside of the cuts instead
 };
 
 /// "a, b, c".
@@ -56,7 +59,9 @@ vec4 displayToLinear(vec4 c);
 void addVariableOption(OptionParser& p, io::FieldRequest& request);
 /// --var, --iso, --depth.
 void addSurfaceOptions(OptionParser& p, SurfaceArgs& a);
-/// --form shell|volume, --inside above|below.
+/// --inside above|below; `applies` says to what ("volume form").
+void addInsideOption(OptionParser& p, SurfaceArgs& a, const std::string& applies);
+/// --form shell|volume, --inside above|below, --cut SOLID, --clip.
 void addFormOptions(OptionParser& p, SurfaceArgs& a);
 /// --threads; `result` names what does not depend on it ("the image").
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result);
@@ -104,11 +109,13 @@ struct Surface {
 /// InputError unless the field is in HU), chooses the display window (--window, else the
 /// file's own unless a colour was given; presets need HU too) and builds the octree in a.form
 /// (with voxel values when a window colours it; progress on stderr when it is a terminal),
-/// within memoryBudget(a): a read or build that would need more is refused (LimitError). A
-/// volume octree becomes its shell (extractShell) unless a.keepVolume. --colour-by reads the
-/// second variable with the same request (InputError for one on another grid; UsageError
-/// beside --window) and samples it at the voxels; --floor merges in the sea floor and land.
-/// Throws as loadField() and buildOctree().
+/// within memoryBudget(a): a read or build that would need more is refused (LimitError). With
+/// --cut the volume form is built (an octree file must hold one: InputError otherwise) and
+/// each solid is subtracted from it (--clip: intersected with it; the result has no voxel
+/// values). A volume octree becomes its shell (extractShell) unless a.keepVolume. Then
+/// --colour-by's variable, read with the same request (InputError for one on another grid;
+/// UsageError beside --window), is sampled at the voxels, and --floor merges in the sea floor
+/// and land. Throws as loadField(), buildOctree() and csg().
 Surface buildSurface(const SurfaceArgs& a);
 
 /// The colour options as RenderSettings (linear RGB): colour, colour map (by default, with

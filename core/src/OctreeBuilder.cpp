@@ -1,6 +1,7 @@
 #include "octrace/build/OctreeBuilder.h"
 
 #include "MinMaxPyramid.h"
+#include "TreeAssembly.h"
 #include "octrace/build/Volume.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
@@ -316,9 +317,7 @@ struct Pool {
     }
 };
 
-/// What a built octant is: nothing of the surface (or solid), a node with children, or (volume
-/// form) an interior term wholly inside the solid.
-enum class Octant : std::uint8_t { Empty, Node, Term };
+using detail::Octant;
 
 class Builder {
 public:
@@ -366,11 +365,8 @@ public:
     /// the pool): Empty when all are, Term when all are terms (eight terms make one).
     static Octant emitNode(const Octant kinds[8], const OctreeNode kids[8], int childLevel, OctreeNode& out, Pool& pool,
                            MemoryGuard* guard) {
-        unsigned mask = 0, terms = 0;
-        for (int c = 0; c < 8; ++c) {
-            if (kinds[c] != Octant::Empty) mask |= 1u << c;
-            if (kinds[c] == Octant::Term) terms |= 1u << c;
-        }
+        unsigned mask, terms;
+        detail::childMasks(kinds, mask, terms);
         if (!mask) return Octant::Empty;
         if (terms == 0xFFu) return Octant::Term;
         out = OctreeNode{};

@@ -86,6 +86,7 @@ bool hasAllDims(const VariableInfo& var, const VariableInfo& c) {
 
 std::vector<const VariableInfo*> curvilinearCoordinates(const NetcdfFile& file, const VariableInfo& var) {
     std::vector<const VariableInfo*> out;
+    if (var.auxiliary || isLonLat(var)) return out;  // a coordinate itself
     const auto named = words(var.coordinates);
     for (const auto& c : file.variables()) {
         if (&c == &var || !c.numeric || c.extent() < 2 || !isLonLat(c)) continue;
