@@ -49,6 +49,8 @@ OptionParser makeParser(RenderArgs& a) {
            [&](const std::string& v) { a.output = v; }});
     addSurfaceOptions(p, a);
     addFormOptions(p, a);
+    addLightingOption(p, a);
+    addBakeOptions(p, a);
     p.add({"renderer", "NAME", "renderer: " + joinNames(rendererNames()) + " (default full)",
            [&](const std::string& v) {
                makeRenderer(v);  // validates the name
@@ -184,6 +186,7 @@ int runRender(const std::vector<std::string>& args) {
     rs.background = displayToLinear(a.background);
     applyColour(a, surface, rs);
     if (a.light) rs.lightCamera = *a.light;
+    rs.baked = a.lighting != SurfaceArgs::Lighting::Dynamic;
     rs.colourCoherence = a.colourCoherence;
     rs.colourTolerance = a.colourTolerance;
     rs.colourFillsBackground = a.colourFillsBackground;
@@ -231,6 +234,8 @@ int runRender(const std::vector<std::string>& args) {
     js.set("hits", st.hits);
     js.set("load_ms", loadMs);
     js.set("build_ms", report.buildMs);
+    js.set("lighting", std::string(rs.baked && !tree.baked.empty() ? "baked" : "dynamic"));
+    js.set("bake_ms", surface.bake.bakeMs);
     js.set("render_ms", st.renderMs);
     if (a.repeat > 1) {
         js.set("repeat", a.repeat);

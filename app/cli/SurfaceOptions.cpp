@@ -105,6 +105,13 @@ void finishSurface(const SurfaceArgs& a, Surface& s) {
         s.report.buildMs += t.ms();
     }
     if (!a.keepVolume) s.tree = extractShell(s.tree);
+    if (a.bake || (a.lighting == SurfaceArgs::Lighting::Baked && s.tree.baked.empty())) {
+        if (s.tree.form != OctreeForm::Shell) throw UsageError("--bake applies to the shell form (not with --form volume)");
+        BakeOptions o = a.bakeOptions;
+        o.threads = a.threads;
+        bakeLighting(s.tree, o, &s.bake);
+        log::debug("lighting baked in " + std::to_string(s.bake.bakeMs) + " ms (" + std::to_string(s.bake.rays) + " rays)");
+    }
     s.report.boundaryVoxels = countVoxels(s.tree).boundary;
     s.report.nodes = s.tree.nodes.size();
 }
@@ -176,6 +183,39 @@ void addFormOptions(OptionParser& p, SurfaceArgs& a) {
            [&](const std::string& v) { a.cuts.push_back(parseSolid(v)); }});
     p.add({"clip", "", "keep only what lies inside the --cut solids instead of cutting them away (default off)",
            [&](const std::string&) { a.clip = true; }});
+}
+
+void addBakeOptions(OptionParser& p, SurfaceArgs& a) {
+    p.add({"bake", "", "bake diffuse lighting, shadows and ambient occlusion into the shell (default off)",
+           [&](const std::string&) { a.bake = true; }});
+    p.add({"bake-light", "dir:X,Y,Z[,I]|point:X,Y,Z[,I]", "a light to bake, world direction towards it or position, "
+           "intensity I (default 1); repeatable (default one dir:0.3,-0.5,1)",
+           [&](const std::string& v) {
+               if (!a.bakeLightGiven) a.bakeOptions.lights.clear();
+               a.bakeLightGiven = true;
+               a.bakeOptions.lights.push_back(parseBakeLight(v));
+           }});
+    p.add({"bake-ao", "N", "ambient-occlusion rays per side of the surface, 0 = none (default 8)",
+           [&](const std::string& v) { a.bakeOptions.aoRays = parseInt("bake-ao", v, 0, 1024); }});
+    p.add({"bake-ao-distance", "D", "how far an occluder darkens, world units (default: 1/8 of the octree's cube)",
+           [&](const std::string& v) {
+               a.bakeOptions.aoDistance = parseNumber("bake-ao-distance", v);
+               if (!(a.bakeOptions.aoDistance > 0.0)) throw UsageError("--bake-ao-distance: must be positive, got " + v);
+           }});
+    p.add({"bake-shadows", "on|off", "hard shadows from the baked lights (default on)",
+           [&](const std::string& v) {
+               if (v != "on" && v != "off") throw UsageError("--bake-shadows: expected on or off, got '" + v + "'");
+               a.bakeOptions.shadows = v == "on";
+           }});
+}
+
+void addLightingOption(OptionParser& p, SurfaceArgs& a) {
+    p.add({"lighting", "baked|dynamic", "shade by the octree's baked light (baking it first when it has none) or by the "
+           "normals and --light (default: baked when the octree has it, else dynamic)",
+           [&](const std::string& v) {
+               if (v != "baked" && v != "dynamic") throw UsageError("--lighting: expected baked or dynamic, got '" + v + "'");
+               a.lighting = v == "baked" ? SurfaceArgs::Lighting::Baked : SurfaceArgs::Lighting::Dynamic;
+           }});
 }
 
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result) {

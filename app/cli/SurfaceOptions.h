@@ -8,6 +8,7 @@
 #include "octrace/build/OctreeBuilder.h"
 #include "octrace/build/ScalarField.h"
 #include "octrace/csg/Solid.h"
+#include "octrace/lighting/Bake.h"
 #include "octrace/io/FieldRequest.h"
 #include "octrace/octree/Octree.h"
 #include "octrace/render/RenderSettings.h"
@@ -41,6 +42,10 @@ struct SurfaceArgs {
     bool keepVolume = false;  // set by the command: buildSurface keeps a volume octree as it is (build, csg)
     std::vector<Solid> cuts;  // --cut, in order
     bool clip = false;        // --clip: keep the inside of the cuts instead
+    bool bake = false;        // --bake: bake lighting into the shell
+    BakeOptions bakeOptions;  // --bake-light, --bake-ao, --bake-ao-distance, --bake-shadows
+    bool bakeLightGiven = false;
+    enum class Lighting { Auto, Baked, Dynamic } lighting = Lighting::Auto;  // --lighting (render)
 };
 
 /// "a, b, c".
@@ -57,6 +62,10 @@ void addSurfaceOptions(OptionParser& p, SurfaceArgs& a);
 void addInsideOption(OptionParser& p, SurfaceArgs& a, const std::string& applies);
 /// --form shell|volume, --inside above|below, --cut SOLID, --clip.
 void addFormOptions(OptionParser& p, SurfaceArgs& a);
+/// --bake, --bake-light, --bake-ao, --bake-ao-distance, --bake-shadows.
+void addBakeOptions(OptionParser& p, SurfaceArgs& a);
+/// --lighting baked|dynamic.
+void addLightingOption(OptionParser& p, SurfaceArgs& a);
 /// --threads; `result` names what does not depend on it ("the image").
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result);
 /// --colour, --color, --colormap, --window.
@@ -91,6 +100,7 @@ struct Surface {
     ValueWindow window;
     bool invertedGrey = false;
     std::string windowSource;  ///< where the window comes from, for messages and stats
+    BakeReport bake;           ///< when lighting was baked here
 };
 
 /// Applies --quiet / --verbose to the log. An octree file (.oct) is read as it is (options that
@@ -103,8 +113,10 @@ struct Surface {
 /// within memoryBudget(a): a read or build that would need more is refused (LimitError). With
 /// --cut the volume form is built (an octree file must hold one: InputError otherwise) and
 /// each solid is subtracted from it (--clip: intersected with it; the result has no voxel
-/// values). A volume octree becomes its shell (extractShell) unless a.keepVolume. Throws as
-/// loadField(), buildOctree() and csg().
+/// values). A volume octree becomes its shell (extractShell) unless a.keepVolume. With
+/// --bake, or --lighting baked on an octree without baked light, the shell's lighting is baked
+/// (lighting/Bake.h; UsageError for a kept volume). Throws as loadField(), buildOctree(),
+/// csg() and bakeLighting().
 Surface buildSurface(const SurfaceArgs& a);
 
 /// The colour options as RenderSettings::colour (linear RGB), RenderSettings::colormap and the

@@ -44,7 +44,7 @@ vec3 decodeNormal(std::uint32_t code) {
 
 std::size_t Octree::bytes() const {
     return nodes.capacity() * sizeof(OctreeNode) + voxels.capacity() * sizeof(Voxel) +
-           summaries.capacity() * sizeof(NodeSummary) + voxelValues.capacity() * sizeof(float);
+           summaries.capacity() * sizeof(NodeSummary) + voxelValues.capacity() * sizeof(float) + baked.capacity();
 }
 
 void Octree::computeSummaries() {
@@ -124,6 +124,7 @@ void Octree::validate() const {
     if (nodes.empty()) fail("no root node");
     if (!(cubeSide > 0.0)) fail("cube side not positive");
     if (!voxelValues.empty() && voxelValues.size() != voxels.size()) fail("voxel values do not match the voxels");
+    if (!baked.empty() && baked.size() != voxels.size()) fail("baked light does not match the voxels");
     std::vector<std::uint8_t> seenNode(nodes.size(), 0), seenVoxel(voxels.size(), 0);
     struct Item { std::uint32_t node; int level; };
     std::vector<Item> stack{{0u, 0}};

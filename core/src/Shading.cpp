@@ -74,9 +74,11 @@ Shader::Shader(const Octree& tree, const Camera& camera, const RenderSettings& s
     if (!(glm::length(l) > 0.0)) l = dvec3(0.4, 0.6, 1.0);
     l = glm::normalize(l);
     light_ = vec3(glm::normalize(l.x * right + l.y * up + l.z * back));
+    if (settings.baked && !tree.baked.empty() && tree.baked.size() == tree.voxels.size()) baked_ = &tree.baked;
 }
 
 vec4 Shader::shade(std::uint32_t voxel, const ivec3& cell) const {
+    if (baked_) return vec4(albedo_.at(voxel, float(cell.z) + 0.5f) * (float((*baked_)[voxel]) * (1.0f / 255.0f)), 1.0f);
     return shadeNormal(decodeNormal(tree_.voxels[voxel].normal), voxel, float(cell.z) + 0.5f);
 }
 

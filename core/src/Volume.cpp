@@ -74,6 +74,7 @@ Octree copyOctree(const Octree& tree) {
     t.nodes = tree.nodes;
     t.voxels = tree.voxels;
     t.voxelValues = tree.voxelValues;
+    t.baked = tree.baked;
     t.summaries = tree.summaries;
     return t;
 }

@@ -96,6 +96,9 @@ public:
     /// which a display window colours by (RenderSettings::window). Filled when the build asks
     /// for it (BuildOptions::voxelValues); empty otherwise (and in octree files).
     std::vector<float> voxelValues;
+    /// Per voxel (same index as `voxels`), baked diffuse light 0..255 = 0..1 (lighting/Bake.h);
+    /// empty when none was baked. Shell form only.
+    std::vector<std::uint8_t> baked;
     /// Per node (same index as `nodes`), filled by computeSummaries(); empty until then.
     std::vector<NodeSummary> summaries;
 

@@ -14,6 +14,10 @@ struct RenderSettings {
     dvec3 lightCamera{0.4, 0.6, 1.0};      ///< direction towards the light, camera space (normalised on use)
     float ambient = 0.15f;
     float diffuse = 0.85f;
+    /// Shade voxels by their baked light (Octree::baked, lighting/Bake.h) when the octree has
+    /// it: albedo x baked / 255, no normal decoded; else (and for inner nodes drawn whole by
+    /// multi-resolution) two-sided Lambert from the normal and lightCamera.
+    bool baked = true;
     std::string colormap;                  ///< empty: uniform colour; else colour by height (see docs)
     /// When valid, and the octree has voxel values (Octree::voxelValues), each voxel is grey
     /// by the window applied to its value (instead of `colour` or the colour map);

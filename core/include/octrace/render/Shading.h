@@ -45,7 +45,8 @@ private:
 class Shader {
 public:
     Shader(const Octree& tree, const Camera& camera, const RenderSettings& settings);
-    /// Two-sided Lambert: ambient + diffuse * |n . l|, times the surface colour.
+    /// Two-sided Lambert: ambient + diffuse * |n . l|, times the surface colour; or the baked
+    /// light times the surface colour (RenderSettings::baked).
     vec4 shade(std::uint32_t voxel, const ivec3& cell) const;
     /// Distance from the camera along the (unit) ray to where it enters the voxel's box.
     float distance(const Ray& ray, const ivec3& cell) const;
@@ -64,6 +65,7 @@ private:
     const RenderSettings& settings_;
     vec3 light_;
     Albedo albedo_;
+    const std::vector<std::uint8_t>* baked_ = nullptr;  // RenderSettings::baked and the octree has it
 };
 
 }  // namespace octrace
