@@ -29,6 +29,7 @@ OptionParser makeParser(BuildArgs& a) {
     addFormOptions(p, a);
     addBakeOptions(p, a);
     addOctreeFileOptions(p, a);
+    addCityOptions(p, a);
     return p;
 }
 

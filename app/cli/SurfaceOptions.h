@@ -7,6 +7,7 @@
 #include "octrace/build/CtPresets.h"
 #include "octrace/build/OctreeBuilder.h"
 #include "octrace/build/ScalarField.h"
+#include "octrace/io/CityReader.h"
 #include "octrace/csg/Solid.h"
 #include "octrace/lighting/Bake.h"
 #include "octrace/io/FieldRequest.h"
@@ -36,6 +37,8 @@ struct SurfaceArgs {
     std::string colormap;
     bool help = false, quiet = false, verbose = false;
     std::uint64_t maxMemory = 0;  // --max-memory; 0: defaultMemoryBudget()
+    io::CityRequest city;         // --lod-select, --crs, --dem, --texture (city inputs)
+    bool cityGiven = false;       // one of them was given
     OctreeForm form = OctreeForm::Shell;  // --form
     bool insideBelow = false;             // --inside below
     bool formGiven = false;               // --form or --inside given
@@ -74,6 +77,8 @@ void addColourOptions(OptionParser& p, SurfaceArgs& a);
 void addGeographicOptions(OptionParser& p, io::FieldRequest& request);
 /// The first option of `request` that chooses part of a field ("--var", "--region", ...), or null.
 const char* fieldOptionGiven(const io::FieldRequest& request);
+/// --lod-select, --crs, --dem, --texture (city inputs).
+void addCityOptions(OptionParser& p, SurfaceArgs& a);
 /// --series (DICOM).
 void addSeriesOption(OptionParser& p, io::FieldRequest& request);
 /// --max-memory, --quiet, --verbose, --help.
@@ -103,7 +108,9 @@ struct Surface {
     BakeReport bake;           ///< when lighting was baked here
 };
 
-/// Applies --quiet / --verbose to the log. An octree file (.oct) is read as it is (options that
+/// Applies --quiet / --verbose to the log. A city input (CityJSON) is read into one projected
+/// CRS and voxelized (CityVoxelizer.h) with its per-voxel colours; --var and --iso are refused.
+/// An octree file (.oct) is read as it is (options that
 /// choose the field or the depth are refused: UsageError).
 /// Otherwise reads a.input, chooses the iso value when none was
 /// given (the middle of the valid range, said on stderr) or resolves a preset (--iso skin:

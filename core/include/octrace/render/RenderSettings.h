@@ -19,6 +19,9 @@ struct RenderSettings {
     /// multi-resolution) two-sided Lambert from the normal and lightCamera.
     bool baked = true;
     std::string colormap;                  ///< empty: uniform colour; else colour by height (see docs)
+    /// Use the octree's per-voxel colours (Octree::colours) when it has them and no colour
+    /// map is set; false: the uniform colour.
+    bool voxelColours = true;
     /// When valid, and the octree has voxel values (Octree::voxelValues), each voxel is grey
     /// by the window applied to its value (instead of `colour` or the colour map);
     /// `invertedGrey`: low values bright (DICOM MONOCHROME1).
