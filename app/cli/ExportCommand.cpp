@@ -41,6 +41,7 @@ OptionParser makeParser(ExportArgs& a) {
     addColourOptions(p, a);
     addLayerOptions(p, a);
     addGeographicOptions(p, a.request);
+    addCityOptions(p, a);
     addSeriesOption(p, a.request);
     addMessageOptions(p, a);
     return p;

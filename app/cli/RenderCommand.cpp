@@ -67,6 +67,8 @@ OptionParser makeParser(RenderArgs& a) {
            [&](const std::string& v) { a.output = v; }});
     addSurfaceOptions(p, a);
     addFormOptions(p, a);
+    addLightingOption(p, a);
+    addBakeOptions(p, a);
     p.add({"renderer", "NAME", "renderer: " + joinNames(rendererNames()) + " (default full)",
            [&](const std::string& v) {
                makeRenderer(v);  // validates the name
@@ -127,6 +129,7 @@ OptionParser makeParser(RenderArgs& a) {
                a.colourTolerance = float(t);
            }});
     addGeographicOptions(p, a.request);
+    addCityOptions(p, a);
     addSeriesOption(p, a.request);
     p.add({"repeat", "N", "render N times and report the fastest as render_ms (benchmarks on a noisy machine; default 1)",
            [&](const std::string& v) { a.repeat = parseInt("repeat", v, 1, 1000); }});
@@ -448,6 +451,7 @@ int runRender(const std::vector<std::string>& args) {
     rs.background = displayToLinear(a.background);
     applyColour(a, surface, rs);
     if (a.light) rs.lightCamera = *a.light;
+    rs.baked = a.lighting != SurfaceArgs::Lighting::Dynamic;
     rs.colourCoherence = a.colourCoherence;
     rs.colourTolerance = a.colourTolerance;
     rs.colourFillsBackground = a.colourFillsBackground;
@@ -497,6 +501,8 @@ int runRender(const std::vector<std::string>& args) {
     js.set("hits", st.hits);
     js.set("load_ms", loadMs);
     js.set("build_ms", report.buildMs);
+    js.set("lighting", std::string(rs.baked && !tree.baked.empty() ? "baked" : "dynamic"));
+    js.set("bake_ms", surface.bake.bakeMs);
     js.set("render_ms", st.renderMs);
     setRepeatStats(js, a, rep);
     // A direct renderer traces no rays: no figure per ray (null), its footprints instead.

@@ -70,6 +70,7 @@ std::string defaultColormap(const std::string& standardName, const std::string& 
 Albedo::Albedo(const Octree& tree, const RenderSettings& settings)
     : tree_(tree), colour_(settings.colour), masked_(settings.maskedColour), floor_(settings.floorColour),
       window_(settings.window), inverted_(settings.invertedGrey), colormap_(settings.colormap) {
+    for (int i = 0; i < 256; ++i) linear_[i] = srgbToLinear(float(i) / 255.0f);
     const bool hasValues = !tree.voxelValues.empty() && tree.voxelValues.size() == tree.voxels.size();
     if (hasValues && window_.valid()) {
         values_ = &tree.voxelValues;
@@ -89,7 +90,10 @@ Albedo::Albedo(const Octree& tree, const RenderSettings& settings)
         lo_ = std::isnan(settings.colourMin) ? lo : settings.colourMin;
         hi_ = std::isnan(settings.colourMax) ? hi : settings.colourMax;
     }
-    if (colormap_.empty()) return;
+    if (colormap_.empty()) {
+        if (tree.hasColours() && settings.voxelColours) colours_ = &tree.colours;
+        return;
+    }
     colormap(colormap_, 0.0f);  // validate the name once
     ivec3 lo, hi;
     tree.occupiedCells(lo, hi);
@@ -105,6 +109,10 @@ vec3 Albedo::at(std::uint32_t voxel, float zCells) const {
         if (std::isnan(v)) return masked_;
         return colormap(colormap_, hi_ != lo_ ? (v - lo_) / (hi_ - lo_) : 0.5f);
     }
+    if (colours_) {
+        const std::uint32_t c = (*colours_)[voxel];
+        return vec3(linear_[c & 0xFFu], linear_[(c >> 8) & 0xFFu], linear_[(c >> 16) & 0xFFu]);
+    }
     if (colormap_.empty()) return colour_;
     // Colour by height (world z) over the surface's extent.
     const float t = (zCells - float(zLo_)) / float(zHi_ - zLo_ + 1);
@@ -119,21 +127,23 @@ Shader::Shader(const Octree& tree, const Camera& camera, const RenderSettings& s
     if (!(glm::length(l) > 0.0)) l = dvec3(0.4, 0.6, 1.0);
     l = glm::normalize(l);
     light_ = vec3(glm::normalize(l.x * right + l.y * up + l.z * back));
+    if (settings.baked && !tree.baked.empty() && tree.baked.size() == tree.voxels.size()) baked_ = &tree.baked;
 }
 
 vec4 Shader::shade(std::uint32_t voxel, const ivec3& cell) const {
-    return shadeNormal(decodeNormal(tree_.voxels[voxel].normal), albedo_.at(voxel, float(cell.z) + 0.5f));
+    if (baked_) return vec4(albedo_.at(voxel, float(cell.z) + 0.5f) * (float((*baked_)[voxel]) * (1.0f / 255.0f)), 1.0f);
+    return shadeNormal(decodeNormal(tree_.voxels[voxel].normal), voxel, float(cell.z) + 0.5f);
 }
 
 vec4 Shader::shadeNode(std::uint32_t node) const {
     const NodeSummary& s = tree_.summaries[node];
-    return shadeNormal(decodeNormal(s.normal), albedo_.at(s.firstVoxel, s.meanZ));
+    return shadeNormal(decodeNormal(s.normal), s.firstVoxel, s.meanZ);
 }
 
-vec4 Shader::shadeNormal(vec3 n, vec3 albedo) const {
+vec4 Shader::shadeNormal(vec3 n, std::uint32_t voxel, float zCells) const {
     float lambert = std::abs(glm::dot(n, light_));
     float intensity = settings_.ambient + settings_.diffuse * lambert;
-    return vec4(albedo * intensity, 1.0f);
+    return vec4(albedo_.at(voxel, zCells) * intensity, 1.0f);
 }
 
 float Shader::distance(const Ray& ray, const ivec3& cell) const { return distanceToBox(ray, tree_.voxelBox(cell)); }

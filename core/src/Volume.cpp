@@ -66,6 +66,7 @@ Octree emptyOctreeLike(const Octree& tree) {
     t.iso = tree.iso;
     t.insideBelow = tree.insideBelow;
     t.source = tree.source;
+    t.crs = tree.crs;
     return t;
 }
 
@@ -74,7 +75,9 @@ Octree copyOctree(const Octree& tree) {
     t.nodes = tree.nodes;
     t.voxels = tree.voxels;
     t.voxelValues = tree.voxelValues;
+    t.baked = tree.baked;
     t.summaries = tree.summaries;
+    t.colours = tree.colours;
     return t;
 }
 

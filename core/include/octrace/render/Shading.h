@@ -27,11 +27,13 @@ std::string defaultColormap(const std::string& standardName, const std::string& 
 ///  - VoxelMaterial::Floor voxels: RenderSettings::floorColour;
 ///  - with Octree::voxelValues and a display window (RenderSettings::window): the window's
 ///    grey of the voxel's value;
-///  - with Octree::voxelValues, no window and a colour map: the map's colour for the voxel's value
-///    over [colourMin, colourMax] (NaN ends: the surface voxels' own range), maskedColour for
-///    NaN;
-///  - otherwise RenderSettings::colour, or with a colour map its colour for the height, from
-///    the lowest to the highest boundary voxel.
+///  - with Octree::voxelValues, no window and a colour map: the map's colour for the voxel's
+///    value over [colourMin, colourMax] (NaN ends: the surface voxels' own range), maskedColour
+///    for NaN;
+///  - else with a colour map the map's colour for the height, from the lowest to the highest
+///    boundary voxel;
+///  - else the voxel's own colour when the octree has per-voxel colours (Octree::colours) and
+///    RenderSettings::voxelColours is set; else RenderSettings::colour.
 /// Shared by Shader and the surfel export (Surfels.h), so that both colour a voxel alike.
 /// Thread-safe once constructed.
 class Albedo {
@@ -51,6 +53,8 @@ public:
 private:
     const Octree& tree_;
     vec3 colour_, masked_, floor_;
+    const std::vector<std::uint32_t>* colours_ = nullptr;  // the octree's per-voxel colours, or null
+    float linear_[256];  // sRGB byte -> linear
     const std::vector<float>* values_ = nullptr;  // the octree's voxel values (window or colour map)
     ValueWindow window_;
     bool inverted_ = false;
@@ -63,7 +67,8 @@ private:
 class Shader {
 public:
     Shader(const Octree& tree, const Camera& camera, const RenderSettings& settings);
-    /// Two-sided Lambert: ambient + diffuse * |n . l|, times the surface colour.
+    /// Two-sided Lambert: ambient + diffuse * |n . l|, times the surface colour; or the baked
+    /// light times the surface colour (RenderSettings::baked).
     vec4 shade(std::uint32_t voxel, const ivec3& cell) const;
     /// Distance from the camera along the (unit) ray to where it enters the voxel's box.
     float distance(const Ray& ray, const ivec3& cell) const;
@@ -76,12 +81,13 @@ public:
     float distance(const Ray& ray, const TraversalHit& hit) const;
 
 private:
-    vec4 shadeNormal(vec3 n, vec3 albedo) const;
+    vec4 shadeNormal(vec3 n, std::uint32_t voxel, float zCells) const;
     float distanceToBox(const Ray& ray, const Box3& b) const;
     const Octree& tree_;
     const RenderSettings& settings_;
     vec3 light_;
     Albedo albedo_;
+    const std::vector<std::uint8_t>* baked_ = nullptr;  // RenderSettings::baked and the octree has it
 };
 
 }  // namespace octrace
