@@ -174,7 +174,8 @@ FigureLayout layoutFigure(int width, int height, int dpi, bool colourBar) {
     const int m = int(std::lround(0.8 * l.labelPx));
     l.plotX = m;
     l.plotY = m + int(std::lround(1.5 * l.titlePx + 1.5 * l.labelPx));
-    const int panel = colourBar ? int(std::lround(9.0 * l.labelPx)) : 0;
+    // The panel leaves room left of the bar for tick labels on the box's right edges.
+    const int panel = colourBar ? int(std::lround(12.0 * l.labelPx)) : 0;
     l.plotW = width - l.plotX - m - panel;
     l.plotH = height - l.plotY - m;
     if (l.plotW < 16 || l.plotH < 16) {
@@ -185,7 +186,7 @@ FigureLayout layoutFigure(int width, int height, int dpi, bool colourBar) {
     }
     if (colourBar) {
         l.barW = int(std::lround(1.2 * l.labelPx));
-        l.barX = l.plotX + l.plotW + int(std::lround(1.2 * l.labelPx));
+        l.barX = l.plotX + l.plotW + int(std::lround(4.2 * l.labelPx));
         l.barY = l.plotY + int(std::lround(2.0 * l.labelPx));
         l.barH = std::max(8, l.plotH - int(std::lround(3.0 * l.labelPx)));
     }
