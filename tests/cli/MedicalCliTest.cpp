@@ -128,6 +128,10 @@ TEST(MedicalCli, TheWindowStoredInTheFileColoursTheSurfaceUnlessAColourIsGiven) 
     EXPECT_TRUE(has(render(ct, {"--window", "10,20"}).second, "\"window_source\": \"--window 10,20\""));
     EXPECT_FALSE(has(render(ct, {"--colour", "1,0,0"}).second, "window_centre"));
     EXPECT_FALSE(has(render(ct, {"--window", "none"}).second, "window_centre"));
+    // octrace build colours nothing: the file's window is not applied (nor announced).
+    Result built = run({"build", ct, "--iso", "-200", "-o", s.path("ct.oct")});
+    EXPECT_EQ(built.code, 0) << built.err;
+    EXPECT_FALSE(has(built.err, "display window")) << built.err;
 }
 
 // The real gantry-tilted CT: one warning line naming the tilt, and the geometry of the
