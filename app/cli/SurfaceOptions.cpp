@@ -2,7 +2,10 @@
 
 #include "Input.h"
 
+#include "octrace/build/Layers.h"
+#include "octrace/build/CityVoxelizer.h"
 #include "octrace/build/Volume.h"
+#include "octrace/csg/Csg.h"
 #include "octrace/render/Shading.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
@@ -14,6 +17,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <optional>
 #include <sstream>
 
 namespace octrace::cli {
@@ -55,7 +59,7 @@ void chooseWindow(const SurfaceArgs& a, Surface& s) {
         if (ctWindowPreset(a.windowName)) requireHounsfield(s.field, a.input, "--window " + a.windowName);
         s.window = a.window;
         s.windowSource = "--window " + a.windowName;
-    } else if (!a.colourGiven && a.colormap.empty() && s.field.window.valid()) {
+    } else if (!a.colourGiven && a.colormap.empty() && a.colourBy.empty() && s.field.window.valid()) {
         s.window = s.field.window;
         s.windowSource = "the file's display window";
         std::ostringstream m;
@@ -80,20 +84,65 @@ void loadOctreeSurface(const SurfaceArgs& a, std::uint64_t budget, Surface& s) {
                         : !a.windowName.empty()         ? "--window"
                         : a.depthGiven                  ? "--depth"
                         : a.formGiven                   ? "--form/--inside"
+                        : !a.colourBy.empty()           ? "--colour-by"
+                        : a.floor                       ? "--floor"
                                                         : fieldOptionGiven(a.request);
     if (given)
         throw UsageError(std::string(given) + " does not apply to the octree file " + a.input +
                          " (its field, iso value and depth were fixed when it was built: see octrace info)");
     Timer t;
     s.tree = loadOctree(a.input, budget);
-    if (!a.keepVolume) s.tree = extractShell(s.tree);
     s.loadMs = t.ms();
+    if (!a.cuts.empty() && s.tree.form != OctreeForm::Volume)
+        throw InputError(a.input + ": a shell octree cannot be cut (--cut needs the volume form: octrace build --form volume)");
     s.iso = s.tree.iso;
     s.field.name = s.tree.fieldName;
     s.field.units = s.tree.fieldUnits;
     s.field.source = a.input;
-    s.report.boundaryVoxels = s.tree.voxels.size();
+}
+
+/// The cuts (--cut, --clip), then the shell unless the command keeps the volume.
+void finishSurface(const SurfaceArgs& a, Surface& s) {
+    if (!a.cuts.empty()) {
+        Timer t;
+        for (const Solid& cut : a.cuts)
+            s.tree = csg(CsgOperand::of(s.tree), a.clip ? CsgOp::Intersection : CsgOp::Difference, CsgOperand::of(cut));
+        log::debug("cuts applied in " + std::to_string(t.ms()) + " ms");
+        s.report.buildMs += t.ms();
+    }
+    if (!a.keepVolume) s.tree = extractShell(s.tree);
+    if (a.bake || (a.lighting == SurfaceArgs::Lighting::Baked && s.tree.baked.empty())) {
+        if (s.tree.form != OctreeForm::Shell) throw UsageError("--bake applies to the shell form (not with --form volume)");
+        BakeOptions o = a.bakeOptions;
+        o.threads = a.threads;
+        bakeLighting(s.tree, o, &s.bake);
+        log::debug("lighting baked in " + std::to_string(s.bake.bakeMs) + " ms (" + std::to_string(s.bake.rays) + " rays)");
+    }
+    s.report.boundaryVoxels = countVoxels(s.tree).boundary;
     s.report.nodes = s.tree.nodes.size();
+}
+
+/// buildSurface for a city input: the model read and voxelized; the field empty but for its name.
+void buildCitySurface(const SurfaceArgs& a, Surface& s) {
+    const char* given = a.iso ? "--iso" : a.formGiven ? "--form/--inside" : !a.cuts.empty() ? "--cut" : !a.isoPreset.empty() ? "--iso"
+                        : a.window.valid() ? "--window" : fieldOptionGiven(a.request);
+    if (given)
+        throw UsageError(std::string(given) + " does not apply to the city input " + a.input +
+                         " (its buildings and terrain are voxelized as surfaces)");
+    Timer t;
+    io::CityRequest request = a.city;
+    request.maxSamples = (1 << std::min(a.depth, 12)) + 1;  // the octree resolves no finer
+    const CityModel model = io::readCityModel(a.input, request);
+    s.loadMs = t.ms();
+    for (const auto& n : model.notes) log::warning(n);
+    CityBuildOptions o;
+    o.depth = a.depth;
+    o.threads = a.threads;
+    s.tree = voxelizeCity(model, o, &s.report);
+    s.field.name = s.tree.fieldName;
+    s.field.source = a.input;
+    s.tree.source = a.input + " (" + std::to_string(model.objects.size()) + " objects, " + std::to_string(model.triangles.size()) +
+                    " triangles, CRS " + (model.crs.empty() ? std::string("none") : model.crs) + ")";
 }
 
 /// What an octree was made from, for its file's header: input, variable, the reader's notes.
@@ -101,6 +150,19 @@ std::string sourceDescription(const std::string& input, const ScalarField& f) {
     std::string s = input + ", variable " + f.name;
     for (const auto& n : f.notes) s += "; " + n;
     return s;
+}
+
+/// --colour-by: the second variable, read with the same request (region, depth range, time)
+/// and checked to lie on the field's grid.
+ScalarField loadColourBy(const SurfaceArgs& a, const io::FieldRequest& request, const ScalarField& field) {
+    io::FieldRequest second = request;
+    second.variable = a.colourBy;
+    ScalarField by = loadField(a.input, second, a.depth);
+    if (by.dims != field.dims || by.origin != field.origin || by.spacing != field.spacing || by.coords != field.coords ||
+        by.direction != field.direction)
+        throw InputError(a.input + ": --colour-by " + a.colourBy + " is not on the grid of '" + field.name +
+                         "' (both variables must share their coordinates)");
+    return by;
 }
 
 }  // namespace
@@ -140,6 +202,15 @@ void addSurfaceOptions(OptionParser& p, SurfaceArgs& a) {
            }});
 }
 
+void addInsideOption(OptionParser& p, SurfaceArgs& a, const std::string& applies) {
+    p.add({"inside", "above|below", applies + ": the solid is where the value is >= iso (above) or < iso (below) (default above)",
+           [&](const std::string& v) {
+               if (v != "above" && v != "below") throw UsageError("--inside: expected above or below, got '" + v + "'");
+               a.insideBelow = v == "below";
+               a.formGiven = true;
+           }});
+}
+
 void addFormOptions(OptionParser& p, SurfaceArgs& a) {
     p.add({"form", "shell|volume", "octree form: the isosurface's boundary voxels (shell), or the solid it bounds with its "
            "interior and caps where the grid ends (volume) (default shell)",
@@ -148,11 +219,44 @@ void addFormOptions(OptionParser& p, SurfaceArgs& a) {
                a.form = v == "volume" ? OctreeForm::Volume : OctreeForm::Shell;
                a.formGiven = true;
            }});
-    p.add({"inside", "above|below", "volume form: the solid is where the value is >= iso (above) or < iso (below) (default above)",
+    addInsideOption(p, a, "volume form");
+    p.add({"cut", "SOLID", "cut a solid away: box:X0,Y0,Z0,X1,Y1,Z1, sphere:X,Y,Z,R, cylinder:X0,Y0,Z0,X1,Y1,Z1,R or "
+           "halfspace:X,Y,Z,NX,NY,NZ in world units; repeatable; builds the volume form (default: none)",
+           [&](const std::string& v) { a.cuts.push_back(parseSolid(v)); }});
+    p.add({"clip", "", "keep only what lies inside the --cut solids instead of cutting them away (default off)",
+           [&](const std::string&) { a.clip = true; }});
+}
+
+void addBakeOptions(OptionParser& p, SurfaceArgs& a) {
+    p.add({"bake", "", "bake diffuse lighting, shadows and ambient occlusion into the shell (default off)",
+           [&](const std::string&) { a.bake = true; }});
+    p.add({"bake-light", "dir:X,Y,Z[,I]|point:X,Y,Z[,I]", "a light to bake, world direction towards it or position, "
+           "intensity I (default 1); repeatable (default one dir:0.3,-0.5,1)",
            [&](const std::string& v) {
-               if (v != "above" && v != "below") throw UsageError("--inside: expected above or below, got '" + v + "'");
-               a.insideBelow = v == "below";
-               a.formGiven = true;
+               if (!a.bakeLightGiven) a.bakeOptions.lights.clear();
+               a.bakeLightGiven = true;
+               a.bakeOptions.lights.push_back(parseBakeLight(v));
+           }});
+    p.add({"bake-ao", "N", "ambient-occlusion rays per side of the surface, 0 = none (default 8)",
+           [&](const std::string& v) { a.bakeOptions.aoRays = parseInt("bake-ao", v, 0, 1024); }});
+    p.add({"bake-ao-distance", "D", "how far an occluder darkens, world units (default: 1/8 of the octree's cube)",
+           [&](const std::string& v) {
+               a.bakeOptions.aoDistance = parseNumber("bake-ao-distance", v);
+               if (!(a.bakeOptions.aoDistance > 0.0)) throw UsageError("--bake-ao-distance: must be positive, got " + v);
+           }});
+    p.add({"bake-shadows", "on|off", "hard shadows from the baked lights (default on)",
+           [&](const std::string& v) {
+               if (v != "on" && v != "off") throw UsageError("--bake-shadows: expected on or off, got '" + v + "'");
+               a.bakeOptions.shadows = v == "on";
+           }});
+}
+
+void addLightingOption(OptionParser& p, SurfaceArgs& a) {
+    p.add({"lighting", "baked|dynamic", "shade by the octree's baked light (baking it first when it has none) or by the "
+           "normals and --light (default: baked when the octree has it, else dynamic)",
+           [&](const std::string& v) {
+               if (v != "baked" && v != "dynamic") throw UsageError("--lighting: expected baked or dynamic, got '" + v + "'");
+               a.lighting = v == "baked" ? SurfaceArgs::Lighting::Baked : SurfaceArgs::Lighting::Dynamic;
            }});
 }
 
@@ -163,7 +267,7 @@ void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result
 
 void addColourOptions(OptionParser& p, SurfaceArgs& a) {
     a.colours = true;
-    p.add({"colour", "R,G,B", "surface colour, sRGB components in [0,1] (default 0.85,0.62,0.35)",
+    p.add({"colour", "R,G,B", "surface colour, sRGB components in [0,1], also over a city's own colours (default 0.85,0.62,0.35; city inputs: per object and texture)",
            [&](const std::string& v) {
                a.colour = vec3(parseColour("colour", v, false));
                a.colourGiven = true;
@@ -178,13 +282,39 @@ void addColourOptions(OptionParser& p, SurfaceArgs& a) {
                    huText(w.window.width);
     p.add({"window", "NAME|C,W|none", "grey the surface by a display window applied to the value just under it: a CT preset "
            "(centre/width in HU: " + windows + "), a centre and width, or none (default: the window stored in a DICOM file, "
-           "unless --colour or --colormap is given)",
+           "unless --colour, --colormap or --colour-by is given)",
            [&](const std::string& v) { a.windowName = v, a.window = parseWindow(v); }});
-    p.add({"colormap", "NAME", "colour the surface by height with a map: " + joinNames(colormapNames()) + " (default: none, --colour)",
+    p.add({"colormap", "NAME", "colour map: " + joinNames(colormapNames()) + "; colours by --colour-by's variable, else by height "
+           "(default: with --colour-by the variable's map from its standard_name or name, thermal/haline/speed/viridis; else none, --colour)",
            [&](const std::string& v) {
                colormap(v, 0.0f);
                a.colormap = v;
            }});
+    p.add({"colour-range", "MIN,MAX", "values of --colour-by mapped onto the colour map's ends (default: the surface voxels' range)",
+           [&](const std::string& v) {
+               const std::size_t comma = v.find(',');
+               if (comma == std::string::npos || v.find(',', comma + 1) != std::string::npos)
+                   throw UsageError("--colour-range: expected MIN,MAX, got '" + v + "'");
+               const double lo = parseNumber("colour-range", v.substr(0, comma)), hi = parseNumber("colour-range", v.substr(comma + 1));
+               if (!(lo < hi) || !std::isfinite(lo) || !std::isfinite(hi) || std::abs(lo) > 3e38 || std::abs(hi) > 3e38)
+                   throw UsageError("--colour-range: MIN must be below MAX, both finite, got '" + v + "'");
+               a.colourMin = float(lo);
+               a.colourMax = float(hi);
+           }});
+    p.add({"masked-colour", "R,G,B", "colour of surface voxels where --colour-by's variable is masked, sRGB in [0,1] (default 0.6,0.6,0.6)",
+           [&](const std::string& v) { a.maskedColour = vec3(parseColour("masked-colour", v, false)); }});
+    p.add({"floor-colour", "R,G,B", "colour of the sea floor and land (--floor), sRGB in [0,1] (default 0.55,0.5,0.45)",
+           [&](const std::string& v) { a.floorColour = vec3(parseColour("floor-colour", v, false)); }});
+}
+
+void addLayerOptions(OptionParser& p, SurfaceArgs& a) {
+    p.add({"colour-by", "VAR", "colour the isosurface by a second variable of the same file, sampled at each voxel (default: none)",
+           [&](const std::string& v) {
+               if (v.empty()) throw UsageError("--colour-by: empty variable name");
+               a.colourBy = v;
+           }});
+    p.add({"floor", "", "also draw the sea floor and land where the variable is masked, under the isosurface (default off)",
+           [&](const std::string&) { a.floor = true; }});
 }
 
 void addGeographicOptions(OptionParser& p, io::FieldRequest& request) {
@@ -211,6 +341,35 @@ void addGeographicOptions(OptionParser& p, io::FieldRequest& request) {
            [&](const std::string& v) {
                request.verticalScale = parseNumber("vertical-scale", v);
                if (!(request.verticalScale > 0.0)) throw UsageError("--vertical-scale: must be positive, got " + v);
+           }});
+}
+
+void addCityOptions(OptionParser& p, SurfaceArgs& a) {
+    p.add({"lod-select", "LOD", "city inputs: level of detail to voxelize, e.g. 1, 2 or 2.2 (a prefix takes its sublevels; default: each object's highest)",
+           [&](const std::string& v) {
+               if (v.empty() || v.find_first_not_of("0123456789.") != std::string::npos)
+                   throw UsageError("--lod-select: expected a level of detail such as 1, 2 or 2.2, got '" + v + "'");
+               a.city.lod = v;
+               a.cityGiven = true;
+           }});
+    p.add({"dem", "RASTER", "city inputs: a DEM raster (GeoTIFF or any GDAL raster, any CRS) added as terrain (default: none)",
+           [&](const std::string& v) {
+               if (v.empty()) throw UsageError("--dem: empty (give a raster file)");
+               a.city.dem = v;
+               a.cityGiven = true;
+           }});
+    p.add({"texture", "RASTER", "city inputs: a colour raster (orthophoto, map; any GDAL raster, any CRS) draped on the terrain (default: none, colours per object type)",
+           [&](const std::string& v) {
+               if (v.empty()) throw UsageError("--texture: empty (give a raster file)");
+               a.city.texture = v;
+               a.cityGiven = true;
+           }});
+    p.add({"crs", "CRS", "city inputs: projected coordinate reference system to bring everything into, e.g. EPSG:28992 "
+           "(default: the input's own when projected, else the UTM zone of its centre)",
+           [&](const std::string& v) {
+               if (v.empty()) throw UsageError("--crs: empty (give e.g. EPSG:28992)");
+               a.city.crs = v;
+               a.cityGiven = true;
            }});
 }
 
@@ -262,7 +421,9 @@ std::uint64_t memoryBudget(const SurfaceArgs& a) { return a.maxMemory ? a.maxMem
 Surface buildSurface(const SurfaceArgs& a) {
     if (a.quiet) log::setLevel(log::Level::Error);
     if (a.verbose) log::setLevel(log::Level::Debug);
-    if (a.insideBelow && a.form != OctreeForm::Volume) throw UsageError("--inside applies to --form volume");
+    if (a.insideBelow && a.form != OctreeForm::Volume && a.cuts.empty())
+        throw UsageError("--inside applies to --form volume (or --cut)");
+    if (a.clip && a.cuts.empty()) throw UsageError("--clip needs a --cut solid");
     const std::uint64_t budget = memoryBudget(a);
     io::FieldRequest request = a.request;
     request.memoryBudget = budget;
@@ -272,10 +433,17 @@ Surface buildSurface(const SurfaceArgs& a) {
     Surface s;
     Timer t;
     if (isOctreeInput(a.input)) {
+        if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem and --texture apply to city inputs, not to the octree file " + a.input);
         loadOctreeSurface(a, budget, s);
+        finishSurface(a, s);
         return s;
     }
-    s.field = loadField(a.input, request);
+    if (io::isCityInput(a.input)) {
+        buildCitySurface(a, s);
+        return s;
+    }
+    if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem and --texture apply to city inputs (CityJSON, DEM rasters), not to " + a.input);
+    s.field = loadField(a.input, request, a.depth);
     s.loadMs = t.ms();
     auto [vmin, vmax] = s.field.validRange();
     if (!a.isoPreset.empty()) requireHounsfield(s.field, a.input, "--iso " + a.isoPreset);
@@ -287,6 +455,10 @@ Surface buildSurface(const SurfaceArgs& a) {
         log::info(m.str());
     }
     for (const auto& n : s.field.notes) log::debug(n);
+    if (!a.colourBy.empty() && !a.windowName.empty())
+        throw UsageError("--window and --colour-by both colour the surface: give one of them");
+    std::optional<ScalarField> colourBy;
+    if (!a.colourBy.empty()) colourBy = loadColourBy(a, request, s.field);
 
     BuildOptions bo;
     bo.depth = a.depth;
@@ -294,22 +466,47 @@ Surface buildSurface(const SurfaceArgs& a) {
     bo.threads = a.threads;
     bo.progress = progressPrinter(a.quiet);
     bo.memoryBudget = budget;
-    bo.form = a.form;
+    bo.form = a.cuts.empty() ? a.form : OctreeForm::Volume;
     bo.insideBelow = a.insideBelow;
     chooseWindow(a, s);
     bo.voxelValues = s.window.valid();
     s.tree = buildOctree(s.field, bo, &s.report);
     s.tree.source = sourceDescription(a.input, s.field);
-    if (!a.keepVolume) s.tree = extractShell(s.tree);
     if (bo.progress) std::fputs("\n", stderr);
+    finishSurface(a, s);
+    if (colourBy) {
+        s.tree.voxelValues = sampleAtVoxels(s.tree, *colourBy, a.threads);
+        s.tree.valueName = colourBy->name;
+        s.tree.valueUnits = colourBy->units;
+        s.tree.valueStandardName = colourBy->standardName;
+    }
+    if (a.floor) {
+        BuildOptions fo = bo;
+        fo.iso = 0.5;
+        fo.progress = {};
+        fo.form = OctreeForm::Shell;
+        fo.voxelValues = false;
+        Octree floor = buildShellOctree(solidFromMask(s.field), fo);
+        setMaterial(floor, VoxelMaterial::Floor);
+        s.tree = mergeShells(s.tree, floor);
+        s.report.boundaryVoxels = s.tree.voxels.size();
+        s.report.nodes = s.tree.nodes.size();
+    }
     return s;
 }
 
 void applyColour(const SurfaceArgs& a, const Surface& s, RenderSettings& settings) {
     settings.colour = vec3(displayToLinear(vec4(a.colour, 1.0f)));
     settings.colormap = a.colormap;
+    settings.voxelColours = !a.colourGiven;
     settings.window = s.window;
     settings.invertedGrey = s.invertedGrey;
+    if (settings.colormap.empty() && !s.tree.voxelValues.empty() && !s.window.valid())
+        settings.colormap = defaultColormap(s.tree.valueStandardName, s.tree.valueName);
+    settings.colourMin = a.colourMin;
+    settings.colourMax = a.colourMax;
+    settings.maskedColour = vec3(displayToLinear(vec4(a.maskedColour, 1.0f)));
+    settings.floorColour = vec3(displayToLinear(vec4(a.floorColour, 1.0f)));
 }
 
 }  // namespace octrace::cli

@@ -7,11 +7,15 @@
 #include "octrace/build/CtPresets.h"
 #include "octrace/build/OctreeBuilder.h"
 #include "octrace/build/ScalarField.h"
+#include "octrace/io/CityReader.h"
+#include "octrace/csg/Solid.h"
+#include "octrace/lighting/Bake.h"
 #include "octrace/io/FieldRequest.h"
 #include "octrace/octree/Octree.h"
 #include "octrace/render/RenderSettings.h"
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,13 +36,26 @@ struct SurfaceArgs {
     int depth = 8, threads = 0;
     bool depthGiven = false;  // --depth given (an octree file input fixes the depth)
     vec3 colour{0.85f, 0.62f, 0.35f};  // sRGB display values, as the user gives them
-    std::string colormap;
+    std::string colormap;              // empty: uniform colour, or the colour-by variable's default
+    std::string colourBy;              // --colour-by: second variable sampled at the voxels
+    float colourMin = std::numeric_limits<float>::quiet_NaN(), colourMax = std::numeric_limits<float>::quiet_NaN();
+    vec3 maskedColour{0.6f, 0.6f, 0.6f};      // sRGB
+    vec3 floorColour{0.55f, 0.5f, 0.45f};     // sRGB
+    bool floor = false;                // --floor: sea floor / land from the validity mask
     bool help = false, quiet = false, verbose = false;
     std::uint64_t maxMemory = 0;  // --max-memory; 0: defaultMemoryBudget()
+    io::CityRequest city;         // --lod-select, --crs, --dem, --texture (city inputs)
+    bool cityGiven = false;       // one of them was given
     OctreeForm form = OctreeForm::Shell;  // --form
     bool insideBelow = false;             // --inside below
     bool formGiven = false;               // --form or --inside given
     bool keepVolume = false;  // set by the command: buildSurface keeps a volume octree as it is (build, csg)
+    std::vector<Solid> cuts;  // --cut, in order
+    bool clip = false;        // --clip: keep the inside of the cuts instead
+    bool bake = false;        // --bake: bake lighting into the shell
+    BakeOptions bakeOptions;  // --bake-light, --bake-ao, --bake-ao-distance, --bake-shadows
+    bool bakeLightGiven = false;
+    enum class Lighting { Auto, Baked, Dynamic } lighting = Lighting::Auto;  // --lighting (render)
 };
 
 /// "a, b, c".
@@ -51,16 +68,26 @@ vec4 displayToLinear(vec4 c);
 void addVariableOption(OptionParser& p, io::FieldRequest& request);
 /// --var, --iso, --depth.
 void addSurfaceOptions(OptionParser& p, SurfaceArgs& a);
-/// --form shell|volume, --inside above|below.
+/// --inside above|below; `applies` says to what ("volume form").
+void addInsideOption(OptionParser& p, SurfaceArgs& a, const std::string& applies);
+/// --form shell|volume, --inside above|below, --cut SOLID, --clip.
 void addFormOptions(OptionParser& p, SurfaceArgs& a);
+/// --bake, --bake-light, --bake-ao, --bake-ao-distance, --bake-shadows.
+void addBakeOptions(OptionParser& p, SurfaceArgs& a);
+/// --lighting baked|dynamic.
+void addLightingOption(OptionParser& p, SurfaceArgs& a);
 /// --threads; `result` names what does not depend on it ("the image").
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result);
-/// --colour, --color, --colormap, --window.
+/// --colour, --color, --colormap, --window, --colour-range, --masked-colour, --floor-colour.
 void addColourOptions(OptionParser& p, SurfaceArgs& a);
+/// --colour-by, --floor: what is drawn besides the isosurface.
+void addLayerOptions(OptionParser& p, SurfaceArgs& a);
 /// --region, --depth-range, --time, --vertical-scale.
 void addGeographicOptions(OptionParser& p, io::FieldRequest& request);
 /// The first option of `request` that chooses part of a field ("--var", "--region", ...), or null.
 const char* fieldOptionGiven(const io::FieldRequest& request);
+/// --lod-select, --crs, --dem, --texture (city inputs).
+void addCityOptions(OptionParser& p, SurfaceArgs& a);
 /// --series (DICOM).
 void addSeriesOption(OptionParser& p, io::FieldRequest& request);
 /// --max-memory, --quiet, --verbose, --help.
@@ -75,7 +102,8 @@ std::uint64_t memoryBudget(const SurfaceArgs& a);
 bool parseCommandLine(const OptionParser& p, const std::vector<std::string>& args, SurfaceArgs& a,
                       const std::string& output, const std::string& missingOutput);
 
-/// A field and the shell octree of its isosurface.
+/// A field and the shell octree of its isosurface (with --colour-by its voxels' values, with
+/// --floor the sea floor / land merged in as VoxelMaterial::Floor).
 struct Surface {
     ScalarField field;
     double iso = 0.0;
@@ -87,22 +115,33 @@ struct Surface {
     ValueWindow window;
     bool invertedGrey = false;
     std::string windowSource;  ///< where the window comes from, for messages and stats
+    BakeReport bake;           ///< when lighting was baked here
 };
 
-/// Applies --quiet / --verbose to the log. An octree file (.oct) is read as it is (options that
+/// Applies --quiet / --verbose to the log. A city input (CityJSON) is read into one projected
+/// CRS and voxelized (CityVoxelizer.h) with its per-voxel colours; --var and --iso are refused.
+/// An octree file (.oct) is read as it is (options that
 /// choose the field or the depth are refused: UsageError).
 /// Otherwise reads a.input, chooses the iso value when none was
 /// given (the middle of the valid range, said on stderr) or resolves a preset (--iso skin:
 /// InputError unless the field is in HU), chooses the display window (--window, else the
 /// file's own unless a colour was given; presets need HU too) and builds the octree in a.form
 /// (with voxel values when a window colours it; progress on stderr when it is a terminal),
-/// within memoryBudget(a): a read or build that would need more is refused (LimitError). A
-/// volume octree becomes its shell (extractShell) unless a.keepVolume. Throws as loadField()
-/// and buildOctree().
+/// within memoryBudget(a): a read or build that would need more is refused (LimitError). With
+/// --cut the volume form is built (an octree file must hold one: InputError otherwise) and
+/// each solid is subtracted from it (--clip: intersected with it; the result has no voxel
+/// values). A volume octree becomes its shell (extractShell) unless a.keepVolume. With
+/// --bake, or --lighting baked on an octree without baked light, the shell's lighting is baked
+/// (lighting/Bake.h; UsageError for a kept volume). Then --colour-by's variable, read with the
+/// same request (InputError for one on another grid; UsageError beside --window), is sampled
+/// at the voxels, and --floor merges in the sea floor and land. Throws as loadField(),
+/// buildOctree(), csg() and bakeLighting().
 Surface buildSurface(const SurfaceArgs& a);
 
-/// The colour options as RenderSettings::colour (linear RGB), RenderSettings::colormap and the
-/// surface's display window (RenderSettings::window, invertedGrey).
+/// The colour options as RenderSettings (linear RGB): colour, colour map (by default, with
+/// voxel values of a second variable, the one for that variable: defaultColormap in
+/// Shading.h), its range, the masked and floor colours, and the surface's display window
+/// (RenderSettings::window, invertedGrey).
 void applyColour(const SurfaceArgs& a, const Surface& s, RenderSettings& settings);
 
 }  // namespace octrace::cli

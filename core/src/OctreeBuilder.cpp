@@ -1,6 +1,7 @@
 #include "octrace/build/OctreeBuilder.h"
 
 #include "MinMaxPyramid.h"
+#include "TreeAssembly.h"
 #include "octrace/build/Volume.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
@@ -108,6 +109,13 @@ public:
     void locateWorld(const dvec3& p, AxisSample s[3]) const {
         dvec3 local = inverse_ * (p - f_.origin);
         for (int a = 0; a < 3; ++a) s[a] = locate(a, local[a]);
+    }
+
+    /// Trilinear value at a world point; NaN = a masked sample in the interpolation, or outside.
+    float atWorld(const dvec3& p) const {
+        AxisSample s[3];
+        locateWorld(p, s);
+        return trilinear(s[0], s[1], s[2]);
     }
 
     /// Trilinear value at lattice corner c (cell space); NaN = masked or outside.
@@ -309,9 +317,7 @@ struct Pool {
     }
 };
 
-/// What a built octant is: nothing of the surface (or solid), a node with children, or (volume
-/// form) an interior term wholly inside the solid.
-enum class Octant : std::uint8_t { Empty, Node, Term };
+using detail::Octant;
 
 class Builder {
 public:
@@ -359,11 +365,8 @@ public:
     /// the pool): Empty when all are, Term when all are terms (eight terms make one).
     static Octant emitNode(const Octant kinds[8], const OctreeNode kids[8], int childLevel, OctreeNode& out, Pool& pool,
                            MemoryGuard* guard) {
-        unsigned mask = 0, terms = 0;
-        for (int c = 0; c < 8; ++c) {
-            if (kinds[c] != Octant::Empty) mask |= 1u << c;
-            if (kinds[c] == Octant::Term) terms |= 1u << c;
-        }
+        unsigned mask, terms;
+        detail::childMasks(kinds, mask, terms);
         if (!mask) return Octant::Empty;
         if (terms == 0xFFu) return Octant::Term;
         out = OctreeNode{};
@@ -839,6 +842,24 @@ Octree buildOctree(const ScalarField& field, const BuildOptions& options, BuildR
         report->nodes = tree.nodes.size();
     }
     return tree;
+}
+
+std::vector<float> sampleAtVoxels(const Octree& tree, const ScalarField& field, int threads) {
+    field.validate();
+    std::vector<std::pair<ivec3, std::uint32_t>> cells;
+    cells.reserve(tree.voxels.size());
+    tree.forEachVoxel([&](const ivec3& c, std::uint32_t v) { cells.push_back({c, v}); });
+    const std::vector<float> samples = SampleGrid::maskedSamples(field);
+    const double h = tree.voxelSize();
+    const FieldSampler sampler(field, samples, tree.cubeOrigin, h, 0);
+    std::vector<float> out(tree.voxels.size(), kNaN);
+    constexpr std::size_t kChunk = 4096;
+    parallelFor((cells.size() + kChunk - 1) / kChunk, threads, [&](std::size_t chunk) {
+        const std::size_t end = std::min(cells.size(), (chunk + 1) * kChunk);
+        for (std::size_t i = chunk * kChunk; i < end; ++i)
+            out[cells[i].second] = sampler.atWorld(tree.cubeOrigin + (dvec3(cells[i].first) + 0.5) * h);
+    });
+    return out;
 }
 
 }  // namespace octrace

@@ -1,5 +1,6 @@
 #include "octrace/build/Volume.h"
 
+#include "TreeAssembly.h"
 #include "octrace/util/Error.h"
 
 #include <bit>
@@ -65,6 +66,7 @@ Octree emptyOctreeLike(const Octree& tree) {
     t.iso = tree.iso;
     t.insideBelow = tree.insideBelow;
     t.source = tree.source;
+    t.crs = tree.crs;
     return t;
 }
 
@@ -73,7 +75,9 @@ Octree copyOctree(const Octree& tree) {
     t.nodes = tree.nodes;
     t.voxels = tree.voxels;
     t.voxelValues = tree.voxelValues;
+    t.baked = tree.baked;
     t.summaries = tree.summaries;
+    t.colours = tree.colours;
     return t;
 }
 
@@ -81,50 +85,39 @@ Octree extractShell(const Octree& volume) {
     if (volume.form == OctreeForm::Shell) return copyOctree(volume);
     Octree out = emptyOctreeLike(volume);
     out.form = OctreeForm::Shell;
-    out.nodes.push_back(OctreeNode{});  // the root's slot
+    detail::TreeAssembly pool;
+    using detail::Octant;
     const bool values = !volume.voxelValues.empty();
-    // Post-order as the builder: a node's children are pushed together after their subtrees.
-    auto copy = [&](auto&& self, std::uint32_t node, int level, OctreeNode& dst) -> bool {
+    auto copy = [&](auto&& self, std::uint32_t node, int level, OctreeNode& dst) -> Octant {
         const OctreeNode& nd = volume.nodes[node];
         std::uint32_t slot = nd.firstChild;
         if (level == volume.depth - 1) {
             unsigned mask = 0;
-            const std::uint32_t first = std::uint32_t(out.voxels.size());
+            Voxel vox[8];
+            float val[8] = {};
             for (int c = 0; c < 8; ++c) {
                 if (!(nd.childMask & (1u << c))) continue;
                 if (!(nd.termMask & (1u << c))) {
-                    out.voxels.push_back(volume.voxels[slot]);
-                    if (values) out.voxelValues.push_back(volume.voxelValues[slot]);
+                    vox[c] = volume.voxels[slot];
+                    if (values) val[c] = volume.voxelValues[slot];
                     mask |= 1u << c;
                 }
                 ++slot;
             }
-            dst = OctreeNode{};
-            dst.firstChild = first;
-            dst.childMask = std::uint8_t(mask);
-            return mask != 0;
+            return pool.leaf(mask, 0u, vox, dst, values ? val : nullptr);
         }
         OctreeNode kids[8];
-        unsigned mask = 0;
+        Octant kinds[8] = {};
         for (int c = 0; c < 8; ++c) {
             if (!(nd.childMask & (1u << c))) continue;
-            if (!(nd.termMask & (1u << c)) && self(self, slot, level + 1, kids[c])) mask |= 1u << c;
+            if (!(nd.termMask & (1u << c))) kinds[c] = self(self, slot, level + 1, kids[c]);
             ++slot;
         }
-        dst = OctreeNode{};
-        dst.firstChild = std::uint32_t(out.nodes.size());
-        dst.childMask = std::uint8_t(mask);
-        for (int c = 0; c < 8; ++c)
-            if (mask & (1u << c)) out.nodes.push_back(kids[c]);
-        return mask != 0;
+        return pool.node(kinds, kids, dst);
     };
     OctreeNode root;
-    if (volume.nodes.empty() || !copy(copy, 0u, 0, root))
-        throw EmptyResultError(volume.source + ": the solid has no boundary voxel");
-    out.nodes[0] = root;
-    out.nodes.shrink_to_fit();
-    out.voxels.shrink_to_fit();
-    out.voxelValues.shrink_to_fit();
+    if (volume.nodes.empty() || !pool.finish(copy(copy, 0u, 0, root), root, out))
+        throw EmptyResultError(std::string(volume.source).append(": the solid has no boundary voxel"));
     return out;
 }
 

@@ -86,6 +86,7 @@ bool hasAllDims(const VariableInfo& var, const VariableInfo& c) {
 
 std::vector<const VariableInfo*> curvilinearCoordinates(const NetcdfFile& file, const VariableInfo& var) {
     std::vector<const VariableInfo*> out;
+    if (var.auxiliary || isLonLat(var)) return out;  // a coordinate itself
     const auto named = words(var.coordinates);
     for (const auto& c : file.variables()) {
         if (&c == &var || !c.numeric || c.extent() < 2 || !isLonLat(c)) continue;
@@ -213,6 +214,7 @@ ScalarField shapeField(const std::string& path, const VariableInfo& var, const L
     f.source = path;
     f.name = var.shortName;
     f.units = var.units;
+    f.standardName = var.standardName;
     for (int a = 0; a < 3; ++a) {
         const auto& w = L.axes[std::size_t(a)].world;
         f.dims[a] = int(w.size());

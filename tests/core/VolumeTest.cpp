@@ -4,6 +4,7 @@
 #include "octrace/build/OctreeBuilder.h"
 #include "octrace/build/Volume.h"
 #include "octrace/util/Error.h"
+#include "VolumeTestUtil.h"
 
 #include <gtest/gtest.h>
 
@@ -27,23 +28,6 @@ std::map<std::uint64_t, std::uint32_t> cellsAndNormals(const Octree& t) {
         m[(std::uint64_t(c.x) << 40) | (std::uint64_t(c.y) << 20) | std::uint64_t(c.z)] = t.voxels[v].normal;
     });
     return m;
-}
-
-/// Every cell's state, and the invariant of Volume.h: a solid voxel with a face neighbour
-/// outside the solid (or outside the cube) is a boundary voxel.
-void expectClosed(const Octree& t) {
-    const int n = 1 << t.depth;
-    for (int x = 0; x < n; ++x)
-        for (int y = 0; y < n; ++y)
-            for (int z = 0; z < n; ++z) {
-                if (cellState(t, {x, y, z}) != CellState::Interior) continue;
-                for (int a = 0; a < 3; ++a)
-                    for (int s = -1; s <= 1; s += 2) {
-                        ivec3 nb(x, y, z);
-                        nb[a] += s;
-                        ASSERT_NE(cellState(t, nb), CellState::Empty) << x << "," << y << "," << z << " axis " << a;
-                    }
-            }
 }
 
 }  // namespace
@@ -132,12 +116,5 @@ TEST(VolumeOctree, CapsWhereTheSolidMeetsTheGridAndTheMask) {
 
 TEST(VolumeOctree, DoesNotDependOnTheThreads) {
     const ScalarField f = makeAnalyticField("torus", 33);
-    const Octree a = volumeOf(f, 7, 0.0, false, 1), b = volumeOf(f, 7, 0.0, false, 0);
-    ASSERT_EQ(a.nodes.size(), b.nodes.size());
-    ASSERT_EQ(a.voxels.size(), b.voxels.size());
-    for (std::size_t i = 0; i < a.nodes.size(); ++i) {
-        EXPECT_EQ(a.nodes[i].childMask, b.nodes[i].childMask);
-        EXPECT_EQ(a.nodes[i].termMask, b.nodes[i].termMask);
-    }
-    for (std::size_t i = 0; i < a.voxels.size(); ++i) EXPECT_EQ(a.voxels[i].normal, b.voxels[i].normal);
+    expectSameOctree(volumeOf(f, 7, 0.0, false, 1), volumeOf(f, 7, 0.0, false, 0));
 }

@@ -92,6 +92,8 @@ TEST(NetcdfCf, PackedShortsAreMaskedBeforeUnpackingThenUnpacked) {
                     if (f.isValid(idx)) EXPECT_EQ(f.values[idx], float((100 * k + 10 * j + i) * 0.01 + 10.0)) << k << j << i;
                 }
     }
+    // --var also takes the CF standard_name.
+    EXPECT_EQ(io::NetcdfReader::read(path, var("sea_water_temperature")).name, "temp");
     std::string info = io::NetcdfReader::describe(path);
     for (const char* s : {"standard_name sea_water_temperature", "_FillValue -32767", "missing_value -32000",
                           "valid_range -3000 3000", "scale_factor 0.01", "add_offset 10", "valid_min -3000",
@@ -276,7 +278,12 @@ TEST(NetcdfCf, CurvilinearGridIsRefusedNamingTheTwoDimensionalCoordinates) {
                           "variable votemper(depth, y, x) is on a curvilinear grid: its coordinates nav_lat(y, x) and "
                           "nav_lon(y, x) are 2-D; octrace reads longitude and latitude only as 1-D axes");
         std::string info = io::NetcdfReader::describe(path);
-        EXPECT_NE(info.find("curvilinear (2-D nav_lat, not drawn)"), std::string::npos) << info;
+        const std::string marked = std::string("votemper(depth, y, x) Float32 [3 x 3 x 4], units 'degC'") +
+                                   (attribute ? ", coordinates 'nav_lon nav_lat'" : "") +
+                                   ", curvilinear (2-D nav_lat, not drawn)";
+        EXPECT_NE(info.find(marked), std::string::npos) << info;
+        EXPECT_EQ(info.find("nav_lat(y, x) Float64 [3 x 4], units 'degrees_north', curvilinear"), std::string::npos)
+            << info;  // a coordinate is not itself curvilinear
         EXPECT_NE(info.find("cannot be drawn: "), std::string::npos) << info;
     }
 }
