@@ -47,6 +47,13 @@ public:
         return p;
     }
 
+    /// Writes `size` bytes of a fixed pattern to `name`: a data file for detached headers.
+    std::string writePattern(const std::string& name, std::size_t size) const {
+        std::string bytes(size, '\0');
+        for (std::size_t i = 0; i < size; ++i) bytes[i] = static_cast<char>(i * 7 + 3);
+        return write(name, bytes.data(), size);
+    }
+
 private:
     std::filesystem::path dir_;
 };

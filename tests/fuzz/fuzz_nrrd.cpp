@@ -7,8 +7,6 @@
 #include "octrace/io/NrrdReader.h"
 #include "octrace/util/Error.h"
 
-#include <vector>
-
 namespace {
 
 const octrace::fuzz::ScratchDir& scratch() {
@@ -20,10 +18,8 @@ const octrace::fuzz::ScratchDir& scratch() {
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
     octrace::fuzz::quietLogs();
-    std::vector<unsigned char> bytes(4096);
-    for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<unsigned char>(i * 7 + 3);
-    scratch().write("data.raw", bytes.data(), bytes.size());
-    for (int s = 1; s <= 4; ++s) scratch().write("slice." + std::to_string(s) + ".raw", bytes.data(), 1024);
+    scratch().writePattern("data.raw", 4096);
+    for (int s = 1; s <= 4; ++s) scratch().writePattern("slice." + std::to_string(s) + ".raw", 1024);
     return 0;
 }
 

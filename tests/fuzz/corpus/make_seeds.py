@@ -325,3 +325,31 @@ FOOT_SEEDS = {
 for name, text in FOOT_SEEDS.items():
     out(FOOT, name, text.encode())
 print("seeds written under", HERE)
+
+
+# ---------------------------------------------------------------- MetaImage (fuzz_metaimage)
+def mha(fields, data=b""):
+    return ("\n".join(fields) + "\n").encode() + data
+
+
+MHA_BASE = ["ObjectType = Image", "NDims = 3", "BinaryData = True", "BinaryDataByteOrderMSB = False"]
+short_cube = struct.pack("<64h", *[(x * 16 + y * 4 + z) * 10 - 300 for z in range(4) for y in range(4) for x in range(4)])
+out("fuzz_metaimage", "local_short.mha",
+    mha(MHA_BASE + ["TransformMatrix = 0 1 0 -1 0 0 0 0 1", "Offset = -10.5 20 3.25",
+                    "ElementSpacing = 0.7 0.7 2.5", "AnatomicalOrientation = RAI", "DimSize = 4 4 4",
+                    "ElementType = MET_SHORT", "ElementDataFile = LOCAL"], short_cube))
+out("fuzz_metaimage", "local_float_msb.mha",
+    mha(["ObjectType = Image", "NDims = 3", "BinaryData = True", "ElementByteOrderMSB = True",
+         "Position = 0 0 0", "ElementSize = 1 1 1", "DimSize = 4 4 4", "ElementType = MET_FLOAT",
+         "ElementDataFile = LOCAL"], struct.pack(">64f", *[v - 1.0 for v in struct.unpack("<64f", sphere)])))
+out("fuzz_metaimage", "compressed.mha",
+    mha(MHA_BASE + ["CompressedData = True", "CompressedDataSize = 40", "DimSize = 4 4 4",
+                    "ElementType = MET_UCHAR", "ElementDataFile = LOCAL"],
+        __import__("zlib").compress(bytes(range(64)))))
+out("fuzz_metaimage", "detached.mhd",
+    mha(MHA_BASE + ["HeaderSize = 16", "DimSize = 8 8 4", "ElementSpacing = 1 1 1",
+                    "ElementType = MET_USHORT", "ElementDataFile = data.raw"]))
+out("fuzz_metaimage", "not_3d.mha", mha(["ObjectType = Image", "NDims = 2", "DimSize = 4 4",
+                                         "ElementType = MET_CHAR", "ElementDataFile = LOCAL"], bytes(16)))
+out("fuzz_metaimage", "huge.mhd", mha(MHA_BASE + ["DimSize = 100000 100000 100000", "ElementType = MET_DOUBLE",
+                                                  "ElementDataFile = data.raw"]))
