@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace octrace::io {
 
@@ -43,6 +44,11 @@ public:
     /// variable without valid samples, or one too large for `memoryBudget` bytes (0 = no
     /// limit), is reported in the text.
     static std::string describe(const std::string& path, std::uint64_t memoryBudget = 0);
+
+    /// The names read() accepts without a choice being refused: the short names of the
+    /// variables with at least 3 dimensions longer than 1, in the file's order (for a variable
+    /// chooser, e.g. the studio's). Throws as read() for a file that cannot be opened.
+    static std::vector<std::string> volumeVariables(const std::string& path);
 };
 
 }  // namespace octrace::io

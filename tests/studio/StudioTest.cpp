@@ -1,0 +1,242 @@
+// QTest of octrace-studio driving the real window under Xvfb (ctest runs it through
+// xvfb-run -a): open a sample, change the iso value, switch renderers, move the camera, cancel a
+// build, export figures — and check that an exported PNG has the same pixels as the CLI's
+// `octrace render` of the same state (the command line the studio itself gives).
+// With OCTRACE_STUDIO_SCREENSHOTS=DIR set, screenshots of the window go to DIR (the images of
+// docs/user/studio.md: scripts/studio-screenshots.sh).
+#include "Engine.h"
+#include "MainWindow.h"
+#include "RenderView.h"
+
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QImage>
+#include <QProcess>
+#include <QPushButton>
+#include <QSignalSpy>
+#include <QSpinBox>
+#include <QStandardPaths>
+#include <QTemporaryDir>
+#include <QtTest>
+
+using octrace::studio::Engine;
+using octrace::studio::FrameResult;
+using octrace::studio::MainWindow;
+using octrace::studio::RenderView;
+
+namespace {
+
+constexpr int kWaitMs = 60000;  // generous: a loaded CI machine; the steps take well under a second each
+
+/// Runs `octrace render ARGS`; returns its exit code (stderr shown on failure).
+int runCli(const QStringList& args) {
+    QProcess p;
+    p.setProgram(QStringLiteral(OCTRACE_BINARY));
+    p.setArguments(QStringList{QStringLiteral("render")} + args + QStringList{QStringLiteral("--quiet")});
+    p.start();
+    if (!p.waitForFinished(kWaitMs)) return -1;
+    if (p.exitCode() != 0) qWarning("octrace render: %s", p.readAllStandardError().constData());
+    return p.exitCode();
+}
+
+/// Number of pixels whose RGBA differ (-1 when the sizes differ or a file is unreadable).
+qint64 differingPixels(const QString& a, const QString& b) {
+    QImage ia(a), ib(b);
+    if (ia.isNull() || ib.isNull() || ia.size() != ib.size()) return -1;
+    ia = ia.convertToFormat(QImage::Format_RGBA8888);
+    ib = ib.convertToFormat(QImage::Format_RGBA8888);
+    qint64 n = 0;
+    for (int y = 0; y < ia.height(); ++y)
+        for (int x = 0; x < ia.width(); ++x) n += ia.pixel(x, y) != ib.pixel(x, y);
+    return n;
+}
+
+/// Pixels that are not the background's colour.
+qint64 surfacePixels(const QImage& img, QRgb background) {
+    qint64 n = 0;
+    for (int y = 0; y < img.height(); ++y)
+        for (int x = 0; x < img.width(); ++x) n += (img.pixel(x, y) & 0xFFFFFF) != (background & 0xFFFFFF);
+    return n;
+}
+
+}  // namespace
+
+class StudioTest : public QObject {
+    Q_OBJECT
+private:
+    MainWindow* window_ = nullptr;
+    QTemporaryDir tmp_;
+    QString screenshots_;
+
+    void screenshot(const QString& name) {
+        if (screenshots_.isEmpty()) return;
+        QVERIFY(window_->grab().save(screenshots_ + QLatin1Char('/') + name));
+    }
+    /// Waits for the next exact frame on screen.
+    void waitFrame() {
+        QSignalSpy frames(window_, &MainWindow::frameShown);
+        QVERIFY(frames.wait(kWaitMs));
+    }
+    /// Exports at width x height, then renders the studio's own command line with the CLI and
+    /// compares the two PNG files pixel by pixel.
+    void exportEqualsCli(const QString& stem, int width, int height, bool transparent) {
+        const QString studioPng = tmp_.filePath(stem + QStringLiteral("-studio.png"));
+        const QString cliPng = tmp_.filePath(stem + QStringLiteral("-cli.png"));
+        QSignalSpy exported(&window_->engine(), &Engine::exported);
+        window_->exportFigure(studioPng, width, height, transparent);
+        QVERIFY(exported.wait(kWaitMs));
+        QCOMPARE(QImage(studioPng).size(), QSize(width, height));
+        QCOMPARE(runCli(window_->commandLine(cliPng, width, height)), 0);
+        QCOMPARE(differingPixels(studioPng, cliPng), 0);
+        QImage img(studioPng);
+        QVERIFY(surfacePixels(img, img.pixel(0, 0)) > width * height / 50);  // the surface is in the picture
+        QCOMPARE(img.hasAlphaChannel(), transparent);
+        if (transparent) QCOMPARE(qAlpha(img.pixel(0, 0)), 0);
+    }
+
+private slots:
+    void initTestCase() {
+        QStandardPaths::setTestModeEnabled(true);  // recent files in a test location
+        QVERIFY(tmp_.isValid());
+        screenshots_ = qEnvironmentVariable("OCTRACE_STUDIO_SCREENSHOTS");
+        window_ = new MainWindow;
+        window_->resize(1000, 640);
+        window_->show();
+        QVERIFY(QTest::qWaitForWindowExposed(window_));
+    }
+
+    void opensSample() {
+        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
+        // From the samples' parent folder, so that the window (and its screenshots) show the
+        // path as a user of the repository would type it.
+        QVERIFY(QDir::setCurrent(QStringLiteral(OCTRACE_SAMPLES "/..")));
+        window_->openInput(QStringLiteral("data_samples/torus.nrrd"));
+        QVERIFY(built.wait(kWaitMs));
+        const auto& info = window_->engine().info();
+        QVERIFY(info.maximum > info.minimum);
+        QCOMPARE(window_->engine().iso(), 0.5 * (info.minimum + info.maximum));  // the CLI's default
+        QVERIFY(window_->engine().tree()->boundaryVoxels() > 0);
+        waitFrame();
+        const QImage shown = window_->view(0)->image();
+        QCOMPARE(shown.size(), window_->view(0)->size());
+        QVERIFY(surfacePixels(shown, shown.pixel(0, 0)) > 1000);
+        screenshot(QStringLiteral("studio-main.png"));
+    }
+
+    void changesIsoValue() {
+        auto* spin = window_->findChild<QDoubleSpinBox*>(QStringLiteral("isoSpin"));
+        QVERIFY(spin);
+        const auto& info = window_->engine().info();
+        const std::size_t before = window_->engine().tree()->boundaryVoxels();
+        const double iso = info.minimum + 0.3 * (info.maximum - info.minimum);
+        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
+        spin->setValue(iso);
+        QVERIFY(built.wait(kWaitMs));
+        QVERIFY(std::abs(window_->engine().iso() - spin->value()) < 1e-12);
+        QVERIFY(window_->state().iso.has_value());
+        QVERIFY(window_->engine().tree()->boundaryVoxels() != before);
+        waitFrame();
+    }
+
+    void changesDepth() {
+        auto* depth = window_->findChild<QSpinBox*>(QStringLiteral("depthSpin"));
+        QVERIFY(depth);
+        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
+        depth->setValue(7);
+        QVERIFY(built.wait(kWaitMs));
+        QCOMPARE(window_->engine().tree()->depth, 7);
+        QCOMPARE(window_->state().depth, 7);
+    }
+
+    void switchesRenderers() {
+        auto* combo = window_->findChild<QComboBox*>(QStringLiteral("rendererCombo"));
+        QVERIFY(combo);
+        for (const QString& name : {QStringLiteral("direct"), QStringLiteral("area+colour"), QStringLiteral("full")}) {
+            QVERIFY(combo->findText(name) >= 0);
+            QSignalSpy frames(&window_->engine(), &Engine::frameReady);
+            combo->setCurrentText(name);
+            QVERIFY(frames.wait(kWaitMs));
+            const auto r = frames.takeLast().at(0).value<FrameResult>();
+            QCOMPARE(QString::fromStdString(r.panes.at(0).stats.renderer), name);
+            QCOMPARE(window_->state().renderer, name.toStdString());
+        }
+    }
+
+    void cameraFollowsMouseAndKeys() {
+        RenderView* view = window_->view(0);
+        const auto before = window_->viewCamera();
+        QSignalSpy frames(window_, &MainWindow::frameShown);
+        const QPoint c = view->rect().center();
+        QTest::mousePress(view, Qt::LeftButton, Qt::NoModifier, c);
+        QMouseEvent move(QEvent::MouseMove, QPointF(c + QPoint(60, 20)), view->mapToGlobal(QPointF(c + QPoint(60, 20))),
+                         Qt::NoButton, Qt::LeftButton, Qt::NoModifier);
+        QApplication::sendEvent(view, &move);
+        QTest::mouseRelease(view, Qt::LeftButton, Qt::NoModifier, c + QPoint(60, 20));
+        QVERIFY(window_->state().cameraSet);
+        const auto orbited = window_->viewCamera();
+        QVERIFY(glm::length(orbited.position - before.position) > 1e-6);
+        // Orbiting keeps the distance to the focal point.
+        QVERIFY(std::abs(glm::length(orbited.position - orbited.lookAt) - glm::length(before.position - before.lookAt)) <
+                1e-9 * glm::length(before.position - before.lookAt));
+        QVERIFY(frames.wait(kWaitMs));
+        QTest::keyClick(view, Qt::Key_Minus);  // zoom out one step
+        const auto zoomed = window_->viewCamera();
+        QVERIFY(glm::length(zoomed.position - zoomed.lookAt) > glm::length(orbited.position - orbited.lookAt));
+        waitFrame();
+        screenshot(QStringLiteral("studio-orbit.png"));
+    }
+
+    void exportsWhatTheCliRenders() {
+        exportEqualsCli(QStringLiteral("full"), 320, 200, false);
+        auto* combo = window_->findChild<QComboBox*>(QStringLiteral("rendererCombo"));
+        combo->setCurrentText(QStringLiteral("direct"));
+        exportEqualsCli(QStringLiteral("direct-transparent"), 240, 260, true);
+        combo->setCurrentText(QStringLiteral("full"));
+    }
+
+    void exportRefusesOversize() {
+        QSignalSpy failed(&window_->engine(), &Engine::failed);
+        window_->exportFigure(tmp_.filePath(QStringLiteral("huge.png")), 8193, 10, false);
+        QVERIFY(failed.wait(kWaitMs));
+        QVERIFY(failed.takeFirst().at(0).toString().contains(QStringLiteral("8192")));
+        QVERIFY(!QFileInfo::exists(tmp_.filePath(QStringLiteral("huge.png"))));
+        for (auto* box : window_->findChildren<QWidget*>(QStringLiteral("errorBox"))) box->close();
+    }
+
+    void cancelKeepsTheSurface() {
+        auto* depth = window_->findChild<QSpinBox*>(QStringLiteral("depthSpin"));
+        auto* cancel = window_->findChild<QPushButton*>(QStringLiteral("cancelButton"));
+        QVERIFY(depth && cancel);
+        const auto tree = window_->engine().tree();
+        QSignalSpy progress(&window_->engine(), &Engine::progress);
+        QSignalSpy cancelled(&window_->engine(), &Engine::cancelled);
+        depth->setValue(12);  // long enough not to end before Cancel
+        QVERIFY(progress.wait(kWaitMs));  // the build started
+        QVERIFY(cancel->isEnabled());
+        QTest::mouseClick(cancel, Qt::LeftButton);
+        QVERIFY(cancelled.wait(kWaitMs));
+        QCOMPARE(window_->engine().tree(), tree);  // the previous surface stays
+        QVERIFY(!window_->engine().building());
+    }
+
+    void brokenInputShowsAMessage() {
+        const QString bad = tmp_.filePath(QStringLiteral("broken.nrrd"));
+        QFile f(bad);
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write("NRRD0004\ntype: float\ndimension: 3\nsizes: 4 4\n\n");
+        f.close();
+        const auto tree = window_->engine().tree();
+        QSignalSpy failed(&window_->engine(), &Engine::failed);
+        window_->openInput(bad);
+        QVERIFY(failed.wait(kWaitMs));
+        QVERIFY(failed.takeFirst().at(0).toString().contains(bad));
+        QCOMPARE(window_->engine().tree(), tree);
+        QVERIFY(window_->findChild<QWidget*>(QStringLiteral("errorBox")));
+        for (auto* box : window_->findChildren<QWidget*>(QStringLiteral("errorBox"))) box->close();
+    }
+
+    void cleanupTestCase() { delete window_; }
+};
+
+QTEST_MAIN(StudioTest)
+#include "StudioTest.moc"
