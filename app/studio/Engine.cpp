@@ -68,7 +68,15 @@ Engine::~Engine() {
     exportWorker_.cancel();
 }
 
-void Engine::cancel() { buildWorker_.cancel(); }
+void Engine::cancel() {
+    buildWorker_.cancel();
+    if (!building_) return;
+    // Whether the job was still waiting (dropped) or running (it stops at its next check), its
+    // results no longer count.
+    ++generation_;
+    building_ = false;
+    emit cancelled();
+}
 
 void Engine::open(const StudioState& state) {
     const unsigned gen = ++generation_;

@@ -126,6 +126,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     msgDock->setWidget(messages_);
     addDockWidget(Qt::BottomDockWidgetArea, msgDock);
     resizeDocks({msgDock}, {80}, Qt::Vertical);
+    resizeDocks({dock}, {340}, Qt::Horizontal);
 
     statusLabel_ = new QLabel(this);
     progress_ = new QProgressBar(this);
