@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace octrace::studio {
 namespace {
@@ -40,17 +41,10 @@ int previewLevel(int depth) { return std::max(1, depth - 2); }
 }  // namespace
 
 QImage toImage(const Frame& frame) {
+    const std::vector<std::uint8_t> px = quantizeSrgb8(frame, 4);
     QImage img(frame.width, frame.height, QImage::Format_RGBA8888);
-    for (int y = 0; y < frame.height; ++y) {
-        uchar* row = img.scanLine(y);
-        for (int x = 0; x < frame.width; ++x) {
-            const vec4& c = frame.rgba[frame.pixel(x, y)];
-            row[4 * x + 0] = linearToSrgb8(c.r);
-            row[4 * x + 1] = linearToSrgb8(c.g);
-            row[4 * x + 2] = linearToSrgb8(c.b);
-            row[4 * x + 3] = alphaTo8(c.a);
-        }
-    }
+    for (int y = 0; y < frame.height; ++y)
+        std::memcpy(img.scanLine(y), px.data() + std::size_t(y) * std::size_t(frame.width) * 4, std::size_t(frame.width) * 4);
     return img;
 }
 

@@ -3,6 +3,8 @@
 #include "HistogramView.h"
 #include "Navigation.h"
 #include "RenderView.h"
+#include "Session.h"
+#include "SurfelView.h"
 
 #include "octrace/io/ImageWriter.h"
 #include "octrace/render/ImageCompare.h"
@@ -40,6 +42,7 @@
 #include <QSlider>
 #include <QSpinBox>
 #include <QSplitter>
+#include <QStackedWidget>
 #include <QStatusBar>
 #include <QToolBar>
 #include <QVBoxLayout>
@@ -82,10 +85,13 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     connect(&exactTimer_, &QTimer::timeout, this, [this] { requestRender(false); });
 
     auto* splitter = new QSplitter(this);
+    // The right pane: a CPU renderer's frames, or the OpenGL surfel view.
+    secondPane_ = new QStackedWidget(splitter);
     for (int i = 0; i < 2; ++i) {
         views_[i] = new RenderView(splitter);
         views_[i]->setObjectName(i == 0 ? QStringLiteral("mainView") : QStringLiteral("secondView"));
-        splitter->addWidget(views_[i]);
+        if (i == 0) splitter->insertWidget(0, views_[i]);
+        else secondPane_->addWidget(views_[i]);
         connect(views_[i], &RenderView::orbitBy, this, [this](double yaw, double pitch) {
             Camera c = viewCamera();
             orbit(c, yaw, pitch);
@@ -107,7 +113,10 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
         });
         connect(views_[i], &RenderView::resized, this, [this] { exactTimer_.start(); });
     }
-    views_[1]->hide();
+    surfelView_ = new SurfelView(secondPane_);
+    surfelView_->setObjectName(QStringLiteral("surfelView"));
+    secondPane_->addWidget(surfelView_);
+    secondPane_->hide();
     setCentralWidget(splitter);
 
     auto* dock = new QDockWidget(tr("Surface"), this);
@@ -206,6 +215,16 @@ void MainWindow::buildMenus() {
     });
     recentMenu_ = file->addMenu(tr("Open &Recent"));
     file->addSeparator();
+    file->addAction(tr("Open &Session..."), this, [this] {
+        const QString f = QFileDialog::getOpenFileName(this, tr("Open session"), QString(), tr("Sessions (*.json);;All files (*)"));
+        if (!f.isEmpty()) openSession(f);
+    });
+    QAction* save = file->addAction(tr("&Save Session..."), this, [this] {
+        const QString f = QFileDialog::getSaveFileName(this, tr("Save session"), QStringLiteral("session.json"), tr("Sessions (*.json)"));
+        if (!f.isEmpty()) saveSessionTo(f);
+    });
+    save->setShortcut(QKeySequence::Save);
+    file->addSeparator();
     QAction* exportAct = file->addAction(tr("&Export Figure..."), this, &MainWindow::chooseExport);
     exportAct->setShortcut(Qt::CTRL | Qt::Key_E);
     file->addAction(tr("Copy &Command Line"), this, [this] {
@@ -262,8 +281,10 @@ QWidget* MainWindow::buildControls() {
     variableCombo_->setObjectName(QStringLiteral("variableCombo"));
     variableCombo_->setToolTip(tr("The 3-D variable to draw (NetCDF)"));
     connect(variableCombo_, &QComboBox::activated, this, [this] {
-        state_.variable = variableCombo_->currentText().toStdString();
-        reopen();
+        StudioState s = state_;
+        s.variable = variableCombo_->currentText().toStdString();
+        s.iso.reset();  // another variable, another range
+        load(s);
     });
     inputForm->addRow(tr("Variable"), variableCombo_);
     timeEdit_ = new QLineEdit(inputBox);
@@ -273,16 +294,20 @@ QWidget* MainWindow::buildControls() {
     connect(timeEdit_, &QLineEdit::editingFinished, this, [this] {
         const std::string t = timeEdit_->text().trimmed().toStdString();
         if (t == state_.time) return;
-        state_.time = t;
-        reopen();
+        StudioState s = state_;
+        s.time = t;
+        load(s);
     });
     inputForm->addRow(tr("Time"), timeEdit_);
     seriesCombo_ = new QComboBox(inputBox);
     seriesCombo_->setObjectName(QStringLiteral("seriesCombo"));
     seriesCombo_->setToolTip(tr("DICOM series (default: the largest)"));
     connect(seriesCombo_, &QComboBox::activated, this, [this](int index) {
-        state_.series = std::to_string(index + 1);
-        reopen();
+        StudioState s = state_;
+        s.series = std::to_string(index + 1);
+        s.iso.reset();
+        s.cameraSet = false;
+        load(s);
     });
     inputForm->addRow(tr("Series"), seriesCombo_);
     layout->addWidget(inputBox);
@@ -343,8 +368,11 @@ QWidget* MainWindow::buildControls() {
         state_.renderer = t.toStdString();
         requestRender(false);
     });
+    secondCombo_->addItem(QString::fromLatin1(kOpenGlPane));
+    secondCombo_->setItemData(secondCombo_->count() - 1, tr("The shell's surfels splatted with OpenGL"), Qt::ToolTipRole);
     connect(secondCombo_, &QComboBox::currentTextChanged, this, [this](const QString& t) {
         state_.secondRenderer = t.toStdString();
+        differenceAction_->setEnabled(state_.split && state_.secondRenderer != kOpenGlPane);
         requestRender(false);
     });
     renderForm->addRow(tr("Renderer"), rendererCombo_);
@@ -381,17 +409,8 @@ QWidget* MainWindow::buildControls() {
     colourBar_ = new QLabel(renderBox);
     colourBar_->setObjectName(QStringLiteral("colourBar"));
     connect(colormapCombo_, &QComboBox::currentIndexChanged, this, [this](int i) {
-        state_.colormap = i == 0 ? std::string() : colormapCombo_->currentText().toStdString();
-        if (state_.colormap.empty()) colourBar_->clear();
-        else {
-            QImage bar(200, 12, QImage::Format_RGB32);
-            for (int x = 0; x < bar.width(); ++x) {
-                const vec3 c = colormap(state_.colormap, float(x) / float(bar.width() - 1));
-                const QRgb rgb = qRgb(linearToSrgb8(c.r), linearToSrgb8(c.g), linearToSrgb8(c.b));
-                for (int y = 0; y < bar.height(); ++y) bar.setPixel(x, y, rgb);
-            }
-            colourBar_->setPixmap(QPixmap::fromImage(bar));
-        }
+        state_.colormap = i <= 0 ? std::string() : colormapCombo_->currentText().toStdString();
+        updateColourBar();
         requestRender(false);
     });
     renderForm->addRow(tr("Colour map"), colormapCombo_);
@@ -399,6 +418,20 @@ QWidget* MainWindow::buildControls() {
     layout->addWidget(renderBox);
     layout->addStretch(1);
     return w;
+}
+
+void MainWindow::updateColourBar() {
+    if (state_.colormap.empty()) {
+        colourBar_->clear();
+        return;
+    }
+    QImage bar(200, 12, QImage::Format_RGB32);
+    for (int x = 0; x < bar.width(); ++x) {
+        const vec3 c = colormap(state_.colormap, float(x) / float(bar.width() - 1));
+        const QRgb rgb = qRgb(linearToSrgb8(c.r), linearToSrgb8(c.g), linearToSrgb8(c.b));
+        for (int y = 0; y < bar.height(); ++y) bar.setPixel(x, y, rgb);
+    }
+    colourBar_->setPixmap(QPixmap::fromImage(bar));
 }
 
 void MainWindow::showMessage(const QString& text, bool error) {
@@ -414,22 +447,66 @@ void MainWindow::showMessage(const QString& text, bool error) {
 }
 
 void MainWindow::openInput(const QString& input) {
-    state_.input = input.toStdString();
-    state_.variable.clear();
-    state_.time.clear();
-    state_.series.clear();
-    state_.iso.reset();
-    state_.cameraSet = false;
+    StudioState s = state_;
+    s.input = input.toStdString();
+    s.variable.clear();
+    s.time.clear();
+    s.series.clear();
+    s.iso.reset();
+    s.cameraSet = false;
     addRecent(input);
-    reopen();
+    load(s);
 }
 
-void MainWindow::reopen() {
-    if (state_.input.empty()) return;
-    inputLabel_->setText(QString::fromStdString(state_.input));
-    setWindowTitle(tr("%1 - octrace studio").arg(QFileInfo(QString::fromStdString(state_.input)).fileName()));
+void MainWindow::load(const StudioState& s) {
+    if (s.input.empty()) return;
+    pending_ = s;
     cancelButton_->setEnabled(true);
-    engine_.open(state_);
+    engine_.open(s);
+}
+
+bool MainWindow::saveSessionTo(const QString& path) {
+    try {
+        saveSession(state_, path);
+    } catch (const std::exception& e) {
+        showMessage(QString::fromStdString(e.what()), true);
+        return false;
+    }
+    showMessage(tr("Saved session %1").arg(path));
+    return true;
+}
+
+bool MainWindow::openSession(const QString& path) {
+    StudioState s;
+    try {
+        s = loadSession(path);
+    } catch (const std::exception& e) {
+        showMessage(QString::fromStdString(e.what()), true);
+        return false;
+    }
+    state_ = s;
+    showState();
+    showMessage(tr("Opened session %1").arg(path));
+    if (!state_.input.empty()) {
+        addRecent(QString::fromStdString(state_.input));
+        load(state_);
+    }
+    return true;
+}
+
+void MainWindow::showState() {
+    updating_ = true;
+    depthSpin_->setValue(state_.depth);
+    rendererCombo_->setCurrentText(QString::fromStdString(state_.renderer));
+    secondCombo_->setCurrentText(QString::fromStdString(state_.secondRenderer));
+    fovSpin_->setValue(state_.fov);
+    for (int i = 0; i < 3; ++i) lightSpin_[i]->setValue(state_.light[i]);
+    colormapCombo_->setCurrentIndex(state_.colormap.empty() ? 0 : colormapCombo_->findText(QString::fromStdString(state_.colormap)));
+    timeEdit_->setText(QString::fromStdString(state_.time));
+    splitAction_->setChecked(state_.split);
+    updating_ = false;
+    setSplit(state_.split);
+    updateColourBar();
 }
 
 void MainWindow::addRecent(const QString& input) {
@@ -467,6 +544,18 @@ void MainWindow::dropEvent(QDropEvent* e) {
 }
 
 void MainWindow::onInputLoaded() {
+    // The input read is now the state's; until then a failed read left the state alone.
+    state_.input = pending_.input;
+    state_.variable = pending_.variable;
+    state_.time = pending_.time;
+    state_.series = pending_.series;
+    state_.iso = pending_.iso;
+    state_.cameraSet = pending_.cameraSet;
+    state_.position = pending_.position;
+    state_.lookAt = pending_.lookAt;
+    state_.up = pending_.up;
+    inputLabel_->setText(QString::fromStdString(state_.input));
+    setWindowTitle(tr("%1 - octrace studio").arg(QFileInfo(QString::fromStdString(state_.input)).fileName()));
     const InputInfo& in = engine_.info();
     updating_ = true;
     variableCombo_->clear();
@@ -555,16 +644,36 @@ void MainWindow::setStandardView(int axis, int sign) {
 
 void MainWindow::setSplit(bool on) {
     state_.split = on;
-    views_[1]->setVisible(on);
-    differenceAction_->setEnabled(on);
+    secondPane_->setVisible(on);
+    differenceAction_->setEnabled(on && state_.secondRenderer != kOpenGlPane);
     exactTimer_.start();
+}
+
+bool MainWindow::openGlPane() const { return state_.split && state_.secondRenderer == kOpenGlPane; }
+
+void MainWindow::updateSurfelView() {
+    auto tree = engine_.tree();
+    if (!tree || !openGlPane()) return;
+    const RenderSettings rs = renderSettingsFor(state_, false);
+    if (tree != surfelTree_ || rs.colour != surfelSettings_.colour || rs.colormap != surfelSettings_.colormap) {
+        surfels_ = std::make_shared<const std::vector<Surfel>>(extractSurfels(*tree, rs));
+        surfelTree_ = tree;
+        surfelSettings_ = rs;
+        surfelView_->setSurfels(surfels_);
+    }
+    const qreal dpr = surfelView_->devicePixelRatioF();
+    surfelView_->setView(cameraFor(state_, tree->occupiedBounds(), std::max(1, int(surfelView_->width() * dpr)),
+                                   std::max(1, int(surfelView_->height() * dpr))),
+                         rs);
 }
 
 void MainWindow::requestRender(bool preview) {
     if (!engine_.tree()) return;
     FrameRequest r;
     r.renderers = {state_.renderer};
-    if (state_.split) r.renderers.push_back(state_.secondRenderer);
+    if (state_.split && !openGlPane()) r.renderers.push_back(state_.secondRenderer);
+    secondPane_->setCurrentWidget(openGlPane() ? static_cast<QWidget*>(surfelView_) : views_[1]);
+    if (openGlPane()) updateSurfelView();
     r.camera = viewCamera();
     try {
         r.camera.validate();
@@ -598,10 +707,13 @@ QStringList MainWindow::commandLine(const QString& output, int width, int height
 }
 
 void MainWindow::exportFigure(const QString& path, int width, int height, bool transparent) {
-    state_.exportWidth = width;
+    StudioState s = state_;
+    s.transparent = transparent;
+    engine_.exportFigure(s, path, width, height);  // refuses a size out of range
+    if (width < 1 || height < 1 || width > kMaxExportSide || height > kMaxExportSide) return;
+    state_.exportWidth = width;  // the next export's defaults
     state_.exportHeight = height;
     state_.transparent = transparent;
-    engine_.exportFigure(state_, path, width, height);
 }
 
 void MainWindow::chooseExport() {

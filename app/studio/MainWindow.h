@@ -5,6 +5,8 @@
 #include "Engine.h"
 #include "StudioState.h"
 
+#include "octrace/render/Surfels.h"
+
 #include <QMainWindow>
 #include <QTimer>
 
@@ -20,11 +22,13 @@ class QProgressBar;
 class QPushButton;
 class QSlider;
 class QSpinBox;
+class QStackedWidget;
 
 namespace octrace::studio {
 
 class HistogramView;
 class RenderView;
+class SurfelView;
 
 class MainWindow : public QMainWindow {
     Q_OBJECT
@@ -38,12 +42,18 @@ public:
     /// Starts exporting the current state to `path` at width x height (PNG, EXR, TIFF by the
     /// extension); Engine::exported or Engine::failed follows.
     void exportFigure(const QString& path, int width, int height, bool transparent);
+    /// Saves the state as a session file (atomically); a failure shows a message.
+    bool saveSessionTo(const QString& path);
+    /// Opens a session file: its input is read with its settings and camera. A file that is
+    /// missing or broken shows a message and keeps the current state.
+    bool openSession(const QString& path);
     /// The `octrace render` command line of the current state at width x height writing `output`.
     QStringList commandLine(const QString& output, int width, int height) const;
 
     const StudioState& state() const { return state_; }
     Engine& engine() { return engine_; }
     RenderView* view(int pane) const { return views_[pane]; }
+    SurfelView* surfelView() const { return surfelView_; }
     /// The camera of pane views at their current size.
     Camera viewCamera() const;
 
@@ -73,12 +83,28 @@ private:
     void setSplit(bool on);
     void chooseExport();
     void chooseOpen();
-    void reopen();
+    /// Reads s's input with s's settings; the input fields, iso value and camera of s become
+    /// the state's once it is read (a failed read changes nothing).
+    void load(const StudioState& s);
+    /// Sets every control from state_ without acting on the changes.
+    void showState();
+    void updateColourBar();
     QSize paneSize() const;
+    /// Whether the split view's right pane is the OpenGL view.
+    bool openGlPane() const;
+    /// Gives the OpenGL view the current surfels (extracted again when the surface or its
+    /// colour changed) and camera.
+    void updateSurfelView();
 
     StudioState state_;
+    StudioState pending_;  // what load() is reading
     Engine engine_;
     RenderView* views_[2] = {nullptr, nullptr};
+    QStackedWidget* secondPane_ = nullptr;
+    SurfelView* surfelView_ = nullptr;
+    std::shared_ptr<const std::vector<Surfel>> surfels_;
+    std::shared_ptr<const Octree> surfelTree_;  // what surfels_ were extracted from
+    RenderSettings surfelSettings_;
     HistogramView* histogram_ = nullptr;
     QLabel *inputLabel_ = nullptr, *rangeLabel_ = nullptr, *statusLabel_ = nullptr, *colourBar_ = nullptr;
     QComboBox *variableCombo_ = nullptr, *seriesCombo_ = nullptr, *rendererCombo_ = nullptr, *secondCombo_ = nullptr,

@@ -24,7 +24,7 @@ struct StudioState {
     int depth = 8;
     // Renderers: the main view's, and the second one of the split view.
     std::string renderer = "full";
-    std::string secondRenderer = "direct";
+    std::string secondRenderer = "direct";  ///< a renderer's name, or kOpenGlPane
     bool split = false;
     // Camera; unset: framing the surface as `octrace render` does without camera options.
     bool cameraSet = false;
@@ -39,6 +39,9 @@ struct StudioState {
     int exportWidth = 1600, exportHeight = 1200;
     bool transparent = false;  ///< export with a transparent background (alpha 0)
 };
+
+/// The split view's right pane as the OpenGL surfel view instead of a CPU renderer.
+inline constexpr const char* kOpenGlPane = "opengl";
 
 /// The largest export side in pixels.
 inline constexpr int kMaxExportSide = 8192;

@@ -6,7 +6,13 @@
 // docs/user/studio.md: scripts/studio-screenshots.sh).
 #include "Engine.h"
 #include "MainWindow.h"
+
+#include "octrace/render/Renderer.h"
 #include "RenderView.h"
+#include "Session.h"
+#include "SurfelView.h"
+
+#include "octrace/util/Error.h"
 
 #include <QComboBox>
 #include <QDoubleSpinBox>
@@ -226,6 +232,44 @@ private slots:
         QVERIFY(!window_->view(1)->isVisible());
     }
 
+    void openGlViewSplatsTheSurfels() {
+        QAction* split = nullptr;
+        for (QAction* a : window_->findChildren<QAction*>())
+            if (a->text() == QStringLiteral("&Split View")) split = a;
+        auto* second = window_->findChild<QComboBox*>(QStringLiteral("secondRendererCombo"));
+        octrace::studio::SurfelView* gl = window_->surfelView();
+        QSignalSpy drawn(gl, &octrace::studio::SurfelView::frameDrawn);
+        second->setCurrentText(QStringLiteral("opengl"));
+        split->setChecked(true);
+        QVERIFY(drawn.wait(kWaitMs));
+        while (drawn.wait(500)) {}  // the frames that follow the first (resizes, the exact camera)
+        QVERIFY2(gl->rendererName().contains(QStringLiteral("llvmpipe")) || !gl->rendererName().contains(QStringLiteral("failed")),
+                 qPrintable(gl->rendererName()));
+        QCOMPARE(gl->surfelCount(), window_->engine().tree()->boundaryVoxels());
+        // The splats cover what the CPU renderer draws from the same camera at the same size.
+        const QImage splats = gl->grabFramebuffer().convertToFormat(QImage::Format_RGB32);
+        octrace::Camera cam = octrace::studio::cameraFor(window_->state(), window_->engine().tree()->occupiedBounds(),
+                                                          splats.width(), splats.height());
+        octrace::Frame frame;
+        octrace::makeRenderer("full")->render(*window_->engine().tree(), cam,
+                                              octrace::studio::renderSettingsFor(window_->state(), false), frame);
+        const QImage cpu = octrace::studio::toImage(frame).convertToFormat(QImage::Format_RGB32);
+        const QRgb bg = cpu.pixel(0, 0);
+        qint64 both = 0, either = 0;
+        // The statistics box at the top left is left out.
+        for (int y = 100; y < cpu.height(); ++y)
+            for (int x = 0; x < cpu.width(); ++x) {
+                const bool a = cpu.pixel(x, y) != bg, b = splats.pixel(x, y) != bg;
+                both += a && b;
+                either += a || b;
+            }
+        QVERIFY(either > 1000);
+        QVERIFY2(double(both) / double(either) > 0.9, qPrintable(QStringLiteral("overlap %1 of %2").arg(both).arg(either)));
+        screenshot(QStringLiteral("studio-opengl.png"));
+        split->setChecked(false);
+        second->setCurrentText(QStringLiteral("direct"));
+    }
+
     void exportsWhatTheCliRenders() {
         exportEqualsCli(QStringLiteral("full"), 320, 200, false);
         auto* combo = window_->findChild<QComboBox*>(QStringLiteral("rendererCombo"));
@@ -240,6 +284,7 @@ private slots:
         QVERIFY(failed.wait(kWaitMs));
         QVERIFY(failed.takeFirst().at(0).toString().contains(QStringLiteral("8192")));
         QVERIFY(!QFileInfo::exists(tmp_.filePath(QStringLiteral("huge.png"))));
+        QVERIFY(window_->state().exportWidth <= octrace::studio::kMaxExportSide);
         for (auto* box : window_->findChildren<QWidget*>(QStringLiteral("errorBox"))) box->close();
     }
 
@@ -266,13 +311,108 @@ private slots:
         f.write("NRRD0004\ntype: float\ndimension: 3\nsizes: 4 4\n\n");
         f.close();
         const auto tree = window_->engine().tree();
+        const QByteArray before = octrace::studio::sessionJson(window_->state());
         QSignalSpy failed(&window_->engine(), &Engine::failed);
         window_->openInput(bad);
         QVERIFY(failed.wait(kWaitMs));
         QVERIFY(failed.takeFirst().at(0).toString().contains(bad));
         QCOMPARE(window_->engine().tree(), tree);
+        QCOMPARE(octrace::studio::sessionJson(window_->state()), before);  // still the torus, as shown
         QVERIFY(window_->findChild<QWidget*>(QStringLiteral("errorBox")));
         for (auto* box : window_->findChildren<QWidget*>(QStringLiteral("errorBox"))) box->close();
+    }
+
+    void sessionSavesAndRestoresTheState() {
+        const QString path = tmp_.filePath(QStringLiteral("session.json"));
+        auto* combo = window_->findChild<QComboBox*>(QStringLiteral("rendererCombo"));
+        auto* colormap = window_->findChild<QComboBox*>(QStringLiteral("colormapCombo"));
+        colormap->setCurrentIndex(1);
+        combo->setCurrentText(QStringLiteral("direct"));
+        QVERIFY(window_->saveSessionTo(path));
+        QFile file(path);
+        QVERIFY(file.open(QIODevice::ReadOnly));
+        const QByteArray saved = file.readAll();
+        QVERIFY(saved.contains(QFileInfo(QStringLiteral("data_samples/torus.nrrd")).absoluteFilePath().toUtf8()));
+        QCOMPARE(QFileInfo(path).dir().entryList(QDir::Files | QDir::Hidden).filter(QStringLiteral(".tmp")).size(), 0);
+        // Change things, then open the session: the state comes back, the input is read again.
+        combo->setCurrentText(QStringLiteral("full"));
+        colormap->setCurrentIndex(0);
+        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
+        QSignalSpy failed(&window_->engine(), &Engine::failed);
+        QVERIFY2(window_->openSession(path), saved.constData());
+        QVERIFY2(built.wait(kWaitMs), failed.isEmpty() ? "" : qPrintable(failed.first().at(0).toString()));
+        QCOMPARE(octrace::studio::sessionJson(window_->state()), saved);
+        QCOMPARE(combo->currentText(), QStringLiteral("direct"));
+        QCOMPARE(colormap->currentIndex(), 1);
+        waitFrame();
+        screenshot(QStringLiteral("studio-colormap.png"));
+        exportEqualsCli(QStringLiteral("session"), 200, 150, false);  // the colour map too
+
+        // Missing and broken files: a message, and the state stays as it was.
+        const QByteArray current = octrace::studio::sessionJson(window_->state());
+        for (const QByteArray& bad : {QByteArray("{ not json"), QByteArray("[1, 2]"), QByteArray("{\"octrace_studio_session\": 2}"),
+                                      QByteArray("{\"octrace_studio_session\": 1, \"surface\": {\"depth\": 99}}")}) {
+            QFile f(tmp_.filePath(QStringLiteral("bad.json")));
+            QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
+            f.write(bad);
+            f.close();
+            QVERIFY(!window_->openSession(f.fileName()));
+            QCOMPARE(octrace::studio::sessionJson(window_->state()), current);
+        }
+        QVERIFY(!window_->openSession(tmp_.filePath(QStringLiteral("missing.json"))));
+        QCOMPARE(octrace::studio::sessionJson(window_->state()), current);
+        for (auto* box : window_->findChildren<QWidget*>(QStringLiteral("errorBox"))) box->close();
+        colormap->setCurrentIndex(0);
+        combo->setCurrentText(QStringLiteral("full"));
+    }
+
+    void sessionParserChecksEveryMember_data() {
+        QTest::addColumn<QByteArray>("json");
+        QTest::addColumn<QString>("message");
+        auto row = [](const char* name, const char* body, const char* message) {
+            QTest::newRow(name) << QByteArray(body) << QString::fromLatin1(message);
+        };
+        row("not json", "{", "JSON error");
+        row("no version", "{}", "no 'octrace_studio_session' member");
+        row("version", R"({"octrace_studio_session": 3})", "format version 3");
+        row("input type", R"({"octrace_studio_session": 1, "input": {"path": 5}})", "input.path: must be a string");
+        row("depth", R"({"octrace_studio_session": 1, "surface": {"depth": 0}})", "surface.depth: 0 is outside");
+        row("depth fraction", R"({"octrace_studio_session": 1, "surface": {"depth": 7.5}})", "surface.depth: must be a whole number");
+        row("iso", R"({"octrace_studio_session": 1, "surface": {"iso": "x"}})", "surface.iso: must be a number");
+        row("renderer", R"({"octrace_studio_session": 1, "renderers": {"main": "warp"}})", "renderers.main: unknown renderer 'warp'");
+        row("fov", R"({"octrace_studio_session": 1, "camera": {"fov": 180}})", "camera.fov: must be in (0, 180)");
+        row("camera partial", R"({"octrace_studio_session": 1, "camera": {"position": [1, 2, 3]}})", "go together");
+        row("camera degenerate",
+            R"({"octrace_studio_session": 1, "camera": {"position": [1, 1, 1], "look_at": [1, 1, 1], "up": [0, 0, 1]}})",
+            "camera.position:");
+        row("light zero", R"({"octrace_studio_session": 1, "shading": {"light": [0, 0, 0]}})", "shading.light: direction must not be zero");
+        row("colour range", R"({"octrace_studio_session": 1, "shading": {"colour": [1, 2, 0]}})", "shading.colour: 2 is outside");
+        row("colormap", R"({"octrace_studio_session": 1, "shading": {"colormap": "rainbow2"}})", "unknown colour map 'rainbow2'");
+        row("export size", R"({"octrace_studio_session": 1, "export": {"width": 8193}})", "export.width: 8193 is outside");
+        row("section type", R"({"octrace_studio_session": 1, "export": []})", "export: must be an object");
+    }
+
+    void sessionParserChecksEveryMember() {
+        QFETCH(QByteArray, json);
+        QFETCH(QString, message);
+        try {
+            octrace::studio::parseSession(json);
+            QFAIL("expected InputError");
+        } catch (const octrace::InputError& e) {
+            QVERIFY2(QString::fromStdString(e.what()).contains(message), e.what());
+        }
+    }
+
+    void sessionParserKeepsDefaultsAndResolvesRelativeInputs() {
+        const auto s = octrace::studio::parseSession(R"({"octrace_studio_session": 1, "input": {"path": "data/a.nc"}})", QStringLiteral("/base"));
+        QCOMPARE(QString::fromStdString(s.input), QStringLiteral("/base/data/a.nc"));
+        const octrace::studio::StudioState defaults;
+        QCOMPARE(s.depth, defaults.depth);
+        QCOMPARE(s.renderer, defaults.renderer);
+        QVERIFY(!s.iso && !s.cameraSet);
+        QCOMPARE(octrace::studio::parseSession(octrace::studio::sessionJson(s)).input, s.input);
+        const auto a = octrace::studio::parseSession(R"({"octrace_studio_session": 1, "input": {"path": "analytic:torus"}})", QStringLiteral("/base"));
+        QCOMPARE(a.input, std::string("analytic:torus"));
     }
 
     void cleanupTestCase() { delete window_; }
