@@ -39,7 +39,10 @@ PAPER = {
     ("V", 7): (134747, "2.06 (3.00)", "1.44 (2.10)", "1.20 (1.74)", "1.00 (1.46)", "0.25"),
     ("V", 8): (560410, "2.36 (3.43)", "1.67 (2.44)", "1.45 (2.11)", "1.13 (1.65)", "0.45"),
     ("V", 9): (1280668, "2.74 (4.00)", "1.95 (2.84)", "1.81 (2.64)", "1.32 (1.92)", "1.25"),
+    ("molecule", 9): (675672, "4.69 (3.17)", "2.36 (1.60)", "1.97 (1.33)", "2.14 (1.45)", "–"),
 }
+# The paper's image area (rays) per scene key; the isosurfaces' otherwise.
+PAPER_RAYS = {"molecule": 1477514, "city": 1639389}
 # Rows of the paper's table whose source does not exist yet: shown as pending unless a scene
 # with that key is present.
 PENDING = {"V": "isosurface V (sound speed: ocean issue)", "city": "city 7-9 .. 10-12 (city issue)",
@@ -145,8 +148,8 @@ def main():
                          format(first["rays"], ","), " | ".join(cells)))
                 p = PAPER.get((s["key"], depth))
                 if p:
-                    L.append("| *paper* | | *%s* | *685,729* | *%s* | *%s* | *%s* | *%s* | | | *%s* | |" % (
-                        format(p[0], ","), p[1], p[2], p[3], p[4], p[5]))
+                    L.append("| *paper* | | *%s* | *%s* | *%s* | *%s* | *%s* | *%s* | | | *%s* | |" % (
+                        format(p[0], ","), format(PAPER_RAYS.get(s["key"], 685729), ","), p[1], p[2], p[3], p[4], p[5]))
         L.append("")
         L.append("Speed-up over `full`: `full` rendered alternately with the renderer in the same process")
         L.append("(`--baseline full`), fastest of each, full / renderer:\n")

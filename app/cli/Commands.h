@@ -10,4 +10,5 @@ int runInfo(const std::vector<std::string>& args);
 int runSample(const std::vector<std::string>& args);
 int runExport(const std::vector<std::string>& args);
 int runBuild(const std::vector<std::string>& args);
+int runCsg(const std::vector<std::string>& args);
 }  // namespace octrace::cli

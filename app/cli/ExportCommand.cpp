@@ -27,6 +27,7 @@ OptionParser makeParser(ExportArgs& a) {
     p.add({"o", "FILE", "output point cloud; format from --format or the extension: .ply (required)",
            [&](const std::string& v) { a.output = v; }});
     addSurfaceOptions(p, a);
+    addFormOptions(p, a);
     p.add({"level", "L", "one surfel per non-empty octree node at level L (1..depth), for previews (default: one per boundary voxel)",
            [&](const std::string& v) { a.level = parseInt("level", v, 1, Octree::kMaxDepth); }});
     p.add({"format", "NAME", "output format: ply (default: from the extension of -o)",
@@ -38,10 +39,18 @@ OptionParser makeParser(ExportArgs& a) {
            [&](const std::string&) { a.ascii = true; }});
     addThreadsOption(p, a, "the output");
     addColourOptions(p, a);
-    addGeographicOptions(p, a);
+    addGeographicOptions(p, a.request);
+    addCityOptions(p, a);
     addSeriesOption(p, a.request);
     addMessageOptions(p, a);
     return p;
+}
+
+std::string windowNumber(double v) {
+    std::ostringstream s;
+    s.precision(10);
+    s << v;
+    return s.str();
 }
 
 /// The header comments: where the surfels come from and what their attributes mean.
@@ -58,7 +67,11 @@ std::vector<std::string> provenance(const ExportArgs& a, const Surface& s, int l
         "depth: " + std::to_string(s.tree.depth) + ", level: " + std::to_string(level),
         "position: box centre in world units; radius: half the box diagonal",
         "colour: 8-bit sRGB albedo without lighting, " +
-            (a.colormap.empty() ? "uniform" : "colour map " + a.colormap + " by height"),
+            (s.window.valid() ? "grey by the display window centre " + windowNumber(s.window.centre) + " width " +
+                                    windowNumber(s.window.width) + " (" + s.windowSource + ")" +
+                                    (s.invertedGrey ? ", inverted (MONOCHROME1)" : "") + " of the value under the surface"
+             : a.colormap.empty() ? "uniform"
+                                  : "colour map " + a.colormap + " by height"),
     };
     for (const auto& n : s.field.notes) c.push_back("note: " + n);
     return c;
@@ -85,7 +98,7 @@ int runExport(const std::vector<std::string>& args) {
     if (level < tree.depth) tree.computeSummaries();
     RenderSettings rs;
     rs.threads = a.threads;
-    applyColour(a, rs);
+    applyColour(a, surface, rs);
     const std::vector<Surfel> surfels = extractSurfels(tree, rs, level);
 
     io::PlyWriteOptions options;

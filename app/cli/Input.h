@@ -1,15 +1,26 @@
 #pragma once
 #include "octrace/build/ScalarField.h"
+#include "octrace/io/CityReader.h"
 #include "octrace/io/FieldRequest.h"
 #include "octrace/octree/Octree.h"
+#include "octrace/scene/Spheres.h"
 
 #include <cstdint>
 #include <string>
 
 namespace octrace::cli {
-/// Reads INPUT: a file through io::readField, or "analytic:NAME[:SAMPLES]" (default 65 samples).
+/// Reads INPUT: a file through io::readField, or "analytic:NAME[:SAMPLES]" (default 65 samples),
+/// or a sphere scene (isSphereInput) as its signed distance field (sphereDistanceField) with
+/// 2^depth + 5 samples along its longest side (`depth`: the octree depth it is built at).
 /// Both refuse (LimitError) samples that would need more than req.memoryBudget.
-ScalarField loadField(const std::string& input, const io::FieldRequest& req);
+ScalarField loadField(const std::string& input, const io::FieldRequest& req, int depth);
+/// Whether INPUT is a sphere scene: "sphereflake:L" (Haines' SphereFlake, L 1..4),
+/// "random:N[:SEED]" (N seeded random spheres, seed default 1) or a molecule file (.pdb,
+/// .ent, .cif, .mmcif).
+bool isSphereInput(const std::string& input);
+/// Reads or generates a sphere scene within `memoryBudget` bytes (0 = no limit). Throws
+/// UsageError for a malformed generator spec, as io::readMolecule for files.
+SphereSet loadSpheres(const std::string& input, std::uint64_t memoryBudget);
 /// Whether INPUT is an octree file (`octrace build`'s .oct): by its extension .oct (any case),
 /// so that a damaged signature is reported as such, or by its signature.
 bool isOctreeInput(const std::string& input);
@@ -17,6 +28,7 @@ bool isOctreeInput(const std::string& input);
 /// io::readOctreeFile.
 Octree loadOctree(const std::string& input, std::uint64_t memoryBudget);
 /// Text for `octrace info` (`req.series` chooses a DICOM series; reads that would need more
-/// than `req.memoryBudget` bytes, 0 = no limit, are left out or refused: io::describeInput).
-std::string describe(const std::string& input, const io::FieldRequest& req = {});
+/// than `req.memoryBudget` bytes, 0 = no limit, are left out or refused: io::describeInput);
+/// a city input in the CRS and LoD `city` asks for (io::describeCityInput).
+std::string describe(const std::string& input, const io::FieldRequest& req = {}, const io::CityRequest& city = {});
 }  // namespace octrace::cli

@@ -1,6 +1,7 @@
 // octrace render: read a field, build the shell octree of an isosurface, render, write the
 // image (and optionally stats JSON), optionally verify against the reference traversal.
 #include "Commands.h"
+#include "Input.h"
 #include "Options.h"
 #include "StatsJson.h"
 #include "SurfaceOptions.h"
@@ -16,6 +17,7 @@
 #include "octrace/util/Timer.h"
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -23,6 +25,13 @@
 
 namespace octrace::cli {
 namespace {
+
+std::string vecText(const dvec3& v) {
+    std::ostringstream o;
+    o.precision(10);
+    o << v.x << "," << v.y << "," << v.z;
+    return o.str();
+}
 
 struct RenderArgs : SurfaceArgs {
     std::string output, statsPath, rendererName = "full";
@@ -41,6 +50,12 @@ struct RenderArgs : SurfaceArgs {
     bool colourFillsBackground = false;
     int repeat = 1;
     std::string baseline;
+    // Sphere scenes.
+    std::string octreeKind;  // "object", "voxel" or empty: by the renderer
+    int leafObjects = ObjectOctreeOptions{}.leafObjects;
+    int samples = 1, bounces = RenderSettings{}.bounces;
+    bool shadows = RenderSettings{}.shadows;
+    std::vector<std::string> sphereOptions;  // given, for the check that they apply
 };
 
 OptionParser makeParser(RenderArgs& a) {
@@ -48,6 +63,7 @@ OptionParser makeParser(RenderArgs& a) {
     p.add({"o", "FILE", "output image; format from the extension: " + joinNames(io::imageExtensions()) + " (required)",
            [&](const std::string& v) { a.output = v; }});
     addSurfaceOptions(p, a);
+    addFormOptions(p, a);
     p.add({"renderer", "NAME", "renderer: " + joinNames(rendererNames()) + " (default full)",
            [&](const std::string& v) {
                makeRenderer(v);  // validates the name
@@ -106,7 +122,8 @@ OptionParser makeParser(RenderArgs& a) {
                if (t < 0.0 || t > 255.0) throw UsageError("--colour-tolerance: must be in [0, 255], got " + v);
                a.colourTolerance = float(t);
            }});
-    addGeographicOptions(p, a);
+    addGeographicOptions(p, a.request);
+    addCityOptions(p, a);
     addSeriesOption(p, a.request);
     p.add({"repeat", "N", "render N times and report the fastest as render_ms (benchmarks on a noisy machine; default 1)",
            [&](const std::string& v) { a.repeat = parseInt("repeat", v, 1, 1000); }});
@@ -115,8 +132,243 @@ OptionParser makeParser(RenderArgs& a) {
                makeRenderer(v);
                a.baseline = v;
            }});
+    p.add({"octree", "object|voxel", "sphere inputs: trace the spheres in paper B's object octree (renderers reference, samet, beam) or voxelize them into the voxel octree at --depth (every voxel renderer) (default: object for reference, samet, beam; voxel for the others)",
+           [&](const std::string& v) {
+               if (v != "object" && v != "voxel") throw UsageError("--octree: choose object or voxel, got '" + v + "'");
+               a.octreeKind = v;
+           }});
+    // An integer option of the object octree, noted as given (it applies to sphere scenes only).
+    auto sphereInt = [&](const std::string& name, const std::string& help, int lo, int hi, int& target) {
+        p.add({name, "N", help + ", " + std::to_string(lo) + ".." + std::to_string(hi) + " (default " + std::to_string(target) + ")",
+               [&a, &target, name, lo, hi](const std::string& v) {
+                   target = parseInt(name, v, lo, hi);
+                   a.sphereOptions.push_back("--" + name);
+               }});
+    };
+    sphereInt("leaf-objects", "object octree: split a node while it holds more than N spheres", 1, 100000, a.leafObjects);
+    p.add({"samples", "N", "object octree: rays per pixel on a sqrt(N) x sqrt(N) grid, averaged; a square 1..256 (default 1)",
+           [&](const std::string& v) {
+               a.samples = parseInt("samples", v, 1, 256);
+               const int side = int(std::lround(std::sqrt(double(a.samples))));
+               if (side * side != a.samples) throw UsageError("--samples: must be a square number (1, 4, 9, 16, ...), got " + v);
+               a.sphereOptions.push_back("--samples");
+           }});
+    sphereInt("bounces", "object octree: Whitted depth, reflected and transmitted rays at most N deep", 0, 16, a.bounces);
+    p.add({"shadows", "on|off", "object octree: shadow rays towards the light (default on)",
+           [&](const std::string& v) {
+               if (v == "on") a.shadows = true;
+               else if (v == "off") a.shadows = false;
+               else throw UsageError("--shadows: choose on or off, got '" + v + "'");
+               a.sphereOptions.push_back("--shadows");
+           }});
     addMessageOptions(p, a);
     return p;
+}
+
+/// The frames (the image, the baseline's, with --verify the two references or oracles) and the
+/// encoded file (at most 24 bytes a pixel): checked first alone, after the build with the rest.
+std::uint64_t outputFrameBytes(const RenderArgs& a) {
+    return Frame::bytesFor(a.width, a.height) * (1 + !a.baseline.empty() + 2 * a.verify) + std::uint64_t(a.width) * std::uint64_t(a.height) * 24;
+}
+
+/// The camera of the options, framing `bounds` unless told otherwise.
+Camera makeCamera(const RenderArgs& a, const Box3& bounds) {
+    Camera cam = Camera::framing(bounds, a.width, a.height, a.fov);
+    if (a.lookAt) cam.lookAt = *a.lookAt;
+    if (a.up) cam.up = *a.up;
+    if (a.cameraPos) cam.position = *a.cameraPos;
+    else if (a.lookAt) cam.position = cam.lookAt + (Camera::framing(bounds, a.width, a.height, a.fov).position - bounds.centre());
+    if (a.ortho) {
+        cam.validate();
+        cam.frameOrthographic(bounds);
+        if (a.cameraPos) cam.position = *a.cameraPos;  // the user's view plane, even if it cuts the surface
+        if (a.orthoHeight) cam.orthoHeight = *a.orthoHeight;
+    }
+    cam.validate();
+    return cam;
+}
+
+/// What the voxel and the sphere paths write alike: the view.
+void setCameraStats(StatsJson& js, const Camera& cam, const Box3& bounds) {
+    js.set("camera_pos", vecText(cam.position));
+    js.set("look_at", vecText(cam.lookAt));
+    js.set("up", vecText(cam.up));
+    js.set("projection", std::string(cam.orthographic() ? "ortho" : "perspective"));
+    if (cam.orthographic()) js.set("ortho_height", cam.orthoHeight);
+    else js.set("fov", cam.fovYDegrees);
+    js.set("surface_bounds_min", vecText(bounds.lo));
+    js.set("surface_bounds_max", vecText(bounds.hi));
+}
+
+/// Pixels whose hit (the sphere of the first sample, or a miss) differs.
+std::uint64_t mismatchedHits(const Frame& a, const Frame& b) {
+    std::uint64_t n = 0;
+    for (std::size_t i = 0; i < a.hitId.size(); ++i) n += a.hitId[i] != b.hitId[i];
+    return n;
+}
+
+/// The main renderer's frame and its fastest of --repeat runs; with --baseline, the baseline
+/// alternating with it (so that a change in the machine's load hits both alike), its fastest.
+struct RepeatedRender {
+    std::unique_ptr<Renderer> renderer;
+    RenderStats stats;
+    std::vector<double> times;  // sorted
+    double baselineMs = std::numeric_limits<double>::infinity();
+};
+
+RepeatedRender renderRepeated(const RenderArgs& a, Frame& frame, const std::function<RenderStats(const Renderer&, Frame&)>& draw) {
+    RepeatedRender r;
+    r.renderer = makeRenderer(a.rendererName);
+    const Renderer& renderer = *r.renderer;
+    std::unique_ptr<Renderer> base = a.baseline.empty() ? nullptr : makeRenderer(a.baseline);
+    const Renderer* baseline = base.get();
+    Frame baseFrame;
+    r.stats = draw(renderer, frame);
+    r.times.push_back(r.stats.renderMs);
+    if (baseline) r.baselineMs = draw(*baseline, baseFrame).renderMs;
+    for (int i = 1; i < a.repeat; ++i) {
+        r.times.push_back(draw(renderer, frame).renderMs);
+        r.stats.renderMs = std::min(r.stats.renderMs, r.times.back());
+        if (baseline) r.baselineMs = std::min(r.baselineMs, draw(*baseline, baseFrame).renderMs);
+    }
+    std::sort(r.times.begin(), r.times.end());
+    if (r.stats.hits == 0) log::warning("the scene is not in view: every pixel is background");
+    io::writeImage(frame, a.output);
+    return r;
+}
+
+/// The stats keys of --repeat and --baseline.
+void setRepeatStats(StatsJson& js, const RenderArgs& a, const RepeatedRender& r) {
+    if (a.repeat > 1) {
+        js.set("repeat", a.repeat);
+        js.set("render_ms_median", r.times[r.times.size() / 2]);
+    }
+    if (!a.baseline.empty()) {
+        js.set("baseline", a.baseline);
+        js.set("baseline_render_ms", r.baselineMs);
+        js.set("speedup_over_baseline", r.stats.renderMs > 0 ? r.baselineMs / r.stats.renderMs : 0.0);
+    }
+}
+
+/// octrace render on a sphere scene traced in its object octree (paper B).
+int renderObjectOctree(const RenderArgs& a) {
+    if (a.quiet) log::setLevel(log::Level::Error);
+    if (a.verbose) log::setLevel(log::Level::Debug);
+    const char* voxelOption = a.iso || !a.isoPreset.empty() ? "--iso"
+                              : a.depthGiven                 ? "--depth"
+                              : !a.request.variable.empty()  ? "--var"
+                              : a.formGiven                  ? "--form"
+                              : !a.windowName.empty()        ? "--window"
+                                                             : nullptr;
+    if (voxelOption)
+        throw UsageError(std::string(voxelOption) + " applies to voxel octrees; the object octree of " + a.input +
+                         " traces the spheres themselves (--octree voxel voxelizes them)");
+    if (a.lod > 0.0 || a.level >= 0) throw UsageError("--lod/--level: the object octree has no multi-resolution mode");
+    if (a.colourCoherence) throw UsageError("--colour-coherence applies to the voxel renderers");
+    const int threads = a.threads == 0 ? hardwareThreads() : a.threads;
+    const std::uint64_t budget = memoryBudget(a);
+    const std::uint64_t frameBytes = outputFrameBytes(a);
+    const std::string rendering = "rendering " + std::to_string(a.width) + "x" + std::to_string(a.height);
+    checkMemoryBudget(a.input + ": " + rendering, frameBytes, budget);
+
+    Timer loadTimer;
+    SphereSet set = loadSpheres(a.input, budget);
+    const double loadMs = loadTimer.ms();
+    for (const auto& n : set.notes) log::debug(n);
+    const std::vector<std::string> notes = set.notes;
+    const std::string units = set.units;
+    Timer buildTimer;
+    ObjectOctreeOptions oo;
+    oo.leafObjects = a.leafObjects;
+    oo.memoryBudget = budget;
+    const ObjectOctree tree = ObjectOctree::build(std::move(set), oo);
+    const double buildMs = buildTimer.ms();
+    checkMemoryBudget(a.input + ": " + rendering + " beside the object octree", frameBytes + tree.bytes(), budget);
+
+    const Box3 bounds = tree.scene.bounds();
+    const Camera cam = makeCamera(a, bounds);
+    RenderSettings rs;
+    rs.threads = a.threads;
+    rs.background = displayToLinear(a.background);
+    if (a.light) rs.lightCamera = *a.light;
+    rs.samples = a.samples;
+    rs.bounces = a.bounces;
+    rs.shadows = a.shadows;
+
+    for (const std::string& name : {a.rendererName, a.baseline})
+        if (!name.empty() && !makeRenderer(name)->drawsSpheres())
+            throw UsageError("renderer " + name + " draws voxel octrees only; the object octree takes reference, samet or beam (or give --octree voxel)");
+    Frame frame;
+    const RepeatedRender rep = renderRepeated(a, frame, [&](const Renderer& r, Frame& f) {
+        return r.renderSpheres(tree, cam, rs, f);
+    });
+    const RenderStats& st = rep.stats;
+
+    StatsJson js;
+    js.set("renderer", st.renderer);
+    js.set("input", a.input);
+    js.set("octree", std::string("object"));
+    js.set("units", units);
+    js.set("width", cam.width);
+    js.set("height", cam.height);
+    js.set("threads", threads);
+    js.set("samples", a.samples);
+    js.set("bounces", a.bounces);
+    js.set("shadows", std::string(a.shadows ? "on" : "off"));
+    js.set("pixels", st.pixels);
+    js.set("rays", st.rays);
+    js.set("hits", st.hits);
+    js.set("load_ms", loadMs);
+    js.set("build_ms", buildMs);
+    js.set("render_ms", st.renderMs);
+    setRepeatStats(js, a, rep);
+    js.set("us_per_ray", st.rays ? st.renderMs * 1000.0 / double(st.rays) : 0.0);
+    js.set("nodes_visited", st.nodesVisited);
+    js.set("nodes_per_ray", st.rays ? double(st.nodesVisited) / double(st.rays) : 0.0);
+    js.set("intersections", st.intersections);
+    js.set("secondary_rays", st.secondaryRays);
+    js.set("beams", st.beams);
+    js.set("spheres", std::uint64_t(tree.scene.spheres.size()));
+    js.set("leaf_objects", a.leafObjects);
+    js.set("octree_depth", tree.depth);
+    js.set("octree_nodes", std::uint64_t(tree.nodes.size()));
+    js.set("octree_leaves", std::uint64_t(tree.leaves()));
+    js.set("occupied_leaves", std::uint64_t(tree.occupiedLeaves()));
+    js.set("octree_bytes", std::uint64_t(tree.bytes()));
+    setCameraStats(js, cam, bounds);
+    js.set("cube_origin", vecText(tree.cubeOrigin));
+    js.set("cube_side", tree.cubeSide);
+
+    std::ostringstream summary;
+    summary.precision(4);
+    summary << a.output << ": " << cam.width << "x" << cam.height << ", " << st.renderer << ", " << st.renderMs << " ms ("
+            << (st.rays ? st.renderMs * 1000.0 / double(st.rays) : 0.0) << " us/ray over " << st.rays << " rays, " << a.samples
+            << " per pixel), " << tree.scene.spheres.size() << " spheres in " << tree.nodes.size() << " nodes built in " << buildMs << " ms";
+    if (a.verify) {
+        // The reference (recursive parametric traversal of the same octree) and the brute force
+        // (every sphere, no octree), so that no tracer is judged only against another octree tracer.
+        Frame rf, bf;
+        RenderStats rst = makeRenderer("reference")->renderSpheres(tree, cam, rs, rf);
+        makeBruteForceSphereRenderer()->renderSpheres(tree, cam, rs, bf);
+        const std::uint64_t mismatched = mismatchedHits(frame, rf), bruteMismatched = mismatchedHits(frame, bf);
+        const ImageDifference d = compareImages(frame, rf);
+        js.set("mismatched_pixels", mismatched);
+        js.set("mismatched_pixels_brute_force", bruteMismatched);
+        js.set("reference_mismatched_pixels_brute_force", mismatchedHits(rf, bf));
+        js.set("psnr_db", d.psnrDb);
+        js.set("max_channel_error", d.maxChannelError);
+        js.set("reference_render_ms", rst.renderMs);
+        js.set("speedup_over_reference", st.renderMs > 0 ? rst.renderMs / st.renderMs : 0.0);
+        summary << "; verify: " << mismatched << " pixels differ from the reference, " << bruteMismatched << " from the brute force";
+        if (mismatched != 0 || bruteMismatched != 0)
+            log::warning(std::to_string(mismatched) + " pixels differ from the reference, " + std::to_string(bruteMismatched) + " from the brute force");
+    }
+    std::string noteText;
+    for (const auto& n : notes) noteText += (noteText.empty() ? "" : "; ") + n;
+    js.set("notes", noteText);
+    log::info(summary.str());
+    if (!a.statsPath.empty()) io::writeFileAtomically(a.statsPath, std::string_view(js.text()));
+    return 0;
 }
 
 }  // namespace
@@ -134,6 +386,14 @@ int runRender(const std::vector<std::string>& args) {
             throw UsageError("-o " + a.output + ": unknown image format '" + ext + "' (use " + joinNames(io::imageExtensions()) + ")");
     }
     if (a.orthoHeight && !a.ortho) throw UsageError("--ortho-height needs --projection ortho");
+    if (isSphereInput(a.input)) {
+        const bool object = a.octreeKind.empty() ? makeRenderer(a.rendererName)->drawsSpheres() : a.octreeKind == "object";
+        if (object) return renderObjectOctree(a);
+    } else if (!a.octreeKind.empty()) {
+        throw UsageError("--octree applies to sphere inputs (.pdb, .cif, sphereflake:L, random:N), not to " + a.input);
+    }
+    if (!a.sphereOptions.empty())
+        throw UsageError(a.sphereOptions.front() + " applies to sphere scenes in the object octree (renderers reference, samet, beam)");
     if (a.level > a.depth) throw UsageError("--level " + std::to_string(a.level) + " is deeper than --depth " + std::to_string(a.depth));
     const bool multires = a.lod > 0.0 || (a.level >= 0 && a.level < a.depth);
     if (multires) {
@@ -143,11 +403,8 @@ int runRender(const std::vector<std::string>& args) {
     }
     const int threads = a.threads == 0 ? hardwareThreads() : a.threads;
 
-    // The frames (the image, the baseline's, with --verify the two references) and the encoded
-    // file (at most 24 bytes a pixel): checked first alone, after the build with the rest.
     const std::uint64_t budget = memoryBudget(a);
-    const std::uint64_t frameBytes = Frame::bytesFor(a.width, a.height) * (1 + !a.baseline.empty() + 2 * a.verify) +
-                                     std::uint64_t(a.width) * std::uint64_t(a.height) * 24;
+    const std::uint64_t frameBytes = outputFrameBytes(a);
     const std::string rendering = "rendering " + std::to_string(a.width) + "x" + std::to_string(a.height);
     checkMemoryBudget(a.input + ": " + rendering, frameBytes, budget);
 
@@ -162,26 +419,14 @@ int runRender(const std::vector<std::string>& args) {
     checkMemoryBudget(a.input + ": " + rendering + " beside the field and the octree",
                       frameBytes + tree.bytes() + field.values.capacity() * sizeof(float) + field.valid.capacity(), budget);
 
-    // Camera.
-    // Frame the surface (not the whole grid) unless told otherwise.
-    Box3 bounds = tree.occupiedBounds();
-    Camera cam = Camera::framing(bounds, a.width, a.height, a.fov);
-    if (a.lookAt) cam.lookAt = *a.lookAt;
-    if (a.up) cam.up = *a.up;
-    if (a.cameraPos) cam.position = *a.cameraPos;
-    else if (a.lookAt) cam.position = cam.lookAt + (Camera::framing(bounds, a.width, a.height, a.fov).position - bounds.centre());
-    if (a.ortho) {
-        cam.validate();
-        cam.frameOrthographic(bounds);
-        if (a.cameraPos) cam.position = *a.cameraPos;  // the user's view plane, even if it cuts the surface
-        if (a.orthoHeight) cam.orthoHeight = *a.orthoHeight;
-    }
-    cam.validate();
+    // Camera: framing the surface (not the whole grid) unless told otherwise.
+    const Box3 bounds = tree.occupiedBounds();
+    const Camera cam = makeCamera(a, bounds);
 
     RenderSettings rs;
     rs.threads = a.threads;
     rs.background = displayToLinear(a.background);
-    applyColour(a, rs);
+    applyColour(a, surface, rs);
     if (a.light) rs.lightCamera = *a.light;
     rs.colourCoherence = a.colourCoherence;
     rs.colourTolerance = a.colourTolerance;
@@ -189,25 +434,12 @@ int runRender(const std::vector<std::string>& args) {
     rs.lodPixels = a.lod;
     rs.level = a.level;
 
-    auto renderer = makeRenderer(a.rendererName);
     Frame frame;
-    // With a baseline, the two renderers alternate so that a change in the machine's load hits
-    // both alike; each reports its fastest render.
-    std::unique_ptr<Renderer> baseline = a.baseline.empty() ? nullptr : makeRenderer(a.baseline);
-    Frame baseFrame;
-    double baseMs = std::numeric_limits<double>::infinity();
-    RenderStats st = renderer->render(tree, cam, rs, frame);
-    if (baseline) baseMs = baseline->render(tree, cam, rs, baseFrame).renderMs;
-    std::vector<double> times{st.renderMs};
-    for (int i = 1; i < a.repeat; ++i) {
-        RenderStats again = renderer->render(tree, cam, rs, frame);
-        times.push_back(again.renderMs);
-        st.renderMs = std::min(st.renderMs, again.renderMs);
-        if (baseline) baseMs = std::min(baseMs, baseline->render(tree, cam, rs, baseFrame).renderMs);
-    }
-    std::sort(times.begin(), times.end());
-    if (st.hits == 0) log::warning("the surface is not in view: every pixel is background");
-    io::writeImage(frame, a.output);
+    const RepeatedRender rep = renderRepeated(a, frame, [&](const Renderer& r, Frame& f) {
+        return r.render(tree, cam, rs, f);
+    });
+    const RenderStats& st = rep.stats;
+    const Renderer* renderer = rep.renderer.get();
 
     StatsJson js;
     js.set("renderer", st.renderer);
@@ -215,6 +447,12 @@ int runRender(const std::vector<std::string>& args) {
     js.set("variable", field.name);
     js.set("units", field.units);
     js.set("iso", iso);
+    if (surface.window.valid()) {
+        js.set("window_centre", surface.window.centre);
+        js.set("window_width", surface.window.width);
+        js.set("window_source", surface.windowSource);
+        js.set("window_inverted", surface.invertedGrey);
+    }
     js.set("depth", tree.depth);
     js.set("width", cam.width);
     js.set("height", cam.height);
@@ -225,15 +463,7 @@ int runRender(const std::vector<std::string>& args) {
     js.set("load_ms", loadMs);
     js.set("build_ms", report.buildMs);
     js.set("render_ms", st.renderMs);
-    if (a.repeat > 1) {
-        js.set("repeat", a.repeat);
-        js.set("render_ms_median", times[times.size() / 2]);
-    }
-    if (baseline) {
-        js.set("baseline", a.baseline);
-        js.set("baseline_render_ms", baseMs);
-        js.set("speedup_over_baseline", st.renderMs > 0 ? baseMs / st.renderMs : 0.0);
-    }
+    setRepeatStats(js, a, rep);
     // A direct renderer traces no rays: no figure per ray (null), its footprints instead.
     js.set("us_per_ray", renderer->tracesRays() ? (st.rays ? st.renderMs * 1000.0 / double(st.rays) : 0.0)
                                                 : std::numeric_limits<double>::quiet_NaN());
@@ -252,26 +482,13 @@ int runRender(const std::vector<std::string>& args) {
     js.set("octree_bytes", std::uint64_t(tree.bytes()));
     js.set("bytes_per_voxel", tree.bytesPerVoxel());
     js.set("peak_rss_bytes_after_build", std::uint64_t(rssAfterBuild));
-    auto vec = [](const dvec3& v) {
-        std::ostringstream o;
-        o.precision(10);
-        o << v.x << "," << v.y << "," << v.z;
-        return o.str();
-    };
-    js.set("camera_pos", vec(cam.position));
-    js.set("look_at", vec(cam.lookAt));
-    js.set("up", vec(cam.up));
+    setCameraStats(js, cam, bounds);
     if (multires) {
         js.set("lod", a.lod);
         js.set("level", std::uint64_t(a.level < 0 ? tree.depth : a.level));
     }
-    js.set("projection", std::string(cam.orthographic() ? "ortho" : "perspective"));
-    if (cam.orthographic()) js.set("ortho_height", cam.orthoHeight);
-    else js.set("fov", cam.fovYDegrees);
-    js.set("cube_origin", vec(tree.cubeOrigin));
+    js.set("cube_origin", vecText(tree.cubeOrigin));
     js.set("cube_side", tree.cubeSide);
-    js.set("surface_bounds_min", vec(bounds.lo));
-    js.set("surface_bounds_max", vec(bounds.hi));
     for (const auto& n : field.notes) {
         if (n.rfind("vertical scale", 0) == 0 || n.find("vertical scale") != std::string::npos) js.set("geographic", n);
     }

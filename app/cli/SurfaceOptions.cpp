@@ -2,6 +2,9 @@
 
 #include "Input.h"
 
+#include "octrace/build/CityVoxelizer.h"
+#include "octrace/build/Volume.h"
+#include "octrace/csg/Csg.h"
 #include "octrace/render/Shading.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
@@ -18,6 +21,52 @@
 namespace octrace::cli {
 namespace {
 
+std::string huText(double hu) {
+    std::ostringstream s;
+    s << hu;
+    return s.str();
+}
+
+/// --window's value: a preset (its window), "none" (invalid window) or "C,W".
+ValueWindow parseWindow(const std::string& v) {
+    if (v == "none") return {};
+    if (auto w = ctWindowPreset(v)) return *w;
+    const std::size_t comma = v.find(',');
+    if (comma == std::string::npos || v.find(',', comma + 1) != std::string::npos) {
+        std::string names;
+        for (const auto& w : ctWindowPresets()) names += std::string(w.name) + ", ";
+        throw UsageError("--window: give a preset (" + names + "none) or CENTRE,WIDTH, got '" + v + "'");
+    }
+    ValueWindow w{parseNumber("window", v.substr(0, comma)), parseNumber("window", v.substr(comma + 1))};
+    if (!(w.width > 0.0)) throw UsageError("--window: the width must be positive, got '" + v + "'");
+    return w;
+}
+
+/// Refuses a CT preset (`option` NAME) for a field whose values are not Hounsfield units.
+void requireHounsfield(const ScalarField& f, const std::string& input, const std::string& option) {
+    if (f.units == "HU") return;
+    throw InputError(input + ": " + option + " is a CT preset in Hounsfield units, but the values of '" + f.name + "' are " +
+                     (f.units.empty() ? std::string("not in HU (no units: not a CT series)") : "in " + f.units) +
+                     "; give a number instead");
+}
+
+/// The surface's display window (see buildSurface).
+void chooseWindow(const SurfaceArgs& a, Surface& s) {
+    if (!a.windowName.empty()) {
+        if (ctWindowPreset(a.windowName)) requireHounsfield(s.field, a.input, "--window " + a.windowName);
+        s.window = a.window;
+        s.windowSource = "--window " + a.windowName;
+    } else if (!a.colourGiven && a.colormap.empty() && s.field.window.valid()) {
+        s.window = s.field.window;
+        s.windowSource = "the file's display window";
+        std::ostringstream m;
+        m << "colouring by the file's display window, centre " << s.window.centre << " width " << s.window.width
+          << " (--window none for a uniform colour)";
+        log::info(m.str());
+    }
+    s.invertedGrey = s.window.valid() && s.field.invertedGrey;
+}
+
 float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
 /// Progress on stderr while building, only when stderr is a terminal.
@@ -28,26 +77,60 @@ std::function<void(double)> progressPrinter(bool quiet) {
 
 /// buildSurface for an octree file: the octree as it is, the field empty but for its name.
 void loadOctreeSurface(const SurfaceArgs& a, std::uint64_t budget, Surface& s) {
-    const io::FieldRequest none;
-    const char* given = !a.request.variable.empty() ? "--var"
-                        : a.iso                     ? "--iso"
-                        : a.depthGiven              ? "--depth"
-                        : a.request.hasRegion       ? "--region"
-                        : !a.request.series.empty() ? "--series"
-                        : a.request.verticalScale != none.verticalScale ? "--vertical-scale"
-                                                                         : nullptr;
+    const char* given = a.iso || !a.isoPreset.empty() ? "--iso"
+                        : !a.windowName.empty()         ? "--window"
+                        : a.depthGiven                  ? "--depth"
+                        : a.formGiven                   ? "--form/--inside"
+                                                        : fieldOptionGiven(a.request);
     if (given)
         throw UsageError(std::string(given) + " does not apply to the octree file " + a.input +
                          " (its field, iso value and depth were fixed when it was built: see octrace info)");
     Timer t;
     s.tree = loadOctree(a.input, budget);
     s.loadMs = t.ms();
+    if (!a.cuts.empty() && s.tree.form != OctreeForm::Volume)
+        throw InputError(a.input + ": a shell octree cannot be cut (--cut needs the volume form: octrace build --form volume)");
     s.iso = s.tree.iso;
     s.field.name = s.tree.fieldName;
     s.field.units = s.tree.fieldUnits;
     s.field.source = a.input;
-    s.report.boundaryVoxels = s.tree.voxels.size();
+}
+
+/// The cuts (--cut, --clip), then the shell unless the command keeps the volume.
+void finishSurface(const SurfaceArgs& a, Surface& s) {
+    if (!a.cuts.empty()) {
+        Timer t;
+        for (const Solid& cut : a.cuts)
+            s.tree = csg(CsgOperand::of(s.tree), a.clip ? CsgOp::Intersection : CsgOp::Difference, CsgOperand::of(cut));
+        log::debug("cuts applied in " + std::to_string(t.ms()) + " ms");
+        s.report.buildMs += t.ms();
+    }
+    if (!a.keepVolume) s.tree = extractShell(s.tree);
+    s.report.boundaryVoxels = countVoxels(s.tree).boundary;
     s.report.nodes = s.tree.nodes.size();
+}
+
+/// buildSurface for a city input: the model read and voxelized; the field empty but for its name.
+void buildCitySurface(const SurfaceArgs& a, Surface& s) {
+    const char* given = a.iso ? "--iso" : a.formGiven ? "--form/--inside" : !a.cuts.empty() ? "--cut" : !a.isoPreset.empty() ? "--iso"
+                        : a.window.valid() ? "--window" : fieldOptionGiven(a.request);
+    if (given)
+        throw UsageError(std::string(given) + " does not apply to the city input " + a.input +
+                         " (its buildings and terrain are voxelized as surfaces)");
+    Timer t;
+    io::CityRequest request = a.city;
+    request.maxSamples = (1 << std::min(a.depth, 12)) + 1;  // the octree resolves no finer
+    const CityModel model = io::readCityModel(a.input, request);
+    s.loadMs = t.ms();
+    for (const auto& n : model.notes) log::warning(n);
+    CityBuildOptions o;
+    o.depth = a.depth;
+    o.threads = a.threads;
+    s.tree = voxelizeCity(model, o, &s.report);
+    s.field.name = s.tree.fieldName;
+    s.field.source = a.input;
+    s.tree.source = a.input + " (" + std::to_string(model.objects.size()) + " objects, " + std::to_string(model.triangles.size()) +
+                    " triangles, CRS " + (model.crs.empty() ? std::string("none") : model.crs) + ")";
 }
 
 /// What an octree was made from, for its file's header: input, variable, the reader's notes.
@@ -67,16 +150,56 @@ std::string joinNames(const std::vector<std::string>& names) {
 
 vec4 displayToLinear(vec4 c) { return vec4(srgbToLinear(c.r), srgbToLinear(c.g), srgbToLinear(c.b), c.a); }
 
+void addVariableOption(OptionParser& p, io::FieldRequest& request) {
+    p.add({"var", "NAME", "variable to draw, by name or CF standard_name; sound_speed is derived from temperature and "
+           "salinity when the file has none (default: the file's only 3-D variable)",
+           [&](const std::string& v) {
+               if (v.empty()) throw UsageError("--var: empty (give a variable name)");
+               request.variable = v;
+           }});
+}
+
 void addSurfaceOptions(OptionParser& p, SurfaceArgs& a) {
-    p.add({"var", "NAME", "variable to draw (default: the file's only 3-D variable)",
-           [&](const std::string& v) { a.request.variable = v; }});
-    p.add({"iso", "VALUE", "iso value of the surface (default: middle of the variable's valid range)",
-           [&](const std::string& v) { a.iso = parseNumber("iso", v); }});
+    addVariableOption(p, a.request);
+    std::string presets;
+    for (const auto& pr : ctIsoPresets()) presets += std::string(presets.empty() ? "" : ", ") + pr.name + " " + huText(pr.hu);
+    p.add({"iso", "VALUE|NAME", "iso value of the surface, or a CT preset in Hounsfield units: " + presets +
+           " (default: middle of the variable's valid range)",
+           [&](const std::string& v) {
+               a.isoPreset.clear();
+               if (ctIsoPreset(v)) a.isoPreset = v;
+               else a.iso = parseNumber("iso", v);
+           }});
     p.add({"depth", "N", "octree depth, voxels = 2^N per cube edge (1.." + std::to_string(Octree::kMaxDepth) + ", default 8)",
            [&](const std::string& v) {
                a.depth = parseInt("depth", v, 1, Octree::kMaxDepth);
                a.depthGiven = true;
            }});
+}
+
+void addInsideOption(OptionParser& p, SurfaceArgs& a, const std::string& applies) {
+    p.add({"inside", "above|below", applies + ": the solid is where the value is >= iso (above) or < iso (below) (default above)",
+           [&](const std::string& v) {
+               if (v != "above" && v != "below") throw UsageError("--inside: expected above or below, got '" + v + "'");
+               a.insideBelow = v == "below";
+               a.formGiven = true;
+           }});
+}
+
+void addFormOptions(OptionParser& p, SurfaceArgs& a) {
+    p.add({"form", "shell|volume", "octree form: the isosurface's boundary voxels (shell), or the solid it bounds with its "
+           "interior and caps where the grid ends (volume) (default shell)",
+           [&](const std::string& v) {
+               if (v != "shell" && v != "volume") throw UsageError("--form: expected shell or volume, got '" + v + "'");
+               a.form = v == "volume" ? OctreeForm::Volume : OctreeForm::Shell;
+               a.formGiven = true;
+           }});
+    addInsideOption(p, a, "volume form");
+    p.add({"cut", "SOLID", "cut a solid away: box:X0,Y0,Z0,X1,Y1,Z1, sphere:X,Y,Z,R, cylinder:X0,Y0,Z0,X1,Y1,Z1,R or "
+           "halfspace:X,Y,Z,NX,NY,NZ in world units; repeatable; builds the volume form (default: none)",
+           [&](const std::string& v) { a.cuts.push_back(parseSolid(v)); }});
+    p.add({"clip", "", "keep only what lies inside the --cut solids instead of cutting them away (default off)",
+           [&](const std::string&) { a.clip = true; }});
 }
 
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result) {
@@ -85,9 +208,23 @@ void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result
 }
 
 void addColourOptions(OptionParser& p, SurfaceArgs& a) {
-    p.add({"colour", "R,G,B", "surface colour, sRGB components in [0,1] (default 0.85,0.62,0.35)",
-           [&](const std::string& v) { a.colour = vec3(parseColour("colour", v, false)); }});
-    p.add({"color", "R,G,B", "same as --colour (default 0.85,0.62,0.35)", [&](const std::string& v) { a.colour = vec3(parseColour("color", v, false)); }});
+    p.add({"colour", "R,G,B", "surface colour, sRGB components in [0,1], also over a city's own colours (default 0.85,0.62,0.35; city inputs: per object and texture)",
+           [&](const std::string& v) {
+               a.colour = vec3(parseColour("colour", v, false));
+               a.colourGiven = true;
+           }});
+    p.add({"color", "R,G,B", "same as --colour (default 0.85,0.62,0.35)", [&](const std::string& v) {
+               a.colour = vec3(parseColour("color", v, false));
+               a.colourGiven = true;
+           }});
+    std::string windows;
+    for (const auto& w : ctWindowPresets())
+        windows += std::string(windows.empty() ? "" : ", ") + w.name + " " + huText(w.window.centre) + "/" +
+                   huText(w.window.width);
+    p.add({"window", "NAME|C,W|none", "grey the surface by a display window applied to the value just under it: a CT preset "
+           "(centre/width in HU: " + windows + "), a centre and width, or none (default: the window stored in a DICOM file, "
+           "unless --colour or --colormap is given)",
+           [&](const std::string& v) { a.windowName = v, a.window = parseWindow(v); }});
     p.add({"colormap", "NAME", "colour the surface by height with a map: " + joinNames(colormapNames()) + " (default: none, --colour)",
            [&](const std::string& v) {
                colormap(v, 0.0f);
@@ -95,17 +232,59 @@ void addColourOptions(OptionParser& p, SurfaceArgs& a) {
            }});
 }
 
-void addGeographicOptions(OptionParser& p, SurfaceArgs& a) {
+void addGeographicOptions(OptionParser& p, io::FieldRequest& request) {
     p.add({"region", "LON0,LON1,LAT0,LAT1", "geographic subregion in degrees, NetCDF only (default: the whole grid)",
            [&](const std::string& v) {
                auto r = io::parseRegion(v);
-               a.request.hasRegion = true;
-               for (int i = 0; i < 4; ++i) a.request.region[i] = r[std::size_t(i)];
+               request.hasRegion = true;
+               for (int i = 0; i < 4; ++i) request.region[i] = r[std::size_t(i)];
+           }});
+    p.add({"depth-range", "Z0,Z1", "depth levels from Z0 to Z1 metres (positive down), NetCDF only (default: every level)",
+           [&](const std::string& v) {
+               auto r = io::parseDepthRange(v);
+               request.hasDepthRange = true;
+               request.depthRange[0] = r[0];
+               request.depthRange[1] = r[1];
+           }});
+    p.add({"time", "INDEX|DATE", "time step, NetCDF only: a 0-based index or a date YYYY-MM-DD[THH:MM[:SS]] in the file's "
+           "calendar, nearest step (default: the first)",
+           [&](const std::string& v) {
+               io::checkTimeText(v);
+               request.time = v;
            }});
     p.add({"vertical-scale", "S", "vertical exaggeration of depth, NetCDF only (default: depth extent = 1/4 of the larger horizontal extent)",
            [&](const std::string& v) {
-               a.request.verticalScale = parseNumber("vertical-scale", v);
-               if (!(a.request.verticalScale > 0.0)) throw UsageError("--vertical-scale: must be positive, got " + v);
+               request.verticalScale = parseNumber("vertical-scale", v);
+               if (!(request.verticalScale > 0.0)) throw UsageError("--vertical-scale: must be positive, got " + v);
+           }});
+}
+
+void addCityOptions(OptionParser& p, SurfaceArgs& a) {
+    p.add({"lod-select", "LOD", "city inputs: level of detail to voxelize, e.g. 1, 2 or 2.2 (a prefix takes its sublevels; default: each object's highest)",
+           [&](const std::string& v) {
+               if (v.empty() || v.find_first_not_of("0123456789.") != std::string::npos)
+                   throw UsageError("--lod-select: expected a level of detail such as 1, 2 or 2.2, got '" + v + "'");
+               a.city.lod = v;
+               a.cityGiven = true;
+           }});
+    p.add({"dem", "RASTER", "city inputs: a DEM raster (GeoTIFF or any GDAL raster, any CRS) added as terrain (default: none)",
+           [&](const std::string& v) {
+               if (v.empty()) throw UsageError("--dem: empty (give a raster file)");
+               a.city.dem = v;
+               a.cityGiven = true;
+           }});
+    p.add({"texture", "RASTER", "city inputs: a colour raster (orthophoto, map; any GDAL raster, any CRS) draped on the terrain (default: none, colours per object type)",
+           [&](const std::string& v) {
+               if (v.empty()) throw UsageError("--texture: empty (give a raster file)");
+               a.city.texture = v;
+               a.cityGiven = true;
+           }});
+    p.add({"crs", "CRS", "city inputs: projected coordinate reference system to bring everything into, e.g. EPSG:28992 "
+           "(default: the input's own when projected, else the UTM zone of its centre)",
+           [&](const std::string& v) {
+               if (v.empty()) throw UsageError("--crs: empty (give e.g. EPSG:28992)");
+               a.city.crs = v;
+               a.cityGiven = true;
            }});
 }
 
@@ -141,25 +320,50 @@ bool parseCommandLine(const OptionParser& p, const std::vector<std::string>& arg
     return true;
 }
 
+const char* fieldOptionGiven(const io::FieldRequest& request) {
+    const io::FieldRequest none;
+    return !request.variable.empty()                    ? "--var"
+           : request.hasRegion                          ? "--region"
+           : request.hasDepthRange                      ? "--depth-range"
+           : !request.time.empty()                      ? "--time"
+           : !request.series.empty()                    ? "--series"
+           : request.verticalScale != none.verticalScale ? "--vertical-scale"
+                                                         : nullptr;
+}
+
 std::uint64_t memoryBudget(const SurfaceArgs& a) { return a.maxMemory ? a.maxMemory : defaultMemoryBudget(); }
 
 Surface buildSurface(const SurfaceArgs& a) {
     if (a.quiet) log::setLevel(log::Level::Error);
     if (a.verbose) log::setLevel(log::Level::Debug);
+    if (a.insideBelow && a.form != OctreeForm::Volume && a.cuts.empty())
+        throw UsageError("--inside applies to --form volume (or --cut)");
+    if (a.clip && a.cuts.empty()) throw UsageError("--clip needs a --cut solid");
     const std::uint64_t budget = memoryBudget(a);
     io::FieldRequest request = a.request;
     request.memoryBudget = budget;
+    if (a.window.valid() && (a.colourGiven || !a.colormap.empty()))
+        throw UsageError("--window " + a.windowName + " and " + (a.colourGiven ? "--colour" : "--colormap") +
+                         " both colour the surface: give one");
     Surface s;
     Timer t;
     if (isOctreeInput(a.input)) {
+        if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem and --texture apply to city inputs, not to the octree file " + a.input);
         loadOctreeSurface(a, budget, s);
+        finishSurface(a, s);
         return s;
     }
-    s.field = loadField(a.input, request);
+    if (io::isCityInput(a.input)) {
+        buildCitySurface(a, s);
+        return s;
+    }
+    if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem and --texture apply to city inputs (CityJSON, DEM rasters), not to " + a.input);
+    s.field = loadField(a.input, request, a.depth);
     s.loadMs = t.ms();
     auto [vmin, vmax] = s.field.validRange();
-    s.iso = a.iso ? *a.iso : 0.5 * (double(vmin) + double(vmax));
-    if (!a.iso) {
+    if (!a.isoPreset.empty()) requireHounsfield(s.field, a.input, "--iso " + a.isoPreset);
+    s.iso = !a.isoPreset.empty() ? *ctIsoPreset(a.isoPreset) : a.iso ? *a.iso : 0.5 * (double(vmin) + double(vmax));
+    if (!a.iso && a.isoPreset.empty()) {
         std::ostringstream m;
         m << "no --iso given: using " << s.iso << ", the middle of the range [" << vmin << ", " << vmax << "] of '"
           << s.field.name << "'";
@@ -173,15 +377,23 @@ Surface buildSurface(const SurfaceArgs& a) {
     bo.threads = a.threads;
     bo.progress = progressPrinter(a.quiet);
     bo.memoryBudget = budget;
-    s.tree = buildShellOctree(s.field, bo, &s.report);
+    bo.form = a.cuts.empty() ? a.form : OctreeForm::Volume;
+    bo.insideBelow = a.insideBelow;
+    chooseWindow(a, s);
+    bo.voxelValues = s.window.valid();
+    s.tree = buildOctree(s.field, bo, &s.report);
     s.tree.source = sourceDescription(a.input, s.field);
     if (bo.progress) std::fputs("\n", stderr);
+    finishSurface(a, s);
     return s;
 }
 
-void applyColour(const SurfaceArgs& a, RenderSettings& settings) {
+void applyColour(const SurfaceArgs& a, const Surface& s, RenderSettings& settings) {
     settings.colour = vec3(displayToLinear(vec4(a.colour, 1.0f)));
     settings.colormap = a.colormap;
+    settings.voxelColours = !a.colourGiven;
+    settings.window = s.window;
+    settings.invertedGrey = s.invertedGrey;
 }
 
 }  // namespace octrace::cli

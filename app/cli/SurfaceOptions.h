@@ -4,8 +4,11 @@
 // load-and-build step behind them.
 #include "Options.h"
 
+#include "octrace/build/CtPresets.h"
 #include "octrace/build/OctreeBuilder.h"
 #include "octrace/build/ScalarField.h"
+#include "octrace/io/CityReader.h"
+#include "octrace/csg/Solid.h"
 #include "octrace/io/FieldRequest.h"
 #include "octrace/octree/Octree.h"
 #include "octrace/render/RenderSettings.h"
@@ -21,12 +24,26 @@ struct SurfaceArgs {
     std::string input;
     io::FieldRequest request;
     std::optional<double> iso;
+    std::string isoPreset;  ///< --iso NAME (CtPresets.h): resolved once the field is read
+    /// --window: "" (not given: the file's window, if any, unless --colour or --colormap),
+    /// "none", a preset name (CtPresets.h), or the centre and width given as numbers.
+    std::string windowName;
+    ValueWindow window;
+    bool colourGiven = false;  ///< --colour / --color given
     int depth = 8, threads = 0;
     bool depthGiven = false;  // --depth given (an octree file input fixes the depth)
     vec3 colour{0.85f, 0.62f, 0.35f};  // sRGB display values, as the user gives them
     std::string colormap;
     bool help = false, quiet = false, verbose = false;
     std::uint64_t maxMemory = 0;  // --max-memory; 0: defaultMemoryBudget()
+    io::CityRequest city;         // --lod-select, --crs, --dem, --texture (city inputs)
+    bool cityGiven = false;       // one of them was given
+    OctreeForm form = OctreeForm::Shell;  // --form
+    bool insideBelow = false;             // --inside below
+    bool formGiven = false;               // --form or --inside given
+    bool keepVolume = false;  // set by the command: buildSurface keeps a volume octree as it is (build, csg)
+    std::vector<Solid> cuts;  // --cut, in order
+    bool clip = false;        // --clip: keep the inside of the cuts instead
 };
 
 /// "a, b, c".
@@ -35,14 +52,24 @@ std::string joinNames(const std::vector<std::string>& names);
 vec4 displayToLinear(vec4 c);
 
 // Each adds its options to `p`, writing into `a`; the help lines state the defaults of SurfaceArgs.
+/// --var.
+void addVariableOption(OptionParser& p, io::FieldRequest& request);
 /// --var, --iso, --depth.
 void addSurfaceOptions(OptionParser& p, SurfaceArgs& a);
+/// --inside above|below; `applies` says to what ("volume form").
+void addInsideOption(OptionParser& p, SurfaceArgs& a, const std::string& applies);
+/// --form shell|volume, --inside above|below, --cut SOLID, --clip.
+void addFormOptions(OptionParser& p, SurfaceArgs& a);
 /// --threads; `result` names what does not depend on it ("the image").
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result);
-/// --colour, --color, --colormap.
+/// --colour, --color, --colormap, --window.
 void addColourOptions(OptionParser& p, SurfaceArgs& a);
-/// --region, --vertical-scale.
-void addGeographicOptions(OptionParser& p, SurfaceArgs& a);
+/// --region, --depth-range, --time, --vertical-scale.
+void addGeographicOptions(OptionParser& p, io::FieldRequest& request);
+/// The first option of `request` that chooses part of a field ("--var", "--region", ...), or null.
+const char* fieldOptionGiven(const io::FieldRequest& request);
+/// --lod-select, --crs, --dem, --texture (city inputs).
+void addCityOptions(OptionParser& p, SurfaceArgs& a);
 /// --series (DICOM).
 void addSeriesOption(OptionParser& p, io::FieldRequest& request);
 /// --max-memory, --quiet, --verbose, --help.
@@ -64,17 +91,31 @@ struct Surface {
     Octree tree;
     BuildReport report;
     double loadMs = 0.0;
+    /// The display window that colours the surface (invalid: --colour / --colormap), and
+    /// whether its grey is inverted (MONOCHROME1); the octree then has voxel values.
+    ValueWindow window;
+    bool invertedGrey = false;
+    std::string windowSource;  ///< where the window comes from, for messages and stats
 };
 
-/// Applies --quiet / --verbose to the log. An octree file (.oct) is read as it is (options that
-/// choose the field or the depth are refused: UsageError; a volume octree gives its shell).
+/// Applies --quiet / --verbose to the log. A city input (CityJSON) is read into one projected
+/// CRS and voxelized (CityVoxelizer.h) with its per-voxel colours; --var and --iso are refused.
+/// An octree file (.oct) is read as it is (options that
+/// choose the field or the depth are refused: UsageError).
 /// Otherwise reads a.input, chooses the iso value when none was
-/// given (the middle of the valid range, said on stderr) and builds the shell octree (progress
-/// on stderr when it is a terminal), within memoryBudget(a): a read or build that would need
-/// more is refused (LimitError). Throws as loadField() and buildShellOctree().
+/// given (the middle of the valid range, said on stderr) or resolves a preset (--iso skin:
+/// InputError unless the field is in HU), chooses the display window (--window, else the
+/// file's own unless a colour was given; presets need HU too) and builds the octree in a.form
+/// (with voxel values when a window colours it; progress on stderr when it is a terminal),
+/// within memoryBudget(a): a read or build that would need more is refused (LimitError). With
+/// --cut the volume form is built (an octree file must hold one: InputError otherwise) and
+/// each solid is subtracted from it (--clip: intersected with it; the result has no voxel
+/// values). A volume octree becomes its shell (extractShell) unless a.keepVolume. Throws as
+/// loadField(), buildOctree() and csg().
 Surface buildSurface(const SurfaceArgs& a);
 
-/// The colour options as RenderSettings::colour (linear RGB) and RenderSettings::colormap.
-void applyColour(const SurfaceArgs& a, RenderSettings& settings);
+/// The colour options as RenderSettings::colour (linear RGB), RenderSettings::colormap and the
+/// surface's display window (RenderSettings::window, invertedGrey).
+void applyColour(const SurfaceArgs& a, const Surface& s, RenderSettings& settings);
 
 }  // namespace octrace::cli

@@ -22,6 +22,7 @@ const char* kTopHelp =
     "  render INPUT -o OUT   build the isosurface octree of a field and render it to OUT (.png, .exr, .tif)\n"
     "  export INPUT -o OUT   build the isosurface octree and write it as surfels to a point cloud (.ply)\n"
     "  build INPUT -o OUT    build the octree and write it to an octree file (.oct), an INPUT of every command\n"
+    "  csg A OP B -o OUT     union, intersection or difference of fields, volume octree files and solids (.oct)\n"
     "  info INPUT...         describe inputs: format, variables, units, value ranges, grid, bounds\n"
     "  sample NAME -o OUT    write an analytic sample field (sphere, torus, gyroid, noise) as NRRD\n"
     "\n"
@@ -55,10 +56,11 @@ int main(int argc, char** argv) {
         if (cmd == "sample") return octrace::cli::runSample(rest);
         if (cmd == "export") return octrace::cli::runExport(rest);
         if (cmd == "build") return octrace::cli::runBuild(rest);
-        throw octrace::UsageError("unknown command '" + cmd + "' (commands: render, export, build, info, sample)");
+        if (cmd == "csg") return octrace::cli::runCsg(rest);
+        throw octrace::UsageError("unknown command '" + cmd + "' (commands: render, export, build, csg, info, sample)");
     } catch (const octrace::UsageError& e) {
         std::fprintf(stderr, "octrace: %s\nTry 'octrace %s --help'.\n", e.what(),
-                     (cmd == "render" || cmd == "export" || cmd == "build" || cmd == "info" || cmd == "sample") ? cmd.c_str() : "");
+                     (cmd == "render" || cmd == "export" || cmd == "build" || cmd == "csg" || cmd == "info" || cmd == "sample") ? cmd.c_str() : "");
         return 2;
     } catch (const octrace::Error& e) {
         std::fprintf(stderr, "octrace: error: %s\n", e.what());

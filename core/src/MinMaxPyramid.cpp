@@ -15,6 +15,7 @@ MinMaxPyramid::MinMaxPyramid(const float* samples, ivec3 dims) : samples_(sample
         std::size_t n = std::size_t(L.dims.x) * L.dims.y * L.dims.z;
         L.mn.assign(n, inf);
         L.mx.assign(n, -inf);
+        L.masked.assign(n, 0);
         const bool first = levels_.empty();
         const Level* P = first ? nullptr : &levels_.back();
         for (int k = 0; k < prevDims.z; ++k)
@@ -25,10 +26,14 @@ MinMaxPyramid::MinMaxPyramid(const float* samples, ivec3 dims) : samples_(sample
                     float a, b;
                     if (first) {
                         a = b = samples[src];
-                        if (std::isnan(a)) continue;
+                        if (std::isnan(a)) {
+                            L.masked[dst] = 1;
+                            continue;
+                        }
                     } else {
                         a = P->mn[src];
                         b = P->mx[src];
+                        L.masked[dst] |= P->masked[src];
                     }
                     L.mn[dst] = std::min(L.mn[dst], a);
                     L.mx[dst] = std::max(L.mx[dst], b);
@@ -42,14 +47,15 @@ std::uint64_t MinMaxPyramid::bytesFor(ivec3 dims) {
     std::uint64_t bytes = 0;
     while (dims.x > 1 || dims.y > 1 || dims.z > 1) {  // the levels of the constructor
         dims = (dims + 1) / 2;
-        bytes += 2 * sizeof(float) * std::uint64_t(dims.x) * std::uint64_t(dims.y) * std::uint64_t(dims.z);
+        bytes += (2 * sizeof(float) + 1) * std::uint64_t(dims.x) * std::uint64_t(dims.y) * std::uint64_t(dims.z);
     }
     return bytes;
 }
 
-void MinMaxPyramid::query(ivec3 lo, ivec3 hi, float& mn, float& mx) const {
+void MinMaxPyramid::query(ivec3 lo, ivec3 hi, float& mn, float& mx, bool* masked) const {
     mn = std::numeric_limits<float>::infinity();
     mx = -mn;
+    if (masked) *masked = false;
     lo = glm::max(lo, ivec3(0));
     hi = glm::min(hi, dims_ - 1);
     if (lo.x > hi.x || lo.y > hi.y || lo.z > hi.z) return;
@@ -62,7 +68,10 @@ void MinMaxPyramid::query(ivec3 lo, ivec3 hi, float& mn, float& mx) const {
             for (int j = lo.y; j <= hi.y; ++j)
                 for (int i = lo.x; i <= hi.x; ++i) {
                     float v = samples_[std::size_t(i) + std::size_t(dims_.x) * (std::size_t(j) + std::size_t(dims_.y) * k)];
-                    if (std::isnan(v)) continue;
+                    if (std::isnan(v)) {
+                        if (masked) *masked = true;
+                        continue;
+                    }
                     mn = std::min(mn, v);
                     mx = std::max(mx, v);
                 }
@@ -76,6 +85,7 @@ void MinMaxPyramid::query(ivec3 lo, ivec3 hi, float& mn, float& mx) const {
                 std::size_t idx = std::size_t(i) + std::size_t(L.dims.x) * (std::size_t(j) + std::size_t(L.dims.y) * k);
                 mn = std::min(mn, L.mn[idx]);
                 mx = std::max(mx, L.mx[idx]);
+                if (masked && L.masked[idx]) *masked = true;
             }
 }
 

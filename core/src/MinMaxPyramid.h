@@ -8,14 +8,16 @@
 namespace octrace::detail {
 
 /// Level l (l >= 1) stores, for each block of 2^l x 2^l x 2^l samples, the minimum and maximum
-/// of its valid samples (min = +inf when none). Level 0 is the field itself (NaN = masked).
+/// of its valid samples (min = +inf when none) and whether it holds a masked one. Level 0 is
+/// the field itself (NaN = masked).
 class MinMaxPyramid {
 public:
     /// `samples`: the field's values with NaN at masked samples (not owned; must outlive this).
     MinMaxPyramid(const float* samples, ivec3 dims);
     /// Min and max over the valid samples of the inclusive index box [lo, hi] (conservative:
-    /// may cover a few more samples). Returns min > max when no sample is valid.
-    void query(ivec3 lo, ivec3 hi, float& mn, float& mx) const;
+    /// may cover a few more samples). Returns min > max when no sample is valid. `masked`, when
+    /// given, is set when some sample of the box (or of the few more) is masked.
+    void query(ivec3 lo, ivec3 hi, float& mn, float& mx, bool* masked = nullptr) const;
     /// Bytes the pyramid of a field of these dims allocates (for memory estimates).
     static std::uint64_t bytesFor(ivec3 dims);
 
@@ -23,6 +25,7 @@ private:
     struct Level {
         ivec3 dims;
         std::vector<float> mn, mx;
+        std::vector<std::uint8_t> masked;
     };
     const float* samples_;
     ivec3 dims_;

@@ -11,11 +11,28 @@ namespace octrace {
 namespace {
 constexpr std::uint32_t kNone = 0xFFFFFFFFu;
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr std::uint64_t kMaxListCopies = 4;
 
 bool overlaps(const Box3& node, const Sphere& s) {
     for (int a = 0; a < 3; ++a)
         if (s.centre[a] + s.radius < node.lo[a] || s.centre[a] - s.radius > node.hi[a]) return false;
     return true;
+}
+/// Spheres that overlap too much to be separated: splitting the node would copy its list into
+/// the children more than kMaxListCopies times over. Such a node stays a leaf; without this, a
+/// few coincident spheres (a file listing an atom twice) would be split down to maxDepth over
+/// their whole shared box: millions of nodes, each listing all of them.
+bool inseparable(const Box3& node, const std::vector<std::uint32_t>& list, const std::vector<Sphere>& spheres) {
+    const dvec3 mid = node.centre();
+    std::uint64_t copies = 0;
+    for (std::uint32_t s : list) {
+        const Sphere& sp = spheres[s];
+        std::uint64_t children = 1;
+        for (int a = 0; a < 3; ++a)
+            children *= std::uint64_t(sp.centre[a] - sp.radius <= mid[a]) + std::uint64_t(sp.centre[a] + sp.radius >= mid[a]);
+        copies += children;
+    }
+    return copies > kMaxListCopies * list.size();
 }
 }  // namespace
 
@@ -76,7 +93,7 @@ ObjectOctree ObjectOctree::build(SphereSet scene, const ObjectOctreeOptions& opt
         Item it = std::move(stack.back());
         stack.pop_back();
         const int level = t.nodes[it.node].level;
-        if (int(it.list.size()) <= opt.leafObjects || level >= opt.maxDepth) {
+        if (int(it.list.size()) <= opt.leafObjects || level >= opt.maxDepth || inseparable(t.nodeBox(it.node), it.list, spheres)) {
             t.nodes[it.node].firstObject = std::uint32_t(t.objects.size());
             t.nodes[it.node].objectCount = std::uint32_t(it.list.size());
             t.objects.insert(t.objects.end(), it.list.begin(), it.list.end());

@@ -1,6 +1,8 @@
 #include "octrace/build/OctreeBuilder.h"
 
 #include "MinMaxPyramid.h"
+#include "TreeAssembly.h"
+#include "octrace/build/Volume.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
 #include "octrace/util/Memory.h"
@@ -136,6 +138,22 @@ public:
             AxisSample s0 = locate(a, std::max(llo[a], first)), s1 = locate(a, std::min(lhi[a], last));
             lo[a] = s0.i0;
             hi[a] = std::max(s1.i1, s1.i0);
+        }
+        return true;
+    }
+
+    /// Whether the cell box [c0, c0+size] lies wholly inside the grid (and so does every
+    /// trilinear corner in it).
+    bool boxInsideGrid(const ivec3& c0, int size) const {
+        for (int c = 0; c < 8; ++c) {
+            const ivec3 p = c0 + size * ivec3((c >> 2) & 1, (c >> 1) & 1, c & 1);
+            AxisSample s[3];
+            if (separable_) {
+                for (int a = 0; a < 3; ++a) s[a] = table_[a][std::size_t(p[a])];
+            } else {
+                locateWorld(cubeOrigin_ + dvec3(p) * h_, s);
+            }
+            if (!s[0].inside || !s[1].inside || !s[2].inside) return false;
         }
         return true;
     }
@@ -292,50 +310,72 @@ struct Pool {
     }
 };
 
+using detail::Octant;
+
 class Builder {
 public:
     Builder(const ScalarField& f, const SampleGrid& grid, const Octree& tree, float iso, MemoryGuard* guard,
             const std::function<bool()>& cancelled)
-        : tree_(tree), iso_(iso), sampler_(f, grid.samples, tree.cubeOrigin, tree.voxelSize(), tree.depth),
-          pyramid_(grid.pyramid), guard_(guard), cancelled_(cancelled), source_(f.source) {}
+        : tree_(tree), iso_(iso), volume_(tree.form == OctreeForm::Volume), below_(tree.insideBelow),
+          sampler_(f, grid.samples, tree.cubeOrigin, tree.voxelSize(), tree.depth), pyramid_(grid.pyramid), guard_(guard),
+          cancelled_(cancelled), source_(f.source) {}
 
     /// Throws CancelledError when the caller asked the build to stop.
     void checkCancelled() const {
         if (cancelled_ && cancelled_()) throw CancelledError(source_ + ": octree build cancelled");
     }
 
-    /// Builds the node at `level` whose minimum cell is c0; false when it holds no boundary voxel.
-    bool build(int level, const ivec3& c0, OctreeNode& out, Pool& pool) const {
+    /// Builds the octant at `level` whose minimum cell is c0. Shell form: Empty when it holds
+    /// no boundary voxel. Volume form: Empty when it holds no voxel of the solid, Term when
+    /// every voxel in it is an interior voxel.
+    Octant build(int level, const ivec3& c0, OctreeNode& out, Pool& pool) const {
         const int depth = tree_.depth;
         const int size = 1 << (depth - level);
         ivec3 lo, hi;
-        if (!sampler_.sampleRange(c0, size, lo, hi)) return false;
+        if (!sampler_.sampleRange(c0, size, lo, hi)) return Octant::Empty;
         float mn, mx;
         pyramid_.query(lo, hi, mn, mx);
-        if (!(mn <= mx) || mx < iso_ || mn >= iso_) return false;
+        if (!(mn <= mx)) return Octant::Empty;
+        if (volume_) {
+            if (!(below_ ? mn < iso_ : mx >= iso_)) return Octant::Empty;  // no sample inside the solid
+            if (level < depth - 1 && wholeInterior(c0, size)) return Octant::Term;
+        } else if (mx < iso_ || mn >= iso_) {
+            return Octant::Empty;
+        }
         if (level == depth - 4) checkCancelled();  // every 16^3 cells that hold the surface
-        if (level == depth - 1) return buildLeafParent(c0, out, pool);
+        if (level == depth - 1) return volume_ ? buildVolumeLeafParent(c0, out, pool) : buildLeafParent(c0, out, pool);
         OctreeNode kids[8];
-        unsigned mask = 0;
+        Octant kinds[8];
         const int half = size / 2;
         for (int c = 0; c < 8; ++c) {
             ivec3 cc = c0 + half * ivec3((c >> 2) & 1, (c >> 1) & 1, c & 1);
-            if (build(level + 1, cc, kids[c], pool)) mask |= 1u << c;
+            kinds[c] = build(level + 1, cc, kids[c], pool);
         }
-        if (!mask) return false;
+        return emitNode(kinds, kids, level + 1, out, pool, guard_);
+    }
+
+    /// The node whose children are `kids` of kinds `kinds` (children pushed contiguously into
+    /// the pool): Empty when all are, Term when all are terms (eight terms make one).
+    static Octant emitNode(const Octant kinds[8], const OctreeNode kids[8], int childLevel, OctreeNode& out, Pool& pool,
+                           MemoryGuard* guard) {
+        unsigned mask, terms;
+        detail::childMasks(kinds, mask, terms);
+        if (!mask) return Octant::Empty;
+        if (terms == 0xFFu) return Octant::Term;
         out = OctreeNode{};
         out.firstChild = std::uint32_t(pool.nodes.size());
         out.childMask = std::uint8_t(mask);
+        out.termMask = std::uint8_t(terms);
         for (int c = 0; c < 8; ++c)
             if (mask & (1u << c)) {
-                push(pool.nodes, kids[c], guard_);
-                push(pool.levels, std::uint8_t(level + 1), guard_);
+                push(pool.nodes, kinds[c] == Octant::Term ? OctreeNode{} : kids[c], guard);
+                push(pool.levels, std::uint8_t(childLevel), guard);
             }
-        return true;
+        return Octant::Node;
     }
 
 private:
-    bool buildLeafParent(const ivec3& c0, OctreeNode& out, Pool& pool) const {
+    Octant buildLeafParent(const ivec3& c0, OctreeNode& out, Pool& pool) const {
         float v[27];
         for (int k = 0; k < 3; ++k)
             for (int j = 0; j < 3; ++j)
@@ -358,13 +398,95 @@ private:
             vox[c].normal = encodeNormal(normalAt(cell, cv));
             mask |= 1u << c;
         }
-        if (!mask) return false;
+        return emitVoxels(mask, 0u, vox, out, pool);
+    }
+
+    /// Volume form, the 8 voxels of the node at level depth-1 whose minimum cell is c0: a cell
+    /// whose 8 corners are all inside the solid is an interior voxel, unless one of its 6 face
+    /// neighbours is masked (a corner masked, outside the grid or outside the cube): then it is
+    /// a boundary voxel of a cap, with the normal pointing out towards those neighbours. A cell
+    /// that straddles the iso value is a boundary voxel with the field's normal, pointing out
+    /// of the solid.
+    Octant buildVolumeLeafParent(const ivec3& c0, OctreeNode& out, Pool& pool) const {
+        // Corners c0-1 .. c0+3 (5^3): the 2^3 cells and their face neighbours (4^3 cells).
+        float v[125];
+        const int n = 1 << tree_.depth;
+        for (int i = 0; i < 5; ++i)
+            for (int j = 0; j < 5; ++j)
+                for (int k = 0; k < 5; ++k) {
+                    const ivec3 c = c0 + ivec3(i - 1, j - 1, k - 1);
+                    const bool inCube = c.x >= 0 && c.y >= 0 && c.z >= 0 && c.x <= n && c.y <= n && c.z <= n;
+                    v[(i * 5 + j) * 5 + k] = inCube ? sampler_.corner(c) : kNaN;
+                }
+        enum : std::uint8_t { kMasked, kOutside, kInside, kStraddle };
+        auto classify = [&](const ivec3& l, float cv[8]) {  // l: cell relative to c0 - 1, in 0..3
+            bool in = false, out = false;
+            for (int q = 0; q < 8; ++q) {
+                const float val = v[((l.x + ((q >> 2) & 1)) * 5 + l.y + ((q >> 1) & 1)) * 5 + l.z + (q & 1)];
+                cv[q] = val;
+                if (std::isnan(val)) return kMasked;
+                ((val >= iso_) != below_ ? in : out) = true;
+            }
+            return in && out ? kStraddle : in ? kInside : kOutside;
+        };
+        unsigned mask = 0, interior = 0;
+        Voxel vox[8];
+        for (int c = 0; c < 8; ++c) {
+            const ivec3 l(1 + ((c >> 2) & 1), 1 + ((c >> 1) & 1), 1 + (c & 1));
+            float cv[8];
+            const auto kind = classify(l, cv);
+            if (kind == kMasked || kind == kOutside) continue;
+            mask |= 1u << c;
+            const ivec3 cell = c0 + l - 1;
+            if (kind == kStraddle) {
+                const vec3 nrm = normalAt(cell, cv);
+                vox[c].normal = encodeNormal(below_ ? -nrm : nrm);
+                continue;
+            }
+            vec3 cap(0.0f);
+            for (int a = 0; a < 3; ++a)
+                for (int s = -1; s <= 1; s += 2) {
+                    ivec3 nb = l;
+                    nb[a] += s;
+                    float unused[8];
+                    if (classify(nb, unused) == kMasked) cap[a] += float(s);
+                }
+            if (cap == vec3(0.0f)) interior |= 1u << c;
+            else vox[c].normal = encodeNormal(glm::normalize(cap));
+        }
+        if (mask == 0xFFu && interior == 0xFFu) return Octant::Term;
+        return emitVoxels(mask, interior, vox, out, pool);
+    }
+
+    /// The node at level depth-1 with these voxels (`interior`: the interior ones, volume form).
+    Octant emitVoxels(unsigned mask, unsigned interior, const Voxel vox[8], OctreeNode& out, Pool& pool) const {
+        if (!mask) return Octant::Empty;
         out = OctreeNode{};
         out.firstChild = std::uint32_t(pool.voxels.size());
         out.childMask = std::uint8_t(mask);
+        out.termMask = std::uint8_t(interior);
         for (int c = 0; c < 8; ++c)
-            if (mask & (1u << c)) push(pool.voxels, vox[c], guard_);
-        return true;
+            if (mask & (1u << c)) push(pool.voxels, (interior & (1u << c)) ? Voxel{} : vox[c], guard_);
+        return Octant::Node;
+    }
+
+    /// Volume form: whether every voxel of the octant at c0 (side `size` cells) is an interior
+    /// voxel, from the pyramid: its cells and their face neighbours lie in the cube and the
+    /// grid, no sample they use is masked, and every one is inside the solid.
+    bool wholeInterior(const ivec3& c0, int size) const {
+        const int n = 1 << tree_.depth;
+        const ivec3 lo = c0 - 1;  // the neighbours' corners: lo .. lo + size + 2
+        const int span = size + 2;
+        for (int a = 0; a < 3; ++a)
+            if (lo[a] < 0 || lo[a] + span > n) return false;
+        if (!sampler_.boxInsideGrid(lo, span)) return false;
+        ivec3 slo, shi;
+        if (!sampler_.sampleRange(lo, span, slo, shi)) return false;
+        float mn, mx;
+        bool masked = false;
+        pyramid_.query(slo, shi, mn, mx, &masked);
+        if (masked || !(mn <= mx)) return false;
+        return below_ ? mx < iso_ : mn >= iso_;
     }
 
     /// Unit normal pointing towards lower values; falls back to the cell's own trilinear
@@ -390,6 +512,7 @@ private:
 
     const Octree& tree_;
     float iso_;
+    bool volume_, below_;
     FieldSampler sampler_;
     const detail::MinMaxPyramid& pyramid_;
     MemoryGuard* guard_;
@@ -401,6 +524,7 @@ void appendPool(Pool& dst, const Pool& src, OctreeNode& subRoot, int subRootLeve
     const std::uint32_t nodeOffset = std::uint32_t(dst.nodes.size());
     const std::uint32_t voxelOffset = std::uint32_t(dst.voxels.size());
     auto relocate = [&](OctreeNode n, int level) {
+        if (n.childMask == 0) return n;  // an interior term
         n.firstChild += (level == depth - 1) ? voxelOffset : nodeOffset;
         return n;
     };
@@ -464,7 +588,7 @@ void buildInto(Octree& tree, const ScalarField& field, const SampleGrid& grid, f
     const std::size_t count = std::size_t(side) * side * side;
     std::vector<Pool> pools(count);
     std::vector<OctreeNode> roots(count);
-    std::vector<std::uint8_t> present(count, 0);
+    std::vector<Octant> kinds(count, Octant::Empty);
     // The progress callback runs on the worker threads; call it one call at a time and with
     // non-decreasing fractions (ending at 1), so that callers need no locking of their own.
     std::mutex progressMutex;
@@ -473,7 +597,7 @@ void buildInto(Octree& tree, const ScalarField& field, const SampleGrid& grid, f
     parallelFor(count, threads, [&](std::size_t i) {
         builder.checkCancelled();
         int x = int(i) / (side * side), y = (int(i) / side) % side, z = int(i) % side;
-        present[i] = builder.build(split, ivec3(x, y, z) * subSize, roots[i], pools[i]) ? 1 : 0;
+        kinds[i] = builder.build(split, ivec3(x, y, z) * subSize, roots[i], pools[i]);
         pools[i].shrink(guard);  // up to half of each buffer is spare capacity: join without it
         if (progress) {
             std::lock_guard<std::mutex> lock(progressMutex);
@@ -486,13 +610,14 @@ void buildInto(Octree& tree, const ScalarField& field, const SampleGrid& grid, f
     // one node per distinct ancestor of a non-empty subtree at levels 1..split, plus the root.
     std::size_t nodeCount = 1, voxelCount = 0;
     for (std::size_t i = 0; i < count; ++i) {
-        nodeCount += pools[i].nodes.size() + (split > 0 ? present[i] : 0);  // depth 1: the subtree is the root
+        const bool present = kinds[i] != Octant::Empty;
+        nodeCount += pools[i].nodes.size() + (split > 0 && present ? 1 : 0);  // depth 1: the subtree is the root
         voxelCount += pools[i].voxels.size();
     }
     for (int level = 1; level < split; ++level) {
         std::vector<std::uint8_t> seen(std::size_t(1) << (3 * level), 0);
         for (std::size_t i = 0; i < count; ++i) {
-            if (!present[i]) continue;
+            if (kinds[i] == Octant::Empty) continue;
             const int shift = split - level, n = 1 << level;
             const int x = (int(i) / (side * side)) >> shift, y = ((int(i) / side) % side) >> shift, z = (int(i) % side) >> shift;
             std::uint8_t& s = seen[std::size_t(x) * n * n + std::size_t(y) * n + std::size_t(z)];
@@ -507,33 +632,24 @@ void buildInto(Octree& tree, const ScalarField& field, const SampleGrid& grid, f
     all.nodes.push_back(OctreeNode{});  // root slot
     all.levels.push_back(0);
     // Assemble levels 0..split-1 from the subtree roots, recursively, children contiguous.
-    std::function<bool(int, ivec3, OctreeNode&)> assemble = [&](int level, ivec3 c, OctreeNode& out) -> bool {
+    std::function<Octant(int, ivec3, OctreeNode&)> assemble = [&](int level, ivec3 c, OctreeNode& out) -> Octant {
         if (level == split) {
             std::size_t i = std::size_t(c.x) * side * side + std::size_t(c.y) * side + std::size_t(c.z);
-            if (!present[i]) return false;
+            if (kinds[i] != Octant::Node) return kinds[i];
             out = roots[i];
             appendPool(all, pools[i], out, split, depth);
             if (guard) guard->release(pools[i].bytes());
             pools[i] = Pool{};
-            return true;
+            return Octant::Node;
         }
         OctreeNode kids[8];
-        unsigned mask = 0;
-        for (int q = 0; q < 8; ++q)
-            if (assemble(level + 1, c * 2 + ivec3((q >> 2) & 1, (q >> 1) & 1, q & 1), kids[q])) mask |= 1u << q;
-        if (!mask) return false;
-        out = OctreeNode{};
-        out.firstChild = std::uint32_t(all.nodes.size());
-        out.childMask = std::uint8_t(mask);
-        for (int q = 0; q < 8; ++q)
-            if (mask & (1u << q)) {
-                all.nodes.push_back(kids[q]);
-                all.levels.push_back(std::uint8_t(level + 1));
-            }
-        return true;
+        Octant kidKinds[8];
+        for (int q = 0; q < 8; ++q) kidKinds[q] = assemble(level + 1, c * 2 + ivec3((q >> 2) & 1, (q >> 1) & 1, q & 1), kids[q]);
+        return Builder::emitNode(kidKinds, kids, level + 1, out, all, nullptr);  // reserved above
     };
     OctreeNode root;
-    if (!assemble(0, ivec3(0), root) || all.voxels.empty()) {
+    // A root that is one term would be a cube wholly inside the solid, whose faces are caps.
+    if (assemble(0, ivec3(0), root) != Octant::Node || all.voxels.empty()) {
         std::ostringstream s;
         s << field.source << ": no cell of '" << field.name << "' straddles iso value " << shortest(tree.iso) << " at depth "
           << depth;
@@ -648,6 +764,32 @@ void refuseOverBudget(const ScalarField& field, const std::vector<BuildMemoryEst
     throw LimitError(s.str());
 }
 
+/// BuildOptions::voxelValues.
+void sampleVoxelValues(Octree& tree, const ScalarField& field, const SampleGrid& grid, float isoF, int threads) {
+    std::vector<ivec3> cells(tree.voxels.size());
+    tree.forEachVoxel([&](const ivec3& c, std::uint32_t i) { cells[i] = c; });
+    const FieldSampler sampler(field, grid.samples, tree.cubeOrigin, tree.voxelSize(), tree.depth);
+    const double h = tree.voxelSize();
+    auto valueAt = [&](const dvec3& p) {
+        AxisSample s[3];
+        sampler.locateWorld(p, s);
+        return sampler.trilinear(s[0], s[1], s[2]);
+    };
+    tree.voxelValues.assign(cells.size(), isoF);
+    constexpr std::size_t kChunk = 4096;
+    parallelFor((cells.size() + kChunk - 1) / kChunk, threads, [&](std::size_t chunk) {
+        const std::size_t end = std::min(cells.size(), (chunk + 1) * kChunk);
+        for (std::size_t i = chunk * kChunk; i < end; ++i) {
+            const dvec3 centre = tree.cubeOrigin + (dvec3(cells[i]) + 0.5) * h;
+            // The normal points towards lower values: inside (>= iso) is against it.
+            const dvec3 inside = centre - dvec3(decodeNormal(tree.voxels[i].normal)) * h;
+            float v = valueAt(inside);
+            if (std::isnan(v)) v = valueAt(centre);
+            if (!std::isnan(v)) tree.voxelValues[i] = v;
+        }
+    });
+}
+
 }  // namespace
 
 std::vector<BuildMemoryEstimate> estimateBuildMemory(const ScalarField& field, double iso, int maxDepth, int threads) {
@@ -658,9 +800,17 @@ std::vector<BuildMemoryEstimate> estimateBuildMemory(const ScalarField& field, d
 }
 
 Octree buildShellOctree(const ScalarField& field, const BuildOptions& options, BuildReport* report) {
+    BuildOptions shell = options;
+    shell.form = OctreeForm::Shell;
+    return buildOctree(field, shell, report);
+}
+
+Octree buildOctree(const ScalarField& field, const BuildOptions& options, BuildReport* report) {
     Timer timer;
     const float isoF = checkedIso(field, options.depth, options.iso);
     Octree tree = emptyTree(field, options.depth, options.iso);
+    tree.form = options.form;
+    tree.insideBelow = options.form == OctreeForm::Volume && options.insideBelow;
     const std::uint64_t budget = options.memoryBudget;
     if (budget) {
         // Before copying the samples: is there room for the copy and its pyramid at all?
@@ -678,9 +828,10 @@ Octree buildShellOctree(const ScalarField& field, const BuildOptions& options, B
         guard.emplace(field, options.depth, budget, est.back().fieldBytes + est.back().samplerBytes, est.back().total());
     }
     buildInto(tree, field, grid, isoF, options.threads, options, guard ? &*guard : nullptr);
+    if (options.voxelValues) sampleVoxelValues(tree, field, grid, isoF, options.threads);
     if (report) {
         report->buildMs = timer.ms();
-        report->boundaryVoxels = tree.voxels.size();
+        report->boundaryVoxels = tree.form == OctreeForm::Volume ? countVoxels(tree).boundary : tree.voxels.size();
         report->nodes = tree.nodes.size();
     }
     return tree;

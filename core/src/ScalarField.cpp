@@ -8,6 +8,11 @@
 
 namespace octrace {
 
+float ValueWindow::grey(float v, bool inverted) const {
+    const double g = std::clamp((double(v) - (centre - 0.5 * width)) / width, 0.0, 1.0);
+    return float(inverted ? 1.0 - g : g);
+}
+
 dvec3 ScalarField::worldFromGrid(int i, int j, int k) const {
     dvec3 local(axisPosition(0, i), axisPosition(1, j), axisPosition(2, k));
     return origin + direction * local;

@@ -45,8 +45,16 @@ vec3 colormap(const std::string& name, float t) {
 }
 
 Albedo::Albedo(const Octree& tree, const RenderSettings& settings)
-    : colour_(settings.colour), colormap_(settings.colormap) {
-    if (colormap_.empty()) return;
+    : colour_(settings.colour), window_(settings.window), inverted_(settings.invertedGrey), colormap_(settings.colormap) {
+    for (int i = 0; i < 256; ++i) linear_[i] = srgbToLinear(float(i) / 255.0f);
+    if (window_.valid() && !tree.voxelValues.empty() && tree.voxelValues.size() == tree.voxels.size()) {
+        values_ = &tree.voxelValues;
+        return;
+    }
+    if (colormap_.empty()) {
+        if (tree.hasColours() && settings.voxelColours) colours_ = &tree.colours;
+        return;
+    }
     colormap(colormap_, 0.0f);  // validate the name once
     ivec3 lo, hi;
     tree.occupiedCells(lo, hi);
@@ -54,7 +62,12 @@ Albedo::Albedo(const Octree& tree, const RenderSettings& settings)
     zHi_ = std::max(hi.z, lo.z);
 }
 
-vec3 Albedo::at(float zCells) const {
+vec3 Albedo::at(std::uint32_t voxel, float zCells) const {
+    if (values_) return vec3(srgbToLinear(window_.grey((*values_)[voxel], inverted_)));
+    if (colours_) {
+        const std::uint32_t c = (*colours_)[voxel];
+        return vec3(linear_[c & 0xFFu], linear_[(c >> 8) & 0xFFu], linear_[(c >> 16) & 0xFFu]);
+    }
     if (colormap_.empty()) return colour_;
     // Colour by height (world z) over the surface's extent until a second field can be mapped.
     const float t = (zCells - float(zLo_)) / float(zHi_ - zLo_ + 1);
@@ -72,18 +85,18 @@ Shader::Shader(const Octree& tree, const Camera& camera, const RenderSettings& s
 }
 
 vec4 Shader::shade(std::uint32_t voxel, const ivec3& cell) const {
-    return shadeNormal(decodeNormal(tree_.voxels[voxel].normal), float(cell.z) + 0.5f);
+    return shadeNormal(decodeNormal(tree_.voxels[voxel].normal), voxel, float(cell.z) + 0.5f);
 }
 
 vec4 Shader::shadeNode(std::uint32_t node) const {
     const NodeSummary& s = tree_.summaries[node];
-    return shadeNormal(decodeNormal(s.normal), s.meanZ);
+    return shadeNormal(decodeNormal(s.normal), s.firstVoxel, s.meanZ);
 }
 
-vec4 Shader::shadeNormal(vec3 n, float zCells) const {
+vec4 Shader::shadeNormal(vec3 n, std::uint32_t voxel, float zCells) const {
     float lambert = std::abs(glm::dot(n, light_));
     float intensity = settings_.ambient + settings_.diffuse * lambert;
-    return vec4(albedo_.at(zCells) * intensity, 1.0f);
+    return vec4(albedo_.at(voxel, zCells) * intensity, 1.0f);
 }
 
 float Shader::distance(const Ray& ray, const ivec3& cell) const { return distanceToBox(ray, tree_.voxelBox(cell)); }

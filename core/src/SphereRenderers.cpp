@@ -223,9 +223,10 @@ RenderStats renderSphereScene(SphereTracer tracer, const std::string& name, cons
             for (int j = 0; j < h; ++j)
                 for (int i = 0; i < w; ++i) {
                     const Ray r = gen(sx0 + i, sy0 + j);
-                    hits[std::size_t(j) * std::size_t(w) + std::size_t(i)] =
-                        tracer == SphereTracer::Samet ? traceSamet(tree, r.origin, r.direction, 0.0, primary)
-                                                      : traceReference(tree, r.origin, r.direction, 0.0, primary);
+                    SphereHit& hit = hits[std::size_t(j) * std::size_t(w) + std::size_t(i)];
+                    if (tracer == SphereTracer::Samet) hit = traceSamet(tree, r.origin, r.direction, 0.0, primary);
+                    else if (tracer == SphereTracer::Reference) hit = traceReference(tree, r.origin, r.direction, 0.0, primary);
+                    else hit = traceBruteForce(tree.scene, r.origin, r.direction, 0.0);
                 }
         }
         // Shade every sample, average per pixel.
@@ -292,4 +293,9 @@ std::unique_ptr<Renderer> makeSphereRenderer(const std::string& name) {
 }
 
 }  // namespace detail
+
+std::unique_ptr<Renderer> makeBruteForceSphereRenderer() {
+    return std::make_unique<detail::SphereRenderer>(detail::SphereTracer::BruteForce, "brute-force");
+}
+
 }  // namespace octrace

@@ -1,6 +1,6 @@
 #pragma once
 // Private to core: the renderers of sphere scenes (object octree). How they work:
-// docs/dev/spheres-and-beams.md.
+// docs/dev/spheres.md.
 #include "octrace/render/Renderer.h"
 
 #include <memory>
@@ -8,7 +8,7 @@
 
 namespace octrace::detail {
 
-enum class SphereTracer { Reference, Samet, Beam };
+enum class SphereTracer { Reference, Samet, Beam, BruteForce };
 
 /// Renders a sphere scene with the given primary-ray tracer; every tracer shares the ray
 /// generation, the shading (Whitted, secondary rays by Samet's method) and the sample

@@ -46,6 +46,7 @@ std::vector<Surfel> extractSurfels(const Octree& tree, const RenderSettings& set
             s.position = vec3(tree.cubeOrigin + (dvec3(it.cell) + 0.5) * side);
             s.radius = radius;
             float zCells;
+            std::uint32_t voxel = it.index;
             if (voxels) {
                 s.normal = decodeNormal(tree.voxels[it.index].normal);
                 zCells = float(it.cell.z) + 0.5f;
@@ -53,8 +54,9 @@ std::vector<Surfel> extractSurfels(const Octree& tree, const RenderSettings& set
                 const NodeSummary& summary = tree.summaries[it.index];
                 s.normal = decodeNormal(summary.normal);
                 zCells = summary.meanZ;
+                voxel = summary.firstVoxel;
             }
-            const vec3 c = albedo.at(zCells);
+            const vec3 c = albedo.at(voxel, zCells);
             s.rgba = {linearToSrgb8(c.r), linearToSrgb8(c.g), linearToSrgb8(c.b), 255};
         }
     });

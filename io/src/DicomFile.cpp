@@ -36,6 +36,7 @@ const gdcm::Tag kPixelMeasures(0x0028, 0x9110), kValueTransformation(0x0028, 0x9
 const gdcm::Tag kPosition(0x0020, 0x0032), kOrientation(0x0020, 0x0037), kPixelSpacing(0x0028, 0x0030);
 const gdcm::Tag kSlope(0x0028, 0x1053), kIntercept(0x0028, 0x1052);
 const gdcm::Tag kSliceThickness(0x0018, 0x0050), kSpacingBetweenSlices(0x0018, 0x0088);
+const gdcm::Tag kFrameVoiLut(0x0028, 0x9132), kWindowCentre(0x0028, 0x1050), kWindowWidth(0x0028, 0x1051);
 
 // GDCM (and the codecs under it) would print to stderr; octrace reports its own one-line errors.
 void silenceGdcm() {
@@ -194,6 +195,20 @@ DicomFrame readFrame(const Context& c, std::size_t n) {
     if (auto s = c.frameNumbers(n, kValueTransformation, kSlope, 1, "RescaleSlope")) f.slope = (*s)[0];
     if (auto i = c.frameNumbers(n, kValueTransformation, kIntercept, 1, "RescaleIntercept")) f.intercept = (*i)[0];
     if (f.slope == 0.0) c.fail("RescaleSlope is 0");
+    // A window is optional: one that is malformed, or has no positive width, is ignored
+    // rather than refused (it only changes the default colours).
+    auto firstNumber = [&](gdcm::Tag tag) -> std::optional<double> {
+        auto t = c.attrs.frameText(n, kFrameVoiLut, tag);
+        if (!t) return std::nullopt;
+        const std::string first = t->substr(0, t->find('\\'));
+        auto v = numbers(first, 1);
+        return v ? std::optional<double>((*v)[0]) : std::nullopt;
+    };
+    auto centre = firstNumber(kWindowCentre), width = firstNumber(kWindowWidth);
+    if (centre && width && *width > 0.0) {
+        f.windowCentre = *centre;
+        f.windowWidth = *width;
+    }
     return f;
 }
 
@@ -278,6 +293,12 @@ std::optional<DicomHeader> readDicomHeader(const std::string& file, std::string&
     const long samplesPerPixel = c.integer(gdcm::Tag(0x0028, 0x0002), "SamplesPerPixel", 1);
     if (samplesPerPixel != 1)
         c.fail("SamplesPerPixel " + std::to_string(samplesPerPixel) + ": colour images are not supported (a volume needs one value per pixel)");
+    // One value per pixel is not enough: a palette maps it to colours.
+    const std::string photometric = attrs.text(gdcm::Tag(0x0028, 0x0004)).value_or("MONOCHROME2");
+    if (photometric != "MONOCHROME1" && photometric != "MONOCHROME2")
+        c.fail("PhotometricInterpretation " + quoteBytes(photometric) +
+               ": colour images are not supported (a volume needs one grey value per pixel: MONOCHROME1 or MONOCHROME2)");
+    h.monochrome1 = photometric == "MONOCHROME1";
     h.bitsAllocated = int(c.integer(gdcm::Tag(0x0028, 0x0100), "BitsAllocated", 16));
     if (h.bitsAllocated != 8 && h.bitsAllocated != 16 && h.bitsAllocated != 32)
         c.fail("BitsAllocated " + std::to_string(h.bitsAllocated) + " is not supported (8, 16 or 32)");

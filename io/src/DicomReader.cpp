@@ -196,6 +196,15 @@ ScalarField assemble(const Series& series, const std::string& path, std::uint64_
     f.origin = L.origin + L.direction[0] * offset.x + L.direction[1] * offset.y;
     std::vector<float> values = decodeSlices(series.headers, L, ct, path);
     f.values = L.tilted ? detail::resampleSheared(values, L, dims, offset, f.valid) : std::move(values);
+    // The display the file recommends: the window of its first slice, MONOCHROME1's inversion.
+    const DicomHeader& first = series.headers[L.slices.front().header];
+    const detail::DicomFrame& firstFrame = first.frames[std::size_t(L.slices.front().frame)];
+    f.window = {firstFrame.windowCentre, firstFrame.windowWidth};
+    f.invertedGrey = first.monochrome1;
+    if (f.window.valid())
+        f.notes.push_back("display window: centre " + detail::num(f.window.centre) + ", width " + detail::num(f.window.width) +
+                          " (WindowCenter/WindowWidth)");
+    if (f.invertedGrey) f.notes.push_back("MONOCHROME1: low values displayed bright");
 
     f.notes.push_back("DICOM series " + seriesLine(series.info));
     f.notes.push_back(ct ? "values: Hounsfield units (RescaleSlope/Intercept of each image)" : "values: as stored");

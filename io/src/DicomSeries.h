@@ -20,6 +20,7 @@ struct DicomFrame {
     bool hasPixelSpacing = false;
     dvec2 pixelSpacing{1.0};            ///< PixelSpacing: (between rows, between columns), mm
     double slope = 1.0, intercept = 0.0;  ///< RescaleSlope / RescaleIntercept
+    double windowCentre = 0.0, windowWidth = 0.0;  ///< WindowCenter / WindowWidth (the first pair); width 0: none
 };
 
 /// The header of one DICOM image file: the attributes octrace uses, checked for sanity.
@@ -29,6 +30,7 @@ struct DicomHeader {
     int seriesNumber = 0;
     int rows = 0, columns = 0;
     int bitsAllocated = 0;
+    bool monochrome1 = false;   ///< PhotometricInterpretation MONOCHROME1: low values displayed bright
     double sliceSpacing = 0.0;  ///< SpacingBetweenSlices, else SliceThickness; 0 when absent
     std::vector<DicomFrame> frames;  ///< NumberOfFrames entries
 };

@@ -46,9 +46,14 @@ ScalarField checkVolume(ScalarField f, const std::string& path, const FieldReque
     return f;
 }
 
+// --region, --depth-range and --time choose among a NetCDF file's axes; other formats have none.
 void refuseRegion(const std::string& path, const FieldRequest& req, const std::string& format) {
     if (req.hasRegion)
         throw InputError(path + ": a region needs a geographic (NetCDF longitude/latitude) grid, " + format + " volumes have none");
+    if (req.hasDepthRange)
+        throw InputError(path + ": a depth range needs a geographic (NetCDF longitude/latitude/depth) grid, " + format +
+                         " volumes have none");
+    if (!req.time.empty()) throw InputError(path + ": --time chooses a NetCDF time step, " + format + " volumes have none");
 }
 
 void refuseSeries(const std::string& path, const FieldRequest& req) {
@@ -107,12 +112,16 @@ std::string describeInput(const std::string& path, const FieldRequest& req) {
     const FileKind kind = kindOf(path);
     if (auto format = volumeFormat(kind)) {
         refuseSeries(path, req);
+        refuseRegion(path, req, VolumeReader::formatName(*format));
         return VolumeReader::describe(path, *format, req.memoryBudget);
     }
     switch (kind) {
-        case FileKind::Nrrd: refuseSeries(path, req); return NrrdReader::describe(path, req.memoryBudget);
-        case FileKind::Dicom: return DicomReader::describe(path, req.series, req.memoryBudget);
-        default: refuseSeries(path, req); return NetcdfReader::describe(path, req.memoryBudget);
+        case FileKind::Nrrd:
+            refuseSeries(path, req);
+            refuseRegion(path, req, "NRRD");
+            return NrrdReader::describe(path, req.memoryBudget);
+        case FileKind::Dicom: refuseRegion(path, req, "DICOM"); return DicomReader::describe(path, req.series, req.memoryBudget);
+        default: refuseSeries(path, req); return NetcdfReader::describe(path, req);
     }
 }
 

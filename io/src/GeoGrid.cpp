@@ -80,6 +80,8 @@ std::vector<std::pair<double, std::size_t>> selectLongitudes(const std::string& 
     return sel;
 }
 
+}  // namespace
+
 bool isUniform(const std::vector<double>& v) {
     if (v.size() < 3) return true;
     double step = (v.back() - v.front()) / double(v.size() - 1);
@@ -88,7 +90,6 @@ bool isUniform(const std::vector<double>& v) {
     return true;
 }
 
-}  // namespace
 
 GeoMapping mapGeographic(const std::string& path, const std::vector<double>& lon, const std::vector<double>& lat,
                          const std::vector<double>& depthKm, const FieldRequest& req) {
@@ -112,10 +113,20 @@ GeoMapping mapGeographic(const std::string& path, const std::vector<double>& lon
     requireTwo(path, req, latIdx.size(), "latitude", lat);
     m.lat0 = req.hasRegion ? 0.5 * (req.region[2] + req.region[3]) : 0.5 * (lat.front() + lat.back());
 
-    std::vector<std::size_t> zIdx(depthKm.size());
-    for (std::size_t n = 0; n < zIdx.size(); ++n) zIdx[n] = n;
+    std::vector<std::size_t> zIdx;
+    for (std::size_t n = 0; n < depthKm.size(); ++n) {
+        double m = depthKm[n] * 1000.0;
+        if (!req.hasDepthRange || (m >= req.depthRange[0] - 1e-6 && m <= req.depthRange[1] + 1e-6)) zIdx.push_back(n);
+    }
     if (depthOrder > 0) std::reverse(zIdx.begin(), zIdx.end());  // deepest first: z increases
-    if (zIdx.size() < 2) throw EmptyResultError(path + ": the vertical axis has fewer than 2 levels");
+    if (zIdx.size() < 2) {
+        if (!req.hasDepthRange) throw EmptyResultError(path + ": the vertical axis has fewer than 2 levels");
+        auto [lo, hi] = std::minmax_element(depthKm.begin(), depthKm.end());
+        throw EmptyResultError(path + ": depth range " + num(req.depthRange[0]) + "," + num(req.depthRange[1]) +
+                               " m holds " + std::to_string(zIdx.size()) +
+                               " level(s), need at least 2 (the file's levels run " + num(*lo * 1000.0) + " .. " +
+                               num(*hi * 1000.0) + " m)");
+    }
 
     double cosLat0 = std::cos(m.lat0 * kDeg);
     for (auto& [u, n] : lonSel) {
@@ -126,8 +137,11 @@ GeoMapping mapGeographic(const std::string& path, const std::vector<double>& lon
         m.y.stored.push_back(n);
         m.y.world.push_back(kEarthRadiusKm * (lat[n] - m.lat0) * kDeg);
     }
-    double dMin = *std::min_element(depthKm.begin(), depthKm.end());
-    double dMax = *std::max_element(depthKm.begin(), depthKm.end());
+    double dMin = depthKm[zIdx.front()], dMax = depthKm[zIdx.front()];
+    for (std::size_t n : zIdx) {
+        dMin = std::min(dMin, depthKm[n]);
+        dMax = std::max(dMax, depthKm[n]);
+    }
     double horizontal = std::max(m.x.world.back() - m.x.world.front(), m.y.world.back() - m.y.world.front());
     bool byDefault = req.verticalScale == 0.0;
     m.verticalScale = !byDefault ? req.verticalScale : (dMax > dMin ? 0.25 * horizontal / (dMax - dMin) : 1.0);
@@ -143,6 +157,7 @@ GeoMapping mapGeographic(const std::string& path, const std::vector<double>& lon
                       num(lonSel.back().first) + ", " + std::to_string(latIdx.size()) + " latitudes " +
                       num(lat[latIdx.front()]) + " .. " + num(lat[latIdx.back()]) + ", " + std::to_string(zIdx.size()) +
                       " levels " + num(dMin * 1000.0) + " .. " + num(dMax * 1000.0) + " m" +
+                      (req.hasDepthRange ? " (depth range " + num(req.depthRange[0]) + "," + num(req.depthRange[1]) + " m)" : "") +
                       (isUniform(m.z.world) ? "" : " (uneven)"));
     m.notes.push_back("vertical scale " + num(m.verticalScale) +
                       (byDefault ? " (default: depth extent = 1/4 of the larger horizontal extent)" : " (requested)") +

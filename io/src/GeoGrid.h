@@ -32,6 +32,9 @@ constexpr double kEarthRadiusKm = 6371.0;
 GeoMapping mapGeographic(const std::string& path, const std::vector<double>& lon, const std::vector<double>& lat,
                          const std::vector<double>& depthKm, const FieldRequest& req);
 
+/// True when `v` is uniformly spaced (to 1e-6 of the step); fewer than 3 values are.
+bool isUniform(const std::vector<double>& v);
+
 /// A non-geographic axis: every stored sample, in increasing coordinate order (reversed when
 /// the file's coordinates decrease); world = the coordinate. @throws FileError if not monotonic.
 AxisSelection increasingAxis(const std::string& path, const std::string& axisName, const std::vector<double>& values);

@@ -67,4 +67,18 @@ std::string trim(const std::string& s) {
     return s.substr(b, e - b + 1);
 }
 
+std::vector<std::string> words(const std::string& s) {
+    std::vector<std::string> out;
+    std::string w;
+    for (char c : s + " ") {
+        if (c == ' ' || c == '\t' || c == '\n') {
+            if (!w.empty()) out.push_back(w);
+            w.clear();
+        } else {
+            w += c;
+        }
+    }
+    return out;
+}
+
 }  // namespace octrace::io::detail

@@ -2,6 +2,7 @@
 // Small checks every reader makes before opening a file (internal to octrace_io).
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace octrace::io::detail {
 
@@ -27,6 +28,9 @@ std::string num(double v);
 
 /// Lower case ASCII copy.
 std::string lower(std::string s);
+
+/// The words of `s` separated by blanks, tabs or new lines (e.g. a CF `coordinates` attribute).
+std::vector<std::string> words(const std::string& s);
 
 /// Copy without leading and trailing white space.
 std::string trim(const std::string& s);

@@ -1,5 +1,6 @@
 #include "NetcdfFile.h"
 
+#include "GdalSupport.h"
 #include "InputFile.h"
 
 #include "octrace/util/Error.h"
@@ -16,27 +17,6 @@
 
 namespace octrace::io::detail {
 namespace {
-
-// Sends GDAL's messages to octrace's log instead of stderr, for the current thread and scope.
-class GdalMessages {
-public:
-    GdalMessages() {
-        CPLPushErrorHandler(&handler);
-        CPLErrorReset();
-    }
-    ~GdalMessages() { CPLPopErrorHandler(); }
-    GdalMessages(const GdalMessages&) = delete;
-    GdalMessages& operator=(const GdalMessages&) = delete;
-    static std::string last() {
-        const char* m = CPLGetLastErrorMsg();
-        return m && *m ? std::string(m) : std::string("no detail from GDAL");
-    }
-
-private:
-    static void CPL_STDCALL handler(CPLErr level, CPLErrorNum, const char* msg) {
-        if (level >= CE_Warning) log::debug(std::string("GDAL: ") + (msg ? msg : ""));
-    }
-};
 
 std::string stringAttribute(const GDALMDArray& a, const char* name) {
     auto attr = a.GetAttribute(name);
@@ -76,20 +56,6 @@ void collect(const std::shared_ptr<GDALGroup>& group, std::vector<VariableInfo>&
     }
     for (const auto& name : group->GetGroupNames())
         if (auto sub = group->OpenGroup(name)) collect(sub, out, arrays);
-}
-
-std::vector<std::string> words(const std::string& s) {
-    std::vector<std::string> out;
-    std::string w;
-    for (char c : s + " ") {
-        if (c == ' ' || c == '\t' || c == '\n') {
-            if (!w.empty()) out.push_back(w);
-            w.clear();
-        } else {
-            w += c;
-        }
-    }
-    return out;
 }
 
 // CF auxiliary variables: those another variable names as its coordinates or bounds.
@@ -150,8 +116,7 @@ struct NetcdfFile::Impl {
 };
 
 NetcdfFile::NetcdfFile(const std::string& path) : impl_(std::make_unique<Impl>()) {
-    static std::once_flag registered;
-    std::call_once(registered, [] { GDALAllRegister(); });
+    registerGdal();
     GdalMessages messages;
     impl_->path = path;
     const char* const drivers[] = {"netCDF", nullptr};

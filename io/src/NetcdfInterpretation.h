@@ -17,6 +17,6 @@ namespace octrace::io::detail {
 ScalarField interpretNetcdf(const std::string& gdalPath, const FieldRequest& req);
 
 /// NetcdfReader::describe without the on-disk checks; `format` names the format in the text.
-std::string describeNetcdf(const std::string& gdalPath, const std::string& format, std::uint64_t memoryBudget = 0);
+std::string describeNetcdf(const std::string& gdalPath, const std::string& format, const FieldRequest& req);
 
 }  // namespace octrace::io::detail

@@ -104,3 +104,34 @@ TEST(CliOctreeFile, BuildsTheLevitusShellAndReadsItBack) {
     r = run({"info", s.path("l.oct")});
     EXPECT_NE(r.out.find("region 120,180,10,60"), std::string::npos) << r.out;
 }
+
+TEST(CliOctreeFile, VolumeFormIsStoredAndDrawnByItsShell) {
+    Scratch s;
+    Result r = run({"build", "analytic:sphere:33", "--iso", "0", "--depth", "6", "--form", "volume", "-o", s.path("v.oct"),
+                    "--stats", s.path("v.json")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("volume octree, depth 6"), std::string::npos) << r.err;
+    EXPECT_NE(slurp(s.path("v.json")).find("\"form\": \"volume\""), std::string::npos);
+    r = run({"info", s.path("v.oct")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    for (const char* t : {"form: volume", "inside: value >= iso", "TERM:"}) EXPECT_NE(r.out.find(t), std::string::npos) << t << "\n" << r.out;
+    // Drawn by its shell: the same image as the shell of the field, and as the reference.
+    r = run({"render", s.path("v.oct"), "--size", "160x120", "-o", s.path("v.png"), "--verify", "--stats", s.path("r.json")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(slurp(s.path("r.json")).find("\"mismatched_pixels\": 0,"), std::string::npos);
+    ASSERT_EQ(run({"render", "analytic:sphere:33", "--iso", "0", "--depth", "6", "--size", "160x120", "-o", s.path("f.png")}).code, 0);
+    EXPECT_EQ(slurp(s.path("v.png")), slurp(s.path("f.png")));
+    // The outside of the sphere, inside below: caps on the cube's faces hide the sphere.
+    r = run({"render", "analytic:sphere:33", "--iso", "0", "--depth", "6", "--form", "volume", "--inside", "below", "--size",
+             "160x120", "-o", s.path("b.png"), "--verify", "--stats", s.path("b.json")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(slurp(s.path("b.json")).find("\"mismatched_pixels\": 0,"), std::string::npos);
+    EXPECT_NE(slurp(s.path("b.png")), slurp(s.path("f.png")));
+    // Usage errors.
+    EXPECT_EQ(run({"build", "analytic:sphere:33", "--form", "solid", "-o", s.path("x.oct")}).code, 2);
+    r = run({"build", "analytic:sphere:33", "--inside", "below", "-o", s.path("x.oct")});
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("--inside applies to --form volume"), std::string::npos) << r.err;
+    r = run({"render", s.path("v.oct"), "--form", "volume", "-o", s.path("x.png")});
+    EXPECT_EQ(r.code, 2);
+}

@@ -149,8 +149,8 @@ TEST(DiscreteTraversal, MatchesReferenceOnRandomRaysThroughThreeOctrees) {
     for (int ti = 0; ti < 3; ++ti) {
         Tally tally;
         // Half aimed at voxels (mostly hits), half anywhere.
-        const Octree& tr = *trees[ti];
-        runRays(tr, 150000, 11 + ti, [&tr](std::mt19937_64& r, dvec3& o, dvec3& d) { rayAtVoxel(tr, r, o, d); }, tally);
+        const VoxelCells cells(*trees[ti]);
+        runRays(*trees[ti], 150000, 11 + ti, [&cells](std::mt19937_64& r, dvec3& o, dvec3& d) { rayAtVoxel(cells, r, o, d); }, tally);
         runRays(*trees[ti], 150000, 21 + ti, [](std::mt19937_64& r, dvec3& o, dvec3& d) { randomRay(r, o, d); }, tally);
         EXPECT_EQ(tally.mismatches.load(), 0) << "tree " << ti << ": first mismatch " << tally.first;
         total += tally.rays;
@@ -203,11 +203,36 @@ TEST(DiscreteTraversal, MatchesReferenceOnAxisParallelAndDiagonalRays) {
     }
 }
 
+// Regression: rayAtVoxel kept the cells of the last tree it saw, keyed by the tree's address;
+// a test that built a larger tree where a smaller one had been (the same local variable, or
+// the next test's local at the same stack address) got the old cells and indexed past them
+// (a crash in DiscreteTraversalRealData when its tests ran in one process). The cells now
+// come from the tree they are built from: every ray aims at a voxel of the current tree.
+TEST(DiscreteTraversal, RaysAimedAtVoxelsAimAtTheTreeInHandAfterAnotherOneAtTheSameAddress) {
+    Octree t = buildShellOctree(makeAnalyticField("sphere", 17), {4, 0.0, 0});
+    const std::size_t small = t.voxels.size();
+    t = buildShellOctree(makeAnalyticField("noise", 65, 7), {7, 0.0, 0});
+    ASSERT_GT(t.voxels.size(), 4 * small);
+    const VoxelCells cells(t);
+    std::mt19937_64 rng(5);
+    long outside = 0, hits = 0;
+    for (int i = 0; i < 2000; ++i) {
+        outside += t.findVoxel(cells.random(rng)) == 0xFFFFFFFFu;
+        dvec3 o, d;
+        rayAtVoxel(cells, rng, o, d);
+        TraversalCounters c;
+        hits += traverseDiscrete(t, quantizeRay(o, d), c).hit();
+    }
+    EXPECT_EQ(outside, 0);
+    EXPECT_GT(hits, 1900);
+}
+
 TEST(DiscreteTraversal, ProducesOnlyStateBytesTheOrderTableAccepts) {
     const OrderTable& table = OrderTable::instance();
     std::mt19937_64 rng(99);
     long bad = 0, seen = 0;
     unsigned firstSign = 0, firstByte = 0;
+    const VoxelCells cells(noiseTree());
     auto observe = [&](unsigned s, unsigned b) {
         ++seen;
         if (b != 0 && !table.producible(s, b) && bad++ == 0) {
@@ -218,7 +243,7 @@ TEST(DiscreteTraversal, ProducesOnlyStateBytesTheOrderTableAccepts) {
     for (int i = 0; i < 60000; ++i) {
         dvec3 o, d;
         if (i % 3 == 0) latticeRay(rng, o, d);
-        else if (i % 3 == 1) rayAtVoxel(noiseTree(), rng, o, d);
+        else if (i % 3 == 1) rayAtVoxel(cells, rng, o, d);
         else insideRay(rng, o, d);
         TraversalCounters c;
         traverseDiscreteObserved(noiseTree(), quantizeRay(o, d), c, observe);
@@ -244,38 +269,25 @@ TEST(DiscreteTraversal, RaysThatMissTheCubeReportNoHitAndRaysBehindTheEyeDoNotCo
     EXPECT_GT(h.cell.x, (1 << t.depth) / 2);
 }
 
-namespace {
-/// A random boundary voxel's cell.
-ivec3 randomVoxelCell(const Octree& t, std::mt19937_64& rng) {
-    static thread_local std::vector<ivec3> cells;
-    static thread_local const Octree* cached = nullptr;
-    if (cached != &t) {
-        cells.assign(t.voxels.size(), ivec3(0));
-        t.forEachVoxel([&](const ivec3& c, std::uint32_t i) { cells[i] = c; });
-        cached = &t;
-    }
-    return cells[std::uniform_int_distribution<std::size_t>(0, cells.size() - 1)(rng)];
-}
-}  // namespace
-
 TEST(TrajectoryCoherence, GuidedTraversalEqualsFullTraversalForAnyBranchNode) {
     // Exactness must not depend on the branch node being a good guess: pair each ray with the
     // branch node of its own hit and a nearby voxel, and with that of two unrelated voxels.
     const Octree* trees[] = {&sphereTree(), &noiseTree(), &gyroidTree()};
     for (int ti = 0; ti < 3; ++ti) {
         const Octree& t = *trees[ti];
+        const VoxelCells cells(t);
         std::mt19937_64 rng(700 + ti);
         long certified = 0, total = 0, bad = 0;
         std::string first;
         for (int i = 0; i < 60000; ++i) {
             dvec3 o, d;
             if (i % 4 == 3) latticeRay(rng, o, d);
-            else rayAtVoxel(t, rng, o, d);
+            else rayAtVoxel(cells, rng, o, d);
             QuantizedRay q = quantizeRay(o, d);
             TraversalCounters c;
             TraversalHit full = traverseDiscrete(t, q, c);
-            ivec3 a = full.hit() && (i % 2 == 0) ? full.cell : randomVoxelCell(t, rng);
-            ivec3 b = (i % 3 == 0) ? a : randomVoxelCell(t, rng);
+            ivec3 a = full.hit() && (i % 2 == 0) ? full.cell : cells.random(rng);
+            ivec3 b = (i % 3 == 0) ? a : cells.random(rng);
             if (i % 2 == 0 && full.hit()) b = glm::clamp(a + ivec3(int(rng() % 3) - 1, int(rng() % 3) - 1, 0), ivec3(0),
                                                          ivec3((1 << t.depth) - 1));
             if (t.findVoxel(b) == 0xFFFFFFFFu) b = a;
@@ -298,11 +310,12 @@ TEST(TrajectoryCoherence, GuidedTraversalEqualsFullTraversalForAnyBranchNode) {
 
 TEST(TrajectoryCoherence, StartingAtTheBranchNodeFindsAHitInsideItOrFallsBack) {
     const Octree& t = noiseTree();
+    const VoxelCells cells(t);
     std::mt19937_64 rng(801);
     long fell = 0, inside = 0, differs = 0;
     for (int i = 0; i < 40000; ++i) {
         dvec3 o, d;
-        rayAtVoxel(t, rng, o, d);
+        rayAtVoxel(cells, rng, o, d);
         QuantizedRay q = quantizeRay(o, d);
         TraversalCounters c;
         TraversalHit full = traverseDiscrete(t, q, c);

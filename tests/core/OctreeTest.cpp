@@ -1,6 +1,7 @@
 // Tests of the octree model: normal quantization, voxel look-up, structural validation.
 #include "octrace/build/AnalyticField.h"
 #include "octrace/build/OctreeBuilder.h"
+#include "octrace/build/Volume.h"
 #include "octrace/octree/Octree.h"
 #include "octrace/util/Error.h"
 
@@ -27,18 +28,7 @@ double roundTripError(dvec3 n) {
     return angleDegrees(n, dvec3(d));
 }
 
-Octree copyOf(const Octree& t) {
-    Octree c;
-    c.depth = t.depth;
-    c.cubeOrigin = t.cubeOrigin;
-    c.cubeSide = t.cubeSide;
-    c.nodes = t.nodes;
-    c.voxels = t.voxels;
-    c.fieldName = t.fieldName;
-    c.fieldUnits = t.fieldUnits;
-    c.iso = t.iso;
-    return c;
-}
+Octree copyOf(const Octree& t) { return copyOctree(t); }
 
 const Octree& noiseTree() {
     static const Octree t = buildShellOctree(makeAnalyticField("noise", 33, 5), {5, 0.0, 1});

@@ -70,6 +70,21 @@ TEST(ObjectOctree, SplitsWhileANodeHoldsMoreThanTheThreshold) {
     EXPECT_THROW(ObjectOctree::build(makeRandomSpheres(10, 3), {0, 10, 0}), UsageError);
 }
 
+TEST(ObjectOctree, CoincidentSpheresStopTheSplittingInsteadOfFillingTheTree) {
+    // 20 copies of one sphere plus a few others: no split can separate the copies, so the
+    // tree stays small (without the overlap rule: about 8^maxDepth nodes over the shared box).
+    SphereSet s;
+    s.source = "test";
+    for (int i = 0; i < 20; ++i) s.spheres.push_back({dvec3(0.3, 0.4, 0.5), 0.2});
+    for (int i = 0; i < 5; ++i) s.spheres.push_back({dvec3(0.1 * i, 0.9, 0.1), 0.05});
+    const ObjectOctree t = ObjectOctree::build(std::move(s));
+    t.validate();
+    EXPECT_LT(t.nodes.size(), 2000u);
+    const dvec3 o(0.3, 0.4, -2.0), d(0.0, 0.0, 1.0);
+    ObjectTraceCounters c;
+    EXPECT_EQ(traceSamet(t, o, d, 0.0, c).t, traceBruteForce(t.scene, o, d, 0.0).t);
+}
+
 TEST(ObjectOctree, FaceNeighbourIsTheAdjacentNodeOfEqualOrLargerSize) {
     const ObjectOctree t = ObjectOctree::build(makeSphereFlake(3), {2, 8, 0});
     int checked = 0;

@@ -17,21 +17,31 @@ namespace octrace::testutil {
 
 constexpr double kL = double(1 << Octree::kIntBits);
 
-/// Eye somewhere around the cube (outside), looking at a random point of a random voxel.
-inline void rayAtVoxel(const Octree& t, std::mt19937_64& rng, dvec3& o, dvec3& d) {
-    std::uniform_int_distribution<std::size_t> pick(0, t.voxels.size() - 1);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    // find the cell of a random voxel: walk forEachVoxel is O(n); instead sample cells until one is found
-    static thread_local std::vector<ivec3> cells;
-    static thread_local const Octree* cached = nullptr;
-    if (cached != &t) {
-        cells.clear();
-        cells.resize(t.voxels.size());
-        t.forEachVoxel([&](const ivec3& c, std::uint32_t i) { cells[i] = c; });
-        cached = &t;
+/// The cells of a tree's boundary voxels (forEachVoxel walks the whole tree: built once per
+/// tree, then shared read-only by every thread). Holds a copy, not the tree: a cache keyed by
+/// the tree's address went stale when a later tree was built at the same address (a test's
+/// local octree after the previous test's), and indexed past its end.
+class VoxelCells {
+public:
+    explicit VoxelCells(const Octree& t) : depth_(t.depth), cells_(t.voxels.size()) {
+        t.forEachVoxel([&](const ivec3& c, std::uint32_t i) { cells_[i] = c; });
     }
-    ivec3 c = cells[pick(rng)];
-    double vs = kL / double(1 << t.depth);
+    /// A random boundary voxel's cell (the tree must have one).
+    ivec3 random(std::mt19937_64& rng) const {
+        return cells_[std::uniform_int_distribution<std::size_t>(0, cells_.size() - 1)(rng)];
+    }
+    int depth() const { return depth_; }
+
+private:
+    int depth_;
+    std::vector<ivec3> cells_;
+};
+
+/// Eye somewhere around the cube (outside), looking at a random point of a random voxel.
+inline void rayAtVoxel(const VoxelCells& cells, std::mt19937_64& rng, dvec3& o, dvec3& d) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const ivec3 c = cells.random(rng);
+    const double vs = kL / double(1 << cells.depth());
     dvec3 target = (dvec3(c) + dvec3(u(rng), u(rng), u(rng))) * vs;
     dvec3 dir = glm::normalize(dvec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5));
     o = dvec3(kL * 0.5) + dir * kL * (1.0 + 2.0 * u(rng));

@@ -28,6 +28,17 @@ FieldRequest region(double lon0, double lon1, double lat0, double lat1, double v
     return r;
 }
 
+// Sound speed from T and S, at the second time step (or a date), between 10 and 3000 m.
+FieldRequest derived() {
+    FieldRequest r;
+    r.variable = "sound_speed";
+    r.time = "1";
+    r.hasDepthRange = true;
+    r.depthRange[0] = 10.0;
+    r.depthRange[1] = 3000.0;
+    return r;
+}
+
 bool passesTheOnDiskChecks(const std::string& bytes) {
     static const std::string hdf5("\x89HDF\r\n\x1a\n", 8);
     // HDF5 itself can hang on corrupt files (docs/dev/fuzzing.md, "Open"): the CI smoke run
@@ -61,6 +72,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         FieldRequest{},
         region(170.0, -170.0, -60.0, 60.0, 0.0),  // across the dateline
         region(0.0, 90.0, -45.0, 45.0, 3.0),
+        derived(),
     };
     for (auto req : requests) {
         req.memoryBudget = octrace::fuzz::kMemoryBudget;
@@ -70,7 +82,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         }
     }
     try {
-        (void)octrace::io::detail::describeNetcdf(path, "fuzz", octrace::fuzz::kMemoryBudget);
+        FieldRequest req;
+        req.memoryBudget = octrace::fuzz::kMemoryBudget;
+        (void)octrace::io::detail::describeNetcdf(path, "fuzz", req);
     } catch (const octrace::Error&) {
     }
     VSIUnlink(path);

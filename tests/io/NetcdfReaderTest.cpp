@@ -129,9 +129,10 @@ TEST(NetcdfReaderLevitus, DescribeListsAxesVariablesAndRanges) {
     std::string t = io::NetcdfReader::describe(path);
     for (const char* s : {"format: NetCDF-3 classic (CDF-1)", "XAXLEVITR = 360: longitude, units 'degrees_east', 20.5 .. 379.5, uniform step 1",
                           "ZAXLEVITR = 20: vertical (positive down), units 'METERS', 0 .. 5000, uneven",
-                          "TEMP(ZAXLEVITR, YAXLEVITR, XAXLEVITR) Float32 [20 x 180 x 360], units 'DEG C', 'TEMPERATURE': "
-                          "valid range -2.02 .. 29.74 (718725 of 1296000 samples valid)",
-                          "SALT(ZAXLEVITR, YAXLEVITR, XAXLEVITR)", "world bounds:", "z: rectilinear, 20 values"})
+                          "TEMP(ZAXLEVITR, YAXLEVITR, XAXLEVITR) Float32 [20 x 180 x 360], units 'DEG C', 'TEMPERATURE', "
+                          "_FillValue -1e+10, missing_value -1e+10: valid range -2.02 .. 29.74 (718725 of 1296000 samples valid)",
+                          "SALT(ZAXLEVITR, YAXLEVITR, XAXLEVITR)", "world bounds:", "z: rectilinear, 20 values",
+                          "sound_speed: derived from TEMP and SALT with --var sound_speed"})
         EXPECT_NE(t.find(s), std::string::npos) << "missing '" << s << "' in:\n" << t;
 }
 

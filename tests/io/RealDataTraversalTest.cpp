@@ -17,7 +17,8 @@ std::string shared(const std::string& rel) { return std::string(OCTRACE_SHARED_D
 
 void checkTree(const Octree& t, long randomRays) {
     Tally out;
-    runRays(t, randomRays / 2, 1, [&t](std::mt19937_64& r, dvec3& o, dvec3& d) { rayAtVoxel(t, r, o, d); }, out);
+    const VoxelCells cells(t);
+    runRays(t, randomRays / 2, 1, [&cells](std::mt19937_64& r, dvec3& o, dvec3& d) { rayAtVoxel(cells, r, o, d); }, out);
     runRays(t, randomRays / 2, 2, [](std::mt19937_64& r, dvec3& o, dvec3& d) { randomRay(r, o, d); }, out);
     runRays(t, 20000, 3, [](std::mt19937_64& r, dvec3& o, dvec3& d) { latticeRay(r, o, d); }, out);
     runRays(t, 20000, 4, [](std::mt19937_64& r, dvec3& o, dvec3& d) { insideRay(r, o, d); }, out);

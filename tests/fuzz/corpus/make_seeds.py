@@ -123,6 +123,47 @@ data:
       1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24 ;
 }
 """,
+    # CF ocean model output: 365_day time axis, height positive up, potential temperature in
+    # kelvin and salinity by standard_name (--var sound_speed derives from them), packed salinity.
+    "cf_ocean_noleap": """netcdf cf_ocean_noleap {
+dimensions:
+  time = 2 ; z = 3 ; lat = 3 ; lon = 4 ;
+variables:
+  double time(time) ; time:units = "days since 2000-01-01" ; time:calendar = "365_day" ; time:axis = "T" ;
+  double z(z) ; z:units = "m" ; z:positive = "up" ; z:standard_name = "height" ;
+  float lat(lat) ; lat:units = "degrees_north" ;
+  float lon(lon) ; lon:units = "degrees_east" ;
+  float thetao(time, z, lat, lon) ; thetao:standard_name = "sea_water_potential_temperature" ; thetao:units = "K" ;
+    thetao:_FillValue = 1.e+20f ;
+  short so(time, z, lat, lon) ; so:standard_name = "sea_water_salinity" ; so:scale_factor = 0.001f ;
+    so:add_offset = 30.f ; so:missing_value = -1s ; so:valid_min = 0s ;
+data:
+  time = 0, 59 ; z = 0, -100, -2000 ; lat = -10, 0, 10 ; lon = 170, 175, 180, 185 ;
+  thetao = 300, 300, 300, 300, 299, 299, 299, 299, 298, 298, 298, 1.e+20, 290, 290, 290, 290, 289, 289, 289,
+    289, 288, 288, 288, 288, 276, 276, 276, 276, 276, 276, 276, 276, 275, 275, 275, 275,
+    301, 301, 301, 301, 300, 300, 300, 300, 299, 299, 299, 1.e+20, 291, 291, 291, 291, 290, 290, 290,
+    290, 289, 289, 289, 289, 277, 277, 277, 277, 277, 277, 277, 277, 276, 276, 276, 276 ;
+  so = 4000, 4100, 4200, 4300, 4400, 4500, 4600, 4700, 4800, 4900, 5000, -1, 4000, 4100, 4200, 4300, 4400,
+    4500, 4600, 4700, 4800, 4900, 5000, 5100, 4000, 4100, 4200, 4300, 4400, 4500, 4600, 4700, 4800, 4900,
+    5000, 5100, 4000, 4100, 4200, 4300, 4400, 4500, 4600, 4700, 4800, 4900, 5000, -1, 4000, 4100, 4200,
+    4300, 4400, 4500, 4600, 4700, 4800, 4900, 5000, 5100, 4000, 4100, 4200, 4300, 4400, 4500, 4600, 4700,
+    4800, 4900, 5000, 5100 ;
+}
+""",
+    # A curvilinear grid (2-D nav_lat/nav_lon named by `coordinates`), refused with their names.
+    "cf_curvilinear": """netcdf cf_curvilinear {
+dimensions:
+  deptht = 2 ; y = 2 ; x = 3 ;
+variables:
+  float deptht(deptht) ; deptht:units = "m" ; deptht:positive = "down" ;
+  float nav_lat(y, x) ; nav_lat:units = "degrees_north" ;
+  float nav_lon(y, x) ; nav_lon:units = "degrees_east" ;
+  float votemper(deptht, y, x) ; votemper:coordinates = "nav_lon nav_lat" ; votemper:units = "degC" ;
+data:
+  deptht = 5, 50 ; nav_lat = 40, 40.2, 40.4, 41, 41.2, 41.4 ; nav_lon = 140, 141, 142, 139.8, 140.8, 141.8 ;
+  votemper = 20, 19, 18, 17, 16, 15, 10, 9, 8, 7, 6, 5 ;
+}
+""",
 }
 classic = "fuzz_netcdf_classic_header"
 cf = "fuzz_netcdf_cf"
@@ -170,6 +211,10 @@ CLI = {
                        "0.85,0.62,0.35", "--color=1,1,1", "--vertical-scale", "50", "--quiet", "--verbose", "--",
                        "-o"],
     "render_dateline": ["render", "a.nc", "--region=170,-170,-60,60", "--depth", "14", "-o", "a.png"],
+    "render_sound_speed": ["render", "levitus.cdf", "--var", "sound_speed", "--time", "1990-07-15T12:00",
+                           "--depth-range", "0,1000", "--iso", "1500", "-o", "v.png"],
+    "info_ocean": ["info", "a.nc", "b.nc", "--var=speed_of_sound_in_sea_water", "--time", "3",
+                   "--depth-range=10,500", "--region", "170,-170,-60,60"],
     "export_levitus": ["export", "levitus.cdf", "--var", "TEMP", "--iso", "10", "--region", "120,180,10,60",
                        "--depth", "8", "--level", "5", "--format", "ply", "--ascii", "--colormap", "viridis",
                        "-o", "temp10.ply"],
@@ -179,6 +224,84 @@ CLI = {
     "sample": ["sample", "noise", "-o", "n.nrrd", "--samples", "17", "--seed", "1073741824"],
 }
 for name, args in CLI.items():
+    out("fuzz_cli_options", name, b"\0".join(a.encode() for a in args))
+# CityJSON: the test cube (two LoDs, a solid and a TIN), and small variants of what real files
+# hold (no transform, CityJSON 1.0 numeric lod, a MultiSolid, a polygon with a hole, broken ones).
+CITY = "fuzz_cityjson"
+copy(CITY, os.path.join(DATA, "city", "cube.city.json"), "cube.city.json")
+SQUARE = "[[0,0,0],[10,0,0],[10,10,0],[0,10,0],[3,3,0],[6,3,0],[6,6,0],[3,6,0],[0,0,5],[10,0,5],[10,10,5],[0,10,5]]"
+CITY_SEEDS = {
+    "hole.json": '{"type":"CityJSON","version":"1.0","CityObjects":{"p":{"type":"LandUse","geometry":[{"type":"MultiSurface","lod":1,'
+                 '"boundaries":[[[0,1,2,3],[4,7,6,5]]]}]}},"vertices":' + SQUARE + '}',
+    "multisolid.json": '{"type":"CityJSON","version":"1.1","metadata":{"referenceSystem":"urn:ogc:def:crs:EPSG::28992"},'
+                       '"CityObjects":{"b":{"type":"Building","geometry":[{"type":"MultiSolid","lod":"1.2","boundaries":[[['
+                       '[[0,3,2,1]],[[8,9,10,11]],[[0,1,9,8]],[[1,2,10,9]],[[2,3,11,10]],[[3,0,8,11]]]]]}]}},"vertices":' + SQUARE + '}',
+    "bowtie.json": '{"type":"CityJSON","version":"2.0","CityObjects":{"w":{"type":"WaterBody","geometry":[{"type":"MultiSurface",'
+                   '"lod":"1","boundaries":[[[0,2,1,3]]]}]}},"vertices":' + SQUARE + '}',
+    "bad_index.json": '{"type":"CityJSON","version":"2.0","CityObjects":{"r":{"type":"Road","geometry":[{"type":"MultiSurface",'
+                      '"lod":"1","boundaries":[[[0,1,99]]]}]}},"vertices":' + SQUARE + '}',
+    "instance.json": '{"type":"CityJSON","version":"2.0","transform":{"scale":[0.5,0.5,0.5],"translate":[1,2,3]},"CityObjects":'
+                     '{"t":{"type":"SolitaryVegetationObject","geometry":[{"type":"GeometryInstance","template":0,"boundaries":[0],'
+                     '"transformationMatrix":[1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1]}]},"g":{"type":"TINRelief","geometry":[{"type":'
+                     '"CompositeSurface","lod":"1","boundaries":[[[0,1,2]],[[0,2,3]]]}]}},"vertices":' + SQUARE + '}',
+}
+for name, text in CITY_SEEDS.items():
+    out(CITY, name, text.encode())
+
+# ---------------------------------------------------------------- molecules (fuzz_molecule)
+def pdb_atom(serial, name, res, chain, seq, x, y, z, element, record="ATOM  ", alt=" "):
+    return "%-6s%5d %-4s%1s%3s %1s%4d    %8.3f%8.3f%8.3f  1.00 20.00          %2s" % (
+        record, serial, name, alt, res, chain, seq, x, y, z, element)
+
+
+GLY = [("N", 1.0, 2.0, 3.0, "N"), ("CA", 2.4, 2.1, 3.2, "C"), ("C", 3.0, 3.5, 3.1, "C"), ("O", 2.3, 4.5, 3.0, "O")]
+pdb_lines = ["HEADER    OCTRACE FUZZ SEED", "CRYST1   10.000   10.000   10.000  90.00  90.00  90.00 P 1           1"]
+pdb_lines += [pdb_atom(i + 1, n, "GLY", "A", 1, x, y, z, e) for i, (n, x, y, z, e) in enumerate(GLY)]
+pdb_lines += [pdb_atom(5, "FE", "HEM", "A", 2, 4.0, 4.0, 4.0, "FE", "HETATM"), "TER", "END"]
+out("fuzz_molecule", "glycine.pdb", ("\n".join(pdb_lines) + "\n").encode())
+# Two models (only the first is drawn), alternate locations, an element left blank.
+models = ["MODEL        1", pdb_atom(1, "CA", "ALA", "A", 1, 0, 0, 0, "C", alt="A"),
+          pdb_atom(2, "CA", "ALA", "A", 1, 0.2, 0, 0, "C", alt="B"), pdb_atom(3, " OG", "SER", "A", 2, 1, 1, 1, ""),
+          "ENDMDL", "MODEL        2", pdb_atom(1, "CA", "ALA", "A", 1, 5, 5, 5, "C"), "ENDMDL", "END"]
+out("fuzz_molecule", "models_altloc.pdb", ("\r\n".join(models) + "\r\n").encode())
+out("fuzz_molecule", "invalid_coordinate.pdb", (pdb_atom(1, "CA", "ALA", "A", 1, 0, 0, 0, "C")[:30] + "   1.0e9x" + "\n").encode())
+cif = """data_SEED
+#
+_entry.id SEED
+loop_
+_atom_site.group_PDB
+_atom_site.id
+_atom_site.type_symbol
+_atom_site.label_atom_id
+_atom_site.label_alt_id
+_atom_site.label_comp_id
+_atom_site.Cartn_x
+_atom_site.Cartn_y
+_atom_site.Cartn_z
+_atom_site.pdbx_PDB_model_num
+ATOM 1 N N . GLY 1.000 2.000 3.000 1
+ATOM 2 C CA . GLY 2.400 2.100 3.200 1
+ATOM 3 C "C'" . GLY 3.000 3.500 3.100 1
+ATOM 4 O 'O 1' . GLY 2.300 4.500 3.000 1
+HETATM 5 FE FE . HEM 4.000 4.000 4.000 1
+HETATM 6 O O . HOH 9.000 9.000 9.000 2
+#
+loop_
+_struct_keywords.text
+;multi-line
+text field
+;
+"""
+out("fuzz_molecule", "glycine.cif", cif.encode())
+out("fuzz_molecule", "single_atom.cif", b"data_ONE\n_atom_site.type_symbol S\n_atom_site.Cartn_x 1\n_atom_site.Cartn_y 2\n_atom_site.Cartn_z 3\n")
+CLI_SPHERES = {
+    "render_molecule": ["render", "4HHB.pdb", "--renderer", "beam", "--leaf-objects", "4", "--samples", "4",
+                        "--bounces", "1", "--shadows", "off", "--octree", "object", "-o", "m.png", "--verify"],
+    "render_sphereflake": ["render", "sphereflake:3", "--renderer", "samet", "--size", "64x48", "-o", "f.png"],
+    "render_random_voxel": ["render", "random:100:7", "--octree", "voxel", "--depth", "6", "-o", "r.png"],
+    "info_spheres": ["info", "sphereflake:2", "random:10", "a.cif"],
+}
+for name, args in CLI_SPHERES.items():
     out("fuzz_cli_options", name, b"\0".join(a.encode() for a in args))
 
 

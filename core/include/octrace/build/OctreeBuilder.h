@@ -36,6 +36,16 @@ struct BuildOptions {
     /// buffer it allocates and stops as soon as they would go over (both throw LimitError),
     /// so an estimate that was too low still ends with a message instead of the OOM killer.
     std::uint64_t memoryBudget = 0;
+    /// Also fill Octree::voxelValues: per boundary voxel the trilinear field one voxel edge
+    /// inside the surface (from the voxel's centre against its normal, towards values >= iso),
+    /// or at the centre where that point is masked or outside the grid. What a display window
+    /// colours by: the tissue under the surface rather than the iso value itself.
+    bool voxelValues = false;
+    /// buildOctree only: the shell (boundary voxels) or the volume form (the solid bounded by
+    /// the isosurface, interior kept: build/Volume.h).
+    OctreeForm form = OctreeForm::Shell;
+    /// Volume form: the solid is where the field is below the iso value (else at or above it).
+    bool insideBelow = false;
 };
 
 /// What buildShellOctree allocates at one depth, at its peak (bytes, allocated rather than
@@ -72,5 +82,16 @@ struct BuildReport {
 /// value range or no cell straddles it, LimitError when the memory budget is too small (see
 /// BuildOptions::memoryBudget), CancelledError when BuildOptions::cancelled says so. The field must have passed validate().
 Octree buildShellOctree(const ScalarField& field, const BuildOptions& options, BuildReport* report = nullptr);
+
+/// As buildShellOctree, in the form options.form. The volume form, built top-down from the
+/// same min/max pyramid (no dense array either; interior octants become terms at the highest
+/// level the pyramid proves them interior): a cell whose 8 corners are inside the solid
+/// (value >= iso, or < iso with insideBelow; none masked) is an interior voxel; a cell that
+/// straddles the iso value is a boundary voxel with the field's normal pointing out of the
+/// solid; an inside cell next to a masked cell, a cell outside the grid or the cube's face is
+/// a boundary voxel of a *cap*, its normal pointing out towards them. So every voxel of the
+/// solid with an empty face neighbour is a boundary voxel, and extractShell draws the solid
+/// closed. BuildReport::boundaryVoxels counts boundary voxels only.
+Octree buildOctree(const ScalarField& field, const BuildOptions& options, BuildReport* report = nullptr);
 
 }  // namespace octrace

@@ -16,6 +16,15 @@
 
 namespace octrace {
 
+/// A display window (radiology's window level / width): values centre - width/2 .. centre +
+/// width/2 map linearly to black .. white, values beyond are clamped. width <= 0: no window.
+struct ValueWindow {
+    double centre = 0.0, width = 0.0;
+    bool valid() const { return width > 0.0; }
+    /// Grey in [0,1] (display value) of `v`; `inverted`: low values bright (DICOM MONOCHROME1).
+    float grey(float v, bool inverted) const;
+};
+
 class ScalarField {
 public:
     ScalarField() = default;
@@ -36,6 +45,13 @@ public:
 
     std::vector<float> values;          ///< dims.x*dims.y*dims.z samples
     std::vector<std::uint8_t> valid;    ///< 1 = valid sample; empty means every sample is valid
+
+    /// The window the file recommends for display (DICOM WindowCenter/WindowWidth, the first
+    /// pair); invalid when it gives none.
+    ValueWindow window;
+    /// The file displays low values bright (DICOM PhotometricInterpretation MONOCHROME1): a
+    /// window's grey is inverted. The values themselves are never inverted.
+    bool invertedGrey = false;
 
     /// Notes for `info` and stats (e.g. "geographic: lon0=150 lat0=35, vertical scale 30").
     std::vector<std::string> notes;

@@ -1,5 +1,6 @@
 #pragma once
 /// @file RenderSettings.h
+#include "octrace/build/ScalarField.h"
 #include "octrace/util/Math.h"
 
 #include <string>
@@ -14,6 +15,14 @@ struct RenderSettings {
     float ambient = 0.15f;
     float diffuse = 0.85f;
     std::string colormap;                  ///< empty: uniform colour; else colour by height (see docs)
+    /// Use the octree's per-voxel colours (Octree::colours) when it has them and no colour
+    /// map is set; false: the uniform colour.
+    bool voxelColours = true;
+    /// When valid, and the octree has voxel values (Octree::voxelValues), each voxel is grey
+    /// by the window applied to its value (instead of `colour` or the colour map);
+    /// `invertedGrey`: low values bright (DICOM MONOCHROME1).
+    ValueWindow window;
+    bool invertedGrey = false;
     /// Colour coherence (paper A, 5.3) on any renderer: a pixel between two traced neighbours
     /// whose 8-bit sRGB colours differ by at most colourTolerance in every channel gets their
     /// average without being traced. Approximate by design.

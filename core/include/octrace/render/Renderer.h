@@ -52,6 +52,10 @@ int renderProgressive(const Renderer& renderer, const Octree& octree, const Came
                       const std::function<bool(const Frame&, double lodPixels)>& onFrame,
                       const std::vector<double>& lodPasses = {8.0, 4.0, 2.0});
 
+/// Primary rays of a sphere scene tested against every sphere, no octree (the oracle that
+/// --verify and the tests judge the octree tracers by; O(spheres) per ray). Draws spheres only.
+std::unique_ptr<Renderer> makeBruteForceSphereRenderer();
+
 /// Names accepted by makeRenderer, in the order the help text lists them.
 std::vector<std::string> rendererNames();
 /// Throws UsageError for an unknown name.

@@ -1,7 +1,8 @@
 #pragma once
 /// @file ObjectOctree.h
 /// Paper B's object octree over a SphereSet: a node is split into its 8 octants while it holds
-/// more than `leafObjects` spheres (and is above `maxDepth`); leaves keep the list of the
+/// more than `leafObjects` spheres (and is above `maxDepth`, and the split would not copy its
+/// list into the children more than 4 times over: spheres that overlap too much stay together); leaves keep the list of the
 /// spheres whose bounding box meets them; every node keeps its parent, for Samet's neighbour
 /// finding. Rays meet the spheres analytically.
 ///
@@ -31,7 +32,7 @@ struct ObjectNode {
 struct ObjectOctreeOptions {
     /// Split a node while it holds more spheres than this. Default 8: paper B splits "while a
     /// node holds more objects than a threshold" without giving it; 8 keeps the analytic tests
-    /// per occupied leaf few while the tree stays small (docs/dev/spheres-and-beams.md).
+    /// per occupied leaf few while the tree stays small (docs/dev/spheres.md).
     int leafObjects = 8;
     int maxDepth = 10;  ///< 1 .. kMaxDepth; overlapping spheres stop the splitting there
     std::uint64_t memoryBudget = 0;  ///< bytes, 0 = no limit (LimitError when exceeded)

@@ -44,6 +44,10 @@ public:
     /// variable without valid samples, or one too large for `memoryBudget` bytes (0 = no
     /// limit), is reported in the text.
     static std::string describe(const std::string& path, std::uint64_t memoryBudget = 0);
+    /// The same, with the last part describing the field `req` asks for (variable, sound speed,
+    /// region, depth range, time step) instead of the default one; an error reading it is
+    /// thrown as by read().
+    static std::string describe(const std::string& path, const FieldRequest& req);
 
     /// The names read() accepts without a choice being refused: the short names of the
     /// variables with at least 3 dimensions longer than 1, in the file's order (for a variable

@@ -1,0 +1,111 @@
+// octrace csg A OP B -o OUT.oct: union, intersection or difference of two solids, each a
+// field (its volume octree is built), a volume octree file or a primitive solid.
+#include "Commands.h"
+#include "Input.h"
+#include "OctreeOutput.h"
+#include "Options.h"
+#include "StatsJson.h"
+#include "SurfaceOptions.h"
+
+#include "octrace/build/Volume.h"
+#include "octrace/csg/Csg.h"
+#include "octrace/io/AtomicFile.h"
+#include "octrace/util/Error.h"
+#include "octrace/util/Log.h"
+#include "octrace/util/Timer.h"
+
+#include <cstdio>
+#include <optional>
+
+namespace octrace::cli {
+namespace {
+
+using CsgArgs = OctreeFileArgs;
+
+OptionParser makeParser(CsgArgs& a) {
+    OptionParser p("csg", "octrace csg A union|intersection|difference B -o OUT.oct [options]");
+    p.add({"o", "FILE", "output octree file (.oct, volume form; written atomically) (required)",
+           [&](const std::string& v) { a.output = v; }});
+    addSurfaceOptions(p, a);
+    addInsideOption(p, a, "field operands");
+    addOctreeFileOptions(p, a);
+    return p;
+}
+
+/// One operand: a solid, or the volume octree of an octree file or a field.
+struct Operand {
+    std::optional<Solid> solid;
+    Octree tree;
+    double loadMs = 0.0, buildMs = 0.0;
+    CsgOperand operand() const { return solid ? CsgOperand::of(*solid) : CsgOperand::of(tree); }
+};
+
+Operand loadOperand(const CsgArgs& a, const std::string& input) {
+    Operand o;
+    if (isSolidSpec(input)) {
+        o.solid = parseSolid(input);
+        return o;
+    }
+    if (isOctreeInput(input)) {
+        Timer t;
+        o.tree = loadOctree(input, memoryBudget(a));
+        o.loadMs = t.ms();
+        if (o.tree.form != OctreeForm::Volume)
+            throw InputError(input + ": a shell octree; CSG needs the volume form (octrace build --form volume)");
+        return o;
+    }
+    SurfaceArgs field = a;  // the field options apply to each field operand
+    field.input = input;
+    field.formGiven = false;
+    field.form = OctreeForm::Volume;
+    field.keepVolume = true;
+    Surface s = buildSurface(field);
+    o.tree = std::move(s.tree);
+    o.loadMs = s.loadMs;
+    o.buildMs = s.report.buildMs;
+    return o;
+}
+
+}  // namespace
+
+int runCsg(const std::vector<std::string>& args) {
+    CsgArgs a;
+    const OptionParser parser = makeParser(a);
+    const std::vector<std::string> positional = parser.parse(args);
+    if (a.help) {
+        std::fputs(parser.help().c_str(), stdout);
+        return 0;
+    }
+    if (positional.size() != 3)
+        throw UsageError("csg needs A OP B (got " + std::to_string(positional.size()) + " arguments)");
+    if (a.output.empty()) throw UsageError("csg needs an output file: -o OUT.oct");
+    const CsgOp op = parseCsgOp(positional[1]);
+    for (int i : {0, 2})
+        if (isSolidSpec(positional[std::size_t(i)])) parseSolid(positional[std::size_t(i)]);  // usage errors first
+    if (isSolidSpec(positional[0]) && isSolidSpec(positional[2]))
+        throw UsageError("csg: at least one operand must be a field or an octree file (two solids have no voxels to share)");
+    const Operand lhs = loadOperand(a, positional[0]);
+    const Operand rhs = loadOperand(a, positional[2]);
+    Timer t;
+    const Octree result = csg(lhs.operand(), op, rhs.operand());
+    const double csgMs = t.ms();
+    const OctreeOutput out = writeOctreeOutput(result, a.output, a.level);
+    if (!a.statsPath.empty()) {
+        StatsJson js;
+        js.set("a", positional[0]);
+        js.set("operation", csgOpName(op));
+        js.set("b", positional[2]);
+        js.set("output", a.output);
+        js.set("load_ms", lhs.loadMs + rhs.loadMs);
+        js.set("build_ms", lhs.buildMs + rhs.buildMs);
+        js.set("csg_ms", csgMs);
+        setOctreeStats(js, result, out, a.level);
+        const VoxelCount n = countVoxels(result);
+        js.set("interior_voxels", n.interior);
+        js.set("volume_voxels", n.volume());
+        io::writeFileAtomically(a.statsPath, std::string_view(js.text()));
+    }
+    return 0;
+}
+
+}  // namespace octrace::cli
