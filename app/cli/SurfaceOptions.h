@@ -14,6 +14,7 @@
 #include "octrace/render/RenderSettings.h"
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -46,6 +47,9 @@ struct SurfaceArgs {
     bool clip = false;        // --clip: keep the inside of the cuts instead
 };
 
+/// The window --window TEXT sets: a CT preset, "C,W", or "none" (an invalid window, which
+/// stops the file's own). Throws UsageError as --window does.
+ValueWindow displayWindow(const std::string& text);
 /// "a, b, c".
 std::string joinNames(const std::vector<std::string>& names);
 /// sRGB display colour (as a user picks it) -> linear, alpha unchanged.
@@ -113,6 +117,19 @@ struct Surface {
 /// values). A volume octree becomes its shell (extractShell) unless a.keepVolume. Throws as
 /// loadField(), buildOctree() and csg().
 Surface buildSurface(const SurfaceArgs& a);
+
+/// What an interactive caller (the studio) gives a build: progress (instead of the terminal's)
+/// and cancellation (BuildOptions::cancelled: CancelledError).
+struct BuildHooks {
+    std::function<void(double)> progress;
+    std::function<bool()> cancelled;
+};
+/// buildSurface's two steps for a field input (not an octree file or a city), for callers that
+/// build again and again from one read: readSurfaceField reads a.input into s.field (s.loadMs);
+/// buildFromField does the rest from s.field (iso value or preset, display window, octree in
+/// a.form, cuts, shell) with `hooks`. Throw as buildSurface.
+void readSurfaceField(const SurfaceArgs& a, Surface& s);
+void buildFromField(const SurfaceArgs& a, Surface& s, const BuildHooks& hooks = {});
 
 /// The colour options as RenderSettings::colour (linear RGB), RenderSettings::colormap and the
 /// surface's display window (RenderSettings::window, invertedGrey).

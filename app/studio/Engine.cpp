@@ -1,8 +1,10 @@
 #include "Engine.h"
 
 #include "Input.h"
+#include "SurfaceOptions.h"
 
 #include "octrace/build/OctreeBuilder.h"
+#include "octrace/io/CityReader.h"
 #include "octrace/io/FieldReader.h"
 #include "octrace/io/ImageWriter.h"
 #include "octrace/render/ImageCompare.h"
@@ -72,30 +74,37 @@ void Engine::cancel() {
     emit cancelled();
 }
 
+namespace {
+/// Inputs whose surface is not built from a field here: an octree file (fixed iso and depth)
+/// and a city model (voxelized whole).
+bool fixedSurface(const std::string& input) { return cli::isOctreeInput(input) || io::isCityInput(input); }
+}  // namespace
+
 void Engine::open(const StudioState& state) {
     const unsigned gen = ++generation_;
     building_ = true;
     emit progress(tr("Reading %1").arg(QString::fromStdString(state.input)), -1.0);
     buildWorker_.post([this, state, gen](const std::atomic<bool>& stop) {
         try {
-            const std::uint64_t budget = defaultMemoryBudget();
             InputInfo info;
             info.input = QString::fromStdString(state.input);
-            if (cli::isOctreeInput(state.input)) {
-                auto tree = std::make_shared<Octree>(cli::loadOctree(state.input, budget));
-                tree->computeSummaries();
+            cli::SurfaceArgs a = surfaceArgs(state);
+            if (fixedSurface(state.input)) {
+                // As `octrace render` reads them (no field options, no iso value).
+                a.request = {};
+                a.iso.reset();
+                auto surface = std::make_shared<cli::Surface>(cli::buildSurface(a));
+                surface->tree.computeSummaries();
                 info.octreeFile = true;
-                info.variable = QString::fromStdString(tree->fieldName);
-                info.units = QString::fromStdString(tree->fieldUnits);
-                info.minimum = info.maximum = tree->iso;
-                QMetaObject::invokeMethod(this, [this, info, tree, gen] {
+                info.variable = QString::fromStdString(surface->tree.fieldName);
+                info.units = QString::fromStdString(surface->tree.fieldUnits);
+                info.minimum = info.maximum = surface->iso;
+                auto tree = std::make_shared<const Octree>(std::move(surface->tree));
+                QMetaObject::invokeMethod(this, [this, info, tree, surface, gen] {
                     if (gen != generation_) return;
                     info_ = info;
-                    field_.reset();
-                    tree_ = tree;
-                    iso_ = tree->iso;
-                    depth_ = tree->depth;
-                    building_ = false;
+                    base_.reset();
+                    setSurface(tree, *surface, surface->iso, tree->depth);
                     emit inputLoaded();
                     emit surfaceBuilt();
                 }, Qt::QueuedConnection);
@@ -114,27 +123,22 @@ void Engine::open(const StudioState& state) {
                                        .arg(s.rows)
                                        .arg(s.slices);
             }
-            io::FieldRequest req;
-            req.variable = state.variable;
-            req.time = state.time;
-            req.series = state.series;
-            req.memoryBudget = budget;
-            auto field = std::make_shared<ScalarField>(cli::loadField(state.input, req));
+            auto base = std::make_shared<cli::Surface>();
+            cli::readSurfaceField(a, *base);
             if (stop) throw CancelledError("cancelled");
-            auto [lo, hi] = field->validRange();
-            info.variable = QString::fromStdString(field->name);
-            info.units = QString::fromStdString(field->units);
+            auto [lo, hi] = base->field.validRange();
+            info.variable = QString::fromStdString(base->field.name);
+            info.units = QString::fromStdString(base->field.units);
             info.minimum = lo;
             info.maximum = hi;
-            info.histogram = histogramOf(*field, lo, hi);
-            const double iso = state.iso ? *state.iso : 0.5 * (double(lo) + double(hi));
-            QMetaObject::invokeMethod(this, [this, info, field, iso, depth = state.depth, gen] {
+            info.histogram = histogramOf(base->field, lo, hi);
+            QMetaObject::invokeMethod(this, [this, info, base, state, gen] {
                 if (gen != generation_) return;
                 info_ = info;
-                field_ = field;
+                base_ = base;
                 tree_.reset();
                 emit inputLoaded();
-                startBuild(field, iso, depth);
+                startBuild(state);
             }, Qt::QueuedConnection);
         } catch (const CancelledError&) {
             QMetaObject::invokeMethod(this, [this, gen] {
@@ -152,24 +156,38 @@ void Engine::open(const StudioState& state) {
     });
 }
 
-void Engine::rebuild(double iso, int depth) {
-    if (!field_) return;
+void Engine::rebuild(const StudioState& state) {
+    if (!base_) return;
     ++generation_;
-    startBuild(field_, iso, depth);
+    startBuild(state);
 }
 
-void Engine::startBuild(std::shared_ptr<const ScalarField> field, double iso, int depth) {
+void Engine::setSurface(std::shared_ptr<const Octree> tree, const cli::Surface& look, double iso, int depth) {
+    tree_ = std::move(tree);
+    window_ = look.window;
+    invertedGrey_ = look.invertedGrey;
+    iso_ = iso;
+    depth_ = depth;
+    building_ = false;
+}
+
+void Engine::startBuild(const StudioState& state) {
     const unsigned gen = generation_;
     building_ = true;
     emit progress(tr("Building the octree"), 0.0);
-    buildWorker_.post([this, field, iso, depth, gen](const std::atomic<bool>& stop) {
+    buildWorker_.post([this, base = base_, state, gen](const std::atomic<bool>& stop) {
+        // The field is lent to this build (jobs run one at a time) and given back whatever happens.
+        auto surface = std::make_shared<cli::Surface>();
+        surface->field = std::move(base->field);
+        struct GiveBack {
+            cli::Surface& from;
+            cli::Surface& to;
+            ~GiveBack() { to.field = std::move(from.field); }
+        } giveBack{*surface, *base};
         try {
-            BuildOptions bo;
-            bo.depth = depth;
-            bo.iso = iso;
-            bo.memoryBudget = defaultMemoryBudget();
+            cli::BuildHooks hooks;
             int shown = -1;  // percent last sent: one queued signal per percent at most
-            bo.progress = [this, &shown, gen](double f) {
+            hooks.progress = [this, &shown, gen](double f) {
                 const int pc = int(f * 100.0);
                 if (pc == shown) return;
                 shown = pc;
@@ -177,15 +195,14 @@ void Engine::startBuild(std::shared_ptr<const ScalarField> field, double iso, in
                     if (gen == generation_) emit progress(tr("Building the octree"), f);
                 }, Qt::QueuedConnection);
             };
-            bo.cancelled = [&stop] { return stop.load(); };
-            auto tree = std::make_shared<Octree>(buildShellOctree(*field, bo));
-            tree->computeSummaries();
-            QMetaObject::invokeMethod(this, [this, tree, iso, depth, gen] {
+            hooks.cancelled = [&stop] { return stop.load(); };
+            cli::buildFromField(surfaceArgs(state), *surface, hooks);
+            surface->tree.computeSummaries();
+            auto tree = std::make_shared<const Octree>(std::move(surface->tree));
+            const double iso = surface->iso;
+            QMetaObject::invokeMethod(this, [this, tree, surface, iso, depth = state.depth, gen] {
                 if (gen != generation_) return;
-                tree_ = tree;
-                iso_ = iso;
-                depth_ = depth;
-                building_ = false;
+                setSurface(tree, *surface, iso, depth);
                 emit surfaceBuilt();
             }, Qt::QueuedConnection);
         } catch (const CancelledError&) {
@@ -273,7 +290,7 @@ void Engine::exportFigure(const StudioState& state, const QString& path, int wid
         return;
     }
     emit progress(tr("Exporting %1x%2").arg(width).arg(height), -1.0);
-    exportWorker_.post([this, tree, state, path, width, height](const std::atomic<bool>&) {
+    exportWorker_.post([this, tree, state, path, width, height, window = window_, inverted = invertedGrey_](const std::atomic<bool>&) {
         try {
             if (width < 1 || height < 1 || width > kMaxExportSide || height > kMaxExportSide)
                 throw UsageError("export size " + std::to_string(width) + "x" + std::to_string(height) +
@@ -284,7 +301,8 @@ void Engine::exportFigure(const StudioState& state, const QString& path, int wid
             Camera cam = cameraFor(state, tree->occupiedBounds(), width, height);
             cam.validate();
             Frame frame;
-            const RenderStats st = makeRenderer(state.renderer)->render(*tree, cam, renderSettingsFor(state, state.transparent), frame);
+            const RenderStats st =
+                makeRenderer(state.renderer)->render(*tree, cam, renderSettingsFor(state, state.transparent, window, inverted), frame);
             writeFigure(frame, path.toStdString(), state.transparent);
             const QString summary = tr("%1: %2x%3, %4, %5 ms")
                                         .arg(path)

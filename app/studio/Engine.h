@@ -3,6 +3,7 @@
 // progress and Cancel), rendering the views' frames (newest request first), and exporting
 // figures. Results come back as queued signals on the GUI thread; the window never waits.
 #include "StudioState.h"
+#include "SurfaceOptions.h"
 #include "Worker.h"
 
 #include "octrace/build/ScalarField.h"
@@ -65,8 +66,9 @@ public:
     /// Reads state.input (variable, time, series), then builds at state.iso (or the middle of
     /// the range) and state.depth. Cancels what is running.
     void open(const StudioState& state);
-    /// Builds again from the loaded field.
-    void rebuild(double iso, int depth);
+    /// Builds again from the loaded field with state's iso value, depth and colour options
+    /// (they choose the display window).
+    void rebuild(const StudioState& state);
     void cancel();
     bool building() const { return building_; }
 
@@ -79,7 +81,14 @@ public:
     std::shared_ptr<const Octree> tree() const { return tree_; }
     double iso() const { return iso_; }
     int depth() const { return depth_; }
-    bool hasField() const { return bool(field_); }
+    bool hasField() const { return bool(base_); }
+    /// The display window the build chose (cli::Surface::window), and its inversion.
+    const ValueWindow& window() const { return window_; }
+    bool invertedGrey() const { return invertedGrey_; }
+    /// The render settings of `state` for the current surface.
+    RenderSettings settingsFor(const StudioState& state, bool transparent) const {
+        return renderSettingsFor(state, transparent, window_, invertedGrey_);
+    }
 
 signals:
     /// fraction in [0,1], or < 0 when unknown.
@@ -92,10 +101,13 @@ signals:
     void cancelled();
 
 private:
-    void startBuild(std::shared_ptr<const ScalarField> field, double iso, int depth);
+    void startBuild(const StudioState& state);
+    void setSurface(std::shared_ptr<const Octree> tree, const cli::Surface& look, double iso, int depth);
 
     InputInfo info_;
-    std::shared_ptr<const ScalarField> field_;
+    std::shared_ptr<cli::Surface> base_;  // holds the field read (lent to one build at a time)
+    ValueWindow window_;
+    bool invertedGrey_ = false;
     std::shared_ptr<const Octree> tree_;
     double iso_ = 0.0;
     int depth_ = 0;

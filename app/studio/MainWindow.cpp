@@ -78,7 +78,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     buildTimer_.setSingleShot(true);
     buildTimer_.setInterval(150);
     connect(&buildTimer_, &QTimer::timeout, this, [this] {
-        if (engine_.hasField() && state_.iso) engine_.rebuild(*state_.iso, state_.depth);
+        if (engine_.hasField() && state_.iso) engine_.rebuild(state_);
     });
     exactTimer_.setSingleShot(true);
     exactTimer_.setInterval(250);
@@ -654,7 +654,7 @@ bool MainWindow::openGlPane() const { return state_.split && state_.secondRender
 void MainWindow::updateSurfelView() {
     auto tree = engine_.tree();
     if (!tree || !openGlPane()) return;
-    const RenderSettings rs = renderSettingsFor(state_, false);
+    const RenderSettings rs = engine_.settingsFor(state_, false);
     if (tree != surfelTree_ || rs.colour != surfelSettings_.colour || rs.colormap != surfelSettings_.colormap) {
         surfels_ = std::make_shared<const std::vector<Surfel>>(extractSurfels(*tree, rs));
         surfelTree_ = tree;
@@ -681,7 +681,7 @@ void MainWindow::requestRender(bool preview) {
         showMessage(QString::fromStdString(e.what()), true);
         return;
     }
-    r.settings = renderSettingsFor(state_, false);
+    r.settings = engine_.settingsFor(state_, false);
     r.preview = preview;
     r.difference = state_.split && differenceAction_->isChecked();
     engine_.requestFrame(r);

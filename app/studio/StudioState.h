@@ -3,6 +3,8 @@
 // renderers, the camera, the shading and the export. A session file is this state as JSON
 // (Session.h); renderArguments() is the same state as the `octrace render` command line that
 // draws the same image, so that the studio and the CLI can be checked against each other.
+#include "SurfaceOptions.h"
+
 #include "octrace/render/Camera.h"
 #include "octrace/render/RenderSettings.h"
 #include "octrace/util/Math.h"
@@ -34,6 +36,9 @@ struct StudioState {
     dvec3 light{0.4, 0.6, 1.0};
     vec3 colour{0.85f, 0.62f, 0.35f};  ///< sRGB
     std::string colormap;               ///< empty: uniform colour
+    /// --window: "" (the file's own display window, if any, unless a colour map is chosen),
+    /// "none", or a CT preset (CtPresets.h).
+    std::string window;
     vec4 background{1.0f, 1.0f, 1.0f, 1.0f};  ///< sRGB, alpha
     // Export.
     int exportWidth = 1600, exportHeight = 1200;
@@ -46,13 +51,23 @@ inline constexpr const char* kOpenGlPane = "opengl";
 /// The largest export side in pixels.
 inline constexpr int kMaxExportSide = 8192;
 
+/// Whether the state's surface colour is not the default one (the CLI's --colour given: it
+/// then replaces an input's own voxel colours).
+bool colourGiven(const StudioState& state);
+
 /// The camera of `state` at width x height: its own when set, else the CLI's default framing of
 /// `surfaceBounds`.
 Camera cameraFor(const StudioState& state, const Box3& surfaceBounds, int width, int height);
 
-/// The render settings of `state` (the CLI's conversion of the same options); `transparent`
-/// makes the background's alpha 0.
-RenderSettings renderSettingsFor(const StudioState& state, bool transparent);
+/// The CLI's surface options for `state` (input, variable, time, series, iso, depth, colour,
+/// colour map, display window).
+cli::SurfaceArgs surfaceArgs(const StudioState& state);
+
+/// The render settings of `state` (the CLI's conversion of the same options) for a surface
+/// whose display window the build chose (`window`, `invertedGrey`: cli::Surface's);
+/// `transparent` makes the background's alpha 0.
+RenderSettings renderSettingsFor(const StudioState& state, bool transparent, const ValueWindow& window = {},
+                                 bool invertedGrey = false);
 
 /// `octrace render` arguments (without the program and command names) that draw what the studio
 /// exports for `state` with `camera`: input options, surface, renderer, camera, shading, size,
