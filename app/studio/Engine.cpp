@@ -132,6 +132,7 @@ void Engine::open(const StudioState& state) {
             info.minimum = lo;
             info.maximum = hi;
             info.histogram = histogramOf(base->field, lo, hi);
+            info.fileWindow = base->field.window;
             QMetaObject::invokeMethod(this, [this, info, base, state, gen] {
                 if (gen != generation_) return;
                 info_ = info;

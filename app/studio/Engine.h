@@ -29,6 +29,7 @@ struct InputInfo {
     bool octreeFile = false;  ///< a .oct input: no field, the iso value and depth are fixed
     double minimum = 0.0, maximum = 0.0;  ///< valid value range
     std::vector<double> histogram;        ///< counts of valid samples over [minimum, maximum]
+    ValueWindow fileWindow;               ///< the display window stored in the file (DICOM), if any
 };
 
 /// One pane's rendered frame.

@@ -9,6 +9,7 @@
 #include "octrace/io/ImageWriter.h"
 #include "octrace/render/ImageCompare.h"
 #include "octrace/render/Renderer.h"
+#include "octrace/build/CtPresets.h"
 #include "octrace/render/Shading.h"
 #include "octrace/util/Log.h"
 
@@ -410,14 +411,53 @@ QWidget* MainWindow::buildControls() {
     colourBar_->setObjectName(QStringLiteral("colourBar"));
     connect(colormapCombo_, &QComboBox::currentIndexChanged, this, [this](int i) {
         state_.colormap = i <= 0 ? std::string() : colormapCombo_->currentText().toStdString();
+        if (!state_.colormap.empty() && !state_.window.empty() && state_.window != "none") {
+            // A colour map and a display window both colour the surface (the CLI refuses both).
+            QSignalBlocker block(windowCombo_);
+            windowCombo_->setCurrentIndex(0);
+            state_.window.clear();
+        }
         updateColourBar();
-        requestRender(false);
+        colouringChanged();
     });
     renderForm->addRow(tr("Colour map"), colormapCombo_);
     renderForm->addRow(tr("low z .. high z"), colourBar_);
+    windowCombo_ = new QComboBox(renderBox);
+    windowCombo_->setObjectName(QStringLiteral("windowCombo"));
+    windowCombo_->setToolTip(tr("Grey the surface by a display window over the value under it (CT presets in HU)"));
+    windowCombo_->addItem(tr("(the file's, if any)"), QString());
+    windowCombo_->addItem(tr("none"), QStringLiteral("none"));
+    for (const auto& p : ctWindowPresets())
+        windowCombo_->addItem(QStringLiteral("%1 (%2/%3 HU)").arg(QLatin1String(p.name)).arg(p.window.centre).arg(p.window.width),
+                              QLatin1String(p.name));
+    connect(windowCombo_, &QComboBox::currentIndexChanged, this, [this] {
+        state_.window = windowCombo_->currentData().toString().toStdString();
+        if (!state_.window.empty() && state_.window != "none" && !state_.colormap.empty()) {
+            QSignalBlocker block(colormapCombo_);
+            colormapCombo_->setCurrentIndex(0);
+            state_.colormap.clear();
+            updateColourBar();
+        }
+        colouringChanged();
+    });
+    renderForm->addRow(tr("CT window"), windowCombo_);
     layout->addWidget(renderBox);
     layout->addStretch(1);
     return w;
+}
+
+void MainWindow::colouringChanged() {
+    if (updating_) return;
+    // The display window is chosen while building (the octree then keeps voxel values): a change
+    // of the colouring that changes the window needs a build; otherwise a frame is enough.
+    const cli::SurfaceArgs a = surfaceArgs(state_);
+    const ValueWindow& file = engine_.info().fileWindow;
+    const ValueWindow wanted = !state_.window.empty() ? a.window : (!a.colourGiven && a.colormap.empty()) ? file : ValueWindow{};
+    const ValueWindow& now = engine_.window();
+    if (engine_.hasField() && (wanted.valid() != now.valid() || wanted.centre != now.centre || wanted.width != now.width))
+        scheduleBuild();
+    else
+        requestRender(false);
 }
 
 void MainWindow::updateColourBar() {
@@ -502,6 +542,7 @@ void MainWindow::showState() {
     fovSpin_->setValue(state_.fov);
     for (int i = 0; i < 3; ++i) lightSpin_[i]->setValue(state_.light[i]);
     colormapCombo_->setCurrentIndex(state_.colormap.empty() ? 0 : colormapCombo_->findText(QString::fromStdString(state_.colormap)));
+    windowCombo_->setCurrentIndex(std::max(0, windowCombo_->findData(QString::fromStdString(state_.window))));
     timeEdit_->setText(QString::fromStdString(state_.time));
     splitAction_->setChecked(state_.split);
     updating_ = false;

@@ -89,6 +89,9 @@ private:
     /// Sets every control from state_ without acting on the changes.
     void showState();
     void updateColourBar();
+    /// After a change of colour map or window: builds again when the display window changes,
+    /// else renders.
+    void colouringChanged();
     QSize paneSize() const;
     /// Whether the split view's right pane is the OpenGL view.
     bool openGlPane() const;
@@ -108,7 +111,7 @@ private:
     HistogramView* histogram_ = nullptr;
     QLabel *inputLabel_ = nullptr, *rangeLabel_ = nullptr, *statusLabel_ = nullptr, *colourBar_ = nullptr;
     QComboBox *variableCombo_ = nullptr, *seriesCombo_ = nullptr, *rendererCombo_ = nullptr, *secondCombo_ = nullptr,
-              *colormapCombo_ = nullptr;
+              *colormapCombo_ = nullptr, *windowCombo_ = nullptr;
     QLineEdit* timeEdit_ = nullptr;
     QSlider* isoSlider_ = nullptr;
     QDoubleSpinBox *isoSpin_ = nullptr, *fovSpin_ = nullptr, *lightSpin_[3] = {nullptr, nullptr, nullptr};

@@ -1,5 +1,6 @@
 #include "Session.h"
 
+#include "SurfaceOptions.h"
 #include "octrace/io/AtomicFile.h"
 #include "octrace/octree/Octree.h"
 #include "octrace/render/Renderer.h"
@@ -126,6 +127,7 @@ QByteArray sessionJson(const StudioState& s) {
     QJsonObject shading{{"light", array(s.light)},
                         {"colour", array(s.colour)},
                         {"colormap", QString::fromStdString(s.colormap)},
+                        {"window", QString::fromStdString(s.window)},
                         {"background", array(s.background)}};
     QJsonObject exportSettings{{"width", s.exportWidth}, {"height", s.exportHeight}, {"transparent", s.transparent}};
     QJsonObject root{{kFormatKey, kFormatVersion}, {"input", input},     {"surface", surface}, {"renderers", renderers},
@@ -201,6 +203,16 @@ StudioState parseSession(const QByteArray& json, const QString& baseFolder) {
         const auto names = colormapNames();
         if (std::find(names.begin(), names.end(), s.colormap) == names.end())
             shading.fail("colormap", QStringLiteral("unknown colour map '%1'").arg(QString::fromStdString(s.colormap)));
+    }
+    shading.text("window", s.window);
+    if (!s.window.empty()) {
+        try {
+            cli::displayWindow(s.window);
+        } catch (const UsageError& e) {
+            shading.fail("window", QString::fromStdString(e.what()));
+        }
+        if (!s.colormap.empty() && s.window != "none")
+            shading.fail("window", QStringLiteral("a display window and a colour map both colour the surface: give one"));
     }
     shading.colour("background", s.background);
 

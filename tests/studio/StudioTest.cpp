@@ -366,6 +366,27 @@ private slots:
         combo->setCurrentText(QStringLiteral("full"));
     }
 
+    void ctWindowPresetGreysLikeTheCli() {
+        // A small CT series in HU (tests/data): two series, the larger chosen as by the CLI.
+        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
+        window_->openInput(QStringLiteral(OCTRACE_TEST_DATA "/dicom/two_series"));
+        QVERIFY(built.wait(kWaitMs));
+        QCOMPARE(window_->engine().info().units, QStringLiteral("HU"));
+        QCOMPARE(window_->engine().info().series.size(), 2);
+        QVERIFY(!window_->engine().window().valid());
+        auto* windows = window_->findChild<QComboBox*>(QStringLiteral("windowCombo"));
+        QVERIFY(windows);
+        const int lung = windows->findData(QStringLiteral("lung"));
+        QVERIFY(lung > 1);
+        windows->setCurrentIndex(lung);  // a build with voxel values follows
+        QVERIFY(built.wait(kWaitMs));
+        QCOMPARE(window_->engine().window().centre, -600.0);
+        QCOMPARE(window_->engine().window().width, 1500.0);
+        QVERIFY(window_->commandLine(QStringLiteral("x.png"), 10, 10).contains(QStringLiteral("--window")));
+        exportEqualsCli(QStringLiteral("ct-lung"), 160, 120, false);
+        windows->setCurrentIndex(0);
+    }
+
     void sessionParserChecksEveryMember_data() {
         QTest::addColumn<QByteArray>("json");
         QTest::addColumn<QString>("message");
@@ -389,6 +410,9 @@ private slots:
         row("colour range", R"({"octrace_studio_session": 1, "shading": {"colour": [1, 2, 0]}})", "shading.colour: 2 is outside");
         row("colormap", R"({"octrace_studio_session": 1, "shading": {"colormap": "rainbow2"}})", "unknown colour map 'rainbow2'");
         row("export size", R"({"octrace_studio_session": 1, "export": {"width": 8193}})", "export.width: 8193 is outside");
+        row("window", R"({"octrace_studio_session": 1, "shading": {"window": "liver"}})", "shading.window:");
+        row("window and colormap", R"({"octrace_studio_session": 1, "shading": {"window": "bone", "colormap": "viridis"}})",
+            "both colour the surface");
         row("section type", R"({"octrace_studio_session": 1, "export": []})", "export: must be an object");
     }
 
