@@ -443,6 +443,7 @@ Surface buildSurface(const SurfaceArgs& a) {
     readSurfaceField(a, s);
     BuildHooks terminal;
     terminal.progress = progressPrinter(a.quiet);
+    terminal.endLine = true;
     buildFromField(a, s, terminal);
     return s;
 }
@@ -486,7 +487,7 @@ void buildFromField(const SurfaceArgs& a, Surface& s, const BuildHooks& hooks) {
     bo.voxelValues = s.window.valid();
     s.tree = buildOctree(s.field, bo, &s.report);
     s.tree.source = sourceDescription(a.input, s.field);
-    if (bo.progress && !bo.cancelled) std::fputs("\n", stderr);  // the terminal's progress line
+    if (hooks.progress && hooks.endLine) std::fputs("\n", stderr);
     finishSurface(a, s);
     if (colourBy) {
         s.tree.voxelValues = sampleAtVoxels(s.tree, *colourBy, a.threads);

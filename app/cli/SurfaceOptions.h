@@ -146,6 +146,7 @@ Surface buildSurface(const SurfaceArgs& a);
 struct BuildHooks {
     std::function<void(double)> progress;
     std::function<bool()> cancelled;
+    bool endLine = false;  ///< progress prints on a terminal line: end it after the build
 };
 /// buildSurface's two steps for a field input (not an octree file or a city), for callers that
 /// build again and again from one read: readSurfaceField reads a.input into s.field (s.loadMs);
