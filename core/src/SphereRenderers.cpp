@@ -5,6 +5,7 @@
 #include "octrace/util/Timer.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -187,18 +188,45 @@ private:
     }
 
     // The leaf rule (nearestInLeaf) for the beam's rays not yet hit: the nearest sphere hit,
-    // kept when the ray crosses the leaf and the hit is not beyond its exit. The exit comes
-    // from the slab test, made only for a ray that hits a sphere; the outline only spares the
-    // rays that cannot cross the leaf (the margin keeps those that graze it).
+    // kept when the ray crosses the leaf and the hit is not beyond its exit. The beam first
+    // culls the leaf's spheres: a ray is tested only against the spheres whose projected box
+    // (widened by kMargin) holds its sample, since a ray that meets a sphere passes through its
+    // box. The tests made are those of nearestInLeaf less ones that cannot hit, in the same
+    // order, so the hit is the same. The exit comes from the slab test, made only for a ray
+    // that hits a sphere; the outline only spares the rays that cannot cross the leaf.
     void intersect(const ObjectNode& leaf, const Box3& box, const Outline& o, int i0, int i1, int j0, int j1) {
+        const std::uint32_t* list = tree_.objects.data() + leaf.firstObject;
+        const std::uint32_t n = leaf.objectCount;
+        rects_.resize(n);
+        for (std::uint32_t q = 0; q < n; ++q) {
+            const Sphere& sp = tree_.scene.spheres[list[q]];
+            Outline so;
+            int a0 = 0, a1 = w_, b0 = 0, b1 = h_;
+            if (!cut(Box3{sp.centre - sp.radius, sp.centre + sp.radius}, so, a0, a1, b0, b1)) a0 = a1 = b0 = b1 = 0;
+            rects_[q] = {a0, a1, b0, b1};
+        }
         for (int j = j0; j < j1; ++j) {
             int r0 = i0, r1 = i1;
             if (o.valid) rowSpan(o, j, r0, r1);
+            if (r0 >= r1) continue;
+            rowSpheres_.clear();
+            for (std::uint32_t q = 0; q < n; ++q)
+                if (rects_[q][2] <= j && j < rects_[q][3] && rects_[q][0] < r1 && r0 < rects_[q][1]) rowSpheres_.push_back(q);
+            if (rowSpheres_.empty()) continue;
             for (int i = r0; i < r1; ++i) {
                 const std::size_t k = std::size_t(j) * std::size_t(w_) + std::size_t(i);
                 if (marked_[k]) continue;
                 const Ray& r = rays_[k];
-                const SphereHit h = nearestInLeaf(tree_, leaf, r.origin, r.direction, 0.0, kInf, c_);
+                SphereHit h;
+                for (std::uint32_t q : rowSpheres_) {
+                    if (i < rects_[q][0] || i >= rects_[q][1]) continue;
+                    ++c_.intersections;
+                    const double t = intersectSphere(tree_.scene.spheres[list[q]], r.origin, r.direction, 0.0);
+                    if (t < h.t) {
+                        h.t = t;
+                        h.sphere = list[q];
+                    }
+                }
                 if (!h.hit()) continue;
                 double t0, t1;
                 slabInterval(box, r.origin, 1.0 / r.direction, r.direction, t0, t1);
@@ -220,6 +248,8 @@ private:
     std::uint64_t& beams_;
     std::vector<double> xs_, ys_;
     std::vector<std::uint8_t> marked_;
+    std::vector<std::array<int, 4>> rects_;      // per sphere of the leaf: columns [0,1), rows [2,3) its box covers
+    std::vector<std::uint32_t> rowSpheres_;      // the leaf's spheres whose rows hold the current row
     std::size_t remaining_ = 0;
     dvec3 right_, up_, back_;
 };
