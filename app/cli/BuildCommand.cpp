@@ -28,6 +28,7 @@ OptionParser makeParser(BuildArgs& a) {
     addSurfaceOptions(p, a);
     addFormOptions(p, a);
     addOctreeFileOptions(p, a);
+    addCityOptions(p, a);
     return p;
 }
 

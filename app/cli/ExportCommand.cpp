@@ -40,6 +40,7 @@ OptionParser makeParser(ExportArgs& a) {
     addThreadsOption(p, a, "the output");
     addColourOptions(p, a);
     addGeographicOptions(p, a.request);
+    addCityOptions(p, a);
     addSeriesOption(p, a.request);
     addMessageOptions(p, a);
     return p;

@@ -13,10 +13,12 @@ namespace octrace::cli {
 int runInfo(const std::vector<std::string>& args) {
     bool help = false;
     io::FieldRequest request;
-    OptionParser p("info", "octrace info INPUT... [--var NAME] [--region ...] [--depth-range Z0,Z1] [--time INDEX|DATE] [--series ...]");
+    OptionParser p("info", "octrace info INPUT... [--var NAME] [--region ...] [--depth-range Z0,Z1] [--time INDEX|DATE] [--series ...] [--crs CRS] [--lod-select LOD] [--dem RASTER] [--texture RASTER]");
     addVariableOption(p, request);
     addGeographicOptions(p, request);
     addSeriesOption(p, request);
+    SurfaceArgs city;
+    addCityOptions(p, city);
     p.add({"max-memory", "SIZE", "memory budget for reading each input: bytes, K, M, G, T (powers of 1024) or N% of the "
            "physical memory (default " + std::to_string(kDefaultMemoryBudgetPercent) + "%)",
            [&](const std::string& v) { request.memoryBudget = parseByteSize("max-memory", v); }});
@@ -32,7 +34,7 @@ int runInfo(const std::vector<std::string>& args) {
     int status = 0;
     for (const auto& in : inputs) {
         try {
-            std::fputs(describe(in, request).c_str(), stdout);
+            std::fputs(describe(in, request, city.city).c_str(), stdout);
         } catch (const UsageError&) {
             throw;
         } catch (const Error& e) {

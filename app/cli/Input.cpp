@@ -3,6 +3,7 @@
 #include "Options.h"
 #include "SurfaceOptions.h"
 #include "octrace/build/AnalyticField.h"
+#include "octrace/io/CityReader.h"
 #include "octrace/io/FieldReader.h"
 #include "octrace/io/OctreeFile.h"
 #include "octrace/io/SphereReader.h"
@@ -116,13 +117,14 @@ ScalarField loadField(const std::string& input, const io::FieldRequest& req, int
     return f;
 }
 
-std::string describe(const std::string& input, const io::FieldRequest& req) {
+std::string describe(const std::string& input, const io::FieldRequest& req, const io::CityRequest& city) {
     if (isOctreeInput(input)) {
         if (const char* given = fieldOptionGiven(req))
             throw UsageError(std::string(given) + " does not apply to the octree file " + input +
                              " (its field was fixed when it was built)");
         return io::describeOctreeFile(input, req.memoryBudget);
     }
+    if (io::isCityInput(input)) return io::describeCityInput(input, city);
     if (isSphereInput(input)) {
         if (const char* given = fieldOptionGiven(req)) throw UsageError(std::string(given) + " does not apply to the sphere scene " + input);
         return describeSpheres(input, loadSpheres(input, req.memoryBudget));

@@ -1,5 +1,6 @@
 #pragma once
 #include "octrace/build/ScalarField.h"
+#include "octrace/io/CityReader.h"
 #include "octrace/io/FieldRequest.h"
 #include "octrace/octree/Octree.h"
 #include "octrace/scene/Spheres.h"
@@ -27,6 +28,7 @@ bool isOctreeInput(const std::string& input);
 /// io::readOctreeFile.
 Octree loadOctree(const std::string& input, std::uint64_t memoryBudget);
 /// Text for `octrace info` (`req.series` chooses a DICOM series; reads that would need more
-/// than `req.memoryBudget` bytes, 0 = no limit, are left out or refused: io::describeInput).
-std::string describe(const std::string& input, const io::FieldRequest& req = {});
+/// than `req.memoryBudget` bytes, 0 = no limit, are left out or refused: io::describeInput);
+/// a city input in the CRS and LoD `city` asks for (io::describeCityInput).
+std::string describe(const std::string& input, const io::FieldRequest& req = {}, const io::CityRequest& city = {});
 }  // namespace octrace::cli

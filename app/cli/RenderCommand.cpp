@@ -123,6 +123,7 @@ OptionParser makeParser(RenderArgs& a) {
                a.colourTolerance = float(t);
            }});
     addGeographicOptions(p, a.request);
+    addCityOptions(p, a);
     addSeriesOption(p, a.request);
     p.add({"repeat", "N", "render N times and report the fastest as render_ms (benchmarks on a noisy machine; default 1)",
            [&](const std::string& v) { a.repeat = parseInt("repeat", v, 1, 1000); }});

@@ -2,6 +2,7 @@
 
 #include "Input.h"
 
+#include "octrace/build/CityVoxelizer.h"
 #include "octrace/build/Volume.h"
 #include "octrace/csg/Csg.h"
 #include "octrace/render/Shading.h"
@@ -109,6 +110,29 @@ void finishSurface(const SurfaceArgs& a, Surface& s) {
     s.report.nodes = s.tree.nodes.size();
 }
 
+/// buildSurface for a city input: the model read and voxelized; the field empty but for its name.
+void buildCitySurface(const SurfaceArgs& a, Surface& s) {
+    const char* given = a.iso ? "--iso" : a.formGiven ? "--form/--inside" : !a.cuts.empty() ? "--cut" : !a.isoPreset.empty() ? "--iso"
+                        : a.window.valid() ? "--window" : fieldOptionGiven(a.request);
+    if (given)
+        throw UsageError(std::string(given) + " does not apply to the city input " + a.input +
+                         " (its buildings and terrain are voxelized as surfaces)");
+    Timer t;
+    io::CityRequest request = a.city;
+    request.maxSamples = (1 << std::min(a.depth, 12)) + 1;  // the octree resolves no finer
+    const CityModel model = io::readCityModel(a.input, request);
+    s.loadMs = t.ms();
+    for (const auto& n : model.notes) log::warning(n);
+    CityBuildOptions o;
+    o.depth = a.depth;
+    o.threads = a.threads;
+    s.tree = voxelizeCity(model, o, &s.report);
+    s.field.name = s.tree.fieldName;
+    s.field.source = a.input;
+    s.tree.source = a.input + " (" + std::to_string(model.objects.size()) + " objects, " + std::to_string(model.triangles.size()) +
+                    " triangles, CRS " + (model.crs.empty() ? std::string("none") : model.crs) + ")";
+}
+
 /// What an octree was made from, for its file's header: input, variable, the reader's notes.
 std::string sourceDescription(const std::string& input, const ScalarField& f) {
     std::string s = input + ", variable " + f.name;
@@ -184,7 +208,7 @@ void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result
 }
 
 void addColourOptions(OptionParser& p, SurfaceArgs& a) {
-    p.add({"colour", "R,G,B", "surface colour, sRGB components in [0,1] (default 0.85,0.62,0.35)",
+    p.add({"colour", "R,G,B", "surface colour, sRGB components in [0,1], also over a city's own colours (default 0.85,0.62,0.35; city inputs: per object and texture)",
            [&](const std::string& v) {
                a.colour = vec3(parseColour("colour", v, false));
                a.colourGiven = true;
@@ -232,6 +256,35 @@ void addGeographicOptions(OptionParser& p, io::FieldRequest& request) {
            [&](const std::string& v) {
                request.verticalScale = parseNumber("vertical-scale", v);
                if (!(request.verticalScale > 0.0)) throw UsageError("--vertical-scale: must be positive, got " + v);
+           }});
+}
+
+void addCityOptions(OptionParser& p, SurfaceArgs& a) {
+    p.add({"lod-select", "LOD", "city inputs: level of detail to voxelize, e.g. 1, 2 or 2.2 (a prefix takes its sublevels; default: each object's highest)",
+           [&](const std::string& v) {
+               if (v.empty() || v.find_first_not_of("0123456789.") != std::string::npos)
+                   throw UsageError("--lod-select: expected a level of detail such as 1, 2 or 2.2, got '" + v + "'");
+               a.city.lod = v;
+               a.cityGiven = true;
+           }});
+    p.add({"dem", "RASTER", "city inputs: a DEM raster (GeoTIFF or any GDAL raster, any CRS) added as terrain (default: none)",
+           [&](const std::string& v) {
+               if (v.empty()) throw UsageError("--dem: empty (give a raster file)");
+               a.city.dem = v;
+               a.cityGiven = true;
+           }});
+    p.add({"texture", "RASTER", "city inputs: a colour raster (orthophoto, map; any GDAL raster, any CRS) draped on the terrain (default: none, colours per object type)",
+           [&](const std::string& v) {
+               if (v.empty()) throw UsageError("--texture: empty (give a raster file)");
+               a.city.texture = v;
+               a.cityGiven = true;
+           }});
+    p.add({"crs", "CRS", "city inputs: projected coordinate reference system to bring everything into, e.g. EPSG:28992 "
+           "(default: the input's own when projected, else the UTM zone of its centre)",
+           [&](const std::string& v) {
+               if (v.empty()) throw UsageError("--crs: empty (give e.g. EPSG:28992)");
+               a.city.crs = v;
+               a.cityGiven = true;
            }});
 }
 
@@ -295,10 +348,16 @@ Surface buildSurface(const SurfaceArgs& a) {
     Surface s;
     Timer t;
     if (isOctreeInput(a.input)) {
+        if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem and --texture apply to city inputs, not to the octree file " + a.input);
         loadOctreeSurface(a, budget, s);
         finishSurface(a, s);
         return s;
     }
+    if (io::isCityInput(a.input)) {
+        buildCitySurface(a, s);
+        return s;
+    }
+    if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem and --texture apply to city inputs (CityJSON, DEM rasters), not to " + a.input);
     s.field = loadField(a.input, request, a.depth);
     s.loadMs = t.ms();
     auto [vmin, vmax] = s.field.validRange();
@@ -332,6 +391,7 @@ Surface buildSurface(const SurfaceArgs& a) {
 void applyColour(const SurfaceArgs& a, const Surface& s, RenderSettings& settings) {
     settings.colour = vec3(displayToLinear(vec4(a.colour, 1.0f)));
     settings.colormap = a.colormap;
+    settings.voxelColours = !a.colourGiven;
     settings.window = s.window;
     settings.invertedGrey = s.invertedGrey;
 }

@@ -7,6 +7,7 @@
 #include "octrace/build/CtPresets.h"
 #include "octrace/build/OctreeBuilder.h"
 #include "octrace/build/ScalarField.h"
+#include "octrace/io/CityReader.h"
 #include "octrace/csg/Solid.h"
 #include "octrace/io/FieldRequest.h"
 #include "octrace/octree/Octree.h"
@@ -35,6 +36,8 @@ struct SurfaceArgs {
     std::string colormap;
     bool help = false, quiet = false, verbose = false;
     std::uint64_t maxMemory = 0;  // --max-memory; 0: defaultMemoryBudget()
+    io::CityRequest city;         // --lod-select, --crs, --dem, --texture (city inputs)
+    bool cityGiven = false;       // one of them was given
     OctreeForm form = OctreeForm::Shell;  // --form
     bool insideBelow = false;             // --inside below
     bool formGiven = false;               // --form or --inside given
@@ -65,6 +68,8 @@ void addColourOptions(OptionParser& p, SurfaceArgs& a);
 void addGeographicOptions(OptionParser& p, io::FieldRequest& request);
 /// The first option of `request` that chooses part of a field ("--var", "--region", ...), or null.
 const char* fieldOptionGiven(const io::FieldRequest& request);
+/// --lod-select, --crs, --dem, --texture (city inputs).
+void addCityOptions(OptionParser& p, SurfaceArgs& a);
 /// --series (DICOM).
 void addSeriesOption(OptionParser& p, io::FieldRequest& request);
 /// --max-memory, --quiet, --verbose, --help.
@@ -93,7 +98,9 @@ struct Surface {
     std::string windowSource;  ///< where the window comes from, for messages and stats
 };
 
-/// Applies --quiet / --verbose to the log. An octree file (.oct) is read as it is (options that
+/// Applies --quiet / --verbose to the log. A city input (CityJSON) is read into one projected
+/// CRS and voxelized (CityVoxelizer.h) with its per-voxel colours; --var and --iso are refused.
+/// An octree file (.oct) is read as it is (options that
 /// choose the field or the depth are refused: UsageError).
 /// Otherwise reads a.input, chooses the iso value when none was
 /// given (the middle of the valid range, said on stderr) or resolves a preset (--iso skin:

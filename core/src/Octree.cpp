@@ -17,6 +17,15 @@ inline std::uint32_t quant16(float v) {  // [-1,1] -> [0,65535]
 inline float dequant16(std::uint32_t q) { return float(q) / 65535.0f * 2.0f - 1.0f; }
 }  // namespace
 
+std::uint32_t packColour(vec3 srgb) {
+    auto byte = [](float c) { return std::uint32_t(std::lround(std::clamp(c, 0.0f, 1.0f) * 255.0f)); };
+    return byte(srgb.r) | (byte(srgb.g) << 8) | (byte(srgb.b) << 16) | 0xFF000000u;
+}
+
+vec3 unpackColour(std::uint32_t packed) {
+    return vec3(float(packed & 0xFFu), float((packed >> 8) & 0xFFu), float((packed >> 16) & 0xFFu)) / 255.0f;
+}
+
 std::uint32_t encodeNormal(vec3 n) {
     float l1 = std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
     if (!(l1 > 0.0f)) return (quant16(0.0f) << 16) | quant16(0.0f);  // decodes to +z
@@ -44,7 +53,8 @@ vec3 decodeNormal(std::uint32_t code) {
 
 std::size_t Octree::bytes() const {
     return nodes.capacity() * sizeof(OctreeNode) + voxels.capacity() * sizeof(Voxel) +
-           summaries.capacity() * sizeof(NodeSummary) + voxelValues.capacity() * sizeof(float);
+           summaries.capacity() * sizeof(NodeSummary) + colours.capacity() * sizeof(std::uint32_t) +
+           voxelValues.capacity() * sizeof(float);
 }
 
 void Octree::computeSummaries() {
@@ -161,6 +171,7 @@ void Octree::validate() const {
         if (!seenNode[i]) fail("unreachable node");
     for (std::size_t i = 0; i < seenVoxel.size(); ++i)
         if (!seenVoxel[i]) fail("unreachable voxel");
+    if (!colours.empty() && colours.size() != voxels.size()) fail("colours do not match the voxels one to one");
 }
 
 }  // namespace octrace

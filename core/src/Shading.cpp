@@ -46,11 +46,15 @@ vec3 colormap(const std::string& name, float t) {
 
 Albedo::Albedo(const Octree& tree, const RenderSettings& settings)
     : colour_(settings.colour), window_(settings.window), inverted_(settings.invertedGrey), colormap_(settings.colormap) {
+    for (int i = 0; i < 256; ++i) linear_[i] = srgbToLinear(float(i) / 255.0f);
     if (window_.valid() && !tree.voxelValues.empty() && tree.voxelValues.size() == tree.voxels.size()) {
         values_ = &tree.voxelValues;
         return;
     }
-    if (colormap_.empty()) return;
+    if (colormap_.empty()) {
+        if (tree.hasColours() && settings.voxelColours) colours_ = &tree.colours;
+        return;
+    }
     colormap(colormap_, 0.0f);  // validate the name once
     ivec3 lo, hi;
     tree.occupiedCells(lo, hi);
@@ -60,6 +64,10 @@ Albedo::Albedo(const Octree& tree, const RenderSettings& settings)
 
 vec3 Albedo::at(std::uint32_t voxel, float zCells) const {
     if (values_) return vec3(srgbToLinear(window_.grey((*values_)[voxel], inverted_)));
+    if (colours_) {
+        const std::uint32_t c = (*colours_)[voxel];
+        return vec3(linear_[c & 0xFFu], linear_[(c >> 8) & 0xFFu], linear_[(c >> 16) & 0xFFu]);
+    }
     if (colormap_.empty()) return colour_;
     // Colour by height (world z) over the surface's extent until a second field can be mapped.
     const float t = (zCells - float(zLo_)) / float(zHi_ - zLo_ + 1);

@@ -66,6 +66,7 @@ Octree emptyOctreeLike(const Octree& tree) {
     t.iso = tree.iso;
     t.insideBelow = tree.insideBelow;
     t.source = tree.source;
+    t.crs = tree.crs;
     return t;
 }
 
@@ -75,6 +76,7 @@ Octree copyOctree(const Octree& tree) {
     t.voxels = tree.voxels;
     t.voxelValues = tree.voxelValues;
     t.summaries = tree.summaries;
+    t.colours = tree.colours;
     return t;
 }
 

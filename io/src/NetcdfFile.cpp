@@ -1,5 +1,6 @@
 #include "NetcdfFile.h"
 
+#include "GdalSupport.h"
 #include "InputFile.h"
 
 #include "octrace/util/Error.h"
@@ -16,27 +17,6 @@
 
 namespace octrace::io::detail {
 namespace {
-
-// Sends GDAL's messages to octrace's log instead of stderr, for the current thread and scope.
-class GdalMessages {
-public:
-    GdalMessages() {
-        CPLPushErrorHandler(&handler);
-        CPLErrorReset();
-    }
-    ~GdalMessages() { CPLPopErrorHandler(); }
-    GdalMessages(const GdalMessages&) = delete;
-    GdalMessages& operator=(const GdalMessages&) = delete;
-    static std::string last() {
-        const char* m = CPLGetLastErrorMsg();
-        return m && *m ? std::string(m) : std::string("no detail from GDAL");
-    }
-
-private:
-    static void CPL_STDCALL handler(CPLErr level, CPLErrorNum, const char* msg) {
-        if (level >= CE_Warning) log::debug(std::string("GDAL: ") + (msg ? msg : ""));
-    }
-};
 
 std::string stringAttribute(const GDALMDArray& a, const char* name) {
     auto attr = a.GetAttribute(name);
@@ -136,8 +116,7 @@ struct NetcdfFile::Impl {
 };
 
 NetcdfFile::NetcdfFile(const std::string& path) : impl_(std::make_unique<Impl>()) {
-    static std::once_flag registered;
-    std::call_once(registered, [] { GDALAllRegister(); });
+    registerGdal();
     GdalMessages messages;
     impl_->path = path;
     const char* const drivers[] = {"netCDF", nullptr};

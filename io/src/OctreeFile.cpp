@@ -119,6 +119,7 @@ std::string hex32(std::uint32_t v) {
 struct Flattened {
     std::vector<std::uint8_t> masks, terms;
     std::vector<std::uint32_t> normals;
+    std::vector<std::uint8_t> colours;  // per voxel, in the order of `normals`: 4 bytes (packColour, little endian)
     bool anyTerm = false;
 };
 
@@ -138,8 +139,13 @@ Flattened flatten(const Octree& tree) {
             std::uint32_t slot = nd.firstChild;
             for (int c = 0; c < 8; ++c) {
                 if (!(nd.childMask & (1u << c))) continue;
-                if (l == tree.depth - 1) f.normals.push_back(tree.voxels[slot].normal);
-                else next.push_back(slot);
+                if (l == tree.depth - 1) {
+                    f.normals.push_back(tree.voxels[slot].normal);
+                    if (tree.hasColours())
+                        for (int b = 0; b < 4; ++b) f.colours.push_back(std::uint8_t(tree.colours[slot] >> (8 * b)));
+                } else {
+                    next.push_back(slot);
+                }
                 ++slot;
             }
         }
@@ -418,7 +424,7 @@ std::vector<std::uint8_t> encodeOctreeFile(const Octree& tree, int zstdLevel) {
     w.u8(std::uint8_t(tree.form));
     w.u8(std::uint8_t(tree.depth));
     w.u16(tree.insideBelow ? 1 : 0);
-    w.u32(withTerms ? 3 : 2);
+    w.u32(2 + (withTerms ? 1 : 0) + (f.colours.empty() ? 0 : 1) + (tree.crs.empty() ? 0 : 1));
     w.u64(tree.nodes.size());
     w.u64(tree.voxels.size());
     for (int a = 0; a < 3; ++a) w.f64(tree.cubeOrigin[a]);
@@ -433,6 +439,9 @@ std::vector<std::uint8_t> encodeOctreeFile(const Octree& tree, int zstdLevel) {
     putChunk(w, "TREE", f.masks, zstdLevel);
     if (withTerms) putChunk(w, "TERM", f.terms, zstdLevel);
     putChunk(w, "NORM", encodeNormals(f.normals, voxelMortonCodes(tree)), zstdLevel);
+    // Optional: per-voxel colours (city models) and the CRS of world space.
+    if (!f.colours.empty()) putChunk(w, "COLR", f.colours, zstdLevel);
+    if (!tree.crs.empty()) putChunk(w, "CRS ", std::vector<std::uint8_t>(tree.crs.begin(), tree.crs.end()), zstdLevel);
     return std::move(w.bytes);
 }
 
@@ -441,10 +450,12 @@ Octree decodeOctreeFile(std::span<const std::uint8_t> bytes, const std::string& 
     OctreeFileInfo info;
     std::vector<RawChunk> chunks;
     parseFrame(bytes, name, info, chunks);
-    // Which chunks: TREE and NORM once each, TERM once in the volume form only.
-    const RawChunk *treeChunk = nullptr, *termChunk = nullptr, *normChunk = nullptr;
+    // Which chunks: TREE and NORM once each, TERM once in the volume form only; COLR and CRS
+    // at most once.
+    const RawChunk *treeChunk = nullptr, *termChunk = nullptr, *normChunk = nullptr, *colrChunk = nullptr, *crsChunk = nullptr;
     for (const RawChunk& c : chunks) {
-        const RawChunk** slot = c.tag == "TREE" ? &treeChunk : c.tag == "TERM" ? &termChunk : c.tag == "NORM" ? &normChunk : nullptr;
+        const RawChunk** slot = c.tag == "TREE" ? &treeChunk : c.tag == "TERM" ? &termChunk : c.tag == "NORM" ? &normChunk
+                                : c.tag == "COLR" ? &colrChunk : c.tag == "CRS " ? &crsChunk : nullptr;
         if (!slot) throw FileError(name + ": unknown chunk '" + c.tag + "'");
         if (*slot) throw FileError(name + ": chunk '" + c.tag + "' appears twice");
         *slot = &c;
@@ -455,7 +466,11 @@ Octree decodeOctreeFile(std::span<const std::uint8_t> bytes, const std::string& 
     if (treeChunk->rawBytes != info.nodes || (termChunk && termChunk->rawBytes != info.nodes) || normChunk->rawBytes != 4 * info.voxels)
         throw FileError(name + ": chunk sizes do not match the header's " + std::to_string(info.nodes) + " nodes and " +
                         std::to_string(info.voxels) + " voxels");
-    const std::uint64_t need = info.nodes * (sizeof(OctreeNode) + 2) + info.voxels * (sizeof(Voxel) + 8);
+    if (colrChunk && colrChunk->rawBytes != 4 * info.voxels)
+        throw FileError(name + ": chunk 'COLR' holds " + std::to_string(colrChunk->rawBytes) + " bytes, not 4 for each of the " +
+                        std::to_string(info.voxels) + " voxels");
+    if (crsChunk && crsChunk->rawBytes > 65536) throw FileError(name + ": chunk 'CRS ' is absurdly long");
+    const std::uint64_t need = info.nodes * (sizeof(OctreeNode) + 2) + info.voxels * (sizeof(Voxel) + 8 + (colrChunk ? 4 : 0));
     checkMemoryBudget(name + ": reading an octree of " + std::to_string(info.nodes) + " nodes and " +
                           std::to_string(info.voxels) + " voxels",
                       need, memoryBudget);
@@ -505,6 +520,18 @@ Octree decodeOctreeFile(std::span<const std::uint8_t> bytes, const std::string& 
     }
     const std::vector<std::uint32_t> normals = decodeNormals(normalPlanes, voxelMortonCodes(tree));
     for (std::size_t i = 0; i < normals.size(); ++i) tree.voxels[i].normal = normals[i];
+    if (colrChunk) {
+        // Written in breadth-first order, which is the order of the decoded voxels.
+        const std::vector<std::uint8_t> c = inflate(*colrChunk, name);
+        tree.colours.resize(tree.voxels.size());
+        for (std::size_t i = 0; i < tree.colours.size(); ++i)
+            tree.colours[i] = std::uint32_t(c[4 * i]) | std::uint32_t(c[4 * i + 1]) << 8 | std::uint32_t(c[4 * i + 2]) << 16 |
+                              std::uint32_t(c[4 * i + 3]) << 24;
+    }
+    if (crsChunk) {
+        const std::vector<std::uint8_t> c = inflate(*crsChunk, name);
+        tree.crs.assign(c.begin(), c.end());
+    }
     if (infoOut) *infoOut = std::move(info);
     return tree;
 }

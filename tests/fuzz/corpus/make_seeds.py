@@ -225,6 +225,28 @@ CLI = {
 }
 for name, args in CLI.items():
     out("fuzz_cli_options", name, b"\0".join(a.encode() for a in args))
+# CityJSON: the test cube (two LoDs, a solid and a TIN), and small variants of what real files
+# hold (no transform, CityJSON 1.0 numeric lod, a MultiSolid, a polygon with a hole, broken ones).
+CITY = "fuzz_cityjson"
+copy(CITY, os.path.join(DATA, "city", "cube.city.json"), "cube.city.json")
+SQUARE = "[[0,0,0],[10,0,0],[10,10,0],[0,10,0],[3,3,0],[6,3,0],[6,6,0],[3,6,0],[0,0,5],[10,0,5],[10,10,5],[0,10,5]]"
+CITY_SEEDS = {
+    "hole.json": '{"type":"CityJSON","version":"1.0","CityObjects":{"p":{"type":"LandUse","geometry":[{"type":"MultiSurface","lod":1,'
+                 '"boundaries":[[[0,1,2,3],[4,7,6,5]]]}]}},"vertices":' + SQUARE + '}',
+    "multisolid.json": '{"type":"CityJSON","version":"1.1","metadata":{"referenceSystem":"urn:ogc:def:crs:EPSG::28992"},'
+                       '"CityObjects":{"b":{"type":"Building","geometry":[{"type":"MultiSolid","lod":"1.2","boundaries":[[['
+                       '[[0,3,2,1]],[[8,9,10,11]],[[0,1,9,8]],[[1,2,10,9]],[[2,3,11,10]],[[3,0,8,11]]]]]}]}},"vertices":' + SQUARE + '}',
+    "bowtie.json": '{"type":"CityJSON","version":"2.0","CityObjects":{"w":{"type":"WaterBody","geometry":[{"type":"MultiSurface",'
+                   '"lod":"1","boundaries":[[[0,2,1,3]]]}]}},"vertices":' + SQUARE + '}',
+    "bad_index.json": '{"type":"CityJSON","version":"2.0","CityObjects":{"r":{"type":"Road","geometry":[{"type":"MultiSurface",'
+                      '"lod":"1","boundaries":[[[0,1,99]]]}]}},"vertices":' + SQUARE + '}',
+    "instance.json": '{"type":"CityJSON","version":"2.0","transform":{"scale":[0.5,0.5,0.5],"translate":[1,2,3]},"CityObjects":'
+                     '{"t":{"type":"SolitaryVegetationObject","geometry":[{"type":"GeometryInstance","template":0,"boundaries":[0],'
+                     '"transformationMatrix":[1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1]}]},"g":{"type":"TINRelief","geometry":[{"type":'
+                     '"CompositeSurface","lod":"1","boundaries":[[[0,1,2]],[[0,2,3]]]}]}},"vertices":' + SQUARE + '}',
+}
+for name, text in CITY_SEEDS.items():
+    out(CITY, name, text.encode())
 
 # ---------------------------------------------------------------- molecules (fuzz_molecule)
 def pdb_atom(serial, name, res, chain, seq, x, y, z, element, record="ATOM  ", alt=" "):

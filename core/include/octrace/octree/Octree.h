@@ -70,6 +70,12 @@ struct NodeSummary {
     float meanZ = 0.0f;            ///< mean voxel-centre z in cell space (colour by height)
 };
 
+/// A colour packed in 32 bits: 8-bit sRGB red, green, blue in the low three bytes (red lowest),
+/// alpha in the top byte.
+std::uint32_t packColour(vec3 srgb);
+/// The packed colour's red, green, blue, sRGB in [0,1].
+vec3 unpackColour(std::uint32_t packed);
+
 /// Octahedral encoding of a unit vector in 32 bits (max angular error ~0.005 degrees).
 std::uint32_t encodeNormal(vec3 n);
 vec3 decodeNormal(std::uint32_t code);
@@ -92,6 +98,11 @@ public:
 
     std::vector<OctreeNode> nodes;  ///< nodes[0] = root
     std::vector<Voxel> voxels;      ///< boundary voxels
+    /// Optional per-voxel colour beside the octree (same index as `voxels`, packColour), e.g. a
+    /// city's texture and building colours; empty: the renderers' uniform colour or colour map.
+    /// Every renderer shades through Albedo (Shading.h), so all of them use it alike.
+    std::vector<std::uint32_t> colours;
+    bool hasColours() const { return !voxels.empty() && colours.size() == voxels.size(); }
     /// Per boundary voxel (same index as `voxels`): the field's value just inside the surface,
     /// which a display window colours by (RenderSettings::window). Filled when the build asks
     /// for it (BuildOptions::voxelValues); empty otherwise (and in octree files).
@@ -106,6 +117,7 @@ public:
     double iso = 0.0;
     bool insideBelow = false;  ///< volume form: the solid is value < iso (else value >= iso)
     std::string source;        ///< what it was made from (input, region, operations), for info
+    std::string crs;           ///< coordinate reference system of world space (city models), e.g. "EPSG:7415"; empty: none
 
     std::size_t boundaryVoxels() const { return voxels.size(); }
     /// Capacity in bytes of every buffer the octree owns.

@@ -15,6 +15,9 @@ struct RenderSettings {
     float ambient = 0.15f;
     float diffuse = 0.85f;
     std::string colormap;                  ///< empty: uniform colour; else colour by height (see docs)
+    /// Use the octree's per-voxel colours (Octree::colours) when it has them and no colour
+    /// map is set; false: the uniform colour.
+    bool voxelColours = true;
     /// When valid, and the octree has voxel values (Octree::voxelValues), each voxel is grey
     /// by the window applied to its value (instead of `colour` or the colour map);
     /// `invertedGrey`: low values bright (DICOM MONOCHROME1).

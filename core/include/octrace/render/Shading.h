@@ -18,10 +18,11 @@ std::vector<std::string> colormapNames();
 /// Throws UsageError for an unknown name.
 vec3 colormap(const std::string& name, float t);
 
-/// The surface's colour before lighting, linear RGB: RenderSettings::colour, or with a colour
-/// map the map's colour for the height, from the lowest to the highest boundary voxel, or
-/// with a display window (and voxel values in the octree) the window's grey of the voxel's
-/// value. Shared
+/// The surface's colour before lighting, linear RGB: with a display window (and voxel values in
+/// the octree) the window's grey of the voxel's value; else with a colour map the map's colour
+/// for the height, from the lowest to the highest boundary voxel; else the voxel's own colour
+/// when the octree has per-voxel colours (Octree::colours) and RenderSettings::voxelColours is
+/// set; else RenderSettings::colour. Shared
 /// by Shader and the surfel export (Surfels.h), so that both colour a voxel alike.
 /// Thread-safe once constructed.
 class Albedo {
@@ -34,6 +35,8 @@ public:
 
 private:
     vec3 colour_;
+    const std::vector<std::uint32_t>* colours_ = nullptr;  // the octree's per-voxel colours, or null
+    float linear_[256];  // sRGB byte -> linear
     const std::vector<float>* values_ = nullptr;  // with a window: the octree's voxel values
     ValueWindow window_;
     bool inverted_ = false;

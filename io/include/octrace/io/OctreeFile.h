@@ -3,7 +3,9 @@
 /// `.oct` octree files: the octree of `octrace build` (shell or volume form, with baked
 /// lighting when it has some), compressed, checksummed, versioned. The byte layout is in
 /// docs/dev/octree-files.md. A file round-trips exactly: the octree read back has the same
-/// cells, normals, terms and provenance (its node pool is in breadth-first order, which may
+/// cells, normals, terms, per-voxel colours (optional chunk "COLR": 4 bytes a voxel, packColour
+/// little endian, in the voxels' breadth-first order), CRS (optional chunk "CRS ": its text)
+/// and provenance (its node pool is in breadth-first order, which may
 /// differ from the order the builder left it in; indices of voxels follow the same order).
 #include "octrace/octree/Octree.h"
 
@@ -29,7 +31,7 @@ struct OctreeFileInfo {
     std::string fieldName, fieldUnits, source;
     std::uint64_t nodes = 0, voxels = 0;
     struct Chunk {
-        std::string tag;             ///< "TREE", "TERM", "NORM", "LITE"
+        std::string tag;             ///< "TREE", "TERM", "NORM", "LITE", "COLR", "CRS "
         std::uint64_t rawBytes = 0;  ///< after decompression
         std::uint64_t storedBytes = 0;
     };

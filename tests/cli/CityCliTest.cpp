@@ -1,0 +1,92 @@
+// City inputs through the CLI: CityJSON rendered (terrain and buildings in one octree, every
+// renderer agreeing with the reference), its CRS in `info`, and the options' errors.
+#include "CliRunner.h"
+
+#include <gtest/gtest.h>
+
+using namespace octrace::testcli;
+
+namespace {
+const std::string kCube = std::string(OCTRACE_TEST_DATA) + "/city/cube.city.json";
+}
+
+TEST(CliCity, RendersDelftTerrainAndBuildingsExactlyAsTheReference) {
+    if (!haveShared("city/delft.json")) GTEST_SKIP() << "shared data absent: " << sharedData("city/delft.json");
+    for (const char* renderer : {"full", "direct"}) {
+        Scratch s;
+        Result r = run({"render", sharedData("city/delft.json"), "--depth", "8", "--size", "320x240", "--renderer", renderer,
+                        "--verify", "--stats", s.path("st.json"), "-o", s.path("delft.png")});
+        ASSERT_EQ(r.code, 0) << r.err;
+        EXPECT_NE(r.err.find("160 solids with an open shell"), std::string::npos) << r.err;  // reported, still drawn
+        const std::string js = slurp(s.path("st.json"));
+        if (std::string(renderer) == "full") EXPECT_NE(js.find("\"mismatched_pixels\": 0,"), std::string::npos) << js;
+        else EXPECT_NE(js.find("\"hit_agreement\": 1,"), std::string::npos) << js;
+        EXPECT_NE(js.find("\"variable\": \"city\""), std::string::npos) << js;
+        EXPECT_TRUE(std::filesystem::exists(s.path("delft.png")));
+    }
+}
+
+TEST(CliCity, InfoShowsTheCrsAndLodSelectAndCrsChangeIt) {
+    Result r = run({"info", kCube});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("crs: EPSG:28992"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("x [5, 20]"), std::string::npos) << r.out;
+    r = run({"info", kCube, "--lod-select", "1", "--crs", "EPSG:32631"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("crs: EPSG:32631"), std::string::npos) << r.out;
+}
+
+TEST(CliCity, OptionsThatDoNotApplyAndBadValuesAreRefused) {
+    Scratch s;
+    Result r = run({"render", kCube, "--iso", "3", "-o", s.path("a.png")});
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("--iso does not apply to the city input"), std::string::npos) << r.err;
+    r = run({"render", kCube, "--lod-select", "two", "-o", s.path("a.png")});
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("--lod-select: expected a level of detail"), std::string::npos) << r.err;
+    r = run({"render", "analytic:sphere:17", "--crs", "EPSG:28992", "-o", s.path("a.png")});
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("--lod-select, --crs, --dem and --texture apply to city inputs"), std::string::npos) << r.err;
+    r = run({"render", kCube, "--crs", "EPSG:999999", "-o", s.path("a.png")});
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("unknown coordinate reference system 'EPSG:999999'"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(s.path("a.png")));
+}
+
+TEST(CliCity, AnOctreeFileKeepsTheColoursAndTheCrs) {
+    Scratch s;
+    Result r = run({"build", kCube, "--depth", "6", "-o", s.path("c.oct")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    r = run({"render", kCube, "--depth", "6", "--size", "160x120", "-o", s.path("direct.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    r = run({"render", s.path("c.oct"), "--size", "160x120", "-o", s.path("file.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(slurp(s.path("direct.png")) == slurp(s.path("file.png")));
+    r = run({"render", kCube, "--depth", "6", "--size", "160x120", "--colour", "0.2,0.2,0.9", "-o", s.path("plain.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(slurp(s.path("direct.png")) != slurp(s.path("plain.png")));  // --colour over the per-voxel colours
+    r = run({"info", s.path("c.oct")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("COLR"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("EPSG:28992"), std::string::npos) << r.out;
+}
+
+TEST(CliCity, RendersADemWithATextureInAnotherCrs) {
+    if (!haveShared("city/lux_elev_srtm.tif")) GTEST_SKIP() << "shared data absent: " << sharedData("city/lux_elev_srtm.tif");
+    Scratch s;
+    const std::string texture = std::string(OCTRACE_TEST_DATA) + "/city/lux_checker_4326.tif";
+    Result r = run({"render", sharedData("city/lux_elev_srtm.tif"), "--texture", texture, "--depth", "7", "--size", "200x150",
+                    "--verify", "--stats", s.path("st.json"), "-o", s.path("tex.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(slurp(s.path("st.json")).find("\"mismatched_pixels\": 0,"), std::string::npos);
+    r = run({"render", sharedData("city/lux_elev_srtm.tif"), "--depth", "7", "--size", "200x150", "-o", s.path("plain.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(slurp(s.path("tex.png")) != slurp(s.path("plain.png")));
+    r = run({"info", sharedData("city/lux_elev_srtm.tif"), "--texture", texture});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("crs: EPSG:32632"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("texture: "), std::string::npos) << r.out;
+    r = run({"render", sharedData("city/lux_elev_srtm.tif"), "--texture", kCube, "-o", s.path("bad.png")});
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("GDAL cannot open it as a raster"), std::string::npos) << r.err;
+}

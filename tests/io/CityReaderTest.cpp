@@ -1,0 +1,171 @@
+// CityJSON through io::readCityModel: transform, levels of detail, CRS, broken files, and the
+// real Delft file of ../shared/data/city.
+#include "CityJson.h"
+#include "IoTestSupport.h"
+#include "octrace/build/CityVoxelizer.h"
+#include "octrace/io/CityReader.h"
+#include "octrace/util/Error.h"
+
+#include <gtest/gtest.h>
+
+#include <gdal_priv.h>
+#include <ogr_spatialref.h>
+
+#include <fstream>
+
+using namespace octrace;
+using namespace octrace::io;
+using octrace::test::testData;
+
+namespace {
+const std::string kCube = testData("city/cube.city.json");
+
+std::string cubeText() {
+    std::ifstream in(kCube);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+}  // namespace
+
+TEST(CityReader, ReadsCityJsonWithItsTransformAndHighestLod) {
+    const CityModel m = readCityModel(kCube);
+    EXPECT_EQ(m.crs, "EPSG:28992");
+    ASSERT_EQ(m.objects.size(), 2u);
+    EXPECT_EQ(m.objectCount(CityRole::Solid), 1u);
+    EXPECT_EQ(m.objectCount(CityRole::Terrain), 1u);
+    const Box3 b = m.bounds();
+    EXPECT_NEAR(b.lo.x, 990.0, 1e-9);
+    EXPECT_NEAR(b.hi.x, 1020.0, 1e-9);
+    EXPECT_NEAR(b.lo.z, 5.0, 1e-9);
+    EXPECT_NEAR(b.hi.z, 20.0, 1e-9);  // the LoD 2.2 roof's apex: 1500 * 0.01 + 5
+}
+
+TEST(CityReader, LodSelectChoosesTheLevelAndAPrefixTakesItsSublevels) {
+    CityRequest r;
+    r.lod = "1";
+    const CityModel lod1 = readCityModel(kCube, r);
+    EXPECT_NEAR(lod1.bounds().hi.z, 15.0, 1e-9);  // the LoD 1 block
+    EXPECT_TRUE(lod1.notes.empty()) << lod1.notes.front();  // its shell is closed
+    r.lod = "2";
+    const CityModel lod2 = readCityModel(kCube, r);
+    EXPECT_NEAR(lod2.bounds().hi.z, 20.0, 1e-9);
+    ASSERT_EQ(lod2.objects.size(), 1u);  // the ground has no LoD 2: left out and said
+    ASSERT_EQ(lod2.notes.size(), 1u);
+    EXPECT_NE(lod2.notes[0].find("1 objects without a geometry of LoD 2, left out (ground)"), std::string::npos) << lod2.notes[0];
+    r.lod = "3";
+    EXPECT_THROW_WITH(readCityModel(kCube, r), EmptyResultError, "no object has a geometry of LoD 3");
+}
+
+TEST(CityReader, ReprojectsIntoTheRequestedCrs) {
+    CityRequest r;
+    r.crs = "EPSG:32631";  // UTM 31N: Amersfoort's false origin lies far south-west of the Netherlands
+    const CityModel m = readCityModel(kCube, r);
+    EXPECT_EQ(m.crs, "EPSG:32631");
+    const Box3 b = m.bounds();
+    EXPECT_GT(b.lo.y, 5.0e6);  // northings in the millions of metres
+    EXPECT_NEAR(b.hi.z - b.lo.z, 15.0, 0.5);
+    EXPECT_NEAR(b.hi.x - b.lo.x, 30.0, 1.5);  // sizes kept (the box turns by the grids' convergence)
+}
+
+TEST(CityReader, AWrongCrsIsAClearError) {
+    CityRequest r;
+    r.crs = "EPSG:999999";
+    EXPECT_THROW_WITH(readCityModel(kCube, r), InputError, "--crs: unknown coordinate reference system 'EPSG:999999'");
+    r.crs = "EPSG:4326";
+    EXPECT_THROW_WITH(readCityModel(kCube, r), InputError, "not a projected CRS");
+}
+
+TEST(CityReader, BrokenFilesAreToldApartFromOtherFormats) {
+    EXPECT_THROW_WITH(io::detail::parseCityJson("{\"type\": \"FeatureCollection\"}", "a.json", ""), FormatNotSupported, "a.json: not CityJSON");
+    EXPECT_THROW_WITH(io::detail::parseCityJson("{\"type\": \"CityJSON\", ", "b.json", ""), FileError, "b.json: not valid JSON");
+    std::string text = cubeText();
+    text.replace(text.find("[[9, 10, 11]]"), 13, "[[9, 10, 99]]");
+    EXPECT_THROW_WITH(io::detail::parseCityJson(text, "c.json", ""), FileError,
+                      "c.json: object 'ground': vertex index 99 out of range (the file has 13 vertices)");
+    EXPECT_THROW_WITH(readCityModel(testData("city/absent.json")), InputError, "no such file");
+}
+
+TEST(CityReader, ReadsDelftWithTerrainAndBuildingsAndSaysWhatItCouldNotUse) {
+    OCTRACE_SHARED_FILE_OR_SKIP(path, "city/delft.json");
+    const CityModel m = readCityModel(path);
+    EXPECT_EQ(m.crs, "EPSG:7415");
+    std::size_t buildings = 0;
+    for (const auto& o : m.objects) buildings += o.type == "Building";
+    EXPECT_EQ(buildings, 160u);
+    EXPECT_EQ(m.objectCount(CityRole::Terrain), 407u);
+    EXPECT_GT(m.triangles.size(), 30000u);
+    bool open = false;
+    for (const auto& n : m.notes) open = open || n.find("solids with an open shell") != std::string::npos;
+    EXPECT_TRUE(open);
+    const std::string info = describeCityInput(path);
+    EXPECT_NE(info.find("crs: EPSG:7415"), std::string::npos) << info;
+    EXPECT_NE(info.find("Building: 160"), std::string::npos) << info;
+}
+
+namespace {
+/// A 2 x 1 RGB GeoTIFF in longitude/latitude over [lon0, lon1] x [lat0, lat1]: west half red,
+/// east half blue.
+void writeTwoColourTiff(const std::string& path, double lon0, double lon1, double lat0, double lat1) {
+    GDALAllRegister();
+    GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
+    ASSERT_NE(gtiff, nullptr);
+    GDALDataset* ds = gtiff->Create(path.c_str(), 2, 1, 3, GDT_Byte, nullptr);
+    ASSERT_NE(ds, nullptr);
+    double gt[6] = {lon0, (lon1 - lon0) / 2, 0, lat1, 0, -(lat1 - lat0)};
+    ds->SetGeoTransform(gt);
+    OGRSpatialReference wgs84;
+    wgs84.SetWellKnownGeogCS("WGS84");
+    ds->SetSpatialRef(&wgs84);
+    const std::uint8_t r[2] = {255, 0}, g[2] = {0, 0}, b[2] = {0, 255};
+    const std::uint8_t* planes[3] = {r, g, b};
+    for (int k = 0; k < 3; ++k)
+        ASSERT_EQ(ds->GetRasterBand(k + 1)->RasterIO(GF_Write, 0, 0, 2, 1, const_cast<std::uint8_t*>(planes[k]), 2, 1, GDT_Byte, 0, 0), CE_None);
+    GDALClose(ds);
+}
+}  // namespace
+
+TEST(CityReader, ReadsADemAsTerrainInTheUtmZoneOfItsCentre) {
+    OCTRACE_SHARED_FILE_OR_SKIP(path, "city/lux_elev_srtm.tif");
+    const CityModel m = readCityModel(path);
+    EXPECT_EQ(m.crs, "EPSG:32632");  // Luxembourg, about 6 degrees east
+    ASSERT_EQ(m.objects.size(), 1u);
+    EXPECT_EQ(m.objects[0].role, CityRole::Terrain);
+    const Box3 b = m.bounds();
+    EXPECT_NEAR(b.lo.z, 141.0, 30.0);  // SRTM heights of Luxembourg, metres (cells averaged at the edges)
+    EXPECT_NEAR(b.hi.z, 547.0, 30.0);
+    EXPECT_GT(b.hi.x - b.lo.x, 40000.0);  // tens of kilometres, in metres
+    CityRequest r;
+    r.maxSamples = 17;  // fewer samples: GDAL averages
+    EXPECT_LT(readCityModel(path, r).triangles.size(), 2u * 16u * 16u + 1u);
+}
+
+TEST(CityReader, DrapesATextureInAnotherCrsOnTheTerrain) {
+    OCTRACE_SHARED_FILE_OR_SKIP(path, "city/lux_elev_srtm.tif");
+    test::TempDir dir;
+    const std::string tif = dir.file("two.tif");
+    writeTwoColourTiff(tif, 5.5, 6.7, 49.3, 50.3);
+    CityRequest r;
+    r.texture = tif;
+    r.maxSamples = 65;
+    const CityModel m = readCityModel(path, r);
+    ASSERT_FALSE(m.texture.empty());
+    CityBuildOptions o;
+    o.depth = 6;
+    const Octree t = voxelizeCity(m, o);
+    std::size_t red = 0, blue = 0, other = 0;
+    const std::uint32_t kRed = 0xFF0000FFu, kBlue = 0xFFFF0000u;
+    // Longitude 6.1 is the texture's middle: in UTM 32N (central meridian 9 E), east of x ~ 290 km.
+    t.forEachVoxel([&](const ivec3& c, std::uint32_t i) {
+        const double x = t.voxelBox(c).centre().x;
+        if (t.colours[i] == kRed) red += x < 300000.0;
+        else if (t.colours[i] == kBlue) blue += x > 280000.0;
+        else ++other;
+    });
+    EXPECT_GT(red, 100u);
+    EXPECT_GT(blue, 100u);
+    EXPECT_EQ(other, 0u);  // the texture covers all of Luxembourg
+    r.texture = dir.file("absent.tif");
+    EXPECT_THROW_WITH(readCityModel(path, r), InputError, "no such file");
+    writeTwoColourTiff(tif, 100.0, 101.0, 10.0, 11.0);  // somewhere else
+    r.texture = tif;
+    EXPECT_THROW_WITH(readCityModel(path, r), InputError, "the texture does not cover the scene");
+}
