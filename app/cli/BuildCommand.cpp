@@ -27,6 +27,7 @@ OptionParser makeParser(BuildArgs& a) {
     p.add({"o", "FILE", "output octree file (.oct; written atomically) (required)", [&](const std::string& v) { a.output = v; }});
     addSurfaceOptions(p, a);
     addFormOptions(p, a);
+    addBakeOptions(p, a);
     addOctreeFileOptions(p, a);
     addCityOptions(p, a);
     return p;
@@ -46,6 +47,8 @@ int runBuild(const std::vector<std::string>& args) {
         js.set("output", a.output);
         js.set("load_ms", s.loadMs);
         js.set("build_ms", s.report.buildMs);
+        js.set("bake_ms", s.bake.bakeMs);
+        js.set("bake_rays", s.bake.rays);
         setOctreeStats(js, s.tree, out, a.level);
         io::writeFileAtomically(a.statsPath, std::string_view(js.text()));
     }

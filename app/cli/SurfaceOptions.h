@@ -9,11 +9,13 @@
 #include "octrace/build/ScalarField.h"
 #include "octrace/io/CityReader.h"
 #include "octrace/csg/Solid.h"
+#include "octrace/lighting/Bake.h"
 #include "octrace/io/FieldRequest.h"
 #include "octrace/octree/Octree.h"
 #include "octrace/render/RenderSettings.h"
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -33,7 +35,12 @@ struct SurfaceArgs {
     int depth = 8, threads = 0;
     bool depthGiven = false;  // --depth given (an octree file input fixes the depth)
     vec3 colour{0.85f, 0.62f, 0.35f};  // sRGB display values, as the user gives them
-    std::string colormap;
+    std::string colormap;              // empty: uniform colour, or the colour-by variable's default
+    std::string colourBy;              // --colour-by: second variable sampled at the voxels
+    float colourMin = std::numeric_limits<float>::quiet_NaN(), colourMax = std::numeric_limits<float>::quiet_NaN();
+    vec3 maskedColour{0.6f, 0.6f, 0.6f};      // sRGB
+    vec3 floorColour{0.55f, 0.5f, 0.45f};     // sRGB
+    bool floor = false;                // --floor: sea floor / land from the validity mask
     bool help = false, quiet = false, verbose = false;
     std::uint64_t maxMemory = 0;  // --max-memory; 0: defaultMemoryBudget()
     io::CityRequest city;         // --lod-select, --crs, --dem, --texture (city inputs)
@@ -44,6 +51,10 @@ struct SurfaceArgs {
     bool keepVolume = false;  // set by the command: buildSurface keeps a volume octree as it is (build, csg)
     std::vector<Solid> cuts;  // --cut, in order
     bool clip = false;        // --clip: keep the inside of the cuts instead
+    bool bake = false;        // --bake: bake lighting into the shell
+    BakeOptions bakeOptions;  // --bake-light, --bake-ao, --bake-ao-distance, --bake-shadows
+    bool bakeLightGiven = false;
+    enum class Lighting { Auto, Baked, Dynamic } lighting = Lighting::Auto;  // --lighting (render)
 };
 
 /// "a, b, c".
@@ -60,10 +71,16 @@ void addSurfaceOptions(OptionParser& p, SurfaceArgs& a);
 void addInsideOption(OptionParser& p, SurfaceArgs& a, const std::string& applies);
 /// --form shell|volume, --inside above|below, --cut SOLID, --clip.
 void addFormOptions(OptionParser& p, SurfaceArgs& a);
+/// --bake, --bake-light, --bake-ao, --bake-ao-distance, --bake-shadows.
+void addBakeOptions(OptionParser& p, SurfaceArgs& a);
+/// --lighting baked|dynamic.
+void addLightingOption(OptionParser& p, SurfaceArgs& a);
 /// --threads; `result` names what does not depend on it ("the image").
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result);
-/// --colour, --color, --colormap, --window.
+/// --colour, --color, --colormap, --window, --colour-range, --masked-colour, --floor-colour.
 void addColourOptions(OptionParser& p, SurfaceArgs& a);
+/// --colour-by, --floor: what is drawn besides the isosurface.
+void addLayerOptions(OptionParser& p, SurfaceArgs& a);
 /// --region, --depth-range, --time, --vertical-scale.
 void addGeographicOptions(OptionParser& p, io::FieldRequest& request);
 /// The first option of `request` that chooses part of a field ("--var", "--region", ...), or null.
@@ -84,7 +101,8 @@ std::uint64_t memoryBudget(const SurfaceArgs& a);
 bool parseCommandLine(const OptionParser& p, const std::vector<std::string>& args, SurfaceArgs& a,
                       const std::string& output, const std::string& missingOutput);
 
-/// A field and the shell octree of its isosurface.
+/// A field and the shell octree of its isosurface (with --colour-by its voxels' values, with
+/// --floor the sea floor / land merged in as VoxelMaterial::Floor).
 struct Surface {
     ScalarField field;
     double iso = 0.0;
@@ -96,6 +114,7 @@ struct Surface {
     ValueWindow window;
     bool invertedGrey = false;
     std::string windowSource;  ///< where the window comes from, for messages and stats
+    BakeReport bake;           ///< when lighting was baked here
 };
 
 /// Applies --quiet / --verbose to the log. A city input (CityJSON) is read into one projected
@@ -110,12 +129,18 @@ struct Surface {
 /// within memoryBudget(a): a read or build that would need more is refused (LimitError). With
 /// --cut the volume form is built (an octree file must hold one: InputError otherwise) and
 /// each solid is subtracted from it (--clip: intersected with it; the result has no voxel
-/// values). A volume octree becomes its shell (extractShell) unless a.keepVolume. Throws as
-/// loadField(), buildOctree() and csg().
+/// values). A volume octree becomes its shell (extractShell) unless a.keepVolume. With
+/// --bake, or --lighting baked on an octree without baked light, the shell's lighting is baked
+/// (lighting/Bake.h; UsageError for a kept volume). Then --colour-by's variable, read with the
+/// same request (InputError for one on another grid; UsageError beside --window), is sampled
+/// at the voxels, and --floor merges in the sea floor and land. Throws as loadField(),
+/// buildOctree(), csg() and bakeLighting().
 Surface buildSurface(const SurfaceArgs& a);
 
-/// The colour options as RenderSettings::colour (linear RGB), RenderSettings::colormap and the
-/// surface's display window (RenderSettings::window, invertedGrey).
+/// The colour options as RenderSettings (linear RGB): colour, colour map (by default, with
+/// voxel values of a second variable, the one for that variable: defaultColormap in
+/// Shading.h), its range, the masked and floor colours, and the surface's display window
+/// (RenderSettings::window, invertedGrey).
 void applyColour(const SurfaceArgs& a, const Surface& s, RenderSettings& settings);
 
 }  // namespace octrace::cli

@@ -75,6 +75,7 @@ Octree copyOctree(const Octree& tree) {
     t.nodes = tree.nodes;
     t.voxels = tree.voxels;
     t.voxelValues = tree.voxelValues;
+    t.baked = tree.baked;
     t.summaries = tree.summaries;
     t.colours = tree.colours;
     return t;

@@ -119,6 +119,7 @@ std::string hex32(std::uint32_t v) {
 struct Flattened {
     std::vector<std::uint8_t> masks, terms;
     std::vector<std::uint32_t> normals;
+    std::vector<std::uint8_t> baked;  // Octree::baked in the same order, when it has some
     std::vector<std::uint8_t> colours;  // per voxel, in the order of `normals`: 4 bytes (packColour, little endian)
     bool anyTerm = false;
 };
@@ -141,6 +142,7 @@ Flattened flatten(const Octree& tree) {
                 if (!(nd.childMask & (1u << c))) continue;
                 if (l == tree.depth - 1) {
                     f.normals.push_back(tree.voxels[slot].normal);
+                    if (!tree.baked.empty()) f.baked.push_back(tree.baked[slot]);
                     if (tree.hasColours())
                         for (int b = 0; b < 4; ++b) f.colours.push_back(std::uint8_t(tree.colours[slot] >> (8 * b)));
                 } else {
@@ -415,16 +417,17 @@ std::vector<std::uint8_t> encodeOctreeFile(const Octree& tree, int zstdLevel) {
     if (tree.nodes.empty() || tree.voxels.empty()) throw Error("cannot write an empty octree");
     const Flattened f = flatten(tree);
     if (f.anyTerm && tree.form != OctreeForm::Volume) throw Error("a shell octree with interior terms cannot be written");
+    if (!tree.baked.empty() && tree.form != OctreeForm::Shell) throw Error("baked light is kept in the shell form only");
     Writer w;
     w.raw(kMagic, sizeof kMagic);
-    w.u32(kOctreeFileVersion);
+    w.u32(f.baked.empty() ? 1 : 2);  // version 1 readers know no 'LITE' chunk
     w.u32(0);  // header length, patched below
     const std::size_t headerStart = w.bytes.size();
     const bool withTerms = tree.form == OctreeForm::Volume;
     w.u8(std::uint8_t(tree.form));
     w.u8(std::uint8_t(tree.depth));
     w.u16(tree.insideBelow ? 1 : 0);
-    w.u32(2 + (withTerms ? 1 : 0) + (f.colours.empty() ? 0 : 1) + (tree.crs.empty() ? 0 : 1));
+    w.u32(2 + (withTerms ? 1 : 0) + (f.colours.empty() ? 0 : 1) + (tree.crs.empty() ? 0 : 1) + (f.baked.empty() ? 0 : 1));
     w.u64(tree.nodes.size());
     w.u64(tree.voxels.size());
     for (int a = 0; a < 3; ++a) w.f64(tree.cubeOrigin[a]);
@@ -442,6 +445,7 @@ std::vector<std::uint8_t> encodeOctreeFile(const Octree& tree, int zstdLevel) {
     // Optional: per-voxel colours (city models) and the CRS of world space.
     if (!f.colours.empty()) putChunk(w, "COLR", f.colours, zstdLevel);
     if (!tree.crs.empty()) putChunk(w, "CRS ", std::vector<std::uint8_t>(tree.crs.begin(), tree.crs.end()), zstdLevel);
+    if (!f.baked.empty()) putChunk(w, "LITE", f.baked, zstdLevel);
     return std::move(w.bytes);
 }
 
@@ -450,12 +454,18 @@ Octree decodeOctreeFile(std::span<const std::uint8_t> bytes, const std::string& 
     OctreeFileInfo info;
     std::vector<RawChunk> chunks;
     parseFrame(bytes, name, info, chunks);
-    // Which chunks: TREE and NORM once each, TERM once in the volume form only; COLR and CRS
-    // at most once.
-    const RawChunk *treeChunk = nullptr, *termChunk = nullptr, *normChunk = nullptr, *colrChunk = nullptr, *crsChunk = nullptr;
+    // Which chunks: TREE and NORM once each, TERM once in the volume form only; COLR, CRS and
+    // (version 2) LITE at most once.
+    const RawChunk *treeChunk = nullptr, *termChunk = nullptr, *normChunk = nullptr, *colrChunk = nullptr, *crsChunk = nullptr,
+                   *liteChunk = nullptr;
     for (const RawChunk& c : chunks) {
-        const RawChunk** slot = c.tag == "TREE" ? &treeChunk : c.tag == "TERM" ? &termChunk : c.tag == "NORM" ? &normChunk
-                                : c.tag == "COLR" ? &colrChunk : c.tag == "CRS " ? &crsChunk : nullptr;
+        const RawChunk** slot = c.tag == "TREE"                          ? &treeChunk
+                                : c.tag == "TERM"                        ? &termChunk
+                                : c.tag == "NORM"                        ? &normChunk
+                                : c.tag == "COLR"                        ? &colrChunk
+                                : c.tag == "CRS "                        ? &crsChunk
+                                : c.tag == "LITE" && info.version >= 2 ? &liteChunk
+                                                                         : nullptr;
         if (!slot) throw FileError(name + ": unknown chunk '" + c.tag + "'");
         if (*slot) throw FileError(name + ": chunk '" + c.tag + "' appears twice");
         *slot = &c;
@@ -463,6 +473,9 @@ Octree decodeOctreeFile(std::span<const std::uint8_t> bytes, const std::string& 
     if (!treeChunk || !normChunk) throw FileError(name + ": chunk '" + std::string(treeChunk ? "NORM" : "TREE") + "' is missing");
     if (termChunk && info.form != OctreeForm::Volume) throw FileError(name + ": a shell octree with a 'TERM' chunk");
     if (!termChunk && info.form == OctreeForm::Volume) throw FileError(name + ": chunk 'TERM' is missing");
+    if (liteChunk && info.form != OctreeForm::Shell) throw FileError(name + ": a volume octree with a 'LITE' chunk");
+    if (liteChunk && liteChunk->rawBytes != info.voxels)
+        throw FileError(name + ": chunk 'LITE' does not match the header's " + std::to_string(info.voxels) + " voxels");
     if (treeChunk->rawBytes != info.nodes || (termChunk && termChunk->rawBytes != info.nodes) || normChunk->rawBytes != 4 * info.voxels)
         throw FileError(name + ": chunk sizes do not match the header's " + std::to_string(info.nodes) + " nodes and " +
                         std::to_string(info.voxels) + " voxels");
@@ -478,6 +491,7 @@ Octree decodeOctreeFile(std::span<const std::uint8_t> bytes, const std::string& 
     const std::vector<std::uint8_t> masks = inflate(*treeChunk, name);
     const std::vector<std::uint8_t> terms = termChunk ? inflate(*termChunk, name) : std::vector<std::uint8_t>(masks.size(), 0);
     const std::vector<std::uint8_t> normalPlanes = inflate(*normChunk, name);
+    std::vector<std::uint8_t> baked = liteChunk ? inflate(*liteChunk, name) : std::vector<std::uint8_t>{};
 
     Octree tree;
     tree.form = info.form;
@@ -520,6 +534,7 @@ Octree decodeOctreeFile(std::span<const std::uint8_t> bytes, const std::string& 
     }
     const std::vector<std::uint32_t> normals = decodeNormals(normalPlanes, voxelMortonCodes(tree));
     for (std::size_t i = 0; i < normals.size(); ++i) tree.voxels[i].normal = normals[i];
+    tree.baked = std::move(baked);
     if (colrChunk) {
         // Written in breadth-first order, which is the order of the decoded voxels.
         const std::vector<std::uint8_t> c = inflate(*colrChunk, name);

@@ -5,6 +5,7 @@
 #include "octrace/build/AnalyticField.h"
 #include "octrace/build/OctreeBuilder.h"
 #include "octrace/io/OctreeFile.h"
+#include "octrace/lighting/Bake.h"
 #include "octrace/util/Error.h"
 
 #include <gtest/gtest.h>
@@ -33,7 +34,7 @@ std::map<std::tuple<int, int, int, int>, std::uint32_t> contents(const Octree& t
     std::map<std::tuple<int, int, int, int>, std::uint32_t> m;
     for (int level = 1; level <= t.depth; ++level)
         t.forEachAtLevel(level, [&](const ivec3& c, std::uint32_t i) {
-            if (level == t.depth) m[{level, c.x, c.y, c.z}] = t.voxels[i].normal;
+            if (level == t.depth) m[{level, c.x, c.y, c.z}] = t.voxels[i].normal ^ (t.baked.empty() ? 0u : std::uint32_t(t.baked[i]) << 24 | 0x5A5A5Au);
             else if (t.nodes[i].childMask == 0) m[{level, c.x, c.y, c.z}] = 0xFFFFFFFFu;  // a term
         });
     return m;
@@ -74,7 +75,7 @@ TEST(OctreeFile, RoundTripsExactly) {
         const Octree back = io::decodeOctreeFile(bytes, "mem.oct", 0, &info);
         SCOPED_TRACE(name);
         expectSame(t, back);
-        EXPECT_EQ(info.version, io::kOctreeFileVersion);
+        EXPECT_EQ(info.version, 1u);  // no baked light: readable by version 1 readers
         EXPECT_EQ(info.voxels, t.voxels.size());
         EXPECT_EQ(info.fileBytes, bytes.size());
         // Written again, the same bytes.
@@ -102,8 +103,29 @@ TEST(OctreeFile, RoundTripsTheVolumeFormWithTerms) {
     expectSame(t, io::decodeOctreeFile(bytes, "v.oct"));
 }
 
+Octree bakedTree() {
+    Octree t = smallTree();
+    BakeOptions o;
+    o.aoRays = 4;
+    bakeLighting(t, o);
+    return t;
+}
+
+TEST(OctreeFile, RoundTripsBakedLightInVersion2) {
+    const Octree t = bakedTree();
+    ASSERT_EQ(t.baked.size(), t.voxels.size());
+    const auto bytes = io::encodeOctreeFile(t);
+    io::OctreeFileInfo info;
+    const Octree back = io::decodeOctreeFile(bytes, "lit.oct", 0, &info);
+    expectSame(t, back);
+    EXPECT_EQ(info.version, 2u);
+    EXPECT_EQ(info.chunks.back().tag, "LITE");
+    EXPECT_EQ(io::encodeOctreeFile(back), bytes);
+}
+
 TEST(OctreeFile, EveryFlippedByteIsDetected) {
-    const auto bytes = io::encodeOctreeFile(smallTree());
+  for (const Octree& tree : {smallTree(), bakedTree()}) {
+    const auto bytes = io::encodeOctreeFile(tree);
     ASSERT_LT(bytes.size(), 4000u) << "a small file keeps this test quick";
     for (std::size_t i = 0; i < bytes.size(); ++i)
         for (std::uint8_t flip : {std::uint8_t(0x01), std::uint8_t(0x80), std::uint8_t(0xFF)}) {
@@ -116,6 +138,7 @@ TEST(OctreeFile, EveryFlippedByteIsDetected) {
                 EXPECT_NE(std::string(e.what()).find("flipped.oct: "), std::string::npos) << e.what();
             }
         }
+  }
 }
 
 TEST(OctreeFile, EveryTruncationIsDetected) {
@@ -131,8 +154,8 @@ TEST(OctreeFile, EveryTruncationIsDetected) {
 
 TEST(OctreeFile, RefusesAFutureVersionAndOtherFiles) {
     auto bytes = io::encodeOctreeFile(smallTree());
-    bytes[8] = 2;  // version, little-endian, right after the 8-byte signature
-    EXPECT_THROW_WITH(io::decodeOctreeFile(bytes, "new.oct"), FileError, "new.oct: written by a newer octrace (octree file format version 2; this octrace reads versions 1 to 1)");
+    bytes[8] = 3;  // version, little-endian, right after the 8-byte signature
+    EXPECT_THROW_WITH(io::decodeOctreeFile(bytes, "new.oct"), FileError, "new.oct: written by a newer octrace (octree file format version 3; this octrace reads versions 1 to 2)");
     const std::string text = "CDF\x01 not an octree";
     std::vector<std::uint8_t> other(text.begin(), text.end());
     EXPECT_THROW(io::decodeOctreeFile(other, "x.oct"), FormatNotSupported);

@@ -16,8 +16,9 @@
 
 namespace octrace::io {
 
-/// Format version this build writes and the newest it reads.
-inline constexpr std::uint32_t kOctreeFileVersion = 1;
+/// The newest format version this build reads. It writes version 1, or version 2 when the
+/// octree has baked light (chunk 'LITE', which version 1 readers do not know).
+inline constexpr std::uint32_t kOctreeFileVersion = 2;
 
 /// What the header and the chunk table of a file say (octrace info).
 struct OctreeFileInfo {

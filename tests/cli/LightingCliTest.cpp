@@ -1,0 +1,43 @@
+// Baked lighting on the command line: build --bake keeps it in the file, render uses it unless
+// --lighting dynamic, render --lighting baked bakes when the octree has none.
+#include "CliRunner.h"
+
+#include <gtest/gtest.h>
+
+using namespace octrace::testcli;
+
+TEST(CliLighting, BakedLightIsStoredAndUsedUnlessDynamicIsAsked) {
+    Scratch s;
+    Result r = run({"build", "analytic:torus:33", "--iso", "0", "--depth", "6", "--bake", "--bake-light", "dir:0,0,1",
+                    "--bake-light", "point:2,2,2,0.5", "--bake-ao", "4", "-o", s.path("t.oct"), "--stats", s.path("b.json")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(slurp(s.path("b.json")).find("\"bake_ms\""), std::string::npos);
+    r = run({"info", s.path("t.oct")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("version 2"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("LITE:"), std::string::npos) << r.out;
+    const std::vector<std::string> common{"--size", "120x90", "--verify"};
+    auto render = [&](std::vector<std::string> args, const std::string& out) {
+        args.insert(args.end(), common.begin(), common.end());
+        for (const std::string& x : {std::string("-o"), s.path(out), std::string("--stats"), s.path(out + ".json")}) args.push_back(x);
+        return run(args);
+    };
+    r = render({"render", s.path("t.oct")}, "baked.png");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const std::string js = slurp(s.path("baked.png.json"));
+    EXPECT_NE(js.find("\"lighting\": \"baked\""), std::string::npos) << js;
+    EXPECT_NE(js.find("\"mismatched_pixels\": 0,"), std::string::npos) << js;
+    r = render({"render", s.path("t.oct"), "--lighting", "dynamic"}, "dynamic.png");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(slurp(s.path("dynamic.png.json")).find("\"lighting\": \"dynamic\""), std::string::npos);
+    EXPECT_NE(slurp(s.path("baked.png")), slurp(s.path("dynamic.png")));
+    // From the field: --lighting baked bakes first (default lights), stating the time.
+    r = render({"render", "analytic:torus:33", "--iso", "0", "--depth", "6", "--lighting", "baked"}, "field.png");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(slurp(s.path("field.png.json")).find("\"bake_ms\": 0,"), std::string::npos);
+    // Usage errors.
+    EXPECT_EQ(run({"render", "analytic:torus:33", "--lighting", "flat", "-o", s.path("x.png")}).code, 2);
+    EXPECT_EQ(run({"build", "analytic:torus:33", "--bake-light", "sun:1,1,1", "-o", s.path("x.oct")}).code, 2);
+    EXPECT_EQ(run({"build", "analytic:torus:33", "--bake-shadows", "maybe", "-o", s.path("x.oct")}).code, 2);
+    EXPECT_EQ(run({"build", "analytic:torus:33", "--bake", "--form", "volume", "-o", s.path("x.oct")}).code, 2);
+}
