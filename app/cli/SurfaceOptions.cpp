@@ -54,6 +54,7 @@ void requireHounsfield(const ScalarField& f, const std::string& input, const std
 
 /// The surface's display window (see buildSurface).
 void chooseWindow(const SurfaceArgs& a, Surface& s) {
+    if (!a.colours) return;  // octrace build: no colours, no voxel values
     if (!a.windowName.empty()) {
         if (ctWindowPreset(a.windowName)) requireHounsfield(s.field, a.input, "--window " + a.windowName);
         s.window = a.window;
@@ -265,6 +266,7 @@ void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result
 }
 
 void addColourOptions(OptionParser& p, SurfaceArgs& a) {
+    a.colours = true;
     p.add({"colour", "R,G,B", "surface colour, sRGB components in [0,1], also over a city's own colours (default 0.85,0.62,0.35; city inputs: per object and texture)",
            [&](const std::string& v) {
                a.colour = vec3(parseColour("colour", v, false));

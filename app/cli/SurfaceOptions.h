@@ -32,6 +32,7 @@ struct SurfaceArgs {
     std::string windowName;
     ValueWindow window;
     bool colourGiven = false;  ///< --colour / --color given
+    bool colours = false;      ///< the command colours the surface (has the colour options)
     int depth = 8, threads = 0;
     bool depthGiven = false;  // --depth given (an octree file input fixes the depth)
     vec3 colour{0.85f, 0.62f, 0.35f};  // sRGB display values, as the user gives them
