@@ -17,7 +17,8 @@ by the project's writer (octrace_write_dicom, beside the octrace executable: the
 are stored values, the series' real values value * SLOPE + INTERCEPT), in a temporary folder,
 once per run. `--scenes K1,K2` runs only those rows
 and takes the others from the raw JSON already in docs/benchmarks/table1/ (each row is still
-one invocation per cell, so its ratios stay within one run).
+one invocation per cell, so its ratios stay within one run); a scene not asked for whose raw JSON is
+incomplete is listed as not measured yet.
 
 Usage: bench/table1.py [--octrace PATH] [--data DIR] [--repeat R] [--quick] [--scenes K,...]
                        [--write-dicom PATH]
@@ -74,7 +75,9 @@ def scene_input(args, scene):
 def run(args, scene, depth, renderer, threads, verify, outdir):
     tag = "%s_d%d_%s_t%d" % (scene["key"], depth, renderer.replace("+", "_"), threads)
     stats = os.path.join(outdir, tag + ".json")
-    if args.only and scene["key"] not in args.only and os.path.exists(stats):
+    if args.only and scene["key"] not in args.only:
+        if not os.path.exists(stats):
+            return None  # a row not asked for and never measured: left out of the table
         with open(stats) as f:
             return json.load(f)
     cmd = [args.octrace, "render", scene_input(args, scene)]
@@ -124,7 +127,16 @@ def main():
     scenes.sort(key=lambda s: (order.get(s["key"], len(order)), s["key"]))
 
     results = {}
-    for s in scenes:
+    unmeasured = []
+    for s in list(scenes):
+        cells = [(depth, r, threads) for depth in ([7] if args.quick else s["depths"]) for threads in (1, 2)
+                 for r in RENDERERS + DIRECT]
+        if args.only and s["key"] not in args.only and not all(
+                os.path.exists(os.path.join(outdir, "%s_d%d_%s_t%d.json" % (s["key"], d, r.replace("+", "_"), t)))
+                for d, r, t in cells):
+            unmeasured.append(s["name"])
+            scenes.remove(s)
+            continue
         for depth in ([7] if args.quick else s["depths"]):
             for threads in (1, 2):
                 for r in RENDERERS + DIRECT:
@@ -229,6 +241,7 @@ def main():
                                       else "faster than `full` at every depth measured (up to %d)." % CROSSOVER_DEPTHS[-1]))
         L.append("")
     pending = [text for key, text in PENDING.items() if not any(s["key"].startswith(key) for s in scenes)]
+    pending += ["%s (scene file present, not measured yet)" % n for n in unmeasured]
     if pending:
         L.append("Rows not reproduced yet: " + "; ".join(pending) + ".")
     with open(os.path.join(ROOT, "docs", "benchmarks", "table1.md"), "w") as f:

@@ -5,6 +5,7 @@
 #include "octrace/util/Timer.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -85,31 +86,21 @@ private:
 /// of its rays (a corner direction and two spanning vectors); it is cut by each node's
 /// projected bounds on the way down, visited front to back; empty leaves only move it on;
 /// in an occupied leaf its rays are selected from the tile's sorted ray matrix by binary
-/// search and intersected one by one; once every ray of the tile is hit the tile ends.
+/// search, row by row within the leaf's projected outline, and intersected one by one; once
+/// every ray of the tile is hit the tile ends.
 class BeamTile {
 public:
-    BeamTile(const ObjectOctree& tree, const RayGenerator& gen, int x0, int y0, int w, int h, std::vector<SphereHit>& hits,
-             ObjectTraceCounters& c, std::uint64_t& beams)
-        : tree_(tree), gen_(gen), x0_(x0), y0_(y0), w_(w), h_(h), hits_(hits), c_(c), beams_(beams) {
-        const std::size_t n = std::size_t(w) * std::size_t(h);
-        origin_.resize(n);
-        dir_.resize(n);
-        inv_.resize(n);
-        for (int j = 0; j < h; ++j)
-            for (int i = 0; i < w; ++i) {
-                const Ray r = gen(x0 + i, y0 + j);
-                const std::size_t k = std::size_t(j) * std::size_t(w) + std::size_t(i);
-                origin_[k] = r.origin;
-                dir_[k] = r.direction;
-                inv_[k] = 1.0 / r.direction;
-            }
+    /// `rays`: the tile's w x h rays, row by row, of the samples (x0 + i, y0 + j).
+    BeamTile(const ObjectOctree& tree, const RayGenerator& gen, int x0, int y0, int w, int h, const std::vector<Ray>& rays,
+             std::vector<SphereHit>& hits, ObjectTraceCounters& c, std::uint64_t& beams)
+        : tree_(tree), gen_(gen), w_(w), h_(h), rays_(rays), hits_(hits), c_(c), beams_(beams) {
         // The sorted ray matrix: sample centres along x (columns) and y (rows), pixel units.
         xs_.resize(std::size_t(w));
         ys_.resize(std::size_t(h));
         for (int i = 0; i < w; ++i) xs_[std::size_t(i)] = x0 + i + 0.5;
         for (int j = 0; j < h; ++j) ys_[std::size_t(j)] = y0 + j + 0.5;
-        remaining_ = n;
-        marked_.assign(n, 0);
+        remaining_ = std::size_t(w) * std::size_t(h);
+        marked_.assign(remaining_, 0);
         right_ = gen.right();
         up_ = gen.up();
         back_ = gen.back();
@@ -117,15 +108,23 @@ public:
     void run() { visit(0, 0, w_, 0, h_); }
 
 private:
+    /// A node's box projected on the screen: its 8 corners in pixel units, unless a corner
+    /// lies behind the eye (then no outline: every ray of the beam is tried).
+    struct Outline {
+        double x[8], y[8];
+        bool valid = false;
+    };
+
     void visit(std::uint32_t node, int i0, int i1, int j0, int j1) {
         const ObjectNode& nd = tree_.nodes[node];
         if (nd.leaf() && nd.objectCount == 0) return;  // empty: the beam only moves on
         ++beams_;
         ++c_.nodes;
         const Box3 box = tree_.nodeBox(node);
-        if (!cut(box, i0, i1, j0, j1)) return;
+        Outline outline;
+        if (!cut(box, outline, i0, i1, j0, j1)) return;
         if (nd.leaf()) {
-            intersect(nd, box, i0, i1, j0, j1);
+            intersect(nd, box, outline, i0, i1, j0, j1);
             return;
         }
         // Front to back: children on the eye's side of each mid-plane first (for parallel
@@ -141,53 +140,116 @@ private:
 
     // Narrows [i0,i1) x [j0,j1) to the rays inside the projected bounds of the box (binary
     // search in the sorted sample coordinates). False when none is left.
-    bool cut(const Box3& b, int& i0, int& i1, int& j0, int& j1) const {
+    bool cut(const Box3& b, Outline& o, int& i0, int& i1, int& j0, int& j1) const {
         double pxLo = kInf, pxHi = -kInf, pyLo = kInf, pyHi = -kInf;
         for (int k = 0; k < 8; ++k) {
             const dvec3 p((k & 4) ? b.hi.x : b.lo.x, (k & 2) ? b.hi.y : b.lo.y, (k & 1) ? b.hi.z : b.lo.z);
             const dvec3 rel = p - gen_.eye();
             const double cz = glm::dot(rel, back_);
             if (!gen_.orthographic() && !(cz < 0.0)) return true;  // reaches behind the eye: no cut
-            double px, py;
-            gen_.toPixel(glm::dot(rel, right_), glm::dot(rel, up_), cz, px, py);
-            pxLo = std::min(pxLo, px);
-            pxHi = std::max(pxHi, px);
-            pyLo = std::min(pyLo, py);
-            pyHi = std::max(pyHi, py);
+            gen_.toPixel(glm::dot(rel, right_), glm::dot(rel, up_), cz, o.x[k], o.y[k]);
+            pxLo = std::min(pxLo, o.x[k]);
+            pxHi = std::max(pxHi, o.x[k]);
+            pyLo = std::min(pyLo, o.y[k]);
+            pyHi = std::max(pyHi, o.y[k]);
         }
-        constexpr double margin = 1e-6;  // pixels; the projection's rounding is far below
-        i0 = std::max(i0, int(std::lower_bound(xs_.begin(), xs_.end(), pxLo - margin) - xs_.begin()));
-        i1 = std::min(i1, int(std::upper_bound(xs_.begin(), xs_.end(), pxHi + margin) - xs_.begin()));
-        j0 = std::max(j0, int(std::lower_bound(ys_.begin(), ys_.end(), pyLo - margin) - ys_.begin()));
-        j1 = std::min(j1, int(std::upper_bound(ys_.begin(), ys_.end(), pyHi + margin) - ys_.begin()));
+        o.valid = true;
+        i0 = std::max(i0, int(std::lower_bound(xs_.begin(), xs_.end(), pxLo - kMargin) - xs_.begin()));
+        i1 = std::min(i1, int(std::upper_bound(xs_.begin(), xs_.end(), pxHi + kMargin) - xs_.begin()));
+        j0 = std::max(j0, int(std::lower_bound(ys_.begin(), ys_.end(), pyLo - kMargin) - ys_.begin()));
+        j1 = std::min(j1, int(std::upper_bound(ys_.begin(), ys_.end(), pyHi + kMargin) - ys_.begin()));
         return i0 < i1 && j0 < j1;
     }
 
-    void intersect(const ObjectNode& leaf, const Box3& box, int i0, int i1, int j0, int j1) {
-        for (int j = j0; j < j1; ++j)
-            for (int i = i0; i < i1; ++i) {
+    /// The columns [i0, i1) of row j that lie within the outline (the convex hull of the 8
+    /// projected corners: on a horizontal line, its extremes are where segments between two
+    /// corners cross the line), widened by kMargin.
+    void rowSpan(const Outline& o, int j, int& i0, int& i1) const {
+        const double y = ys_[std::size_t(j)];
+        double lo = kInf, hi = -kInf;
+        for (int a = 0; a < 8; ++a)
+            for (int b = a + 1; b < 8; ++b) {
+                const double ya = o.y[a], yb = o.y[b];
+                if ((ya < y - kMargin && yb < y - kMargin) || (ya > y + kMargin && yb > y + kMargin)) continue;
+                double x0 = o.x[a], x1 = o.x[b];
+                if (std::abs(yb - ya) > kMargin) {
+                    const double f = std::clamp((y - ya) / (yb - ya), 0.0, 1.0);
+                    x0 = x1 = o.x[a] + f * (o.x[b] - o.x[a]);
+                }
+                lo = std::min({lo, x0, x1});
+                hi = std::max({hi, x0, x1});
+            }
+        if (!(lo <= hi)) {
+            i1 = i0;
+            return;
+        }
+        i0 = std::max(i0, int(std::lower_bound(xs_.begin(), xs_.end(), lo - kMargin) - xs_.begin()));
+        i1 = std::min(i1, int(std::upper_bound(xs_.begin(), xs_.end(), hi + kMargin) - xs_.begin()));
+    }
+
+    // The leaf rule (nearestInLeaf) for the beam's rays not yet hit: the nearest sphere hit,
+    // kept when the ray crosses the leaf and the hit is not beyond its exit. The beam first
+    // culls the leaf's spheres: a ray is tested only against the spheres whose projected box
+    // (widened by kMargin) holds its sample, since a ray that meets a sphere passes through its
+    // box. The tests made are those of nearestInLeaf less ones that cannot hit, in the same
+    // order, so the hit is the same. The exit comes from the slab test, made only for a ray
+    // that hits a sphere; the outline only spares the rays that cannot cross the leaf.
+    void intersect(const ObjectNode& leaf, const Box3& box, const Outline& o, int i0, int i1, int j0, int j1) {
+        const std::uint32_t* list = tree_.objects.data() + leaf.firstObject;
+        const std::uint32_t n = leaf.objectCount;
+        rects_.resize(n);
+        for (std::uint32_t q = 0; q < n; ++q) {
+            const Sphere& sp = tree_.scene.spheres[list[q]];
+            Outline so;
+            int a0 = 0, a1 = w_, b0 = 0, b1 = h_;
+            if (!cut(Box3{sp.centre - sp.radius, sp.centre + sp.radius}, so, a0, a1, b0, b1)) a0 = a1 = b0 = b1 = 0;
+            rects_[q] = {a0, a1, b0, b1};
+        }
+        for (int j = j0; j < j1; ++j) {
+            int r0 = i0, r1 = i1;
+            if (o.valid) rowSpan(o, j, r0, r1);
+            if (r0 >= r1) continue;
+            rowSpheres_.clear();
+            for (std::uint32_t q = 0; q < n; ++q)
+                if (rects_[q][2] <= j && j < rects_[q][3] && rects_[q][0] < r1 && r0 < rects_[q][1]) rowSpheres_.push_back(q);
+            if (rowSpheres_.empty()) continue;
+            for (int i = r0; i < r1; ++i) {
                 const std::size_t k = std::size_t(j) * std::size_t(w_) + std::size_t(i);
                 if (marked_[k]) continue;
-                double t0, t1;
-                slabInterval(box, origin_[k], inv_[k], dir_[k], t0, t1);
-                if (t0 > t1 || t1 < 0.0) continue;  // the ray does not cross this leaf
-                const SphereHit h = nearestInLeaf(tree_, leaf, origin_[k], dir_[k], 0.0, t1, c_);
+                const Ray& r = rays_[k];
+                SphereHit h;
+                for (std::uint32_t q : rowSpheres_) {
+                    if (i < rects_[q][0] || i >= rects_[q][1]) continue;
+                    ++c_.intersections;
+                    const double t = intersectSphere(tree_.scene.spheres[list[q]], r.origin, r.direction, 0.0);
+                    if (t < h.t) {
+                        h.t = t;
+                        h.sphere = list[q];
+                    }
+                }
                 if (!h.hit()) continue;
+                double t0, t1;
+                slabInterval(box, r.origin, 1.0 / r.direction, r.direction, t0, t1);
+                if (t0 > t1 || t1 < 0.0 || h.t > t1) continue;  // not this leaf's hit
                 hits_[k] = h;
                 marked_[k] = 1;
                 --remaining_;
             }
+        }
     }
 
+    static constexpr double kMargin = 1e-6;  // pixels; the projection's rounding is far below
     const ObjectOctree& tree_;
     const RayGenerator& gen_;
-    int x0_, y0_, w_, h_;
+    int w_, h_;
+    const std::vector<Ray>& rays_;
     std::vector<SphereHit>& hits_;
     ObjectTraceCounters& c_;
     std::uint64_t& beams_;
-    std::vector<dvec3> origin_, dir_, inv_;
     std::vector<double> xs_, ys_;
     std::vector<std::uint8_t> marked_;
+    std::vector<std::array<int, 4>> rects_;      // per sphere of the leaf: columns [0,1), rows [2,3) its box covers
+    std::vector<std::uint32_t> rowSpheres_;      // the leaf's spheres whose rows hold the current row
     std::size_t remaining_ = 0;
     dvec3 right_, up_, back_;
 };
@@ -216,18 +278,19 @@ RenderStats renderSphereScene(SphereTracer tracer, const std::string& name, cons
         const int px1 = std::min(px0 + kTilePixels, camera.width), py1 = std::min(py0 + kTilePixels, camera.height);
         const int sx0 = px0 * s, sy0 = py0 * s, w = (px1 - px0) * s, h = (py1 - py0) * s;
         std::vector<SphereHit> hits(std::size_t(w) * std::size_t(h));
+        std::vector<Ray> rays(hits.size());
+        for (int j = 0; j < h; ++j)
+            for (int i = 0; i < w; ++i) rays[std::size_t(j) * std::size_t(w) + std::size_t(i)] = gen(sx0 + i, sy0 + j);
         ObjectTraceCounters primary, secondary;
         if (tracer == SphereTracer::Beam) {
-            BeamTile(tree, gen, sx0, sy0, w, h, hits, primary, st.beams).run();
+            BeamTile(tree, gen, sx0, sy0, w, h, rays, hits, primary, st.beams).run();
         } else {
-            for (int j = 0; j < h; ++j)
-                for (int i = 0; i < w; ++i) {
-                    const Ray r = gen(sx0 + i, sy0 + j);
-                    SphereHit& hit = hits[std::size_t(j) * std::size_t(w) + std::size_t(i)];
-                    if (tracer == SphereTracer::Samet) hit = traceSamet(tree, r.origin, r.direction, 0.0, primary);
-                    else if (tracer == SphereTracer::Reference) hit = traceReference(tree, r.origin, r.direction, 0.0, primary);
-                    else hit = traceBruteForce(tree.scene, r.origin, r.direction, 0.0);
-                }
+            for (std::size_t k = 0; k < rays.size(); ++k) {
+                const Ray& r = rays[k];
+                if (tracer == SphereTracer::Samet) hits[k] = traceSamet(tree, r.origin, r.direction, 0.0, primary);
+                else if (tracer == SphereTracer::Reference) hits[k] = traceReference(tree, r.origin, r.direction, 0.0, primary);
+                else hits[k] = traceBruteForce(tree.scene, r.origin, r.direction, 0.0);
+            }
         }
         // Shade every sample, average per pixel.
         const float inv = 1.0f / float(s * s);
@@ -239,7 +302,7 @@ RenderStats renderSphereScene(SphereTracer tracer, const std::string& name, cons
                     for (int a = 0; a < s; ++a) {
                         const int i = (x - px0) * s + a, j = (y - py0) * s + b;
                         const SphereHit& hit = hits[std::size_t(j) * std::size_t(w) + std::size_t(i)];
-                        const Ray r = gen(sx0 + i, sy0 + j);
+                        const Ray& r = rays[std::size_t(j) * std::size_t(w) + std::size_t(i)];
                         double t0, t1;
                         slabInterval(cube, r.origin, 1.0 / r.direction, r.direction, t0, t1);
                         st.rays += t0 <= t1 && t1 >= 0.0;
