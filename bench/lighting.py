@@ -13,32 +13,23 @@ Both renders use the same octree file and the `full` renderer; only the shading 
 
 Usage: bench/lighting.py [--octrace PATH] [--data DIR] [--repeat R] [--rounds N] [--depths 7,8,9]
 """
-import argparse
 import json
 import os
 import subprocess
 import tempfile
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from benchcommon import ROOT, load, parser, raw_dir
 SCENES = ["levitus_T.json", "levitus_S.json"]
 
 
-def load(path):
-    with open(path) as f:
-        return json.load(f)
-
-
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--octrace", default=os.path.join(ROOT, "build", "app", "octrace"))
-    ap.add_argument("--data", default=os.path.join(ROOT, "..", "shared", "data"))
+    ap = parser(__doc__)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--rounds", type=int, default=2)
     ap.add_argument("--depths", default="7,8,9")
     ap.add_argument("--normal-error", default=os.path.join(ROOT, "build", "octrace_normal_error"))
     args = ap.parse_args()
-    outdir = os.path.join(ROOT, "docs", "benchmarks", "lighting")
-    os.makedirs(outdir, exist_ok=True)
+    outdir = raw_dir("lighting")
     tmp = tempfile.mkdtemp(prefix="octrace-lighting-")
     rows = []
     for name in SCENES:

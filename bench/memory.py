@@ -13,13 +13,12 @@ invocations each, on one thread.
 
 Usage: bench/memory.py [--octrace PATH] [--data DIR] [--runs N]
 """
-import argparse
 import json
 import os
 import subprocess
 import tempfile
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from benchcommon import ROOT, load, parser, raw_dir
 # Paper A, its depth-8 isosurface: RAM and compressed size (MB) of the volume and shell forms.
 PAPER = {"volume": (22.0, 1.42), "shell": (12.0, 1.16)}
 # Its boundary voxel count is not stated; its shell took about 28 bytes per voxel (issue 9), so
@@ -27,19 +26,11 @@ PAPER = {"volume": (22.0, 1.42), "shell": (12.0, 1.16)}
 PAPER_VOXELS = 12.0e6 / 28.0
 
 
-def load(path):
-    with open(path) as f:
-        return json.load(f)
-
-
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--octrace", default=os.path.join(ROOT, "build", "app", "octrace"))
-    ap.add_argument("--data", default=os.path.join(ROOT, "..", "shared", "data"))
+    ap = parser(__doc__)
     ap.add_argument("--runs", type=int, default=3)
     args = ap.parse_args()
-    outdir = os.path.join(ROOT, "docs", "benchmarks", "memory")
-    os.makedirs(outdir, exist_ok=True)
+    outdir = raw_dir("memory")
     tmp = tempfile.mkdtemp(prefix="octrace-memory-")
     scene = load(os.path.join(ROOT, "bench", "scenes", "levitus_T.json"))
     field = [os.path.join(args.data, scene["input"]), "--var", scene["var"], "--iso", str(scene["iso"]), "--region",
