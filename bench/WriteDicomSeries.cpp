@@ -3,6 +3,7 @@
 // (bench/table1.py's CT rows: the LIDC chest CT).
 //
 //   octrace_write_dicom INPUT FOLDER [--modality CT|MR] [--rescale SLOPE,INTERCEPT]
+//                       [--window CENTRE,WIDTH] [--monochrome1 yes]
 //
 // --rescale: the input holds stored values; the series' real values (Hounsfield units for CT)
 // are value * SLOPE + INTERCEPT, written with that RescaleSlope / RescaleIntercept.
@@ -18,7 +19,8 @@
 int main(int argc, char** argv) {
     using namespace octrace;
     if (argc < 3) {
-        std::fprintf(stderr, "usage: octrace_write_dicom INPUT FOLDER [--modality CT|MR] [--rescale SLOPE,INTERCEPT]\n");
+        std::fprintf(stderr, "usage: octrace_write_dicom INPUT FOLDER [--modality CT|MR] [--rescale SLOPE,INTERCEPT] "
+                             "[--window CENTRE,WIDTH] [--monochrome1 yes]\n");
         return 2;
     }
     io::DicomSeriesWriteOptions o;
@@ -27,6 +29,8 @@ int main(int argc, char** argv) {
         const std::string opt = argv[i], value = argv[i + 1];
         if (opt == "--modality") o.modality = value;
         else if (opt == "--rescale" && std::sscanf(value.c_str(), "%lf,%lf", &slope, &intercept) == 2 && slope != 0.0) continue;
+        else if (opt == "--window" && std::sscanf(value.c_str(), "%lf,%lf", &o.window.centre, &o.window.width) == 2) continue;
+        else if (opt == "--monochrome1" && value == "yes") o.monochrome1 = true;
         else {
             std::fprintf(stderr, "octrace_write_dicom: bad option %s %s\n", opt.c_str(), value.c_str());
             return 2;

@@ -11,16 +11,22 @@ against `full` rendered alternately in the same process (`--baseline full`).
 A scene is a JSON file in bench/scenes/ with "table1": true: "key" (row key, e.g. T), "name",
 "input" (relative to --data), "depths", "size", camera ("camera_pos", "look_at", "up", "fov"),
 and the input's options: "var", "iso", "region", "depth_option" (default "--depth": the option
-that takes the depth) and "args" (any further options). `--scenes K1,K2` runs only those rows
+that takes the depth) and "args" (any further options). A scene with "write_dicom"
+({"modality": "CT", "rescale": "SLOPE,INTERCEPT"}) renders its input written as a DICOM series
+by the project's writer (octrace_write_dicom, beside the octrace executable: the input's values
+are stored values, the series' real values value * SLOPE + INTERCEPT), in a temporary folder,
+once per run. `--scenes K1,K2` runs only those rows
 and takes the others from the raw JSON already in docs/benchmarks/table1/ (each row is still
 one invocation per cell, so its ratios stay within one run).
 
 Usage: bench/table1.py [--octrace PATH] [--data DIR] [--repeat R] [--quick] [--scenes K,...]
+                       [--write-dicom PATH]
 """
 import argparse
 import glob
 import json
 import os
+import shutil
 import subprocess
 import sys
 
@@ -49,10 +55,29 @@ PENDING = {"V": "isosurface V (sound speed: ocean issue)", "city": "city 7-9 .. 
            "molecule": "molecule (paper B issue)"}
 
 
+def scene_input(args, scene):
+    """The path octrace renders: the data file, or the DICOM series written from it (write_dicom)."""
+    source = os.path.join(args.data, scene["input"])
+    w = scene.get("write_dicom")
+    if not w:
+        return source
+    folder = os.path.join(args.tmp, "dicom_%s_%s_%s" % (os.path.basename(scene["input"]), w.get("modality", "CT"),
+                                                         w.get("rescale", "1,0")))
+    if folder not in args.written:
+        shutil.rmtree(folder, ignore_errors=True)
+        subprocess.run([args.write_dicom, source, folder, "--modality", w.get("modality", "CT"),
+                        "--rescale", w.get("rescale", "1,0")], check=True)
+        args.written.add(folder)
+    return folder
+
+
 def run(args, scene, depth, renderer, threads, verify, outdir):
     tag = "%s_d%d_%s_t%d" % (scene["key"], depth, renderer.replace("+", "_"), threads)
     stats = os.path.join(outdir, tag + ".json")
-    cmd = [args.octrace, "render", os.path.join(args.data, scene["input"])]
+    if args.only and scene["key"] not in args.only and os.path.exists(stats):
+        with open(stats) as f:
+            return json.load(f)
+    cmd = [args.octrace, "render", scene_input(args, scene)]
     for key, opt in (("var", "--var"), ("iso", "--iso"), ("region", "--region")):
         if key in scene:
             cmd += [opt, str(scene[key])]
@@ -65,9 +90,6 @@ def run(args, scene, depth, renderer, threads, verify, outdir):
         cmd.append("--verify")
     if renderer != "full":
         cmd += ["--baseline", "full"]
-    if args.only and scene["key"] not in args.only and os.path.exists(stats):
-        with open(stats) as f:
-            return json.load(f)
     subprocess.run(cmd, check=True)
     with open(stats) as f:
         return json.load(f)
@@ -80,7 +102,10 @@ def main():
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--quick", action="store_true", help="depth 7 only (a smoke run; does not write the table)")
     ap.add_argument("--scenes", default="", help="comma-separated scene keys to run (default: all)")
+    ap.add_argument("--write-dicom", default=os.path.join(ROOT, "build", "octrace_write_dicom"),
+                    help="the DICOM series writer, for scenes with write_dicom")
     args = ap.parse_args()
+    args.written = set()
     args.only = [k for k in args.scenes.split(",") if k]
     args.tmp = "/tmp/octrace-table1"
     os.makedirs(args.tmp, exist_ok=True)

@@ -39,6 +39,7 @@ OptionParser makeParser(ExportArgs& a) {
            [&](const std::string&) { a.ascii = true; }});
     addThreadsOption(p, a, "the output");
     addColourOptions(p, a);
+    addLayerOptions(p, a);
     addGeographicOptions(p, a.request);
     addCityOptions(p, a);
     addSeriesOption(p, a.request);

@@ -10,6 +10,7 @@
 #include "octrace/io/ImageWriter.h"
 #include "octrace/render/ImageCompare.h"
 #include "octrace/render/Renderer.h"
+#include "octrace/render/Shading.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
 #include "octrace/util/Memory.h"
@@ -114,6 +115,7 @@ OptionParser makeParser(RenderArgs& a) {
                if (!(glm::length(*a.light) > 0.0)) throw UsageError("--light: direction must not be zero");
            }});
     addColourOptions(p, a);
+    addLayerOptions(p, a);
     p.add({"colour-coherence", "", "colour coherence on any discrete renderer: a pixel between two traced neighbours of nearly the same colour gets their average untraced (default off; on in area+colour)",
            [&](const std::string&) { a.colourCoherence = true; }});
     p.add({"colour-fill-background", "", "colour coherence also between two background pixels, as paper A does: the pixel between is taken as background untraced (default off: only between surface pixels)",
@@ -483,6 +485,17 @@ int runRender(const std::vector<std::string>& args) {
     js.set("nodes_visited", st.nodesVisited);
     js.set("nodes_per_ray", st.rays ? double(st.nodesVisited) / double(st.rays) : 0.0);
     js.set("boundary_voxels", std::uint64_t(tree.boundaryVoxels()));
+    if (!tree.voxelMaterials.empty())
+        js.set("floor_voxels", std::uint64_t(std::count(tree.voxelMaterials.begin(), tree.voxelMaterials.end(),
+                                                        std::uint8_t(VoxelMaterial::Floor))));
+    if (!rs.colormap.empty()) js.set("colormap", rs.colormap);
+    if (!tree.voxelValues.empty()) {
+        const Albedo albedo(tree, rs);
+        js.set("colour_by", tree.valueName);
+        js.set("colour_units", tree.valueUnits);
+        js.set("colour_min", double(albedo.low()));
+        js.set("colour_max", double(albedo.high()));
+    }
     js.set("octree_nodes", std::uint64_t(tree.nodes.size()));
     js.set("octree_bytes", std::uint64_t(tree.bytes()));
     js.set("bytes_per_voxel", tree.bytesPerVoxel());

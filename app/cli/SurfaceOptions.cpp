@@ -2,6 +2,7 @@
 
 #include "Input.h"
 
+#include "octrace/build/Layers.h"
 #include "octrace/build/CityVoxelizer.h"
 #include "octrace/build/Volume.h"
 #include "octrace/csg/Csg.h"
@@ -16,6 +17,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <optional>
 #include <sstream>
 
 namespace octrace::cli {
@@ -52,11 +54,12 @@ void requireHounsfield(const ScalarField& f, const std::string& input, const std
 
 /// The surface's display window (see buildSurface).
 void chooseWindow(const SurfaceArgs& a, Surface& s) {
+    if (!a.colours) return;  // octrace build: no colours, no voxel values
     if (!a.windowName.empty()) {
         if (ctWindowPreset(a.windowName)) requireHounsfield(s.field, a.input, "--window " + a.windowName);
         s.window = a.window;
         s.windowSource = "--window " + a.windowName;
-    } else if (!a.colourGiven && a.colormap.empty() && s.field.window.valid()) {
+    } else if (!a.colourGiven && a.colormap.empty() && a.colourBy.empty() && s.field.window.valid()) {
         s.window = s.field.window;
         s.windowSource = "the file's display window";
         std::ostringstream m;
@@ -81,6 +84,8 @@ void loadOctreeSurface(const SurfaceArgs& a, std::uint64_t budget, Surface& s) {
                         : !a.windowName.empty()         ? "--window"
                         : a.depthGiven                  ? "--depth"
                         : a.formGiven                   ? "--form/--inside"
+                        : !a.colourBy.empty()           ? "--colour-by"
+                        : a.floor                       ? "--floor"
                                                         : fieldOptionGiven(a.request);
     if (given)
         throw UsageError(std::string(given) + " does not apply to the octree file " + a.input +
@@ -145,6 +150,19 @@ std::string sourceDescription(const std::string& input, const ScalarField& f) {
     std::string s = input + ", variable " + f.name;
     for (const auto& n : f.notes) s += "; " + n;
     return s;
+}
+
+/// --colour-by: the second variable, read with the same request (region, depth range, time)
+/// and checked to lie on the field's grid.
+ScalarField loadColourBy(const SurfaceArgs& a, const io::FieldRequest& request, const ScalarField& field) {
+    io::FieldRequest second = request;
+    second.variable = a.colourBy;
+    ScalarField by = loadField(a.input, second, a.depth);
+    if (by.dims != field.dims || by.origin != field.origin || by.spacing != field.spacing || by.coords != field.coords ||
+        by.direction != field.direction)
+        throw InputError(a.input + ": --colour-by " + a.colourBy + " is not on the grid of '" + field.name +
+                         "' (both variables must share their coordinates)");
+    return by;
 }
 
 }  // namespace
@@ -248,6 +266,7 @@ void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result
 }
 
 void addColourOptions(OptionParser& p, SurfaceArgs& a) {
+    a.colours = true;
     p.add({"colour", "R,G,B", "surface colour, sRGB components in [0,1], also over a city's own colours (default 0.85,0.62,0.35; city inputs: per object and texture)",
            [&](const std::string& v) {
                a.colour = vec3(parseColour("colour", v, false));
@@ -263,13 +282,39 @@ void addColourOptions(OptionParser& p, SurfaceArgs& a) {
                    huText(w.window.width);
     p.add({"window", "NAME|C,W|none", "grey the surface by a display window applied to the value just under it: a CT preset "
            "(centre/width in HU: " + windows + "), a centre and width, or none (default: the window stored in a DICOM file, "
-           "unless --colour or --colormap is given)",
+           "unless --colour, --colormap or --colour-by is given)",
            [&](const std::string& v) { a.windowName = v, a.window = parseWindow(v); }});
-    p.add({"colormap", "NAME", "colour the surface by height with a map: " + joinNames(colormapNames()) + " (default: none, --colour)",
+    p.add({"colormap", "NAME", "colour map: " + joinNames(colormapNames()) + "; colours by --colour-by's variable, else by height "
+           "(default: with --colour-by the variable's map from its standard_name or name, thermal/haline/speed/viridis; else none, --colour)",
            [&](const std::string& v) {
                colormap(v, 0.0f);
                a.colormap = v;
            }});
+    p.add({"colour-range", "MIN,MAX", "values of --colour-by mapped onto the colour map's ends (default: the surface voxels' range)",
+           [&](const std::string& v) {
+               const std::size_t comma = v.find(',');
+               if (comma == std::string::npos || v.find(',', comma + 1) != std::string::npos)
+                   throw UsageError("--colour-range: expected MIN,MAX, got '" + v + "'");
+               const double lo = parseNumber("colour-range", v.substr(0, comma)), hi = parseNumber("colour-range", v.substr(comma + 1));
+               if (!(lo < hi) || !std::isfinite(lo) || !std::isfinite(hi) || std::abs(lo) > 3e38 || std::abs(hi) > 3e38)
+                   throw UsageError("--colour-range: MIN must be below MAX, both finite, got '" + v + "'");
+               a.colourMin = float(lo);
+               a.colourMax = float(hi);
+           }});
+    p.add({"masked-colour", "R,G,B", "colour of surface voxels where --colour-by's variable is masked, sRGB in [0,1] (default 0.6,0.6,0.6)",
+           [&](const std::string& v) { a.maskedColour = vec3(parseColour("masked-colour", v, false)); }});
+    p.add({"floor-colour", "R,G,B", "colour of the sea floor and land (--floor), sRGB in [0,1] (default 0.55,0.5,0.45)",
+           [&](const std::string& v) { a.floorColour = vec3(parseColour("floor-colour", v, false)); }});
+}
+
+void addLayerOptions(OptionParser& p, SurfaceArgs& a) {
+    p.add({"colour-by", "VAR", "colour the isosurface by a second variable of the same file, sampled at each voxel (default: none)",
+           [&](const std::string& v) {
+               if (v.empty()) throw UsageError("--colour-by: empty variable name");
+               a.colourBy = v;
+           }});
+    p.add({"floor", "", "also draw the sea floor and land where the variable is masked, under the isosurface (default off)",
+           [&](const std::string&) { a.floor = true; }});
 }
 
 void addGeographicOptions(OptionParser& p, io::FieldRequest& request) {
@@ -410,6 +455,10 @@ Surface buildSurface(const SurfaceArgs& a) {
         log::info(m.str());
     }
     for (const auto& n : s.field.notes) log::debug(n);
+    if (!a.colourBy.empty() && !a.windowName.empty())
+        throw UsageError("--window and --colour-by both colour the surface: give one of them");
+    std::optional<ScalarField> colourBy;
+    if (!a.colourBy.empty()) colourBy = loadColourBy(a, request, s.field);
 
     BuildOptions bo;
     bo.depth = a.depth;
@@ -425,6 +474,24 @@ Surface buildSurface(const SurfaceArgs& a) {
     s.tree.source = sourceDescription(a.input, s.field);
     if (bo.progress) std::fputs("\n", stderr);
     finishSurface(a, s);
+    if (colourBy) {
+        s.tree.voxelValues = sampleAtVoxels(s.tree, *colourBy, a.threads);
+        s.tree.valueName = colourBy->name;
+        s.tree.valueUnits = colourBy->units;
+        s.tree.valueStandardName = colourBy->standardName;
+    }
+    if (a.floor) {
+        BuildOptions fo = bo;
+        fo.iso = 0.5;
+        fo.progress = {};
+        fo.form = OctreeForm::Shell;
+        fo.voxelValues = false;
+        Octree floor = buildShellOctree(solidFromMask(s.field), fo);
+        setMaterial(floor, VoxelMaterial::Floor);
+        s.tree = mergeShells(s.tree, floor);
+        s.report.boundaryVoxels = s.tree.voxels.size();
+        s.report.nodes = s.tree.nodes.size();
+    }
     return s;
 }
 
@@ -434,6 +501,12 @@ void applyColour(const SurfaceArgs& a, const Surface& s, RenderSettings& setting
     settings.voxelColours = !a.colourGiven;
     settings.window = s.window;
     settings.invertedGrey = s.invertedGrey;
+    if (settings.colormap.empty() && !s.tree.voxelValues.empty() && !s.window.valid())
+        settings.colormap = defaultColormap(s.tree.valueStandardName, s.tree.valueName);
+    settings.colourMin = a.colourMin;
+    settings.colourMax = a.colourMax;
+    settings.maskedColour = vec3(displayToLinear(vec4(a.maskedColour, 1.0f)));
+    settings.floorColour = vec3(displayToLinear(vec4(a.floorColour, 1.0f)));
 }
 
 }  // namespace octrace::cli

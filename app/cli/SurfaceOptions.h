@@ -15,6 +15,7 @@
 #include "octrace/render/RenderSettings.h"
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,10 +32,16 @@ struct SurfaceArgs {
     std::string windowName;
     ValueWindow window;
     bool colourGiven = false;  ///< --colour / --color given
+    bool colours = false;      ///< the command colours the surface (has the colour options)
     int depth = 8, threads = 0;
     bool depthGiven = false;  // --depth given (an octree file input fixes the depth)
     vec3 colour{0.85f, 0.62f, 0.35f};  // sRGB display values, as the user gives them
-    std::string colormap;
+    std::string colormap;              // empty: uniform colour, or the colour-by variable's default
+    std::string colourBy;              // --colour-by: second variable sampled at the voxels
+    float colourMin = std::numeric_limits<float>::quiet_NaN(), colourMax = std::numeric_limits<float>::quiet_NaN();
+    vec3 maskedColour{0.6f, 0.6f, 0.6f};      // sRGB
+    vec3 floorColour{0.55f, 0.5f, 0.45f};     // sRGB
+    bool floor = false;                // --floor: sea floor / land from the validity mask
     bool help = false, quiet = false, verbose = false;
     std::uint64_t maxMemory = 0;  // --max-memory; 0: defaultMemoryBudget()
     io::CityRequest city;         // --lod-select, --crs, --dem, --texture (city inputs)
@@ -71,8 +78,10 @@ void addBakeOptions(OptionParser& p, SurfaceArgs& a);
 void addLightingOption(OptionParser& p, SurfaceArgs& a);
 /// --threads; `result` names what does not depend on it ("the image").
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result);
-/// --colour, --color, --colormap, --window.
+/// --colour, --color, --colormap, --window, --colour-range, --masked-colour, --floor-colour.
 void addColourOptions(OptionParser& p, SurfaceArgs& a);
+/// --colour-by, --floor: what is drawn besides the isosurface.
+void addLayerOptions(OptionParser& p, SurfaceArgs& a);
 /// --region, --depth-range, --time, --vertical-scale.
 void addGeographicOptions(OptionParser& p, io::FieldRequest& request);
 /// The first option of `request` that chooses part of a field ("--var", "--region", ...), or null.
@@ -93,7 +102,8 @@ std::uint64_t memoryBudget(const SurfaceArgs& a);
 bool parseCommandLine(const OptionParser& p, const std::vector<std::string>& args, SurfaceArgs& a,
                       const std::string& output, const std::string& missingOutput);
 
-/// A field and the shell octree of its isosurface.
+/// A field and the shell octree of its isosurface (with --colour-by its voxels' values, with
+/// --floor the sea floor / land merged in as VoxelMaterial::Floor).
 struct Surface {
     ScalarField field;
     double iso = 0.0;
@@ -122,12 +132,16 @@ struct Surface {
 /// each solid is subtracted from it (--clip: intersected with it; the result has no voxel
 /// values). A volume octree becomes its shell (extractShell) unless a.keepVolume. With
 /// --bake, or --lighting baked on an octree without baked light, the shell's lighting is baked
-/// (lighting/Bake.h; UsageError for a kept volume). Throws as loadField(), buildOctree(),
-/// csg() and bakeLighting().
+/// (lighting/Bake.h; UsageError for a kept volume). Then --colour-by's variable, read with the
+/// same request (InputError for one on another grid; UsageError beside --window), is sampled
+/// at the voxels, and --floor merges in the sea floor and land. Throws as loadField(),
+/// buildOctree(), csg() and bakeLighting().
 Surface buildSurface(const SurfaceArgs& a);
 
-/// The colour options as RenderSettings::colour (linear RGB), RenderSettings::colormap and the
-/// surface's display window (RenderSettings::window, invertedGrey).
+/// The colour options as RenderSettings (linear RGB): colour, colour map (by default, with
+/// voxel values of a second variable, the one for that variable: defaultColormap in
+/// Shading.h), its range, the masked and floor colours, and the surface's display window
+/// (RenderSettings::window, invertedGrey).
 void applyColour(const SurfaceArgs& a, const Surface& s, RenderSettings& settings);
 
 }  // namespace octrace::cli

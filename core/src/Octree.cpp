@@ -54,7 +54,25 @@ vec3 decodeNormal(std::uint32_t code) {
 std::size_t Octree::bytes() const {
     return nodes.capacity() * sizeof(OctreeNode) + voxels.capacity() * sizeof(Voxel) +
            summaries.capacity() * sizeof(NodeSummary) + colours.capacity() * sizeof(std::uint32_t) +
-           voxelValues.capacity() * sizeof(float) + baked.capacity();
+           voxelValues.capacity() * sizeof(float) + baked.capacity() + voxelMaterials.capacity();
+}
+
+Octree Octree::emptyCopy() const {
+    Octree o;
+    o.depth = depth;
+    o.cubeOrigin = cubeOrigin;
+    o.cubeSide = cubeSide;
+    o.form = form;
+    o.fieldName = fieldName;
+    o.fieldUnits = fieldUnits;
+    o.iso = iso;
+    o.insideBelow = insideBelow;
+    o.source = source;
+    o.crs = crs;
+    o.valueName = valueName;
+    o.valueUnits = valueUnits;
+    o.valueStandardName = valueStandardName;
+    return o;
 }
 
 void Octree::computeSummaries() {
@@ -134,6 +152,7 @@ void Octree::validate() const {
     if (nodes.empty()) fail("no root node");
     if (!(cubeSide > 0.0)) fail("cube side not positive");
     if (!voxelValues.empty() && voxelValues.size() != voxels.size()) fail("voxel values do not match the voxels");
+    if (!voxelMaterials.empty() && voxelMaterials.size() != voxels.size()) fail("voxel materials do not match the voxels");
     if (!baked.empty() && baked.size() != voxels.size()) fail("baked light does not match the voxels");
     std::vector<std::uint8_t> seenNode(nodes.size(), 0), seenVoxel(voxels.size(), 0);
     struct Item { std::uint32_t node; int level; };

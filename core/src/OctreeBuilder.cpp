@@ -111,6 +111,13 @@ public:
         for (int a = 0; a < 3; ++a) s[a] = locate(a, local[a]);
     }
 
+    /// Trilinear value at a world point; NaN = a masked sample in the interpolation, or outside.
+    float atWorld(const dvec3& p) const {
+        AxisSample s[3];
+        locateWorld(p, s);
+        return trilinear(s[0], s[1], s[2]);
+    }
+
     /// Trilinear value at lattice corner c (cell space); NaN = masked or outside.
     float corner(const ivec3& c) const {
         if (separable_)
@@ -835,6 +842,24 @@ Octree buildOctree(const ScalarField& field, const BuildOptions& options, BuildR
         report->nodes = tree.nodes.size();
     }
     return tree;
+}
+
+std::vector<float> sampleAtVoxels(const Octree& tree, const ScalarField& field, int threads) {
+    field.validate();
+    std::vector<std::pair<ivec3, std::uint32_t>> cells;
+    cells.reserve(tree.voxels.size());
+    tree.forEachVoxel([&](const ivec3& c, std::uint32_t v) { cells.push_back({c, v}); });
+    const std::vector<float> samples = SampleGrid::maskedSamples(field);
+    const double h = tree.voxelSize();
+    const FieldSampler sampler(field, samples, tree.cubeOrigin, h, 0);
+    std::vector<float> out(tree.voxels.size(), kNaN);
+    constexpr std::size_t kChunk = 4096;
+    parallelFor((cells.size() + kChunk - 1) / kChunk, threads, [&](std::size_t chunk) {
+        const std::size_t end = std::min(cells.size(), (chunk + 1) * kChunk);
+        for (std::size_t i = chunk * kChunk; i < end; ++i)
+            out[cells[i].second] = sampler.atWorld(tree.cubeOrigin + (dvec3(cells[i].first) + 0.5) * h);
+    });
+    return out;
 }
 
 }  // namespace octrace

@@ -3,27 +3,35 @@
 #include "octrace/util/Error.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 
 namespace octrace {
 namespace {
+#include "ColormapTables.inc"
+
 struct Map {
     const char* name;
-    std::vector<vec3> stops;  // sRGB control points, evenly spaced
+    const float (*table)[3];  // sRGB control points, evenly spaced
+    std::size_t size;
 };
+// coolwarm: Moreland's diverging map (2009), five of its control points.
+constexpr float kCoolwarm[5][3] = {{0.230f, 0.299f, 0.754f}, {0.552f, 0.690f, 0.996f}, {0.866f, 0.866f, 0.866f},
+                                   {0.956f, 0.604f, 0.486f}, {0.706f, 0.016f, 0.150f}};
 const std::vector<Map>& maps() {
     static const std::vector<Map> m = {
-        {"viridis", {{0.267f, 0.005f, 0.329f}, {0.283f, 0.141f, 0.458f}, {0.254f, 0.265f, 0.530f}, {0.207f, 0.372f, 0.553f},
-                     {0.164f, 0.471f, 0.558f}, {0.128f, 0.567f, 0.551f}, {0.135f, 0.659f, 0.518f}, {0.267f, 0.749f, 0.441f},
-                     {0.478f, 0.821f, 0.318f}, {0.741f, 0.873f, 0.150f}, {0.993f, 0.906f, 0.144f}}},
-        {"coolwarm", {{0.230f, 0.299f, 0.754f}, {0.552f, 0.690f, 0.996f}, {0.866f, 0.866f, 0.866f}, {0.956f, 0.604f, 0.486f},
-                      {0.706f, 0.016f, 0.150f}}},
-        {"grey", {{0.1f, 0.1f, 0.1f}, {0.95f, 0.95f, 0.95f}}},
+        {"viridis", k_viridis, 256}, {"thermal", k_thermal, 256}, {"haline", k_haline, 256},
+        {"speed", k_speed, 256},     {"grey", k_gray, 256},       {"coolwarm", kCoolwarm, 5},
     };
     return m;
 }
 float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
+std::string lower(std::string s) {
+    for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+bool contains(const std::string& s, const char* part) { return s.find(part) != std::string::npos; }
 }  // namespace
 
 std::vector<std::string> colormapNames() {
@@ -32,24 +40,55 @@ std::vector<std::string> colormapNames() {
     return n;
 }
 
-vec3 colormap(const std::string& name, float t) {
+vec3 colormap(const std::string& nameIn, float t) {
+    const std::string name = nameIn == "gray" ? "grey" : nameIn;
     for (const auto& m : maps()) {
         if (name != m.name) continue;
-        t = std::clamp(t, 0.0f, 1.0f) * float(m.stops.size() - 1);
-        std::size_t i = std::min(std::size_t(t), m.stops.size() - 2);
+        t = std::clamp(std::isnan(t) ? 0.0f : t, 0.0f, 1.0f) * float(m.size - 1);
+        std::size_t i = std::min(std::size_t(t), m.size - 2);
         float f = t - float(i);
-        vec3 c = m.stops[i] * (1.0f - f) + m.stops[i + 1] * f;
+        vec3 c = vec3(m.table[i][0], m.table[i][1], m.table[i][2]) * (1.0f - f) +
+                 vec3(m.table[i + 1][0], m.table[i + 1][1], m.table[i + 1][2]) * f;
         return vec3(srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z));
     }
-    throw UsageError("unknown colour map '" + name + "'");
+    throw UsageError("unknown colour map '" + nameIn + "' (choose one of: viridis, thermal, haline, speed, grey, coolwarm)");
+}
+
+std::string defaultColormap(const std::string& standardName, const std::string& name) {
+    const std::string sn = lower(standardName), n = lower(name);
+    if (!sn.empty()) {
+        if (contains(sn, "speed_of_sound")) return "speed";
+        if (contains(sn, "temperature")) return "thermal";
+        if (contains(sn, "salinity")) return "haline";
+    }
+    if (contains(n, "sound") || n == "svel" || n == "c") return "speed";
+    if (contains(n, "temp") || n == "t" || n == "thetao" || n == "theta" || n == "pt") return "thermal";
+    if (contains(n, "sal") || n == "s" || n == "so" || n == "psal") return "haline";
+    return "viridis";
 }
 
 Albedo::Albedo(const Octree& tree, const RenderSettings& settings)
-    : colour_(settings.colour), window_(settings.window), inverted_(settings.invertedGrey), colormap_(settings.colormap) {
+    : tree_(tree), colour_(settings.colour), masked_(settings.maskedColour), floor_(settings.floorColour),
+      window_(settings.window), inverted_(settings.invertedGrey), colormap_(settings.colormap) {
     for (int i = 0; i < 256; ++i) linear_[i] = srgbToLinear(float(i) / 255.0f);
-    if (window_.valid() && !tree.voxelValues.empty() && tree.voxelValues.size() == tree.voxels.size()) {
+    const bool hasValues = !tree.voxelValues.empty() && tree.voxelValues.size() == tree.voxels.size();
+    if (hasValues && window_.valid()) {
         values_ = &tree.voxelValues;
         return;
+    }
+    if (hasValues && !colormap_.empty()) {
+        values_ = &tree.voxelValues;
+        float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+        for (std::size_t i = 0; i < values_->size(); ++i) {
+            const float v = (*values_)[i];
+            if (std::isfinite(v) && tree.material(std::uint32_t(i)) == VoxelMaterial::Surface) {
+                lo = std::min(lo, v);
+                hi = std::max(hi, v);
+            }
+        }
+        if (!(lo <= hi)) lo = hi = 0.0f;
+        lo_ = std::isnan(settings.colourMin) ? lo : settings.colourMin;
+        hi_ = std::isnan(settings.colourMax) ? hi : settings.colourMax;
     }
     if (colormap_.empty()) {
         if (tree.hasColours() && settings.voxelColours) colours_ = &tree.colours;
@@ -63,13 +102,19 @@ Albedo::Albedo(const Octree& tree, const RenderSettings& settings)
 }
 
 vec3 Albedo::at(std::uint32_t voxel, float zCells) const {
-    if (values_) return vec3(srgbToLinear(window_.grey((*values_)[voxel], inverted_)));
+    if (!tree_.voxelMaterials.empty() && tree_.material(voxel) == VoxelMaterial::Floor) return floor_;
+    if (values_) {
+        const float v = (*values_)[voxel];
+        if (window_.valid()) return vec3(srgbToLinear(window_.grey(v, inverted_)));
+        if (std::isnan(v)) return masked_;
+        return colormap(colormap_, hi_ != lo_ ? (v - lo_) / (hi_ - lo_) : 0.5f);
+    }
     if (colours_) {
         const std::uint32_t c = (*colours_)[voxel];
         return vec3(linear_[c & 0xFFu], linear_[(c >> 8) & 0xFFu], linear_[(c >> 16) & 0xFFu]);
     }
     if (colormap_.empty()) return colour_;
-    // Colour by height (world z) over the surface's extent until a second field can be mapped.
+    // Colour by height (world z) over the surface's extent.
     const float t = (zCells - float(zLo_)) / float(zHi_ - zLo_ + 1);
     return colormap(colormap_, t);
 }

@@ -214,6 +214,7 @@ ScalarField shapeField(const std::string& path, const VariableInfo& var, const L
     f.source = path;
     f.name = var.shortName;
     f.units = var.units;
+    f.standardName = var.standardName;
     for (int a = 0; a < 3; ++a) {
         const auto& w = L.axes[std::size_t(a)].world;
         f.dims[a] = int(w.size());

@@ -134,6 +134,7 @@ ScalarField deriveSoundSpeed(const std::string& path, const NetcdfFile& file, co
             }
     f.name = "sound_speed";
     f.units = "m/s";
+    f.standardName = "speed_of_sound_in_sea_water";
     const std::string how = std::string("sound_speed derived from ") + tv.shortName + " (" + unitsText(tv) +
                             (src.potential ? ", potential temperature brought to in-situ" : ", in-situ temperature") +
                             (kelvin ? ", kelvin to degC" : "") + ") and " + sv.shortName + " (" + unitsText(sv) +

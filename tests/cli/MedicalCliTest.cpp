@@ -128,4 +128,22 @@ TEST(MedicalCli, TheWindowStoredInTheFileColoursTheSurfaceUnlessAColourIsGiven) 
     EXPECT_TRUE(has(render(ct, {"--window", "10,20"}).second, "\"window_source\": \"--window 10,20\""));
     EXPECT_FALSE(has(render(ct, {"--colour", "1,0,0"}).second, "window_centre"));
     EXPECT_FALSE(has(render(ct, {"--window", "none"}).second, "window_centre"));
+    // octrace build colours nothing: the file's window is not applied (nor announced).
+    Result built = run({"build", ct, "--iso", "-200", "-o", s.path("ct.oct")});
+    EXPECT_EQ(built.code, 0) << built.err;
+    EXPECT_FALSE(has(built.err, "display window")) << built.err;
+}
+
+// The real gantry-tilted CT: one warning line naming the tilt, and the geometry of the
+// orthogonal grid it is resampled onto (the reader's test checks the numbers in full).
+TEST(MedicalCli, TheGantryTiltedCtLoadsWithAWarningAndItsResampledGeometry) {
+    const char* rel = "medical/d2n_ct_gantrytilt_4slices";
+    if (!haveShared(rel)) GTEST_SKIP() << "shared data absent: " << sharedData(rel);
+    Result r = run({"info", sharedData(rel)});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(has(r.err, "warning: " + sharedData(rel) + ": slices are sheared by a gantry tilt of 14 degrees")) << r.err;
+    EXPECT_TRUE(has(r.out, "dims: 512 x 521 x 4")) << r.out;
+    EXPECT_TRUE(has(r.out, "spacing: 0.417969 x 0.417969 x 4.85148")) << r.out;
+    EXPECT_TRUE(has(r.out, "direction (columns): (1, 0, 0) (0, 0.970296, -0.241922) (-0, 0.241922, 0.970296)")) << r.out;
+    EXPECT_TRUE(has(r.out, "units 'HU'")) << r.out;
 }

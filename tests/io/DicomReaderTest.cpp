@@ -2,6 +2,7 @@
 // synthetic fixtures of tests/data/dicom (make_fixtures.py there says what each holds).
 #include "IoTestSupport.h"
 
+#include "DicomFile.h"
 #include "octrace/io/DicomReader.h"
 #include "octrace/io/FieldReader.h"
 #include "octrace/util/Error.h"
@@ -232,4 +233,26 @@ TEST(DicomReader, RefusesAFolderHoldingAFileWhoseLengthRunsPastItsEndInsteadOfAb
 TEST(DicomReader, ASingleImageIsNotAVolume) {
     OCTRACE_SHARED_FILE_OR_SKIP(path, "medical/CT_small.dcm");
     EXPECT_THROW_WITH(io::readField(path), FileError, "holds a single 128x128 image");
+}
+
+// The single-image MR in little and big endian: not a volume each (refused as above), but the
+// same image: identical decoded values, size and geometry.
+TEST(DicomReader, TheLittleAndBigEndianSingleMrImagesDecodeIdentically) {
+    OCTRACE_SHARED_FILE_OR_SKIP(little, "medical/MR_small.dcm");
+    const std::string big = test::sharedData("medical/MR_small_bigendian.dcm");
+    ASSERT_FALSE(big.empty());
+    std::string whyNot;
+    const auto a = io::detail::readDicomHeader(little, whyNot), b = io::detail::readDicomHeader(big, whyNot);
+    ASSERT_TRUE(a && b) << whyNot;
+    EXPECT_EQ(a->columns, b->columns);
+    EXPECT_EQ(a->rows, b->rows);
+    ASSERT_EQ(a->frames.size(), 1u);
+    ASSERT_EQ(b->frames.size(), 1u);
+    EXPECT_EQ(a->frames[0].position, b->frames[0].position);
+    EXPECT_EQ(a->frames[0].rowDir, b->frames[0].rowDir);
+    EXPECT_EQ(a->frames[0].pixelSpacing, b->frames[0].pixelSpacing);
+    const std::vector<float> va = io::detail::decodeDicomFrames(*a), vb = io::detail::decodeDicomFrames(*b);
+    EXPECT_EQ(va.size(), std::size_t(64 * 64));
+    EXPECT_TRUE(va == vb) << "decoded values differ";
+    EXPECT_NE(*std::max_element(va.begin(), va.end()), *std::min_element(va.begin(), va.end()));
 }

@@ -83,6 +83,11 @@ struct BuildReport {
 /// BuildOptions::memoryBudget), CancelledError when BuildOptions::cancelled says so. The field must have passed validate().
 Octree buildShellOctree(const ScalarField& field, const BuildOptions& options, BuildReport* report = nullptr);
 
+/// The trilinear value of `field` at the world centre of every boundary voxel of `tree`, by
+/// voxel index (for Octree::voxelValues: colour a surface by a second variable). NaN where the
+/// interpolation uses a masked sample or the centre lies outside the field's grid. The field
+/// must pass validate() (else FileError). Thread-safe; `threads` as BuildOptions::threads.
+std::vector<float> sampleAtVoxels(const Octree& tree, const ScalarField& field, int threads = 0);
 /// As buildShellOctree, in the form options.form. The volume form, built top-down from the
 /// same min/max pyramid (no dense array either; interior octants become terms at the highest
 /// level the pyramid proves them interior): a cell whose 8 corners are inside the solid

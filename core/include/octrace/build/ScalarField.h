@@ -35,6 +35,7 @@ public:
 
     std::string name;    ///< variable name ("TEMP", "density", ...)
     std::string units;   ///< units of the values ("deg C", "HU", ...); may be empty
+    std::string standardName;  ///< CF standard_name ("sea_water_temperature"); may be empty
     std::string source;  ///< where it was read from (for messages)
 
     ivec3 dims{0};                      ///< samples per axis

@@ -70,6 +70,9 @@ struct NodeSummary {
     float meanZ = 0.0f;            ///< mean voxel-centre z in cell space (colour by height)
 };
 
+/// What a boundary voxel is a part of (Octree::voxelMaterials): the isosurface, or the sea
+/// floor / land drawn under it (build/Layers.h). Renderers colour a material through Shading.h.
+enum class VoxelMaterial : std::uint8_t { Surface = 0, Floor = 1 };
 /// A colour packed in 32 bits: 8-bit sRGB red, green, blue in the low three bytes (red lowest),
 /// alpha in the top byte.
 std::uint32_t packColour(vec3 srgb);
@@ -103,9 +106,12 @@ public:
     /// Every renderer shades through Albedo (Shading.h), so all of them use it alike.
     std::vector<std::uint32_t> colours;
     bool hasColours() const { return !voxels.empty() && colours.size() == voxels.size(); }
-    /// Per boundary voxel (same index as `voxels`): the field's value just inside the surface,
-    /// which a display window colours by (RenderSettings::window). Filled when the build asks
-    /// for it (BuildOptions::voxelValues); empty otherwise (and in octree files).
+    /// Per boundary voxel (same index as `voxels`), empty when absent (and in octree files): a
+    /// value that Shading.h colours the voxel by. Either the field's own value just inside the
+    /// surface, greyed by a display window (RenderSettings::window; filled when the build asks
+    /// for it, BuildOptions::voxelValues), or a second variable sampled at the voxel's centre
+    /// and mapped by a colour map (colour by: sampleAtVoxels in OctreeBuilder.h; NaN where the
+    /// sample touches a masked cell or lies outside its grid; valueName etc. say what it is).
     std::vector<float> voxelValues;
     /// Per voxel (same index as `voxels`), baked diffuse light 0..255 = 0..1 (lighting/Bake.h);
     /// empty when none was baked. Shell form only.
@@ -115,12 +121,26 @@ public:
 
     OctreeForm form = OctreeForm::Shell;
 
+    /// What voxelValues are when they are a second variable (colour by); empty otherwise.
+    std::string valueName, valueUnits, valueStandardName;
+    /// Per boundary voxel (same index as `voxels`): its material (values of VoxelMaterial);
+    /// empty = every voxel VoxelMaterial::Surface (and in octree files). Shading.h colours by it.
+    std::vector<std::uint8_t> voxelMaterials;
+    VoxelMaterial material(std::uint32_t voxel) const {
+        return voxelMaterials.empty() ? VoxelMaterial::Surface : VoxelMaterial(voxelMaterials[voxel]);
+    }
+
     // Provenance, for info and stats.
     std::string fieldName, fieldUnits;
     double iso = 0.0;
     bool insideBelow = false;  ///< volume form: the solid is value < iso (else value >= iso)
     std::string source;        ///< what it was made from (input, region, operations), for info
     std::string crs;           ///< coordinate reference system of world space (city models), e.g. "EPSG:7415"; empty: none
+
+    /// An octree with this one's depth, cube, form and provenance (field, iso, source, the
+    /// voxel values' name and units) but no nodes, voxels or per-voxel attributes: the start
+    /// of an operation that makes a new node pool over the same cube.
+    Octree emptyCopy() const;
 
     std::size_t boundaryVoxels() const { return voxels.size(); }
     /// Capacity in bytes of every buffer the octree owns.

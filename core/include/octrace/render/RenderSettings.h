@@ -3,6 +3,7 @@
 #include "octrace/build/ScalarField.h"
 #include "octrace/util/Math.h"
 
+#include <limits>
 #include <string>
 
 namespace octrace {
@@ -18,7 +19,15 @@ struct RenderSettings {
     /// it: albedo x baked / 255, no normal decoded; else (and for inner nodes drawn whole by
     /// multi-resolution) two-sided Lambert from the normal and lightCamera.
     bool baked = true;
-    std::string colormap;                  ///< empty: uniform colour; else colour by height (see docs)
+    /// Colour map (Shading.h colormapNames); empty: the uniform `colour`. With
+    /// Octree::voxelValues and no `window` it colours by the values, else by height.
+    std::string colormap;
+    /// The voxel values mapped onto the colour map's ends; NaN: the lowest / highest value of
+    /// the surface's voxels.
+    float colourMin = std::numeric_limits<float>::quiet_NaN();
+    float colourMax = std::numeric_limits<float>::quiet_NaN();
+    vec3 maskedColour{0.319f, 0.319f, 0.319f};  ///< linear RGB (sRGB 0.6 grey) of voxels whose value is NaN (masked)
+    vec3 floorColour{0.263f, 0.214f, 0.171f};  ///< linear RGB (sRGB 0.55,0.5,0.45) of VoxelMaterial::Floor voxels
     /// Use the octree's per-voxel colours (Octree::colours) when it has them and no colour
     /// map is set; false: the uniform colour.
     bool voxelColours = true;

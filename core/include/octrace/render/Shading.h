@@ -12,35 +12,54 @@
 
 namespace octrace {
 
-/// Named colour maps for --colormap (linear RGB, t in [0,1]). With a colour map the surface is
-/// coloured by height: t runs from the lowest to the highest boundary voxel.
+/// Named colour maps for --colormap (linear RGB, t in [0,1]): viridis, the cmocean maps
+/// thermal, haline and speed, grey (cmocean gray; "gray" is accepted too) and coolwarm. The
+/// tables and where they come from: scripts/colormaps.py.
 std::vector<std::string> colormapNames();
 /// Throws UsageError for an unknown name.
 vec3 colormap(const std::string& name, float t);
+/// The colour map for a variable, by its CF standard_name (sea water temperature: thermal,
+/// salinity: haline, speed of sound: speed), else by its name (TEMP, SALT, sound_speed, ...);
+/// viridis for anything else.
+std::string defaultColormap(const std::string& standardName, const std::string& name);
 
-/// The surface's colour before lighting, linear RGB: with a display window (and voxel values in
-/// the octree) the window's grey of the voxel's value; else with a colour map the map's colour
-/// for the height, from the lowest to the highest boundary voxel; else the voxel's own colour
-/// when the octree has per-voxel colours (Octree::colours) and RenderSettings::voxelColours is
-/// set; else RenderSettings::colour. Shared
-/// by Shader and the surfel export (Surfels.h), so that both colour a voxel alike.
+/// The surface's colour before lighting, linear RGB, per voxel:
+///  - VoxelMaterial::Floor voxels: RenderSettings::floorColour;
+///  - with Octree::voxelValues and a display window (RenderSettings::window): the window's
+///    grey of the voxel's value;
+///  - with Octree::voxelValues, no window and a colour map: the map's colour for the voxel's
+///    value over [colourMin, colourMax] (NaN ends: the surface voxels' own range), maskedColour
+///    for NaN;
+///  - else with a colour map the map's colour for the height, from the lowest to the highest
+///    boundary voxel;
+///  - else the voxel's own colour when the octree has per-voxel colours (Octree::colours) and
+///    RenderSettings::voxelColours is set; else RenderSettings::colour.
+/// Shared by Shader and the surfel export (Surfels.h), so that both colour a voxel alike.
 /// Thread-safe once constructed.
 class Albedo {
 public:
     /// Throws UsageError for an unknown colour map name.
     Albedo(const Octree& tree, const RenderSettings& settings);
-    /// `voxel`: the boundary voxel (for a node, its summary's firstVoxel); `zCells`: height in
-    /// cell space (a voxel's centre is at cell.z + 0.5; a node's is its summary's meanZ).
+    /// `voxel`: index in tree.voxels (a node drawn whole: its summary's firstVoxel).
+    /// `zCells`: height in cell space (a voxel's centre is at cell.z + 0.5; a node's is its
+    /// summary's meanZ).
     vec3 at(std::uint32_t voxel, float zCells) const;
+    /// Colouring by voxel values with the colour map, over [low(), high()] with colormapName().
+    bool byValue() const { return values_ != nullptr && !window_.valid(); }
+    float low() const { return lo_; }
+    float high() const { return hi_; }
+    const std::string& colormapName() const { return colormap_; }
 
 private:
-    vec3 colour_;
+    const Octree& tree_;
+    vec3 colour_, masked_, floor_;
     const std::vector<std::uint32_t>* colours_ = nullptr;  // the octree's per-voxel colours, or null
     float linear_[256];  // sRGB byte -> linear
-    const std::vector<float>* values_ = nullptr;  // with a window: the octree's voxel values
+    const std::vector<float>* values_ = nullptr;  // the octree's voxel values (window or colour map)
     ValueWindow window_;
     bool inverted_ = false;
     std::string colormap_;   // empty: uniform colour_
+    float lo_ = 0.0f, hi_ = 1.0f;  // value range
     int zLo_ = 0, zHi_ = 0;  // occupied cell range along z, for the colour map
 };
 
