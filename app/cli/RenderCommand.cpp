@@ -5,6 +5,7 @@
 #include "Options.h"
 #include "StatsJson.h"
 #include "SurfaceOptions.h"
+#include "FigureOptions.h"
 
 #include "octrace/io/AtomicFile.h"
 #include "octrace/io/ImageWriter.h"
@@ -35,6 +36,7 @@ std::string vecText(const dvec3& v) {
 }
 
 struct RenderArgs : SurfaceArgs {
+    FigureArgs figure;
     std::string output, statsPath, rendererName = "full";
     int width = 1600, height = 1200;
     std::optional<dvec3> cameraPos, lookAt, up;
@@ -165,6 +167,7 @@ OptionParser makeParser(RenderArgs& a) {
                else throw UsageError("--shadows: choose on or off, got '" + v + "'");
                a.sphereOptions.push_back("--shadows");
            }});
+    addFigureOptions(p, a.figure);
     addMessageOptions(p, a);
     return p;
 }
@@ -237,7 +240,11 @@ RepeatedRender renderRepeated(const RenderArgs& a, Frame& frame, const std::func
     }
     std::sort(r.times.begin(), r.times.end());
     if (r.stats.hits == 0) log::warning("the scene is not in view: every pixel is background");
-    io::writeImage(frame, a.output);
+    if (!a.figure.enabled) {  // a figure is written by the caller, around the frame
+        io::ImageWriteOptions options;
+        options.dpi = a.figure.dpi;
+        io::writeImage(frame, a.output, options);
+    }
     return r;
 }
 
@@ -268,6 +275,7 @@ int renderObjectOctree(const RenderArgs& a) {
         throw UsageError(std::string(voxelOption) + " applies to voxel octrees; the object octree of " + a.input +
                          " traces the spheres themselves (--octree voxel voxelizes them)");
     if (a.lod > 0.0 || a.level >= 0) throw UsageError("--lod/--level: the object octree has no multi-resolution mode");
+    if (a.figure.enabled) throw UsageError("--figure applies to voxel surfaces, not to the object octree of " + a.input);
     if (a.colourCoherence) throw UsageError("--colour-coherence applies to the voxel renderers");
     const int threads = a.threads == 0 ? hardwareThreads() : a.threads;
     const std::uint64_t budget = memoryBudget(a);
@@ -390,6 +398,10 @@ int runRender(const std::vector<std::string>& args) {
             throw UsageError("-o " + a.output + ": unknown image format '" + ext + "' (use " + joinNames(io::imageExtensions()) + ")");
     }
     if (a.orthoHeight && !a.ortho) throw UsageError("--ortho-height needs --projection ortho");
+    if (!a.figure.enabled && (!a.figure.title.empty() || a.figure.printInches))
+        throw UsageError(std::string(a.figure.printInches ? "--print-size" : "--title") + " needs --figure");
+    if (a.figure.enabled && !(a.output.size() >= 4 && (a.output.substr(a.output.size() - 4) == ".png" || a.output.substr(a.output.size() - 4) == ".PNG")))
+        throw UsageError("--figure writes a PNG: -o " + a.output + " must end in .png");
     if (isSphereInput(a.input)) {
         const bool object = a.octreeKind.empty() ? makeRenderer(a.rendererName)->drawsSpheres() : a.octreeKind == "object";
         if (object) return renderObjectOctree(a);
@@ -407,8 +419,15 @@ int runRender(const std::vector<std::string>& args) {
     }
     const int threads = a.threads == 0 ? hardwareThreads() : a.threads;
 
+    // A figure: the plot is the image area its layout leaves (--size or --print-size is the whole).
+    std::optional<io::FigureLayout> figureLayoutUsed;
+    if (a.figure.enabled) {
+        figureLayoutUsed = figureLayout(a.figure, a.width, a.height, !a.colourBy.empty());
+        a.width = figureLayoutUsed->plotW;
+        a.height = figureLayoutUsed->plotH;
+    }
     const std::uint64_t budget = memoryBudget(a);
-    const std::uint64_t frameBytes = outputFrameBytes(a);
+    const std::uint64_t frameBytes = outputFrameBytes(a) + (figureLayoutUsed ? Frame::bytesFor(figureLayoutUsed->width, figureLayoutUsed->height) : 0);
     const std::string rendering = "rendering " + std::to_string(a.width) + "x" + std::to_string(a.height);
     checkMemoryBudget(a.input + ": " + rendering, frameBytes, budget);
 
@@ -445,6 +464,12 @@ int runRender(const std::vector<std::string>& args) {
     });
     const RenderStats& st = rep.stats;
     const Renderer* renderer = rep.renderer.get();
+    if (figureLayoutUsed) {
+        const io::FigureSpec spec = figureSpec(a.figure, surface, cam, rs);
+        io::ImageWriteOptions options;
+        options.dpi = figureLayoutUsed->dpi;
+        io::writeImage(io::composeFigure(frame, spec, *figureLayoutUsed), a.output, options);
+    }
 
     StatsJson js;
     js.set("renderer", st.renderer);
@@ -461,6 +486,15 @@ int runRender(const std::vector<std::string>& args) {
     js.set("depth", tree.depth);
     js.set("width", cam.width);
     js.set("height", cam.height);
+    if (figureLayoutUsed) {
+        const io::FigureLayout& l = *figureLayoutUsed;
+        js.set("figure_width", l.width);
+        js.set("figure_height", l.height);
+        js.set("figure_dpi", l.dpi);
+        js.set("figure_plot", std::to_string(l.plotX) + "," + std::to_string(l.plotY) + "," + std::to_string(l.plotW) + "," + std::to_string(l.plotH));
+        if (l.barW > 0)
+            js.set("figure_colour_bar", std::to_string(l.barX) + "," + std::to_string(l.barY) + "," + std::to_string(l.barW) + "," + std::to_string(l.barH));
+    }
     js.set("threads", threads);
     js.set("pixels", st.pixels);
     js.set("rays", st.rays);

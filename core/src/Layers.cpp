@@ -44,6 +44,7 @@ ScalarField solidFromMask(const ScalarField& field) {
     s.direction = field.direction;
     s.coords = field.coords;
     s.notes = field.notes;
+    s.geographic = field.geographic;
     s.values.resize(field.sampleCount());
     std::size_t masked = 0;
     for (std::size_t i = 0; i < s.values.size(); ++i) {

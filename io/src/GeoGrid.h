@@ -1,6 +1,7 @@
 #pragma once
 // Maps longitude/latitude/depth axes to world kilometres per the project's coordinate contract
 // (internal, no GDAL types, no file access).
+#include "octrace/build/ScalarField.h"
 #include "octrace/io/FieldRequest.h"
 
 #include <cstddef>
@@ -22,7 +23,7 @@ struct GeoMapping {
     std::vector<std::string> notes;
 };
 
-constexpr double kEarthRadiusKm = 6371.0;
+constexpr double kEarthRadiusKm = ScalarField::Geographic::kEarthRadiusKm;
 
 /// Selects the grid points inside `req`'s region (all of them without one), unwraps
 /// longitudes so the selection is contiguous, and computes world coordinates.

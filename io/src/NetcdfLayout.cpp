@@ -167,6 +167,9 @@ Layout layoutFor(const std::string& path, const NetcdfFile& file, const Variable
         for (double v : levels) depthKm.push_back(v * vc.toKm * (vc.positiveDown ? 1.0 : -1.0) + 0.0);  // + 0.0: no -0
         GeoMapping m = mapGeographic(path, info[lon[0]].values, info[lat[0]].values, depthKm, req);
         L.geographic = true;
+        L.lon0 = m.lon0;
+        L.lat0 = m.lat0;
+        L.verticalScale = m.verticalScale;
         L.dim = {lon[0], lat[0], vert[0]};
         for (std::size_t j : m.y.stored) L.latitudeDeg.push_back(info[lat[0]].values[j]);
         for (std::size_t k : m.z.stored) {
@@ -215,6 +218,7 @@ ScalarField shapeField(const std::string& path, const VariableInfo& var, const L
     f.name = var.shortName;
     f.units = var.units;
     f.standardName = var.standardName;
+    if (L.geographic) f.geographic = {true, L.lon0, L.lat0, L.verticalScale};
     for (int a = 0; a < 3; ++a) {
         const auto& w = L.axes[std::size_t(a)].world;
         f.dims[a] = int(w.size());

@@ -29,6 +29,7 @@ struct Layout {
     std::vector<double> depthM;       ///< depth of each z, metres, positive down
     std::vector<double> levelDbar;    ///< pressure of each z when the vertical axis is pressure, else empty
     std::string latitudeAxis, verticalAxis;  ///< dimension names, for messages
+    double lon0 = 0.0, lat0 = 0.0, verticalScale = 1.0;  ///< the mapping (ScalarField::Geographic)
 };
 
 /// The layout of `var` for `req`: spatial axes by CF rules (1-D coordinate variables, the

@@ -9,6 +9,7 @@
 #include <png.h>
 
 #include <csetjmp>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 
@@ -51,7 +52,7 @@ void onPngFlush(png_structp) {}
 
 // Returns false with sink->error set on failure. `rows` point at height rows of
 // width·channels bytes each.
-bool encodeRows(png_bytep* rows, std::uint32_t width, std::uint32_t height, int channels, PngSink* sink) {
+bool encodeRows(png_bytep* rows, std::uint32_t width, std::uint32_t height, int channels, int dpi, PngSink* sink) {
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, sink, onPngError, onPngWarning);
     if (!png) {
         std::snprintf(sink->error, sizeof sink->error, "libpng could not be initialized");
@@ -76,6 +77,10 @@ bool encodeRows(png_bytep* rows, std::uint32_t width, std::uint32_t height, int 
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_BASE, PNG_FILTER_TYPE_BASE);
     // sRGB chunk, plus gAMA and cHRM for readers that ignore sRGB.
     png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+    if (dpi > 0) {
+        const auto perMetre = png_uint_32(std::lround(dpi / 0.0254));
+        png_set_pHYs(png, info, perMetre, perMetre, PNG_RESOLUTION_METER);
+    }
     png_write_info(png, info);
     png_write_image(png, rows);
     png_write_end(png, nullptr);  // no tIME, no text: nothing that changes between runs
@@ -114,7 +119,7 @@ std::vector<std::uint8_t> PngWriter::encode(const Frame& frame, const ImageWrite
     out.reserve(pixels.size() / 2 + 1024);
     PngSink sink;
     sink.out = &out;
-    if (!encodeRows(rows.data(), std::uint32_t(w), std::uint32_t(h), channels, &sink))
+    if (!encodeRows(rows.data(), std::uint32_t(w), std::uint32_t(h), channels, options.dpi, &sink))
         throw OutputError(std::string("PNG encoding failed: ") + sink.error);
     return out;
 }

@@ -221,6 +221,8 @@ CLI = {
     "render_colour_by": ["render", "levitus.cdf", "--var", "SALT", "--iso", "34.5", "--colour-by", "TEMP",
                          "--colour-range", "0,25", "--colormap", "thermal", "--masked-colour", "0.6,0.6,0.6",
                          "--floor", "--floor-colour=0.55,0.5,0.45", "-o", "s.png"],
+    "render_figure": ["render", "levitus.cdf", "--var", "SALT", "--iso", "34.5", "--colour-by", "TEMP", "--figure",
+                      "--title", "North Pacific", "--dpi", "300", "--print-size", "180x120mm", "-o", "f.png"],
     "info": ["info", "a.nc", "b.nrrd", "analytic:sphere"],
     "render_memory": ["render", "analytic:noise:1024", "--depth", "12", "--max-memory", "1.5GiB", "-o", "n.png"],
     "info_memory": ["info", "--max-memory=25%", "a.nc", "--max-memory", "512m"],

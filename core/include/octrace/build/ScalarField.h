@@ -54,6 +54,17 @@ public:
     /// window's grey is inverted. The values themselves are never inverted.
     bool invertedGrey = false;
 
+    /// Geographic grids (NetCDF longitude, latitude, depth): the contract's mapping to world
+    /// kilometres, x = R (lon - lon0) cos(lat0), y = R (lat - lat0), z = -depth_km *
+    /// verticalScale (R = kEarthRadiusKm, angles in radians), so that world points can be told
+    /// in degrees and metres (figure ticks). `valid` is false on other grids.
+    struct Geographic {
+        static constexpr double kEarthRadiusKm = 6371.0;
+        bool valid = false;
+        double lon0 = 0.0, lat0 = 0.0, verticalScale = 1.0;
+    };
+    Geographic geographic;
+
     /// Notes for `info` and stats (e.g. "geographic: lon0=150 lat0=35, vertical scale 30").
     std::vector<std::string> notes;
 

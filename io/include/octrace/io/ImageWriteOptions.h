@@ -8,6 +8,8 @@ struct ImageWriteOptions {
     /// PNG: always write an alpha channel. Without it, the PNG gets one only when some pixel
     /// has alpha < 1 (so opaque renders stay RGB). EXR files always carry A.
     bool alpha = false;
+    /// PNG: the print resolution in dots per inch, recorded in a pHYs chunk (0: none).
+    int dpi = 0;
 };
 
 }  // namespace octrace::io

@@ -1,0 +1,161 @@
+#include "FigureOptions.h"
+
+#include "octrace/render/Shading.h"
+#include "octrace/util/Error.h"
+
+#include <array>
+#include <cmath>
+#include <sstream>
+
+namespace octrace::cli {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::string number(double v, int precision = 6) {
+    std::ostringstream s;
+    s.precision(precision);
+    s << (v == 0.0 ? 0.0 : v);
+    return s.str();
+}
+
+std::string longitudeText(double lon) {
+    lon = std::fmod(lon, 360.0);
+    if (lon > 180.0) lon -= 360.0;
+    if (lon <= -180.0) lon += 360.0;
+    const long r = std::lround(lon);
+    if (r == 0 || r == 180 || r == -180) return std::to_string(std::labs(r)) + "\u00b0";
+    return std::to_string(std::labs(r)) + (r > 0 ? "\u00b0E" : "\u00b0W");
+}
+
+std::string latitudeText(double lat) {
+    const long r = std::lround(lat);
+    if (r == 0) return "0\u00b0";
+    return std::to_string(std::labs(r)) + (r > 0 ? "\u00b0N" : "\u00b0S");
+}
+
+/// World <-> longitude, latitude, depth by the contract's mapping.
+struct GeoAxes {
+    const ScalarField::Geographic& g;
+    double lon(double x) const { return g.lon0 + x / (ScalarField::Geographic::kEarthRadiusKm * std::cos(g.lat0 * kPi / 180.0)) * 180.0 / kPi; }
+    double lat(double y) const { return g.lat0 + y / ScalarField::Geographic::kEarthRadiusKm * 180.0 / kPi; }
+    double depthM(double z) const { return -z / g.verticalScale * 1000.0; }
+    double x(double lonDeg) const { return ScalarField::Geographic::kEarthRadiusKm * std::cos(g.lat0 * kPi / 180.0) * (lonDeg - g.lon0) * kPi / 180.0; }
+    double y(double latDeg) const { return ScalarField::Geographic::kEarthRadiusKm * (latDeg - g.lat0) * kPi / 180.0; }
+    double z(double depthM) const { return -depthM / 1000.0 * g.verticalScale; }
+};
+
+/// Projects world points into the plot; false behind a perspective camera.
+struct Projector {
+    explicit Projector(const Camera& c) : rays(c) {}
+    bool operator()(const dvec3& p, dvec2& out) const {
+        const dvec3 d = p - rays.eye();
+        const double cz = glm::dot(d, rays.back());
+        if (!rays.orthographic() && !(cz < 0.0)) return false;
+        rays.toPixel(glm::dot(d, rays.right()), glm::dot(d, rays.up()), cz, out.x, out.y);
+        return std::isfinite(out.x) && std::isfinite(out.y);
+    }
+    RayGenerator rays;
+};
+
+}  // namespace
+
+dvec2 parsePrintSize(const std::string& option, const std::string& text) {
+    std::string t = text, unit;
+    for (const char* u : {"mm", "cm", "in"}) {
+        const std::string us(u);
+        if (t.size() > us.size() && t.compare(t.size() - us.size(), us.size(), us) == 0) {
+            unit = us;
+            t.erase(t.size() - us.size());
+            break;
+        }
+    }
+    if (unit.empty()) throw UsageError("--" + option + ": expected WxH with a unit mm, cm or in (e.g. 180x120mm), got '" + text + "'");
+    const std::size_t x = t.find('x');
+    if (x == std::string::npos) throw UsageError("--" + option + ": expected WxH with a unit, got '" + text + "'");
+    const double w = parseNumber(option, t.substr(0, x)), h = parseNumber(option, t.substr(x + 1));
+    const double perInch = unit == "mm" ? 25.4 : unit == "cm" ? 2.54 : 1.0;
+    if (!(w > 0.0 && h > 0.0) || w / perInch > 100.0 || h / perInch > 100.0)
+        throw UsageError("--" + option + ": width and height must be positive and at most 100 inches, got '" + text + "'");
+    return dvec2(w / perInch, h / perInch);
+}
+
+void addFigureOptions(OptionParser& p, FigureArgs& f) {
+    p.add({"figure", "", "write a publication figure (PNG): the image with a title, a colour bar with units, the variable, "
+           "the region and labelled longitude/latitude/depth ticks on the bounding box (default off: the plain image)",
+           [&](const std::string&) { f.enabled = true; }});
+    p.add({"title", "TEXT", "title of the figure (default: none)", [&](const std::string& v) { f.title = v; }});
+    p.add({"dpi", "N", "resolution in dots per inch, 36..1200, recorded in the PNG; a figure's fonts are 9 and 11 pt at it "
+           "(default: 150 for --figure, none recorded for a plain image)",
+           [&](const std::string& v) { f.dpi = parseInt("dpi", v, 36, 1200); }});
+    p.add({"print-size", "WxH(mm|cm|in)", "figure size on paper, e.g. 180x120mm; its pixels are this times --dpi (default: --size is the whole figure)",
+           [&](const std::string& v) { f.printInches = parsePrintSize("print-size", v); }});
+}
+
+io::FigureLayout figureLayout(const FigureArgs& f, int width, int height, bool colourBar) {
+    const int dpi = f.dpi ? f.dpi : kDefaultDpi;
+    if (f.printInches) {
+        width = int(std::lround(f.printInches->x * dpi));
+        height = int(std::lround(f.printInches->y * dpi));
+        if (std::uint64_t(width) * std::uint64_t(height) > (std::uint64_t(1) << 28))
+            throw UsageError("--print-size at " + std::to_string(dpi) + " dpi makes a figure of " + std::to_string(width) +
+                             "x" + std::to_string(height) + " pixels; at most 2^28 pixels");
+    }
+    return io::layoutFigure(width, height, dpi, colourBar);
+}
+
+io::FigureSpec figureSpec(const FigureArgs& f, const Surface& s, const Camera& camera, const RenderSettings& rs) {
+    io::FigureSpec spec;
+    spec.title = f.title;
+    const ScalarField& field = s.field;
+    const Octree& tree = s.tree;
+    std::string sub = (tree.fieldName.empty() ? field.name : tree.fieldName) + " = " + number(s.iso) +
+                      (tree.fieldUnits.empty() ? "" : " " + tree.fieldUnits);
+    const Albedo albedo(tree, rs);
+    if (albedo.byValue()) {
+        sub += ", coloured by " + tree.valueName;
+        spec.colormap = albedo.colormapName();
+        spec.low = albedo.low();
+        spec.high = albedo.high();
+        spec.barLabel = tree.valueName + (tree.valueUnits.empty() ? "" : " (" + tree.valueUnits + ")");
+    }
+    if (!tree.voxelMaterials.empty()) sub += ", sea floor and land";
+
+    // The bounding box: the field's grid (the region read), or the octree's surface.
+    const Box3 box = field.values.empty() ? tree.occupiedBounds() : field.worldBounds();
+    const Projector project(camera);
+    std::array<dvec3, 8> corner;
+    for (int c = 0; c < 8; ++c)
+        corner[std::size_t(c)] = dvec3((c & 4) ? box.hi.x : box.lo.x, (c & 2) ? box.hi.y : box.lo.y, (c & 1) ? box.hi.z : box.lo.z);
+    for (int a = 0; a < 8; ++a)
+        for (int bit : {1, 2, 4}) {
+            if (a & bit) continue;
+            dvec2 pa, pb;
+            if (project(corner[std::size_t(a)], pa) && project(corner[std::size_t(a | bit)], pb)) spec.lines.push_back({pa, pb});
+        }
+
+    // Ticks on three edges that meet at the south-east corner of the top: along x at y = lo,
+    // along y at x = hi, along z at (hi, lo).
+    auto tick = [&](const dvec3& p, const std::string& text, double dx, double dy) {
+        dvec2 at;
+        if (project(p, at)) spec.labels.push_back({at, text, dx, dy});
+    };
+    if (field.geographic.valid) {
+        const GeoAxes g{field.geographic};
+        const double lon0 = g.lon(box.lo.x), lon1 = g.lon(box.hi.x), lat0 = g.lat(box.lo.y), lat1 = g.lat(box.hi.y);
+        const double d0 = g.depthM(box.hi.z), d1 = g.depthM(box.lo.z);
+        for (double lon : io::niceTicks(lon0, lon1, 6)) tick({g.x(lon), box.lo.y, box.hi.z}, longitudeText(lon), 0.0, 1.4);
+        for (double lat : io::niceTicks(lat0, lat1, 5)) tick({box.hi.x, g.y(lat), box.hi.z}, latitudeText(lat), 2.2, 0.0);
+        for (double d : io::niceTicks(d0, d1, 4)) tick({box.hi.x, box.lo.y, g.z(d)}, number(d) + " m", 2.6, 0.0);
+        sub += "; " + longitudeText(lon0) + "\u2013" + longitudeText(lon1) + ", " + latitudeText(lat0) + "\u2013" +
+               latitudeText(lat1) + ", " + number(std::round(d0)) + "\u2013" + number(std::round(d1)) + " m";
+    } else {
+        for (double x : io::niceTicks(box.lo.x, box.hi.x, 5)) tick({x, box.lo.y, box.hi.z}, "x " + number(x, 4), 0.0, 1.4);
+        for (double y : io::niceTicks(box.lo.y, box.hi.y, 5)) tick({box.hi.x, y, box.hi.z}, "y " + number(y, 4), 2.2, 0.0);
+        for (double z : io::niceTicks(box.lo.z, box.hi.z, 4)) tick({box.hi.x, box.lo.y, z}, "z " + number(z, 4), 2.6, 0.0);
+    }
+    spec.subtitle = sub;
+    return spec;
+}
+
+}  // namespace octrace::cli

@@ -1,0 +1,64 @@
+#pragma once
+/// @file Figure.h
+/// Publication figures: a rendered image (the plot) framed by a title, a colour bar with its
+/// variable and units, and labelled ticks on the data's bounding box, at a print resolution.
+/// Text is set with FreeType in DejaVu Sans (Debian fonts-dejavu-core).
+#include "octrace/render/Frame.h"
+#include "octrace/util/Math.h"
+
+#include <string>
+#include <vector>
+
+namespace octrace::io {
+
+/// Where the parts of a figure lie, in pixels of the figure (row 0 at the top).
+struct FigureLayout {
+    int width = 0, height = 0;                ///< the whole figure
+    int plotX = 0, plotY = 0, plotW = 0, plotH = 0;  ///< the rendered image
+    int barX = 0, barY = 0, barW = 0, barH = 0;      ///< the colour bar (barW = 0: none); top = high end
+    int dpi = 150;
+    double labelPx = 0.0, titlePx = 0.0;      ///< font sizes in pixels (9 pt and 11 pt at dpi)
+};
+
+/// The layout of a figure of width x height pixels at `dpi` (fonts scale with it), with or
+/// without a colour bar. @throws UsageError when the figure is too small for its text
+/// (the plot would be under 16 pixels either way).
+FigureLayout layoutFigure(int width, int height, int dpi, bool colourBar);
+
+/// A label at a point of the plot (pixels of the plot, continuous), e.g. a longitude tick on
+/// the bounding box; `dx`, `dy` move the text's centre away from the point, in label heights.
+struct FigureLabel {
+    dvec2 at;
+    std::string text;
+    double dx = 0.0, dy = 0.0;
+};
+
+/// What a figure shows besides the plot.
+struct FigureSpec {
+    std::string title;        ///< first line at the top (may be empty)
+    std::string subtitle;     ///< second line: variable, iso value, region
+    /// Colour bar: map name (Shading.h), value range and its label ("TEMP (DEG C)"); no colour
+    /// bar when colormap is empty.
+    std::string colormap;
+    double low = 0.0, high = 1.0;
+    std::string barLabel;
+    /// Lines over the plot (the bounding box's edges, plot pixels) and labelled ticks on them.
+    std::vector<std::pair<dvec2, dvec2>> lines;
+    std::vector<FigureLabel> labels;
+};
+
+/// The figure as a Frame (linear RGBA, opaque white paper) of layout's size; the plot's pixels
+/// are copied unchanged into its area except where a line or label is drawn over them, which
+/// `overlay` (when not null) marks with 1 (figure pixels, row-major). Colour bar pixels are
+/// the map's colour for their row (high end at the top). @throws UsageError when plot's size
+/// is not layout's plot size, OutputError when the font cannot be read.
+Frame composeFigure(const Frame& plot, const FigureSpec& spec, const FigureLayout& layout,
+                    std::vector<std::uint8_t>* overlay = nullptr);
+
+/// Up to about `count` round values (1, 2 or 5 times a power of ten) in [lo, hi].
+std::vector<double> niceTicks(double lo, double hi, int count);
+
+/// The font file figures are set in (DejaVu Sans), as found on this system; empty if none.
+std::string figureFontPath();
+
+}  // namespace octrace::io

@@ -1,0 +1,110 @@
+// octrace render --figure: the PNG's pixel size for a print size and dpi (recorded in pHYs),
+// its plot area against the plain render of the same view, and the usage errors.
+#include "CliRunner.h"
+#include "../io/ImageTestSupport.h"
+
+#include <regex>
+
+using namespace octrace::testcli;
+
+namespace {
+std::vector<int> statInts(const std::string& js, const std::string& key) {
+    std::smatch m;
+    std::vector<int> v;
+    if (!std::regex_search(js, m, std::regex("\"" + key + "\": \"?([0-9,]+)\"?"))) return v;
+    std::stringstream s(m[1]);
+    for (std::string part; std::getline(s, part, ',');) v.push_back(std::stoi(part));
+    return v;
+}
+/// pHYs chunk: pixels per unit x, y and the unit byte.
+bool pixelsPerMetre(const std::vector<std::uint8_t>& png, std::uint32_t& ppm) {
+    for (std::size_t i = 8; i + 12 <= png.size();) {
+        const std::uint32_t len = std::uint32_t(png[i]) << 24 | std::uint32_t(png[i + 1]) << 16 | std::uint32_t(png[i + 2]) << 8 | png[i + 3];
+        if (std::string(png.begin() + std::ptrdiff_t(i) + 4, png.begin() + std::ptrdiff_t(i) + 8) == "pHYs" && len == 9) {
+            const std::uint8_t* d = png.data() + i + 8;
+            ppm = std::uint32_t(d[0]) << 24 | std::uint32_t(d[1]) << 16 | std::uint32_t(d[2]) << 8 | d[3];
+            return d[8] == 1;
+        }
+        i += 12 + len;
+    }
+    return false;
+}
+}  // namespace
+
+TEST(FigureCli, HasThePrintSizeTimesTheDpiAndItsPlotIsThePlainRender) {
+    Scratch s;
+    // 80 x 60 mm at 200 dpi: 630 x 472 pixels.
+    Result r = run({"render", "analytic:torus:33", "--iso", "0", "--depth", "6", "--figure", "--title", "Torus",
+                    "--print-size", "80x60mm", "--dpi", "200", "--stats", s.path("f.json"), "-o", s.path("fig.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const std::vector<std::uint8_t> bytes = octrace::test::readBytes(s.path("fig.png"));
+    const auto fig = octrace::test::decodePng(bytes);
+    EXPECT_EQ(fig.width, 630);
+    EXPECT_EQ(fig.height, 472);
+    std::uint32_t ppm = 0;
+    ASSERT_TRUE(pixelsPerMetre(bytes, ppm));
+    EXPECT_EQ(ppm, 7874u);  // 200 / 0.0254
+    const std::string js = slurp(s.path("f.json"));
+    const std::vector<int> plot = statInts(js, "figure_plot");
+    ASSERT_EQ(plot.size(), 4u) << js;
+    // The plain render of the same view at the plot's size.
+    r = run({"render", "analytic:torus:33", "--iso", "0", "--depth", "6", "--size",
+             std::to_string(plot[2]) + "x" + std::to_string(plot[3]), "-o", s.path("plain.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto plain = octrace::test::decodePng(octrace::test::readBytes(s.path("plain.png")));
+    ASSERT_EQ(plain.width, plot[2]);
+    ASSERT_EQ(plain.height, plot[3]);
+    // The bounding box and its labels are drawn over the plot; everywhere else it is the
+    // plain render's pixels (io FigureTest checks the exact overlay).
+    std::size_t same = 0;
+    for (int y = 0; y < plain.height; ++y)
+        for (int x = 0; x < plain.width; ++x) {
+            bool eq = true;
+            for (int c = 0; c < 3; ++c) eq = eq && fig.at(plot[0] + x, plot[1] + y, c) == plain.at(x, y, c);
+            same += eq;
+        }
+    EXPECT_GT(double(same), 0.95 * plain.width * plain.height);
+    EXPECT_LT(double(same), double(plain.width) * plain.height);  // the box is drawn
+}
+
+TEST(FigureCli, LevitusFigureHasAColourBarThatFollowsTheColourMap) {
+    const std::string lev = sharedData("ocean/levitus_climatology.cdf");
+    if (!haveShared("ocean/levitus_climatology.cdf")) GTEST_SKIP() << "shared data absent: " << lev;
+    Scratch s;
+    Result r = run({"render", lev, "--var", "SALT", "--iso", "34.5", "--colour-by", "TEMP", "--colormap", "haline",
+                    "--region", "120,260,0,65", "--depth", "6", "--figure", "--size", "700x500", "--verify", "--stats",
+                    s.path("f.json"), "-o", s.path("fig.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const std::string js = slurp(s.path("f.json"));
+    EXPECT_NE(js.find("\"mismatched_pixels\": 0,"), std::string::npos) << js;
+    const auto fig = octrace::test::decodePng(octrace::test::readBytes(s.path("fig.png")));
+    EXPECT_EQ(fig.width, 700);
+    EXPECT_EQ(fig.height, 500);
+    const std::vector<int> bar = statInts(js, "figure_colour_bar");
+    ASSERT_EQ(bar.size(), 4u) << js;
+    // Row r of the bar is the map's colour at 1 - (r + 0.5) / height, in 8-bit sRGB: the
+    // haline map runs from dark blue (bottom) to pale yellow (top).
+    const int x = bar[0] + bar[2] / 2;
+    EXPECT_LT(fig.at(x, bar[1] + bar[3] - 1, 0), 60);   // bottom: dark
+    EXPECT_GT(fig.at(x, bar[1], 0), 230);               // top: pale
+    auto luma = [&](int y) { return 0.2126 * fig.at(x, y, 0) + 0.7152 * fig.at(x, y, 1) + 0.0722 * fig.at(x, y, 2); };
+    int darkerUpwards = 0;
+    for (int y = bar[1]; y + 1 < bar[1] + bar[3]; ++y) darkerUpwards += luma(y) < luma(y + 1) - 1.5;  // 8-bit rounding
+    EXPECT_EQ(darkerUpwards, 0);  // brighter upwards
+}
+
+TEST(FigureCli, RefusesFigureOptionsThatCannotApply) {
+    Scratch s;
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"--title", "x"}, {"--print-size", "80x60mm"}, {"--figure", "--print-size", "80x60"},
+          {"--figure", "--print-size", "0x60mm"}, {"--figure", "--dpi", "5"}, {"--figure", "--size", "60x40", "--dpi", "600"}}) {
+        std::vector<std::string> all{"render", "analytic:sphere:9", "-o", s.path("x.png")};
+        all.insert(all.end(), args.begin(), args.end());
+        Result r = run(all);
+        EXPECT_EQ(r.code, 2) << args[0] << " " << r.err;
+        EXPECT_FALSE(std::filesystem::exists(s.path("x.png")));
+    }
+    Result r = run({"render", "analytic:sphere:9", "--figure", "-o", s.path("x.exr")});
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("PNG"), std::string::npos) << r.err;
+}
