@@ -352,25 +352,24 @@ void addCityOptions(OptionParser& p, SurfaceArgs& a) {
                a.city.lod = v;
                a.cityGiven = true;
            }});
-    p.add({"dem", "RASTER", "city inputs: a DEM raster (GeoTIFF or any GDAL raster, any CRS) added as terrain (default: none)",
-           [&](const std::string& v) {
-               if (v.empty()) throw UsageError("--dem: empty (give a raster file)");
-               a.city.dem = v;
-               a.cityGiven = true;
-           }});
-    p.add({"texture", "RASTER", "city inputs: a colour raster (orthophoto, map; any GDAL raster, any CRS) draped on the terrain (default: none, colours per object type)",
-           [&](const std::string& v) {
-               if (v.empty()) throw UsageError("--texture: empty (give a raster file)");
-               a.city.texture = v;
-               a.cityGiven = true;
-           }});
-    p.add({"crs", "CRS", "city inputs: projected coordinate reference system to bring everything into, e.g. EPSG:28992 "
-           "(default: the input's own when projected, else the UTM zone of its centre)",
-           [&](const std::string& v) {
-               if (v.empty()) throw UsageError("--crs: empty (give e.g. EPSG:28992)");
-               a.city.crs = v;
-               a.cityGiven = true;
-           }});
+    // A text option of CityRequest: not empty (`what` says what to give), marks a city option given.
+    auto text = [&](const char* name, const char* argument, std::string help, std::string io::CityRequest::*field, const char* what) {
+        p.add({name, argument, std::move(help), [&a, name, field, what](const std::string& v) {
+                   if (v.empty()) throw UsageError(std::string("--") + name + ": empty (give " + what + ")");
+                   a.city.*field = v;
+                   a.cityGiven = true;
+               }});
+    };
+    text("dem", "RASTER", "city inputs: a DEM raster (GeoTIFF or any GDAL raster, any CRS) added as terrain (default: none)",
+         &io::CityRequest::dem, "a raster file");
+    text("texture", "RASTER", "city inputs: a colour raster (orthophoto, map; any GDAL raster, any CRS) draped on the terrain "
+         "(default: none, colours per object type)", &io::CityRequest::texture, "a raster file");
+    text("height-attr", "NAME", "footprint inputs: the attribute holding each building's height (default: the first of height, "
+         "HEIGHT, hauteur, HAUTEUR, measuredHeight)", &io::CityRequest::heightAttr, "an attribute name");
+    text("base-attr", "NAME", "footprint inputs: the attribute holding each building's ground height (default: the lowest --dem "
+         "height under it, else 0)", &io::CityRequest::baseAttr, "an attribute name");
+    text("crs", "CRS", "city inputs: projected coordinate reference system to bring everything into, e.g. EPSG:28992 "
+         "(default: the input's own when projected, else the UTM zone of its centre)", &io::CityRequest::crs, "e.g. EPSG:28992");
 }
 
 void addSeriesOption(OptionParser& p, io::FieldRequest& request) {
@@ -433,7 +432,7 @@ Surface buildSurface(const SurfaceArgs& a) {
     Surface s;
     Timer t;
     if (isOctreeInput(a.input)) {
-        if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem and --texture apply to city inputs, not to the octree file " + a.input);
+        if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem, --texture, --height-attr and --base-attr apply to city inputs, not to the octree file " + a.input);
         loadOctreeSurface(a, budget, s);
         finishSurface(a, s);
         return s;
@@ -442,7 +441,7 @@ Surface buildSurface(const SurfaceArgs& a) {
         buildCitySurface(a, s);
         return s;
     }
-    if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem and --texture apply to city inputs (CityJSON, DEM rasters), not to " + a.input);
+    if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem, --texture, --height-attr and --base-attr apply to city inputs (CityJSON, footprints, DEM rasters), not to " + a.input);
     s.field = loadField(a.input, request, a.depth);
     s.loadMs = t.ms();
     auto [vmin, vmax] = s.field.validRange();

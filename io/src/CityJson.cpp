@@ -179,6 +179,7 @@ CityModel parseCityJson(const std::string& text, const std::string& name, const 
         throw FormatNotSupported(name + ": not CityJSON (no \"type\": \"CityJSON\")");
     Parser p{name, {}, {}, {}};
     p.model.source = name;
+    p.model.format = "CityJSON";
     dvec3 scale(1.0), translate(0.0);
     if (doc.contains("transform")) {
         const json& t = doc["transform"];

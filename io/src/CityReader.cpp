@@ -2,6 +2,7 @@
 
 #include "CityJson.h"
 #include "CityRaster.h"
+#include "FootprintReader.h"
 #include "InputFile.h"
 #include "octrace/util/Error.h"
 
@@ -127,18 +128,31 @@ void toProjectedCrs(CityModel& m, const std::string& requested, const std::strin
 bool isCityInput(const std::string& path) {
     const std::string name = detail::lower(std::filesystem::path(path).filename().string());
     if (name.ends_with(".scene.json")) return false;
-    return extensionOf(path) == ".json" || detail::isRasterExtension(path);
+    return extensionOf(path) == ".json" || detail::isRasterExtension(path) || detail::isFootprintExtension(path);
 }
 
 CityModel readCityModel(const std::string& path, const CityRequest& req) {
     if (!req.crs.empty()) spatialReference(req.crs, "--crs");  // a bad --crs before the long read
     CityModel m;
+    m.source = path;
     if (detail::isRasterExtension(path)) {
-        m.source = path;
+        m.format = "DEM raster (GDAL), terrain";
         detail::addDemTerrain(m, path, req.maxSamples);
+    } else if (detail::isFootprintExtension(path)) {
+        m.format = "building footprints (OGR)";
+        detail::addFootprints(m, path, req);
     } else {
-        m = detail::parseCityJson(readAll(path), path, req.lod);
+        const std::string text = readAll(path);
+        try {
+            m = detail::parseCityJson(text, path, req.lod);
+        } catch (const FormatNotSupported&) {
+            if (text.find("\"FeatureCollection\"") == std::string::npos) throw;
+            m.format = "building footprints (OGR)";
+            detail::addFootprints(m, path, req);  // GeoJSON named .json
+        }
     }
+    if (m.format != "building footprints (OGR)" && (!req.heightAttr.empty() || !req.baseAttr.empty()))
+        throw InputError(path + ": --height-attr and --base-attr apply to building footprints, not to this " + m.format + " input");
     toProjectedCrs(m, req.crs, path);
     if (!req.dem.empty()) {
         CityModel dem;
@@ -167,7 +181,7 @@ std::string describeCityInput(const std::string& path, const CityRequest& req) {
     const Box3 b = m.bounds();
     std::ostringstream s;
     s.precision(10);
-    s << path << "\n  format: " << (detail::isRasterExtension(path) ? "DEM raster (GDAL), terrain" : "CityJSON") << "\n  crs: " << (m.crs.empty() ? "(none)" : m.crs) << "\n  objects: " << m.objects.size()
+    s << path << "\n  format: " << m.format << "\n  crs: " << (m.crs.empty() ? "(none)" : m.crs) << "\n  objects: " << m.objects.size()
       << " (" << m.objectCount(CityRole::Solid) << " solids, " << m.objectCount(CityRole::Terrain) << " terrain)\n";
     for (const auto& [type, n] : types) s << "    " << type << ": " << n << "\n";
     s << "  triangles: " << m.triangles.size() << "\n  world bounds: [" << b.lo.x << ", " << b.hi.x << "] x [" << b.lo.y

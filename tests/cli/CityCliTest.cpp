@@ -46,7 +46,7 @@ TEST(CliCity, OptionsThatDoNotApplyAndBadValuesAreRefused) {
     EXPECT_NE(r.err.find("--lod-select: expected a level of detail"), std::string::npos) << r.err;
     r = run({"render", "analytic:sphere:17", "--crs", "EPSG:28992", "-o", s.path("a.png")});
     EXPECT_EQ(r.code, 2);
-    EXPECT_NE(r.err.find("--lod-select, --crs, --dem and --texture apply to city inputs"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--lod-select, --crs, --dem, --texture, --height-attr and --base-attr apply to city inputs"), std::string::npos) << r.err;
     r = run({"render", kCube, "--crs", "EPSG:999999", "-o", s.path("a.png")});
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("unknown coordinate reference system 'EPSG:999999'"), std::string::npos) << r.err;
@@ -89,4 +89,21 @@ TEST(CliCity, RendersADemWithATextureInAnotherCrs) {
     r = run({"render", sharedData("city/lux_elev_srtm.tif"), "--texture", kCube, "-o", s.path("bad.png")});
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("GDAL cannot open it as a raster"), std::string::npos) << r.err;
+}
+
+TEST(CliCity, RendersTheLyonFootprintsExactlyAsTheReference) {
+    if (!haveShared("city/buildings_lyon1.geojson")) GTEST_SKIP() << "shared data absent: " << sharedData("city/buildings_lyon1.geojson");
+    Scratch s;
+    Result r = run({"render", sharedData("city/buildings_lyon1.geojson"), "--height-attr", "HAUTEUR", "--base-attr", "Z_MIN_SOL",
+                    "--depth", "8", "--size", "240x180", "--verify", "--stats", s.path("st.json"), "-o", s.path("lyon.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("5 footprints without a base (Z_MIN_SOL missing), left out"), std::string::npos) << r.err;
+    const std::string js = slurp(s.path("st.json"));
+    EXPECT_NE(js.find("\"mismatched_pixels\": 0,"), std::string::npos) << js;
+    r = run({"render", sharedData("city/buildings_lyon1.geojson"), "--height-attr", "ETAGES", "-o", s.path("no.png")});
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("no attribute 'ETAGES' (--height-attr)"), std::string::npos) << r.err;
+    r = run({"render", kCube, "--height-attr", "h", "-o", s.path("no.png")});
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("--height-attr and --base-attr apply to building footprints"), std::string::npos) << r.err;
 }

@@ -2,8 +2,8 @@
 // every type, levels of detail), the polygon triangulation, the watertightness check and the
 // voxelizer at a small depth. The input is the bytes of a .city.json file.
 #include "CityJson.h"
+#include "CityFuzz.h"
 #include "FuzzSupport.h"
-#include "octrace/build/CityVoxelizer.h"
 #include "octrace/util/Error.h"
 
 #include <string>
@@ -17,12 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::string text(reinterpret_cast<const char*>(data), size);
     for (const char* lod : {"", "1"}) {
         try {
-            const octrace::CityModel m = octrace::io::detail::parseCityJson(text, "fuzz.city.json", lod);
-            octrace::CityBuildOptions o;
-            o.depth = 5;
-            o.threads = 1;
-            octrace::Octree t = octrace::voxelizeCity(m, o);
-            t.validate();
+            octrace::fuzz::voxelizeSmall(octrace::io::detail::parseCityJson(text, "fuzz.city.json", lod));
         } catch (const octrace::Error&) {
             // A clean refusal: what we want for broken input.
         }

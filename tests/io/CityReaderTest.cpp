@@ -11,6 +11,7 @@
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
+#include <algorithm>
 #include <fstream>
 
 using namespace octrace;
@@ -168,4 +169,111 @@ TEST(CityReader, DrapesATextureInAnotherCrsOnTheTerrain) {
     writeTwoColourTiff(tif, 100.0, 101.0, 10.0, 11.0);  // somewhere else
     r.texture = tif;
     EXPECT_THROW_WITH(readCityModel(path, r), InputError, "the texture does not cover the scene");
+}
+
+namespace {
+void writeText(const std::string& path, const std::string& text) {
+    std::ofstream out(path);
+    out << text;
+}
+
+/// Three footprints in Amersfoort / RD New: a 10 m square (height 10, base 5), one without a
+/// height, one self-intersecting (a bow tie).
+const char* kFootprints = R"({"type": "FeatureCollection",
+ "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::28992"}},
+ "features": [
+  {"type": "Feature", "properties": {"ID": "good", "h": 10.0, "ground": 5.0},
+   "geometry": {"type": "Polygon", "coordinates": [[[155000, 463000], [155010, 463000], [155010, 463010], [155000, 463010], [155000, 463000]]]}},
+  {"type": "Feature", "properties": {"ID": "noheight", "h": null, "ground": 5.0},
+   "geometry": {"type": "Polygon", "coordinates": [[[155020, 463000], [155030, 463000], [155030, 463010], [155020, 463000]]]}},
+  {"type": "Feature", "properties": {"ID": "bowtie", "h": 8.0, "ground": 5.0},
+   "geometry": {"type": "MultiPolygon", "coordinates": [[[[155040, 463000], [155050, 463010], [155050, 463000], [155040, 463010], [155040, 463000]]]]}}
+ ]})";
+}  // namespace
+
+TEST(CityReader, FootprintsBecomePrismsAndTheBrokenOnesAreSaidAndLeftOut) {
+    test::TempDir dir;
+    const std::string path = dir.file("f.geojson");
+    writeText(path, kFootprints);
+    CityRequest r;
+    r.heightAttr = "h";
+    r.baseAttr = "ground";
+    const CityModel m = readCityModel(path, r);
+    EXPECT_EQ(m.crs, "EPSG:28992");
+    ASSERT_EQ(m.objects.size(), 1u);
+    EXPECT_EQ(m.objects[0].id, "good");
+    const Box3 b = m.bounds();
+    EXPECT_EQ(b.lo, dvec3(155000, 463000, 5));
+    EXPECT_EQ(b.hi, dvec3(155010, 463010, 15));
+    ASSERT_EQ(m.notes.size(), 2u);
+    EXPECT_NE(m.notes[0].find("1 footprint polygons self-intersecting or without area, left out (bowtie)"), std::string::npos) << m.notes[0];
+    EXPECT_NE(m.notes[1].find("1 footprints without a height (h missing or not positive), left out (noheight)"), std::string::npos) << m.notes[1];
+    // A .json GeoJSON goes to the same reader; no height attribute is an error naming the fields.
+    const std::string json = dir.file("f.json");
+    writeText(json, kFootprints);
+    EXPECT_THROW_WITH(readCityModel(json), InputError, "no height attribute found; give --height-attr (its attributes: ID, h, ground)");
+    r.baseAttr = "floor";
+    EXPECT_THROW_WITH(readCityModel(json, r), InputError, "no attribute 'floor' (--base-attr)");
+}
+
+TEST(CityReader, AFootprintFileInTheWrongCrsIsAClearError) {
+    test::TempDir dir;
+    const std::string path = dir.file("wrong.geojson");
+    std::string text = kFootprints;
+    text.replace(text.find("EPSG::28992"), 11, "EPSG::4326");  // metres taken as degrees
+    writeText(path, text);
+    CityRequest r;
+    r.heightAttr = "h";
+    EXPECT_THROW_WITH(readCityModel(path, r), InputError, "no coordinate could be transformed from EPSG:4326 to EPSG:");
+}
+
+TEST(CityReader, FootprintsStandOnTheDemWithoutABaseAttribute) {
+    OCTRACE_SHARED_FILE_OR_SKIP(dem, "city/lux_elev_srtm.tif");
+    test::TempDir dir;
+    const std::string path = dir.file("lux.geojson");
+    // A 0.001 degree square in Luxembourg City, 20 m high.
+    writeText(path, R"({"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {"height": 20},
+        "geometry": {"type": "Polygon", "coordinates": [[[6.130, 49.610], [6.131, 49.610], [6.131, 49.611], [6.130, 49.611], [6.130, 49.610]]]}}]})");
+    CityRequest r;
+    r.dem = dem;
+    const CityModel m = readCityModel(path, r);
+    EXPECT_EQ(m.crs, "EPSG:32632");
+    ASSERT_EQ(m.objects.size(), 2u);  // the building and the DEM's terrain
+    Box3 building;
+    building.lo = dvec3(1e300);
+    building.hi = -building.lo;
+    for (const auto& t : m.triangles)
+        if (m.objects[t.object].type == "Building")
+            for (auto i : t.v) {
+                building.lo = glm::min(building.lo, m.vertices[i]);
+                building.hi = glm::max(building.hi, m.vertices[i]);
+            }
+    EXPECT_GT(building.lo.z, 200.0);  // Luxembourg City's plateau, about 300 m
+    EXPECT_LT(building.lo.z, 420.0);
+    EXPECT_NEAR(building.hi.z - building.lo.z, 20.0, 1e-9);
+}
+
+TEST(CityReader, ReadsTheLyonFootprintsWithTheirGroundAndHeight) {
+    OCTRACE_SHARED_FILE_OR_SKIP(path, "city/buildings_lyon1.geojson");
+    CityRequest r;
+    r.heightAttr = "HAUTEUR";
+    r.baseAttr = "Z_MIN_SOL";
+    const CityModel m = readCityModel(path, r);
+    EXPECT_EQ(m.crs, "EPSG:3946");
+    EXPECT_EQ(m.objects.size(), 2571u);  // 2,576 less 5 without Z_MIN_SOL, said in a note
+    ASSERT_EQ(m.notes.size(), 1u);
+    EXPECT_NE(m.notes[0].find("5 footprints without a base (Z_MIN_SOL missing)"), std::string::npos);
+    // BATIMENT0000000240876972: ground 200.6 m, height 9.2 m.
+    const auto it = std::find_if(m.objects.begin(), m.objects.end(), [](const CityObject& o) { return o.id == "BATIMENT0000000240876972"; });
+    ASSERT_NE(it, m.objects.end());
+    const std::uint32_t index = std::uint32_t(it - m.objects.begin());
+    double lo = 1e300, hi = -1e300;
+    for (const auto& t : m.triangles)
+        if (t.object == index)
+            for (auto i : t.v) {
+                lo = std::min(lo, m.vertices[i].z);
+                hi = std::max(hi, m.vertices[i].z);
+            }
+    EXPECT_NEAR(lo, 200.6, 1e-9);
+    EXPECT_NEAR(hi, 209.8, 1e-9);
 }

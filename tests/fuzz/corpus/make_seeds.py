@@ -308,4 +308,20 @@ CLI_SPHERES = {
 }
 for name, args in CLI_SPHERES.items():
     out("fuzz_cli_options", name, b"\0".join(a.encode() for a in args))
+# Footprints (GeoJSON through OGR): a square with height and base, a multipolygon with a hole,
+# features without height, a bow tie, a point, a CRS member.
+FOOT = "fuzz_footprints"
+FOOT_SEEDS = {
+    "square.geojson": '{"type":"FeatureCollection","features":[{"type":"Feature","properties":{"height":10,"base":5},'
+                      '"geometry":{"type":"Polygon","coordinates":[[[0,0],[10,0],[10,10],[0,10],[0,0]]]}}]}',
+    "hole.geojson": '{"type":"FeatureCollection","crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::3946"}},'
+                    '"features":[{"type":"Feature","properties":{"height":"12.5"},"geometry":{"type":"MultiPolygon","coordinates":'
+                    '[[[[0,0,3],[20,0,3],[20,20,3],[0,20,3],[0,0,3]],[[5,5],[5,15],[15,15],[15,5],[5,5]]],[[[30,0],[40,0],[35,8],[30,0]]]]}}]}',
+    "broken.geojson": '{"type":"FeatureCollection","features":[{"type":"Feature","properties":{"height":null},"geometry":'
+                      '{"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1],[0,0]]]}},{"type":"Feature","properties":{"height":4},'
+                      '"geometry":{"type":"Polygon","coordinates":[[[0,0],[10,10],[10,0],[0,10],[0,0]]]}},{"type":"Feature",'
+                      '"properties":{"height":4},"geometry":{"type":"Point","coordinates":[1,2]}},{"type":"Feature","properties":{},"geometry":null}]}',
+}
+for name, text in FOOT_SEEDS.items():
+    out(FOOT, name, text.encode())
 print("seeds written under", HERE)

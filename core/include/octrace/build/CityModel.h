@@ -48,6 +48,7 @@ struct CityModel {
     CityTexture texture;       ///< draped on terrain triangles where it has data; may be empty
     std::string crs;           ///< e.g. "EPSG:7415"; empty: unknown
     std::string source;        ///< the file(s) it was read from, for messages
+    std::string format;        ///< what the reader read, e.g. "CityJSON", for info
     /// What the readers repaired or left out (an open shell, a self-intersecting polygon, a
     /// footprint without height), one line each, for the log and `octrace info`.
     std::vector<std::string> notes;

@@ -1,7 +1,8 @@
 #pragma once
 /// @file CityReader.h
 /// One entry point for city inputs (terrain and buildings), read into a CityModel in one
-/// projected CRS: CityJSON (.json, .city.json), a DEM raster through GDAL (.tif, .tiff, .dem,
+/// projected CRS: CityJSON (.json, .city.json), building footprints with heights through OGR
+/// (.geojson, .shp, .gpkg, .fgb, or a .json GeoJSON FeatureCollection), a DEM raster through GDAL (.tif, .tiff, .dem,
 /// .asc, .img, .hgt, .bil, .vrt) as terrain; optionally a second DEM under it and a colour
 /// raster draped on the terrain.
 #include "octrace/build/CityModel.h"
@@ -21,12 +22,16 @@ struct CityRequest {
     std::string dem;
     /// A colour raster (any GDAL raster, any CRS) draped on the terrain; empty: none.
     std::string texture;
+    /// Footprints: the attribute holding a building's height (default: the first of height,
+    /// HEIGHT, hauteur, HAUTEUR, measuredHeight present), and the one holding its base (ground
+    /// height; default: the lowest DEM height under its corners with `dem`, else 0).
+    std::string heightAttr, baseAttr;
     /// Most DEM samples and texture pixels read per edge (the octree resolves no more).
     int maxSamples = 4097;
 };
 
-/// Whether `path` is read as a city input: by its extension (.json but not .scene.json, or
-/// a DEM raster's). Does not open the file.
+/// Whether `path` is read as a city input: by its extension (.json but not .scene.json, a
+/// footprint format's or a DEM raster's). Does not open the file.
 bool isCityInput(const std::string& path);
 
 /// Reads `path` into a model in the request's CRS. What cannot be used (an open shell, a
