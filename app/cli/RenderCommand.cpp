@@ -62,7 +62,7 @@ struct RenderArgs : SurfaceArgs {
 };
 
 OptionParser makeParser(RenderArgs& a) {
-    OptionParser p("render", "octrace render INPUT -o OUT.(png|exr) [options]");
+    OptionParser p("render", "octrace render INPUT -o OUT.(png|exr|tif) [options]");
     p.add({"o", "FILE", "output image; format from the extension: " + joinNames(io::imageExtensions()) + " (required)",
            [&](const std::string& v) { a.output = v; }});
     addSurfaceOptions(p, a);
@@ -387,7 +387,7 @@ int renderObjectOctree(const RenderArgs& a) {
 
 int runRender(const std::vector<std::string>& args) {
     RenderArgs a;
-    if (!parseCommandLine(makeParser(a), args, a, a.output, "an output image: -o OUT.png or -o OUT.exr")) return 0;
+    if (!parseCommandLine(makeParser(a), args, a, a.output, "an output image: -o OUT.png, -o OUT.exr or -o OUT.tif")) return 0;
     {
         // Check the output extension before the long work.
         std::string ext = a.output.substr(a.output.find_last_of('.') == std::string::npos ? a.output.size() : a.output.find_last_of('.'));

@@ -167,6 +167,8 @@ ScalarField loadColourBy(const SurfaceArgs& a, const io::FieldRequest& request, 
 
 }  // namespace
 
+ValueWindow displayWindow(const std::string& text) { return parseWindow(text); }
+
 std::string joinNames(const std::vector<std::string>& names) {
     std::string s;
     for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
@@ -424,13 +426,10 @@ Surface buildSurface(const SurfaceArgs& a) {
         throw UsageError("--inside applies to --form volume (or --cut)");
     if (a.clip && a.cuts.empty()) throw UsageError("--clip needs a --cut solid");
     const std::uint64_t budget = memoryBudget(a);
-    io::FieldRequest request = a.request;
-    request.memoryBudget = budget;
     if (a.window.valid() && (a.colourGiven || !a.colormap.empty()))
         throw UsageError("--window " + a.windowName + " and " + (a.colourGiven ? "--colour" : "--colormap") +
                          " both colour the surface: give one");
     Surface s;
-    Timer t;
     if (isOctreeInput(a.input)) {
         if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem, --texture, --height-attr and --base-attr apply to city inputs, not to the octree file " + a.input);
         loadOctreeSurface(a, budget, s);
@@ -442,8 +441,25 @@ Surface buildSurface(const SurfaceArgs& a) {
         return s;
     }
     if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem, --texture, --height-attr and --base-attr apply to city inputs (CityJSON, footprints, DEM rasters), not to " + a.input);
+    readSurfaceField(a, s);
+    BuildHooks terminal;
+    terminal.progress = progressPrinter(a.quiet);
+    terminal.endLine = true;
+    buildFromField(a, s, terminal);
+    return s;
+}
+
+void readSurfaceField(const SurfaceArgs& a, Surface& s) {
+    io::FieldRequest request = a.request;
+    request.memoryBudget = memoryBudget(a);
+    Timer t;
     s.field = loadField(a.input, request, a.depth);
     s.loadMs = t.ms();
+}
+
+void buildFromField(const SurfaceArgs& a, Surface& s, const BuildHooks& hooks) {
+    io::FieldRequest request = a.request;
+    request.memoryBudget = memoryBudget(a);
     auto [vmin, vmax] = s.field.validRange();
     if (!a.isoPreset.empty()) requireHounsfield(s.field, a.input, "--iso " + a.isoPreset);
     s.iso = !a.isoPreset.empty() ? *ctIsoPreset(a.isoPreset) : a.iso ? *a.iso : 0.5 * (double(vmin) + double(vmax));
@@ -463,15 +479,16 @@ Surface buildSurface(const SurfaceArgs& a) {
     bo.depth = a.depth;
     bo.iso = s.iso;
     bo.threads = a.threads;
-    bo.progress = progressPrinter(a.quiet);
-    bo.memoryBudget = budget;
+    bo.progress = hooks.progress;
+    bo.cancelled = hooks.cancelled;
+    bo.memoryBudget = request.memoryBudget;
     bo.form = a.cuts.empty() ? a.form : OctreeForm::Volume;
     bo.insideBelow = a.insideBelow;
     chooseWindow(a, s);
     bo.voxelValues = s.window.valid();
     s.tree = buildOctree(s.field, bo, &s.report);
     s.tree.source = sourceDescription(a.input, s.field);
-    if (bo.progress) std::fputs("\n", stderr);
+    if (hooks.progress && hooks.endLine) std::fputs("\n", stderr);
     finishSurface(a, s);
     if (colourBy) {
         s.tree.voxelValues = sampleAtVoxels(s.tree, *colourBy, a.threads);
@@ -491,7 +508,6 @@ Surface buildSurface(const SurfaceArgs& a) {
         s.report.boundaryVoxels = s.tree.voxels.size();
         s.report.nodes = s.tree.nodes.size();
     }
-    return s;
 }
 
 void applyColour(const SurfaceArgs& a, const Surface& s, RenderSettings& settings) {

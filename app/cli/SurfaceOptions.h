@@ -15,6 +15,7 @@
 #include "octrace/render/RenderSettings.h"
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -58,6 +59,9 @@ struct SurfaceArgs {
     enum class Lighting { Auto, Baked, Dynamic } lighting = Lighting::Auto;  // --lighting (render)
 };
 
+/// The window --window TEXT sets: a CT preset, "C,W", or "none" (an invalid window, which
+/// stops the file's own). Throws UsageError as --window does.
+ValueWindow displayWindow(const std::string& text);
 /// "a, b, c".
 std::string joinNames(const std::vector<std::string>& names);
 /// sRGB display colour (as a user picks it) -> linear, alpha unchanged.
@@ -137,6 +141,20 @@ struct Surface {
 /// at the voxels, and --floor merges in the sea floor and land. Throws as loadField(),
 /// buildOctree(), csg() and bakeLighting().
 Surface buildSurface(const SurfaceArgs& a);
+
+/// What an interactive caller (the studio) gives a build: progress (instead of the terminal's)
+/// and cancellation (BuildOptions::cancelled: CancelledError).
+struct BuildHooks {
+    std::function<void(double)> progress;
+    std::function<bool()> cancelled;
+    bool endLine = false;  ///< progress prints on a terminal line: end it after the build
+};
+/// buildSurface's two steps for a field input (not an octree file or a city), for callers that
+/// build again and again from one read: readSurfaceField reads a.input into s.field (s.loadMs);
+/// buildFromField does the rest from s.field (iso value or preset, display window, octree in
+/// a.form, cuts, shell, baked lighting, --colour-by, --floor) with `hooks`. Throw as buildSurface.
+void readSurfaceField(const SurfaceArgs& a, Surface& s);
+void buildFromField(const SurfaceArgs& a, Surface& s, const BuildHooks& hooks = {});
 
 /// The colour options as RenderSettings (linear RGB): colour, colour map (by default, with
 /// voxel values of a second variable, the one for that variable: defaultColormap in

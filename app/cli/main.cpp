@@ -19,7 +19,7 @@ const char* kTopHelp =
     "usage: octrace COMMAND [options]\n"
     "\n"
     "commands:\n"
-    "  render INPUT -o OUT   build the isosurface octree of a field and render it to OUT (.png, .exr)\n"
+    "  render INPUT -o OUT   build the isosurface octree of a field and render it to OUT (.png, .exr, .tif)\n"
     "  export INPUT -o OUT   build the isosurface octree and write it as surfels to a point cloud (.ply)\n"
     "  build INPUT -o OUT    build the octree and write it to an octree file (.oct), an INPUT of every command\n"
     "  csg A OP B -o OUT     union, intersection or difference of fields, volume octree files and solids (.oct)\n"

@@ -67,6 +67,31 @@ std::uint8_t alphaTo8(float alpha) {
     return std::uint8_t(std::floor(double(alpha) * 255.0 + 0.5));
 }
 
+bool needsAlphaChannel(const Frame& frame, bool forced) {
+    if (forced) return true;
+    for (const vec4& c : frame.rgba)
+        if (!(c.a >= 1.0f)) return true;  // NaN alpha counts as not opaque
+    return false;
+}
+
+std::vector<std::uint8_t> quantizeSrgb8(const Frame& frame, int channels) {
+    if (channels != 3 && channels != 4) throw UsageError("quantizeSrgb8: 3 or 4 channels, not " + std::to_string(channels));
+    if (frame.width < 0 || frame.height < 0 ||
+        frame.rgba.size() != std::size_t(std::max(frame.width, 0)) * std::size_t(std::max(frame.height, 0)))
+        throw UsageError("quantizeSrgb8: the frame holds " + std::to_string(frame.rgba.size()) + " colour values for " +
+                         std::to_string(frame.width) + "x" + std::to_string(frame.height) + " pixels");
+    std::vector<std::uint8_t> out(frame.rgba.size() * std::size_t(channels));
+    std::uint8_t* px = out.data();
+    for (const vec4& c : frame.rgba) {
+        px[0] = linearToSrgb8(c.r);
+        px[1] = linearToSrgb8(c.g);
+        px[2] = linearToSrgb8(c.b);
+        if (channels == 4) px[3] = alphaTo8(c.a);
+        px += channels;
+    }
+    return out;
+}
+
 ImageDifference compareImages(const Frame& a, const Frame& b) {
     checkFrame(a, "a");
     checkFrame(b, "b");

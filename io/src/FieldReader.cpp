@@ -71,6 +71,14 @@ std::optional<VolumeReader::Format> volumeFormat(FileKind kind) {
 
 }  // namespace
 
+InputChoices listInputChoices(const std::string& path) {
+    InputChoices c;
+    const FileKind kind = kindOf(path);
+    if (kind == FileKind::NetCdf) c.variables = NetcdfReader::volumeVariables(path);
+    if (kind == FileKind::Dicom) c.series = DicomReader::listSeries(path);
+    return c;
+}
+
 ScalarField readField(const std::string& path, const FieldRequest& req) {
     ScalarField f;
     const FileKind kind = kindOf(path);

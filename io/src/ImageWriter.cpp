@@ -2,6 +2,7 @@
 
 #include "octrace/io/ExrWriter.h"
 #include "octrace/io/PngWriter.h"
+#include "octrace/io/TiffWriter.h"
 #include "octrace/util/Error.h"
 
 #include <filesystem>
@@ -23,13 +24,14 @@ std::string lowerAscii(std::string s) {
 
 }  // namespace
 
-std::vector<std::string> imageExtensions() { return {".png", ".exr"}; }
+std::vector<std::string> imageExtensions() { return {".png", ".exr", ".tif", ".tiff"}; }
 
 void writeImage(const Frame& frame, const std::string& path, const ImageWriteOptions& options) {
     const std::string ext = std::filesystem::path(path).extension().string();
     const std::string lower = lowerAscii(ext);
     if (lower == ".png") return PngWriter::write(frame, path, options);
     if (lower == ".exr") return ExrWriter::write(frame, path, options);
+    if (lower == ".tif" || lower == ".tiff") return TiffWriter::write(frame, path, options);
     if (ext.empty())
         throw UsageError("output '" + path + "' has no file extension to choose the image format (supported: " +
                          supportedList() + ")");

@@ -304,4 +304,12 @@ std::string NetcdfReader::describe(const std::string& path, const FieldRequest& 
     return describeNetcdf(path, openNetcdf(path), req);
 }
 
+std::vector<std::string> NetcdfReader::volumeVariables(const std::string& path) {
+    openNetcdf(path);
+    NetcdfFile file(path);
+    std::vector<std::string> names;
+    for (const auto* v : volumes(file)) names.push_back(v->shortName);
+    return names;
+}
+
 }  // namespace octrace::io

@@ -93,27 +93,12 @@ bool encodeRows(png_bytep* rows, std::uint32_t width, std::uint32_t height, int 
 std::vector<std::uint8_t> PngWriter::encode(const Frame& frame, const ImageWriteOptions& options) {
     detail::checkFrameForWriting(frame, "PNG", false);
 
-    bool withAlpha = options.alpha;
-    for (std::size_t i = 0; i < frame.rgba.size() && !withAlpha; ++i)
-        withAlpha = !(frame.rgba[i].a >= 1.0f);  // NaN alpha counts as not opaque
-    const int channels = withAlpha ? 4 : 3;
-
+    const int channels = needsAlphaChannel(frame, options.alpha) ? 4 : 3;
     const std::size_t w = std::size_t(frame.width);
     const std::size_t h = std::size_t(frame.height);
-    std::vector<std::uint8_t> pixels(w * h * std::size_t(channels));
+    std::vector<std::uint8_t> pixels = quantizeSrgb8(frame, channels);
     std::vector<png_bytep> rows(h);
-    for (std::size_t y = 0; y < h; ++y) {
-        std::uint8_t* row = pixels.data() + y * w * std::size_t(channels);
-        rows[y] = row;
-        const vec4* src = frame.rgba.data() + y * w;
-        for (std::size_t x = 0; x < w; ++x) {
-            std::uint8_t* px = row + x * std::size_t(channels);
-            px[0] = linearToSrgb8(src[x].r);
-            px[1] = linearToSrgb8(src[x].g);
-            px[2] = linearToSrgb8(src[x].b);
-            if (withAlpha) px[3] = alphaTo8(src[x].a);
-        }
-    }
+    for (std::size_t y = 0; y < h; ++y) rows[y] = pixels.data() + y * w * std::size_t(channels);
 
     std::vector<std::uint8_t> out;
     out.reserve(pixels.size() / 2 + 1024);

@@ -144,3 +144,25 @@ TEST(FieldReader, DescribeInputCoversNetcdfAndNrrd) {
     std::string nrrd = io::describeInput(dir.file("blob.nrrd"));
     EXPECT_NE(nrrd.find("blob (12 x 3 x 2): valid range 1.5 .. 1.5"), std::string::npos) << nrrd;
 }
+
+TEST(FieldReader, ListsTheChoicesOfAnInput) {
+    // NetCDF: the variables with three dimensions longer than 1 (a 4-D one counts), not the axes.
+    EXPECT_EQ(io::listInputChoices(test::testData("netcdf/dateline_cf.nc")).variables, std::vector<std::string>{"temp"});
+    EXPECT_EQ(io::listInputChoices(test::testData("netcdf/dateline_cf_nc4.nc")).variables, std::vector<std::string>{"temp"});
+    EXPECT_EQ(io::listInputChoices(test::testData("netcdf/packed_4d.nc")).variables, std::vector<std::string>{"t"});
+    EXPECT_TRUE(io::listInputChoices(test::testData("netcdf/packed_4d.nc")).series.empty());
+    // A volume format holds one field: nothing to choose.
+    test::TempDir dir;
+    io::NrrdWriter::write(smallField(), dir.file("blob.nrrd"));
+    const io::InputChoices nrrd = io::listInputChoices(dir.file("blob.nrrd"));
+    EXPECT_TRUE(nrrd.variables.empty());
+    EXPECT_TRUE(nrrd.series.empty());
+    std::string missing = test::testData("invalid/does_not_exist.nc");
+    EXPECT_THROW(io::listInputChoices(missing), InputError);
+}
+
+TEST(FieldReader, ListsTheSeriesOfADicomFolder) {
+    const io::InputChoices c = io::listInputChoices(test::testData("dicom/two_series"));
+    EXPECT_EQ(c.series.size(), 2u);
+    EXPECT_TRUE(c.variables.empty());
+}

@@ -41,7 +41,7 @@ std::vector<std::uint8_t> head(const std::vector<std::uint8_t>& bytes, std::size
 }  // namespace
 
 TEST(ImageWriter, ListsTheSupportedExtensions) {
-    EXPECT_EQ(imageExtensions(), (std::vector<std::string>{".png", ".exr"}));
+    EXPECT_EQ(imageExtensions(), (std::vector<std::string>{".png", ".exr", ".tif", ".tiff"}));
 }
 
 TEST(ImageWriter, ChoosesTheFormatByExtensionIgnoringCase) {

@@ -324,4 +324,30 @@ FOOT_SEEDS = {
 }
 for name, text in FOOT_SEEDS.items():
     out(FOOT, name, text.encode())
+
+
+# ---------------------------------------------------------------- studio sessions (fuzz_session)
+def session_seeds():
+    """fuzz_session: studio session files (app/studio/Session.cpp), valid and broken."""
+    full = b"""{
+    "camera": {"fov": 30, "look_at": [0, 0, 0], "position": [1.5, -2.5, 2], "up": [0, 0, 1]},
+    "export": {"height": 1200, "transparent": false, "width": 1600},
+    "input": {"path": "data_samples/torus.nrrd", "series": "", "time": "", "variable": ""},
+    "octrace_studio_session": 1,
+    "renderers": {"main": "area+colour", "second": "direct", "split": true},
+    "shading": {"background": [1, 1, 1, 1], "colormap": "viridis", "colour": [0.85, 0.62, 0.35], "light": [0.4, 0.6, 1]},
+    "surface": {"depth": 8, "iso": -0.4}
+}
+"""
+    out("fuzz_session", "full.json", full)
+    out("fuzz_session", "minimal.json", b'{"octrace_studio_session": 1}')
+    out("fuzz_session", "analytic.json", b'{"octrace_studio_session": 1, "input": {"path": "analytic:gyroid:33", "time": "1990-07-15"}, "surface": {"iso": null}}')
+    out("fuzz_session", "ocean.json", b'{"octrace_studio_session": 1, "input": {"path": "/data/ocean/levitus.cdf", "variable": "TEMP", "time": "3"}, "surface": {"iso": 10.5, "depth": 9}}')
+    out("fuzz_session", "broken_types.json", b'{"octrace_studio_session": 1, "camera": {"position": [1, 2], "up": "z"}, "export": {"width": 1e9}}')
+    out("fuzz_session", "version2.json", b'{"octrace_studio_session": 2}')
+    out("fuzz_session", "truncated.json", full[:200])
+
+
+session_seeds()
 print("seeds written under", HERE)
+

@@ -8,6 +8,7 @@
 #include "octrace/render/Frame.h"
 
 #include <cstdint>
+#include <vector>
 
 namespace octrace {
 
@@ -23,6 +24,16 @@ float srgb8ToLinear(std::uint8_t code);
 /// Straight alpha (or any other linear [0,1] quantity) -> 0..255, rounded to nearest, clamped;
 /// NaN gives 0. Alpha is never sRGB-encoded.
 std::uint8_t alphaTo8(float alpha);
+
+/// Whether an 8-bit image of `frame` carries an alpha channel: when `forced`, or when some
+/// pixel's alpha is below 1 (NaN counts as below), so that opaque renders stay RGB.
+bool needsAlphaChannel(const Frame& frame, bool forced);
+
+/// The frame's colour as 8-bit rows, top row first, `channels` (3 or 4) bytes a pixel:
+/// R, G, B through linearToSrgb8 and, with 4, A through alphaTo8 — what the PNG and TIFF files
+/// hold and what the studio shows. Throws UsageError for another channel count or an rgba
+/// buffer that does not hold width·height pixels.
+std::vector<std::uint8_t> quantizeSrgb8(const Frame& frame, int channels);
 
 /// How far apart two images are once both are quantized as an 8-bit sRGB PNG would be
 /// (RGB through linearToSrgb8, A through alphaTo8).

@@ -2,10 +2,12 @@
 /// @file FieldReader.h
 /// One entry point for scalar-field inputs: picks the reader from the file's content.
 #include "octrace/build/ScalarField.h"
+#include "octrace/io/DicomReader.h"
 #include "octrace/io/FieldRequest.h"
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace octrace::io {
 
@@ -28,6 +30,16 @@ ScalarField readField(const std::string& path, const FieldRequest& req = {});
 /// one `req.series` chooses. What would need more than `req.memoryBudget` bytes (0 = no
 /// limit) to read is left out of the text (NetCDF) or refused (NRRD, LimitError). Only
 /// `series` and `memoryBudget` of the request are used. Throws as readField().
+/// What a chooser (the studio's) can offer for an input: the 3-D variables of a NetCDF file
+/// (NetcdfReader::volumeVariables) and the image series of a DICOM input (listSeries); both
+/// empty for the formats that hold one field. Throws as readField() for an input that cannot
+/// be opened.
+struct InputChoices {
+    std::vector<std::string> variables;
+    std::vector<DicomSeriesInfo> series;
+};
+InputChoices listInputChoices(const std::string& path);
+
 std::string describeInput(const std::string& path, const FieldRequest& req = {});
 
 }  // namespace octrace::io

@@ -10,8 +10,9 @@
 
 namespace octrace::io {
 
-/// Writes `frame` to `path` as PNG (".png": 8-bit sRGB, see PngWriter) or OpenEXR (".exr":
-/// half RGBA + float Z, see ExrWriter); the extension is matched case-insensitively.
+/// Writes `frame` to `path` as PNG (".png": 8-bit sRGB, see PngWriter), OpenEXR (".exr":
+/// half RGBA + float Z, see ExrWriter) or TIFF (".tif", ".tiff": 8-bit sRGB, the PNG's pixels,
+/// see TiffWriter); the extension is matched case-insensitively.
 /// The file is written under a temporary name in the same folder and renamed over `path`
 /// only when complete, so `path` never holds a partial file.
 /// @throws UsageError if the extension is missing or not supported (the message names it and
@@ -21,7 +22,7 @@ namespace octrace::io {
 /// Thread-safe (distinct paths, or the same path: the last rename wins).
 void writeImage(const Frame& frame, const std::string& path, const ImageWriteOptions& options = {});
 
-/// The supported extensions, lower case with the leading dot: {".png", ".exr"}.
+/// The supported extensions, lower case with the leading dot: {".png", ".exr", ".tif", ".tiff"}.
 std::vector<std::string> imageExtensions();
 
 }  // namespace octrace::io

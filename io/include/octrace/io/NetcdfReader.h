@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace octrace::io {
 
@@ -47,6 +48,11 @@ public:
     /// region, depth range, time step) instead of the default one; an error reading it is
     /// thrown as by read().
     static std::string describe(const std::string& path, const FieldRequest& req);
+
+    /// The names read() accepts without a choice being refused: the short names of the
+    /// variables with at least 3 dimensions longer than 1, in the file's order (for a variable
+    /// chooser, e.g. the studio's). Throws as read() for a file that cannot be opened.
+    static std::vector<std::string> volumeVariables(const std::string& path);
 };
 
 }  // namespace octrace::io

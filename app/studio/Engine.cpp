@@ -1,0 +1,321 @@
+#include "Engine.h"
+
+#include "Input.h"
+#include "SurfaceOptions.h"
+
+#include "octrace/build/OctreeBuilder.h"
+#include "octrace/io/CityReader.h"
+#include "octrace/io/FieldReader.h"
+#include "octrace/io/ImageWriter.h"
+#include "octrace/render/ImageCompare.h"
+#include "octrace/render/Renderer.h"
+#include "octrace/util/Error.h"
+#include "octrace/util/Memory.h"
+#include "octrace/util/Timer.h"
+
+#include <QMetaObject>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace octrace::studio {
+namespace {
+
+constexpr int kHistogramBins = 128;
+
+std::vector<double> histogramOf(const ScalarField& f, double lo, double hi) {
+    std::vector<double> bins(kHistogramBins, 0.0);
+    const double scale = hi > lo ? kHistogramBins / (hi - lo) : 0.0;
+    for (std::size_t i = 0; i < f.values.size(); ++i) {
+        if (!f.isValid(i) || !std::isfinite(f.values[i])) continue;
+        const int b = std::clamp(int((double(f.values[i]) - lo) * scale), 0, kHistogramBins - 1);
+        bins[std::size_t(b)] += 1.0;
+    }
+    return bins;
+}
+
+QString errorText(const std::exception& e) { return QString::fromStdString(e.what()); }
+
+/// The preview level while the camera moves: two levels above the voxels, at least 1.
+int previewLevel(int depth) { return std::max(1, depth - 2); }
+
+}  // namespace
+
+QImage toImage(const Frame& frame) {
+    const std::vector<std::uint8_t> px = quantizeSrgb8(frame, 4);
+    QImage img(frame.width, frame.height, QImage::Format_RGBA8888);
+    for (int y = 0; y < frame.height; ++y)
+        std::memcpy(img.scanLine(y), px.data() + std::size_t(y) * std::size_t(frame.width) * 4, std::size_t(frame.width) * 4);
+    return img;
+}
+
+void writeFigure(const Frame& frame, const std::string& path, bool alpha) {
+    io::ImageWriteOptions o;
+    o.alpha = alpha;
+    io::writeImage(frame, path, o);
+}
+
+Engine::Engine(QObject* parent) : QObject(parent) { qRegisterMetaType<FrameResult>(); }
+
+Engine::~Engine() {
+    buildWorker_.cancel();
+    renderWorker_.cancel();
+    exportWorker_.cancel();
+}
+
+void Engine::cancel() {
+    buildWorker_.cancel();
+    if (!building_) return;
+    // Whether the job was still waiting (dropped) or running (it stops at its next check), its
+    // results no longer count.
+    ++generation_;
+    building_ = false;
+    emit cancelled();
+}
+
+namespace {
+/// Inputs whose surface is not built from a field here: an octree file (fixed iso and depth)
+/// and a city model (voxelized whole).
+bool fixedSurface(const std::string& input) { return cli::isOctreeInput(input) || io::isCityInput(input); }
+}  // namespace
+
+void Engine::open(const StudioState& state) {
+    const unsigned gen = ++generation_;
+    building_ = true;
+    emit progress(tr("Reading %1").arg(QString::fromStdString(state.input)), -1.0);
+    buildWorker_.post([this, state, gen](const std::atomic<bool>& stop) {
+        try {
+            InputInfo info;
+            info.input = QString::fromStdString(state.input);
+            cli::SurfaceArgs a = surfaceArgs(state);
+            if (fixedSurface(state.input)) {
+                // As `octrace render` reads them (no field options, no iso value).
+                a.request = {};
+                a.iso.reset();
+                auto surface = std::make_shared<cli::Surface>(cli::buildSurface(a));
+                surface->tree.computeSummaries();
+                info.octreeFile = true;
+                info.variable = QString::fromStdString(surface->tree.fieldName);
+                info.units = QString::fromStdString(surface->tree.fieldUnits);
+                info.minimum = info.maximum = surface->iso;
+                auto tree = std::make_shared<const Octree>(std::move(surface->tree));
+                QMetaObject::invokeMethod(this, [this, info, tree, surface, gen] {
+                    if (gen != generation_) return;
+                    info_ = info;
+                    base_.reset();
+                    setSurface(tree, *surface, surface->iso, tree->depth);
+                    emit inputLoaded();
+                    emit surfaceBuilt();
+                }, Qt::QueuedConnection);
+                return;
+            }
+            if (state.input.rfind("analytic:", 0) != 0) {
+                io::InputChoices choices = io::listInputChoices(state.input);
+                for (const auto& v : choices.variables) info.variables << QString::fromStdString(v);
+                int n = 0;
+                for (const auto& s : choices.series)
+                    info.series << QStringLiteral("%1: %2 (%3, %4x%5x%6)")
+                                       .arg(++n)
+                                       .arg(QString::fromStdString(s.description.empty() ? s.uid : s.description))
+                                       .arg(QString::fromStdString(s.modality))
+                                       .arg(s.columns)
+                                       .arg(s.rows)
+                                       .arg(s.slices);
+            }
+            auto base = std::make_shared<cli::Surface>();
+            cli::readSurfaceField(a, *base);
+            if (stop) throw CancelledError("cancelled");
+            auto [lo, hi] = base->field.validRange();
+            info.variable = QString::fromStdString(base->field.name);
+            info.units = QString::fromStdString(base->field.units);
+            info.minimum = lo;
+            info.maximum = hi;
+            info.histogram = histogramOf(base->field, lo, hi);
+            info.fileWindow = base->field.window;
+            QMetaObject::invokeMethod(this, [this, info, base, state, gen] {
+                if (gen != generation_) return;
+                info_ = info;
+                base_ = base;
+                tree_.reset();
+                emit inputLoaded();
+                startBuild(state);
+            }, Qt::QueuedConnection);
+        } catch (const CancelledError&) {
+            QMetaObject::invokeMethod(this, [this, gen] {
+                if (gen != generation_) return;
+                building_ = false;
+                emit cancelled();
+            }, Qt::QueuedConnection);
+        } catch (const std::exception& e) {
+            QMetaObject::invokeMethod(this, [this, gen, msg = errorText(e)] {
+                if (gen != generation_) return;
+                building_ = false;
+                emit failed(msg);
+            }, Qt::QueuedConnection);
+        }
+    });
+}
+
+void Engine::rebuild(const StudioState& state) {
+    if (!base_) return;
+    ++generation_;
+    startBuild(state);
+}
+
+void Engine::setSurface(std::shared_ptr<const Octree> tree, const cli::Surface& look, double iso, int depth) {
+    tree_ = std::move(tree);
+    window_ = look.window;
+    invertedGrey_ = look.invertedGrey;
+    iso_ = iso;
+    depth_ = depth;
+    building_ = false;
+}
+
+void Engine::startBuild(const StudioState& state) {
+    const unsigned gen = generation_;
+    building_ = true;
+    emit progress(tr("Building the octree"), 0.0);
+    buildWorker_.post([this, base = base_, state, gen](const std::atomic<bool>& stop) {
+        // The field is lent to this build (jobs run one at a time) and given back whatever happens.
+        auto surface = std::make_shared<cli::Surface>();
+        surface->field = std::move(base->field);
+        struct GiveBack {
+            cli::Surface& from;
+            cli::Surface& to;
+            ~GiveBack() { to.field = std::move(from.field); }
+        } giveBack{*surface, *base};
+        try {
+            cli::BuildHooks hooks;
+            int shown = -1;  // percent last sent: one queued signal per percent at most
+            hooks.progress = [this, &shown, gen](double f) {
+                const int pc = int(f * 100.0);
+                if (pc == shown) return;
+                shown = pc;
+                QMetaObject::invokeMethod(this, [this, f, gen] {
+                    if (gen == generation_) emit progress(tr("Building the octree"), f);
+                }, Qt::QueuedConnection);
+            };
+            hooks.cancelled = [&stop] { return stop.load(); };
+            cli::buildFromField(surfaceArgs(state), *surface, hooks);
+            surface->tree.computeSummaries();
+            auto tree = std::make_shared<const Octree>(std::move(surface->tree));
+            const double iso = surface->iso;
+            QMetaObject::invokeMethod(this, [this, tree, surface, iso, depth = state.depth, gen] {
+                if (gen != generation_) return;
+                setSurface(tree, *surface, iso, depth);
+                emit surfaceBuilt();
+            }, Qt::QueuedConnection);
+        } catch (const CancelledError&) {
+            QMetaObject::invokeMethod(this, [this, gen] {
+                if (gen != generation_) return;
+                building_ = false;
+                emit cancelled();
+            }, Qt::QueuedConnection);
+        } catch (const std::exception& e) {
+            QMetaObject::invokeMethod(this, [this, gen, msg = errorText(e)] {
+                if (gen != generation_) return;
+                building_ = false;
+                emit failed(msg);
+            }, Qt::QueuedConnection);
+        }
+    });
+}
+
+void Engine::requestFrame(const FrameRequest& request) {
+    auto tree = tree_;
+    if (!tree || request.renderers.empty()) return;
+    renderWorker_.post([this, tree, request](const std::atomic<bool>& stop) {
+        try {
+            FrameResult out;
+            out.preview = request.preview;
+            RenderSettings rs = request.settings;
+            Camera cam = request.camera;
+            if (request.preview) {
+                // A smaller image of a coarser level first: the exact frame follows when the
+                // camera stops.
+                cam.width = std::max(1, cam.width / 2);
+                cam.height = std::max(1, cam.height / 2);
+                out.level = previewLevel(tree->depth);
+            }
+            for (const auto& name : request.renderers) {
+                if (stop) return;
+                auto r = makeRenderer(name);
+                RenderSettings s = rs;
+                if (request.preview && r->multiResolution()) s.level = out.level;
+                PaneFrame p;
+                p.stats = r->render(*tree, cam, s, p.frame);
+                p.tracesRays = r->tracesRays();
+                p.image = toImage(p.frame);
+                out.panes.push_back(std::move(p));
+            }
+            if (out.panes.size() == 2 && !request.preview) {
+                const ImageDifference d = compareImages(out.panes[0].frame, out.panes[1].frame);
+                out.mismatching = d.differingPixels;
+                // Speed-up over full traversal: full's own time on this frame.
+                double full = -1.0;
+                for (const auto& p : out.panes)
+                    if (p.stats.renderer == "full") full = p.stats.renderMs;
+                if (full < 0.0 && !stop) {
+                    Frame f;
+                    full = makeRenderer("full")->render(*tree, cam, rs, f).renderMs;
+                }
+                out.fullMs = full;
+                if (request.difference) {
+                    const Frame& a = out.panes[0].frame;
+                    const Frame& b = out.panes[1].frame;
+                    QImage diff(a.width, a.height, QImage::Format_RGB32);
+                    for (int y = 0; y < a.height; ++y)
+                        for (int x = 0; x < a.width; ++x) {
+                            const vec4 ca = a.rgba[a.pixel(x, y)], cb = b.rgba[b.pixel(x, y)];
+                            auto ch = [](float u, float v) {
+                                return std::min(255, 4 * std::abs(int(linearToSrgb8(u)) - int(linearToSrgb8(v))));
+                            };
+                            diff.setPixel(x, y, qRgb(ch(ca.r, cb.r), ch(ca.g, cb.g), ch(ca.b, cb.b)));
+                        }
+                    out.difference = diff;
+                }
+            }
+            if (stop) return;
+            QMetaObject::invokeMethod(this, [this, out = std::move(out)] { emit frameReady(out); }, Qt::QueuedConnection);
+        } catch (const std::exception& e) {
+            QMetaObject::invokeMethod(this, [this, msg = errorText(e)] { emit failed(msg); }, Qt::QueuedConnection);
+        }
+    });
+}
+
+void Engine::exportFigure(const StudioState& state, const QString& path, int width, int height) {
+    auto tree = tree_;
+    if (!tree) {
+        emit failed(tr("Nothing to export: open an input first"));
+        return;
+    }
+    emit progress(tr("Exporting %1x%2").arg(width).arg(height), -1.0);
+    exportWorker_.post([this, tree, state, path, width, height, window = window_, inverted = invertedGrey_](const std::atomic<bool>&) {
+        try {
+            if (width < 1 || height < 1 || width > kMaxExportSide || height > kMaxExportSide)
+                throw UsageError("export size " + std::to_string(width) + "x" + std::to_string(height) +
+                                 ": each side must be 1.." + std::to_string(kMaxExportSide) + " pixels");
+            const std::uint64_t bytes = Frame::bytesFor(width, height) + std::uint64_t(width) * std::uint64_t(height) * 24;
+            checkMemoryBudget("exporting " + std::to_string(width) + "x" + std::to_string(height), bytes,
+                              defaultMemoryBudget());
+            Camera cam = cameraFor(state, tree->occupiedBounds(), width, height);
+            cam.validate();
+            Frame frame;
+            const RenderStats st =
+                makeRenderer(state.renderer)->render(*tree, cam, renderSettingsFor(state, state.transparent, window, inverted), frame);
+            writeFigure(frame, path.toStdString(), state.transparent);
+            const QString summary = tr("%1: %2x%3, %4, %5 ms")
+                                        .arg(path)
+                                        .arg(width)
+                                        .arg(height)
+                                        .arg(QString::fromStdString(st.renderer))
+                                        .arg(st.renderMs, 0, 'f', 1);
+            QMetaObject::invokeMethod(this, [this, path, summary] { emit exported(path, summary); }, Qt::QueuedConnection);
+        } catch (const std::exception& e) {
+            QMetaObject::invokeMethod(this, [this, msg = errorText(e)] { emit failed(msg); }, Qt::QueuedConnection);
+        }
+    }, false);
+}
+
+}  // namespace octrace::studio

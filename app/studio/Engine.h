@@ -1,0 +1,128 @@
+#pragma once
+// The studio's work off the GUI thread: reading an input and building its shell octree (with
+// progress and Cancel), rendering the views' frames (newest request first), and exporting
+// figures. Results come back as queued signals on the GUI thread; the window never waits.
+#include "StudioState.h"
+#include "SurfaceOptions.h"
+#include "Worker.h"
+
+#include "octrace/build/ScalarField.h"
+#include "octrace/octree/Octree.h"
+#include "octrace/render/Frame.h"
+#include "octrace/render/RenderStats.h"
+
+#include <QImage>
+#include <QObject>
+#include <QString>
+
+#include <array>
+#include <memory>
+#include <vector>
+
+namespace octrace::studio {
+
+/// What the window shows about the loaded input.
+struct InputInfo {
+    QString input, variable, units;
+    QStringList variables;    ///< 3-D variables of a NetCDF file (empty for other formats)
+    QStringList series;       ///< DICOM series as "N: description (modality, size)"
+    bool octreeFile = false;  ///< a .oct input: no field, the iso value and depth are fixed
+    double minimum = 0.0, maximum = 0.0;  ///< valid value range
+    std::vector<double> histogram;        ///< counts of valid samples over [minimum, maximum]
+    ValueWindow fileWindow;               ///< the display window stored in the file (DICOM), if any
+};
+
+/// One pane's rendered frame.
+struct PaneFrame {
+    QImage image;  ///< 8-bit sRGB as the PNG writer encodes it
+    Frame frame;
+    RenderStats stats;
+    bool tracesRays = true;
+};
+
+/// What one frame request produced: one pane, or two for the split view with their comparison.
+struct FrameResult {
+    std::vector<PaneFrame> panes;
+    bool preview = false;      ///< a coarse frame drawn while the camera moves
+    double fullMs = 0.0;       ///< full traversal's time on the same frame (split view, exact frames)
+    std::uint64_t mismatching = 0;  ///< pixels where the two panes differ (8-bit sRGB)
+    QImage difference;         ///< |a - b| amplified, when asked for
+    int level = -1;            ///< octree level drawn (preview), -1 = the voxels
+};
+
+struct FrameRequest {
+    std::vector<std::string> renderers;  ///< one or two
+    Camera camera;
+    RenderSettings settings;
+    bool preview = false;
+    bool difference = false;
+};
+
+class Engine : public QObject {
+    Q_OBJECT
+public:
+    explicit Engine(QObject* parent = nullptr);
+    ~Engine() override;
+
+    /// Reads state.input (variable, time, series), then builds at state.iso (or the middle of
+    /// the range) and state.depth. Cancels what is running.
+    void open(const StudioState& state);
+    /// Builds again from the loaded field with state's iso value, depth and colour options
+    /// (they choose the display window).
+    void rebuild(const StudioState& state);
+    void cancel();
+    bool building() const { return building_; }
+
+    void requestFrame(const FrameRequest& request);
+    /// Renders `state` at width x height off screen with its renderer and writes `path`
+    /// (format by extension: PNG, EXR, TIFF).
+    void exportFigure(const StudioState& state, const QString& path, int width, int height);
+
+    const InputInfo& info() const { return info_; }
+    std::shared_ptr<const Octree> tree() const { return tree_; }
+    double iso() const { return iso_; }
+    int depth() const { return depth_; }
+    bool hasField() const { return bool(base_); }
+    /// The display window the build chose (cli::Surface::window), and its inversion.
+    const ValueWindow& window() const { return window_; }
+    bool invertedGrey() const { return invertedGrey_; }
+    /// The render settings of `state` for the current surface.
+    RenderSettings settingsFor(const StudioState& state, bool transparent) const {
+        return renderSettingsFor(state, transparent, window_, invertedGrey_);
+    }
+
+signals:
+    /// fraction in [0,1], or < 0 when unknown.
+    void progress(const QString& stage, double fraction);
+    void inputLoaded();
+    void surfaceBuilt();
+    void frameReady(const octrace::studio::FrameResult& result);
+    void exported(const QString& path, const QString& summary);
+    void failed(const QString& message);
+    void cancelled();
+
+private:
+    void startBuild(const StudioState& state);
+    void setSurface(std::shared_ptr<const Octree> tree, const cli::Surface& look, double iso, int depth);
+
+    InputInfo info_;
+    std::shared_ptr<cli::Surface> base_;  // holds the field read (lent to one build at a time)
+    ValueWindow window_;
+    bool invertedGrey_ = false;
+    std::shared_ptr<const Octree> tree_;
+    double iso_ = 0.0;
+    int depth_ = 0;
+    bool building_ = false;
+    unsigned generation_ = 0;  // the open/build whose results still count
+    // Last members: destroyed (joined) first, before what their jobs use.
+    Worker exportWorker_, renderWorker_, buildWorker_;
+};
+
+/// The frame as 8-bit sRGB RGBA, quantized as the PNG writer does.
+QImage toImage(const Frame& frame);
+/// Writes `frame` to `path` by its extension (.png, .exr, .tif/.tiff); throws as io::writeImage.
+void writeFigure(const Frame& frame, const std::string& path, bool alpha);
+
+}  // namespace octrace::studio
+
+Q_DECLARE_METATYPE(octrace::studio::FrameResult)

@@ -1,0 +1,796 @@
+#include "MainWindow.h"
+
+#include "HistogramView.h"
+#include "Navigation.h"
+#include "RenderView.h"
+#include "Session.h"
+#include "SurfelView.h"
+
+#include "octrace/io/ImageWriter.h"
+#include "octrace/render/ImageCompare.h"
+#include "octrace/render/Renderer.h"
+#include "octrace/build/CtPresets.h"
+#include "octrace/render/Shading.h"
+#include "octrace/util/Log.h"
+
+#include <QAction>
+#include <QApplication>
+#include <QCheckBox>
+#include <QClipboard>
+#include <QComboBox>
+#include <QDialog>
+#include <QDialogButtonBox>
+#include <QDockWidget>
+#include <QDoubleSpinBox>
+#include <QDragEnterEvent>
+#include <QDropEvent>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QFormLayout>
+#include <QGroupBox>
+#include <QHBoxLayout>
+#include <QInputDialog>
+#include <QLabel>
+#include <QLineEdit>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QMimeData>
+#include <QPlainTextEdit>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QScrollArea>
+#include <QSettings>
+#include <QSlider>
+#include <QSpinBox>
+#include <QSplitter>
+#include <QStackedWidget>
+#include <QStatusBar>
+#include <QToolBar>
+#include <QVBoxLayout>
+
+#include <algorithm>
+#include <cmath>
+
+namespace octrace::studio {
+namespace {
+
+constexpr int kSliderSteps = 1000;
+constexpr int kMaxRecent = 8;
+const char* kRecentKey = "recentFiles";
+
+QString statsText(const PaneFrame& p, double fullMs, bool preview, int level) {
+    const RenderStats& s = p.stats;
+    QString t = QStringLiteral("%1  %2x%3\n%4 ms/frame").arg(QString::fromStdString(s.renderer)).arg(p.frame.width)
+                    .arg(p.frame.height).arg(s.renderMs, 0, 'f', 1);
+    if (p.tracesRays)
+        t += QStringLiteral("\n%1 us/ray").arg(s.rays ? s.renderMs * 1000.0 / double(s.rays) : 0.0, 0, 'f', 3);
+    else
+        t += QStringLiteral("\n%1 footprints").arg(s.voxelsSplatted);
+    if (fullMs > 0.0 && s.renderMs > 0.0) t += QStringLiteral("\n%1x over full").arg(fullMs / s.renderMs, 0, 'f', 2);
+    if (preview) t += QStringLiteral("\npreview (level %1, half size)").arg(level);
+    return t;
+}
+
+}  // namespace
+
+MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
+    setWindowTitle(tr("octrace studio"));
+    setAcceptDrops(true);
+    buildTimer_.setSingleShot(true);
+    buildTimer_.setInterval(150);
+    connect(&buildTimer_, &QTimer::timeout, this, [this] {
+        if (engine_.hasField() && state_.iso) engine_.rebuild(state_);
+    });
+    exactTimer_.setSingleShot(true);
+    exactTimer_.setInterval(250);
+    connect(&exactTimer_, &QTimer::timeout, this, [this] { requestRender(false); });
+
+    auto* splitter = new QSplitter(this);
+    // The right pane: a CPU renderer's frames, or the OpenGL surfel view.
+    secondPane_ = new QStackedWidget(splitter);
+    for (int i = 0; i < 2; ++i) {
+        views_[i] = new RenderView(splitter);
+        views_[i]->setObjectName(i == 0 ? QStringLiteral("mainView") : QStringLiteral("secondView"));
+        if (i == 0) splitter->insertWidget(0, views_[i]);
+        else secondPane_->addWidget(views_[i]);
+        connect(views_[i], &RenderView::orbitBy, this, [this](double yaw, double pitch) {
+            Camera c = viewCamera();
+            orbit(c, yaw, pitch);
+            cameraMoved(c);
+        });
+        connect(views_[i], &RenderView::panBy, this, [this](double dx, double dy) {
+            Camera c = viewCamera();
+            pan(c, dx, dy, paneSize().height());
+            cameraMoved(c);
+        });
+        connect(views_[i], &RenderView::dollyBy, this, [this](double f) {
+            Camera c = viewCamera();
+            dolly(c, f);
+            cameraMoved(c);
+        });
+        connect(views_[i], &RenderView::interactionFinished, this, [this] {
+            exactTimer_.stop();
+            requestRender(false);
+        });
+        connect(views_[i], &RenderView::resized, this, [this] { exactTimer_.start(); });
+    }
+    surfelView_ = new SurfelView(secondPane_);
+    surfelView_->setObjectName(QStringLiteral("surfelView"));
+    secondPane_->addWidget(surfelView_);
+    secondPane_->hide();
+    setCentralWidget(splitter);
+
+    auto* dock = new QDockWidget(tr("Surface"), this);
+    dock->setObjectName(QStringLiteral("surfaceDock"));
+    auto* scroll = new QScrollArea(dock);
+    scroll->setWidget(buildControls());
+    scroll->setWidgetResizable(true);
+    dock->setWidget(scroll);
+    addDockWidget(Qt::LeftDockWidgetArea, dock);
+
+    auto* msgDock = new QDockWidget(tr("Messages"), this);
+    msgDock->setObjectName(QStringLiteral("messagesDock"));
+    messages_ = new QPlainTextEdit(msgDock);
+    messages_->setReadOnly(true);
+    messages_->setMaximumBlockCount(500);
+    msgDock->setWidget(messages_);
+    addDockWidget(Qt::BottomDockWidgetArea, msgDock);
+    resizeDocks({msgDock}, {80}, Qt::Vertical);
+    resizeDocks({dock}, {340}, Qt::Horizontal);
+
+    statusLabel_ = new QLabel(this);
+    progress_ = new QProgressBar(this);
+    progress_->setObjectName(QStringLiteral("progress"));
+    progress_->setMaximumWidth(220);
+    progress_->setRange(0, 100);
+    progress_->hide();
+    cancelButton_ = new QPushButton(tr("Cancel"), this);
+    cancelButton_->setObjectName(QStringLiteral("cancelButton"));
+    cancelButton_->setEnabled(false);
+    cancelButton_->setToolTip(tr("Stop reading or building (Esc)"));
+    cancelButton_->setShortcut(Qt::Key_Escape);
+    connect(cancelButton_, &QPushButton::clicked, this, [this] { engine_.cancel(); });
+    statusBar()->addWidget(statusLabel_, 1);
+    statusBar()->addPermanentWidget(progress_);
+    statusBar()->addPermanentWidget(cancelButton_);
+
+    buildMenus();
+
+    connect(&engine_, &Engine::progress, this, [this](const QString& stage, double f) {
+        statusLabel_->setText(stage);
+        progress_->show();
+        if (f < 0.0) progress_->setRange(0, 0);  // busy
+        else {
+            progress_->setRange(0, 100);
+            progress_->setValue(int(f * 100.0));
+        }
+        cancelButton_->setEnabled(engine_.building());
+    });
+    connect(&engine_, &Engine::inputLoaded, this, &MainWindow::onInputLoaded);
+    connect(&engine_, &Engine::surfaceBuilt, this, &MainWindow::onSurfaceBuilt);
+    connect(&engine_, &Engine::frameReady, this, &MainWindow::onFrame);
+    connect(&engine_, &Engine::failed, this, [this](const QString& m) {
+        progress_->hide();
+        cancelButton_->setEnabled(engine_.building());
+        showMessage(m, true);
+    });
+    connect(&engine_, &Engine::cancelled, this, [this] {
+        progress_->hide();
+        cancelButton_->setEnabled(false);
+        if (engine_.tree()) {  // the controls show the surface that stays
+            state_.iso = engine_.iso();
+            state_.depth = engine_.depth();
+            setIsoControls(engine_.iso());
+            updating_ = true;
+            depthSpin_->setValue(engine_.depth());
+            updating_ = false;
+        }
+        showMessage(tr("Cancelled; the previous surface stays"));
+    });
+    connect(&engine_, &Engine::exported, this, [this](const QString&, const QString& summary) {
+        progress_->hide();
+        showMessage(tr("Exported %1").arg(summary));
+    });
+
+    // Library messages (warnings of the readers) go to the Messages panel, from any thread.
+    log::setSink([this](log::Level level, const std::string& text) {
+        QMetaObject::invokeMethod(this, [this, level, t = QString::fromStdString(text)] {
+            messages_->appendPlainText((level >= log::Level::Warning ? tr("warning: ") : QString()) + t);
+        }, Qt::QueuedConnection);
+    });
+    updateRecentMenu();
+    resize(1200, 800);
+}
+
+MainWindow::~MainWindow() { log::setSink({}); }
+
+void MainWindow::buildMenus() {
+    QMenu* file = menuBar()->addMenu(tr("&File"));
+    QAction* open = file->addAction(tr("&Open..."), this, &MainWindow::chooseOpen);
+    open->setShortcut(QKeySequence::Open);
+    file->addAction(tr("Open &Analytic Field..."), this, [this] {
+        bool ok = false;
+        const QString name = QInputDialog::getItem(this, tr("Analytic field"), tr("Field:"),
+                                                   {"sphere", "torus", "gyroid", "noise"}, 0, false, &ok);
+        if (ok) openInput(QStringLiteral("analytic:%1").arg(name));
+    });
+    recentMenu_ = file->addMenu(tr("Open &Recent"));
+    file->addSeparator();
+    file->addAction(tr("Open &Session..."), this, [this] {
+        const QString f = QFileDialog::getOpenFileName(this, tr("Open session"), QString(), tr("Sessions (*.json);;All files (*)"));
+        if (!f.isEmpty()) openSession(f);
+    });
+    QAction* save = file->addAction(tr("&Save Session..."), this, [this] {
+        const QString f = QFileDialog::getSaveFileName(this, tr("Save session"), QStringLiteral("session.json"), tr("Sessions (*.json)"));
+        if (!f.isEmpty()) saveSessionTo(f);
+    });
+    save->setShortcut(QKeySequence::Save);
+    file->addSeparator();
+    QAction* exportAct = file->addAction(tr("&Export Figure..."), this, &MainWindow::chooseExport);
+    exportAct->setShortcut(Qt::CTRL | Qt::Key_E);
+    file->addAction(tr("Copy &Command Line"), this, [this] {
+        const QSize s(state_.exportWidth, state_.exportHeight);
+        const QString cmd = QStringLiteral("octrace render ") + commandLine(QStringLiteral("figure.png"), s.width(), s.height()).join(' ');
+        QApplication::clipboard()->setText(cmd);
+        showMessage(cmd);
+    });
+    file->addSeparator();
+    QAction* quit = file->addAction(tr("&Quit"), this, &QWidget::close);
+    quit->setShortcut(QKeySequence::Quit);
+
+    QMenu* view = menuBar()->addMenu(tr("&View"));
+    QToolBar* bar = addToolBar(tr("View"));
+    bar->setObjectName(QStringLiteral("viewToolBar"));
+    QAction* reset = view->addAction(tr("&Reset View"), this, [this] {
+        state_.cameraSet = false;
+        requestRender(false);
+    });
+    reset->setShortcut(Qt::Key_R);
+    bar->addAction(reset);
+    const char* names[6] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
+    for (int i = 0; i < 6; ++i) {
+        QAction* a = view->addAction(tr("Look Along %1").arg(names[i]), this, [this, i] { setStandardView(i / 2, i % 2 ? -1 : 1); });
+        a->setIconText(names[i]);
+        a->setObjectName(QStringLiteral("view") + names[i]);
+        bar->addAction(a);
+    }
+    view->addSeparator();
+    bar->addSeparator();
+    splitAction_ = view->addAction(tr("&Split View"));
+    splitAction_->setCheckable(true);
+    splitAction_->setShortcut(Qt::Key_F2);
+    connect(splitAction_, &QAction::toggled, this, &MainWindow::setSplit);
+    bar->addAction(splitAction_);
+    differenceAction_ = view->addAction(tr("&Difference Image"));
+    differenceAction_->setCheckable(true);
+    differenceAction_->setEnabled(false);
+    differenceAction_->setToolTip(tr("Show |left - right| (x4) in the right pane"));
+    connect(differenceAction_, &QAction::toggled, this, [this] { requestRender(false); });
+    bar->addAction(differenceAction_);
+}
+
+QWidget* MainWindow::buildControls() {
+    auto* w = new QWidget;
+    auto* layout = new QVBoxLayout(w);
+
+    auto* inputBox = new QGroupBox(tr("Input"), w);
+    auto* inputForm = new QFormLayout(inputBox);
+    inputLabel_ = new QLabel(tr("(none: File > Open, or drop a file here)"), inputBox);
+    inputLabel_->setWordWrap(true);
+    inputForm->addRow(inputLabel_);
+    variableCombo_ = new QComboBox(inputBox);
+    variableCombo_->setObjectName(QStringLiteral("variableCombo"));
+    variableCombo_->setToolTip(tr("The 3-D variable to draw (NetCDF)"));
+    connect(variableCombo_, &QComboBox::activated, this, [this] {
+        StudioState s = state_;
+        s.variable = variableCombo_->currentText().toStdString();
+        s.iso.reset();  // another variable, another range
+        load(s);
+    });
+    inputForm->addRow(tr("Variable"), variableCombo_);
+    timeEdit_ = new QLineEdit(inputBox);
+    timeEdit_->setObjectName(QStringLiteral("timeEdit"));
+    timeEdit_->setPlaceholderText(tr("first step"));
+    timeEdit_->setToolTip(tr("Time step of a NetCDF variable with a time axis: an index (0, 1, ...) or a date (1990-07-15)"));
+    connect(timeEdit_, &QLineEdit::editingFinished, this, [this] {
+        const std::string t = timeEdit_->text().trimmed().toStdString();
+        if (t == state_.time) return;
+        StudioState s = state_;
+        s.time = t;
+        load(s);
+    });
+    inputForm->addRow(tr("Time"), timeEdit_);
+    seriesCombo_ = new QComboBox(inputBox);
+    seriesCombo_->setObjectName(QStringLiteral("seriesCombo"));
+    seriesCombo_->setToolTip(tr("DICOM series (default: the largest)"));
+    connect(seriesCombo_, &QComboBox::activated, this, [this](int index) {
+        StudioState s = state_;
+        s.series = std::to_string(index + 1);
+        s.iso.reset();
+        s.cameraSet = false;
+        load(s);
+    });
+    inputForm->addRow(tr("Series"), seriesCombo_);
+    layout->addWidget(inputBox);
+
+    auto* surfBox = new QGroupBox(tr("Surface"), w);
+    auto* surfForm = new QFormLayout(surfBox);
+    isoSlider_ = new QSlider(Qt::Horizontal, surfBox);
+    isoSlider_->setObjectName(QStringLiteral("isoSlider"));
+    isoSlider_->setRange(0, kSliderSteps);
+    connect(isoSlider_, &QSlider::valueChanged, this, [this](int v) {
+        if (updating_) return;
+        const InputInfo& in = engine_.info();
+        isoEdited(in.minimum + (in.maximum - in.minimum) * v / double(kSliderSteps));
+    });
+    isoSpin_ = new QDoubleSpinBox(surfBox);
+    isoSpin_->setObjectName(QStringLiteral("isoSpin"));
+    isoSpin_->setKeyboardTracking(false);
+    connect(isoSpin_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
+        if (!updating_) isoEdited(v);
+    });
+    surfForm->addRow(tr("Iso value"), isoSlider_);
+    surfForm->addRow(QString(), isoSpin_);
+    rangeLabel_ = new QLabel(surfBox);
+    rangeLabel_->setObjectName(QStringLiteral("rangeLabel"));
+    surfForm->addRow(tr("Range"), rangeLabel_);
+    histogram_ = new HistogramView(surfBox);
+    histogram_->setObjectName(QStringLiteral("histogram"));
+    connect(histogram_, &HistogramView::isoPicked, this, [this](double v) { isoEdited(v); });
+    surfForm->addRow(histogram_);
+    depthSpin_ = new QSpinBox(surfBox);
+    depthSpin_->setObjectName(QStringLiteral("depthSpin"));
+    depthSpin_->setRange(1, Octree::kMaxDepth);
+    depthSpin_->setValue(state_.depth);
+    depthSpin_->setKeyboardTracking(false);
+    depthSpin_->setToolTip(tr("Octree depth: 2^depth voxels along the cube's edge"));
+    connect(depthSpin_, &QSpinBox::valueChanged, this, [this](int d) {
+        if (updating_) return;
+        state_.depth = d;
+        scheduleBuild();
+    });
+    surfForm->addRow(tr("Depth"), depthSpin_);
+    layout->addWidget(surfBox);
+
+    auto* renderBox = new QGroupBox(tr("Rendering"), w);
+    auto* renderForm = new QFormLayout(renderBox);
+    rendererCombo_ = new QComboBox(renderBox);
+    rendererCombo_->setObjectName(QStringLiteral("rendererCombo"));
+    secondCombo_ = new QComboBox(renderBox);
+    secondCombo_->setObjectName(QStringLiteral("secondRendererCombo"));
+    for (const auto& n : rendererNames()) {
+        if (!makeRenderer(n)->drawsVoxels()) continue;
+        rendererCombo_->addItem(QString::fromStdString(n));
+        secondCombo_->addItem(QString::fromStdString(n));
+    }
+    rendererCombo_->setCurrentText(QString::fromStdString(state_.renderer));
+    secondCombo_->setCurrentText(QString::fromStdString(state_.secondRenderer));
+    connect(rendererCombo_, &QComboBox::currentTextChanged, this, [this](const QString& t) {
+        state_.renderer = t.toStdString();
+        requestRender(false);
+    });
+    secondCombo_->addItem(QString::fromLatin1(kOpenGlPane));
+    secondCombo_->setItemData(secondCombo_->count() - 1, tr("The shell's surfels splatted with OpenGL"), Qt::ToolTipRole);
+    connect(secondCombo_, &QComboBox::currentTextChanged, this, [this](const QString& t) {
+        state_.secondRenderer = t.toStdString();
+        differenceAction_->setEnabled(state_.split && state_.secondRenderer != kOpenGlPane);
+        requestRender(false);
+    });
+    renderForm->addRow(tr("Renderer"), rendererCombo_);
+    renderForm->addRow(tr("Right pane"), secondCombo_);
+    fovSpin_ = new QDoubleSpinBox(renderBox);
+    fovSpin_->setObjectName(QStringLiteral("fovSpin"));
+    fovSpin_->setRange(1.0, 170.0);
+    fovSpin_->setSuffix(QStringLiteral(" deg"));
+    fovSpin_->setValue(state_.fov);
+    connect(fovSpin_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
+        state_.fov = v;
+        requestRender(false);
+    });
+    renderForm->addRow(tr("Field of view"), fovSpin_);
+    auto* lightRow = new QHBoxLayout;
+    for (int i = 0; i < 3; ++i) {
+        lightSpin_[i] = new QDoubleSpinBox(renderBox);
+        lightSpin_[i]->setObjectName(QStringLiteral("light%1").arg("xyz"[i]));
+        lightSpin_[i]->setRange(-1.0, 1.0);
+        lightSpin_[i]->setSingleStep(0.1);
+        lightSpin_[i]->setValue(state_.light[i]);
+        lightSpin_[i]->setToolTip(tr("Direction towards the light in camera space: x right, y up, z towards the viewer"));
+        connect(lightSpin_[i], &QDoubleSpinBox::valueChanged, this, [this, i](double v) {
+            state_.light[i] = v;
+            if (glm::length(state_.light) > 0.0) requestRender(false);
+        });
+        lightRow->addWidget(lightSpin_[i]);
+    }
+    renderForm->addRow(tr("Light"), lightRow);
+    colormapCombo_ = new QComboBox(renderBox);
+    colormapCombo_->setObjectName(QStringLiteral("colormapCombo"));
+    colormapCombo_->addItem(tr("(uniform colour)"));
+    for (const auto& n : colormapNames()) colormapCombo_->addItem(QString::fromStdString(n));
+    colourBar_ = new QLabel(renderBox);
+    colourBar_->setObjectName(QStringLiteral("colourBar"));
+    connect(colormapCombo_, &QComboBox::currentIndexChanged, this, [this](int i) {
+        state_.colormap = i <= 0 ? std::string() : colormapCombo_->currentText().toStdString();
+        if (!state_.colormap.empty() && !state_.window.empty() && state_.window != "none") {
+            // A colour map and a display window both colour the surface (the CLI refuses both).
+            QSignalBlocker block(windowCombo_);
+            windowCombo_->setCurrentIndex(0);
+            state_.window.clear();
+        }
+        updateColourBar();
+        colouringChanged();
+    });
+    renderForm->addRow(tr("Colour map"), colormapCombo_);
+    renderForm->addRow(tr("low z .. high z"), colourBar_);
+    windowCombo_ = new QComboBox(renderBox);
+    windowCombo_->setObjectName(QStringLiteral("windowCombo"));
+    windowCombo_->setToolTip(tr("Grey the surface by a display window over the value under it (CT presets in HU)"));
+    windowCombo_->addItem(tr("(the file's, if any)"), QString());
+    windowCombo_->addItem(tr("none"), QStringLiteral("none"));
+    for (const auto& p : ctWindowPresets())
+        windowCombo_->addItem(QStringLiteral("%1 (%2/%3 HU)").arg(QLatin1String(p.name)).arg(p.window.centre).arg(p.window.width),
+                              QLatin1String(p.name));
+    connect(windowCombo_, &QComboBox::currentIndexChanged, this, [this] {
+        state_.window = windowCombo_->currentData().toString().toStdString();
+        if (!state_.window.empty() && state_.window != "none" && !state_.colormap.empty()) {
+            QSignalBlocker block(colormapCombo_);
+            colormapCombo_->setCurrentIndex(0);
+            state_.colormap.clear();
+            updateColourBar();
+        }
+        colouringChanged();
+    });
+    renderForm->addRow(tr("CT window"), windowCombo_);
+    layout->addWidget(renderBox);
+    layout->addStretch(1);
+    return w;
+}
+
+void MainWindow::colouringChanged() {
+    if (updating_) return;
+    // The display window is chosen while building (the octree then keeps voxel values): a change
+    // of the colouring that changes the window needs a build; otherwise a frame is enough.
+    const cli::SurfaceArgs a = surfaceArgs(state_);
+    const ValueWindow& file = engine_.info().fileWindow;
+    const ValueWindow wanted = !state_.window.empty() ? a.window : (!a.colourGiven && a.colormap.empty()) ? file : ValueWindow{};
+    const ValueWindow& now = engine_.window();
+    if (engine_.hasField() && (wanted.valid() != now.valid() || wanted.centre != now.centre || wanted.width != now.width))
+        scheduleBuild();
+    else
+        requestRender(false);
+}
+
+void MainWindow::updateColourBar() {
+    if (state_.colormap.empty()) {
+        colourBar_->clear();
+        return;
+    }
+    QImage bar(200, 12, QImage::Format_RGB32);
+    for (int x = 0; x < bar.width(); ++x) {
+        const vec3 c = colormap(state_.colormap, float(x) / float(bar.width() - 1));
+        const QRgb rgb = qRgb(linearToSrgb8(c.r), linearToSrgb8(c.g), linearToSrgb8(c.b));
+        for (int y = 0; y < bar.height(); ++y) bar.setPixel(x, y, rgb);
+    }
+    colourBar_->setPixmap(QPixmap::fromImage(bar));
+}
+
+void MainWindow::showMessage(const QString& text, bool error) {
+    messages_->appendPlainText((error ? tr("error: ") : QString()) + text);
+    statusLabel_->setText(text);
+    if (error) {
+        // Not modal for the event loop: the window goes on (and tests are not blocked).
+        auto* box = new QMessageBox(QMessageBox::Warning, tr("octrace studio"), text, QMessageBox::Ok, this);
+        box->setObjectName(QStringLiteral("errorBox"));
+        box->setAttribute(Qt::WA_DeleteOnClose);
+        box->open();
+    }
+}
+
+void MainWindow::openInput(const QString& input) {
+    StudioState s = state_;
+    s.input = input.toStdString();
+    s.variable.clear();
+    s.time.clear();
+    s.series.clear();
+    s.iso.reset();
+    s.cameraSet = false;
+    addRecent(input);
+    load(s);
+}
+
+void MainWindow::load(const StudioState& s) {
+    if (s.input.empty()) return;
+    pending_ = s;
+    cancelButton_->setEnabled(true);
+    engine_.open(s);
+}
+
+bool MainWindow::saveSessionTo(const QString& path) {
+    try {
+        saveSession(state_, path);
+    } catch (const std::exception& e) {
+        showMessage(QString::fromStdString(e.what()), true);
+        return false;
+    }
+    showMessage(tr("Saved session %1").arg(path));
+    return true;
+}
+
+bool MainWindow::openSession(const QString& path) {
+    StudioState s;
+    try {
+        s = loadSession(path);
+    } catch (const std::exception& e) {
+        showMessage(QString::fromStdString(e.what()), true);
+        return false;
+    }
+    state_ = s;
+    showState();
+    showMessage(tr("Opened session %1").arg(path));
+    if (!state_.input.empty()) {
+        addRecent(QString::fromStdString(state_.input));
+        load(state_);
+    }
+    return true;
+}
+
+void MainWindow::showState() {
+    updating_ = true;
+    depthSpin_->setValue(state_.depth);
+    rendererCombo_->setCurrentText(QString::fromStdString(state_.renderer));
+    secondCombo_->setCurrentText(QString::fromStdString(state_.secondRenderer));
+    fovSpin_->setValue(state_.fov);
+    for (int i = 0; i < 3; ++i) lightSpin_[i]->setValue(state_.light[i]);
+    colormapCombo_->setCurrentIndex(state_.colormap.empty() ? 0 : colormapCombo_->findText(QString::fromStdString(state_.colormap)));
+    windowCombo_->setCurrentIndex(std::max(0, windowCombo_->findData(QString::fromStdString(state_.window))));
+    timeEdit_->setText(QString::fromStdString(state_.time));
+    splitAction_->setChecked(state_.split);
+    updating_ = false;
+    setSplit(state_.split);
+    updateColourBar();
+}
+
+void MainWindow::addRecent(const QString& input) {
+    QSettings settings;
+    QStringList list = settings.value(kRecentKey).toStringList();
+    const QString abs = input.startsWith(QStringLiteral("analytic:")) ? input : QFileInfo(input).absoluteFilePath();
+    list.removeAll(abs);
+    list.prepend(abs);
+    while (list.size() > kMaxRecent) list.removeLast();
+    settings.setValue(kRecentKey, list);
+    updateRecentMenu();
+}
+
+void MainWindow::updateRecentMenu() {
+    recentMenu_->clear();
+    const QStringList list = QSettings().value(kRecentKey).toStringList();
+    for (const QString& f : list) recentMenu_->addAction(f, this, [this, f] { openInput(f); });
+    recentMenu_->setEnabled(!list.isEmpty());
+}
+
+void MainWindow::chooseOpen() {
+    const QString f = QFileDialog::getOpenFileName(
+        this, tr("Open input"), QString(),
+        tr("Volumes (*.nc *.cdf *.nc4 *.nrrd *.nhdr *.dcm *.mhd *.mha *.nii *.nii.gz *.hdr *.vti *.oct DICOMDIR);;All files (*)"));
+    if (!f.isEmpty()) openInput(f);
+}
+
+void MainWindow::dragEnterEvent(QDragEnterEvent* e) {
+    if (e->mimeData()->hasUrls()) e->acceptProposedAction();
+}
+
+void MainWindow::dropEvent(QDropEvent* e) {
+    const QList<QUrl> urls = e->mimeData()->urls();
+    if (!urls.isEmpty() && urls.first().isLocalFile()) openInput(urls.first().toLocalFile());
+}
+
+void MainWindow::onInputLoaded() {
+    // The input read is now the state's; until then a failed read left the state alone.
+    state_.input = pending_.input;
+    state_.variable = pending_.variable;
+    state_.time = pending_.time;
+    state_.series = pending_.series;
+    state_.iso = pending_.iso;
+    state_.cameraSet = pending_.cameraSet;
+    state_.position = pending_.position;
+    state_.lookAt = pending_.lookAt;
+    state_.up = pending_.up;
+    inputLabel_->setText(QString::fromStdString(state_.input));
+    setWindowTitle(tr("%1 - octrace studio").arg(QFileInfo(QString::fromStdString(state_.input)).fileName()));
+    const InputInfo& in = engine_.info();
+    updating_ = true;
+    variableCombo_->clear();
+    variableCombo_->addItems(in.variables.isEmpty() ? QStringList{in.variable} : in.variables);
+    variableCombo_->setCurrentText(in.variable);
+    variableCombo_->setEnabled(in.variables.size() > 1);
+    seriesCombo_->clear();
+    seriesCombo_->addItems(in.series);
+    seriesCombo_->setEnabled(in.series.size() > 1);
+    timeEdit_->setEnabled(!in.octreeFile);
+    const double span = in.maximum - in.minimum;
+    const int decimals = span > 0.0 ? std::clamp(3 - int(std::floor(std::log10(span))), 0, 8) : 3;
+    isoSpin_->setDecimals(decimals);
+    isoSpin_->setRange(in.minimum, in.maximum);
+    isoSpin_->setSingleStep(span > 0.0 ? span / 100.0 : 1.0);
+    isoSpin_->setSuffix(in.units.isEmpty() ? QString() : QStringLiteral(" ") + in.units);
+    isoSpin_->setEnabled(!in.octreeFile);
+    isoSlider_->setEnabled(!in.octreeFile);
+    depthSpin_->setEnabled(!in.octreeFile);
+    rangeLabel_->setText(in.octreeFile ? tr("fixed by the octree file")
+                                       : QStringLiteral("%1 .. %2 %3").arg(in.minimum).arg(in.maximum).arg(in.units));
+    histogram_->setHistogram(in.histogram, in.minimum, in.maximum);
+    updating_ = false;
+    showMessage(tr("Read %1: %2 [%3 .. %4] %5").arg(in.input, in.variable).arg(in.minimum).arg(in.maximum).arg(in.units));
+}
+
+void MainWindow::onSurfaceBuilt() {
+    progress_->hide();
+    cancelButton_->setEnabled(false);
+    state_.iso = engine_.iso();
+    state_.depth = engine_.depth();
+    setIsoControls(engine_.iso());
+    updating_ = true;
+    depthSpin_->setValue(engine_.depth());
+    updating_ = false;
+    const auto tree = engine_.tree();
+    showMessage(tr("Surface at %1: %2 boundary voxels at depth %3")
+                    .arg(engine_.iso())
+                    .arg(tree->boundaryVoxels())
+                    .arg(tree->depth));
+    requestRender(false);
+}
+
+void MainWindow::setIsoControls(double iso) {
+    const InputInfo& in = engine_.info();
+    updating_ = true;
+    isoSpin_->setValue(iso);
+    if (in.maximum > in.minimum) isoSlider_->setValue(int(std::lround((iso - in.minimum) / (in.maximum - in.minimum) * kSliderSteps)));
+    histogram_->setIso(iso);
+    updating_ = false;
+}
+
+void MainWindow::isoEdited(double iso) {
+    state_.iso = iso;
+    setIsoControls(iso);
+    scheduleBuild();
+}
+
+void MainWindow::scheduleBuild() {
+    if (engine_.hasField()) buildTimer_.start();
+}
+
+QSize MainWindow::paneSize() const { return views_[0]->size() * views_[0]->devicePixelRatio(); }
+
+Camera MainWindow::viewCamera() const {
+    const QSize s = paneSize();
+    auto tree = engine_.tree();
+    return cameraFor(state_, tree ? tree->occupiedBounds() : Box3{dvec3(-1.0), dvec3(1.0)}, std::max(1, s.width()),
+                     std::max(1, s.height()));
+}
+
+void MainWindow::cameraMoved(const Camera& c) {
+    storeCamera(state_, c);
+    requestRender(true);
+    exactTimer_.start();
+}
+
+void MainWindow::setStandardView(int axis, int sign) {
+    auto tree = engine_.tree();
+    if (!tree) return;
+    const QSize s = paneSize();
+    storeCamera(state_, standardView(tree->occupiedBounds(), axis, sign, std::max(1, s.width()), std::max(1, s.height()),
+                                     state_.fov));
+    requestRender(false);
+}
+
+void MainWindow::setSplit(bool on) {
+    state_.split = on;
+    secondPane_->setVisible(on);
+    differenceAction_->setEnabled(on && state_.secondRenderer != kOpenGlPane);
+    exactTimer_.start();
+}
+
+bool MainWindow::openGlPane() const { return state_.split && state_.secondRenderer == kOpenGlPane; }
+
+void MainWindow::updateSurfelView() {
+    auto tree = engine_.tree();
+    if (!tree || !openGlPane()) return;
+    const RenderSettings rs = engine_.settingsFor(state_, false);
+    if (tree != surfelTree_ || rs.colour != surfelSettings_.colour || rs.colormap != surfelSettings_.colormap) {
+        surfels_ = std::make_shared<const std::vector<Surfel>>(extractSurfels(*tree, rs));
+        surfelTree_ = tree;
+        surfelSettings_ = rs;
+        surfelView_->setSurfels(surfels_);
+    }
+    const qreal dpr = surfelView_->devicePixelRatioF();
+    surfelView_->setView(cameraFor(state_, tree->occupiedBounds(), std::max(1, int(surfelView_->width() * dpr)),
+                                   std::max(1, int(surfelView_->height() * dpr))),
+                         rs);
+}
+
+void MainWindow::requestRender(bool preview) {
+    if (!engine_.tree()) return;
+    FrameRequest r;
+    r.renderers = {state_.renderer};
+    if (state_.split && !openGlPane()) r.renderers.push_back(state_.secondRenderer);
+    secondPane_->setCurrentWidget(openGlPane() ? static_cast<QWidget*>(surfelView_) : views_[1]);
+    if (openGlPane()) updateSurfelView();
+    r.camera = viewCamera();
+    try {
+        r.camera.validate();
+    } catch (const std::exception& e) {
+        showMessage(QString::fromStdString(e.what()), true);
+        return;
+    }
+    r.settings = engine_.settingsFor(state_, false);
+    r.preview = preview;
+    r.difference = state_.split && differenceAction_->isChecked();
+    engine_.requestFrame(r);
+}
+
+void MainWindow::onFrame(const FrameResult& r) {
+    for (std::size_t i = 0; i < r.panes.size() && i < 2; ++i) {
+        QString text = statsText(r.panes[i], r.fullMs, r.preview, r.level);
+        if (r.panes.size() == 2 && !r.preview) text += tr("\n%1 mismatching pixels").arg(r.mismatching);
+        views_[i]->setImage(i == 1 && !r.difference.isNull() ? r.difference : r.panes[i].image);
+        views_[i]->setOverlay(i == 1 && !r.difference.isNull() ? tr("difference |left - right| x4\n") + text : text);
+    }
+    if (!r.preview) emit frameShown();
+}
+
+QStringList MainWindow::commandLine(const QString& output, int width, int height) const {
+    auto tree = engine_.tree();
+    StudioState s = state_;
+    Camera cam = cameraFor(s, tree ? tree->occupiedBounds() : Box3{dvec3(-1.0), dvec3(1.0)}, width, height);
+    QStringList out;
+    for (const auto& a : renderArguments(s, cam, engine_.iso(), output.toStdString())) out << QString::fromStdString(a);
+    return out;
+}
+
+void MainWindow::exportFigure(const QString& path, int width, int height, bool transparent) {
+    StudioState s = state_;
+    s.transparent = transparent;
+    engine_.exportFigure(s, path, width, height);  // refuses a size out of range
+    if (width < 1 || height < 1 || width > kMaxExportSide || height > kMaxExportSide) return;
+    state_.exportWidth = width;  // the next export's defaults
+    state_.exportHeight = height;
+    state_.transparent = transparent;
+}
+
+void MainWindow::chooseExport() {
+    QDialog dlg(this);
+    dlg.setWindowTitle(tr("Export figure"));
+    auto* form = new QFormLayout(&dlg);
+    auto* path = new QLineEdit(&dlg);
+    path->setText(QStringLiteral("figure.png"));
+    auto* browse = new QPushButton(tr("Browse..."), &dlg);
+    connect(browse, &QPushButton::clicked, &dlg, [&] {
+        const QString f = QFileDialog::getSaveFileName(&dlg, tr("Export figure"), path->text(),
+                                                       tr("Images (*.png *.exr *.tif *.tiff)"));
+        if (!f.isEmpty()) path->setText(f);
+    });
+    auto* row = new QHBoxLayout;
+    row->addWidget(path);
+    row->addWidget(browse);
+    form->addRow(tr("File (.png, .exr, .tif)"), row);
+    auto* w = new QSpinBox(&dlg);
+    auto* h = new QSpinBox(&dlg);
+    for (QSpinBox* s : {w, h}) {
+        s->setRange(1, kMaxExportSide);
+        s->setSuffix(QStringLiteral(" px"));
+    }
+    w->setValue(state_.exportWidth);
+    h->setValue(state_.exportHeight);
+    form->addRow(tr("Width"), w);
+    form->addRow(tr("Height"), h);
+    auto* transparent = new QCheckBox(tr("Transparent background"), &dlg);
+    transparent->setChecked(state_.transparent);
+    form->addRow(transparent);
+    auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, &dlg);
+    connect(buttons, &QDialogButtonBox::accepted, &dlg, &QDialog::accept);
+    connect(buttons, &QDialogButtonBox::rejected, &dlg, &QDialog::reject);
+    form->addRow(buttons);
+    if (dlg.exec() == QDialog::Accepted) exportFigure(path->text(), w->value(), h->value(), transparent->isChecked());
+}
+
+}  // namespace octrace::studio

@@ -1,0 +1,129 @@
+#pragma once
+// The studio's main window: input and surface controls on the left, one or two render panes
+// (split view) in the middle, progress and Cancel in the status bar. Every control writes
+// StudioState; the Engine does the work off the GUI thread.
+#include "Engine.h"
+#include "StudioState.h"
+
+#include "octrace/render/Surfels.h"
+
+#include <QMainWindow>
+#include <QTimer>
+
+class QAction;
+class QCheckBox;
+class QComboBox;
+class QDoubleSpinBox;
+class QLabel;
+class QLineEdit;
+class QMenu;
+class QPlainTextEdit;
+class QProgressBar;
+class QPushButton;
+class QSlider;
+class QSpinBox;
+class QStackedWidget;
+
+namespace octrace::studio {
+
+class HistogramView;
+class RenderView;
+class SurfelView;
+
+class MainWindow : public QMainWindow {
+    Q_OBJECT
+public:
+    explicit MainWindow(QWidget* parent = nullptr);
+    ~MainWindow() override;
+
+    /// Opens an input (any octrace INPUT, including analytic:NAME[:N]) with the current
+    /// surface settings; the work runs in the background.
+    void openInput(const QString& input);
+    /// Starts exporting the current state to `path` at width x height (PNG, EXR, TIFF by the
+    /// extension); Engine::exported or Engine::failed follows.
+    void exportFigure(const QString& path, int width, int height, bool transparent);
+    /// Saves the state as a session file (atomically); a failure shows a message.
+    bool saveSessionTo(const QString& path);
+    /// Opens a session file: its input is read with its settings and camera. A file that is
+    /// missing or broken shows a message and keeps the current state.
+    bool openSession(const QString& path);
+    /// The `octrace render` command line of the current state at width x height writing `output`.
+    QStringList commandLine(const QString& output, int width, int height) const;
+
+    const StudioState& state() const { return state_; }
+    Engine& engine() { return engine_; }
+    RenderView* view(int pane) const { return views_[pane]; }
+    SurfelView* surfelView() const { return surfelView_; }
+    /// The camera of pane views at their current size.
+    Camera viewCamera() const;
+
+signals:
+    /// A frame (exact, not a preview) is on screen.
+    void frameShown();
+
+protected:
+    void dragEnterEvent(QDragEnterEvent*) override;
+    void dropEvent(QDropEvent*) override;
+
+private:
+    void buildMenus();
+    QWidget* buildControls();
+    void showMessage(const QString& text, bool error = false);
+    void addRecent(const QString& input);
+    void updateRecentMenu();
+    void onInputLoaded();
+    void onSurfaceBuilt();
+    void onFrame(const FrameResult& r);
+    void setIsoControls(double iso);
+    void isoEdited(double iso);
+    void scheduleBuild();
+    void requestRender(bool preview);
+    void cameraMoved(const Camera& c);
+    void setStandardView(int axis, int sign);
+    void setSplit(bool on);
+    void chooseExport();
+    void chooseOpen();
+    /// Reads s's input with s's settings; the input fields, iso value and camera of s become
+    /// the state's once it is read (a failed read changes nothing).
+    void load(const StudioState& s);
+    /// Sets every control from state_ without acting on the changes.
+    void showState();
+    void updateColourBar();
+    /// After a change of colour map or window: builds again when the display window changes,
+    /// else renders.
+    void colouringChanged();
+    QSize paneSize() const;
+    /// Whether the split view's right pane is the OpenGL view.
+    bool openGlPane() const;
+    /// Gives the OpenGL view the current surfels (extracted again when the surface or its
+    /// colour changed) and camera.
+    void updateSurfelView();
+
+    StudioState state_;
+    StudioState pending_;  // what load() is reading
+    Engine engine_;
+    RenderView* views_[2] = {nullptr, nullptr};
+    QStackedWidget* secondPane_ = nullptr;
+    SurfelView* surfelView_ = nullptr;
+    std::shared_ptr<const std::vector<Surfel>> surfels_;
+    std::shared_ptr<const Octree> surfelTree_;  // what surfels_ were extracted from
+    RenderSettings surfelSettings_;
+    HistogramView* histogram_ = nullptr;
+    QLabel *inputLabel_ = nullptr, *rangeLabel_ = nullptr, *statusLabel_ = nullptr, *colourBar_ = nullptr;
+    QComboBox *variableCombo_ = nullptr, *seriesCombo_ = nullptr, *rendererCombo_ = nullptr, *secondCombo_ = nullptr,
+              *colormapCombo_ = nullptr, *windowCombo_ = nullptr;
+    QLineEdit* timeEdit_ = nullptr;
+    QSlider* isoSlider_ = nullptr;
+    QDoubleSpinBox *isoSpin_ = nullptr, *fovSpin_ = nullptr, *lightSpin_[3] = {nullptr, nullptr, nullptr};
+    QSpinBox* depthSpin_ = nullptr;
+    QProgressBar* progress_ = nullptr;
+    QPushButton* cancelButton_ = nullptr;
+    QPlainTextEdit* messages_ = nullptr;
+    QAction *splitAction_ = nullptr, *differenceAction_ = nullptr;
+    QMenu* recentMenu_ = nullptr;
+    QTimer buildTimer_, exactTimer_;
+    bool updating_ = false;  // controls being set from the state: no feedback
+    unsigned frameSerial_ = 0;
+};
+
+}  // namespace octrace::studio

@@ -1,0 +1,248 @@
+#include "Session.h"
+
+#include "SurfaceOptions.h"
+#include "octrace/io/AtomicFile.h"
+#include "octrace/octree/Octree.h"
+#include "octrace/render/Renderer.h"
+#include "octrace/render/Shading.h"
+#include "octrace/util/Error.h"
+
+#include <QDir>
+#include <QFile>
+#include <QFileInfo>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+
+#include <algorithm>
+#include <cmath>
+
+namespace octrace::studio {
+namespace {
+
+constexpr int kFormatVersion = 1;
+const char* kFormatKey = "octrace_studio_session";
+
+QJsonArray array(const dvec3& v) { return {v.x, v.y, v.z}; }
+QJsonArray array(const vec3& v) { return {double(v.x), double(v.y), double(v.z)}; }
+QJsonArray array(const vec4& v) { return {double(v.x), double(v.y), double(v.z), double(v.w)}; }
+
+/// Reads the members of one JSON object, refusing wrong types with the member's path.
+class Reader {
+public:
+    Reader(const QJsonObject& o, QString path) : o_(o), path_(std::move(path)) {}
+
+    bool has(const char* key) const { return o_.contains(QLatin1String(key)) && !o_.value(QLatin1String(key)).isNull(); }
+    [[noreturn]] void fail(const char* key, const QString& what) const {
+        throw InputError((path_ + QLatin1String(key) + QStringLiteral(": ") + what).toStdString());
+    }
+    Reader object(const char* key) const {
+        const QJsonValue v = o_.value(QLatin1String(key));
+        if (v.isUndefined() || v.isNull()) return Reader({}, path_ + QLatin1String(key) + QLatin1Char('.'));
+        if (!v.isObject()) fail(key, QStringLiteral("must be an object"));
+        return Reader(v.toObject(), path_ + QLatin1String(key) + QLatin1Char('.'));
+    }
+    void text(const char* key, std::string& out) const {
+        if (!has(key)) return;
+        const QJsonValue v = o_.value(QLatin1String(key));
+        if (!v.isString()) fail(key, QStringLiteral("must be a string"));
+        out = v.toString().toStdString();
+    }
+    void flag(const char* key, bool& out) const {
+        if (!has(key)) return;
+        const QJsonValue v = o_.value(QLatin1String(key));
+        if (!v.isBool()) fail(key, QStringLiteral("must be true or false"));
+        out = v.toBool();
+    }
+    double number(const char* key, double lo, double hi) const {
+        const QJsonValue v = o_.value(QLatin1String(key));
+        if (!v.isDouble() || !std::isfinite(v.toDouble())) fail(key, QStringLiteral("must be a number"));
+        const double d = v.toDouble();
+        if (d < lo || d > hi) fail(key, QStringLiteral("%1 is outside [%2, %3]").arg(d).arg(lo).arg(hi));
+        return d;
+    }
+    void integer(const char* key, int& out, int lo, int hi) const {
+        if (!has(key)) return;
+        const double d = number(key, lo, hi);
+        if (d != std::floor(d)) fail(key, QStringLiteral("must be a whole number"));
+        out = int(d);
+    }
+    /// An array of n finite numbers within [lo, hi].
+    std::vector<double> numbers(const char* key, int n, double lo, double hi) const {
+        const QJsonValue v = o_.value(QLatin1String(key));
+        if (!v.isArray() || v.toArray().size() != n) fail(key, QStringLiteral("must be an array of %1 numbers").arg(n));
+        std::vector<double> out;
+        for (const QJsonValue& e : v.toArray()) {
+            if (!e.isDouble() || !std::isfinite(e.toDouble())) fail(key, QStringLiteral("must be an array of %1 numbers").arg(n));
+            if (e.toDouble() < lo || e.toDouble() > hi)
+                fail(key, QStringLiteral("%1 is outside [%2, %3]").arg(e.toDouble()).arg(lo).arg(hi));
+            out.push_back(e.toDouble());
+        }
+        return out;
+    }
+    void vector3(const char* key, dvec3& out, double limit) const {
+        if (!has(key)) return;
+        const auto v = numbers(key, 3, -limit, limit);
+        out = dvec3(v[0], v[1], v[2]);
+    }
+    void colour(const char* key, vec3& out) const {
+        if (!has(key)) return;
+        const auto v = numbers(key, 3, 0.0, 1.0);
+        out = vec3(float(v[0]), float(v[1]), float(v[2]));
+    }
+    void colour(const char* key, vec4& out) const {
+        if (!has(key)) return;
+        const auto v = numbers(key, 4, 0.0, 1.0);
+        out = vec4(float(v[0]), float(v[1]), float(v[2]), float(v[3]));
+    }
+
+private:
+    QJsonObject o_;
+    QString path_;
+};
+
+void checkRenderer(const Reader& r, const char* key, const std::string& name) {
+    const auto names = rendererNames();
+    if (std::find(names.begin(), names.end(), name) == names.end() || !makeRenderer(name)->drawsVoxels())
+        r.fail(key, QStringLiteral("unknown renderer '%1'").arg(QString::fromStdString(name)));
+}
+
+}  // namespace
+
+QByteArray sessionJson(const StudioState& s) {
+    QJsonObject input{{"path", QString::fromStdString(s.input)},
+                      {"variable", QString::fromStdString(s.variable)},
+                      {"time", QString::fromStdString(s.time)},
+                      {"series", QString::fromStdString(s.series)}};
+    QJsonObject surface{{"iso", s.iso ? QJsonValue(*s.iso) : QJsonValue()}, {"depth", s.depth}};
+    QJsonObject renderers{{"main", QString::fromStdString(s.renderer)},
+                          {"second", QString::fromStdString(s.secondRenderer)},
+                          {"split", s.split}};
+    QJsonObject camera{{"fov", s.fov}};
+    if (s.cameraSet) {
+        camera.insert("position", array(s.position));
+        camera.insert("look_at", array(s.lookAt));
+        camera.insert("up", array(s.up));
+    }
+    QJsonObject shading{{"light", array(s.light)},
+                        {"colour", array(s.colour)},
+                        {"colormap", QString::fromStdString(s.colormap)},
+                        {"window", QString::fromStdString(s.window)},
+                        {"background", array(s.background)}};
+    QJsonObject exportSettings{{"width", s.exportWidth}, {"height", s.exportHeight}, {"transparent", s.transparent}};
+    QJsonObject root{{kFormatKey, kFormatVersion}, {"input", input},     {"surface", surface}, {"renderers", renderers},
+                     {"camera", camera},           {"shading", shading}, {"export", exportSettings}};
+    return QJsonDocument(root).toJson(QJsonDocument::Indented);
+}
+
+StudioState parseSession(const QByteArray& json, const QString& baseFolder) {
+    QJsonParseError err{};
+    const QJsonDocument doc = QJsonDocument::fromJson(json, &err);
+    if (err.error != QJsonParseError::NoError)
+        throw InputError(QStringLiteral("not a session file: JSON error at byte %1: %2").arg(err.offset).arg(err.errorString()).toStdString());
+    if (!doc.isObject()) throw InputError("not a session file: the JSON is not an object");
+    const Reader root(doc.object(), QString());
+    if (!root.has(kFormatKey)) throw InputError(std::string("not a session file: no '") + kFormatKey + "' member");
+    int version = 0;
+    root.integer(kFormatKey, version, 1, 1000000);
+    if (version != kFormatVersion)
+        root.fail(kFormatKey, QStringLiteral("format version %1 is not supported (this studio reads %2)").arg(version).arg(kFormatVersion));
+
+    StudioState s;
+    const Reader input = root.object("input");
+    input.text("path", s.input);
+    if (!s.input.empty() && s.input.rfind("analytic:", 0) != 0 && QFileInfo(QString::fromStdString(s.input)).isRelative() &&
+        !baseFolder.isEmpty())
+        s.input = QDir(baseFolder).filePath(QString::fromStdString(s.input)).toStdString();
+    input.text("variable", s.variable);
+    input.text("time", s.time);
+    input.text("series", s.series);
+
+    const Reader surface = root.object("surface");
+    if (surface.has("iso")) s.iso = surface.number("iso", -1e300, 1e300);
+    surface.integer("depth", s.depth, 1, Octree::kMaxDepth);
+
+    const Reader renderers = root.object("renderers");
+    renderers.text("main", s.renderer);
+    checkRenderer(renderers, "main", s.renderer);
+    renderers.text("second", s.secondRenderer);
+    if (s.secondRenderer != kOpenGlPane) checkRenderer(renderers, "second", s.secondRenderer);
+    renderers.flag("split", s.split);
+
+    const Reader camera = root.object("camera");
+    if (camera.has("fov")) {
+        s.fov = camera.number("fov", 0.0, 180.0);
+        if (s.fov <= 0.0 || s.fov >= 180.0) camera.fail("fov", QStringLiteral("must be in (0, 180) degrees"));
+    }
+    const int given = int(camera.has("position")) + int(camera.has("look_at")) + int(camera.has("up"));
+    if (given != 0 && given != 3) camera.fail("position", QStringLiteral("position, look_at and up go together"));
+    if (given == 3) {
+        constexpr double kLimit = ScalarField::kMaxWorldCoordinate;
+        camera.vector3("position", s.position, kLimit);
+        camera.vector3("look_at", s.lookAt, kLimit);
+        camera.vector3("up", s.up, kLimit);
+        s.cameraSet = true;
+        Camera c;
+        c.position = s.position;
+        c.lookAt = s.lookAt;
+        c.up = s.up;
+        c.fovYDegrees = s.fov;
+        try {
+            c.validate();
+        } catch (const UsageError& e) {
+            camera.fail("position", QString::fromStdString(e.what()));
+        }
+    }
+
+    const Reader shading = root.object("shading");
+    shading.vector3("light", s.light, 1e6);
+    if (!(glm::length(s.light) > 0.0)) shading.fail("light", QStringLiteral("direction must not be zero"));
+    shading.colour("colour", s.colour);
+    shading.text("colormap", s.colormap);
+    if (!s.colormap.empty()) {
+        const auto names = colormapNames();
+        if (std::find(names.begin(), names.end(), s.colormap) == names.end())
+            shading.fail("colormap", QStringLiteral("unknown colour map '%1'").arg(QString::fromStdString(s.colormap)));
+    }
+    shading.text("window", s.window);
+    if (!s.window.empty()) {
+        try {
+            cli::displayWindow(s.window);
+        } catch (const UsageError& e) {
+            shading.fail("window", QString::fromStdString(e.what()));
+        }
+        if (!s.colormap.empty() && s.window != "none")
+            shading.fail("window", QStringLiteral("a display window and a colour map both colour the surface: give one"));
+    }
+    shading.colour("background", s.background);
+
+    const Reader exportSettings = root.object("export");
+    exportSettings.integer("width", s.exportWidth, 1, kMaxExportSide);
+    exportSettings.integer("height", s.exportHeight, 1, kMaxExportSide);
+    exportSettings.flag("transparent", s.transparent);
+    return s;
+}
+
+void saveSession(const StudioState& state, const QString& path) {
+    StudioState s = state;
+    // A file input as an absolute path: the session opens from any folder.
+    if (!s.input.empty() && s.input.rfind("analytic:", 0) != 0)
+        s.input = QFileInfo(QString::fromStdString(s.input)).absoluteFilePath().toStdString();
+    const QByteArray json = sessionJson(s);
+    io::writeFileAtomically(path.toStdString(), std::string_view(json.constData(), std::size_t(json.size())));
+}
+
+StudioState loadSession(const QString& path) {
+    QFile f(path);
+    if (!f.exists()) throw InputError(path.toStdString() + ": no such file");
+    if (!f.open(QIODevice::ReadOnly)) throw InputError(path.toStdString() + ": cannot read: " + f.errorString().toStdString());
+    constexpr qint64 kMaxSessionBytes = 1 << 20;
+    if (f.size() > kMaxSessionBytes) throw InputError(path.toStdString() + ": too large for a session file (over 1 MiB)");
+    try {
+        return parseSession(f.readAll(), QFileInfo(path).absolutePath());
+    } catch (const InputError& e) {
+        throw InputError(path.toStdString() + ": " + e.what());
+    }
+}
+
+}  // namespace octrace::studio

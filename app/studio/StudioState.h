@@ -1,0 +1,79 @@
+#pragma once
+// Everything the studio shows, as plain data: the input and how it is read, the surface, the
+// renderers, the camera, the shading and the export. A session file is this state as JSON
+// (Session.h); renderArguments() is the same state as the `octrace render` command line that
+// draws the same image, so that the studio and the CLI can be checked against each other.
+#include "SurfaceOptions.h"
+
+#include "octrace/render/Camera.h"
+#include "octrace/render/RenderSettings.h"
+#include "octrace/util/Math.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace octrace::studio {
+
+struct StudioState {
+    // Input (what `octrace render INPUT --var --time --series` reads).
+    std::string input;
+    std::string variable;  ///< empty: the file's only 3-D variable
+    std::string time;      ///< NetCDF time step (index or ISO date); empty: the first
+    std::string series;    ///< DICOM series; empty: the largest
+    // Surface.
+    std::optional<double> iso;  ///< empty: the middle of the valid range
+    int depth = 8;
+    // Renderers: the main view's, and the second one of the split view.
+    std::string renderer = "full";
+    std::string secondRenderer = "direct";  ///< a renderer's name, or kOpenGlPane
+    bool split = false;
+    // Camera; unset: framing the surface as `octrace render` does without camera options.
+    bool cameraSet = false;
+    dvec3 position{0.0, 0.0, 1.0}, lookAt{0.0}, up{0.0, 0.0, 1.0};
+    double fov = 30.0;
+    // Shading (RenderSettings, display values as a user picks them).
+    dvec3 light{0.4, 0.6, 1.0};
+    vec3 colour{0.85f, 0.62f, 0.35f};  ///< sRGB
+    std::string colormap;               ///< empty: uniform colour
+    /// --window: "" (the file's own display window, if any, unless a colour map is chosen),
+    /// "none", or a CT preset (CtPresets.h).
+    std::string window;
+    vec4 background{1.0f, 1.0f, 1.0f, 1.0f};  ///< sRGB, alpha
+    // Export.
+    int exportWidth = 1600, exportHeight = 1200;
+    bool transparent = false;  ///< export with a transparent background (alpha 0)
+};
+
+/// The split view's right pane as the OpenGL surfel view instead of a CPU renderer.
+inline constexpr const char* kOpenGlPane = "opengl";
+
+/// The largest export side in pixels.
+inline constexpr int kMaxExportSide = 8192;
+
+/// Whether the state's surface colour is not the default one (the CLI's --colour given: it
+/// then replaces an input's own voxel colours).
+bool colourGiven(const StudioState& state);
+
+/// The camera of `state` at width x height: its own when set, else the CLI's default framing of
+/// `surfaceBounds`.
+Camera cameraFor(const StudioState& state, const Box3& surfaceBounds, int width, int height);
+
+/// The CLI's surface options for `state` (input, variable, time, series, iso, depth, colour,
+/// colour map, display window).
+cli::SurfaceArgs surfaceArgs(const StudioState& state);
+
+/// The render settings of `state` (the CLI's conversion of the same options) for a surface
+/// whose display window the build chose (`window`, `invertedGrey`: cli::Surface's);
+/// `transparent` makes the background's alpha 0.
+RenderSettings renderSettingsFor(const StudioState& state, bool transparent, const ValueWindow& window = {},
+                                 bool invertedGrey = false);
+
+/// `octrace render` arguments (without the program and command names) that draw what the studio
+/// exports for `state` with `camera`: input options, surface, renderer, camera, shading, size,
+/// background, -o `output`. Numbers are written with 17 significant digits (exact round trip).
+/// `iso` is the value in use (the state's may be unset).
+std::vector<std::string> renderArguments(const StudioState& state, const Camera& camera, double iso,
+                                         const std::string& output);
+
+}  // namespace octrace::studio
