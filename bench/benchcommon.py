@@ -1,0 +1,27 @@
+"""What bench/lighting.py and bench/memory.py share: the repository root, JSON reading and the
+common command-line options (octrace binary, data folder) with the raw-JSON folder."""
+import argparse
+import json
+import os
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def load(path):
+    with open(path) as f:
+        return json.load(f)
+
+
+def parser(doc):
+    """An argument parser with --octrace and --data (defaults: this tree's build, ../shared/data)."""
+    ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--octrace", default=os.path.join(ROOT, "build", "app", "octrace"))
+    ap.add_argument("--data", default=os.path.join(ROOT, "..", "shared", "data"))
+    return ap
+
+
+def raw_dir(name):
+    """docs/benchmarks/NAME/, created."""
+    d = os.path.join(ROOT, "docs", "benchmarks", name)
+    os.makedirs(d, exist_ok=True)
+    return d
