@@ -118,6 +118,22 @@ io::FigureSpec figureSpec(const FigureArgs& f, const Surface& s, const Camera& c
         spec.low = albedo.low();
         spec.high = albedo.high();
         spec.barLabel = tree.valueName + (tree.valueUnits.empty() ? "" : " (" + tree.valueUnits + ")");
+    } else if (albedo.byHeight()) {
+        // Coloured by height: the bar spans the surface's cell layers, in metres above the sea
+        // surface for a geographic field (negative below it), else in world z.
+        const double z0 = tree.cubeOrigin.z + double(albedo.zLow()) * tree.voxelSize();
+        const double z1 = tree.cubeOrigin.z + double(albedo.zHigh() + 1) * tree.voxelSize();
+        spec.colormap = albedo.colormapName();
+        if (field.geographic.valid) {
+            const GeoAxes g{field.geographic};
+            spec.low = -g.depthM(z0);
+            spec.high = -g.depthM(z1);
+            spec.barLabel = "height (m)";
+        } else {
+            spec.low = z0;
+            spec.high = z1;
+            spec.barLabel = "height (world z)";
+        }
     }
     if (!tree.voxelMaterials.empty()) sub += ", sea floor and land";
 

@@ -422,7 +422,7 @@ int runRender(const std::vector<std::string>& args) {
     // A figure: the plot is the image area its layout leaves (--size or --print-size is the whole).
     std::optional<io::FigureLayout> figureLayoutUsed;
     if (a.figure.enabled) {
-        figureLayoutUsed = figureLayout(a.figure, a.width, a.height, !a.colourBy.empty());
+        figureLayoutUsed = figureLayout(a.figure, a.width, a.height, !a.colourBy.empty() || !a.colormap.empty());
         a.width = figureLayoutUsed->plotW;
         a.height = figureLayoutUsed->plotH;
     }

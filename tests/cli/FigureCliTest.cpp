@@ -93,6 +93,31 @@ TEST(FigureCli, LevitusFigureHasAColourBarThatFollowsTheColourMap) {
     EXPECT_EQ(darkerUpwards, 0);  // brighter upwards
 }
 
+TEST(FigureCli, ASurfaceColouredByHeightGetsAColourBarOfTheMap) {
+    Scratch s;
+    // Without --colormap the surface has one colour: no bar.
+    Result r = run({"render", "analytic:torus:33", "--iso", "0", "--depth", "6", "--figure", "--size", "500x360",
+                    "--stats", s.path("plain.json"), "-o", s.path("plain.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(statInts(slurp(s.path("plain.json")), "figure_colour_bar").empty());
+    // With a colour map the surface is coloured by height, and the bar shows the map: viridis
+    // from dark purple (bottom) to yellow (top), brighter upwards.
+    r = run({"render", "analytic:torus:33", "--iso", "0", "--depth", "6", "--colormap", "viridis", "--figure", "--size",
+             "500x360", "--stats", s.path("f.json"), "-o", s.path("fig.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const std::string js = slurp(s.path("f.json"));
+    const std::vector<int> bar = statInts(js, "figure_colour_bar");
+    ASSERT_EQ(bar.size(), 4u) << js;
+    const auto fig = octrace::test::decodePng(octrace::test::readBytes(s.path("fig.png")));
+    const int x = bar[0] + bar[2] / 2;
+    EXPECT_LT(fig.at(x, bar[1] + bar[3] - 1, 1), 40);  // bottom: viridis starts at (68, 1, 84)
+    EXPECT_GT(fig.at(x, bar[1], 1), 200);              // top: viridis ends at (253, 231, 37)
+    auto luma = [&](int y) { return 0.2126 * fig.at(x, y, 0) + 0.7152 * fig.at(x, y, 1) + 0.0722 * fig.at(x, y, 2); };
+    int darkerUpwards = 0;
+    for (int y = bar[1]; y + 1 < bar[1] + bar[3]; ++y) darkerUpwards += luma(y) < luma(y + 1) - 1.5;
+    EXPECT_EQ(darkerUpwards, 0);
+}
+
 TEST(FigureCli, RefusesFigureOptionsThatCannotApply) {
     Scratch s;
     for (const std::vector<std::string>& args :

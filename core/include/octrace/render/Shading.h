@@ -49,6 +49,11 @@ public:
     float low() const { return lo_; }
     float high() const { return hi_; }
     const std::string& colormapName() const { return colormap_; }
+    /// Colouring by height with the colour map: colour 0 at the bottom of cell layer zLow(),
+    /// 1 at the top of layer zHigh() (cell space along z).
+    bool byHeight() const { return values_ == nullptr && !colormap_.empty(); }
+    int zLow() const { return zLo_; }
+    int zHigh() const { return zHi_; }
 
 private:
     const Octree& tree_;
