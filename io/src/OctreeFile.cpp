@@ -197,9 +197,13 @@ public:
         if (i == 0) return 0;
         // Neighbours at -1 along the axes of each non-empty subset of {x, y, z} (bit a = axis a).
         std::int64_t v[8][2];
-        bool has[8] = {true};
+        bool has[8] = {true, false, false, false, false, false, false, false};
         const std::uint64_t code = codes_[i];
-        for (int s = 1; s < 8; ++s) {
+        // The single axes first; a diagonal (3, 5, 6) only serves a parallelogram whose two
+        // sides exist, and {x, y, z} (7) none.
+        for (int s : {1, 2, 4, 3, 5, 6}) {
+            has[s] = false;
+            if ((s & (s - 1)) && !(has[s & -s] && has[s - (s & -s)])) continue;
             std::uint64_t n = code;
             bool ok = true;
             for (int a = 0; a < 3 && ok; ++a) {
@@ -208,10 +212,19 @@ public:
                 if ((n & mask) == 0) ok = false;  // on the cube's face
                 else n = (((n & mask) - 1) & mask) | (n & ~mask);
             }
-            has[s] = false;
             if (!ok) continue;
-            auto it = std::lower_bound(codes_.begin(), codes_.begin() + std::ptrdiff_t(i), n);
-            if (it == codes_.begin() + std::ptrdiff_t(i) || *it != n) continue;
+            // Galloping back from i, then a binary search in the bracket: a neighbour along
+            // the axis of the lowest Morton bit is a few codes back, so its probes stay in cache.
+            std::size_t hi = i, lo = 0;
+            for (std::size_t step = 1; step < hi; step *= 2) {
+                if (codes_[hi - step] <= n) {
+                    lo = hi - step;
+                    break;
+                }
+                hi -= step;
+            }
+            auto it = std::lower_bound(codes_.begin() + std::ptrdiff_t(lo), codes_.begin() + std::ptrdiff_t(hi), n);
+            if (it == codes_.begin() + std::ptrdiff_t(hi) || *it != n) continue;
             const std::uint32_t x = normals[std::size_t(it - codes_.begin())];
             v[s][0] = x >> 16;
             v[s][1] = x & 0xFFFFu;
