@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <system_error>
@@ -139,6 +140,9 @@ void writeFileAtomically(const std::string& path, std::span<const std::uint8_t> 
     // Mode 0666 (less the umask), as any other program's output; mkstemp would give 0600.
     int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd < 0) fail(path, describeCreateFailure(path, errno));
+    // Test hook (tests/cli/SignalTest.cpp): stop with the temporary created and nothing written,
+    // so that the test's signal arrives while the temporary exists, whatever the timing.
+    if (const char* hook = std::getenv("OCTRACE_TEST_STOP_WHILE_WRITING"); hook && std::strcmp(hook, "1") == 0) ::raise(SIGSTOP);
 
     auto abandon = [&](const std::string& reason) {
         ::close(fd);

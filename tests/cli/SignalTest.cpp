@@ -8,6 +8,7 @@
 #include <sys/inotify.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <thread>
 
@@ -51,13 +52,15 @@ TEST(Signals, InterruptedWhileRenderingEndsBySignalAndLeavesNoOutput) {
     }
 }
 
-// The output is written to a temporary name and renamed when complete. The child is stopped
-// (SIGSTOP) as soon as its temporary appears, so that the signal is sure to arrive while the
-// temporary exists; then it gets the signal and is continued. A run that finished writing
-// before it could be stopped is tried again (the writing takes tens of milliseconds).
+// The output is written to a temporary name and renamed when complete. The writing takes tens
+// of milliseconds, too short to catch reliably on a loaded machine, so the child is run with
+// OCTRACE_TEST_STOP_WHILE_WRITING=1: it stops itself (SIGSTOP) right after creating its
+// temporary (io/src/AtomicFile.cpp). Then it gets the signal and is continued. A run that still
+// finished writing first (the hook not honoured) is tried again and fails the test in the end.
 TEST(Signals, InterruptedWhileWritingRemovesItsTemporaryAndEndsBySignal) {
     for (int sig : {SIGINT, SIGTERM}) {
         bool caught = false;
+        ::setenv("OCTRACE_TEST_STOP_WHILE_WRITING", "1", 1);  // inherited by the child
         for (int attempt = 0; attempt < 5 && !caught; ++attempt) {
             Scratch dir, logs;
             const int watch = ::inotify_init1(IN_CLOEXEC | IN_NONBLOCK);
@@ -105,6 +108,7 @@ TEST(Signals, InterruptedWhileWritingRemovesItsTemporaryAndEndsBySignal) {
             EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig) << strsignal(sig) << ": " << describeStatus(status);
             EXPECT_EQ(countEntries(dir.dir()), 0) << strsignal(sig) << " left:" << listing(dir.dir());
         }
+        ::unsetenv("OCTRACE_TEST_STOP_WHILE_WRITING");
         EXPECT_TRUE(caught) << strsignal(sig) << ": in 5 runs, the writing was never caught in progress";
     }
 }
