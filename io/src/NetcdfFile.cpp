@@ -1,5 +1,6 @@
 #include "NetcdfFile.h"
 
+#include "ChildProbe.h"
 #include "GdalSupport.h"
 #include "InputFile.h"
 
@@ -8,10 +9,12 @@
 #include "octrace/util/Memory.h"
 
 #include <cpl_error.h>
+#include <cpl_vsi.h>
 #include <gdal_priv.h>
 
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <limits>
 #include <mutex>
 
@@ -81,6 +84,41 @@ bool defaultFill(const std::string& type, double& fill) {
     return true;
 }
 
+// Whether the file (on disk or a GDAL virtual file) starts with the HDF5 signature, i.e. is
+// NetCDF-4. Only HDF5-based files are opened in a child first: classic files are walked by
+// octrace's own header reader before GDAL sees them.
+bool isHdf5(const std::string& path) {
+    static const char signature[8] = {'\x89', 'H', 'D', 'F', '\r', '\n', '\x1a', '\n'};
+    VSILFILE* f = VSIFOpenL(path.c_str(), "rb");
+    if (!f) return false;
+    char head[8] = {};
+    bool yes = VSIFReadL(head, 1, 8, f) == 8 && std::memcmp(head, signature, 8) == 0;
+    VSIFCloseL(f);
+    return yes;
+}
+
+struct Opened {
+    GDALDatasetUniquePtr dataset;
+    std::vector<VariableInfo> variables;
+    std::vector<std::shared_ptr<GDALMDArray>> arrays;
+};
+
+Opened openAndCollect(const std::string& path) {
+    GdalMessages messages;
+    Opened o;
+    const char* const drivers[] = {"netCDF", nullptr};
+    o.dataset.reset(GDALDataset::Open(path.c_str(), GDAL_OF_MULTIDIM_RASTER | GDAL_OF_READONLY, drivers));
+    if (!o.dataset) {
+        std::string detail = CPLGetLastErrorType() == CE_None ? std::string("the file is truncated or corrupt")
+                                                              : GdalMessages::last();
+        throw FileError(path + ": GDAL's netCDF driver cannot open it: " + detail);
+    }
+    auto root = o.dataset->GetRootGroup();
+    if (!root) throw FileError(path + ": GDAL gives no root group: " + GdalMessages::last());
+    collect(root, o.variables, o.arrays);
+    return o;
+}
+
 }  // namespace
 
 int VariableInfo::extent() const {
@@ -117,18 +155,16 @@ struct NetcdfFile::Impl {
 
 NetcdfFile::NetcdfFile(const std::string& path) : impl_(std::make_unique<Impl>()) {
     registerGdal();
-    GdalMessages messages;
     impl_->path = path;
-    const char* const drivers[] = {"netCDF", nullptr};
-    impl_->dataset.reset(GDALDataset::Open(path.c_str(), GDAL_OF_MULTIDIM_RASTER | GDAL_OF_READONLY, drivers));
-    if (!impl_->dataset) {
-        std::string detail = CPLGetLastErrorType() == CE_None ? std::string("the file is truncated or corrupt")
-                                                              : GdalMessages::last();
-        throw FileError(path + ": GDAL's netCDF driver cannot open it: " + detail);
-    }
-    auto root = impl_->dataset->GetRootGroup();
-    if (!root) throw FileError(path + ": GDAL gives no root group: " + GdalMessages::last());
-    collect(root, impl_->variables, impl_->arrays);
+    // HDF5 can hang on a corrupt NetCDF-4 file while its metadata are read (fuzzing.md): that
+    // part runs first in a child process with a deadline.
+    if (isHdf5(path))
+        probeInChild(path, "the NetCDF-4 (HDF5) metadata", hdf5OpenDeadline(),
+                     [&path] { openAndCollect(path); });
+    Opened o = openAndCollect(path);
+    impl_->dataset = std::move(o.dataset);
+    impl_->variables = std::move(o.variables);
+    impl_->arrays = std::move(o.arrays);
     markAuxiliary(impl_->variables);
 }
 
