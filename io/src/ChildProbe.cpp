@@ -29,6 +29,10 @@ double hdf5OpenDeadline() {
 
 namespace {
 
+// The child's exit statuses; any other one means the child did not get to its own exit.
+constexpr int kProbeReturned = 0;
+constexpr int kProbeThrew = 86;
+
 std::string seconds(double s) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%g", s);
@@ -47,11 +51,11 @@ void probeInChild(const std::string& path, const std::string& what, double limit
         // The child: only the calling thread exists. It never logs (the sink may belong to a
         // GUI) and leaves with _exit, so no destructor or atexit handler of the parent's runs.
         log::setLevel(log::Level::Quiet);
-        int status = 0;
+        int status = kProbeReturned;
         try {
             probe();
         } catch (...) {
-            status = 1;
+            status = kProbeThrew;
         }
         _exit(status);
     }
@@ -65,6 +69,12 @@ void probeInChild(const std::string& path, const std::string& what, double limit
         if (r == pid) {
             if (WIFSIGNALED(status))
                 throw FileError(path + ": reading " + what + " crashed (signal " + std::to_string(WTERMSIG(status)) +
+                                ", in a child process octrace runs it in); the file is probably corrupt");
+            // Any other exit: the library ended the child itself (abort handlers, a sanitizer's
+            // report in an instrumented build).
+            const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+            if (code != kProbeReturned && code != kProbeThrew)
+                throw FileError(path + ": reading " + what + " crashed (exit status " + std::to_string(code) +
                                 ", in a child process octrace runs it in); the file is probably corrupt");
             return;
         }

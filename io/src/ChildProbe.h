@@ -14,11 +14,12 @@ namespace octrace::io::detail {
 /// OCTRACE_HDF5_OPEN_SECONDS when set to a positive number, otherwise 60.
 double hdf5OpenDeadline();
 
-/// Forks; the child runs `probe` and exits (0 when it returned, 1 when it threw). Returns
-/// when the child has exited, whatever its status: the caller then runs the real work and
-/// meets the real error, if any. Throws FileError naming `path` and `what` when the child is
-/// still running after `seconds` (it is killed) or died from a signal. Logs once, after two
-/// seconds, that it is still waiting. When fork fails the probe is skipped (logged).
+/// Forks; the child runs `probe` and exits with a status of its own for "returned" and for
+/// "threw". Returns when the child has exited with one of those: the caller then runs the real
+/// work and meets the real error, if any. Throws FileError naming `path` and `what` when the
+/// child is still running after `seconds` (it is killed), died from a signal, or exited with
+/// any other status (a library or, in an instrumented build, a sanitizer ended it). Logs once,
+/// after two seconds, that it is still waiting. When fork fails the probe is skipped (logged).
 void probeInChild(const std::string& path, const std::string& what, double seconds,
                   const std::function<void()>& probe);
 

@@ -1,6 +1,7 @@
 #include "NetcdfFile.h"
 
 #include "ChildProbe.h"
+#include "Crc32c.h"
 #include "GdalSupport.h"
 #include "InputFile.h"
 
@@ -12,11 +13,15 @@
 #include <cpl_vsi.h>
 #include <gdal_priv.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <mutex>
+
+#include <sys/stat.h>
 
 namespace octrace::io::detail {
 namespace {
@@ -97,6 +102,52 @@ bool isHdf5(const std::string& path) {
     return yes;
 }
 
+// What identifies a file's state for the probe: on disk its device, inode, size and
+// modification time; for a GDAL in-memory file (/vsimem/, the fuzz target) its size and the
+// CRC-32C of its bytes. Empty when unknown (the file is then always probed).
+std::string fileIdentity(const std::string& path) {
+    if (path.rfind("/vsimem/", 0) == 0) {
+        vsi_l_offset length = 0;
+        GByte* bytes = VSIGetMemFileBuffer(path.c_str(), &length, FALSE);
+        if (!bytes) return {};
+        return path + "|" + std::to_string(length) + "|" + std::to_string(crc32c(bytes, std::size_t(length)));
+    }
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) return {};
+    return path + "|" + std::to_string(st.st_dev) + ":" + std::to_string(st.st_ino) + "|" + std::to_string(st.st_size) +
+           "|" + std::to_string(st.st_mtim.tv_sec) + "." + std::to_string(st.st_mtim.tv_nsec);
+}
+
+// Runs the metadata reading in a child first (ChildProbe.h), once per state of a file: the
+// CLI and the studio open the same file several times (listing, then reading), and each probe
+// costs a fork (and a refusal may have cost the whole deadline). The last few outcomes are
+// remembered: an empty message for a probe that finished, the refusal otherwise.
+void guardHdf5Metadata(const std::string& path, const std::function<void()>& probe) {
+    static std::mutex mutex;
+    static std::vector<std::pair<std::string, std::string>> outcomes;  // identity, refusal
+    const std::string id = fileIdentity(path);
+    {
+        std::lock_guard<std::mutex> lock(mutex);
+        for (const auto& [known, refusal] : outcomes)
+            if (!id.empty() && known == id) {
+                if (refusal.empty()) return;
+                throw FileError(refusal);
+            }
+    }
+    std::string refusal;
+    try {
+        probeInChild(path, "the NetCDF-4 (HDF5) metadata", hdf5OpenDeadline(), probe);
+    } catch (const FileError& e) {
+        refusal = e.what();
+    }
+    if (!id.empty()) {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (outcomes.size() >= 16) outcomes.erase(outcomes.begin());
+        outcomes.emplace_back(id, refusal);
+    }
+    if (!refusal.empty()) throw FileError(refusal);
+}
+
 struct Opened {
     GDALDatasetUniquePtr dataset;
     std::vector<VariableInfo> variables;
@@ -158,9 +209,7 @@ NetcdfFile::NetcdfFile(const std::string& path) : impl_(std::make_unique<Impl>()
     impl_->path = path;
     // HDF5 can hang on a corrupt NetCDF-4 file while its metadata are read (fuzzing.md): that
     // part runs first in a child process with a deadline.
-    if (isHdf5(path))
-        probeInChild(path, "the NetCDF-4 (HDF5) metadata", hdf5OpenDeadline(),
-                     [&path] { openAndCollect(path); });
+    if (isHdf5(path)) guardHdf5Metadata(path, [&path] { openAndCollect(path); });
     Opened o = openAndCollect(path);
     impl_->dataset = std::move(o.dataset);
     impl_->variables = std::move(o.variables);

@@ -54,6 +54,7 @@ const Case kCases[] = {
     {"invalid_billion_points.nc", nullptr, "NetCDF data truncated"},
     {"invalid_size_overflow.nc", nullptr, "NetCDF data truncated"},
     {"invalid_billion_points_nc4.nc", nullptr, "octrace reads along one axis"},
+    {"invalid_hdf5_memcpy_overlap.nc", nullptr, "corrupt"},
     {"invalid_nan_coordinate.nc", nullptr, "non-finite value"},
     {"invalid_repeated_coordinate.nc", nullptr, "not strictly monotonic"},
     {"invalid_infinite_extent.nc", nullptr, "must be positive and finite"},
