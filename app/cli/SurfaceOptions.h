@@ -51,8 +51,9 @@ struct SurfaceArgs {
     bool insideBelow = false;             // --inside below
     bool formGiven = false;               // --form or --inside given
     bool keepVolume = false;  // set by the command: buildSurface keeps a volume octree as it is (build, csg)
-    std::vector<Solid> cuts;  // --cut, in order
+    std::vector<std::string> cuts;  // --cut, in order: solids as SolidSpec.h names them (checked)
     bool clip = false;        // --clip: keep the inside of the cuts instead
+    bool extendDown = false;  // --extend-down: water columns extended to the grid's bottom (extendColumnsDown)
     bool bake = false;        // --bake: bake lighting into the shell
     BakeOptions bakeOptions;  // --bake-light, --bake-ao, --bake-ao-distance, --bake-shadows
     bool bakeLightGiven = false;
@@ -74,8 +75,10 @@ void addVariableOption(OptionParser& p, io::FieldRequest& request);
 void addSurfaceOptions(OptionParser& p, SurfaceArgs& a);
 /// --inside above|below; `applies` says to what ("volume form").
 void addInsideOption(OptionParser& p, SurfaceArgs& a, const std::string& applies);
-/// --form shell|volume, --inside above|below, --cut SOLID, --clip.
+/// --form shell|volume, --inside above|below, --cut SOLID, --clip, --extend-down.
 void addFormOptions(OptionParser& p, SurfaceArgs& a);
+/// --extend-down (geographic fields).
+void addExtendDownOption(OptionParser& p, SurfaceArgs& a);
 /// --bake, --bake-light, --bake-ao, --bake-ao-distance, --bake-shadows.
 void addBakeOptions(OptionParser& p, SurfaceArgs& a);
 /// --lighting baked|dynamic.
