@@ -103,7 +103,7 @@ ReliefRaster readNetcdfRelief(const std::string& path, std::uint64_t budget) {
     const std::string what = lower(var.standardName + " " + var.shortName);
     if (positive == "down" || (positive != "up" && what.find("depth") != std::string::npos)) {
         scale = -scale;
-        log::info(path + ": " + var.shortName + " is a depth: heights are its negation");
+        log::info(path + ": " + var.shortName + " holds depths (positive down): the relief is their negation");
     }
     // C order over the variable's dimensions: the stride of each.
     std::vector<std::size_t> stride(var.dimSizes.size(), 1);
