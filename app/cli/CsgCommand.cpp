@@ -25,7 +25,10 @@ namespace {
 using CsgArgs = OctreeFileArgs;
 
 OptionParser makeParser(CsgArgs& a) {
-    OptionParser p("csg", "octrace csg A union|intersection|difference B -o OUT.oct [options]");
+    OptionParser p("csg", "octrace csg A union|intersection|difference B -o OUT.oct [options]\n"
+                          "A, B: a field input, a volume octree file (.oct) or a solid: box:X0,Y0,Z0,X1,Y1,Z1, sphere:X,Y,Z,R,\n"
+                          "  cylinder:X0,Y0,Z0,X1,Y1,Z1,R, halfspace:X,Y,Z,NX,NY,NZ (world units) or relief:FILE (the ground\n"
+                          "  under a relief raster, laid into the other operand's geographic world); not two solids");
     p.add({"o", "FILE", "output octree file (.oct, volume form; written atomically) (required)",
            [&](const std::string& v) { a.output = v; }});
     addSurfaceOptions(p, a);
