@@ -115,6 +115,10 @@ void finishSurface(const SurfaceArgs& a, Surface& s) {
         if (s.tree.form != OctreeForm::Shell) throw UsageError("--bake applies to the shell form (not with --form volume)");
         BakeOptions o = a.bakeOptions;
         o.threads = a.threads;
+        if (a.ambient) {
+            o.ambient = *a.ambient;
+            o.diffuse = 1.0f - *a.ambient;
+        }
         bakeLighting(s.tree, o, &s.bake);
         log::debug("lighting baked in " + std::to_string(s.bake.bakeMs) + " ms (" + std::to_string(s.bake.rays) + " rays)");
     }
@@ -259,6 +263,13 @@ void addLightingOption(OptionParser& p, SurfaceArgs& a) {
            [&](const std::string& v) {
                if (v != "baked" && v != "dynamic") throw UsageError("--lighting: expected baked or dynamic, got '" + v + "'");
                a.lighting = v == "baked" ? SurfaceArgs::Lighting::Baked : SurfaceArgs::Lighting::Dynamic;
+           }});
+    p.add({"ambient", "A", "share of the light every voxel gets whatever its normal, in [0,1]; the light's own share is "
+           "1 - A (dynamic shading and --bake) (default 0.15)",
+           [&](const std::string& v) {
+               const double x = parseNumber("ambient", v);
+               if (!(x >= 0.0 && x <= 1.0)) throw UsageError("--ambient: must be in [0, 1], got " + v);
+               a.ambient = float(x);
            }});
 }
 
@@ -522,6 +533,14 @@ void applyColour(const SurfaceArgs& a, const Surface& s, RenderSettings& setting
     settings.colourMax = a.colourMax;
     settings.maskedColour = vec3(displayToLinear(vec4(a.maskedColour, 1.0f)));
     settings.floorColour = vec3(displayToLinear(vec4(a.floorColour, 1.0f)));
+}
+
+void applyLighting(const SurfaceArgs& a, RenderSettings& settings) {
+    settings.baked = a.lighting != SurfaceArgs::Lighting::Dynamic;
+    if (a.ambient) {
+        settings.ambient = *a.ambient;
+        settings.diffuse = 1.0f - *a.ambient;
+    }
 }
 
 }  // namespace octrace::cli

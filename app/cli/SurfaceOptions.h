@@ -57,6 +57,7 @@ struct SurfaceArgs {
     BakeOptions bakeOptions;  // --bake-light, --bake-ao, --bake-ao-distance, --bake-shadows
     bool bakeLightGiven = false;
     enum class Lighting { Auto, Baked, Dynamic } lighting = Lighting::Auto;  // --lighting (render)
+    std::optional<float> ambient;  // --ambient (render): diffuse is 1 - ambient, dynamic and baked
 };
 
 /// The window --window TEXT sets: a CT preset, "C,W", or "none" (an invalid window, which
@@ -78,7 +79,7 @@ void addInsideOption(OptionParser& p, SurfaceArgs& a, const std::string& applies
 void addFormOptions(OptionParser& p, SurfaceArgs& a);
 /// --bake, --bake-light, --bake-ao, --bake-ao-distance, --bake-shadows.
 void addBakeOptions(OptionParser& p, SurfaceArgs& a);
-/// --lighting baked|dynamic.
+/// --lighting baked|dynamic, --ambient A.
 void addLightingOption(OptionParser& p, SurfaceArgs& a);
 /// --threads; `result` names what does not depend on it ("the image").
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result);
@@ -161,5 +162,8 @@ void buildFromField(const SurfaceArgs& a, Surface& s, const BuildHooks& hooks = 
 /// Shading.h), its range, the masked and floor colours, and the surface's display window
 /// (RenderSettings::window, invertedGrey).
 void applyColour(const SurfaceArgs& a, const Surface& s, RenderSettings& settings);
+/// The lighting options as RenderSettings: baked light unless --lighting dynamic, and with
+/// --ambient its ambient and diffuse (1 - ambient) shares.
+void applyLighting(const SurfaceArgs& a, RenderSettings& settings);
 
 }  // namespace octrace::cli
