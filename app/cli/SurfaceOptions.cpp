@@ -129,15 +129,20 @@ void buildCitySurface(const SurfaceArgs& a, Surface& s) {
     if (given)
         throw UsageError(std::string(given) + " does not apply to the city input " + a.input +
                          " (its buildings and terrain are voxelized as surfaces)");
+    if (a.terrainDepth > a.depth)
+        throw UsageError("--terrain-depth " + std::to_string(a.terrainDepth) + " is deeper than --depth " + std::to_string(a.depth) +
+                         " (the terrain goes to the shallower depth, the buildings to --depth)");
     Timer t;
     io::CityRequest request = a.city;
-    request.maxSamples = (1 << std::min(a.depth, 12)) + 1;  // the octree resolves no finer
+    // The octree resolves the terrain no finer than its depth.
+    request.maxSamples = (1 << std::min(a.terrainDepth > 0 ? a.terrainDepth : a.depth, 12)) + 1;
     const CityModel model = io::readCityModel(a.input, request);
     s.loadMs = t.ms();
     for (const auto& n : model.notes) log::warning(n);
     CityBuildOptions o;
     o.depth = a.depth;
     o.threads = a.threads;
+    o.terrainDepth = a.terrainDepth;
     s.tree = voxelizeCity(model, o, &s.report);
     s.field.name = s.tree.fieldName;
     s.field.source = a.input;
@@ -362,6 +367,12 @@ void addCityOptions(OptionParser& p, SurfaceArgs& a) {
                    a.cityGiven = true;
                }});
     };
+    p.add({"terrain-depth", "N", "city inputs: per-region depth, terrain to depth N and buildings to --depth in one octree "
+           "(nodes that only terrain crosses stop at level N as coarse leaves; 1..--depth, default: --depth)",
+           [&](const std::string& v) {
+               a.terrainDepth = parseInt("terrain-depth", v, 1, Octree::kMaxDepth);
+               a.cityGiven = true;
+           }});
     text("dem", "RASTER", "city inputs: a DEM raster (GeoTIFF or any GDAL raster, any CRS) added as terrain (default: none)",
          &io::CityRequest::dem, "a raster file");
     text("texture", "RASTER", "city inputs: a colour raster (orthophoto, map; any GDAL raster, any CRS) draped on the terrain "
@@ -431,7 +442,7 @@ Surface buildSurface(const SurfaceArgs& a) {
                          " both colour the surface: give one");
     Surface s;
     if (isOctreeInput(a.input)) {
-        if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem, --texture, --height-attr and --base-attr apply to city inputs, not to the octree file " + a.input);
+        if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem, --texture, --height-attr, --base-attr and --terrain-depth apply to city inputs, not to the octree file " + a.input);
         loadOctreeSurface(a, budget, s);
         finishSurface(a, s);
         return s;
@@ -440,7 +451,7 @@ Surface buildSurface(const SurfaceArgs& a) {
         buildCitySurface(a, s);
         return s;
     }
-    if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem, --texture, --height-attr and --base-attr apply to city inputs (CityJSON, footprints, DEM rasters), not to " + a.input);
+    if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem, --texture, --height-attr, --base-attr and --terrain-depth apply to city inputs (CityJSON, footprints, DEM rasters), not to " + a.input);
     readSurfaceField(a, s);
     BuildHooks terminal;
     terminal.progress = progressPrinter(a.quiet);

@@ -46,7 +46,8 @@ struct SurfaceArgs {
     bool help = false, quiet = false, verbose = false;
     std::uint64_t maxMemory = 0;  // --max-memory; 0: defaultMemoryBudget()
     io::CityRequest city;         // --lod-select, --crs, --dem, --texture (city inputs)
-    bool cityGiven = false;       // one of them was given
+    int terrainDepth = 0;         // --terrain-depth (city inputs); 0: --depth
+    bool cityGiven = false;       // one of them (or --terrain-depth) was given
     OctreeForm form = OctreeForm::Shell;  // --form
     bool insideBelow = false;             // --inside below
     bool formGiven = false;               // --form or --inside given
@@ -90,7 +91,7 @@ void addLayerOptions(OptionParser& p, SurfaceArgs& a);
 void addGeographicOptions(OptionParser& p, io::FieldRequest& request);
 /// The first option of `request` that chooses part of a field ("--var", "--region", ...), or null.
 const char* fieldOptionGiven(const io::FieldRequest& request);
-/// --lod-select, --crs, --dem, --texture (city inputs).
+/// --lod-select, --crs, --dem, --texture, --height-attr, --base-attr, --terrain-depth (city inputs).
 void addCityOptions(OptionParser& p, SurfaceArgs& a);
 /// --series (DICOM).
 void addSeriesOption(OptionParser& p, io::FieldRequest& request);
