@@ -44,13 +44,16 @@ ValueWindow parseWindow(const std::string& v) {
     return w;
 }
 
-/// Refuses a CT preset (`option` NAME) for a field whose values are not Hounsfield units.
+}  // namespace
+
 void requireHounsfield(const ScalarField& f, const std::string& input, const std::string& option) {
     if (f.units == "HU") return;
     throw InputError(input + ": " + option + " is a CT preset in Hounsfield units, but the values of '" + f.name + "' are " +
                      (f.units.empty() ? std::string("not in HU (no units: not a CT series)") : "in " + f.units) +
                      "; give a number instead");
 }
+
+namespace {
 
 /// The surface's display window (see buildSurface).
 void chooseWindow(const SurfaceArgs& a, Surface& s) {
@@ -272,6 +275,38 @@ void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result
            [&](const std::string& v) { a.threads = parseInt("threads", v, 0, 1024); }});
 }
 
+void addWindowOption(OptionParser& p, SurfaceArgs& a, const std::string& what, const std::string& byDefault) {
+    std::string windows;
+    for (const auto& w : ctWindowPresets())
+        windows += std::string(windows.empty() ? "" : ", ") + w.name + " " + huText(w.window.centre) + "/" +
+                   huText(w.window.width);
+    p.add({"window", "NAME|C,W|none", "grey " + what + ": a CT preset (centre/width in HU: " + windows +
+           "), a centre and width, or none (default: " + byDefault + ")",
+           [&](const std::string& v) { a.windowName = v, a.window = parseWindow(v); }});
+}
+
+void addColourMapOptions(OptionParser& p, SurfaceArgs& a, const std::string& colormapHelp, const std::string& rangeHelp,
+                         const std::string& maskedWhat) {
+    p.add({"colormap", "NAME", "colour map: " + joinNames(colormapNames()) + "; " + colormapHelp,
+           [&](const std::string& v) {
+               colormap(v, 0.0f);
+               a.colormap = v;
+           }});
+    p.add({"colour-range", "MIN,MAX", rangeHelp,
+           [&](const std::string& v) {
+               const std::size_t comma = v.find(',');
+               if (comma == std::string::npos || v.find(',', comma + 1) != std::string::npos)
+                   throw UsageError("--colour-range: expected MIN,MAX, got '" + v + "'");
+               const double lo = parseNumber("colour-range", v.substr(0, comma)), hi = parseNumber("colour-range", v.substr(comma + 1));
+               if (!(lo < hi) || !std::isfinite(lo) || !std::isfinite(hi) || std::abs(lo) > 3e38 || std::abs(hi) > 3e38)
+                   throw UsageError("--colour-range: MIN must be below MAX, both finite, got '" + v + "'");
+               a.colourMin = float(lo);
+               a.colourMax = float(hi);
+           }});
+    p.add({"masked-colour", "R,G,B", "colour of " + maskedWhat + ", sRGB in [0,1] (default 0.6,0.6,0.6)",
+           [&](const std::string& v) { a.maskedColour = vec3(parseColour("masked-colour", v, false)); }});
+}
+
 void addColourOptions(OptionParser& p, SurfaceArgs& a) {
     a.colours = true;
     p.add({"colour", "R,G,B", "surface colour, sRGB components in [0,1], also over a city's own colours (default 0.85,0.62,0.35; city inputs: per object and texture)",
@@ -283,33 +318,13 @@ void addColourOptions(OptionParser& p, SurfaceArgs& a) {
                a.colour = vec3(parseColour("color", v, false));
                a.colourGiven = true;
            }});
-    std::string windows;
-    for (const auto& w : ctWindowPresets())
-        windows += std::string(windows.empty() ? "" : ", ") + w.name + " " + huText(w.window.centre) + "/" +
-                   huText(w.window.width);
-    p.add({"window", "NAME|C,W|none", "grey the surface by a display window applied to the value just under it: a CT preset "
-           "(centre/width in HU: " + windows + "), a centre and width, or none (default: the window stored in a DICOM file, "
-           "unless --colour, --colormap or --colour-by is given)",
-           [&](const std::string& v) { a.windowName = v, a.window = parseWindow(v); }});
-    p.add({"colormap", "NAME", "colour map: " + joinNames(colormapNames()) + "; colours by --colour-by's variable, else by height "
-           "(default: with --colour-by the variable's map from its standard_name or name, thermal/haline/speed/viridis; else none, --colour)",
-           [&](const std::string& v) {
-               colormap(v, 0.0f);
-               a.colormap = v;
-           }});
-    p.add({"colour-range", "MIN,MAX", "values of --colour-by mapped onto the colour map's ends (default: the surface voxels' range)",
-           [&](const std::string& v) {
-               const std::size_t comma = v.find(',');
-               if (comma == std::string::npos || v.find(',', comma + 1) != std::string::npos)
-                   throw UsageError("--colour-range: expected MIN,MAX, got '" + v + "'");
-               const double lo = parseNumber("colour-range", v.substr(0, comma)), hi = parseNumber("colour-range", v.substr(comma + 1));
-               if (!(lo < hi) || !std::isfinite(lo) || !std::isfinite(hi) || std::abs(lo) > 3e38 || std::abs(hi) > 3e38)
-                   throw UsageError("--colour-range: MIN must be below MAX, both finite, got '" + v + "'");
-               a.colourMin = float(lo);
-               a.colourMax = float(hi);
-           }});
-    p.add({"masked-colour", "R,G,B", "colour of surface voxels where --colour-by's variable is masked, sRGB in [0,1] (default 0.6,0.6,0.6)",
-           [&](const std::string& v) { a.maskedColour = vec3(parseColour("masked-colour", v, false)); }});
+    addWindowOption(p, a, "the surface by a display window applied to the value just under it",
+                    "the window stored in a DICOM file, unless --colour, --colormap or --colour-by is given");
+    addColourMapOptions(p, a,
+                        "colours by --colour-by's variable, else by height (default: with --colour-by the variable's map from its "
+                        "standard_name or name, thermal/haline/speed/viridis; else none, --colour)",
+                        "values of --colour-by mapped onto the colour map's ends (default: the surface voxels' range)",
+                        "surface voxels where --colour-by's variable is masked");
     p.add({"floor-colour", "R,G,B", "colour of the sea floor and land (--floor), sRGB in [0,1] (default 0.55,0.5,0.45)",
            [&](const std::string& v) { a.floorColour = vec3(parseColour("floor-colour", v, false)); }});
 }

@@ -85,6 +85,14 @@ void addLightingOption(OptionParser& p, SurfaceArgs& a);
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result);
 /// --colour, --color, --colormap, --window, --colour-range, --masked-colour, --floor-colour.
 void addColourOptions(OptionParser& p, SurfaceArgs& a);
+/// --window; its help: "grey " + `what` + the presets, and the default `byDefault`.
+void addWindowOption(OptionParser& p, SurfaceArgs& a, const std::string& what, const std::string& byDefault);
+/// --colormap, --colour-range, --masked-colour, with the help of the first two (after the list
+/// of maps) and what the masked colour colours.
+void addColourMapOptions(OptionParser& p, SurfaceArgs& a, const std::string& colormapHelp, const std::string& rangeHelp,
+                         const std::string& maskedWhat);
+/// Refuses (InputError) a CT preset (`option` NAME) for a field whose values are not Hounsfield units.
+void requireHounsfield(const ScalarField& f, const std::string& input, const std::string& option);
 /// --colour-by, --floor: what is drawn besides the isosurface.
 void addLayerOptions(OptionParser& p, SurfaceArgs& a);
 /// --region, --depth-range, --time, --vertical-scale.
