@@ -5,6 +5,7 @@
 #include "octrace/util/Error.h"
 
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <sstream>
 
@@ -19,6 +20,21 @@ std::string number(double v, int precision = 6) {
     s << (v == 0.0 ? 0.0 : v);
     return s.str();
 }
+
+/// Projects world points into the plot; false behind a perspective camera.
+struct Projector {
+    explicit Projector(const Camera& c) : rays(c) {}
+    bool operator()(const dvec3& p, dvec2& out) const {
+        const dvec3 d = p - rays.eye();
+        const double cz = glm::dot(d, rays.back());
+        if (!rays.orthographic() && !(cz < 0.0)) return false;
+        rays.toPixel(glm::dot(d, rays.right()), glm::dot(d, rays.up()), cz, out.x, out.y);
+        return std::isfinite(out.x) && std::isfinite(out.y);
+    }
+    RayGenerator rays;
+};
+
+}  // namespace
 
 std::string longitudeText(double lon) {
     lon = std::fmod(lon, 360.0);
@@ -35,31 +51,28 @@ std::string latitudeText(double lat) {
     return std::to_string(std::labs(r)) + (r > 0 ? "\u00b0N" : "\u00b0S");
 }
 
-/// World <-> longitude, latitude, depth by the contract's mapping.
-struct GeoAxes {
-    const ScalarField::Geographic& g;
-    double lon(double x) const { return g.lon0 + x / (ScalarField::Geographic::kEarthRadiusKm * std::cos(g.lat0 * kPi / 180.0)) * 180.0 / kPi; }
-    double lat(double y) const { return g.lat0 + y / ScalarField::Geographic::kEarthRadiusKm * 180.0 / kPi; }
-    double depthM(double z) const { return -z / g.verticalScale * 1000.0; }
-    double x(double lonDeg) const { return ScalarField::Geographic::kEarthRadiusKm * std::cos(g.lat0 * kPi / 180.0) * (lonDeg - g.lon0) * kPi / 180.0; }
-    double y(double latDeg) const { return ScalarField::Geographic::kEarthRadiusKm * (latDeg - g.lat0) * kPi / 180.0; }
-    double z(double depthM) const { return -depthM / 1000.0 * g.verticalScale; }
-};
+double GeoAxes::lon(double x) const { return g.lon0 + x / (ScalarField::Geographic::kEarthRadiusKm * std::cos(g.lat0 * kPi / 180.0)) * 180.0 / kPi; }
+double GeoAxes::lat(double y) const { return g.lat0 + y / ScalarField::Geographic::kEarthRadiusKm * 180.0 / kPi; }
+double GeoAxes::depthM(double z) const { return -z / g.verticalScale * 1000.0; }
+double GeoAxes::x(double lonDeg) const { return ScalarField::Geographic::kEarthRadiusKm * std::cos(g.lat0 * kPi / 180.0) * (lonDeg - g.lon0) * kPi / 180.0; }
+double GeoAxes::y(double latDeg) const { return ScalarField::Geographic::kEarthRadiusKm * (latDeg - g.lat0) * kPi / 180.0; }
+double GeoAxes::z(double depthM) const { return -depthM / 1000.0 * g.verticalScale; }
 
-/// Projects world points into the plot; false behind a perspective camera.
-struct Projector {
-    explicit Projector(const Camera& c) : rays(c) {}
-    bool operator()(const dvec3& p, dvec2& out) const {
-        const dvec3 d = p - rays.eye();
-        const double cz = glm::dot(d, rays.back());
-        if (!rays.orthographic() && !(cz < 0.0)) return false;
-        rays.toPixel(glm::dot(d, rays.right()), glm::dot(d, rays.up()), cz, out.x, out.y);
-        return std::isfinite(out.x) && std::isfinite(out.y);
-    }
-    RayGenerator rays;
-};
+void checkImageOutput(const std::string& output) {
+    const std::size_t dot = output.find_last_of('.');
+    std::string ext = output.substr(dot == std::string::npos ? output.size() : dot);
+    for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    bool known = false;
+    for (const auto& e : io::imageExtensions()) known = known || e == ext;
+    if (!known) throw UsageError("-o " + output + ": unknown image format '" + ext + "' (use " + joinNames(io::imageExtensions()) + ")");
+}
 
-}  // namespace
+void checkFigureOptions(const FigureArgs& f, const std::string& output) {
+    if (!f.enabled && (!f.title.empty() || f.printInches || f.scaleBar))
+        throw UsageError(std::string(f.printInches ? "--print-size" : f.scaleBar ? "--scale-bar" : "--title") + " needs --figure");
+    if (f.enabled && !(output.size() >= 4 && (output.substr(output.size() - 4) == ".png" || output.substr(output.size() - 4) == ".PNG")))
+        throw UsageError("--figure writes a PNG: -o " + output + " must end in .png");
+}
 
 dvec2 parsePrintSize(const std::string& option, const std::string& text) {
     std::string t = text, unit;

@@ -22,8 +22,31 @@ struct FigureArgs {
 
 inline constexpr int kDefaultDpi = 150;
 
+/// World <-> longitude, latitude (degrees) and depth (metres, positive down) on a geographic
+/// grid, by the contract's mapping (ScalarField::Geographic).
+struct GeoAxes {
+    const ScalarField::Geographic& g;
+    double lon(double x) const;
+    double lat(double y) const;
+    double depthM(double z) const;
+    double x(double lonDeg) const;
+    double y(double latDeg) const;
+    double z(double depthM) const;
+};
+
+/// "150°E", "30°W", "0°", rounded to whole degrees.
+std::string longitudeText(double lon);
+/// "35°N", "10°S", "0°".
+std::string latitudeText(double lat);
+
 /// --figure, --title, --dpi, --print-size, --scale-bar.
 void addFigureOptions(OptionParser& p, FigureArgs& f);
+
+/// Refuses (UsageError) an output whose extension is not an image format (io::imageExtensions),
+/// before any long work.
+void checkImageOutput(const std::string& output);
+/// Refuses --title, --print-size or --scale-bar without --figure, and a figure not written as a PNG.
+void checkFigureOptions(const FigureArgs& f, const std::string& output);
 
 /// "WxH" with a unit mm, cm or in (e.g. "180x120mm", "7x5in"), in inches. Throws UsageError.
 dvec2 parsePrintSize(const std::string& option, const std::string& text);

@@ -388,20 +388,9 @@ int renderObjectOctree(const RenderArgs& a) {
 int runRender(const std::vector<std::string>& args) {
     RenderArgs a;
     if (!parseCommandLine(makeParser(a), args, a, a.output, "an output image: -o OUT.png, -o OUT.exr or -o OUT.tif")) return 0;
-    {
-        // Check the output extension before the long work.
-        std::string ext = a.output.substr(a.output.find_last_of('.') == std::string::npos ? a.output.size() : a.output.find_last_of('.'));
-        for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-        bool known = false;
-        for (const auto& e : io::imageExtensions()) known = known || e == ext;
-        if (!known)
-            throw UsageError("-o " + a.output + ": unknown image format '" + ext + "' (use " + joinNames(io::imageExtensions()) + ")");
-    }
+    checkImageOutput(a.output);
     if (a.orthoHeight && !a.ortho) throw UsageError("--ortho-height needs --projection ortho");
-    if (!a.figure.enabled && (!a.figure.title.empty() || a.figure.printInches || a.figure.scaleBar))
-        throw UsageError(std::string(a.figure.printInches ? "--print-size" : a.figure.scaleBar ? "--scale-bar" : "--title") + " needs --figure");
-    if (a.figure.enabled && !(a.output.size() >= 4 && (a.output.substr(a.output.size() - 4) == ".png" || a.output.substr(a.output.size() - 4) == ".PNG")))
-        throw UsageError("--figure writes a PNG: -o " + a.output + " must end in .png");
+    checkFigureOptions(a.figure, a.output);
     if (isSphereInput(a.input)) {
         const bool object = a.octreeKind.empty() ? makeRenderer(a.rendererName)->drawsSpheres() : a.octreeKind == "object";
         if (object) return renderObjectOctree(a);
