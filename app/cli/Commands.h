@@ -11,4 +11,5 @@ int runSample(const std::vector<std::string>& args);
 int runExport(const std::vector<std::string>& args);
 int runBuild(const std::vector<std::string>& args);
 int runCsg(const std::vector<std::string>& args);
+int runSlice(const std::vector<std::string>& args);
 }  // namespace octrace::cli

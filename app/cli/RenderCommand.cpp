@@ -388,20 +388,9 @@ int renderObjectOctree(const RenderArgs& a) {
 int runRender(const std::vector<std::string>& args) {
     RenderArgs a;
     if (!parseCommandLine(makeParser(a), args, a, a.output, "an output image: -o OUT.png, -o OUT.exr or -o OUT.tif")) return 0;
-    {
-        // Check the output extension before the long work.
-        std::string ext = a.output.substr(a.output.find_last_of('.') == std::string::npos ? a.output.size() : a.output.find_last_of('.'));
-        for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-        bool known = false;
-        for (const auto& e : io::imageExtensions()) known = known || e == ext;
-        if (!known)
-            throw UsageError("-o " + a.output + ": unknown image format '" + ext + "' (use " + joinNames(io::imageExtensions()) + ")");
-    }
+    checkImageOutput(a.output);
     if (a.orthoHeight && !a.ortho) throw UsageError("--ortho-height needs --projection ortho");
-    if (!a.figure.enabled && (!a.figure.title.empty() || a.figure.printInches))
-        throw UsageError(std::string(a.figure.printInches ? "--print-size" : "--title") + " needs --figure");
-    if (a.figure.enabled && !(a.output.size() >= 4 && (a.output.substr(a.output.size() - 4) == ".png" || a.output.substr(a.output.size() - 4) == ".PNG")))
-        throw UsageError("--figure writes a PNG: -o " + a.output + " must end in .png");
+    checkFigureOptions(a.figure, a.output);
     if (isSphereInput(a.input)) {
         const bool object = a.octreeKind.empty() ? makeRenderer(a.rendererName)->drawsSpheres() : a.octreeKind == "object";
         if (object) return renderObjectOctree(a);
@@ -422,7 +411,7 @@ int runRender(const std::vector<std::string>& args) {
     // A figure: the plot is the image area its layout leaves (--size or --print-size is the whole).
     std::optional<io::FigureLayout> figureLayoutUsed;
     if (a.figure.enabled) {
-        figureLayoutUsed = figureLayout(a.figure, a.width, a.height, !a.colourBy.empty() || !a.colormap.empty());
+        figureLayoutUsed = figureLayout(a.figure, a.width, a.height, figureHasColourBar(a));
         a.width = figureLayoutUsed->plotW;
         a.height = figureLayoutUsed->plotH;
     }
@@ -451,7 +440,7 @@ int runRender(const std::vector<std::string>& args) {
     rs.background = displayToLinear(a.background);
     applyColour(a, surface, rs);
     if (a.light) rs.lightCamera = *a.light;
-    rs.baked = a.lighting != SurfaceArgs::Lighting::Dynamic;
+    applyLighting(a, rs);
     rs.colourCoherence = a.colourCoherence;
     rs.colourTolerance = a.colourTolerance;
     rs.colourFillsBackground = a.colourFillsBackground;
@@ -464,12 +453,7 @@ int runRender(const std::vector<std::string>& args) {
     });
     const RenderStats& st = rep.stats;
     const Renderer* renderer = rep.renderer.get();
-    if (figureLayoutUsed) {
-        const io::FigureSpec spec = figureSpec(a.figure, surface, cam, rs);
-        io::ImageWriteOptions options;
-        options.dpi = figureLayoutUsed->dpi;
-        io::writeImage(io::composeFigure(frame, spec, *figureLayoutUsed), a.output, options);
-    }
+    if (figureLayoutUsed) writeFigure(frame, a.figure, *figureLayoutUsed, figureSubject(surface, a.input), tree, cam, rs, a.output);
 
     StatsJson js;
     js.set("renderer", st.renderer);

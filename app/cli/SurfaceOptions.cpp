@@ -45,13 +45,16 @@ ValueWindow parseWindow(const std::string& v) {
     return w;
 }
 
-/// Refuses a CT preset (`option` NAME) for a field whose values are not Hounsfield units.
+}  // namespace
+
 void requireHounsfield(const ScalarField& f, const std::string& input, const std::string& option) {
     if (f.units == "HU") return;
     throw InputError(input + ": " + option + " is a CT preset in Hounsfield units, but the values of '" + f.name + "' are " +
                      (f.units.empty() ? std::string("not in HU (no units: not a CT series)") : "in " + f.units) +
                      "; give a number instead");
 }
+
+namespace {
 
 /// The surface's display window (see buildSurface).
 void chooseWindow(const SurfaceArgs& a, Surface& s) {
@@ -121,6 +124,10 @@ void finishSurface(const SurfaceArgs& a, Surface& s) {
         if (s.tree.form != OctreeForm::Shell) throw UsageError("--bake applies to the shell form (not with --form volume)");
         BakeOptions o = a.bakeOptions;
         o.threads = a.threads;
+        if (a.ambient) {
+            o.ambient = *a.ambient;
+            o.diffuse = 1.0f - *a.ambient;
+        }
         bakeLighting(s.tree, o, &s.bake);
         log::debug("lighting baked in " + std::to_string(s.bake.bakeMs) + " ms (" + std::to_string(s.bake.rays) + " rays)");
     }
@@ -135,15 +142,20 @@ void buildCitySurface(const SurfaceArgs& a, Surface& s) {
     if (given)
         throw UsageError(std::string(given) + " does not apply to the city input " + a.input +
                          " (its buildings and terrain are voxelized as surfaces)");
+    if (a.terrainDepth > a.depth)
+        throw UsageError("--terrain-depth " + std::to_string(a.terrainDepth) + " is deeper than --depth " + std::to_string(a.depth) +
+                         " (the terrain goes to the shallower depth, the buildings to --depth)");
     Timer t;
     io::CityRequest request = a.city;
-    request.maxSamples = (1 << std::min(a.depth, 12)) + 1;  // the octree resolves no finer
+    // The octree resolves the terrain no finer than its depth.
+    request.maxSamples = (1 << std::min(a.terrainDepth > 0 ? a.terrainDepth : a.depth, 12)) + 1;
     const CityModel model = io::readCityModel(a.input, request);
     s.loadMs = t.ms();
     for (const auto& n : model.notes) log::warning(n);
     CityBuildOptions o;
     o.depth = a.depth;
     o.threads = a.threads;
+    o.terrainDepth = a.terrainDepth;
     s.tree = voxelizeCity(model, o, &s.report);
     s.field.name = s.tree.fieldName;
     s.field.source = a.input;
@@ -277,11 +289,50 @@ void addLightingOption(OptionParser& p, SurfaceArgs& a) {
                if (v != "baked" && v != "dynamic") throw UsageError("--lighting: expected baked or dynamic, got '" + v + "'");
                a.lighting = v == "baked" ? SurfaceArgs::Lighting::Baked : SurfaceArgs::Lighting::Dynamic;
            }});
+    p.add({"ambient", "A", "share of the light every voxel gets whatever its normal, in [0,1]; the light's own share is "
+           "1 - A (dynamic shading and --bake) (default 0.15)",
+           [&](const std::string& v) {
+               const double x = parseNumber("ambient", v);
+               if (!(x >= 0.0 && x <= 1.0)) throw UsageError("--ambient: must be in [0, 1], got " + v);
+               a.ambient = float(x);
+           }});
 }
 
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result) {
     p.add({"threads", "N", "worker threads, 0 = all cores (default 0); " + result + " does not depend on it",
            [&](const std::string& v) { a.threads = parseInt("threads", v, 0, 1024); }});
+}
+
+void addWindowOption(OptionParser& p, SurfaceArgs& a, const std::string& what, const std::string& byDefault) {
+    std::string windows;
+    for (const auto& w : ctWindowPresets())
+        windows += std::string(windows.empty() ? "" : ", ") + w.name + " " + huText(w.window.centre) + "/" +
+                   huText(w.window.width);
+    p.add({"window", "NAME|C,W|none", "grey " + what + ": a CT preset (centre/width in HU: " + windows +
+           "), a centre and width, or none (default: " + byDefault + ")",
+           [&](const std::string& v) { a.windowName = v, a.window = parseWindow(v); }});
+}
+
+void addColourMapOptions(OptionParser& p, SurfaceArgs& a, const std::string& colormapHelp, const std::string& rangeHelp,
+                         const std::string& maskedWhat) {
+    p.add({"colormap", "NAME", "colour map: " + joinNames(colormapNames()) + "; " + colormapHelp,
+           [&](const std::string& v) {
+               colormap(v, 0.0f);
+               a.colormap = v;
+           }});
+    p.add({"colour-range", "MIN,MAX", rangeHelp,
+           [&](const std::string& v) {
+               const std::size_t comma = v.find(',');
+               if (comma == std::string::npos || v.find(',', comma + 1) != std::string::npos)
+                   throw UsageError("--colour-range: expected MIN,MAX, got '" + v + "'");
+               const double lo = parseNumber("colour-range", v.substr(0, comma)), hi = parseNumber("colour-range", v.substr(comma + 1));
+               if (!(lo < hi) || !std::isfinite(lo) || !std::isfinite(hi) || std::abs(lo) > 3e38 || std::abs(hi) > 3e38)
+                   throw UsageError("--colour-range: MIN must be below MAX, both finite, got '" + v + "'");
+               a.colourMin = float(lo);
+               a.colourMax = float(hi);
+           }});
+    p.add({"masked-colour", "R,G,B", "colour of " + maskedWhat + ", sRGB in [0,1] (default 0.6,0.6,0.6)",
+           [&](const std::string& v) { a.maskedColour = vec3(parseColour("masked-colour", v, false)); }});
 }
 
 void addColourOptions(OptionParser& p, SurfaceArgs& a) {
@@ -295,33 +346,13 @@ void addColourOptions(OptionParser& p, SurfaceArgs& a) {
                a.colour = vec3(parseColour("color", v, false));
                a.colourGiven = true;
            }});
-    std::string windows;
-    for (const auto& w : ctWindowPresets())
-        windows += std::string(windows.empty() ? "" : ", ") + w.name + " " + huText(w.window.centre) + "/" +
-                   huText(w.window.width);
-    p.add({"window", "NAME|C,W|none", "grey the surface by a display window applied to the value just under it: a CT preset "
-           "(centre/width in HU: " + windows + "), a centre and width, or none (default: the window stored in a DICOM file, "
-           "unless --colour, --colormap or --colour-by is given)",
-           [&](const std::string& v) { a.windowName = v, a.window = parseWindow(v); }});
-    p.add({"colormap", "NAME", "colour map: " + joinNames(colormapNames()) + "; colours by --colour-by's variable, else by height "
-           "(default: with --colour-by the variable's map from its standard_name or name, thermal/haline/speed/viridis; else none, --colour)",
-           [&](const std::string& v) {
-               colormap(v, 0.0f);
-               a.colormap = v;
-           }});
-    p.add({"colour-range", "MIN,MAX", "values of --colour-by mapped onto the colour map's ends (default: the surface voxels' range)",
-           [&](const std::string& v) {
-               const std::size_t comma = v.find(',');
-               if (comma == std::string::npos || v.find(',', comma + 1) != std::string::npos)
-                   throw UsageError("--colour-range: expected MIN,MAX, got '" + v + "'");
-               const double lo = parseNumber("colour-range", v.substr(0, comma)), hi = parseNumber("colour-range", v.substr(comma + 1));
-               if (!(lo < hi) || !std::isfinite(lo) || !std::isfinite(hi) || std::abs(lo) > 3e38 || std::abs(hi) > 3e38)
-                   throw UsageError("--colour-range: MIN must be below MAX, both finite, got '" + v + "'");
-               a.colourMin = float(lo);
-               a.colourMax = float(hi);
-           }});
-    p.add({"masked-colour", "R,G,B", "colour of surface voxels where --colour-by's variable is masked, sRGB in [0,1] (default 0.6,0.6,0.6)",
-           [&](const std::string& v) { a.maskedColour = vec3(parseColour("masked-colour", v, false)); }});
+    addWindowOption(p, a, "the surface by a display window applied to the value just under it",
+                    "the window stored in a DICOM file, unless --colour, --colormap or --colour-by is given");
+    addColourMapOptions(p, a,
+                        "colours by --colour-by's variable, else by height (default: with --colour-by the variable's map from its "
+                        "standard_name or name, thermal/haline/speed/viridis; else none, --colour)",
+                        "values of --colour-by mapped onto the colour map's ends (default: the surface voxels' range)",
+                        "surface voxels where --colour-by's variable is masked");
     p.add({"floor-colour", "R,G,B", "colour of the sea floor and land (--floor), sRGB in [0,1] (default 0.55,0.5,0.45)",
            [&](const std::string& v) { a.floorColour = vec3(parseColour("floor-colour", v, false)); }});
 }
@@ -379,6 +410,12 @@ void addCityOptions(OptionParser& p, SurfaceArgs& a) {
                    a.cityGiven = true;
                }});
     };
+    p.add({"terrain-depth", "N", "city inputs: per-region depth, terrain to depth N and buildings to --depth in one octree "
+           "(nodes that only terrain crosses stop at level N as coarse leaves; 1..--depth, default: --depth)",
+           [&](const std::string& v) {
+               a.terrainDepth = parseInt("terrain-depth", v, 1, Octree::kMaxDepth);
+               a.cityGiven = true;
+           }});
     text("dem", "RASTER", "city inputs: a DEM raster (GeoTIFF or any GDAL raster, any CRS) added as terrain (default: none)",
          &io::CityRequest::dem, "a raster file");
     text("texture", "RASTER", "city inputs: a colour raster (orthophoto, map; any GDAL raster, any CRS) draped on the terrain "
@@ -448,7 +485,7 @@ Surface buildSurface(const SurfaceArgs& a) {
                          " both colour the surface: give one");
     Surface s;
     if (isOctreeInput(a.input)) {
-        if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem, --texture, --height-attr and --base-attr apply to city inputs, not to the octree file " + a.input);
+        if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem, --texture, --height-attr, --base-attr and --terrain-depth apply to city inputs, not to the octree file " + a.input);
         loadOctreeSurface(a, budget, s);
         finishSurface(a, s);
         return s;
@@ -457,7 +494,7 @@ Surface buildSurface(const SurfaceArgs& a) {
         buildCitySurface(a, s);
         return s;
     }
-    if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem, --texture, --height-attr and --base-attr apply to city inputs (CityJSON, footprints, DEM rasters), not to " + a.input);
+    if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem, --texture, --height-attr, --base-attr and --terrain-depth apply to city inputs (CityJSON, footprints, DEM rasters), not to " + a.input);
     readSurfaceField(a, s);
     BuildHooks terminal;
     terminal.progress = progressPrinter(a.quiet);
@@ -547,6 +584,14 @@ void applyColour(const SurfaceArgs& a, const Surface& s, RenderSettings& setting
     settings.colourMax = a.colourMax;
     settings.maskedColour = vec3(displayToLinear(vec4(a.maskedColour, 1.0f)));
     settings.floorColour = vec3(displayToLinear(vec4(a.floorColour, 1.0f)));
+}
+
+void applyLighting(const SurfaceArgs& a, RenderSettings& settings) {
+    settings.baked = a.lighting != SurfaceArgs::Lighting::Dynamic;
+    if (a.ambient) {
+        settings.ambient = *a.ambient;
+        settings.diffuse = 1.0f - *a.ambient;
+    }
 }
 
 }  // namespace octrace::cli

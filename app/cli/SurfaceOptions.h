@@ -46,7 +46,8 @@ struct SurfaceArgs {
     bool help = false, quiet = false, verbose = false;
     std::uint64_t maxMemory = 0;  // --max-memory; 0: defaultMemoryBudget()
     io::CityRequest city;         // --lod-select, --crs, --dem, --texture (city inputs)
-    bool cityGiven = false;       // one of them was given
+    int terrainDepth = 0;         // --terrain-depth (city inputs); 0: --depth
+    bool cityGiven = false;       // one of them (or --terrain-depth) was given
     OctreeForm form = OctreeForm::Shell;  // --form
     bool insideBelow = false;             // --inside below
     bool formGiven = false;               // --form or --inside given
@@ -58,6 +59,7 @@ struct SurfaceArgs {
     BakeOptions bakeOptions;  // --bake-light, --bake-ao, --bake-ao-distance, --bake-shadows
     bool bakeLightGiven = false;
     enum class Lighting { Auto, Baked, Dynamic } lighting = Lighting::Auto;  // --lighting (render)
+    std::optional<float> ambient;  // --ambient (render): diffuse is 1 - ambient, dynamic and baked
 };
 
 /// The window --window TEXT sets: a CT preset, "C,W", or "none" (an invalid window, which
@@ -81,19 +83,27 @@ void addFormOptions(OptionParser& p, SurfaceArgs& a);
 void addExtendDownOption(OptionParser& p, SurfaceArgs& a);
 /// --bake, --bake-light, --bake-ao, --bake-ao-distance, --bake-shadows.
 void addBakeOptions(OptionParser& p, SurfaceArgs& a);
-/// --lighting baked|dynamic.
+/// --lighting baked|dynamic, --ambient A.
 void addLightingOption(OptionParser& p, SurfaceArgs& a);
 /// --threads; `result` names what does not depend on it ("the image").
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result);
 /// --colour, --color, --colormap, --window, --colour-range, --masked-colour, --floor-colour.
 void addColourOptions(OptionParser& p, SurfaceArgs& a);
+/// --window; its help: "grey " + `what` + the presets, and the default `byDefault`.
+void addWindowOption(OptionParser& p, SurfaceArgs& a, const std::string& what, const std::string& byDefault);
+/// --colormap, --colour-range, --masked-colour, with the help of the first two (after the list
+/// of maps) and what the masked colour colours.
+void addColourMapOptions(OptionParser& p, SurfaceArgs& a, const std::string& colormapHelp, const std::string& rangeHelp,
+                         const std::string& maskedWhat);
+/// Refuses (InputError) a CT preset (`option` NAME) for a field whose values are not Hounsfield units.
+void requireHounsfield(const ScalarField& f, const std::string& input, const std::string& option);
 /// --colour-by, --floor: what is drawn besides the isosurface.
 void addLayerOptions(OptionParser& p, SurfaceArgs& a);
 /// --region, --depth-range, --time, --vertical-scale.
 void addGeographicOptions(OptionParser& p, io::FieldRequest& request);
 /// The first option of `request` that chooses part of a field ("--var", "--region", ...), or null.
 const char* fieldOptionGiven(const io::FieldRequest& request);
-/// --lod-select, --crs, --dem, --texture (city inputs).
+/// --lod-select, --crs, --dem, --texture, --height-attr, --base-attr, --terrain-depth (city inputs).
 void addCityOptions(OptionParser& p, SurfaceArgs& a);
 /// --series (DICOM).
 void addSeriesOption(OptionParser& p, io::FieldRequest& request);
@@ -164,5 +174,8 @@ void buildFromField(const SurfaceArgs& a, Surface& s, const BuildHooks& hooks = 
 /// Shading.h), its range, the masked and floor colours, and the surface's display window
 /// (RenderSettings::window, invertedGrey).
 void applyColour(const SurfaceArgs& a, const Surface& s, RenderSettings& settings);
+/// The lighting options as RenderSettings: baked light unless --lighting dynamic, and with
+/// --ambient its ambient and diffuse (1 - ambient) shares.
+void applyLighting(const SurfaceArgs& a, RenderSettings& settings);
 
 }  // namespace octrace::cli

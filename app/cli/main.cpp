@@ -23,6 +23,7 @@ const char* kTopHelp =
     "  export INPUT -o OUT   build the isosurface octree and write it as surfels to a point cloud (.ply)\n"
     "  build INPUT -o OUT    build the octree and write it to an octree file (.oct), an INPUT of every command\n"
     "  csg A OP B -o OUT     union, intersection or difference of fields, volume octree files and solids (.oct)\n"
+    "  slice INPUT -o OUT    an axial, coronal, sagittal or x/y/z slice of a field, greyed by a window or coloured (.png, .exr, .tif)\n"
     "  info INPUT...         describe inputs: format, variables, units, value ranges, grid, bounds\n"
     "  sample NAME -o OUT    write an analytic sample field (sphere, torus, gyroid, noise) as NRRD\n"
     "\n"
@@ -57,10 +58,11 @@ int main(int argc, char** argv) {
         if (cmd == "export") return octrace::cli::runExport(rest);
         if (cmd == "build") return octrace::cli::runBuild(rest);
         if (cmd == "csg") return octrace::cli::runCsg(rest);
-        throw octrace::UsageError("unknown command '" + cmd + "' (commands: render, export, build, csg, info, sample)");
+        if (cmd == "slice") return octrace::cli::runSlice(rest);
+        throw octrace::UsageError("unknown command '" + cmd + "' (commands: render, export, build, csg, slice, info, sample)");
     } catch (const octrace::UsageError& e) {
         std::fprintf(stderr, "octrace: %s\nTry 'octrace %s --help'.\n", e.what(),
-                     (cmd == "render" || cmd == "export" || cmd == "build" || cmd == "csg" || cmd == "info" || cmd == "sample") ? cmd.c_str() : "");
+                     (cmd == "render" || cmd == "export" || cmd == "build" || cmd == "csg" || cmd == "slice" || cmd == "info" || cmd == "sample") ? cmd.c_str() : "");
         return 2;
     } catch (const octrace::Error& e) {
         std::fprintf(stderr, "octrace: error: %s\n", e.what());

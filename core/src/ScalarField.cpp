@@ -8,9 +8,9 @@
 
 namespace octrace {
 
-float ValueWindow::grey(float v, bool inverted) const {
-    const double g = std::clamp((double(v) - (centre - 0.5 * width)) / width, 0.0, 1.0);
-    return float(inverted ? 1.0 - g : g);
+double ValueWindow::greyValue(double v, bool inverted) const {
+    const double g = std::clamp((v - (centre - 0.5 * width)) / width, 0.0, 1.0);
+    return inverted ? 1.0 - g : g;
 }
 
 dvec3 ScalarField::worldFromGrid(int i, int j, int k) const {

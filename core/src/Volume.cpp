@@ -22,7 +22,8 @@ VoxelCount countVoxels(const Octree& tree) {
             n.boundary += unsigned(std::popcount(kids));
             continue;
         }
-        n.interior += std::uint64_t(std::popcount(terms)) << (3 * (tree.depth - it.level - 1));
+        if (tree.form == OctreeForm::Shell) n.boundary += unsigned(std::popcount(terms));  // coarse leaves (Octree.h)
+        else n.interior += std::uint64_t(std::popcount(terms)) << (3 * (tree.depth - it.level - 1));
         std::uint32_t slot = nd.firstChild;
         for (int c = 0; c < 8; ++c) {
             if (!(nd.childMask & (1u << c))) continue;

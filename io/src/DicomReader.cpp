@@ -209,6 +209,7 @@ ScalarField assemble(const Series& series, const std::string& path, std::uint64_
     f.notes.push_back("DICOM series " + seriesLine(series.info));
     f.notes.push_back(ct ? "values: Hounsfield units (RescaleSlope/Intercept of each image)" : "values: as stored");
     f.notes.push_back("coordinates: patient LPS, mm");
+    f.patientLps = true;
     for (const std::string& w : L.warnings) {
         log::warning(path + ": " + w);
         f.notes.push_back(w);

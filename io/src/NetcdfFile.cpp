@@ -1,5 +1,7 @@
 #include "NetcdfFile.h"
 
+#include "ChildProbe.h"
+#include "Crc32c.h"
 #include "GdalSupport.h"
 #include "InputFile.h"
 
@@ -8,12 +10,18 @@
 #include "octrace/util/Memory.h"
 
 #include <cpl_error.h>
+#include <cpl_vsi.h>
 #include <gdal_priv.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
+#include <functional>
 #include <limits>
 #include <mutex>
+
+#include <sys/stat.h>
 
 namespace octrace::io::detail {
 namespace {
@@ -81,6 +89,87 @@ bool defaultFill(const std::string& type, double& fill) {
     return true;
 }
 
+// Whether the file (on disk or a GDAL virtual file) starts with the HDF5 signature, i.e. is
+// NetCDF-4. Only HDF5-based files are opened in a child first: classic files are walked by
+// octrace's own header reader before GDAL sees them.
+bool isHdf5(const std::string& path) {
+    static const char signature[8] = {'\x89', 'H', 'D', 'F', '\r', '\n', '\x1a', '\n'};
+    VSILFILE* f = VSIFOpenL(path.c_str(), "rb");
+    if (!f) return false;
+    char head[8] = {};
+    bool yes = VSIFReadL(head, 1, 8, f) == 8 && std::memcmp(head, signature, 8) == 0;
+    VSIFCloseL(f);
+    return yes;
+}
+
+// What identifies a file's state for the probe: on disk its device, inode, size and
+// modification time; for a GDAL in-memory file (/vsimem/, the fuzz target) its size and the
+// CRC-32C of its bytes. Empty when unknown (the file is then always probed).
+std::string fileIdentity(const std::string& path) {
+    if (path.rfind("/vsimem/", 0) == 0) {
+        vsi_l_offset length = 0;
+        GByte* bytes = VSIGetMemFileBuffer(path.c_str(), &length, FALSE);
+        if (!bytes) return {};
+        return path + "|" + std::to_string(length) + "|" + std::to_string(crc32c(bytes, std::size_t(length)));
+    }
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) return {};
+    return path + "|" + std::to_string(st.st_dev) + ":" + std::to_string(st.st_ino) + "|" + std::to_string(st.st_size) +
+           "|" + std::to_string(st.st_mtim.tv_sec) + "." + std::to_string(st.st_mtim.tv_nsec);
+}
+
+// Runs the metadata reading in a child first (ChildProbe.h), once per state of a file: the
+// CLI and the studio open the same file several times (listing, then reading), and each probe
+// costs a fork (and a refusal may have cost the whole deadline). The last few outcomes are
+// remembered: an empty message for a probe that finished, the refusal otherwise.
+void guardHdf5Metadata(const std::string& path, const std::function<void()>& probe) {
+    static std::mutex mutex;
+    static std::vector<std::pair<std::string, std::string>> outcomes;  // identity, refusal
+    const std::string id = fileIdentity(path);
+    {
+        std::lock_guard<std::mutex> lock(mutex);
+        for (const auto& [known, refusal] : outcomes)
+            if (!id.empty() && known == id) {
+                if (refusal.empty()) return;
+                throw FileError(refusal);
+            }
+    }
+    std::string refusal;
+    try {
+        probeInChild(path, "the NetCDF-4 (HDF5) metadata", hdf5OpenDeadline(), probe);
+    } catch (const FileError& e) {
+        refusal = e.what();
+    }
+    if (!id.empty()) {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (outcomes.size() >= 16) outcomes.erase(outcomes.begin());
+        outcomes.emplace_back(id, refusal);
+    }
+    if (!refusal.empty()) throw FileError(refusal);
+}
+
+struct Opened {
+    GDALDatasetUniquePtr dataset;
+    std::vector<VariableInfo> variables;
+    std::vector<std::shared_ptr<GDALMDArray>> arrays;
+};
+
+Opened openAndCollect(const std::string& path) {
+    GdalMessages messages;
+    Opened o;
+    const char* const drivers[] = {"netCDF", nullptr};
+    o.dataset.reset(GDALDataset::Open(path.c_str(), GDAL_OF_MULTIDIM_RASTER | GDAL_OF_READONLY, drivers));
+    if (!o.dataset) {
+        std::string detail = CPLGetLastErrorType() == CE_None ? std::string("the file is truncated or corrupt")
+                                                              : GdalMessages::last();
+        throw FileError(path + ": GDAL's netCDF driver cannot open it: " + detail);
+    }
+    auto root = o.dataset->GetRootGroup();
+    if (!root) throw FileError(path + ": GDAL gives no root group: " + GdalMessages::last());
+    collect(root, o.variables, o.arrays);
+    return o;
+}
+
 }  // namespace
 
 int VariableInfo::extent() const {
@@ -117,18 +206,14 @@ struct NetcdfFile::Impl {
 
 NetcdfFile::NetcdfFile(const std::string& path) : impl_(std::make_unique<Impl>()) {
     registerGdal();
-    GdalMessages messages;
     impl_->path = path;
-    const char* const drivers[] = {"netCDF", nullptr};
-    impl_->dataset.reset(GDALDataset::Open(path.c_str(), GDAL_OF_MULTIDIM_RASTER | GDAL_OF_READONLY, drivers));
-    if (!impl_->dataset) {
-        std::string detail = CPLGetLastErrorType() == CE_None ? std::string("the file is truncated or corrupt")
-                                                              : GdalMessages::last();
-        throw FileError(path + ": GDAL's netCDF driver cannot open it: " + detail);
-    }
-    auto root = impl_->dataset->GetRootGroup();
-    if (!root) throw FileError(path + ": GDAL gives no root group: " + GdalMessages::last());
-    collect(root, impl_->variables, impl_->arrays);
+    // HDF5 can hang on a corrupt NetCDF-4 file while its metadata are read (fuzzing.md): that
+    // part runs first in a child process with a deadline.
+    if (isHdf5(path)) guardHdf5Metadata(path, [&path] { openAndCollect(path); });
+    Opened o = openAndCollect(path);
+    impl_->dataset = std::move(o.dataset);
+    impl_->variables = std::move(o.variables);
+    impl_->arrays = std::move(o.arrays);
     markAuxiliary(impl_->variables);
 }
 

@@ -123,6 +123,7 @@ ScalarField NrrdReader::read(const std::string& path, std::uint64_t memoryBudget
     f.values = decodeSamples(header);
     detail::markNonFinite(f);
     if (!header.space.empty()) f.notes.push_back("NRRD space: " + header.space);
+    f.patientLps = header.space == "left-posterior-superior" || header.space == "LPS";
     f.validate();
     return f;
 }

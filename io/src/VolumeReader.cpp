@@ -149,6 +149,7 @@ ScalarField readNifti(const std::string& path, std::uint64_t budget) {
         axes = kRasToLps * axes;
         start = kRasToLps * start;
         f.notes.push_back("NIfTI " + which + ", RAS turned into LPS (x and y negated)");
+        f.patientLps = true;
     } else {
         f.notes.push_back("NIfTI without qform or sform: grid axes scaled by pixdim");
     }

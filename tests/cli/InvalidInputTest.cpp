@@ -54,6 +54,7 @@ const Case kCases[] = {
     {"invalid_billion_points.nc", nullptr, "NetCDF data truncated"},
     {"invalid_size_overflow.nc", nullptr, "NetCDF data truncated"},
     {"invalid_billion_points_nc4.nc", nullptr, "octrace reads along one axis"},
+    {"invalid_hdf5_memcpy_overlap.nc", nullptr, "corrupt"},
     {"invalid_nan_coordinate.nc", nullptr, "non-finite value"},
     {"invalid_repeated_coordinate.nc", nullptr, "not strictly monotonic"},
     {"invalid_infinite_extent.nc", nullptr, "must be positive and finite"},
@@ -83,6 +84,27 @@ TEST(InvalidInput, EveryCorpusFileExitsOneWithItsMessageAndNoOutput) {
             EXPECT_EQ(i.code, 1) << c.file;
         }
     }
+}
+
+// NetCDF-4 files on which HDF5 loops (found by fuzz_netcdf_cf): refused after the deadline of
+// OCTRACE_HDF5_OPEN_SECONDS (io/src/ChildProbe.h), exit 1, one line, no output; `info` too.
+TEST(InvalidInput, Netcdf4FilesOnWhichHdf5LoopsAreRefusedAfterTheDeadline) {
+    setenv("OCTRACE_HDF5_OPEN_SECONDS", "0.5", 1);
+    Scratch s;
+    for (const char* file : {"invalid_hdf5_hang_dimension_scales.nc", "invalid_hdf5_hang_2.nc"}) {
+        const std::string path = std::string(OCTRACE_TEST_DATA) + "/invalid/" + file;
+        for (const auto& args : {std::vector<std::string>{"render", path, "-o", s.path("out.png")},
+                                 std::vector<std::string>{"info", path}}) {
+            Result r = run(args);
+            EXPECT_EQ(r.code, 1) << file << "\n" << r.err;
+            EXPECT_NE(r.err.find(path + ": reading the NetCDF-4 (HDF5) metadata did not finish within 0.5 s"),
+                      std::string::npos)
+                << r.err;
+            EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        }
+        EXPECT_EQ(countEntries(s.dir()), 0) << file << " left an output behind";
+    }
+    unsetenv("OCTRACE_HDF5_OPEN_SECONDS");
 }
 
 TEST(InvalidInput, IsoValueOutsideTheRangeOfARealFieldExitsOneWithTheRange) {

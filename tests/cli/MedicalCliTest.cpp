@@ -1,6 +1,7 @@
 // Medical volumes through the CLI: the LIDC chest CT written as a DICOM series (the project's
 // writer) rendered with the skin and bone presets exactly as the reference; presets refused
 // for values that are not Hounsfield units; display windows from the options and the file.
+#include "ChestCt.h"
 #include "CliRunner.h"
 
 #include "octrace/io/DicomSeriesWriter.h"
@@ -34,13 +35,10 @@ std::string smallCt(const Scratch& s, const std::string& name, const octrace::io
 TEST(MedicalCli, TheChestCtAsADicomSeriesRendersTheSkinAndBonePresetsExactlyAsTheReference) {
     if (!haveShared("medical/lidc2_chest_ct.nrrd")) GTEST_SKIP() << "shared data absent";
     Scratch s;
-    octrace::ScalarField ct = octrace::io::readField(sharedData("medical/lidc2_chest_ct.nrrd"));
-    for (float& v : ct.values) v = 8.0f * v - 1000.0f;
     octrace::io::DicomSeriesWriteOptions o;
-    o.rescale = [](int) { return octrace::dvec2(8.0, -1000.0); };
     o.descending = true;
     o.shuffleSeed = 11;
-    octrace::io::DicomSeriesWriter::write(ct, s.path("ct"), o);
+    writeChestCtSeries(s.path("ct"), o);
     std::uint64_t voxels[2] = {0, 0};
     int n = 0;
     for (const char* preset : {"skin", "bone"}) {

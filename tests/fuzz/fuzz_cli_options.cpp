@@ -31,6 +31,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         else if (command == "export") octrace::cli::runExport(args);
         else if (command == "info") octrace::cli::runInfo(args);
         else if (command == "sample") octrace::cli::runSample(args);
+        else if (command == "slice") octrace::cli::runSlice(args);
     } catch (const octrace::UsageError&) {
         // The only error a command line alone may cause.
     }

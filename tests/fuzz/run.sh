@@ -5,6 +5,8 @@
 # (over 10 s on one input), leaks or runs out of memory (the others still run); the reproducer
 # is in build-fuzz/findings/TARGET/. Needs clang (scripts/setup.sh --fuzz). See docs/dev/fuzzing.md.
 # Usage: tests/fuzz/run.sh [SECONDS] [TARGET...]
+# With OCTRACE_FUZZ_JSON=FILE each target's final counts are also appended to FILE, one JSON
+# object per line (the raw record of a long run, docs/dev/fuzzing.md).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 BUILD="$ROOT/build-fuzz"
@@ -28,6 +30,18 @@ export LSAN_OPTIONS="suppressions=$ROOT/tests/sanitizers/lsan.supp:print_suppres
 export ASAN_OPTIONS="detect_leaks=1:strict_string_checks=1"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 
+# record TARGET LOG RESULT: one JSON line of libFuzzer's final counts into $OCTRACE_FUZZ_JSON.
+record() {
+  [ -n "${OCTRACE_FUZZ_JSON:-}" ] || return 0
+  stat() { grep -Eo "^stat::$1: *[0-9]+" "$2" | grep -Eo '[0-9]+$' || echo 0; }
+  printf '{"date": "%s", "target": "%s", "seconds": %s, "result": "%s", "executions": %s, "exec_per_sec": %s, "new_units": %s, "peak_rss_mb": %s, "corpus_found": %s, "corpus_bytes": %s, "seeds": %s, "commit": "%s"}\n' \
+    "$(date -u +%Y-%m-%dT%H:%M:%SZ)" "$1" "$SECONDS_PER_TARGET" "$3" \
+    "$(stat number_of_executed_units "$2")" "$(stat average_exec_per_sec "$2")" "$(stat new_units_added "$2")" \
+    "$(stat peak_rss_mb "$2")" "$(ls "$BUILD/corpus/$1" | wc -l)" "$(du -sb "$BUILD/corpus/$1" | cut -f1)" \
+    "$(ls "$ROOT/tests/fuzz/corpus/$1" | wc -l)" "$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)" \
+    >>"$OCTRACE_FUZZ_JSON"
+}
+
 passed=0
 failed=0
 for t in "${TARGETS[@]}"; do
@@ -44,7 +58,9 @@ for t in "${TARGETS[@]}"; do
       sed "s/^/fuzz: $t: /"
     echo "fuzz: $t: corpus $(ls "$work" | wc -l) inputs found + $(ls "$ROOT/tests/fuzz/corpus/$t" | wc -l) seeds"
     passed=$((passed + 1))
+    record "$t" "$log" passed
   else
+    record "$t" "$log" failed
     echo "fuzz: $t FAILED; its log ($log) ends:" >&2
     tail -60 "$log" >&2
     echo "fuzz: reproducer(s) in $findings: $(ls "$findings")" >&2

@@ -22,7 +22,9 @@ struct ValueWindow {
     double centre = 0.0, width = 0.0;
     bool valid() const { return width > 0.0; }
     /// Grey in [0,1] (display value) of `v`; `inverted`: low values bright (DICOM MONOCHROME1).
-    float grey(float v, bool inverted) const;
+    float grey(float v, bool inverted) const { return float(greyValue(v, inverted)); }
+    /// The same in double precision (no rounding before an 8-bit code is taken from it).
+    double greyValue(double v, bool inverted) const;
 };
 
 class ScalarField {
@@ -53,6 +55,11 @@ public:
     /// The file displays low values bright (DICOM PhotometricInterpretation MONOCHROME1): a
     /// window's grey is inverted. The values themselves are never inverted.
     bool invertedGrey = false;
+    /// World coordinates are patient LPS in mm (x towards the patient's left, y posterior, z
+    /// superior): DICOM series, NIfTI with a qform/sform (turned from RAS), NRRD whose space is
+    /// left-posterior-superior. Slices are then named axial, coronal, sagittal and labelled
+    /// with the patient's directions (SliceView.h).
+    bool patientLps = false;
 
     /// Geographic grids (NetCDF longitude, latitude, depth): the contract's mapping to world
     /// kilometres, x = R (lon - lon0) cos(lat0), y = R (lat - lat0), z = -depth_km *

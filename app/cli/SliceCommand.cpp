@@ -1,0 +1,231 @@
+// octrace slice: a planar slice through a field's samples (no octree), greyed by a display
+// window (CT, MR) or coloured by a colour map, as a radiology workstation or a map shows it.
+#include "Commands.h"
+#include "FigureOptions.h"
+#include "Input.h"
+#include "Options.h"
+#include "StatsJson.h"
+#include "SurfaceOptions.h"
+
+#include "octrace/io/AtomicFile.h"
+#include "octrace/io/CityReader.h"
+#include "octrace/io/ImageWriter.h"
+#include "octrace/render/Shading.h"
+#include "octrace/render/SliceView.h"
+#include "octrace/util/Error.h"
+#include "octrace/util/Log.h"
+#include "octrace/util/Memory.h"
+#include "octrace/util/Timer.h"
+
+#include <cmath>
+#include <optional>
+#include <sstream>
+
+namespace octrace::cli {
+namespace {
+
+struct SliceArgs : SurfaceArgs {
+    FigureArgs figure;
+    std::string output, statsPath;
+    std::optional<SlicePlane> plane;
+    std::optional<double> at;
+    std::optional<int> index;
+    int width = 0, height = 0;  // --size; 0: one pixel per in-plane sample
+    std::optional<vec4> background;
+};
+
+std::string number(double v, int precision = 6) {
+    std::ostringstream s;
+    s.precision(precision);
+    s << (v == 0.0 ? 0.0 : v);
+    return s.str();
+}
+
+OptionParser makeParser(SliceArgs& a) {
+    OptionParser p("slice", "octrace slice INPUT -o OUT.(png|exr|tif) [options]");
+    p.add({"o", "FILE", "output image; format from the extension: " + joinNames(io::imageExtensions()) + " (required)",
+           [&](const std::string& v) { a.output = v; }});
+    addVariableOption(p, a.request);
+    p.add({"plane", "NAME", "slice plane: axial, coronal, sagittal (patient volumes: DICOM, NIfTI, NRRD in LPS space), or x, y, z "
+           "(normal to a world axis; on a geographic grid z is a horizontal slice at a depth, x one at a longitude, y at a latitude) "
+           "(default: axial for patient volumes, else z)",
+           [&](const std::string& v) {
+               for (SlicePlane pl : {SlicePlane::Axial, SlicePlane::Coronal, SlicePlane::Sagittal, SlicePlane::X, SlicePlane::Y, SlicePlane::Z})
+                   if (v == slicePlaneName(pl)) return void(a.plane = pl);
+               throw UsageError("--plane: choose axial, coronal, sagittal, x, y or z, got '" + v + "'");
+           }});
+    p.add({"at", "POSITION", "where the plane lies along its normal: world units (mm for patient volumes: LPS x for sagittal, y for "
+           "coronal, z for axial); on a geographic grid the depth in metres (positive down) for z, the longitude or latitude in "
+           "degrees for x or y (default: the middle sample)",
+           [&](const std::string& v) { a.at = parseNumber("at", v); }});
+    p.add({"index", "N", "where the plane lies: sample N (0-based) of the grid axis across the plane (default: the middle one, n/2)",
+           [&](const std::string& v) { a.index = parseInt("index", v, 0, 1 << 30); }});
+    p.add({"size", "WxH", "image size in pixels, the slice fitted and centred, its aspect kept (default: one pixel per sample of "
+           "the finer in-plane spacing, so anisotropic voxels keep their shape)",
+           [&](const std::string& v) { parseSize("size", v, a.width, a.height); }});
+    addWindowOption(p, a, "the slice by a display window",
+                    "the window stored in a DICOM file; else for a patient volume its whole value range in grey; else the colour map");
+    addColourMapOptions(p, a,
+                        "colours the slice when no window greys it (default: the variable's map from its standard_name or name, "
+                        "thermal/haline/speed/viridis)",
+                        "values mapped onto the colour map's ends (default: the slice's range of values)",
+                        "masked samples (land, missing values, outside a resampled gantry-tilted stack)");
+    p.add({"background", "R,G,B[,A]", "colour outside the grid, sRGB components in [0,1] (default 0,0,0,1)",
+           [&](const std::string& v) { a.background = parseColour("background", v, true); }});
+    addGeographicOptions(p, a.request);
+    addSeriesOption(p, a.request);
+    p.add({"stats", "FILE.json", "write the slice's geometry and colouring as JSON (keys: docs/user/cli.md)",
+           [&](const std::string& v) { a.statsPath = v; }});
+    addThreadsOption(p, a, "the image");
+    addMessageOptions(p, a);
+    return p;
+}
+
+/// --at in world units along the plane's normal axis (geographic grids: depth, longitude, latitude).
+double worldPosition(const ScalarField& f, SlicePlane plane, double at) {
+    if (!f.geographic.valid) return at;
+    const GeoAxes g{f.geographic};
+    const int n = sliceNormalAxis(plane);
+    return n == 2 ? g.z(at) : n == 0 ? g.x(at) : g.y(at);
+}
+
+/// The plane's position as the user reads it: "z = 12.5 mm", "500 m depth", "150°E".
+std::string positionText(const ScalarField& f, const SliceView& v) {
+    const int n = sliceNormalAxis(v.plane);
+    if (f.geographic.valid) {
+        const GeoAxes g{f.geographic};
+        return n == 2 ? number(g.depthM(v.position), 5) + " m depth" : n == 0 ? longitudeText(g.lon(v.position)) : latitudeText(g.lat(v.position));
+    }
+    return std::string(1, char('x' + n)) + " = " + number(v.position, 5) + (f.patientLps ? " mm" : "");
+}
+
+/// How the slice is coloured (SliceView.h), and what it says about it.
+struct Colouring {
+    SliceColouring c;
+    std::string source;  // where the window or the range comes from
+};
+
+Colouring chooseColouring(const SliceArgs& a, const ScalarField& f, const SliceValues& values) {
+    Colouring out;
+    SliceColouring& c = out.c;
+    const bool mapGiven = !a.colormap.empty() || !std::isnan(a.colourMin);
+    if (a.window.valid()) {
+        if (mapGiven) throw UsageError("--window and --colormap/--colour-range both colour the slice: give one of them");
+        if (ctWindowPreset(a.windowName)) requireHounsfield(f, a.input, "--window " + a.windowName);
+        c.window = a.window;
+        out.source = "--window " + a.windowName;
+    } else if (a.windowName.empty() && !mapGiven && f.window.valid()) {
+        c.window = f.window;
+        out.source = "the file's display window";
+    } else if (a.windowName.empty() && !mapGiven && f.patientLps) {
+        const auto [lo, hi] = f.validRange();
+        c.window = {0.5 * (double(lo) + double(hi)), std::max(double(hi) - double(lo), 1e-30)};
+        out.source = "the volume's value range";
+    }
+    c.invertedGrey = c.window.valid() && f.invertedGrey;
+    if (!c.window.valid()) {
+        c.colormap = a.colormap.empty() ? defaultColormap(f.standardName, f.name) : a.colormap;
+        if (!std::isnan(a.colourMin)) {
+            c.low = a.colourMin, c.high = a.colourMax;
+            out.source = "--colour-range";
+        } else {
+            const auto [lo, hi] = values.range();
+            c.low = std::isnan(lo) ? 0.0 : lo;
+            c.high = std::isnan(hi) ? 1.0 : hi;
+            out.source = "the slice's range of values";
+        }
+    }
+    c.masked = displayToLinear(vec4(a.maskedColour, 1.0f));
+    c.outside = displayToLinear(a.background.value_or(a.figure.enabled ? vec4(0.0f) : vec4(0.0f, 0.0f, 0.0f, 1.0f)));
+    return out;
+}
+
+}  // namespace
+
+int runSlice(const std::vector<std::string>& args) {
+    SliceArgs a;
+    if (!parseCommandLine(makeParser(a), args, a, a.output, "an output image: -o OUT.png, -o OUT.exr or -o OUT.tif")) return 0;
+    checkImageOutput(a.output);
+    checkFigureOptions(a.figure, a.output);
+    if (a.quiet) log::setLevel(log::Level::Error);
+    if (a.verbose) log::setLevel(log::Level::Debug);
+    if (a.at && a.index) throw UsageError("--at and --index both place the plane: give one of them");
+    if (isOctreeInput(a.input))
+        throw UsageError("slice samples a field, and the octree file " + a.input + " keeps only its surface: give the field it was built from");
+    if (io::isCityInput(a.input)) throw UsageError("slice samples a field; the city input " + a.input + " is a surface model");
+    const std::uint64_t budget = memoryBudget(a);
+    io::FieldRequest request = a.request;
+    request.memoryBudget = budget;
+
+    Timer loadTimer;
+    const ScalarField field = loadField(a.input, request, 8);
+    const double loadMs = loadTimer.ms();
+    const SlicePlane plane = a.plane.value_or(field.patientLps ? SlicePlane::Axial : SlicePlane::Z);
+    if (!field.patientLps && (plane == SlicePlane::Axial || plane == SlicePlane::Coronal || plane == SlicePlane::Sagittal))
+        throw UsageError(std::string("--plane ") + slicePlaneName(plane) + ": " + a.input +
+                         " is not in patient coordinates (DICOM, NIfTI, NRRD in LPS space); use x, y or z");
+
+    double position = 0.0;
+    if (a.at) {
+        position = worldPosition(field, plane, *a.at);
+    } else {
+        position = slicePositionOfIndex(field, plane, a.index.value_or(field.dims[sliceGridAxis(field, plane)] / 2));
+    }
+    const SliceView view = makeSliceView(field, plane, position, a.width, a.height);
+    checkMemoryBudget(a.input + ": a slice of " + std::to_string(view.width) + "x" + std::to_string(view.height) + " pixels",
+                      Frame::bytesFor(view.width, view.height) + std::uint64_t(view.width) * std::uint64_t(view.height) * 29, budget);
+    const SliceValues values = sampleSlice(field, view, a.threads);
+    const Colouring colouring = chooseColouring(a, field, values);
+    const Frame image = colourSlice(values, colouring.c);
+    io::ImageWriteOptions options;
+    options.dpi = a.figure.dpi;
+    io::writeImage(image, a.output, options);
+
+    std::uint64_t valid = 0, masked = 0;
+    for (SliceSample s : values.state) valid += s == SliceSample::Valid, masked += s == SliceSample::Masked;
+    const SliceColouring& c = colouring.c;
+    std::ostringstream summary;
+    summary << a.output << ": " << slicePlaneName(plane) << " slice of " << field.name << " at " << positionText(field, view)
+            << " (sample " << number(view.gridIndex, 4) << " of " << field.dims[view.gridAxis] << " along grid axis " << view.gridAxis
+            << "), " << view.width << "x" << view.height << " pixels of " << number(view.pixelSize, 4) << (field.patientLps ? " mm" : "")
+            << ", ";
+    if (c.window.valid())
+        summary << "window centre " << number(c.window.centre) << " width " << number(c.window.width) << " (" << colouring.source
+                << (c.invertedGrey ? ", MONOCHROME1: inverted" : "") << ")";
+    else
+        summary << c.colormap << " over " << number(c.low) << " .. " << number(c.high) << " (" << colouring.source << ")";
+    if (masked) summary << ", " << masked << " masked pixels";
+    log::info(summary.str());
+
+    if (!a.statsPath.empty()) {
+        StatsJson js;
+        js.set("input", a.input);
+        js.set("variable", field.name);
+        js.set("units", field.units);
+        js.set("plane", slicePlaneName(plane));
+        js.set("position", view.position);
+        js.set("grid_axis", view.gridAxis);
+        js.set("grid_index", view.gridIndex);
+        js.set("width", view.width);
+        js.set("height", view.height);
+        js.set("pixel_size", view.pixelSize);
+        js.set("patient_lps", field.patientLps);
+        if (c.window.valid()) {
+            js.set("window_centre", c.window.centre);
+            js.set("window_width", c.window.width);
+            js.set("window_inverted", c.invertedGrey);
+        } else {
+            js.set("colormap", c.colormap);
+            js.set("colour_min", c.low);
+            js.set("colour_max", c.high);
+        }
+        js.set("colour_source", colouring.source);
+        js.set("valid_pixels", valid);
+        js.set("masked_pixels", masked);
+        js.set("load_ms", loadMs);
+        io::writeFileAtomically(a.statsPath, std::string_view(js.text()));
+    }
+    return 0;
+}
+
+}  // namespace octrace::cli
