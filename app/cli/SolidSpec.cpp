@@ -33,4 +33,9 @@ Solid resolveSolid(const std::string& spec, const ScalarField::Geographic& world
     return Solid::below(std::move(relief));
 }
 
+Solid resolveSolid(const SolidArgument& arg, const ScalarField::Geographic& world, const std::string& worldName,
+                   std::uint64_t memoryBudget) {
+    return arg.solid ? *arg.solid : resolveSolid(arg.spec, world, worldName, memoryBudget);
+}
+
 }  // namespace octrace::cli

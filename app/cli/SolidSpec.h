@@ -5,9 +5,19 @@
 #include "octrace/csg/Solid.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace octrace::cli {
+
+/// A solid as a command names it: already made (a primitive; implicit, so a parsed Solid can
+/// be given where one is expected), or a spec still to resolve (relief:FILE needs the field).
+struct SolidArgument {
+    std::string spec;
+    std::optional<Solid> solid;
+    SolidArgument(const Solid& s) : spec(s.describe()), solid(s) {}  // NOLINT: implicit on purpose
+    explicit SolidArgument(std::string text) : spec(std::move(text)) {}
+};
 
 /// Whether `spec` names a solid (a primitive or relief:FILE) rather than an input file.
 bool isSolidArgument(const std::string& spec);
@@ -19,6 +29,9 @@ void checkSolidArgument(const std::string& spec);
 /// scale); `worldName` names that field for messages. Throws UsageError as checkSolidArgument,
 /// InputError when `world` is not geographic (an octree file, a CT) and as readRelief.
 Solid resolveSolid(const std::string& spec, const ScalarField::Geographic& world, const std::string& worldName,
+                   std::uint64_t memoryBudget);
+/// The solid itself when it is made, else resolveSolid of its spec.
+Solid resolveSolid(const SolidArgument& arg, const ScalarField::Geographic& world, const std::string& worldName,
                    std::uint64_t memoryBudget);
 
 }  // namespace octrace::cli

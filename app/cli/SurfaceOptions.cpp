@@ -110,8 +110,8 @@ void loadOctreeSurface(const SurfaceArgs& a, std::uint64_t budget, Surface& s) {
 void finishSurface(const SurfaceArgs& a, Surface& s) {
     if (!a.cuts.empty()) {
         Timer t;
-        for (const std::string& spec : a.cuts) {
-            const Solid cut = resolveSolid(spec, s.field.geographic, a.input, memoryBudget(a));
+        for (const SolidArgument& arg : a.cuts) {
+            const Solid cut = resolveSolid(arg, s.field.geographic, a.input, memoryBudget(a));
             s.tree = csg(CsgOperand::of(s.tree), a.clip ? CsgOp::Intersection : CsgOp::Difference, CsgOperand::of(cut));
         }
         // The cut faces were inside: their values (a display window's grey) are the field's there.
@@ -251,7 +251,7 @@ void addFormOptions(OptionParser& p, SurfaceArgs& a) {
            "fields only, laid out in their world); repeatable; builds the volume form (default: none)",
            [&](const std::string& v) {
                checkSolidArgument(v);
-               a.cuts.push_back(v);
+               a.cuts.emplace_back(v);
            }});
     p.add({"clip", "", "keep only what lies inside the --cut solids instead of cutting them away (default off)",
            [&](const std::string&) { a.clip = true; }});

@@ -3,6 +3,7 @@
 // field, its isosurface and its colour, with the same names, help and checks, and the
 // load-and-build step behind them.
 #include "Options.h"
+#include "SolidSpec.h"
 
 #include "octrace/build/CtPresets.h"
 #include "octrace/build/OctreeBuilder.h"
@@ -52,7 +53,7 @@ struct SurfaceArgs {
     bool insideBelow = false;             // --inside below
     bool formGiven = false;               // --form or --inside given
     bool keepVolume = false;  // set by the command: buildSurface keeps a volume octree as it is (build, csg)
-    std::vector<std::string> cuts;  // --cut, in order: solids as SolidSpec.h names them (checked)
+    std::vector<SolidArgument> cuts;  // --cut, in order (SolidSpec.h: relief:FILE is read once the field is)
     bool clip = false;        // --clip: keep the inside of the cuts instead
     bool extendDown = false;  // --extend-down: water columns extended to the grid's bottom (extendColumnsDown)
     bool bake = false;        // --bake: bake lighting into the shell

@@ -116,6 +116,7 @@ Solid parseSolid(const std::string& spec) {
         if (!(glm::length(s.b) > 0.0)) throw UsageError("halfspace: the normal is zero");
         s.b = glm::normalize(s.b);
         break;
+    case Solid::Kind::Relief: break;  // kindOf() knows no relief: it needs a file (isReliefSpec)
     }
     if ((s.kind == Solid::Kind::Sphere || s.kind == Solid::Kind::Cylinder) && !(s.r > 0.0))
         throw UsageError(std::string(k->name) + ": the radius must be positive");
