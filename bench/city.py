@@ -33,14 +33,21 @@ def run(cmd):
     return usage.ru_maxrss * 1024
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def arguments(doc, raw):
+    """The options of the city benchmarks (--bin, --data, --threads) and the raw JSON folder
+    docs/benchmarks/RAW, made."""
+    ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--bin", default=os.path.join(ROOT, "build", "app", "octrace"))
     ap.add_argument("--data", default=os.path.join(ROOT, "..", "shared", "data"))
     ap.add_argument("--threads", type=int, default=0)
     args = ap.parse_args()
-    outdir = os.path.join(ROOT, "docs", "benchmarks", "city")
+    outdir = os.path.join(ROOT, "docs", "benchmarks", raw)
     os.makedirs(outdir, exist_ok=True)
+    return args, outdir
+
+
+def main():
+    args, outdir = arguments(__doc__, "city")
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for name, rel, extra, depths in SCENES:

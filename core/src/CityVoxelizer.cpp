@@ -77,8 +77,12 @@ struct Subtree {
 
 class Voxelizer {
 public:
-    Voxelizer(const CityModel& model, const std::vector<CellTriangle>& tris, const Octree& tree)
-        : model_(model), tris_(tris), tree_(tree), scratch_(std::size_t(tree.depth) + 1) {}
+    /// `terrain[t]`: triangle t belongs to terrain; `terrainDepth`: the level at which a node
+    /// crossed by terrain only becomes a coarse leaf (>= depth: never).
+    Voxelizer(const CityModel& model, const std::vector<CellTriangle>& tris, const std::vector<std::uint8_t>& terrain,
+              int terrainDepth, const Octree& tree)
+        : model_(model), tris_(tris), terrain_(terrain), terrainDepth_(terrainDepth), tree_(tree),
+          scratch_(std::size_t(tree.depth) + 1) {}
 
     /// Builds the node at `level`, `cell` (crossed by `tris`) into `pool`; its own record goes
     /// to `out`. With `subtrees`, stops at level `stop` and records the nodes there instead.
@@ -102,7 +106,7 @@ public:
             for (int c = 0; c < 8; ++c) {
                 if (!(mask & (1u << c))) continue;
                 const ivec3 cc = cell * 2 + ivec3((c >> 2) & 1, (c >> 1) & 1, c & 1);
-                voxel(cc, kids[std::size_t(c)], pool);
+                leaf(cc, tree_.depth, kids[std::size_t(c)], pool);
             }
             return;
         }
@@ -115,7 +119,13 @@ public:
         for (int c = 0; c < 8; ++c) {
             if (!(mask & (1u << c))) continue;
             const ivec3 cc = cell * 2 + ivec3((c >> 2) & 1, (c >> 1) & 1, c & 1);
-            if (subtrees && level + 1 == stop) {
+            const auto& kt = kids[std::size_t(c)];
+            if (level + 1 >= terrainDepth_ && std::all_of(kt.begin(), kt.end(), [&](std::uint32_t t) { return terrain_[t] != 0; })) {
+                // Terrain only: a coarse leaf, its voxel in the voxel pool.
+                out.termMask |= std::uint8_t(1u << c);
+                pool.nodes[slot] = OctreeNode{std::uint32_t(pool.voxels.size()), 0, 0, 0};
+                leaf(cc, level + 1, kt, pool);
+            } else if (subtrees && level + 1 == stop) {
                 Subtree s;
                 s.slot = slot;
                 s.cell = cc;
@@ -131,8 +141,9 @@ public:
     }
 
 private:
-    void voxel(const ivec3& cell, const std::vector<std::uint32_t>& tris, Pool& pool) const {
-        const dvec3 centre = dvec3(cell) + 0.5;
+    /// The voxel (normal, colour) of the leaf at `level`, `cell` (a voxel at level depth).
+    void leaf(const ivec3& cell, int level, const std::vector<std::uint32_t>& tris, Pool& pool) const {
+        const dvec3 centre = (dvec3(cell) + 0.5) * std::ldexp(1.0, tree_.depth - level);
         std::uint32_t best = tris.front();
         double bestDistance = std::numeric_limits<double>::infinity();
         for (std::uint32_t t : tris) {
@@ -157,22 +168,25 @@ private:
 
     const CityModel& model_;
     const std::vector<CellTriangle>& tris_;
+    const std::vector<std::uint8_t>& terrain_;
+    const int terrainDepth_;
     const Octree& tree_;
     std::vector<std::array<std::vector<std::uint32_t>, 8>> scratch_;
 };
 
 void append(Pool& dst, Pool& src, OctreeNode& root, int rootLevel, int depth) {
     const std::uint32_t nodeOffset = std::uint32_t(dst.nodes.size()), voxelOffset = std::uint32_t(dst.voxels.size());
-    auto offset = [&](int level) { return level == depth - 1 ? voxelOffset : nodeOffset; };
+    // Nodes above the voxels index nodes, except coarse leaves (no children): they index voxels.
+    auto offset = [&](int level, const OctreeNode& n) { return level == depth - 1 || n.childMask == 0 ? voxelOffset : nodeOffset; };
     for (std::size_t i = 0; i < src.nodes.size(); ++i) {
         OctreeNode n = src.nodes[i];
-        n.firstChild += offset(src.levels[i]);
+        n.firstChild += offset(src.levels[i], n);
         dst.nodes.push_back(n);
     }
     dst.levels.insert(dst.levels.end(), src.levels.begin(), src.levels.end());
     dst.voxels.insert(dst.voxels.end(), src.voxels.begin(), src.voxels.end());
     dst.colours.insert(dst.colours.end(), src.colours.begin(), src.colours.end());
-    root.firstChild += offset(rootLevel);
+    root.firstChild += offset(rootLevel, root);
     src = Pool{};
 }
 
@@ -209,6 +223,12 @@ Octree voxelizeCity(const CityModel& model, const CityBuildOptions& options, Bui
         all.push_back(std::uint32_t(i));
     }
     if (all.empty()) throw EmptyResultError(model.source + ": the city model has no triangle with area");
+    if (options.terrainDepth < 0 || options.terrainDepth > Octree::kMaxDepth)
+        throw UsageError("terrain depth must be in 1.." + std::to_string(Octree::kMaxDepth) + ", got " + std::to_string(options.terrainDepth));
+    const int terrainDepth = options.terrainDepth > 0 && options.terrainDepth < options.depth ? options.terrainDepth : options.depth;
+    std::vector<std::uint8_t> terrain(model.triangles.size());
+    for (std::size_t i = 0; i < model.triangles.size(); ++i)
+        terrain[i] = model.objects[model.triangles[i].object].role == CityRole::Terrain;
 
     // The top levels serially down to `split`, the subtrees below in parallel, joined in a
     // fixed order so that the result does not depend on the number of threads.
@@ -218,12 +238,12 @@ Octree voxelizeCity(const CityModel& model, const CityBuildOptions& options, Bui
     joined.levels.resize(1, 0);
     OctreeNode root;
     if (split == 0) {
-        Voxelizer(model, tris, tree).build(0, ivec3(0), all, joined, root);
+        Voxelizer(model, tris, terrain, terrainDepth, tree).build(0, ivec3(0), all, joined, root);
     } else {
         std::vector<Subtree> subs;
-        Voxelizer(model, tris, tree).build(0, ivec3(0), all, joined, root, split, &subs);
+        Voxelizer(model, tris, terrain, terrainDepth, tree).build(0, ivec3(0), all, joined, root, split, &subs);
         parallelFor(subs.size(), options.threads, [&](std::size_t i) {
-            Voxelizer v(model, tris, tree);
+            Voxelizer v(model, tris, terrain, terrainDepth, tree);
             v.build(split, subs[i].cell, subs[i].tris, subs[i].pool, subs[i].root);
             subs[i].tris = {};
         });

@@ -167,7 +167,12 @@ private:
             if (f2b_ && whollyCovered(r)) continue;
             const std::uint32_t slot = node.firstChild + childRank(node.childMask, c);
             if (level + 1 == tree_.depth) splat(slot, kNoHit, childCell, childLo, childSide, r, st);
-            else if (node.termMask & (1u << c)) continue;
+            else if (node.termMask & (1u << c)) {
+                // A coarse leaf (shell form) is drawn as a solid cube of its level; an interior
+                // term (volume form) is not drawn.
+                if (tree_.form == OctreeForm::Shell)
+                    splat(tree_.nodes[slot].firstChild, kNoHit, childCell << (tree_.depth - level - 1), childLo, childSide, r, st);
+            }
             else if (cut_.stops(level + 1, childCell)) splat(tree_.summaries[slot].firstVoxel, slot, childCell, childLo, childSide, r, st);
             else visit(slot, level + 1, childCell, st);
         }

@@ -240,8 +240,9 @@ public:
             const unsigned hm = ci >> 2, hu = (ci >> 1) & 1, hv = ci & 1;
             const int lg = N - n.level - 1;
             const i64 h = i64(1) << lg;
-            if (n.level == tree_.depth - 1) {
-                // Child is a voxel and the first crossed one in order: the hit.
+            const bool coarseLeaf = (nd.termMask & (1u << c)) && tree_.form == OctreeForm::Shell;
+            if (n.level == tree_.depth - 1 || coarseLeaf) {
+                // Child is a voxel (or a coarse leaf) and the first crossed one in order: the hit.
                 i64 mirrored[3];
                 mirrored[r_.main] = n.m0 + hm * h;
                 mirrored[r_.u] = n.u0 + hu * h;
@@ -250,7 +251,8 @@ public:
                     i64 o = (r_.sign & axisBit(a)) ? L - (mirrored[a] + h) : mirrored[a];
                     result.cell[a] = int(o >> (N - tree_.depth));
                 }
-                result.voxel = slot;
+                result.voxel = coarseLeaf ? tree_.nodes[slot].firstChild : slot;
+                result.leafShift = tree_.depth - n.level - 1;
                 return result;
             }
             if (nd.termMask & (1u << c)) continue;  // interior terms: volume form, not drawn by this shell renderer
@@ -475,7 +477,14 @@ BranchNode branchNode(const Octree& tree, const ivec3& a, const ivec3& b) {
         const int shift = depth - 1 - l;
         const unsigned c = unsigned(((a.x >> shift) & 1) << 2 | ((a.y >> shift) & 1) << 1 | ((a.z >> shift) & 1));
         const OctreeNode& nd = tree.nodes[node];
-        if (!(nd.childMask & (1u << c)) || (nd.termMask & (1u << c))) return BranchNode{};  // not a voxel's path
+        if (!(nd.childMask & (1u << c))) return BranchNode{};  // not a voxel's path
+        if (nd.termMask & (1u << c)) {
+            if (tree.form != OctreeForm::Shell) return BranchNode{};  // an interior term: not a voxel's path
+            // A coarse leaf holds both cells: its parent is the branch node.
+            bn.level = l;
+            bn.cell = a >> (depth - l);
+            return bn;
+        }
         bn.childIndex[l] = std::uint8_t(c);
         node = nd.firstChild + childRank(nd.childMask, c);
         bn.path[l + 1] = node;

@@ -101,6 +101,14 @@ void Octree::computeSummaries() {
             } else if (!(n.termMask & (1u << c))) {
                 k = self(self, slot, level + 1, cc);
                 k.z *= double(k.count);
+            } else if (form == OctreeForm::Shell) {
+                // A coarse leaf: one leaf, its own summary too (a cut may stop at it).
+                const std::uint32_t v = nodes[slot].firstChild;
+                k.normal = dvec3(decodeNormal(voxels[v].normal));
+                k.z = (double(cc.z) + 0.5) * std::ldexp(1.0, depth - level - 1);
+                k.count = 1;
+                k.first = v;
+                summaries[slot] = NodeSummary{voxels[v].normal, 1, v, float(k.z)};
             }
             if (k.count && !s.count) s.first = k.first;
             s.normal += k.normal;
@@ -128,6 +136,13 @@ Box3 Octree::voxelBox(const ivec3& cell) const {
     return b;
 }
 
+bool Octree::hasCoarseLeaves() const {
+    if (form != OctreeForm::Shell) return false;
+    for (const OctreeNode& n : nodes)
+        if (n.termMask) return true;
+    return false;
+}
+
 std::uint32_t Octree::findVoxel(const ivec3& cell) const {
     const int n = 1 << depth;
     if (nodes.empty() || cell.x < 0 || cell.y < 0 || cell.z < 0 || cell.x >= n || cell.y >= n || cell.z >= n)
@@ -140,7 +155,8 @@ std::uint32_t Octree::findVoxel(const ivec3& cell) const {
         if (!(nd.childMask & (1u << c))) return 0xFFFFFFFFu;
         std::uint32_t slot = nd.firstChild + childRank(nd.childMask, unsigned(c));
         if (level == depth - 1) return slot;
-        if (nd.termMask & (1u << c)) return 0xFFFFFFFFu;  // interior term: not a boundary voxel
+        if (nd.termMask & (1u << c))  // interior term: not a boundary voxel; coarse leaf: its voxel
+            return form == OctreeForm::Shell ? nodes[slot].firstChild : 0xFFFFFFFFu;
         node = slot;
     }
     return 0xFFFFFFFFu;
@@ -163,7 +179,6 @@ void Octree::validate() const {
         stack.pop_back();
         const OctreeNode& n = nodes[it.node];
         if (n.termMask & ~n.childMask) fail("term bit without child bit");
-        if (n.termMask && form != OctreeForm::Volume && it.level != depth - 1) fail("interior term in a shell octree");
         int count = std::popcount(unsigned(n.childMask));
         if (it.level == depth - 1) {
             if (n.termMask && form != OctreeForm::Volume) fail("interior voxel in a shell octree");
@@ -182,7 +197,11 @@ void Octree::validate() const {
                 if (nodes[slot].childMask == 0) fail("inner node without children");
                 stack.push_back({slot, it.level + 1});
             } else if (nodes[slot].childMask != 0 || nodes[slot].termMask != 0) {
-                fail("interior term with children");
+                fail(form == OctreeForm::Volume ? "interior term with children" : "coarse leaf with children");
+            } else if (form == OctreeForm::Shell) {
+                const std::uint32_t v = nodes[slot].firstChild;
+                if (v >= voxels.size()) fail("coarse leaf's voxel index out of range");
+                if (seenVoxel[v]++) fail("voxel referenced twice");
             }
             ++slot;
         }

@@ -7,9 +7,9 @@ namespace octrace {
 void Octree::occupiedCells(ivec3& lo, ivec3& hi) const {
     lo = ivec3(INT_MAX);
     hi = ivec3(INT_MIN);
-    forEachVoxel([&](const ivec3& c, std::uint32_t) {
+    forEachLeaf([&](const ivec3& c, int shift, std::uint32_t) {
         lo = glm::min(lo, c);
-        hi = glm::max(hi, c);
+        hi = glm::max(hi, c + ((1 << shift) - 1));
     });
 }
 

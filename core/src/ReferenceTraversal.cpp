@@ -89,7 +89,14 @@ struct Walker {
                 for (int a = 0; a < 3; ++a) hit.cell[a] = int(std::lround(k.lo[a] / voxelSize));
                 return true;
             }
-            if (nd.termMask & (1u << k.child)) continue;
+            if (nd.termMask & (1u << k.child)) {
+                if (tree.form != OctreeForm::Shell) continue;  // interior term: not drawn
+                // A coarse leaf: drawn as a solid cube of its level.
+                hit.voxel = tree.nodes[k.slot].firstChild;
+                for (int a = 0; a < 3; ++a) hit.cell[a] = int(std::lround(k.lo[a] / voxelSize));
+                hit.leafShift = tree.depth - level - 1;
+                return true;
+            }
             if (cut) {
                 ivec3 cell;
                 for (int a = 0; a < 3; ++a) cell[a] = int(std::lround(k.lo[a] / half));

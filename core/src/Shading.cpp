@@ -149,10 +149,11 @@ vec4 Shader::shadeNormal(vec3 n, std::uint32_t voxel, float zCells) const {
 float Shader::distance(const Ray& ray, const ivec3& cell) const { return distanceToBox(ray, tree_.voxelBox(cell)); }
 
 float Shader::distance(const Ray& ray, const TraversalHit& hit) const {
-    if (!hit.nodeHit()) return distance(ray, hit.cell);
-    const double side = tree_.cubeSide / double(1u << hit.level);
+    if (!hit.nodeHit() && hit.leafShift == 0) return distance(ray, hit.cell);
+    const int level = hit.nodeHit() ? hit.level : tree_.depth - hit.leafShift;
+    const double side = tree_.cubeSide / double(1u << level);
     Box3 b;
-    b.lo = tree_.cubeOrigin + dvec3(hit.cell) * side;
+    b.lo = tree_.cubeOrigin + dvec3(hit.nodeHit() ? hit.cell : hit.cell >> hit.leafShift) * side;
     b.hi = b.lo + dvec3(side);
     return distanceToBox(ray, b);
 }

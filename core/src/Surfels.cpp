@@ -27,15 +27,18 @@ std::vector<Surfel> extractSurfels(const Octree& tree, const RenderSettings& set
     struct Item {
         ivec3 cell;
         std::uint32_t index;
+        int shift;  // at the voxel level: the leaf's side is 2^shift voxels (coarse leaves, Octree.h)
     };
     std::vector<Item> items;
     items.reserve(voxels ? tree.voxels.size() : 0);
-    tree.forEachAtLevel(level, [&](const ivec3& cell, std::uint32_t index) {
-        if (voxels || tree.summaries[index].voxelCount > 0) items.push_back({cell, index});
-    });
+    if (voxels)
+        tree.forEachLeaf([&](const ivec3& cell, int shift, std::uint32_t index) { items.push_back({cell, index, shift}); });
+    else
+        tree.forEachAtLevel(level, [&](const ivec3& cell, std::uint32_t index) {
+            if (tree.summaries[index].voxelCount > 0) items.push_back({cell, index, 0});
+        });
 
     const double side = tree.cubeSide / std::ldexp(1.0, level);
-    const float radius = surfelRadius(side);
     std::vector<Surfel> out(items.size());
     constexpr std::size_t kChunk = 4096;
     parallelFor((items.size() + kChunk - 1) / kChunk, settings.threads, [&](std::size_t chunk) {
@@ -43,8 +46,9 @@ std::vector<Surfel> extractSurfels(const Octree& tree, const RenderSettings& set
         for (std::size_t i = chunk * kChunk; i < end; ++i) {
             const Item& it = items[i];
             Surfel& s = out[i];
-            s.position = vec3(tree.cubeOrigin + (dvec3(it.cell) + 0.5) * side);
-            s.radius = radius;
+            const double size = std::ldexp(1.0, it.shift);
+            s.position = vec3(tree.cubeOrigin + (dvec3(it.cell) + 0.5 * size) * side);
+            s.radius = surfelRadius(side * size);
             float zCells;
             std::uint32_t voxel = it.index;
             if (voxels) {

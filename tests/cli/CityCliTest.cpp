@@ -26,6 +26,45 @@ TEST(CliCity, RendersDelftTerrainAndBuildingsExactlyAsTheReference) {
     }
 }
 
+TEST(CliCity, MixedDepthDelftRendersExactlyAsTheReferenceInEveryExactRenderer) {
+    if (!haveShared("city/delft.json")) GTEST_SKIP() << "shared data absent: " << sharedData("city/delft.json");
+    // Terrain to depth 6, buildings to 9: coarse leaves three levels above the voxels, drawn
+    // by the discrete traversals (from the root, from a branch node), the object-order
+    // renderers and, multi-resolution, with a cut.
+    const std::vector<std::vector<std::string>> runs = {{"full"}, {"linear-exact"}, {"area-exact"}, {"direct"}, {"direct-f2b"},
+                                                        {"full", "--lod", "3"}, {"direct", "--lod", "3"}};
+    std::string voxels;
+    for (const auto& extra : runs) {
+        Scratch s;
+        std::vector<std::string> args = {"render", sharedData("city/delft.json"), "--depth", "9", "--terrain-depth", "6",
+                                         "--size", "320x240", "--verify", "--stats", s.path("st.json"), "-o", s.path("m.png"),
+                                         "--renderer"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        Result r = run(args);
+        ASSERT_EQ(r.code, 0) << r.err;
+        const std::string js = slurp(s.path("st.json"));
+        EXPECT_NE(js.find("\"mismatched_pixels\": 0,"), std::string::npos) << extra[0] << ": " << js;
+        EXPECT_NE(js.find("\"hit_agreement\": 1,"), std::string::npos) << extra[0] << ": " << js;
+        const auto at = js.find("\"boundary_voxels\"");
+        ASSERT_NE(at, std::string::npos) << js;
+        if (voxels.empty()) voxels = js.substr(at, js.find(',', at) - at);
+        EXPECT_EQ(js.substr(at, js.find(',', at) - at), voxels);
+    }
+    Scratch s;
+    Result r = run({"render", sharedData("city/delft.json"), "--depth", "9", "--size", "32x24", "--stats", s.path("u.json"), "-o", s.path("u.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const std::string js = slurp(s.path("u.json"));
+    const auto at = js.find("\"boundary_voxels\": ");
+    ASSERT_NE(at, std::string::npos);
+    EXPECT_LT(std::stoull(voxels.substr(voxels.find(':') + 1)), std::stoull(js.substr(at + 19)));  // fewer than uniform depth 9
+    r = run({"render", kCube, "--depth", "6", "--terrain-depth", "7", "-o", s.path("a.png")});
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("--terrain-depth 7 is deeper than --depth 6"), std::string::npos) << r.err;
+    r = run({"build", sharedData("city/delft.json"), "--depth", "6", "--terrain-depth", "3", "-o", s.path("a.oct")});
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("mixed-depth octree"), std::string::npos) << r.err;
+}
+
 TEST(CliCity, InfoShowsTheCrsAndLodSelectAndCrsChangeIt) {
     Result r = run({"info", kCube});
     ASSERT_EQ(r.code, 0) << r.err;
@@ -46,7 +85,7 @@ TEST(CliCity, OptionsThatDoNotApplyAndBadValuesAreRefused) {
     EXPECT_NE(r.err.find("--lod-select: expected a level of detail"), std::string::npos) << r.err;
     r = run({"render", "analytic:sphere:17", "--crs", "EPSG:28992", "-o", s.path("a.png")});
     EXPECT_EQ(r.code, 2);
-    EXPECT_NE(r.err.find("--lod-select, --crs, --dem, --texture, --height-attr and --base-attr apply to city inputs"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--lod-select, --crs, --dem, --texture, --height-attr, --base-attr and --terrain-depth apply to city inputs"), std::string::npos) << r.err;
     r = run({"render", kCube, "--crs", "EPSG:999999", "-o", s.path("a.png")});
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("unknown coordinate reference system 'EPSG:999999'"), std::string::npos) << r.err;

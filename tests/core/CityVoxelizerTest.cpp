@@ -139,3 +139,57 @@ TEST(CityVoxelizer, RefusesABadDepthAndAModelWithoutArea) {
     o.depth = 4;
     EXPECT_THROW(voxelizeCity(flat, o), EmptyResultError);
 }
+
+TEST(CityVoxelizer, TerrainStopsAtTheTerrainDepthAndBuildingsGoToTheDepth) {
+    // Ground 64 x 64 at z = 1 and a 16 x 16 x 16 building on it, in a 64-unit cube.
+    CityModel m;
+    m.objects.push_back({"ground", "TINRelief", CityRole::Terrain, packColour(vec3(0, 1, 0))});
+    m.objects.push_back({"house", "Building", CityRole::Solid, packColour(vec3(1, 0, 0))});
+    ASSERT_TRUE(m.addPolygon({{{0, 0, 1}, {64, 0, 1}, {64, 64, 1}, {0, 64, 1}}}, 0));
+    ASSERT_TRUE(m.addPrism({{{8, 8}, {24, 8}, {24, 24}, {8, 24}}}, 1.0, 17.0, 1));
+    ASSERT_TRUE(m.addPolygon({{{0, 0, 64}, {1, 0, 64}, {0, 1, 64}}}, 1));  // a mast: makes the cube 64 high
+    CityBuildOptions o;
+    o.depth = 6;
+    const Octree uniform = voxelizeCity(m, o);
+    EXPECT_FALSE(uniform.hasCoarseLeaves());
+    o.terrainDepth = 3;
+    Octree mixed = voxelizeCity(m, o);
+    mixed.validate();
+    ASSERT_TRUE(mixed.hasCoarseLeaves());
+    ASSERT_TRUE(mixed.hasColours());
+    EXPECT_LT(mixed.voxels.size(), uniform.voxels.size() / 2);
+    // Every leaf of the building's shell is a voxel; coarse leaves are cubes of level 3 (side 8)
+    // or, in level-3 nodes shared with the house, deeper, that only the ground crosses: green.
+    std::set<std::array<int, 3>> fine;
+    std::size_t level3 = 0;
+    mixed.forEachLeaf([&](const ivec3& c, int shift, std::uint32_t v) {
+        if (shift == 0) {
+            fine.insert({c.x, c.y, c.z});
+            return;
+        }
+        const int side = 1 << shift;
+        level3 += shift == 3;
+        EXPECT_LE(shift, 3);
+        EXPECT_EQ(c.z, 0);  // the ground's level
+        const bool meetsHouse = c.x <= 24 && c.x + side >= 8 && c.y <= 24 && c.y + side >= 8;  // closed boxes
+        EXPECT_FALSE(meetsHouse) << c.x << "," << c.y << " side " << side;
+        EXPECT_EQ(mixed.colours[v], packColour(vec3(0, 1, 0)));
+        EXPECT_EQ(mixed.findVoxel(c + ivec3(side - 1)), v);
+    });
+    EXPECT_EQ(level3, 64u - 16u);  // 8 x 8 ground cubes less the 4 x 4 the house's closed box touches
+    uniform.forEachVoxel([&](const ivec3& c, std::uint32_t v) {
+        if (uniform.colours[v] == packColour(vec3(1, 0, 0))) EXPECT_TRUE(fine.count({c.x, c.y, c.z})) << c.x << "," << c.y << "," << c.z;
+    });
+    // The summaries count each coarse leaf once; the bounds cover the coarse leaves whole.
+    mixed.computeSummaries();
+    EXPECT_EQ(mixed.summaries[0].voxelCount, mixed.voxels.size());
+    ivec3 lo, hi;
+    mixed.occupiedCells(lo, hi);
+    EXPECT_EQ(lo, ivec3(0));
+    EXPECT_EQ(hi, ivec3(63));
+    // The same at terrain depth = depth: uniform.
+    o.terrainDepth = 6;
+    EXPECT_EQ(voxelizeCity(m, o).voxels.size(), uniform.voxels.size());
+    o.terrainDepth = -1;
+    EXPECT_THROW(voxelizeCity(m, o), UsageError);
+}

@@ -11,8 +11,14 @@
 ///     `termMask` bit is set: those are interior "terms" (octants wholly inside the object,
 ///     volume form only) and occupy a slot in `nodes` with childMask 0.
 ///   - At level depth-1 the children are voxels: firstChild indexes `voxels`.
-/// Leaf kinds: empty (mask bit clear), interior term, boundary voxel. The shell form built
-/// by OctreeBuilder has no terms.
+/// Leaf kinds: empty (mask bit clear), interior term, boundary voxel, coarse leaf. The shell
+/// form built by OctreeBuilder has no terms.
+///   - Coarse leaves (shell form, mixed depth: a city's terrain shallower than its buildings,
+///     CityVoxelizer.h): in the shell form a term bit at a node of level < depth-1 marks a
+///     boundary leaf larger than a voxel, drawn as a solid cube of its level. Its slot in
+///     `nodes` has childMask 0 and its firstChild indexes `voxels` (and `colours` etc.): the
+///     leaf's normal and colour. Every renderer draws it (hits report it with
+///     TraversalHit::leafShift); forEachLeaf visits it.
 ///   - Volume form (OctreeForm::Volume, see build/Volume.h): the solid's interior is kept as
 ///     terms; at level depth-1 a term bit marks an *interior voxel*, which occupies a slot in
 ///     `voxels` like a boundary voxel (its normal is unused, 0). Renderers draw the shell form:
@@ -159,8 +165,8 @@ public:
     /// World box of voxel (i,j,k) (cell space).
     Box3 voxelBox(const ivec3& cell) const;
 
-    /// Index of the boundary voxel at cell (i,j,k), or 0xFFFFFFFF when that cell is not a
-    /// boundary voxel (or lies outside). O(depth).
+    /// Index of the boundary voxel at cell (i,j,k) (or of the coarse leaf holding it), or
+    /// 0xFFFFFFFF when that cell is not a boundary voxel (or lies outside). O(depth).
     std::uint32_t findVoxel(const ivec3& cell) const;
 
     /// Smallest cell-space box [lo, hi] (inclusive) holding every boundary voxel; lo > hi
@@ -170,11 +176,18 @@ public:
     /// World box of the occupied cells (the surface's bounding box).
     Box3 occupiedBounds() const;
 
-    /// Calls f(cell, voxelIndex) for every boundary voxel (depth-first order).
+    /// Calls f(cell, voxelIndex) for every entry of `voxels` (depth-first order); a coarse leaf
+    /// counts as the voxel at its lowest cell (forEachLeaf tells its size).
     template <class F>
     void forEachVoxel(F&& f) const {
-        forEachAtLevel(depth, f);
+        forEachLeaf([&](const ivec3& cell, int, std::uint32_t v) { f(cell, v); });
     }
+    /// Whether the shell octree has coarse leaves (boundary leaves above the voxel level).
+    bool hasCoarseLeaves() const;
+    /// Calls f(cell, shift, voxelIndex) for every boundary leaf (depth-first order): a voxel
+    /// (shift 0) or a coarse leaf of side 2^shift voxels whose lowest voxel cell is `cell`.
+    template <class F>
+    void forEachLeaf(F&& f) const;
     /// Calls f(cell, index) for every non-empty octant at `level` (cell coordinates at that
     /// level, 0 .. 2^level - 1), in the depth-first order of forEachVoxel: at level == depth
     /// the boundary voxels (index into `voxels`), at 0 <= level < depth the nodes (index into
@@ -182,6 +195,11 @@ public:
     /// for a level outside [0, depth].
     template <class F>
     void forEachAtLevel(int level, F&& f) const;
+
+    /// Depth-first over the non-empty children: enter(level, cell, slot, term) for each (its
+    /// level and cell, its slot, whether its term bit is set); descends where it returns true.
+    template <class F>
+    void descend(F&& enter) const;
 
     /// Fills `summaries` bottom-up in O(nodes + voxels). Needed by --lod / --level.
     void computeSummaries();
@@ -196,12 +214,8 @@ public:
 };
 
 template <class F>
-void Octree::forEachAtLevel(int level, F&& f) const {
-    if (nodes.empty() || level < 0 || level > depth) return;
-    if (level == 0) {
-        if (depth > 0) f(ivec3(0), 0u);
-        return;
-    }
+void Octree::descend(F&& enter) const {
+    if (nodes.empty()) return;
     struct Item { std::uint32_t node; int level; ivec3 cell; };
     std::vector<Item> stack{{0u, 0, ivec3(0)}};
     while (!stack.empty()) {
@@ -211,12 +225,39 @@ void Octree::forEachAtLevel(int level, F&& f) const {
         std::uint32_t slot = n.firstChild;
         for (int c = 0; c < 8; ++c) {
             if (!(n.childMask & (1u << c))) continue;
-            ivec3 cc = it.cell * 2 + ivec3((c >> 2) & 1, (c >> 1) & 1, c & 1);
-            if (it.level + 1 == level) f(cc, slot);
-            else if (!(n.termMask & (1u << c))) stack.push_back({slot, it.level + 1, cc});
+            const ivec3 cc = it.cell * 2 + ivec3((c >> 2) & 1, (c >> 1) & 1, c & 1);
+            if (enter(it.level + 1, cc, slot, (n.termMask & (1u << c)) != 0)) stack.push_back({slot, it.level + 1, cc});
             ++slot;
         }
     }
+}
+
+template <class F>
+void Octree::forEachAtLevel(int level, F&& f) const {
+    if (nodes.empty() || level < 0 || level > depth) return;
+    if (level == 0) {
+        if (depth > 0) f(ivec3(0), 0u);
+        return;
+    }
+    descend([&](int l, const ivec3& cell, std::uint32_t slot, bool term) {
+        if (l < level) return !term;
+        f(cell, slot);
+        return false;
+    });
+}
+
+template <class F>
+void Octree::forEachLeaf(F&& f) const {
+    if (depth < 1) return;
+    descend([&](int l, const ivec3& cell, std::uint32_t slot, bool term) {
+        if (l == depth) {
+            f(cell, 0, slot);  // volume form: interior voxels too, as forEachAtLevel(depth)
+            return false;
+        }
+        if (!term) return true;
+        if (form == OctreeForm::Shell) f(cell << (depth - l), depth - l, nodes[slot].firstChild);  // a coarse leaf
+        return false;
+    });
 }
 
 }  // namespace octrace
