@@ -17,6 +17,9 @@
 
 #include <QCheckBox>
 #include <QComboBox>
+#include <QDialog>
+#include <QGroupBox>
+#include <QTimer>
 #include <QDoubleSpinBox>
 #include <QImage>
 #include <QLineEdit>
@@ -348,6 +351,60 @@ private slots:
         window_->setFigure(false, QString(), 150, false);
         colormap->setCurrentIndex(0);
         waitFrame();
+    }
+
+    void exportDialogSetsTheFigure() {
+        // File > Export Figure... as a user fills it in: a smaller figure (its dpi follows the
+        // width: the annotations keep their share of the image), a title and a scale bar.
+        QAction* action = nullptr;
+        for (QAction* a : window_->findChildren<QAction*>())
+            if (a->text() == QStringLiteral("&Export Figure...")) action = a;
+        QVERIFY(action);
+        const QString studioPng = tmp_.filePath(QStringLiteral("dialog-studio.png"));
+        const QString cliPng = tmp_.filePath(QStringLiteral("dialog-cli.png"));
+        int widthBefore = 0, dpiBefore = 0, dpiAfter = 0;
+        bool filled = false;
+        QTimer fill;
+        fill.setInterval(20);
+        connect(&fill, &QTimer::timeout, this, [&] {
+            auto* dlg = qobject_cast<QDialog*>(QApplication::activeModalWidget());
+            if (!dlg || dlg->objectName() != QStringLiteral("exportDialog")) return;
+            fill.stop();
+            auto* width = dlg->findChild<QSpinBox*>(QStringLiteral("exportWidth"));
+            auto* height = dlg->findChild<QSpinBox*>(QStringLiteral("exportHeight"));
+            auto* dpi = dlg->findChild<QSpinBox*>(QStringLiteral("figureDpi"));
+            auto* figure = dlg->findChild<QGroupBox*>(QStringLiteral("figureBox"));
+            auto* title = dlg->findChild<QLineEdit*>(QStringLiteral("figureTitle"));
+            auto* scaleBar = dlg->findChild<QCheckBox*>(QStringLiteral("figureScaleBar"));
+            auto* path = dlg->findChild<QLineEdit*>(QStringLiteral("exportPath"));
+            if (width && height && dpi && figure && title && scaleBar && path) {
+                path->setText(studioPng);
+                widthBefore = width->value();
+                dpiBefore = dpi->value();
+                width->setValue(640);
+                height->setValue(480);
+                dpiAfter = dpi->value();
+                figure->setChecked(true);
+                title->setText(QStringLiteral("From the dialog"));
+                scaleBar->setChecked(true);
+                filled = true;
+            }
+            dlg->accept();
+        });
+        fill.start();
+        QSignalSpy exported(&window_->engine(), &Engine::exported);
+        action->trigger();  // the dialog runs until the timer has filled it in
+        QVERIFY(filled);
+        QVERIFY(exported.wait(kWaitMs));
+        QCOMPARE(dpiAfter, octrace::studio::scaledDpi(dpiBefore, widthBefore, 640));
+        QVERIFY(widthBefore == 640 || dpiAfter != dpiBefore);
+        QVERIFY(window_->state().figure && window_->state().scaleBar);
+        QCOMPARE(window_->state().title, std::string("From the dialog"));
+        QCOMPARE(window_->state().dpi, dpiAfter);
+        QCOMPARE(QImage(studioPng).size(), QSize(640, 480));
+        QCOMPARE(runCli(window_->commandLine(cliPng, 640, 480)), 0);
+        QCOMPARE(differingPixels(studioPng, cliPng), 0);
+        window_->setFigure(false, QString(), 150, false);
     }
 
     void lightingControlsMatchTheCli() {
