@@ -3,6 +3,7 @@
 // field, its isosurface and its colour, with the same names, help and checks, and the
 // load-and-build step behind them.
 #include "Options.h"
+#include "SolidSpec.h"
 
 #include "octrace/build/CtPresets.h"
 #include "octrace/build/OctreeBuilder.h"
@@ -52,8 +53,9 @@ struct SurfaceArgs {
     bool insideBelow = false;             // --inside below
     bool formGiven = false;               // --form or --inside given
     bool keepVolume = false;  // set by the command: buildSurface keeps a volume octree as it is (build, csg)
-    std::vector<Solid> cuts;  // --cut, in order
+    std::vector<SolidArgument> cuts;  // --cut, in order (SolidSpec.h: relief:FILE is read once the field is)
     bool clip = false;        // --clip: keep the inside of the cuts instead
+    bool extendDown = false;  // --extend-down: water columns extended to the grid's bottom (extendColumnsDown)
     bool bake = false;        // --bake: bake lighting into the shell
     BakeOptions bakeOptions;  // --bake-light, --bake-ao, --bake-ao-distance, --bake-shadows
     bool bakeLightGiven = false;
@@ -76,8 +78,10 @@ void addVariableOption(OptionParser& p, io::FieldRequest& request);
 void addSurfaceOptions(OptionParser& p, SurfaceArgs& a);
 /// --inside above|below; `applies` says to what ("volume form").
 void addInsideOption(OptionParser& p, SurfaceArgs& a, const std::string& applies);
-/// --form shell|volume, --inside above|below, --cut SOLID, --clip.
+/// --form shell|volume, --inside above|below, --cut SOLID, --clip, --extend-down.
 void addFormOptions(OptionParser& p, SurfaceArgs& a);
+/// --extend-down (geographic fields).
+void addExtendDownOption(OptionParser& p, SurfaceArgs& a);
 /// --bake, --bake-light, --bake-ao, --bake-ao-distance, --bake-shadows.
 void addBakeOptions(OptionParser& p, SurfaceArgs& a);
 /// --lighting baked|dynamic, --ambient A.
