@@ -412,16 +412,19 @@ private slots:
         auto* lighting = window_->findChild<QComboBox*>(QStringLiteral("lightingCombo"));
         auto* ao = window_->findChild<QSpinBox*>(QStringLiteral("bakeAoSpin"));
         QVERIFY(ambient && lighting && ao);
-        // Dynamic lighting with more ambient light: only a frame.
-        const QImage before = window_->view(0)->image();
+        // Dynamic lighting (a build: the octree's baked light follows the mode), then more
+        // ambient light: only a frame.
+        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
         lighting->setCurrentIndex(lighting->findData(QStringLiteral("dynamic")));
+        QVERIFY(built.wait(kWaitMs));
+        waitFrame();
+        const QImage before = window_->view(0)->image();
         ambient->setValue(0.45);
         waitFrame();
         QCOMPARE(window_->state().ambient, 0.45);
         QVERIFY(window_->view(0)->image() != before);
         exportEqualsCli(QStringLiteral("dynamic-ambient"), 220, 160, false);
         // Precomputed lighting: a build that bakes light, shadows and ambient occlusion.
-        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
         lighting->setCurrentIndex(lighting->findData(QStringLiteral("baked")));
         QVERIFY(built.wait(kWaitMs));
         QVERIFY(!window_->engine().tree()->baked.empty());
