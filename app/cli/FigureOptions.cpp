@@ -68,8 +68,8 @@ void checkImageOutput(const std::string& output) {
 }
 
 void checkFigureOptions(const FigureArgs& f, const std::string& output) {
-    if (!f.enabled && (!f.title.empty() || f.printInches))
-        throw UsageError(std::string(f.printInches ? "--print-size" : "--title") + " needs --figure");
+    if (!f.enabled && (!f.title.empty() || f.printInches || f.scaleBar))
+        throw UsageError(std::string(f.printInches ? "--print-size" : f.scaleBar ? "--scale-bar" : "--title") + " needs --figure");
     if (f.enabled && !(output.size() >= 4 && (output.substr(output.size() - 4) == ".png" || output.substr(output.size() - 4) == ".PNG")))
         throw UsageError("--figure writes a PNG: -o " + output + " must end in .png");
 }
@@ -104,6 +104,29 @@ void addFigureOptions(OptionParser& p, FigureArgs& f) {
            [&](const std::string& v) { f.dpi = parseInt("dpi", v, 36, 1200); }});
     p.add({"print-size", "WxH(mm|cm|in)", "figure size on paper, e.g. 180x120mm; its pixels are this times --dpi (default: --size is the whole figure)",
            [&](const std::string& v) { f.printInches = parsePrintSize("print-size", v); }});
+    p.add({"scale-bar", "", "draw a scale bar in the plot's lower left corner, a round length in km (geographic grids), "
+           "m (cities) or world units, true at the distance of the look-at point (default off)",
+           [&](const std::string&) { f.scaleBar = true; }});
+}
+
+bool figureHasColourBar(const SurfaceArgs& a) { return !a.colourBy.empty() || !a.colormap.empty(); }
+
+FigureSubject figureSubject(const Surface& s, const std::string& input) {
+    FigureSubject out;
+    out.name = s.field.name;
+    out.geographic = s.field.geographic;
+    if (!s.field.values.empty()) out.gridBounds = s.field.worldBounds();
+    out.iso = s.iso;
+    out.lengthUnit = s.field.geographic.valid ? "km" : io::isCityInput(input) ? "m" : "";
+    return out;
+}
+
+void writeFigure(const Frame& plot, const FigureArgs& f, const io::FigureLayout& layout, const FigureSubject& subject,
+                 const Octree& tree, const Camera& camera, const RenderSettings& rs, const std::string& path) {
+    const io::FigureSpec spec = figureSpec(f, subject, tree, camera, rs);
+    io::ImageWriteOptions options;
+    options.dpi = layout.dpi;
+    io::writeImage(io::composeFigure(plot, spec, layout), path, options);
 }
 
 io::FigureLayout figureLayout(const FigureArgs& f, int width, int height, bool colourBar) {
@@ -118,12 +141,12 @@ io::FigureLayout figureLayout(const FigureArgs& f, int width, int height, bool c
     return io::layoutFigure(width, height, dpi, colourBar);
 }
 
-io::FigureSpec figureSpec(const FigureArgs& f, const Surface& s, const Camera& camera, const RenderSettings& rs) {
+io::FigureSpec figureSpec(const FigureArgs& f, const FigureSubject& subject, const Octree& tree, const Camera& camera,
+                          const RenderSettings& rs) {
     io::FigureSpec spec;
     spec.title = f.title;
-    const ScalarField& field = s.field;
-    const Octree& tree = s.tree;
-    std::string sub = (tree.fieldName.empty() ? field.name : tree.fieldName) + " = " + number(s.iso) +
+    const ScalarField::Geographic& geographic = subject.geographic;
+    std::string sub = (tree.fieldName.empty() ? subject.name : tree.fieldName) + " = " + number(subject.iso) +
                       (tree.fieldUnits.empty() ? "" : " " + tree.fieldUnits);
     const Albedo albedo(tree, rs);
     if (albedo.byValue()) {
@@ -138,8 +161,8 @@ io::FigureSpec figureSpec(const FigureArgs& f, const Surface& s, const Camera& c
         const double z0 = tree.cubeOrigin.z + double(albedo.zLow()) * tree.voxelSize();
         const double z1 = tree.cubeOrigin.z + double(albedo.zHigh() + 1) * tree.voxelSize();
         spec.colormap = albedo.colormapName();
-        if (field.geographic.valid) {
-            const GeoAxes g{field.geographic};
+        if (geographic.valid) {
+            const GeoAxes g{geographic};
             spec.low = -g.depthM(z0);
             spec.high = -g.depthM(z1);
             spec.barLabel = "height (m)";
@@ -152,7 +175,7 @@ io::FigureSpec figureSpec(const FigureArgs& f, const Surface& s, const Camera& c
     if (!tree.voxelMaterials.empty()) sub += ", sea floor and land";
 
     // The bounding box: the field's grid (the region read), or the octree's surface.
-    const Box3 box = field.values.empty() ? tree.occupiedBounds() : field.worldBounds();
+    const Box3 box = subject.gridBounds ? *subject.gridBounds : tree.occupiedBounds();
     const Projector project(camera);
     std::array<dvec3, 8> corner;
     for (int c = 0; c < 8; ++c)
@@ -170,8 +193,8 @@ io::FigureSpec figureSpec(const FigureArgs& f, const Surface& s, const Camera& c
         dvec2 at;
         if (project(p, at)) spec.labels.push_back({at, text, dx, dy});
     };
-    if (field.geographic.valid) {
-        const GeoAxes g{field.geographic};
+    if (geographic.valid) {
+        const GeoAxes g{geographic};
         const double lon0 = g.lon(box.lo.x), lon1 = g.lon(box.hi.x), lat0 = g.lat(box.lo.y), lat1 = g.lat(box.hi.y);
         const double d0 = g.depthM(box.hi.z), d1 = g.depthM(box.lo.z);
         for (double lon : io::niceTicks(lon0, lon1, 6)) tick({g.x(lon), box.lo.y, box.hi.z}, longitudeText(lon), 0.0, 1.4);
@@ -185,6 +208,19 @@ io::FigureSpec figureSpec(const FigureArgs& f, const Surface& s, const Camera& c
         for (double z : io::niceTicks(box.lo.z, box.hi.z, 4)) tick({box.hi.x, box.lo.y, z}, "z " + number(z, 4), 2.6, 0.0);
     }
     spec.subtitle = sub;
+
+    if (f.scaleBar) {
+        // World units per plot pixel across the view at the look-at point.
+        const double height = camera.orthographic()
+                                  ? camera.orthoHeight
+                                  : 2.0 * glm::length(camera.position - camera.lookAt) * std::tan(camera.fovYDegrees * kPi / 360.0);
+        const double perPixel = height / double(std::max(1, camera.height));
+        const double length = io::scaleBarLength(perPixel, camera.width);
+        if (length > 0.0) {
+            spec.scaleBarPx = length / perPixel;
+            spec.scaleBarLabel = number(length) + (subject.lengthUnit.empty() ? "" : " " + subject.lengthUnit);
+        }
+    }
     return spec;
 }
 

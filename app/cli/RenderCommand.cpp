@@ -411,7 +411,7 @@ int runRender(const std::vector<std::string>& args) {
     // A figure: the plot is the image area its layout leaves (--size or --print-size is the whole).
     std::optional<io::FigureLayout> figureLayoutUsed;
     if (a.figure.enabled) {
-        figureLayoutUsed = figureLayout(a.figure, a.width, a.height, !a.colourBy.empty() || !a.colormap.empty());
+        figureLayoutUsed = figureLayout(a.figure, a.width, a.height, figureHasColourBar(a));
         a.width = figureLayoutUsed->plotW;
         a.height = figureLayoutUsed->plotH;
     }
@@ -440,7 +440,7 @@ int runRender(const std::vector<std::string>& args) {
     rs.background = displayToLinear(a.background);
     applyColour(a, surface, rs);
     if (a.light) rs.lightCamera = *a.light;
-    rs.baked = a.lighting != SurfaceArgs::Lighting::Dynamic;
+    applyLighting(a, rs);
     rs.colourCoherence = a.colourCoherence;
     rs.colourTolerance = a.colourTolerance;
     rs.colourFillsBackground = a.colourFillsBackground;
@@ -453,12 +453,7 @@ int runRender(const std::vector<std::string>& args) {
     });
     const RenderStats& st = rep.stats;
     const Renderer* renderer = rep.renderer.get();
-    if (figureLayoutUsed) {
-        const io::FigureSpec spec = figureSpec(a.figure, surface, cam, rs);
-        io::ImageWriteOptions options;
-        options.dpi = figureLayoutUsed->dpi;
-        io::writeImage(io::composeFigure(frame, spec, *figureLayoutUsed), a.output, options);
-    }
+    if (figureLayoutUsed) writeFigure(frame, a.figure, *figureLayoutUsed, figureSubject(surface, a.input), tree, cam, rs, a.output);
 
     StatsJson js;
     js.set("renderer", st.renderer);

@@ -1,6 +1,7 @@
 #include "SurfaceOptions.h"
 
 #include "Input.h"
+#include "SolidSpec.h"
 
 #include "octrace/build/Layers.h"
 #include "octrace/build/CityVoxelizer.h"
@@ -89,6 +90,7 @@ void loadOctreeSurface(const SurfaceArgs& a, std::uint64_t budget, Surface& s) {
                         : a.formGiven                   ? "--form/--inside"
                         : !a.colourBy.empty()           ? "--colour-by"
                         : a.floor                       ? "--floor"
+                        : a.extendDown                  ? "--extend-down"
                                                         : fieldOptionGiven(a.request);
     if (given)
         throw UsageError(std::string(given) + " does not apply to the octree file " + a.input +
@@ -108,8 +110,12 @@ void loadOctreeSurface(const SurfaceArgs& a, std::uint64_t budget, Surface& s) {
 void finishSurface(const SurfaceArgs& a, Surface& s) {
     if (!a.cuts.empty()) {
         Timer t;
-        for (const Solid& cut : a.cuts)
+        for (const SolidArgument& arg : a.cuts) {
+            const Solid cut = resolveSolid(arg, s.field.geographic, a.input, memoryBudget(a));
             s.tree = csg(CsgOperand::of(s.tree), a.clip ? CsgOp::Intersection : CsgOp::Difference, CsgOperand::of(cut));
+        }
+        // The cut faces were inside: their values (a display window's grey) are the field's there.
+        if (!s.tree.voxelValues.empty() && !s.field.values.empty()) fillVoxelValues(s.tree, s.field, a.threads);
         log::debug("cuts applied in " + std::to_string(t.ms()) + " ms");
         s.report.buildMs += t.ms();
     }
@@ -118,6 +124,10 @@ void finishSurface(const SurfaceArgs& a, Surface& s) {
         if (s.tree.form != OctreeForm::Shell) throw UsageError("--bake applies to the shell form (not with --form volume)");
         BakeOptions o = a.bakeOptions;
         o.threads = a.threads;
+        if (a.ambient) {
+            o.ambient = *a.ambient;
+            o.diffuse = 1.0f - *a.ambient;
+        }
         bakeLighting(s.tree, o, &s.bake);
         log::debug("lighting baked in " + std::to_string(s.bake.bakeMs) + " ms (" + std::to_string(s.bake.rays) + " rays)");
     }
@@ -127,7 +137,7 @@ void finishSurface(const SurfaceArgs& a, Surface& s) {
 
 /// buildSurface for a city input: the model read and voxelized; the field empty but for its name.
 void buildCitySurface(const SurfaceArgs& a, Surface& s) {
-    const char* given = a.iso ? "--iso" : a.formGiven ? "--form/--inside" : !a.cuts.empty() ? "--cut" : !a.isoPreset.empty() ? "--iso"
+    const char* given = a.iso ? "--iso" : a.formGiven ? "--form/--inside" : !a.cuts.empty() ? "--cut" : a.extendDown ? "--extend-down" : !a.isoPreset.empty() ? "--iso"
                         : a.window.valid() ? "--window" : fieldOptionGiven(a.request);
     if (given)
         throw UsageError(std::string(given) + " does not apply to the city input " + a.input +
@@ -221,6 +231,12 @@ void addInsideOption(OptionParser& p, SurfaceArgs& a, const std::string& applies
            }});
 }
 
+void addExtendDownOption(OptionParser& p, SurfaceArgs& a) {
+    p.add({"extend-down", "", "geographic fields: extend each water column's deepest valid value down through the masked samples "
+           "under it, so that a finer sea floor (--cut relief:FILE) bounds the water instead of the grid's own (default off)",
+           [&](const std::string&) { a.extendDown = true; }});
+}
+
 void addFormOptions(OptionParser& p, SurfaceArgs& a) {
     p.add({"form", "shell|volume", "octree form: the isosurface's boundary voxels (shell), or the solid it bounds with its "
            "interior and caps where the grid ends (volume) (default shell)",
@@ -231,10 +247,15 @@ void addFormOptions(OptionParser& p, SurfaceArgs& a) {
            }});
     addInsideOption(p, a, "volume form");
     p.add({"cut", "SOLID", "cut a solid away: box:X0,Y0,Z0,X1,Y1,Z1, sphere:X,Y,Z,R, cylinder:X0,Y0,Z0,X1,Y1,Z1,R or "
-           "halfspace:X,Y,Z,NX,NY,NZ in world units; repeatable; builds the volume form (default: none)",
-           [&](const std::string& v) { a.cuts.push_back(parseSolid(v)); }});
+           "halfspace:X,Y,Z,NX,NY,NZ in world units, or relief:FILE, the ground under a relief raster (e.g. ETOPO; geographic "
+           "fields only, laid out in their world); repeatable; builds the volume form (default: none)",
+           [&](const std::string& v) {
+               checkSolidArgument(v);
+               a.cuts.emplace_back(v);
+           }});
     p.add({"clip", "", "keep only what lies inside the --cut solids instead of cutting them away (default off)",
            [&](const std::string&) { a.clip = true; }});
+    addExtendDownOption(p, a);
 }
 
 void addBakeOptions(OptionParser& p, SurfaceArgs& a) {
@@ -267,6 +288,13 @@ void addLightingOption(OptionParser& p, SurfaceArgs& a) {
            [&](const std::string& v) {
                if (v != "baked" && v != "dynamic") throw UsageError("--lighting: expected baked or dynamic, got '" + v + "'");
                a.lighting = v == "baked" ? SurfaceArgs::Lighting::Baked : SurfaceArgs::Lighting::Dynamic;
+           }});
+    p.add({"ambient", "A", "share of the light every voxel gets whatever its normal, in [0,1]; the light's own share is "
+           "1 - A (dynamic shading and --bake) (default 0.15)",
+           [&](const std::string& v) {
+               const double x = parseNumber("ambient", v);
+               if (!(x >= 0.0 && x <= 1.0)) throw UsageError("--ambient: must be in [0, 1], got " + v);
+               a.ambient = float(x);
            }});
 }
 
@@ -486,6 +514,11 @@ void readSurfaceField(const SurfaceArgs& a, Surface& s) {
 void buildFromField(const SurfaceArgs& a, Surface& s, const BuildHooks& hooks) {
     io::FieldRequest request = a.request;
     request.memoryBudget = memoryBudget(a);
+    if (a.extendDown) {
+        if (!s.field.geographic.valid)
+            throw InputError(a.input + ": --extend-down applies to geographic fields (longitude, latitude, depth)");
+        log::info("--extend-down: " + std::to_string(extendColumnsDown(s.field)) + " masked samples under the water filled");
+    }
     auto [vmin, vmax] = s.field.validRange();
     if (!a.isoPreset.empty()) requireHounsfield(s.field, a.input, "--iso " + a.isoPreset);
     s.iso = !a.isoPreset.empty() ? *ctIsoPreset(a.isoPreset) : a.iso ? *a.iso : 0.5 * (double(vmin) + double(vmax));
@@ -499,7 +532,10 @@ void buildFromField(const SurfaceArgs& a, Surface& s, const BuildHooks& hooks) {
     if (!a.colourBy.empty() && !a.windowName.empty())
         throw UsageError("--window and --colour-by both colour the surface: give one of them");
     std::optional<ScalarField> colourBy;
-    if (!a.colourBy.empty()) colourBy = loadColourBy(a, request, s.field);
+    if (!a.colourBy.empty()) {
+        colourBy = loadColourBy(a, request, s.field);
+        if (a.extendDown) extendColumnsDown(*colourBy);
+    }
 
     BuildOptions bo;
     bo.depth = a.depth;
@@ -548,6 +584,14 @@ void applyColour(const SurfaceArgs& a, const Surface& s, RenderSettings& setting
     settings.colourMax = a.colourMax;
     settings.maskedColour = vec3(displayToLinear(vec4(a.maskedColour, 1.0f)));
     settings.floorColour = vec3(displayToLinear(vec4(a.floorColour, 1.0f)));
+}
+
+void applyLighting(const SurfaceArgs& a, RenderSettings& settings) {
+    settings.baked = a.lighting != SurfaceArgs::Lighting::Dynamic;
+    if (a.ambient) {
+        settings.ambient = *a.ambient;
+        settings.diffuse = 1.0f - *a.ambient;
+    }
 }
 
 }  // namespace octrace::cli

@@ -3,6 +3,7 @@
 // field, its isosurface and its colour, with the same names, help and checks, and the
 // load-and-build step behind them.
 #include "Options.h"
+#include "SolidSpec.h"
 
 #include "octrace/build/CtPresets.h"
 #include "octrace/build/OctreeBuilder.h"
@@ -52,12 +53,14 @@ struct SurfaceArgs {
     bool insideBelow = false;             // --inside below
     bool formGiven = false;               // --form or --inside given
     bool keepVolume = false;  // set by the command: buildSurface keeps a volume octree as it is (build, csg)
-    std::vector<Solid> cuts;  // --cut, in order
+    std::vector<SolidArgument> cuts;  // --cut, in order (SolidSpec.h: relief:FILE is read once the field is)
     bool clip = false;        // --clip: keep the inside of the cuts instead
+    bool extendDown = false;  // --extend-down: water columns extended to the grid's bottom (extendColumnsDown)
     bool bake = false;        // --bake: bake lighting into the shell
     BakeOptions bakeOptions;  // --bake-light, --bake-ao, --bake-ao-distance, --bake-shadows
     bool bakeLightGiven = false;
     enum class Lighting { Auto, Baked, Dynamic } lighting = Lighting::Auto;  // --lighting (render)
+    std::optional<float> ambient;  // --ambient (render): diffuse is 1 - ambient, dynamic and baked
 };
 
 /// The window --window TEXT sets: a CT preset, "C,W", or "none" (an invalid window, which
@@ -75,11 +78,13 @@ void addVariableOption(OptionParser& p, io::FieldRequest& request);
 void addSurfaceOptions(OptionParser& p, SurfaceArgs& a);
 /// --inside above|below; `applies` says to what ("volume form").
 void addInsideOption(OptionParser& p, SurfaceArgs& a, const std::string& applies);
-/// --form shell|volume, --inside above|below, --cut SOLID, --clip.
+/// --form shell|volume, --inside above|below, --cut SOLID, --clip, --extend-down.
 void addFormOptions(OptionParser& p, SurfaceArgs& a);
+/// --extend-down (geographic fields).
+void addExtendDownOption(OptionParser& p, SurfaceArgs& a);
 /// --bake, --bake-light, --bake-ao, --bake-ao-distance, --bake-shadows.
 void addBakeOptions(OptionParser& p, SurfaceArgs& a);
-/// --lighting baked|dynamic.
+/// --lighting baked|dynamic, --ambient A.
 void addLightingOption(OptionParser& p, SurfaceArgs& a);
 /// --threads; `result` names what does not depend on it ("the image").
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result);
@@ -170,5 +175,8 @@ void buildFromField(const SurfaceArgs& a, Surface& s, const BuildHooks& hooks = 
 /// Shading.h), its range, the masked and floor colours, and the surface's display window
 /// (RenderSettings::window, invertedGrey).
 void applyColour(const SurfaceArgs& a, const Surface& s, RenderSettings& settings);
+/// The lighting options as RenderSettings: baked light unless --lighting dynamic, and with
+/// --ambient its ambient and diffuse (1 - ambient) shares.
+void applyLighting(const SurfaceArgs& a, RenderSettings& settings);
 
 }  // namespace octrace::cli

@@ -85,7 +85,7 @@ void Engine::open(const StudioState& state) {
     building_ = true;
     emit progress(tr("Reading %1").arg(QString::fromStdString(state.input)), -1.0);
     buildWorker_.post([this, state, gen](const std::atomic<bool>& stop) {
-        try {
+        runBuildJob(gen, [&] {
             InputInfo info;
             info.input = QString::fromStdString(state.input);
             cli::SurfaceArgs a = surfaceArgs(state);
@@ -100,14 +100,13 @@ void Engine::open(const StudioState& state) {
                 info.units = QString::fromStdString(surface->tree.fieldUnits);
                 info.minimum = info.maximum = surface->iso;
                 auto tree = std::make_shared<const Octree>(std::move(surface->tree));
-                QMetaObject::invokeMethod(this, [this, info, tree, surface, gen] {
-                    if (gen != generation_) return;
+                handBack(gen, [this, info, tree, surface, subject = cli::figureSubject(*surface, state.input)] {
                     info_ = info;
                     base_.reset();
-                    setSurface(tree, *surface, surface->iso, tree->depth);
+                    setSurface(tree, *surface, subject, tree->depth);
                     emit inputLoaded();
                     emit surfaceBuilt();
-                }, Qt::QueuedConnection);
+                });
                 return;
             }
             if (state.input.rfind("analytic:", 0) != 0) {
@@ -133,28 +132,37 @@ void Engine::open(const StudioState& state) {
             info.maximum = hi;
             info.histogram = histogramOf(base->field, lo, hi);
             info.fileWindow = base->field.window;
-            QMetaObject::invokeMethod(this, [this, info, base, state, gen] {
-                if (gen != generation_) return;
+            handBack(gen, [this, info, base, state] {
                 info_ = info;
                 base_ = base;
                 tree_.reset();
                 emit inputLoaded();
                 startBuild(state);
-            }, Qt::QueuedConnection);
-        } catch (const CancelledError&) {
-            QMetaObject::invokeMethod(this, [this, gen] {
-                if (gen != generation_) return;
-                building_ = false;
-                emit cancelled();
-            }, Qt::QueuedConnection);
-        } catch (const std::exception& e) {
-            QMetaObject::invokeMethod(this, [this, gen, msg = errorText(e)] {
-                if (gen != generation_) return;
-                building_ = false;
-                emit failed(msg);
-            }, Qt::QueuedConnection);
-        }
+            });
+        });
     });
+}
+
+void Engine::handBack(unsigned gen, std::function<void()> then) {
+    QMetaObject::invokeMethod(this, [this, gen, then = std::move(then)] {
+        if (gen == generation_) then();
+    }, Qt::QueuedConnection);
+}
+
+void Engine::runBuildJob(unsigned gen, const std::function<void()>& work) {
+    try {
+        work();
+    } catch (const CancelledError&) {
+        handBack(gen, [this] {
+            building_ = false;
+            emit cancelled();
+        });
+    } catch (const std::exception& e) {
+        handBack(gen, [this, msg = errorText(e)] {
+            building_ = false;
+            emit failed(msg);
+        });
+    }
 }
 
 void Engine::rebuild(const StudioState& state) {
@@ -163,11 +171,12 @@ void Engine::rebuild(const StudioState& state) {
     startBuild(state);
 }
 
-void Engine::setSurface(std::shared_ptr<const Octree> tree, const cli::Surface& look, double iso, int depth) {
+void Engine::setSurface(std::shared_ptr<const Octree> tree, const cli::Surface& look, cli::FigureSubject subject, int depth) {
     tree_ = std::move(tree);
     window_ = look.window;
     invertedGrey_ = look.invertedGrey;
-    iso_ = iso;
+    iso_ = subject.iso;
+    subject_ = std::move(subject);
     depth_ = depth;
     building_ = false;
 }
@@ -185,40 +194,26 @@ void Engine::startBuild(const StudioState& state) {
             cli::Surface& to;
             ~GiveBack() { to.field = std::move(from.field); }
         } giveBack{*surface, *base};
-        try {
+        runBuildJob(gen, [&] {
             cli::BuildHooks hooks;
             int shown = -1;  // percent last sent: one queued signal per percent at most
             hooks.progress = [this, &shown, gen](double f) {
                 const int pc = int(f * 100.0);
                 if (pc == shown) return;
                 shown = pc;
-                QMetaObject::invokeMethod(this, [this, f, gen] {
-                    if (gen == generation_) emit progress(tr("Building the octree"), f);
-                }, Qt::QueuedConnection);
+                handBack(gen, [this, f] { emit progress(tr("Building the octree"), f); });
             };
             hooks.cancelled = [&stop] { return stop.load(); };
             cli::buildFromField(surfaceArgs(state), *surface, hooks);
             surface->tree.computeSummaries();
+            // The subject now: the field goes back to `base` when this job ends.
+            cli::FigureSubject subject = cli::figureSubject(*surface, state.input);
             auto tree = std::make_shared<const Octree>(std::move(surface->tree));
-            const double iso = surface->iso;
-            QMetaObject::invokeMethod(this, [this, tree, surface, iso, depth = state.depth, gen] {
-                if (gen != generation_) return;
-                setSurface(tree, *surface, iso, depth);
+            handBack(gen, [this, tree, surface, subject = std::move(subject), depth = state.depth] {
+                setSurface(tree, *surface, subject, depth);
                 emit surfaceBuilt();
-            }, Qt::QueuedConnection);
-        } catch (const CancelledError&) {
-            QMetaObject::invokeMethod(this, [this, gen] {
-                if (gen != generation_) return;
-                building_ = false;
-                emit cancelled();
-            }, Qt::QueuedConnection);
-        } catch (const std::exception& e) {
-            QMetaObject::invokeMethod(this, [this, gen, msg = errorText(e)] {
-                if (gen != generation_) return;
-                building_ = false;
-                emit failed(msg);
-            }, Qt::QueuedConnection);
-        }
+            });
+        });
     });
 }
 
@@ -291,20 +286,26 @@ void Engine::exportFigure(const StudioState& state, const QString& path, int wid
         return;
     }
     emit progress(tr("Exporting %1x%2").arg(width).arg(height), -1.0);
-    exportWorker_.post([this, tree, state, path, width, height, window = window_, inverted = invertedGrey_](const std::atomic<bool>&) {
+    exportWorker_.post([this, tree, state, path, width, height, window = window_, inverted = invertedGrey_,
+                        subject = subject_](const std::atomic<bool>&) {
         try {
             if (width < 1 || height < 1 || width > kMaxExportSide || height > kMaxExportSide)
                 throw UsageError("export size " + std::to_string(width) + "x" + std::to_string(height) +
                                  ": each side must be 1.." + std::to_string(kMaxExportSide) + " pixels");
-            const std::uint64_t bytes = Frame::bytesFor(width, height) + std::uint64_t(width) * std::uint64_t(height) * 24;
+            if (state.figure && !path.endsWith(QStringLiteral(".png"), Qt::CaseInsensitive))
+                throw UsageError("a figure is written as PNG: " + path.toStdString() + " must end in .png");
+            // The figure's layout first: the plot is the part of the image that is rendered.
+            const std::optional<io::FigureLayout> layout = figureLayoutFor(state, width, height);
+            const std::uint64_t bytes = Frame::bytesFor(width, height) * (layout ? 2 : 1) + std::uint64_t(width) * std::uint64_t(height) * 24;
             checkMemoryBudget("exporting " + std::to_string(width) + "x" + std::to_string(height), bytes,
                               defaultMemoryBudget());
-            Camera cam = cameraFor(state, tree->occupiedBounds(), width, height);
+            Camera cam = exportCamera(state, tree->occupiedBounds(), width, height);
             cam.validate();
             Frame frame;
-            const RenderStats st =
-                makeRenderer(state.renderer)->render(*tree, cam, renderSettingsFor(state, state.transparent, window, inverted), frame);
-            writeFigure(frame, path.toStdString(), state.transparent);
+            const RenderSettings rs = renderSettingsFor(state, state.transparent, window, inverted);
+            const RenderStats st = makeRenderer(state.renderer)->render(*tree, cam, rs, frame);
+            if (layout) cli::writeFigure(frame, figureArgs(state), *layout, subject, *tree, cam, rs, path.toStdString());
+            else writeFigure(frame, path.toStdString(), state.transparent);
             const QString summary = tr("%1: %2x%3, %4, %5 ms")
                                         .arg(path)
                                         .arg(width)

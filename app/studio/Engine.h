@@ -3,6 +3,7 @@
 // progress and Cancel), rendering the views' frames (newest request first), and exporting
 // figures. Results come back as queued signals on the GUI thread; the window never waits.
 #include "StudioState.h"
+#include "FigureOptions.h"
 #include "SurfaceOptions.h"
 #include "Worker.h"
 
@@ -16,6 +17,7 @@
 #include <QString>
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -75,7 +77,8 @@ public:
 
     void requestFrame(const FrameRequest& request);
     /// Renders `state` at width x height off screen with its renderer and writes `path`
-    /// (format by extension: PNG, EXR, TIFF).
+    /// (format by extension: PNG, EXR, TIFF); with state.figure the PNG figure around the plot
+    /// (cli::writeFigure, as render --figure).
     void exportFigure(const StudioState& state, const QString& path, int width, int height);
 
     const InputInfo& info() const { return info_; }
@@ -103,7 +106,12 @@ signals:
 
 private:
     void startBuild(const StudioState& state);
-    void setSurface(std::shared_ptr<const Octree> tree, const cli::Surface& look, double iso, int depth);
+    void setSurface(std::shared_ptr<const Octree> tree, const cli::Surface& look, cli::FigureSubject subject, int depth);
+    /// Runs `work` (a build job's body, on the worker) and hands a cancellation or an error
+    /// back to the GUI thread (cancelled / failed) while `gen` is still the current build.
+    void runBuildJob(unsigned gen, const std::function<void()>& work);
+    /// Runs `then` on the GUI thread if `gen` is still the current build by then.
+    void handBack(unsigned gen, std::function<void()> then);
 
     InputInfo info_;
     std::shared_ptr<cli::Surface> base_;  // holds the field read (lent to one build at a time)
@@ -112,6 +120,7 @@ private:
     std::shared_ptr<const Octree> tree_;
     double iso_ = 0.0;
     int depth_ = 0;
+    cli::FigureSubject subject_;  // what an exported figure says about the data
     bool building_ = false;
     unsigned generation_ = 0;  // the open/build whose results still count
     // Last members: destroyed (joined) first, before what their jobs use.

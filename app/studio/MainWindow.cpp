@@ -5,6 +5,10 @@
 #include "RenderView.h"
 #include "Session.h"
 #include "SurfelView.h"
+#include "ViewInput.h"
+
+#include "octrace/csg/Solid.h"
+#include "octrace/util/Error.h"
 
 #include "octrace/io/ImageWriter.h"
 #include "octrace/render/ImageCompare.h"
@@ -44,6 +48,7 @@
 #include <QSpinBox>
 #include <QSplitter>
 #include <QStackedWidget>
+#include <QStandardItemModel>
 #include <QStatusBar>
 #include <QToolBar>
 #include <QVBoxLayout>
@@ -80,6 +85,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     buildTimer_.setInterval(150);
     connect(&buildTimer_, &QTimer::timeout, this, [this] {
         if (engine_.hasField() && state_.iso) engine_.rebuild(state_);
+        else if (!engine_.hasField() && engine_.tree()) load(state_);  // an octree file or a city: read again
     });
     exactTimer_.setSingleShot(true);
     exactTimer_.setInterval(250);
@@ -93,29 +99,12 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
         views_[i]->setObjectName(i == 0 ? QStringLiteral("mainView") : QStringLiteral("secondView"));
         if (i == 0) splitter->insertWidget(0, views_[i]);
         else secondPane_->addWidget(views_[i]);
-        connect(views_[i], &RenderView::orbitBy, this, [this](double yaw, double pitch) {
-            Camera c = viewCamera();
-            orbit(c, yaw, pitch);
-            cameraMoved(c);
-        });
-        connect(views_[i], &RenderView::panBy, this, [this](double dx, double dy) {
-            Camera c = viewCamera();
-            pan(c, dx, dy, paneSize().height());
-            cameraMoved(c);
-        });
-        connect(views_[i], &RenderView::dollyBy, this, [this](double f) {
-            Camera c = viewCamera();
-            dolly(c, f);
-            cameraMoved(c);
-        });
-        connect(views_[i], &RenderView::interactionFinished, this, [this] {
-            exactTimer_.stop();
-            requestRender(false);
-        });
+        connectNavigation(views_[i]->input());
         connect(views_[i], &RenderView::resized, this, [this] { exactTimer_.start(); });
     }
     surfelView_ = new SurfelView(secondPane_);
     surfelView_->setObjectName(QStringLiteral("surfelView"));
+    connectNavigation(surfelView_->input());
     secondPane_->addWidget(surfelView_);
     secondPane_->hide();
     setCentralWidget(splitter);
@@ -203,6 +192,28 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
 }
 
 MainWindow::~MainWindow() { log::setSink({}); }
+
+void MainWindow::connectNavigation(ViewInput* input) {
+    connect(input, &ViewInput::orbitBy, this, [this](double yaw, double pitch) {
+        Camera c = viewCamera();
+        orbit(c, yaw, pitch);
+        cameraMoved(c);
+    });
+    connect(input, &ViewInput::panBy, this, [this](double dx, double dy, int viewHeight) {
+        Camera c = viewCamera();
+        pan(c, dx, dy, viewHeight);
+        cameraMoved(c);
+    });
+    connect(input, &ViewInput::dollyBy, this, [this](double f) {
+        Camera c = viewCamera();
+        dolly(c, f);
+        cameraMoved(c);
+    });
+    connect(input, &ViewInput::interactionFinished, this, [this] {
+        exactTimer_.stop();
+        requestRender(false);
+    });
+}
 
 void MainWindow::buildMenus() {
     QMenu* file = menuBar()->addMenu(tr("&File"));
@@ -329,8 +340,22 @@ QWidget* MainWindow::buildControls() {
     connect(isoSpin_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
         if (!updating_) isoEdited(v);
     });
+    // The CLI's --iso presets (CT, Hounsfield units): on for a field in HU.
+    isoPresetCombo_ = new QComboBox(surfBox);
+    isoPresetCombo_->setObjectName(QStringLiteral("isoPresetCombo"));
+    isoPresetCombo_->setToolTip(tr("CT iso presets in Hounsfield units (a field in HU only)"));
+    isoPresetCombo_->addItem(tr("preset"), QString());
+    for (const auto& pr : ctIsoPresets())
+        isoPresetCombo_->addItem(QStringLiteral("%1 (%2 HU)").arg(QLatin1String(pr.name)).arg(pr.hu), QLatin1String(pr.name));
+    isoPresetCombo_->setEnabled(false);
+    connect(isoPresetCombo_, &QComboBox::activated, this, [this](int i) {
+        if (const auto hu = ctIsoPreset(isoPresetCombo_->itemData(i).toString().toStdString())) isoEdited(*hu);
+    });
+    auto* isoRow = new QHBoxLayout;
+    isoRow->addWidget(isoSpin_, 1);
+    isoRow->addWidget(isoPresetCombo_);
     surfForm->addRow(tr("Iso value"), isoSlider_);
-    surfForm->addRow(QString(), isoSpin_);
+    surfForm->addRow(QString(), isoRow);
     rangeLabel_ = new QLabel(surfBox);
     rangeLabel_->setObjectName(QStringLiteral("rangeLabel"));
     surfForm->addRow(tr("Range"), rangeLabel_);
@@ -351,6 +376,7 @@ QWidget* MainWindow::buildControls() {
     });
     surfForm->addRow(tr("Depth"), depthSpin_);
     layout->addWidget(surfBox);
+    layout->addWidget(buildCutControls(w));
 
     auto* renderBox = new QGroupBox(tr("Rendering"), w);
     auto* renderForm = new QFormLayout(renderBox);
@@ -403,6 +429,55 @@ QWidget* MainWindow::buildControls() {
         lightRow->addWidget(lightSpin_[i]);
     }
     renderForm->addRow(tr("Light"), lightRow);
+    ambientSpin_ = new QDoubleSpinBox(renderBox);
+    ambientSpin_->setObjectName(QStringLiteral("ambientSpin"));
+    ambientSpin_->setRange(0.0, 1.0);
+    ambientSpin_->setSingleStep(0.05);
+    ambientSpin_->setDecimals(2);
+    ambientSpin_->setValue(state_.ambient);
+    ambientSpin_->setToolTip(tr("Share of light every voxel gets whatever its normal; the light's share is 1 - ambient"));
+    connect(ambientSpin_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
+        if (updating_) return;
+        state_.ambient = v;
+        lightingChanged(state_.lighting == "baked");  // a bake uses it
+    });
+    renderForm->addRow(tr("Ambient"), ambientSpin_);
+    lightingCombo_ = new QComboBox(renderBox);
+    lightingCombo_->setObjectName(QStringLiteral("lightingCombo"));
+    lightingCombo_->addItem(tr("auto (baked if the octree has it)"), QString());
+    lightingCombo_->addItem(tr("precomputed (baked)"), QStringLiteral("baked"));
+    lightingCombo_->addItem(tr("dynamic"), QStringLiteral("dynamic"));
+    lightingCombo_->setToolTip(tr("Precomputed: light, shadows and ambient occlusion baked into the voxels at build time; "
+                                  "dynamic: from each voxel's normal and the light direction"));
+    connect(lightingCombo_, &QComboBox::currentIndexChanged, this, [this] {
+        if (updating_) return;
+        state_.lighting = lightingCombo_->currentData().toString().toStdString();
+        lightingChanged(true);  // the octree's baked light follows the mode
+    });
+    renderForm->addRow(tr("Lighting"), lightingCombo_);
+    auto* bakeRow = new QHBoxLayout;
+    bakeAoSpin_ = new QSpinBox(renderBox);
+    bakeAoSpin_->setObjectName(QStringLiteral("bakeAoSpin"));
+    bakeAoSpin_->setRange(0, 1024);
+    bakeAoSpin_->setValue(state_.bakeAo);
+    bakeAoSpin_->setPrefix(tr("AO rays "));
+    bakeAoSpin_->setKeyboardTracking(false);
+    connect(bakeAoSpin_, &QSpinBox::valueChanged, this, [this](int v) {
+        if (updating_) return;
+        state_.bakeAo = v;
+        lightingChanged(state_.lighting == "baked");
+    });
+    bakeShadowsCheck_ = new QCheckBox(tr("shadows"), renderBox);
+    bakeShadowsCheck_->setObjectName(QStringLiteral("bakeShadowsCheck"));
+    bakeShadowsCheck_->setChecked(state_.bakeShadows);
+    connect(bakeShadowsCheck_, &QCheckBox::toggled, this, [this](bool on) {
+        if (updating_) return;
+        state_.bakeShadows = on;
+        lightingChanged(state_.lighting == "baked");
+    });
+    bakeRow->addWidget(bakeAoSpin_);
+    bakeRow->addWidget(bakeShadowsCheck_);
+    renderForm->addRow(tr("Bake"), bakeRow);
     colormapCombo_ = new QComboBox(renderBox);
     colormapCombo_->setObjectName(QStringLiteral("colormapCombo"));
     colormapCombo_->addItem(tr("(uniform colour)"));
@@ -458,6 +533,83 @@ void MainWindow::colouringChanged() {
         scheduleBuild();
     else
         requestRender(false);
+}
+
+void MainWindow::lightingChanged(bool rebuild) {
+    bakeAoSpin_->setEnabled(state_.lighting == "baked");
+    bakeShadowsCheck_->setEnabled(state_.lighting == "baked");
+    if (rebuild) scheduleBuild();
+    else requestRender(false);
+}
+
+QWidget* MainWindow::buildCutControls(QWidget* parent) {
+    auto* box = new QGroupBox(tr("Cut-away (CSG)"), parent);
+    auto* form = new QFormLayout(box);
+    cutCombo_ = new QComboBox(box);
+    cutCombo_->setObjectName(QStringLiteral("cutCombo"));
+    cutCombo_->addItem(tr("none"), QString());
+    cutCombo_->addItem(tr("box"), QStringLiteral("box"));
+    cutCombo_->addItem(tr("sphere"), QStringLiteral("sphere"));
+    cutCombo_->addItem(tr("half-space"), QStringLiteral("halfspace"));
+    cutCombo_->setToolTip(tr("Cut a solid away from the object (the CLI's --cut); it starts facing the default view"));
+    cutEdit_ = new QLineEdit(box);
+    cutEdit_->setObjectName(QStringLiteral("cutEdit"));
+    cutEdit_->setToolTip(tr("The solid in world units, as --cut takes it: box:X0,Y0,Z0,X1,Y1,Z1, sphere:X,Y,Z,R, "
+                            "halfspace:X,Y,Z,NX,NY,NZ, cylinder:X0,Y0,Z0,X1,Y1,Z1,R"));
+    clipCheck_ = new QCheckBox(tr("keep only the inside (clip)"), box);
+    clipCheck_->setObjectName(QStringLiteral("clipCheck"));
+    connect(cutCombo_, &QComboBox::activated, this, [this] {
+        const QString kind = cutCombo_->currentData().toString();
+        auto tree = engine_.tree();
+        setCut(kind.isEmpty() || !tree ? QString() : defaultCut(kind, tree->occupiedBounds()));
+    });
+    connect(cutEdit_, &QLineEdit::editingFinished, this, [this] {
+        if (cutEdit_->text().trimmed().toStdString() != state_.cut) setCut(cutEdit_->text().trimmed());
+    });
+    connect(clipCheck_, &QCheckBox::toggled, this, [this](bool on) {
+        if (updating_) return;
+        state_.clip = on;
+        if (!state_.cut.empty()) scheduleBuild();
+    });
+    form->addRow(tr("Solid"), cutCombo_);
+    form->addRow(cutEdit_);
+    form->addRow(clipCheck_);
+    return box;
+}
+
+QString MainWindow::defaultCut(const QString& kind, const Box3& b) {
+    // Each solid takes away the part of the surface that faces the default view (from the
+    // south-east, above: +x, -y, +z).
+    const dvec3 c = b.centre(), size = b.hi - b.lo, m = 0.05 * size;
+    auto n = [](double v) { return QString::number(v, 'g', 6); };
+    if (kind == QLatin1String("box"))
+        return QStringLiteral("box:%1,%2,%3,%4,%5,%6").arg(n(c.x), n(b.lo.y - m.y), n(c.z), n(b.hi.x + m.x), n(c.y), n(b.hi.z + m.z));
+    if (kind == QLatin1String("sphere"))
+        return QStringLiteral("sphere:%1,%2,%3,%4").arg(n(b.hi.x), n(b.lo.y), n(b.hi.z), n(0.5 * glm::length(size)));
+    return QStringLiteral("halfspace:%1,%2,%3,%4,%5,%6").arg(n(c.x), n(c.y), n(c.z), n(-1.0), n(1.0), n(-1.0));
+}
+
+void MainWindow::setCut(const QString& spec) {
+    if (!spec.isEmpty()) {
+        try {
+            parseSolid(spec.toStdString());
+        } catch (const std::exception& e) {
+            showMessage(QString::fromStdString(e.what()), true);
+            cutEdit_->setText(QString::fromStdString(state_.cut));
+            return;
+        }
+    }
+    state_.cut = spec.toStdString();
+    showCut();
+    scheduleBuild();
+}
+
+void MainWindow::showCut() {
+    QSignalBlocker block(cutCombo_);
+    const QString spec = QString::fromStdString(state_.cut);
+    cutEdit_->setText(spec);
+    const int kind = spec.isEmpty() ? 0 : cutCombo_->findData(spec.section(QLatin1Char(':'), 0, 0));
+    cutCombo_->setCurrentIndex(kind < 0 ? 0 : kind);  // a cylinder: shown in the text only
 }
 
 void MainWindow::updateColourBar() {
@@ -541,6 +693,12 @@ void MainWindow::showState() {
     secondCombo_->setCurrentText(QString::fromStdString(state_.secondRenderer));
     fovSpin_->setValue(state_.fov);
     for (int i = 0; i < 3; ++i) lightSpin_[i]->setValue(state_.light[i]);
+    ambientSpin_->setValue(state_.ambient);
+    lightingCombo_->setCurrentIndex(std::max(0, lightingCombo_->findData(QString::fromStdString(state_.lighting))));
+    bakeAoSpin_->setValue(state_.bakeAo);
+    bakeShadowsCheck_->setChecked(state_.bakeShadows);
+    clipCheck_->setChecked(state_.clip);
+    showCut();
     colormapCombo_->setCurrentIndex(state_.colormap.empty() ? 0 : colormapCombo_->findText(QString::fromStdString(state_.colormap)));
     windowCombo_->setCurrentIndex(std::max(0, windowCombo_->findData(QString::fromStdString(state_.window))));
     timeEdit_->setText(QString::fromStdString(state_.time));
@@ -548,6 +706,8 @@ void MainWindow::showState() {
     updating_ = false;
     setSplit(state_.split);
     updateColourBar();
+    bakeAoSpin_->setEnabled(state_.lighting == "baked");
+    bakeShadowsCheck_->setEnabled(state_.lighting == "baked");
 }
 
 void MainWindow::addRecent(const QString& input) {
@@ -615,6 +775,15 @@ void MainWindow::onInputLoaded() {
     isoSpin_->setSuffix(in.units.isEmpty() ? QString() : QStringLiteral(" ") + in.units);
     isoSpin_->setEnabled(!in.octreeFile);
     isoSlider_->setEnabled(!in.octreeFile);
+    isoPresetCombo_->setEnabled(!in.octreeFile && in.units == QLatin1String("HU"));
+    if (auto* model = qobject_cast<QStandardItemModel*>(isoPresetCombo_->model()))
+        for (int i = 1; i < isoPresetCombo_->count(); ++i) {
+            // A preset outside the values read would find no surface (the CLI refuses it too).
+            const double hu = *ctIsoPreset(isoPresetCombo_->itemData(i).toString().toStdString());
+            const bool inside = hu >= in.minimum && hu <= in.maximum;
+            model->item(i)->setEnabled(inside);
+            model->item(i)->setToolTip(inside ? QString() : tr("outside the values read, %1 .. %2 HU").arg(in.minimum).arg(in.maximum));
+        }
     depthSpin_->setEnabled(!in.octreeFile);
     rangeLabel_->setText(in.octreeFile ? tr("fixed by the octree file")
                                        : QStringLiteral("%1 .. %2 %3").arg(in.minimum).arg(in.maximum).arg(in.units));
@@ -656,7 +825,7 @@ void MainWindow::isoEdited(double iso) {
 }
 
 void MainWindow::scheduleBuild() {
-    if (engine_.hasField()) buildTimer_.start();
+    if (engine_.hasField() || engine_.tree()) buildTimer_.start();
 }
 
 QSize MainWindow::paneSize() const { return views_[0]->size() * views_[0]->devicePixelRatio(); }
@@ -741,9 +910,15 @@ void MainWindow::onFrame(const FrameResult& r) {
 QStringList MainWindow::commandLine(const QString& output, int width, int height) const {
     auto tree = engine_.tree();
     StudioState s = state_;
-    Camera cam = cameraFor(s, tree ? tree->occupiedBounds() : Box3{dvec3(-1.0), dvec3(1.0)}, width, height);
+    const Box3 bounds = tree ? tree->occupiedBounds() : Box3{dvec3(-1.0), dvec3(1.0)};
+    Camera cam;
+    try {
+        cam = exportCamera(s, bounds, width, height);
+    } catch (const UsageError&) {
+        cam = cameraFor(s, bounds, width, height);  // a figure too small for its text: the CLI says so too
+    }
     QStringList out;
-    for (const auto& a : renderArguments(s, cam, engine_.iso(), output.toStdString())) out << QString::fromStdString(a);
+    for (const auto& a : renderArguments(s, cam, engine_.iso(), output.toStdString(), width, height)) out << QString::fromStdString(a);
     return out;
 }
 
@@ -755,6 +930,13 @@ void MainWindow::exportFigure(const QString& path, int width, int height, bool t
     state_.exportWidth = width;  // the next export's defaults
     state_.exportHeight = height;
     state_.transparent = transparent;
+}
+
+void MainWindow::setFigure(bool figure, const QString& title, int dpi, bool scaleBar) {
+    state_.figure = figure;
+    state_.title = title.toStdString();
+    state_.dpi = std::clamp(dpi, 36, 1200);
+    state_.scaleBar = scaleBar;
 }
 
 void MainWindow::chooseExport() {
@@ -786,11 +968,36 @@ void MainWindow::chooseExport() {
     auto* transparent = new QCheckBox(tr("Transparent background"), &dlg);
     transparent->setChecked(state_.transparent);
     form->addRow(transparent);
+    // A publication figure, as render --figure: the text is set in points at the dpi, so that
+    // it keeps its size on paper whatever the pixel size.
+    auto* figure = new QGroupBox(tr("Figure (PNG): title, colour bar, box with ticks"), &dlg);
+    figure->setObjectName(QStringLiteral("figureBox"));
+    figure->setCheckable(true);
+    figure->setChecked(state_.figure);
+    auto* figureForm = new QFormLayout(figure);
+    auto* title = new QLineEdit(QString::fromStdString(state_.title), figure);
+    title->setObjectName(QStringLiteral("figureTitle"));
+    figureForm->addRow(tr("Title"), title);
+    auto* dpi = new QSpinBox(figure);
+    dpi->setObjectName(QStringLiteral("figureDpi"));
+    dpi->setRange(36, 1200);
+    dpi->setValue(state_.dpi);
+    dpi->setSuffix(tr(" dpi"));
+    dpi->setToolTip(tr("Text is 9 and 11 pt at this resolution: raise it with the size to keep the text in proportion"));
+    figureForm->addRow(tr("Resolution"), dpi);
+    auto* scaleBar = new QCheckBox(tr("Scale bar"), figure);
+    scaleBar->setObjectName(QStringLiteral("figureScaleBar"));
+    scaleBar->setChecked(state_.scaleBar);
+    figureForm->addRow(scaleBar);
+    figureForm->addRow(new QLabel(state_.colormap.empty() ? tr("Colour bar: choose a colour map") : tr("Colour bar: %1").arg(QString::fromStdString(state_.colormap)), figure));
+    form->addRow(figure);
     auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, &dlg);
     connect(buttons, &QDialogButtonBox::accepted, &dlg, &QDialog::accept);
     connect(buttons, &QDialogButtonBox::rejected, &dlg, &QDialog::reject);
     form->addRow(buttons);
-    if (dlg.exec() == QDialog::Accepted) exportFigure(path->text(), w->value(), h->value(), transparent->isChecked());
+    if (dlg.exec() != QDialog::Accepted) return;
+    setFigure(figure->isChecked(), title->text(), dpi->value(), scaleBar->isChecked());
+    exportFigure(path->text(), w->value(), h->value(), transparent->isChecked());
 }
 
 }  // namespace octrace::studio

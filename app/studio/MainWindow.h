@@ -27,6 +27,7 @@ class QStackedWidget;
 namespace octrace::studio {
 
 class HistogramView;
+class ViewInput;
 class RenderView;
 class SurfelView;
 
@@ -47,6 +48,9 @@ public:
     /// Opens a session file: its input is read with its settings and camera. A file that is
     /// missing or broken shows a message and keeps the current state.
     bool openSession(const QString& path);
+    /// The figure options of the next exports (render --figure, --title, --dpi, --scale-bar);
+    /// the export dialog sets them.
+    void setFigure(bool figure, const QString& title, int dpi, bool scaleBar);
     /// The `octrace render` command line of the current state at width x height writing `output`.
     QStringList commandLine(const QString& output, int width, int height) const;
 
@@ -89,6 +93,16 @@ private:
     /// Sets every control from state_ without acting on the changes.
     void showState();
     void updateColourBar();
+    /// After a change of the lighting: builds again when `rebuild` (the baked light depends on
+    /// it), else renders.
+    void lightingChanged(bool rebuild);
+    QWidget* buildCutControls(QWidget* parent);
+    /// A solid of `kind` (box, sphere, halfspace) that cuts the part of `bounds` facing the default view.
+    static QString defaultCut(const QString& kind, const Box3& bounds);
+    /// Sets the cut-away solid (empty: none) after checking it, and builds again.
+    void setCut(const QString& spec);
+    void showCut();
+    void connectNavigation(ViewInput* input);
     /// After a change of colour map or window: builds again when the display window changes,
     /// else renders.
     void colouringChanged();
@@ -111,7 +125,12 @@ private:
     HistogramView* histogram_ = nullptr;
     QLabel *inputLabel_ = nullptr, *rangeLabel_ = nullptr, *statusLabel_ = nullptr, *colourBar_ = nullptr;
     QComboBox *variableCombo_ = nullptr, *seriesCombo_ = nullptr, *rendererCombo_ = nullptr, *secondCombo_ = nullptr,
-              *colormapCombo_ = nullptr, *windowCombo_ = nullptr;
+              *colormapCombo_ = nullptr, *windowCombo_ = nullptr, *isoPresetCombo_ = nullptr, *lightingCombo_ = nullptr,
+              *cutCombo_ = nullptr;
+    QLineEdit* cutEdit_ = nullptr;
+    QCheckBox *clipCheck_ = nullptr, *bakeShadowsCheck_ = nullptr;
+    QDoubleSpinBox* ambientSpin_ = nullptr;
+    QSpinBox* bakeAoSpin_ = nullptr;
     QLineEdit* timeEdit_ = nullptr;
     QSlider* isoSlider_ = nullptr;
     QDoubleSpinBox *isoSpin_ = nullptr, *fovSpin_ = nullptr, *lightSpin_[3] = {nullptr, nullptr, nullptr};

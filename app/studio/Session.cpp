@@ -1,6 +1,7 @@
 #include "Session.h"
 
 #include "SurfaceOptions.h"
+#include "octrace/csg/Solid.h"
 #include "octrace/io/AtomicFile.h"
 #include "octrace/octree/Octree.h"
 #include "octrace/render/Renderer.h"
@@ -114,7 +115,10 @@ QByteArray sessionJson(const StudioState& s) {
                       {"variable", QString::fromStdString(s.variable)},
                       {"time", QString::fromStdString(s.time)},
                       {"series", QString::fromStdString(s.series)}};
-    QJsonObject surface{{"iso", s.iso ? QJsonValue(*s.iso) : QJsonValue()}, {"depth", s.depth}};
+    QJsonObject surface{{"iso", s.iso ? QJsonValue(*s.iso) : QJsonValue()},
+                        {"depth", s.depth},
+                        {"cut", QString::fromStdString(s.cut)},
+                        {"clip", s.clip}};
     QJsonObject renderers{{"main", QString::fromStdString(s.renderer)},
                           {"second", QString::fromStdString(s.secondRenderer)},
                           {"split", s.split}};
@@ -128,8 +132,14 @@ QByteArray sessionJson(const StudioState& s) {
                         {"colour", array(s.colour)},
                         {"colormap", QString::fromStdString(s.colormap)},
                         {"window", QString::fromStdString(s.window)},
-                        {"background", array(s.background)}};
-    QJsonObject exportSettings{{"width", s.exportWidth}, {"height", s.exportHeight}, {"transparent", s.transparent}};
+                        {"background", array(s.background)},
+                        {"ambient", s.ambient},
+                        {"lighting", QString::fromStdString(s.lighting)},
+                        {"bake_ao", s.bakeAo},
+                        {"bake_shadows", s.bakeShadows}};
+    QJsonObject exportSettings{{"width", s.exportWidth}, {"height", s.exportHeight}, {"transparent", s.transparent},
+                               {"figure", s.figure},     {"title", QString::fromStdString(s.title)},
+                               {"dpi", s.dpi},           {"scale_bar", s.scaleBar}};
     QJsonObject root{{kFormatKey, kFormatVersion}, {"input", input},     {"surface", surface}, {"renderers", renderers},
                      {"camera", camera},           {"shading", shading}, {"export", exportSettings}};
     return QJsonDocument(root).toJson(QJsonDocument::Indented);
@@ -161,6 +171,15 @@ StudioState parseSession(const QByteArray& json, const QString& baseFolder) {
     const Reader surface = root.object("surface");
     if (surface.has("iso")) s.iso = surface.number("iso", -1e300, 1e300);
     surface.integer("depth", s.depth, 1, Octree::kMaxDepth);
+    surface.text("cut", s.cut);
+    if (!s.cut.empty()) {
+        try {
+            parseSolid(s.cut);
+        } catch (const UsageError& e) {
+            surface.fail("cut", QString::fromStdString(e.what()));
+        }
+    }
+    surface.flag("clip", s.clip);
 
     const Reader renderers = root.object("renderers");
     renderers.text("main", s.renderer);
@@ -215,11 +234,21 @@ StudioState parseSession(const QByteArray& json, const QString& baseFolder) {
             shading.fail("window", QStringLiteral("a display window and a colour map both colour the surface: give one"));
     }
     shading.colour("background", s.background);
+    if (shading.has("ambient")) s.ambient = shading.number("ambient", 0.0, 1.0);
+    shading.text("lighting", s.lighting);
+    if (!s.lighting.empty() && s.lighting != "baked" && s.lighting != "dynamic")
+        shading.fail("lighting", QStringLiteral("expected \"\", \"baked\" or \"dynamic\", got '%1'").arg(QString::fromStdString(s.lighting)));
+    shading.integer("bake_ao", s.bakeAo, 0, 1024);
+    shading.flag("bake_shadows", s.bakeShadows);
 
     const Reader exportSettings = root.object("export");
     exportSettings.integer("width", s.exportWidth, 1, kMaxExportSide);
     exportSettings.integer("height", s.exportHeight, 1, kMaxExportSide);
     exportSettings.flag("transparent", s.transparent);
+    exportSettings.flag("figure", s.figure);
+    exportSettings.text("title", s.title);
+    exportSettings.integer("dpi", s.dpi, 36, 1200);
+    exportSettings.flag("scale_bar", s.scaleBar);
     return s;
 }
 

@@ -49,7 +49,34 @@ cli::SurfaceArgs surfaceArgs(const StudioState& state) {
         a.windowName = state.window;
         a.window = cli::displayWindow(state.window);
     }
+    if (state.ambient != StudioState().ambient) a.ambient = float(state.ambient);
+    a.lighting = state.lighting == "baked"     ? cli::SurfaceArgs::Lighting::Baked
+                 : state.lighting == "dynamic" ? cli::SurfaceArgs::Lighting::Dynamic
+                                               : cli::SurfaceArgs::Lighting::Auto;
+    a.bakeOptions.aoRays = state.bakeAo;
+    a.bakeOptions.shadows = state.bakeShadows;
+    if (!state.cut.empty()) a.cuts.push_back(parseSolid(state.cut));
+    a.clip = state.clip && !state.cut.empty();
     return a;
+}
+
+cli::FigureArgs figureArgs(const StudioState& state) {
+    cli::FigureArgs f;
+    f.enabled = state.figure;
+    f.title = state.title;
+    f.dpi = state.dpi;
+    f.scaleBar = state.scaleBar;
+    return f;
+}
+
+std::optional<io::FigureLayout> figureLayoutFor(const StudioState& state, int width, int height) {
+    if (!state.figure) return std::nullopt;
+    return cli::figureLayout(figureArgs(state), width, height, cli::figureHasColourBar(surfaceArgs(state)));
+}
+
+Camera exportCamera(const StudioState& state, const Box3& surfaceBounds, int width, int height) {
+    if (const auto layout = figureLayoutFor(state, width, height)) return cameraFor(state, surfaceBounds, layout->plotW, layout->plotH);
+    return cameraFor(state, surfaceBounds, width, height);
 }
 
 RenderSettings renderSettingsFor(const StudioState& state, bool transparent, const ValueWindow& window, bool invertedGrey) {
@@ -60,13 +87,15 @@ RenderSettings renderSettingsFor(const StudioState& state, bool transparent, con
     cli::Surface look;
     look.window = window;
     look.invertedGrey = invertedGrey;
-    cli::applyColour(surfaceArgs(state), look, rs);
+    const cli::SurfaceArgs a = surfaceArgs(state);
+    cli::applyColour(a, look, rs);
+    cli::applyLighting(a, rs);
     rs.lightCamera = state.light;
     return rs;
 }
 
 std::vector<std::string> renderArguments(const StudioState& state, const Camera& camera, double iso,
-                                         const std::string& output) {
+                                         const std::string& output, int width, int height) {
     std::vector<std::string> args{state.input};
     if (!state.variable.empty()) args.insert(args.end(), {"--var", state.variable});
     if (!state.time.empty()) args.insert(args.end(), {"--time", state.time});
@@ -74,8 +103,16 @@ std::vector<std::string> renderArguments(const StudioState& state, const Camera&
     // An octree file fixes the iso value and the depth; a city model has no iso value.
     if (!cli::isOctreeInput(state.input) && !io::isCityInput(state.input)) args.insert(args.end(), {"--iso", number(iso)});
     if (!cli::isOctreeInput(state.input)) args.insert(args.end(), {"--depth", std::to_string(state.depth)});
+    if (!state.cut.empty()) args.insert(args.end(), {"--cut", state.cut});
+    if (state.clip && !state.cut.empty()) args.push_back("--clip");
+    if (!state.lighting.empty()) args.insert(args.end(), {"--lighting", state.lighting});
+    if (state.lighting == "baked") {
+        args.insert(args.end(), {"--bake-ao", std::to_string(state.bakeAo)});
+        if (!state.bakeShadows) args.insert(args.end(), {"--bake-shadows", "off"});
+    }
+    if (state.ambient != StudioState().ambient) args.insert(args.end(), {"--ambient", number(state.ambient)});
     args.insert(args.end(), {"--renderer", state.renderer,
-                             "--size", std::to_string(camera.width) + "x" + std::to_string(camera.height),
+                             "--size", std::to_string(width) + "x" + std::to_string(height),
                              "--camera-pos", triple(camera.position.x, camera.position.y, camera.position.z),
                              "--look-at", triple(camera.lookAt.x, camera.lookAt.y, camera.lookAt.z),
                              "--up", triple(camera.up.x, camera.up.y, camera.up.z),
@@ -86,6 +123,11 @@ std::vector<std::string> renderArguments(const StudioState& state, const Camera&
     if (!state.window.empty()) args.insert(args.end(), {"--window", state.window});
     const vec4& b = state.background;
     args.insert(args.end(), {"--background", triple(b.r, b.g, b.b) + "," + number(state.transparent ? 0.0 : b.a)});
+    if (state.figure) {
+        args.insert(args.end(), {"--figure", "--dpi", std::to_string(state.dpi)});
+        if (!state.title.empty()) args.insert(args.end(), {"--title", state.title});
+        if (state.scaleBar) args.push_back("--scale-bar");
+    }
     args.insert(args.end(), {"-o", output});
     return args;
 }

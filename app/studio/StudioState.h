@@ -3,6 +3,7 @@
 // renderers, the camera, the shading and the export. A session file is this state as JSON
 // (Session.h); renderArguments() is the same state as the `octrace render` command line that
 // draws the same image, so that the studio and the CLI can be checked against each other.
+#include "FigureOptions.h"
 #include "SurfaceOptions.h"
 
 #include "octrace/render/Camera.h"
@@ -40,9 +41,26 @@ struct StudioState {
     /// "none", or a CT preset (CtPresets.h).
     std::string window;
     vec4 background{1.0f, 1.0f, 1.0f, 1.0f};  ///< sRGB, alpha
+    // Lighting (the CLI's --ambient, --lighting, --bake-ao, --bake-shadows).
+    double ambient = 0.15;  ///< share of light independent of the normal; the light's is 1 - ambient
+    /// "" (baked light when the octree has it, else dynamic), "baked" (baked at build when the
+    /// octree has none), "dynamic" (from the normals and `light`).
+    std::string lighting;
+    int bakeAo = BakeOptions{}.aoRays;
+    bool bakeShadows = true;
+    // CSG: a cut-away solid (the CLI's --cut syntax: box:..., sphere:..., halfspace:...,
+    // cylinder:...; empty: none) and --clip.
+    std::string cut;
+    bool clip = false;
     // Export.
     int exportWidth = 1600, exportHeight = 1200;
     bool transparent = false;  ///< export with a transparent background (alpha 0)
+    // Export as a figure (render --figure, PNG): title, dpi (fonts scale with it), scale bar;
+    // the colour bar comes with a colour map.
+    bool figure = false;
+    std::string title;
+    int dpi = cli::kDefaultDpi;
+    bool scaleBar = false;
 };
 
 /// The split view's right pane as the OpenGL surfel view instead of a CPU renderer.
@@ -69,11 +87,21 @@ cli::SurfaceArgs surfaceArgs(const StudioState& state);
 RenderSettings renderSettingsFor(const StudioState& state, bool transparent, const ValueWindow& window = {},
                                  bool invertedGrey = false);
 
+/// The figure options of `state` (render --figure, --title, --dpi, --scale-bar).
+cli::FigureArgs figureArgs(const StudioState& state);
+/// The figure's layout for an export of width x height (state.figure), else nothing; throws
+/// UsageError as cli::figureLayout when the size leaves no room for the plot.
+std::optional<io::FigureLayout> figureLayoutFor(const StudioState& state, int width, int height);
+/// The camera of an export of width x height: cameraFor at the size of the image rendered (the
+/// figure's plot, or the whole).
+Camera exportCamera(const StudioState& state, const Box3& surfaceBounds, int width, int height);
+
 /// `octrace render` arguments (without the program and command names) that draw what the studio
-/// exports for `state` with `camera`: input options, surface, renderer, camera, shading, size,
-/// background, -o `output`. Numbers are written with 17 significant digits (exact round trip).
-/// `iso` is the value in use (the state's may be unset).
+/// exports for `state` at width x height with `camera` (exportCamera): input options, surface,
+/// cut, lighting, renderer, camera, shading, size, background, figure, -o `output`. Numbers
+/// are written with 17 significant digits (exact round trip). `iso` is the value in use (the
+/// state's may be unset).
 std::vector<std::string> renderArguments(const StudioState& state, const Camera& camera, double iso,
-                                         const std::string& output);
+                                         const std::string& output, int width, int height);
 
 }  // namespace octrace::studio

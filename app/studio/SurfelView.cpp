@@ -60,7 +60,8 @@ float srgb(float linear) {
 
 }  // namespace
 
-SurfelView::SurfelView(QWidget* parent) : QOpenGLWidget(parent) {
+SurfelView::SurfelView(QWidget* parent) : QOpenGLWidget(parent), input_(new ViewInput(this)) {
+    setFocusPolicy(Qt::StrongFocus);
     QSurfaceFormat f = format();
     f.setVersion(3, 3);
     f.setProfile(QSurfaceFormat::CoreProfile);

@@ -1,8 +1,11 @@
 #pragma once
 // The OpenGL view of the studio (paper A's "surfel model with hardware support"): the shell's
 // surfels (core's extractSurfels: one oriented disc per boundary voxel) drawn as point sprites
-// on the GPU, with the camera and the light of the CPU panes. Runs on any OpenGL 3.3 core
-// implementation, Mesa's llvmpipe under Xvfb included.
+// on the GPU, with the camera and the light of the CPU panes; the mouse and keys move that
+// camera as in the CPU panes (ViewInput.h). Runs on any OpenGL 3.3 core implementation,
+// Mesa's llvmpipe under Xvfb included.
+#include "ViewInput.h"
+
 #include "octrace/render/Camera.h"
 #include "octrace/render/RenderSettings.h"
 #include "octrace/render/Surfels.h"
@@ -37,6 +40,8 @@ public:
     std::size_t surfelCount() const { return surfels_ ? surfels_->size() : 0; }
     /// The GL_RENDERER string once initialised (e.g. "llvmpipe (LLVM 15.0.6, 256 bits)").
     QString rendererName() const { return glRenderer_; }
+    /// The camera moves asked for in this view.
+    ViewInput* input() const { return input_; }
 
 signals:
     void frameDrawn(double ms);
@@ -55,6 +60,7 @@ private:
     QOpenGLVertexArrayObject vao_;
     QString glRenderer_, overlay_;
     QLabel* label_ = nullptr;
+    ViewInput* input_;
     double lastMs_ = 0.0;
     bool ready_ = false;
 };

@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
+#include <vector>
 
 namespace octrace {
 namespace {
@@ -16,10 +18,16 @@ using detail::Octant;
 /// How much of an octant an operand holds.
 enum class Cover : std::uint8_t { Empty, Full, Mixed };
 
-/// A voxel of an operand or of the result: its state and (boundary) outward normal.
+constexpr float kNoValue = std::numeric_limits<float>::quiet_NaN();
+
+/// A voxel of an operand or of the result: its state, (boundary) outward normal and the
+/// attributes of its slot in a tree operand (Octree::voxelValues, Octree::colours).
 struct VoxelState {
     CellState state = CellState::Empty;
     vec3 normal{0.0f};
+    bool attributes = false;  ///< value and colour come from a voxel slot of a tree operand
+    float value = kNoValue;
+    std::uint32_t colour = 0;
 };
 
 /// The result's grid: cube and depth.
@@ -31,6 +39,33 @@ struct Grid {
     dvec3 corner(const ivec3& c) const { return origin + dvec3(c) * voxel(); }
 };
 
+constexpr std::uint32_t kNoSlot = 0xFFFFFFFFu;
+
+/// Gives every voxel slot of `t` whose `known` flag is clear the value and colour of the
+/// nearest known slot, by a breadth-first flood across face neighbours (voxels cut out of an
+/// operand's interior term, which had no slot to inherit from).
+void fillAttributes(Octree& t, std::vector<std::uint8_t>& known) {
+    std::vector<ivec3> cells(t.voxels.size());
+    t.forEachVoxel([&](const ivec3& c, std::uint32_t slot) { cells[slot] = c; });
+    std::vector<std::uint32_t> queue;
+    for (std::uint32_t i = 0; i < known.size(); ++i)
+        if (known[i]) queue.push_back(i);
+    for (std::size_t q = 0; q < queue.size(); ++q) {
+        const std::uint32_t from = queue[q];
+        for (int a = 0; a < 3; ++a)
+            for (int d = -1; d <= 1; d += 2) {
+                ivec3 nb = cells[from];
+                nb[a] += d;
+                std::uint32_t slot;
+                if (cellSlot(t, nb, slot) == CellState::Empty || slot == kNoSlot || known[slot]) continue;
+                known[slot] = 1;
+                if (!t.voxelValues.empty()) t.voxelValues[slot] = t.voxelValues[from];
+                if (!t.colours.empty()) t.colours[slot] = t.colours[from];
+                queue.push_back(slot);
+            }
+    }
+}
+
 class Source {
 public:
     virtual ~Source() = default;
@@ -40,28 +75,27 @@ public:
     virtual VoxelState voxel(const ivec3& cell) const = 0;
 };
 
+Cover coverOf(SolidCover c) { return c == SolidCover::Inside ? Cover::Full : c == SolidCover::Outside ? Cover::Empty : Cover::Mixed; }
+
 class SolidSource final : public Source {
 public:
     SolidSource(const Solid& s, const Grid& g) : s_(s), g_(g) {}
     Cover cover(int level, const ivec3& c0) const override {
         const int size = 1 << (g_.depth - level);
-        bool all = true;
-        for (int q = 0; q < 8 && all; ++q)
-            all = s_.distance(g_.corner(c0 + size * ivec3((q >> 2) & 1, (q >> 1) & 1, q & 1))) <= 0.0;
-        if (all) return Cover::Full;  // convex: the whole octant is inside
-        const double h = size * g_.voxel();
-        const dvec3 centre = g_.corner(c0) + dvec3(0.5 * h);
-        return s_.distance(centre) > 0.5 * std::sqrt(3.0) * h ? Cover::Empty : Cover::Mixed;
+        return coverOf(s_.classify(g_.corner(c0), g_.corner(c0 + size)));
     }
     VoxelState voxel(const ivec3& cell) const override {
-        int inside = 0;
-        for (int q = 0; q < 8; ++q) inside += s_.distance(g_.corner(cell + ivec3((q >> 2) & 1, (q >> 1) & 1, q & 1))) <= 0.0;
         VoxelState v;
-        if (inside == 8) v.state = CellState::Interior;
-        else if (inside > 0) {
-            v.state = CellState::Boundary;
-            v.normal = vec3(s_.normal(g_.corner(cell) + dvec3(0.5 * g_.voxel())));
+        if (s_.convex()) {
+            int inside = 0;
+            for (int q = 0; q < 8; ++q) inside += s_.distance(g_.corner(cell + ivec3((q >> 2) & 1, (q >> 1) & 1, q & 1))) <= 0.0;
+            v.state = inside == 8 ? CellState::Interior : inside > 0 ? CellState::Boundary : CellState::Empty;
+        } else {
+            // Not convex: the corners do not tell (the surface may dip into the voxel between them).
+            const Cover c = coverOf(s_.classify(g_.corner(cell), g_.corner(cell + 1)));
+            v.state = c == Cover::Full ? CellState::Interior : c == Cover::Mixed ? CellState::Boundary : CellState::Empty;
         }
+        if (v.state == CellState::Boundary) v.normal = vec3(s_.normal(g_.corner(cell) + dvec3(0.5 * g_.voxel())));
         return v;
     }
 
@@ -72,7 +106,9 @@ private:
 
 class TreeSource final : public Source {
 public:
-    TreeSource(const Octree& t, const Grid& g) : t_(t), g_(g), n_(1 << t.depth) {
+    TreeSource(const Octree& t, const Grid& g)
+        : t_(t), g_(g), n_(1 << t.depth), values_(t.voxelValues.size() == t.voxels.size() && !t.voxels.empty()),
+          colours_(t.hasColours()) {
         scale_ = double(n_) / t.cubeSide;
         same_ = t.depth == g.depth && t.cubeOrigin == g.origin && t.cubeSide == g.side;
     }
@@ -86,9 +122,14 @@ public:
         const int n = 1 << g_.depth;
         VoxelState v;
         if (cell.x < 0 || cell.y < 0 || cell.z < 0 || cell.x >= n || cell.y >= n || cell.z >= n) return v;
-        std::uint32_t index = 0;
-        v.state = cellState(t_, same_ ? cell : opCell(cell), &index);
-        if (v.state == CellState::Boundary) v.normal = decodeNormal(t_.voxels[index].normal);
+        std::uint32_t slot = 0;
+        v.state = cellSlot(t_, same_ ? cell : opCell(cell), slot);
+        if (v.state == CellState::Boundary) v.normal = decodeNormal(t_.voxels[slot].normal);
+        if (slot != kNoSlot && (values_ || colours_)) {
+            v.attributes = true;
+            if (values_) v.value = t_.voxelValues[slot];
+            if (colours_) v.colour = t_.colours[slot];
+        }
         return v;
     }
 
@@ -134,6 +175,7 @@ private:
     const Octree& t_;
     Grid g_;
     int n_;
+    bool values_, colours_;
     double scale_ = 1.0;
     bool same_ = false;
 };
@@ -166,7 +208,7 @@ VoxelState intersect(const VoxelState& a, const VoxelState& b) {
     return {CellState::Boundary, sumNormal(a.normal, b.normal)};
 }
 
-VoxelState combine(const VoxelState& a, CsgOp op, const VoxelState& b) {
+VoxelState combineStates(const VoxelState& a, CsgOp op, const VoxelState& b) {
     switch (op) {
     case CsgOp::Union:
         if (a.state == CellState::Interior || b.state == CellState::Interior) return {CellState::Interior, vec3(0.0f)};
@@ -182,6 +224,19 @@ VoxelState combine(const VoxelState& a, CsgOp op, const VoxelState& b) {
     }
     }
     return {};
+}
+
+/// The voxel of A OP B with the attributes of the first operand that holds it (never of a
+/// subtracted B): a cut face keeps the value and colour of the solid it was cut from.
+VoxelState combine(const VoxelState& a, CsgOp op, const VoxelState& b) {
+    VoxelState r = combineStates(a, op, b);
+    if (r.state == CellState::Empty) return r;
+    const VoxelState* from = a.state != CellState::Empty && a.attributes                        ? &a
+                             : op != CsgOp::Difference && b.state != CellState::Empty && b.attributes ? &b
+                                                                                                      : nullptr;
+    r.attributes = from != nullptr;
+    if (from) r.value = from->value, r.colour = from->colour;
+    return r;
 }
 
 class Combiner {
@@ -218,9 +273,13 @@ private:
         const int n = 1 << g_.depth;
         unsigned mask = 0, interior = 0;
         Voxel vox[8];
+        float vals[8];
+        std::uint32_t cols[8];
         for (int c = 0; c < 8; ++c) {
             const ivec3 l(1 + ((c >> 2) & 1), 1 + ((c >> 1) & 1), 1 + (c & 1));
             const VoxelState& v = s[l.x][l.y][l.z];
+            vals[c] = v.value;
+            cols[c] = v.colour;
             if (v.state == CellState::Empty) continue;
             mask |= 1u << c;
             if (v.state == CellState::Boundary) {
@@ -238,9 +297,21 @@ private:
             if (cap == vec3(0.0f)) interior |= 1u << c;
             else vox[c].normal = encodeNormal(glm::normalize(cap));
         }
-        return pool_.leaf(mask, interior, vox, out);
+        const Octant kind = pool_.leaf(mask, interior, vox, out, values_ ? vals : nullptr, colours_ ? cols : nullptr);
+        if (kind == Octant::Node && (values_ || colours_))
+            for (int c = 0; c < 8; ++c)
+                if (mask & (1u << c)) {
+                    const ivec3 l(1 + ((c >> 2) & 1), 1 + ((c >> 1) & 1), 1 + (c & 1));
+                    known_.push_back(s[l.x][l.y][l.z].attributes);
+                }
+        return kind;
     }
 
+public:
+    bool values_ = false, colours_ = false;  ///< whether the result carries them (an operand does)
+    std::vector<std::uint8_t> known_;        ///< per voxel slot of the result: its attributes come from an operand's slot
+
+private:
     const Source& a_;
     const Source& b_;
     CsgOp op_;
@@ -306,9 +377,15 @@ Octree csg(const CsgOperand& a, CsgOp op, const CsgOperand& b) {
     out.source += describe(b);
     out.source += ")";
     Combiner c(*sa, op, *sb, g);
+    for (const CsgOperand* o : {&a, &b})
+        if (o->tree && !(op == CsgOp::Difference && o == &b)) {
+            c.values_ |= o->tree->voxelValues.size() == o->tree->voxels.size() && !o->tree->voxels.empty();
+            c.colours_ |= o->tree->hasColours();
+        }
     OctreeNode root;
     const Octant kind = c.build(0, ivec3(0), root);
     if (!c.pool_.finish(kind, root, out)) throw EmptyResultError(out.source + ": the result is empty");
+    if (c.values_ || c.colours_) fillAttributes(out, c.known_);
     return out;
 }
 

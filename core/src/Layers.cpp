@@ -56,6 +56,30 @@ ScalarField solidFromMask(const ScalarField& field) {
     return s;
 }
 
+std::size_t extendColumnsDown(ScalarField& field) {
+    if (!field.geographic.valid)
+        throw UsageError(field.source + ": extending water columns down needs a geographic field (longitude, latitude, depth)");
+    if (field.valid.empty()) return 0;
+    std::size_t filled = 0;
+    for (int j = 0; j < field.dims.y; ++j)
+        for (int i = 0; i < field.dims.x; ++i) {
+            bool water = false;
+            float last = 0.0f;
+            for (int k = field.dims.z - 1; k >= 0; --k) {  // from the surface down
+                const std::size_t n = field.index(i, j, k);
+                if (field.isValid(n) && std::isfinite(field.values[n])) {
+                    water = true;
+                    last = field.values[n];
+                } else if (water) {
+                    field.values[n] = last;
+                    field.valid[n] = 1;
+                    ++filled;
+                }
+            }
+        }
+    return filled;
+}
+
 void setMaterial(Octree& tree, VoxelMaterial material) { tree.voxelMaterials.assign(tree.voxels.size(), std::uint8_t(material)); }
 
 Octree mergeShells(const Octree& top, const Octree& under) {

@@ -844,6 +844,12 @@ Octree buildOctree(const ScalarField& field, const BuildOptions& options, BuildR
     return tree;
 }
 
+void fillVoxelValues(Octree& tree, const ScalarField& field, int threads) {
+    field.validate();
+    const SampleGrid grid(field);
+    sampleVoxelValues(tree, field, grid, float(tree.iso), threads);
+}
+
 std::vector<float> sampleAtVoxels(const Octree& tree, const ScalarField& field, int threads) {
     field.validate();
     std::vector<std::pair<ivec3, std::uint32_t>> cells;

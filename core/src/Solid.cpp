@@ -1,10 +1,12 @@
 #include "octrace/csg/Solid.h"
 
+#include "octrace/csg/Relief.h"
 #include "octrace/util/Error.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <sstream>
 #include <vector>
 
@@ -48,6 +50,36 @@ void cylinderCoords(const Solid& s, const dvec3& p, double& radial, double& alon
 
 bool isSolidSpec(const std::string& spec) { return kindOf(spec) != nullptr; }
 
+bool isReliefSpec(const std::string& spec) { return spec.rfind("relief:", 0) == 0; }
+
+std::string reliefPath(const std::string& spec) {
+    std::string path = isReliefSpec(spec) ? spec.substr(7) : std::string();
+    if (path.empty()) throw UsageError("relief: give the relief raster's file, relief:FILE (e.g. relief:etopo20.cdf)");
+    return path;
+}
+
+Solid Solid::below(std::shared_ptr<const Relief> r) {
+    Solid s;
+    s.kind = Kind::Relief;
+    s.relief = std::move(r);
+    return s;
+}
+
+SolidCover Solid::classify(const dvec3& lo, const dvec3& hi) const {
+    if (kind == Kind::Relief) {
+        double zmin, zmax;
+        bool complete;
+        relief->zRange(lo.x, hi.x, lo.y, hi.y, zmin, zmax, complete);
+        if (zmin > zmax || lo.z > zmax) return SolidCover::Outside;
+        return complete && hi.z <= zmin ? SolidCover::Inside : SolidCover::Mixed;
+    }
+    bool all = true;
+    for (int q = 0; q < 8 && all; ++q)
+        all = distance(dvec3(q & 4 ? hi.x : lo.x, q & 2 ? hi.y : lo.y, q & 1 ? hi.z : lo.z)) <= 0.0;
+    if (all) return SolidCover::Inside;  // convex: the whole box is inside
+    return distance(0.5 * (lo + hi)) > 0.5 * glm::length(hi - lo) ? SolidCover::Outside : SolidCover::Mixed;
+}
+
 Solid parseSolid(const std::string& spec) {
     const KindName* k = kindOf(spec);
     if (!k) throw UsageError("'" + spec + "' is not a solid (box:X0,Y0,Z0,X1,Y1,Z1, sphere:X,Y,Z,R, cylinder:X0,Y0,Z0,X1,Y1,Z1,R, halfspace:X,Y,Z,NX,NY,NZ)");
@@ -84,6 +116,7 @@ Solid parseSolid(const std::string& spec) {
         if (!(glm::length(s.b) > 0.0)) throw UsageError("halfspace: the normal is zero");
         s.b = glm::normalize(s.b);
         break;
+    case Solid::Kind::Relief: break;  // kindOf() knows no relief: it needs a file (isReliefSpec)
     }
     if ((s.kind == Solid::Kind::Sphere || s.kind == Solid::Kind::Cylinder) && !(s.r > 0.0))
         throw UsageError(std::string(k->name) + ": the radius must be positive");
@@ -106,6 +139,10 @@ double Solid::distance(const dvec3& p) const {
         return std::min(std::max(dr, da), 0.0) + std::hypot(std::max(dr, 0.0), std::max(da, 0.0));
     }
     case Kind::HalfSpace: return glm::dot(p - a, b);
+    case Kind::Relief: {
+        const double z = relief->surfaceZ(p.x, p.y);
+        return std::isnan(z) ? std::numeric_limits<double>::infinity() : p.z - z;
+    }
     }
     return 0.0;
 }
@@ -143,11 +180,13 @@ dvec3 Solid::normal(const dvec3& p) const {
         return radialDir;
     }
     case Kind::HalfSpace: return b;
+    case Kind::Relief: return relief->normal(p.x, p.y);
     }
     return dvec3(0, 0, 1);
 }
 
 std::string Solid::describe() const {
+    if (kind == Kind::Relief) return "relief:" + (relief ? relief->raster().source : std::string());
     std::ostringstream s;
     s.precision(10);
     const KindName& k = kKinds[int(kind)];

@@ -23,7 +23,8 @@ inline void childMasks(const Octant kinds[8], unsigned& mask, unsigned& terms) {
 struct TreeAssembly {
     std::vector<OctreeNode> nodes{OctreeNode{}};  // slot 0: the root, filled by finish()
     std::vector<Voxel> voxels;
-    std::vector<float> values;  // Octree::voxelValues, when the leaves give them
+    std::vector<float> values;           // Octree::voxelValues, when the leaves give them
+    std::vector<std::uint32_t> colours;  // Octree::colours, when the leaves give them
 
     /// The node whose children are `kids` of kinds `kinds`: Empty when all are, Term when all
     /// are terms (eight terms make one), else its children are appended and `out` set.
@@ -42,8 +43,10 @@ struct TreeAssembly {
     }
 
     /// The node at level depth-1 with voxels `mask`, of which `interior` are interior voxels
-    /// (all eight interior: a term); `vals` (may be null) their Octree::voxelValues.
-    Octant leaf(unsigned mask, unsigned interior, const Voxel vox[8], OctreeNode& out, const float* vals = nullptr) {
+    /// (all eight interior: a term); `vals` and `cols` (may be null) their Octree::voxelValues
+    /// and Octree::colours.
+    Octant leaf(unsigned mask, unsigned interior, const Voxel vox[8], OctreeNode& out, const float* vals = nullptr,
+                const std::uint32_t* cols = nullptr) {
         if (!mask) return Octant::Empty;
         if (mask == 0xFFu && interior == 0xFFu) return Octant::Term;
         out = OctreeNode{};
@@ -54,6 +57,7 @@ struct TreeAssembly {
             if (mask & (1u << c)) {
                 voxels.push_back((interior & (1u << c)) ? Voxel{} : vox[c]);
                 if (vals) values.push_back(vals[c]);
+                if (cols) colours.push_back(cols[c]);
             }
         return Octant::Node;
     }
@@ -66,9 +70,11 @@ struct TreeAssembly {
         nodes.shrink_to_fit();
         voxels.shrink_to_fit();
         values.shrink_to_fit();
+        colours.shrink_to_fit();
         tree.nodes = std::move(nodes);
         tree.voxels = std::move(voxels);
         tree.voxelValues = values.size() == tree.voxels.size() ? std::move(values) : std::vector<float>{};
+        tree.colours = colours.size() == tree.voxels.size() ? std::move(colours) : std::vector<std::uint32_t>{};
         return true;
     }
 };

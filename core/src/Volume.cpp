@@ -34,8 +34,8 @@ VoxelCount countVoxels(const Octree& tree) {
     return n;
 }
 
-CellState cellState(const Octree& tree, const ivec3& cell, std::uint32_t* voxel) {
-    if (voxel) *voxel = 0xFFFFFFFFu;
+CellState cellSlot(const Octree& tree, const ivec3& cell, std::uint32_t& slot) {
+    slot = 0xFFFFFFFFu;
     const int n = 1 << tree.depth;
     if (tree.nodes.empty() || cell.x < 0 || cell.y < 0 || cell.z < 0 || cell.x >= n || cell.y >= n || cell.z >= n)
         return CellState::Empty;
@@ -45,15 +45,23 @@ CellState cellState(const Octree& tree, const ivec3& cell, std::uint32_t* voxel)
         const unsigned c = unsigned((((cell.x >> shift) & 1) << 2) | (((cell.y >> shift) & 1) << 1) | ((cell.z >> shift) & 1));
         const OctreeNode& nd = tree.nodes[node];
         if (!(nd.childMask & (1u << c))) return CellState::Empty;
-        if (nd.termMask & (1u << c)) return CellState::Interior;
-        const std::uint32_t slot = nd.firstChild + childRank(nd.childMask, c);
+        const bool term = nd.termMask & (1u << c);
+        const std::uint32_t child = nd.firstChild + childRank(nd.childMask, c);
         if (level == tree.depth - 1) {
-            if (voxel) *voxel = slot;
-            return CellState::Boundary;
+            slot = child;
+            return term ? CellState::Interior : CellState::Boundary;
         }
-        node = slot;
+        if (term) return CellState::Interior;
+        node = child;
     }
     return CellState::Empty;
+}
+
+CellState cellState(const Octree& tree, const ivec3& cell, std::uint32_t* voxel) {
+    std::uint32_t slot;
+    const CellState s = cellSlot(tree, cell, slot);
+    if (voxel) *voxel = s == CellState::Boundary ? slot : 0xFFFFFFFFu;
+    return s;
 }
 
 Octree emptyOctreeLike(const Octree& tree) {
@@ -88,7 +96,7 @@ Octree extractShell(const Octree& volume) {
     out.form = OctreeForm::Shell;
     detail::TreeAssembly pool;
     using detail::Octant;
-    const bool values = !volume.voxelValues.empty();
+    const bool values = !volume.voxelValues.empty(), colours = volume.hasColours();
     auto copy = [&](auto&& self, std::uint32_t node, int level, OctreeNode& dst) -> Octant {
         const OctreeNode& nd = volume.nodes[node];
         std::uint32_t slot = nd.firstChild;
@@ -96,16 +104,18 @@ Octree extractShell(const Octree& volume) {
             unsigned mask = 0;
             Voxel vox[8];
             float val[8] = {};
+            std::uint32_t col[8] = {};
             for (int c = 0; c < 8; ++c) {
                 if (!(nd.childMask & (1u << c))) continue;
                 if (!(nd.termMask & (1u << c))) {
                     vox[c] = volume.voxels[slot];
                     if (values) val[c] = volume.voxelValues[slot];
+                    if (colours) col[c] = volume.colours[slot];
                     mask |= 1u << c;
                 }
                 ++slot;
             }
-            return pool.leaf(mask, 0u, vox, dst, values ? val : nullptr);
+            return pool.leaf(mask, 0u, vox, dst, values ? val : nullptr, colours ? col : nullptr);
         }
         OctreeNode kids[8];
         Octant kinds[8] = {};

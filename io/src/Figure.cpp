@@ -164,6 +164,15 @@ std::vector<double> niceTicks(double lo, double hi, int count) {
     return t;
 }
 
+double scaleBarLength(double worldPerPixel, int plotWidth) {
+    const double most = worldPerPixel * plotWidth / 5.0;
+    if (!(most > 0.0) || !std::isfinite(most)) return 0.0;
+    const double p = std::pow(10.0, std::floor(std::log10(most)));
+    for (double m : {5.0, 2.0, 1.0})
+        if (m * p <= most * (1.0 + 1e-12)) return m * p;
+    return p;
+}
+
 FigureLayout layoutFigure(int width, int height, int dpi, bool colourBar) {
     FigureLayout l;
     l.width = width;
@@ -219,6 +228,16 @@ Frame composeFigure(const Frame& plot, const FigureSpec& spec, const FigureLayou
         canvas.fill(int(std::floor(p.x - lineWidth)), int(std::floor(p.y - lineWidth)), int(std::lround(2 * lineWidth)) + 1,
                     int(std::lround(2 * lineWidth)) + 1, kLineInk);
         font.drawCentred(canvas, lab.text, p.x + lab.dx * l.labelPx, p.y + lab.dy * l.labelPx, kInk);
+    }
+
+    // Scale bar: a bar with end ticks in the plot's lower left corner, its length above it.
+    if (spec.scaleBarPx > 0.0) {
+        const double x0 = l.plotX + 1.2 * l.labelPx, y = l.plotY + l.plotH - 1.2 * l.labelPx;
+        const double x1 = x0 + spec.scaleBarPx, tick = 0.4 * l.labelPx, w = 2.0 * lineWidth;
+        canvas.line({x0, y}, {x1, y}, w, kLineInk);
+        canvas.line({x0, y - tick}, {x0, y + tick}, w, kLineInk);
+        canvas.line({x1, y - tick}, {x1, y + tick}, w, kLineInk);
+        font.drawCentred(canvas, spec.scaleBarLabel, 0.5 * (x0 + x1), y - tick - 0.8 * l.labelPx, kInk);
     }
 
     // Title and subtitle.

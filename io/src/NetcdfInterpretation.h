@@ -12,6 +12,10 @@
 
 namespace octrace::io::detail {
 
+/// The on-disk checks: the signature and, for classic files, that the data the header
+/// announces are all there. Returns the format's name. Throws FormatNotSupported, FileError.
+std::string checkNetcdfOnDisk(const std::string& path);
+
 /// NetcdfReader::read without the on-disk checks; `gdalPath` is anything GDAL's netCDF
 /// driver opens (a file, /vsimem/...). Throws as NetcdfReader::read.
 ScalarField interpretNetcdf(const std::string& gdalPath, const FieldRequest& req);

@@ -20,13 +20,8 @@
 #include <sstream>
 
 namespace octrace::io {
-namespace {
 
-using namespace detail;
-
-// Checks the signature (and, for classic files, that the data the header announces are all
-// there); returns the format's name.
-std::string openNetcdf(const std::string& path) {
+std::string detail::checkNetcdfOnDisk(const std::string& path) {
     Sniffed s = sniffFormat(path);
     if (s.kind != FileKind::NetCdf)
         throw FormatNotSupported(path + ": not a NetCDF file: it starts with '" + quoteBytes(readPrefix(path, 8)) +
@@ -39,6 +34,10 @@ std::string openNetcdf(const std::string& path) {
     }
     return s.description;
 }
+
+namespace {
+
+using namespace detail;
 
 std::string listOf(const std::vector<const VariableInfo*>& vars) {
     std::string s;
@@ -289,7 +288,7 @@ std::string describeNetcdf(const std::string& path, const std::string& format, c
 }  // namespace detail
 
 ScalarField NetcdfReader::read(const std::string& path, const FieldRequest& req) {
-    openNetcdf(path);
+    checkNetcdfOnDisk(path);
     return interpretNetcdf(path, req);
 }
 
@@ -301,11 +300,11 @@ std::string NetcdfReader::describe(const std::string& path, std::uint64_t memory
 
 std::string NetcdfReader::describe(const std::string& path, const FieldRequest& req) {
     if (req.hasRegion) checkRegion(req.region, path);
-    return describeNetcdf(path, openNetcdf(path), req);
+    return describeNetcdf(path, checkNetcdfOnDisk(path), req);
 }
 
 std::vector<std::string> NetcdfReader::volumeVariables(const std::string& path) {
-    openNetcdf(path);
+    checkNetcdfOnDisk(path);
     NetcdfFile file(path);
     std::vector<std::string> names;
     for (const auto* v : volumes(file)) names.push_back(v->shortName);

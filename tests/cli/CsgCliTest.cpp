@@ -104,3 +104,52 @@ TEST(CliCsg, RenderCutsAndClipsASolidAway) {
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("a shell octree cannot be cut"), std::string::npos) << r.err;
 }
+
+TEST(CliCsg, OceanMinusTheSeaFloorOfARelief) {
+    const std::string lev = sharedData("ocean/levitus_climatology.cdf"), etopo = sharedData("ocean/etopo20.cdf");
+    if (!haveShared("ocean/levitus_climatology.cdf") || !haveShared("ocean/etopo20.cdf")) GTEST_SKIP() << "shared data absent";
+    Scratch s;
+    // The water column of the NE Atlantic extended to the grid's bottom, then cut by ETOPO20's
+    // sea floor: what lies under the relief and what lies over it make up the whole.
+    const std::vector<std::string> field{"--var", "TEMP", "--iso", "2.108", "--region", "-25,5,40,60", "--extend-down", "--depth", "7"};
+    auto csgStats = [&](const std::string& op, const std::string& name) {
+        std::vector<std::string> a{"csg", lev, op, "relief:" + etopo, "-o", s.path(name + ".oct"), "--stats", s.path(name + ".json")};
+        a.insert(a.end(), field.begin(), field.end());
+        const Result r = run(a);
+        EXPECT_EQ(r.code, 0) << r.err;
+        return std::stod(numberAfter(slurp(s.path(name + ".json")), "volume_voxels"));
+    };
+    std::vector<std::string> whole{"build", lev, "--form", "volume", "-o", s.path("w.oct"), "--stats", s.path("w.json")};
+    whole.insert(whole.end(), field.begin(), field.end());
+    Result r = run(whole);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const double water = csgStats("difference", "water"), ground = csgStats("intersection", "ground");
+    ASSERT_EQ(run({"csg", s.path("w.oct"), "union", "box:0,0,0,1,1,1", "-o", s.path("w2.oct"), "--stats", s.path("w2.json")}).code, 0);
+    const double all = std::stod(numberAfter(slurp(s.path("w2.json")), "volume_voxels"));
+    EXPECT_GT(water, 0.3 * all);
+    EXPECT_GT(ground, 0.05 * all);
+    EXPECT_NEAR((water + ground) / all, 1.0, 0.01);
+    // The relief's info names it; rendering the cut agrees with the reference traversal.
+    r = run({"info", s.path("water.oct")});
+    EXPECT_NE(r.out.find("difference (relief:" + etopo + ")"), std::string::npos) << r.out;
+    std::vector<std::string> render{"render", lev, "--cut", "relief:" + etopo, "--size", "160x120", "--verify", "-o", s.path("r.png"),
+                                    "--stats", s.path("r.json"), "--camera-pos", "-1500,-3000,-2600", "--look-at", "0,0,100", "--up", "0,0,1"};
+    render.insert(render.end(), field.begin(), field.end());
+    r = run(render);
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(numberAfter(slurp(s.path("r.json")), "mismatched_pixels"), "0");
+    // A relief needs a geographic field to be laid into; bad specs are usage errors.
+    r = run({"render", s.path("w.oct"), "--cut", "relief:" + etopo, "-o", s.path("x.png")});
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("is not a geographic field"), std::string::npos) << r.err;
+    EXPECT_EQ(run({"render", lev, "--cut", "relief:", "-o", s.path("x.png")}).code, 2);
+    r = run({"render", lev, "--var", "TEMP", "--depth", "5", "--cut", "relief:" + s.path("none.cdf"), "-o", s.path("x.png")});
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("no such file"), std::string::npos) << r.err;
+    r = run({"render", lev, "--var", "TEMP", "--depth", "5", "--cut", "relief:" + lev, "-o", s.path("x.png")});
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("exactly one 2-D variable"), std::string::npos) << r.err;
+    r = run({"render", "analytic:sphere:17", "--extend-down", "-o", s.path("x.png")});
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("--extend-down applies to geographic fields"), std::string::npos) << r.err;
+}

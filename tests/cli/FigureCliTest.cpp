@@ -121,7 +121,8 @@ TEST(FigureCli, ASurfaceColouredByHeightGetsAColourBarOfTheMap) {
 TEST(FigureCli, RefusesFigureOptionsThatCannotApply) {
     Scratch s;
     for (const std::vector<std::string>& args :
-         {std::vector<std::string>{"--title", "x"}, {"--print-size", "80x60mm"}, {"--figure", "--print-size", "80x60"},
+         {std::vector<std::string>{"--title", "x"}, {"--print-size", "80x60mm"}, {"--scale-bar"}, {"--ambient", "1.5"},
+          {"--ambient", "-0.1"}, {"--figure", "--print-size", "80x60"},
           {"--figure", "--print-size", "0x60mm"}, {"--figure", "--dpi", "5"}, {"--figure", "--size", "60x40", "--dpi", "600"}}) {
         std::vector<std::string> all{"render", "analytic:sphere:9", "-o", s.path("x.png")};
         all.insert(all.end(), args.begin(), args.end());
@@ -132,4 +133,59 @@ TEST(FigureCli, RefusesFigureOptionsThatCannotApply) {
     Result r = run({"render", "analytic:sphere:9", "--figure", "-o", s.path("x.exr")});
     EXPECT_EQ(r.code, 2);
     EXPECT_NE(r.err.find("PNG"), std::string::npos) << r.err;
+}
+
+TEST(FigureCli, ScaleBarIsDrawnInThePlotsLowerLeftCornerOnly) {
+    Scratch s;
+    const std::vector<std::string> base{"render", "analytic:torus:33", "--iso", "0", "--depth", "6", "--figure",
+                                        "--size", "500x400", "--stats", s.path("f.json")};
+    std::vector<std::string> with = base, without = base;
+    with.insert(with.end(), {"--scale-bar", "-o", s.path("bar.png")});
+    without.insert(without.end(), {"-o", s.path("plain.png")});
+    ASSERT_EQ(run(without).code, 0);
+    Result r = run(with);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const std::vector<int> plot = statInts(slurp(s.path("f.json")), "figure_plot");
+    ASSERT_EQ(plot.size(), 4u);
+    const auto a = octrace::test::decodePng(octrace::test::readBytes(s.path("bar.png")));
+    const auto b = octrace::test::decodePng(octrace::test::readBytes(s.path("plain.png")));
+    ASSERT_EQ(a.width, b.width);
+    // Every differing pixel lies in the lower left quarter of the plot (the bar is at most a
+    // fifth of its width, its label above it), and there are some.
+    std::size_t differ = 0, outside = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            bool d = false;
+            for (int c = 0; c < 3; ++c) d = d || a.at(x, y, c) != b.at(x, y, c);
+            if (!d) continue;
+            ++differ;
+            outside += !(x >= plot[0] && x < plot[0] + plot[2] / 2 && y >= plot[1] + plot[3] / 2 && y < plot[1] + plot[3]);
+        }
+    EXPECT_GT(differ, 50u);
+    EXPECT_EQ(outside, 0u);
+}
+
+TEST(FigureCli, AmbientLightensTheShadedSideAndDoesNotChangeTheLitOne) {
+    Scratch s;
+    const std::vector<std::string> base{"render", "analytic:sphere:17", "--iso", "0", "--depth", "6", "--size", "120x120",
+                                        "--light", "0,0,1"};
+    std::vector<std::string> dim = base, bright = base;
+    dim.insert(dim.end(), {"--ambient", "0", "-o", s.path("dim.png")});
+    bright.insert(bright.end(), {"--ambient", "0.6", "-o", s.path("bright.png")});
+    ASSERT_EQ(run(dim).code, 0);
+    ASSERT_EQ(run(bright).code, 0);
+    const auto a = octrace::test::decodePng(octrace::test::readBytes(s.path("dim.png")));
+    const auto b = octrace::test::decodePng(octrace::test::readBytes(s.path("bright.png")));
+    // The sphere's centre faces the light: ambient + (1 - ambient) x 1 = 1 either way. Near its
+    // rim the normal turns away from the light: more ambient is brighter there.
+    EXPECT_NEAR(double(a.at(60, 60, 0)), double(b.at(60, 60, 0)), 1.0);
+    int brighter = 0, rim = 0;
+    for (int x = 0; x < 120; ++x) {
+        const bool hitA = a.at(x, 60, 0) != 255 || a.at(x, 60, 1) != 255, hitB = b.at(x, 60, 0) != 255 || b.at(x, 60, 1) != 255;
+        if (!hitA || !hitB) continue;
+        ++rim;
+        brighter += b.at(x, 60, 0) > a.at(x, 60, 0) + 2;
+    }
+    EXPECT_GT(rim, 10);
+    EXPECT_GT(brighter, 4);
 }

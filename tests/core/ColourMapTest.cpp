@@ -134,8 +134,11 @@ TEST(ColourByValue, EveryExactRendererGivesTheReferencesFrameBitForBit) {
         for (const char* name : {"direct", "direct-f2b"}) {
             Frame f;
             render(name, t, nc.camera, f, s);
-            for (std::size_t p = 0; p < f.hitId.size(); ++p)
-                if (f.hitId[p] != kNoHit && f.hitId[p] == ref.hitId[p]) ASSERT_EQ(f.rgba[p], ref.rgba[p]) << name;
+            for (std::size_t p = 0; p < f.hitId.size(); ++p) {
+                if (f.hitId[p] != kNoHit && f.hitId[p] == ref.hitId[p]) {
+                    ASSERT_EQ(f.rgba[p], ref.rgba[p]) << name;
+                }
+            }
         }
     }
 }

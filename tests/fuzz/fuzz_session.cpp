@@ -19,7 +19,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         // What parses must write back to a file that parses to the same state.
         const octrace::studio::StudioState again = octrace::studio::parseSession(octrace::studio::sessionJson(s));
         if (again.input != s.input || again.depth != s.depth || again.renderer != s.renderer ||
-            again.cameraSet != s.cameraSet || again.iso != s.iso)
+            again.cameraSet != s.cameraSet || again.iso != s.iso || again.cut != s.cut || again.clip != s.clip ||
+            again.lighting != s.lighting || again.ambient != s.ambient || again.bakeAo != s.bakeAo ||
+            again.figure != s.figure || again.title != s.title || again.dpi != s.dpi || again.scaleBar != s.scaleBar)
             __builtin_trap();
     } catch (const octrace::InputError&) {
     }

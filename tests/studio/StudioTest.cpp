@@ -10,17 +10,25 @@
 #include "octrace/render/Renderer.h"
 #include "RenderView.h"
 #include "Session.h"
+#include "Navigation.h"
 #include "SurfelView.h"
 
 #include "octrace/util/Error.h"
 
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QImage>
+#include <QLineEdit>
+#include <QLabel>
+#include <QPlainTextEdit>
+#include <QStatusBar>
 #include <QProcess>
 #include <QPushButton>
+#include <QScrollArea>
 #include <QSignalSpy>
 #include <QSpinBox>
+#include <QStandardItemModel>
 #include <QStandardPaths>
 #include <QTemporaryDir>
 #include <QtTest>
@@ -76,6 +84,17 @@ private:
 
     void screenshot(const QString& name) {
         if (screenshots_.isEmpty()) return;
+        // The lines about the test's own files (exports, sessions in its scratch folder) are
+        // left out of the pictures: a user's window names their files.
+        if (auto* messages = window_->findChild<QPlainTextEdit*>()) {
+            QStringList lines = messages->toPlainText().split(QLatin1Char('\n'));
+            lines.removeIf([&](const QString& l) { return l.contains(tmp_.path()); });
+            messages->setPlainText(lines.join(QLatin1Char('\n')));
+            messages->moveCursor(QTextCursor::End);
+            messages->ensureCursorVisible();
+        }
+        for (auto* label : window_->statusBar()->findChildren<QLabel*>())
+            if (label->text().contains(tmp_.path())) label->clear();
         QVERIFY(window_->grab().save(screenshots_ + QLatin1Char('/') + name));
     }
     /// Waits for the next exact frame on screen.
@@ -127,6 +146,13 @@ private slots:
         QCOMPARE(shown.size(), window_->view(0)->size());
         QVERIFY(surfacePixels(shown, shown.pixel(0, 0)) > 1000);
         screenshot(QStringLiteral("studio-main.png"));
+    }
+
+    void isoPresetsNeedHounsfieldUnits() {
+        auto* presets = window_->findChild<QComboBox*>(QStringLiteral("isoPresetCombo"));
+        QVERIFY(presets);
+        QVERIFY(!presets->isEnabled());  // the torus has no units
+        QCOMPARE(presets->count(), 3);   // (preset), skin, bone: the CLI's --iso names
     }
 
     void changesIsoValue() {
@@ -266,6 +292,25 @@ private slots:
         QVERIFY(either > 1000);
         QVERIFY2(double(both) / double(either) > 0.9, qPrintable(QStringLiteral("overlap %1 of %2").arg(both).arg(either)));
         screenshot(QStringLiteral("studio-opengl.png"));
+        // The mouse moves the camera in the OpenGL view as in the CPU views: an orbit, then the
+        // wheel zooms.
+        const auto before = window_->viewCamera();
+        const QPoint c = gl->rect().center();
+        QTest::mousePress(gl, Qt::LeftButton, Qt::NoModifier, c);
+        QMouseEvent move(QEvent::MouseMove, QPointF(c + QPoint(-50, 30)), gl->mapToGlobal(QPointF(c + QPoint(-50, 30))),
+                         Qt::NoButton, Qt::LeftButton, Qt::NoModifier);
+        QApplication::sendEvent(gl, &move);
+        QTest::mouseRelease(gl, Qt::LeftButton, Qt::NoModifier, c + QPoint(-50, 30));
+        octrace::Camera expected = before;
+        octrace::studio::orbit(expected, -50 * 0.4, 30 * 0.4);
+        const auto orbited = window_->viewCamera();
+        QVERIFY(glm::length(orbited.position - expected.position) < 1e-9 * glm::length(before.position - before.lookAt));
+        QWheelEvent wheel(QPointF(c), gl->mapToGlobal(QPointF(c)), QPoint(), QPoint(0, 120), Qt::NoButton, Qt::NoModifier,
+                          Qt::NoScrollPhase, false);
+        QApplication::sendEvent(gl, &wheel);
+        const auto zoomed = window_->viewCamera();
+        QVERIFY(glm::length(zoomed.position - zoomed.lookAt) < glm::length(orbited.position - orbited.lookAt));
+        QVERIFY(drawn.wait(kWaitMs));  // the GL view draws the new camera
         split->setChecked(false);
         second->setCurrentText(QStringLiteral("direct"));
     }
@@ -276,6 +321,112 @@ private slots:
         combo->setCurrentText(QStringLiteral("direct"));
         exportEqualsCli(QStringLiteral("direct-transparent"), 240, 260, true);
         combo->setCurrentText(QStringLiteral("full"));
+    }
+
+    void exportsFigureWithAnnotationsAsTheCli() {
+        // A colour map brings the colour bar; title, subtitle, the box with its ticks and the
+        // scale bar are the annotations, set at 200 dpi over a 900x640 figure.
+        auto* colormap = window_->findChild<QComboBox*>(QStringLiteral("colormapCombo"));
+        QVERIFY(colormap);
+        colormap->setCurrentText(QStringLiteral("viridis"));
+        waitFrame();
+        window_->setFigure(true, QStringLiteral("Torus, coloured by height"), 200, true);
+        const QStringList args = window_->commandLine(QStringLiteral("x.png"), 900, 640);
+        for (const char* option : {"--figure", "--title", "--scale-bar", "--dpi"}) QVERIFY2(args.contains(QLatin1String(option)), option);
+        exportEqualsCli(QStringLiteral("figure"), 900, 640, false);
+        // The annotations are there: dark text in the title band (the plot starts below it) and
+        // the colour bar's colours right of the plot.
+        const QImage fig(tmp_.filePath(QStringLiteral("figure-studio.png")));
+        const octrace::io::FigureLayout layout = *octrace::studio::figureLayoutFor(window_->state(), 900, 640);
+        qint64 ink = 0;
+        for (int y = 0; y < layout.plotY; ++y)
+            for (int x = 0; x < fig.width(); ++x) ink += qGray(fig.pixel(x, y)) < 100;
+        QVERIFY2(ink > 100, qPrintable(QString::number(ink)));
+        QVERIFY(layout.barW > 0);
+        const QRgb barMiddle = fig.pixel(layout.barX + layout.barW / 2, layout.barY + layout.barH / 2);
+        QVERIFY(qGray(barMiddle) < 250 && qGray(barMiddle) > 5);
+        window_->setFigure(false, QString(), 150, false);
+        colormap->setCurrentIndex(0);
+        waitFrame();
+    }
+
+    void lightingControlsMatchTheCli() {
+        auto* ambient = window_->findChild<QDoubleSpinBox*>(QStringLiteral("ambientSpin"));
+        auto* lighting = window_->findChild<QComboBox*>(QStringLiteral("lightingCombo"));
+        auto* ao = window_->findChild<QSpinBox*>(QStringLiteral("bakeAoSpin"));
+        QVERIFY(ambient && lighting && ao);
+        // Dynamic lighting with more ambient light: only a frame.
+        const QImage before = window_->view(0)->image();
+        lighting->setCurrentIndex(lighting->findData(QStringLiteral("dynamic")));
+        ambient->setValue(0.45);
+        waitFrame();
+        QCOMPARE(window_->state().ambient, 0.45);
+        QVERIFY(window_->view(0)->image() != before);
+        exportEqualsCli(QStringLiteral("dynamic-ambient"), 220, 160, false);
+        // Precomputed lighting: a build that bakes light, shadows and ambient occlusion.
+        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
+        lighting->setCurrentIndex(lighting->findData(QStringLiteral("baked")));
+        QVERIFY(built.wait(kWaitMs));
+        QVERIFY(!window_->engine().tree()->baked.empty());
+        QVERIFY(ao->isEnabled());
+        ao->setValue(4);
+        QVERIFY(built.wait(kWaitMs));
+        QVERIFY(window_->commandLine(QStringLiteral("x.png"), 10, 10).contains(QStringLiteral("--bake-ao")));
+        exportEqualsCli(QStringLiteral("baked"), 220, 160, false);
+        // Back to the defaults: the octree loses its baked light again.
+        lighting->setCurrentIndex(0);
+        QVERIFY(built.wait(kWaitMs));
+        QVERIFY(window_->engine().tree()->baked.empty());
+        ambient->setValue(0.15);
+        waitFrame();
+    }
+
+    void cutAwayMatchesTheCli() {
+        auto* cut = window_->findChild<QComboBox*>(QStringLiteral("cutCombo"));
+        auto* edit = window_->findChild<QLineEdit*>(QStringLiteral("cutEdit"));
+        auto* clip = window_->findChild<QCheckBox*>(QStringLiteral("clipCheck"));
+        QVERIFY(cut && edit && clip);
+        const std::size_t whole = window_->engine().tree()->boundaryVoxels();
+        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
+        for (const QString kind : {QStringLiteral("box"), QStringLiteral("sphere"), QStringLiteral("halfspace")}) {
+            cut->setCurrentIndex(cut->findData(kind));
+            emit cut->activated(cut->currentIndex());  // as a user's choice
+            QVERIFY(built.wait(kWaitMs));
+            QVERIFY2(QString::fromStdString(window_->state().cut).startsWith(kind + QLatin1Char(':')), window_->state().cut.c_str());
+            QCOMPARE(edit->text().toStdString(), window_->state().cut);
+            QVERIFY(window_->engine().tree()->boundaryVoxels() != whole);
+            if (kind == QLatin1String("box")) {
+                waitFrame();
+                // The controls in sight for the picture.
+                if (auto* scroll = window_->findChild<QScrollArea*>()) scroll->ensureWidgetVisible(clip);
+                screenshot(QStringLiteral("studio-cut.png"));
+            }
+            exportEqualsCli(QStringLiteral("cut-") + kind, 200, 150, false);
+        }
+        // A solid typed in, clipped to: what is left is inside the box.
+        edit->setText(QStringLiteral("box:-0.2,-0.2,-1,0.9,0.9,1"));
+        emit edit->editingFinished();
+        QVERIFY(built.wait(kWaitMs));
+        clip->setChecked(true);
+        QVERIFY(built.wait(kWaitMs));
+        QVERIFY(window_->commandLine(QStringLiteral("x.png"), 10, 10).contains(QStringLiteral("--clip")));
+        const octrace::Box3 kept = window_->engine().tree()->occupiedBounds();
+        QVERIFY2(kept.lo.x > -0.3 && kept.hi.x < 1.0, qPrintable(QStringLiteral("%1 %2").arg(kept.lo.x).arg(kept.hi.x)));
+        exportEqualsCli(QStringLiteral("clip"), 200, 150, false);
+        // A malformed solid is refused with a message; the cut stays.
+        edit->setText(QStringLiteral("box:1,2"));
+        emit edit->editingFinished();
+        QCOMPARE(window_->state().cut, std::string("box:-0.2,-0.2,-1,0.9,0.9,1"));
+        QVERIFY(window_->findChild<QWidget*>(QStringLiteral("errorBox")));
+        for (auto* box : window_->findChildren<QWidget*>(QStringLiteral("errorBox"))) box->close();
+        clip->setChecked(false);
+        QVERIFY(built.wait(kWaitMs));
+        cut->setCurrentIndex(0);
+        emit cut->activated(0);
+        QVERIFY(built.wait(kWaitMs));
+        QVERIFY(window_->state().cut.empty());
+        QCOMPARE(window_->engine().tree()->boundaryVoxels(), whole);
+        waitFrame();
     }
 
     void exportRefusesOversize() {
@@ -328,6 +479,8 @@ private slots:
         auto* colormap = window_->findChild<QComboBox*>(QStringLiteral("colormapCombo"));
         colormap->setCurrentIndex(1);
         combo->setCurrentText(QStringLiteral("direct"));
+        waitFrame();
+        screenshot(QStringLiteral("studio-colormap.png"));
         QVERIFY(window_->saveSessionTo(path));
         QFile file(path);
         QVERIFY(file.open(QIODevice::ReadOnly));
@@ -345,7 +498,6 @@ private slots:
         QCOMPARE(combo->currentText(), QStringLiteral("direct"));
         QCOMPARE(colormap->currentIndex(), 1);
         waitFrame();
-        screenshot(QStringLiteral("studio-colormap.png"));
         exportEqualsCli(QStringLiteral("session"), 200, 150, false);  // the colour map too
 
         // Missing and broken files: a message, and the state stays as it was.
@@ -384,6 +536,17 @@ private slots:
         QCOMPARE(window_->engine().window().width, 1500.0);
         QVERIFY(window_->commandLine(QStringLiteral("x.png"), 10, 10).contains(QStringLiteral("--window")));
         exportEqualsCli(QStringLiteral("ct-lung"), 160, 120, false);
+        // The CLI's iso presets beside the iso value, for a field in HU; this small series holds
+        // -1024 .. -989 HU only: skin (-500) and bone (300) would find no surface, and are off.
+        auto* presets = window_->findChild<QComboBox*>(QStringLiteral("isoPresetCombo"));
+        QVERIFY(presets && presets->isEnabled());
+        auto* model = qobject_cast<QStandardItemModel*>(presets->model());
+        QVERIFY(model);
+        for (const char* name : {"skin", "bone"}) {
+            const int i = presets->findData(QLatin1String(name));
+            QVERIFY(i > 0);
+            QVERIFY(!model->item(i)->isEnabled());
+        }
         windows->setCurrentIndex(0);
     }
 
@@ -414,6 +577,13 @@ private slots:
         row("window and colormap", R"({"octrace_studio_session": 1, "shading": {"window": "bone", "colormap": "viridis"}})",
             "both colour the surface");
         row("section type", R"({"octrace_studio_session": 1, "export": []})", "export: must be an object");
+        row("ambient", R"({"octrace_studio_session": 1, "shading": {"ambient": 1.5}})", "shading.ambient: 1.5 is outside");
+        row("lighting", R"({"octrace_studio_session": 1, "shading": {"lighting": "sunny"}})", "shading.lighting: expected");
+        row("bake ao", R"({"octrace_studio_session": 1, "shading": {"bake_ao": -1}})", "shading.bake_ao: -1 is outside");
+        row("cut", R"({"octrace_studio_session": 1, "surface": {"cut": "box:1,2"}})", "surface.cut:");
+        row("clip type", R"({"octrace_studio_session": 1, "surface": {"clip": 1}})", "surface.clip: must be true or false");
+        row("dpi", R"({"octrace_studio_session": 1, "export": {"dpi": 20}})", "export.dpi: 20 is outside");
+        row("title type", R"({"octrace_studio_session": 1, "export": {"title": 3}})", "export.title: must be a string");
     }
 
     void sessionParserChecksEveryMember() {

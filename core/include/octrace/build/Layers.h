@@ -15,6 +15,14 @@ namespace octrace {
 /// masked sample (nothing to draw).
 ScalarField solidFromMask(const ScalarField& field);
 
+/// Extends every water column down to the bottom of the grid: each masked sample that lies
+/// under a valid one in its column (grid axis z, which points up on geographic grids) takes
+/// the value of the deepest valid sample above it and becomes valid; columns with no valid
+/// sample (land) stay masked. For cutting the field by a finer sea floor than its own mask
+/// (a relief solid, csg/Relief.h) instead of the grid's staircase. Returns the number of
+/// samples filled. Throws UsageError for a field that is not geographic.
+std::size_t extendColumnsDown(ScalarField& field);
+
 /// Sets every voxel of `tree` to `material`.
 void setMaterial(Octree& tree, VoxelMaterial material);
 

@@ -88,6 +88,12 @@ Octree buildShellOctree(const ScalarField& field, const BuildOptions& options, B
 /// interpolation uses a masked sample or the centre lies outside the field's grid. The field
 /// must pass validate() (else FileError). Thread-safe; `threads` as BuildOptions::threads.
 std::vector<float> sampleAtVoxels(const Octree& tree, const ScalarField& field, int threads = 0);
+/// Fills `tree.voxelValues` from `field` as BuildOptions::voxelValues does (the field one voxel
+/// edge in from each voxel's centre against its normal; at the centre where that is masked or
+/// outside; the tree's iso value where both are), for every voxel slot: after a CSG operation
+/// (csg/Csg.h) the cut faces get the field's value where they are. The field must pass
+/// validate() (else FileError). Thread-safe; `threads` as BuildOptions::threads.
+void fillVoxelValues(Octree& tree, const ScalarField& field, int threads = 0);
 /// As buildShellOctree, in the form options.form. The volume form, built top-down from the
 /// same min/max pyramid (no dense array either; interior octants become terms at the highest
 /// level the pyramid proves them interior): a cell whose 8 corners are inside the solid

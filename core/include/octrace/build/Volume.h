@@ -27,11 +27,15 @@ enum class CellState : std::uint8_t { Empty, Interior, Boundary };
 /// The state of cell (i,j,k) (cell space; outside the cube: Empty) and, for a boundary voxel,
 /// its index in `voxels` (else 0xFFFFFFFF). O(depth).
 CellState cellState(const Octree& tree, const ivec3& cell, std::uint32_t* voxel = nullptr);
+/// As cellState, but `slot` is the voxel slot of interior voxels too (at level depth-1, where
+/// they have one); 0xFFFFFFFF for an empty cell or one inside an interior term.
+CellState cellSlot(const Octree& tree, const ivec3& cell, std::uint32_t& slot);
 
 /// Counts the voxels of a volume octree (a shell octree: its boundary voxels only).
 VoxelCount countVoxels(const Octree& tree);
 
-/// The shell form of a volume octree: its boundary voxels with their normals, nothing else
+/// The shell form of a volume octree: its boundary voxels with their normals, voxel values and
+/// colours (when it has them), nothing else
 /// (same cube, depth and provenance; terms and interior voxels dropped). A shell octree is
 /// copied as it is. Throws EmptyResultError when the solid has no boundary voxel.
 Octree extractShell(const Octree& volume);

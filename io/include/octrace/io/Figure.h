@@ -45,7 +45,16 @@ struct FigureSpec {
     /// Lines over the plot (the bounding box's edges, plot pixels) and labelled ticks on them.
     std::vector<std::pair<dvec2, dvec2>> lines;
     std::vector<FigureLabel> labels;
+    /// Scale bar in the plot's lower left corner: `scaleBarPx` plot pixels long (0: none),
+    /// labelled `scaleBarLabel` (e.g. "500 km") above it.
+    double scaleBarPx = 0.0;
+    std::string scaleBarLabel;
 };
+
+/// A round scale-bar length (1, 2 or 5 times a power of ten, in world units) of at most a
+/// fifth of a plot `plotWidth` pixels wide where one pixel spans `worldPerPixel` world units;
+/// 0 when there is none (no finite positive scale).
+double scaleBarLength(double worldPerPixel, int plotWidth);
 
 /// The figure as a Frame (linear RGBA, opaque white paper) of layout's size; the plot's pixels
 /// are copied unchanged into its area except where a line or label is drawn over them, which
