@@ -79,7 +79,8 @@ OptionParser makeParser(SliceArgs& a) {
     p.add({"stats", "FILE.json", "write the slice's geometry and colouring as JSON (keys: docs/user/cli.md)",
            [&](const std::string& v) { a.statsPath = v; }});
     addThreadsOption(p, a, "the image");
-    addFigureOptions(p, a.figure);
+    addFigureOptions(p, a.figure, "the grey or colour bar with units, the variable, the plane and window, and the A/P, R/L, "
+                     "S/I letters with a scale bar (patient volumes) or labelled longitude/latitude/depth ticks");
     addMessageOptions(p, a);
     return p;
 }
@@ -174,9 +175,9 @@ double labelWidth(const std::string& text) {
 struct Bands {
     double left, top, right, bottom;
 };
-Bands figureBands(const ScalarField& f) {
-    if (f.patientLps) return {1.8, 1.8, 1.8, 3.0};
-    return {5.0, 1.0, 1.8, 2.4};
+Bands figureBands(const ScalarField& f, bool scaleBar) {
+    if (f.patientLps) return {1.8, 1.8, 1.8, 3.6};
+    return {5.0, 1.0, 1.8, scaleBar ? 5.0 : 2.4};
 }
 
 /// Text of a world coordinate along world axis `a` (longitude, latitude, depth on a geographic
@@ -205,10 +206,8 @@ AxisTicks axisTicks(const ScalarField& f, int a, double lo, double hi, int count
 
 /// The figure around a slice: the frame of the grid, orientation letters and a scale bar
 /// (patient volumes) or labelled ticks (longitude, latitude, depth; world x, y, z), the grey
-/// or colour bar, and the subtitle. `offset`: where the slice image lies in the plot;
-/// `labelPx`: the label height in pixels.
-io::FigureSpec sliceFigureSpec(const SliceArgs& a, const ScalarField& f, const SliceView& v, const SliceColouring& c, dvec2 offset,
-                               double labelPx) {
+/// or colour bar, and the subtitle. `offset`: where the slice image lies in the plot.
+io::FigureSpec sliceFigureSpec(const SliceArgs& a, const ScalarField& f, const SliceView& v, const SliceColouring& c, dvec2 offset) {
     io::FigureSpec spec;
     spec.title = a.figure.title;
     // The content's edges in the plot (whose pixel x spans [x, x + 1)).
@@ -221,16 +220,6 @@ io::FigureSpec sliceFigureSpec(const SliceArgs& a, const ScalarField& f, const S
         spec.labels.push_back({{lo.x, mid.y}, patientLetter(-R), -0.9, 0.0});
         spec.labels.push_back({{mid.x, lo.y}, patientLetter(U), 0.0, -0.9});
         spec.labels.push_back({{mid.x, hi.y}, patientLetter(-U), 0.0, 0.9});
-        // Scale bar under the slice's left part: a round length of at most a quarter of its width.
-        const double widthMm = (hi.x - lo.x) * v.pixelSize;
-        const std::vector<double> steps = io::niceTicks(0.0, widthMm, 4);
-        const double length = steps.size() > 1 ? steps[1] - steps[0] : widthMm;
-        const double px = length / v.pixelSize, y = hi.y + 2.2 * labelPx, tick = 0.3 * labelPx;
-        spec.lines.push_back({{lo.x, y}, {lo.x + px, y}});
-        spec.lines.push_back({{lo.x, y - tick}, {lo.x, y + tick}});
-        spec.lines.push_back({{lo.x + px, y - tick}, {lo.x + px, y + tick}});
-        const std::string text = number(length) + " mm";
-        spec.labels.push_back({{lo.x + px, y}, text, 0.5 * labelWidth(text) + 0.6, 0.0});
     } else {
         const int aR = worldAxisOf(R), aU = worldAxisOf(U);
         const dvec3 tl = v.world(v.gridMin.x, v.gridMin.y), br = v.world(v.gridMax.x, v.gridMax.y);
@@ -244,6 +233,15 @@ io::FigureSpec sliceFigureSpec(const SliceArgs& a, const ScalarField& f, const S
         for (std::size_t i = 0; i < yt.world.size(); ++i) {
             const double py = offset.y + v.gridMin.y + 0.5 + (tl[aU] - yt.world[i]) * U[aU] / v.pixelSize;
             spec.labels.push_back({{lo.x, py}, yt.text[i], -(0.5 * labelWidth(yt.text[i]) + 0.6), 0.0});
+        }
+    }
+    // The scale bar (the figure's own, in the plot's lower left corner under the slice):
+    // always for patient volumes, with --scale-bar for other grids.
+    if (f.patientLps || a.figure.scaleBar) {
+        const double length = io::scaleBarLength(v.pixelSize, v.width);
+        if (length > 0.0) {
+            spec.scaleBarPx = length / v.pixelSize;
+            spec.scaleBarLabel = number(length) + (f.patientLps ? " mm" : f.geographic.valid ? " km" : "");
         }
     }
     // The bar and the subtitle.
@@ -307,7 +305,7 @@ int runSlice(const std::vector<std::string>& args) {
     dvec2 offset(0.0);
     if (a.figure.enabled) {
         layout = figureLayout(a.figure, a.width ? a.width : 1200, a.height ? a.height : 1000, true);
-        const Bands b = figureBands(field);
+        const Bands b = figureBands(field, a.figure.scaleBar);
         const double lp = layout->labelPx;
         offset = dvec2(double(std::lround(b.left * lp)), double(std::lround(b.top * lp)));
         width = layout->plotW - int(offset.x) - int(std::lround(b.right * lp));
@@ -330,7 +328,7 @@ int runSlice(const std::vector<std::string>& args) {
         for (int y = 0; y < image.height; ++y)
             for (int x = 0; x < image.width; ++x) plot.rgba[plot.pixel(int(offset.x) + x, int(offset.y) + y)] = image.rgba[image.pixel(x, y)];
         options.dpi = layout->dpi;
-        io::writeImage(io::composeFigure(plot, sliceFigureSpec(a, field, view, colouring.c, offset, layout->labelPx), *layout), a.output, options);
+        io::writeImage(io::composeFigure(plot, sliceFigureSpec(a, field, view, colouring.c, offset), *layout), a.output, options);
     } else {
         io::writeImage(image, a.output, options);
     }

@@ -247,3 +247,31 @@ TEST(SliceCli, FigureLettersNameTheScreenDirectionsAndItsSliceIsThePlainSlice) {
         EXPECT_LT(differ, inside / 20) << e[0];  // the frame's line over the content's edge pixels
     }
 }
+
+// A MONOCHROME1 series with its own window: the file's window by default, its grey inverted
+// (the marker, the densest voxel, is the darkest pixel).
+TEST(SliceCli, Monochrome1SeriesIsShownInvertedInItsOwnWindow) {
+    Scratch s;
+    const ObliqueCt ct;
+    octrace::io::DicomSeriesWriteOptions o;
+    o.monochrome1 = true;
+    o.window = {0.0, 1000.0};
+    octrace::io::DicomSeriesWriter::write(ct.f, s.path("ct"), o);
+    const dvec3 m = ct.markerWorld();
+    Result r = run({"slice", s.path("ct"), "--at", std::to_string(m.z), "--stats", s.path("st.json"), "-o", s.path("ax.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const std::string js = slurp(s.path("st.json"));
+    EXPECT_TRUE(has(js, "\"window_centre\": 0,")) << js;
+    EXPECT_TRUE(has(js, "\"window_inverted\": true")) << js;
+    const auto png = octrace::test::decodePng(octrace::test::readBytes(s.path("ax.png")));
+    const octrace::Box3 box = ct.f.worldBounds();
+    int checked = 0;
+    for (int y = 0; y < png.height; ++y)
+        for (int x = 0; x < png.width; ++x) {
+            const dvec3 p(box.lo.x + 0.8 * x, box.lo.y + 0.8 * y, m.z);
+            const int want = glm::length(p - m) < 1e-6 ? 0 : 255 - greyByte(ct.huAt(p), 0.0, 1000.0);
+            EXPECT_NEAR(png.at(x, y, 0), want, 1) << x << "," << y;
+            ++checked;
+        }
+    EXPECT_EQ(checked, 12 * 8);
+}
