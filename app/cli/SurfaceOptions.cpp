@@ -494,7 +494,7 @@ Surface buildSurface(const SurfaceArgs& a) {
         buildCitySurface(a, s);
         return s;
     }
-    if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem, --texture, --height-attr, --base-attr and --terrain-depth apply to city inputs (CityJSON, footprints, DEM rasters), not to " + a.input);
+    if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem, --texture, --height-attr, --base-attr and --terrain-depth apply to city inputs (CityJSON, CityGML, footprints, DEM rasters), not to " + a.input);
     readSurfaceField(a, s);
     BuildHooks terminal;
     terminal.progress = progressPrinter(a.quiet);

@@ -15,15 +15,6 @@ namespace {
 
 using nlohmann::json;
 
-/// "https://www.opengis.net/def/crs/EPSG/0/7415", "urn:ogc:def:crs:EPSG::7415" -> "EPSG:7415".
-std::string crsFromReference(const std::string& ref) {
-    const auto epsg = ref.find("EPSG");
-    if (epsg == std::string::npos) return ref;
-    const auto digits = ref.find_last_not_of("0123456789");
-    if (digits == std::string::npos || digits + 1 >= ref.size()) return ref;
-    return "EPSG:" + ref.substr(digits + 1);
-}
-
 std::string lodText(const json& g) {
     if (!g.contains("lod")) return "";
     const json& l = g["lod"];
@@ -35,10 +26,6 @@ std::string lodText(const json& g) {
         return buf;
     }
     return "";
-}
-
-bool lodMatches(const std::string& lod, const std::string& wanted) {
-    return lod == wanted || (lod.rfind(wanted, 0) == 0 && lod.size() > wanted.size() && lod[wanted.size()] == '.');
 }
 
 struct Parser {
@@ -106,6 +93,25 @@ struct Parser {
 
 }  // namespace
 
+std::string crsFromReference(const std::string& ref) {
+    const auto epsg = ref.find("EPSG");
+    if (epsg == std::string::npos) return ref;
+    const auto digits = ref.find_last_not_of("0123456789");
+    if (digits == std::string::npos || digits + 1 >= ref.size()) return ref;
+    return "EPSG:" + ref.substr(digits + 1);
+}
+
+bool lodMatches(const std::string& lod, const std::string& wanted) {
+    return lod == wanted || (lod.rfind(wanted, 0) == 0 && lod.size() > wanted.size() && lod[wanted.size()] == '.');
+}
+
+void requireSurfaces(const CityModel& model, const std::string& name, const std::string& lod, std::size_t chosen) {
+    if (!model.triangles.empty()) return;
+    std::string why = chosen == 0 && !lod.empty() ? " (no object has a geometry of LoD " + lod + ")" : "";
+    if (why.empty() && !model.notes.empty()) why = " (" + model.notes.front().substr(name.size() + 2) + ")";
+    throw EmptyResultError(name + ": no surface with area to voxelize" + why);
+}
+
 vec3 cityTypeColour(const std::string& type) {
     static const std::unordered_map<std::string, vec3> colours = {
         {"Building", {0.88f, 0.52f, 0.40f}},        {"BuildingPart", {0.88f, 0.52f, 0.40f}},
@@ -116,6 +122,7 @@ vec3 cityTypeColour(const std::string& type) {
         {"WaterBody", {0.36f, 0.56f, 0.80f}},       {"PlantCover", {0.42f, 0.64f, 0.34f}},
         {"SolitaryVegetationObject", {0.30f, 0.55f, 0.25f}}, {"LandUse", {0.82f, 0.80f, 0.70f}},
         {"GenericCityObject", {0.64f, 0.62f, 0.60f}}, {"CityFurniture", {0.45f, 0.45f, 0.50f}},
+        {"RoofSurface", {0.45f, 0.43f, 0.46f}},
     };
     auto it = colours.find(type);
     return it != colours.end() ? it->second : vec3(0.7f, 0.7f, 0.7f);
@@ -238,11 +245,7 @@ CityModel parseCityJson(const std::string& text, const std::string& name, const 
         ++chosen;
     }
     p.notes.appendTo(p.model.notes, name);
-    if (p.model.triangles.empty()) {
-        std::string why = chosen == 0 && !lod.empty() ? " (no object has a geometry of LoD " + lod + ")" : "";
-        if (why.empty() && !p.model.notes.empty()) why = " (" + p.model.notes.front().substr(name.size() + 2) + ")";
-        throw EmptyResultError(name + ": no surface with area to voxelize" + why);
-    }
+    requireSurfaces(p.model, name, lod, chosen);
     return std::move(p.model);
 }
 

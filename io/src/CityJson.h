@@ -14,6 +14,15 @@ namespace octrace::io::detail {
 /// `name` is used in messages. Throws FormatNotSupported (not CityJSON), FileError (broken).
 CityModel parseCityJson(const std::string& text, const std::string& name, const std::string& lod);
 
+/// "https://www.opengis.net/def/crs/EPSG/0/7415", "urn:ogc:def:crs:EPSG::7415" -> "EPSG:7415";
+/// anything else unchanged.
+std::string crsFromReference(const std::string& ref);
+/// Whether level of detail `lod` ("2.2") is the `wanted` one or, for a wanted "2", a sublevel.
+bool lodMatches(const std::string& lod, const std::string& wanted);
+/// Throws EmptyResultError when the model has no triangle: why (no object of LoD `lod` when
+/// none of them was `chosen`, else the first note).
+void requireSurfaces(const CityModel& model, const std::string& name, const std::string& lod, std::size_t chosen);
+
 /// The default colour of a city object type (sRGB), and whether it is terrain.
 vec3 cityTypeColour(const std::string& type);
 CityRole cityTypeRole(const std::string& type);

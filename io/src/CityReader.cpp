@@ -1,5 +1,6 @@
 #include "octrace/io/CityReader.h"
 
+#include "CityGml.h"
 #include "CityJson.h"
 #include "CityRaster.h"
 #include "FootprintReader.h"
@@ -128,7 +129,8 @@ void toProjectedCrs(CityModel& m, const std::string& requested, const std::strin
 bool isCityInput(const std::string& path) {
     const std::string name = detail::lower(std::filesystem::path(path).filename().string());
     if (name.ends_with(".scene.json")) return false;
-    return extensionOf(path) == ".json" || detail::isRasterExtension(path) || detail::isFootprintExtension(path);
+    return extensionOf(path) == ".json" || detail::isRasterExtension(path) || detail::isFootprintExtension(path) ||
+           detail::isCityGmlExtension(path);
 }
 
 CityModel readCityModel(const std::string& path, const CityRequest& req) {
@@ -141,6 +143,8 @@ CityModel readCityModel(const std::string& path, const CityRequest& req) {
     } else if (detail::isFootprintExtension(path)) {
         m.format = "building footprints (OGR)";
         detail::addFootprints(m, path, req);
+    } else if (detail::isCityGmlExtension(path)) {
+        m = detail::parseCityGml(readAll(path), path, req.lod);
     } else {
         const std::string text = readAll(path);
         try {

@@ -65,6 +65,24 @@ TEST(CliCity, MixedDepthDelftRendersExactlyAsTheReferenceInEveryExactRenderer) {
     EXPECT_NE(r.err.find("mixed-depth octree"), std::string::npos) << r.err;
 }
 
+TEST(CliCity, RendersBerlinsCityGmlLod2RoofsExactlyAsTheReference) {
+    if (!haveShared("city/berlin_open_data_sample_data.citygml"))
+        GTEST_SKIP() << "shared data absent: " << sharedData("city/berlin_open_data_sample_data.citygml");
+    const std::string berlin = sharedData("city/berlin_open_data_sample_data.citygml");
+    Scratch s;
+    Result r = run({"render", berlin, "--depth", "8", "--size", "240x180", "--verify", "--stats", s.path("st.json"), "-o", s.path("b.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const std::string js = slurp(s.path("st.json"));
+    EXPECT_NE(js.find("\"mismatched_pixels\": 0,"), std::string::npos) << js;
+    r = run({"info", berlin});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("crs: EPSG:25833"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("RoofSurface: 61"), std::string::npos) << r.out;
+    r = run({"render", berlin, "--lod-select", "1", "-o", s.path("l1.png")});
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("no object has a geometry of LoD 1"), std::string::npos) << r.err;
+}
+
 TEST(CliCity, InfoShowsTheCrsAndLodSelectAndCrsChangeIt) {
     Result r = run({"info", kCube});
     ASSERT_EQ(r.code, 0) << r.err;

@@ -4,7 +4,6 @@
 #include "CityJson.h"
 #include "CityFuzz.h"
 #include "FuzzSupport.h"
-#include "octrace/util/Error.h"
 
 #include <string>
 
@@ -14,13 +13,8 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    const std::string text(reinterpret_cast<const char*>(data), size);
-    for (const char* lod : {"", "1"}) {
-        try {
-            octrace::fuzz::voxelizeSmall(octrace::io::detail::parseCityJson(text, "fuzz.city.json", lod));
-        } catch (const octrace::Error&) {
-            // A clean refusal: what we want for broken input.
-        }
-    }
+    octrace::fuzz::parseAndVoxelize(data, size, [](const std::string& text, const char* lod) {
+        return octrace::io::detail::parseCityJson(text, "fuzz.city.json", lod);
+    });
     return 0;
 }

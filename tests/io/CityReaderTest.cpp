@@ -1,5 +1,6 @@
 // CityJSON through io::readCityModel: transform, levels of detail, CRS, broken files, and the
 // real Delft file of ../shared/data/city.
+#include "CityGml.h"
 #include "CityJson.h"
 #include "IoTestSupport.h"
 #include "octrace/build/CityVoxelizer.h"
@@ -276,4 +277,125 @@ TEST(CityReader, ReadsTheLyonFootprintsWithTheirGroundAndHeight) {
             }
     EXPECT_NEAR(lo, 200.6, 1e-9);
     EXPECT_NEAR(hi, 209.8, 1e-9);
+}
+
+namespace {
+/// A CityGML 2.0 document around `members` (cityObjectMember elements).
+std::string cityGml(const std::string& members, const std::string& srs = "urn:ogc:def:crs,crs:EPSG::25833,crs:EPSG::5783") {
+    return "<?xml version=\"1.0\"?>\n<core:CityModel xmlns:core=\"http://www.opengis.net/citygml/2.0\" "
+           "xmlns:bldg=\"http://www.opengis.net/citygml/building/2.0\" xmlns:gml=\"http://www.opengis.net/gml\" "
+           "xmlns:xlink=\"http://www.w3.org/1999/xlink\"><gml:boundedBy><gml:Envelope srsName=\"" + srs +
+           "\"/></gml:boundedBy>" + members + "</core:CityModel>";
+}
+std::string polygon(const std::string& id, const std::string& posList, const std::string& hole = "") {
+    return "<gml:Polygon" + (id.empty() ? std::string() : " gml:id=\"" + id + "\"") +
+           "><gml:exterior><gml:LinearRing><gml:posList>" + posList + "</gml:posList></gml:LinearRing></gml:exterior>" +
+           (hole.empty() ? "" : "<gml:interior><gml:LinearRing><gml:posList>" + hole + "</gml:posList></gml:LinearRing></gml:interior>") +
+           "</gml:Polygon>";
+}
+/// A house: a 10 x 10 floor with a 2 x 2 hole at LoD2, a gable roof (two slopes, one given by
+/// an xlink reference), and an LoD1 block.
+std::string houseGml() {
+    return cityGml(
+        "<core:cityObjectMember><bldg:Building gml:id=\"house\">"
+        "<bldg:lod1Solid><gml:Solid><gml:exterior><gml:CompositeSurface><gml:surfaceMember>" +
+        polygon("", "0 0 0 10 0 0 10 10 0 0 10 0 0 0 0") +
+        "</gml:surfaceMember></gml:CompositeSurface></gml:exterior></gml:Solid></bldg:lod1Solid>"
+        "<bldg:boundedBy><bldg:GroundSurface><bldg:lod2MultiSurface><gml:MultiSurface><gml:surfaceMember>" +
+        polygon("", "0 0 0 0 10 0 10 10 0 10 0 0 0 0 0", "4 4 0 6 4 0 6 6 0 4 6 0 4 4 0") +
+        "</gml:surfaceMember></gml:MultiSurface></bldg:lod2MultiSurface></bldg:GroundSurface></bldg:boundedBy>"
+        "<bldg:boundedBy><bldg:RoofSurface><bldg:lod2MultiSurface><gml:MultiSurface><gml:surfaceMember>" +
+        polygon("", "0 0 5 10 0 5 10 5 8 0 5 8 0 0 5") +
+        "</gml:surfaceMember><gml:surfaceMember xlink:href=\"#north\"/>"
+        "</gml:MultiSurface></bldg:lod2MultiSurface></bldg:RoofSurface></bldg:boundedBy>"
+        "</bldg:Building></core:cityObjectMember>"
+        "<core:cityObjectMember><bldg:Building gml:id=\"shed\"><bldg:lod2MultiSurface><gml:MultiSurface><gml:surfaceMember>" +
+        polygon("north", "0 5 8 10 5 8 10 10 5 0 10 5 0 5 8") + "</gml:surfaceMember><gml:surfaceMember>" +
+        polygon("", "20 0 0 21 0 0 21 1") +  // an odd number of coordinates: broken
+        "</gml:surfaceMember></gml:MultiSurface></bldg:lod2MultiSurface></bldg:Building></core:cityObjectMember>");
+}
+}  // namespace
+
+TEST(CityGml, ReadsLod2SurfacesWithRoofsHolesAndReferencesAndTheCompoundCrs) {
+    const CityModel m = io::detail::parseCityGml(houseGml(), "house.gml", "");
+    EXPECT_EQ(m.crs, "EPSG:25833");
+    EXPECT_EQ(m.format, "CityGML");
+    // house: its body (the floor) and its roof; shed: the referenced slope (its own polygon).
+    ASSERT_EQ(m.objects.size(), 3u);
+    EXPECT_EQ(m.objects[0].type, "Building");
+    EXPECT_EQ(m.objects[1].type, "RoofSurface");
+    EXPECT_EQ(m.objects[1].id, "house");
+    double floor = 0.0, roof = 0.0;
+    for (const auto& t : m.triangles) {
+        const dvec3 a = m.vertices[t.v[0]], b = m.vertices[t.v[1]], c = m.vertices[t.v[2]];
+        const double area = 0.5 * glm::length(glm::cross(b - a, c - a));
+        (t.object == 0 ? floor : t.object == 1 ? roof : floor) += t.object == 2 ? 0.0 : area;
+    }
+    EXPECT_NEAR(floor, 100.0 - 4.0, 1e-9);                   // the hole left open
+    EXPECT_NEAR(roof, 2.0 * 10.0 * std::hypot(5.0, 3.0), 1e-9);  // both slopes, one through xlink:href
+    bool broken = false;
+    for (const auto& n : m.notes) broken = broken || n.find("1 polygons with broken coordinates, left out (shed)") != std::string::npos;
+    EXPECT_TRUE(broken);
+    // --lod-select 1: the LoD1 block only; 3: none.
+    const CityModel l1 = io::detail::parseCityGml(houseGml(), "house.gml", "1");
+    ASSERT_EQ(l1.objects.size(), 1u);
+    EXPECT_EQ(l1.triangles.size(), 2u);
+    try {
+        io::detail::parseCityGml(houseGml(), "house.gml", "3");
+        FAIL() << "no LoD 3";
+    } catch (const EmptyResultError& e) {
+        EXPECT_NE(std::string(e.what()).find("no object has a geometry of LoD 3"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(io::detail::parseCityGml(cityGml("<core:cityObjectMember><bldg:Building>" + std::string("<bldg:lod2MultiSurface>") +
+                                               polygon("", "0 0 0 1 0 0 0 1 0 0 0 0") + "</bldg:lod2MultiSurface></bldg:Building></core:cityObjectMember>",
+                                           "urn:adv:crs:ETRS89_UTM32*DE_DHHN92_NH"),
+                                   "adv.gml", "")
+                  .crs,
+              "EPSG:25832");
+}
+
+TEST(CityGml, RefusesTextThatIsNotCityGml) {
+    EXPECT_THROW(io::detail::parseCityGml("<a><b></a>", "x.gml", ""), FileError);
+    EXPECT_THROW(io::detail::parseCityGml("<FeatureCollection/>", "x.gml", ""), FormatNotSupported);
+    EXPECT_THROW(io::detail::parseCityGml(cityGml(""), "x.gml", ""), EmptyResultError);
+    std::string deep;
+    for (int i = 0; i < 300; ++i) deep += "<g>";
+    for (int i = 0; i < 300; ++i) deep += "</g>";
+    try {
+        io::detail::parseCityGml(cityGml(deep), "deep.gml", "");
+        FAIL() << "300 levels accepted";
+    } catch (const FileError& e) {
+        EXPECT_NE(std::string(e.what()).find("deep.gml: elements nested more than 256 deep"), std::string::npos) << e.what();
+    }
+}
+
+TEST(CityGml, ReadsBerlinsLod2BuildingsWithTheirRoofs) {
+    OCTRACE_SHARED_FILE_OR_SKIP(path, "city/berlin_open_data_sample_data.citygml");
+    const CityModel m = readCityModel(path);
+    EXPECT_EQ(m.crs, "EPSG:25833");
+    std::size_t buildings = 0, roofs = 0;
+    for (const auto& o : m.objects) {
+        buildings += o.type == "Building";
+        roofs += o.type == "RoofSurface";
+    }
+    EXPECT_EQ(buildings, 61u);
+    EXPECT_EQ(roofs, 61u);
+    // LoD2 roofs: sloped roof triangles (neither flat nor a wall), not only LoD1 blocks.
+    std::size_t sloped = 0;
+    for (const auto& t : m.triangles) {
+        if (m.objects[t.object].type != "RoofSurface") continue;
+        const dvec3 a = m.vertices[t.v[0]], b = m.vertices[t.v[1]], c = m.vertices[t.v[2]];
+        const double nz = std::abs(glm::normalize(glm::cross(b - a, c - a)).z);
+        sloped += nz > 0.2 && nz < 0.95;
+    }
+    EXPECT_GT(sloped, 50u);
+    const Box3 b = m.bounds();
+    EXPECT_NEAR(b.lo.z, 27.52, 0.01);  // the envelope's heights
+    EXPECT_NEAR(b.hi.z, 64.22, 0.01);
+    CityRequest r;
+    r.lod = "1";
+    EXPECT_THROW(readCityModel(path, r), EmptyResultError);  // LoD2 only
+    const std::string info = describeCityInput(path);
+    EXPECT_NE(info.find("crs: EPSG:25833"), std::string::npos) << info;
+    EXPECT_NE(info.find("format: CityGML"), std::string::npos) << info;
 }

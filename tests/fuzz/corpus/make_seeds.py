@@ -326,6 +326,55 @@ FOOT_SEEDS = {
 for name, text in FOOT_SEEDS.items():
     out(FOOT, name, text.encode())
 
+# CityGML: a 2.0 house (LoD1 solid, LoD2 ground with a hole and a gable roof, one slope through
+# xlink:href, a compound srsName), a 1.0 building with gml:pos and GML 2 coordinates, an AdV CRS
+# name, and broken ones (odd coordinates, no CityModel, not XML).
+GML = "fuzz_citygml"
+GML_HEAD = ('<?xml version="1.0"?><core:CityModel xmlns:core="http://www.opengis.net/citygml/2.0" '
+            'xmlns:bldg="http://www.opengis.net/citygml/building/2.0" xmlns:gml="http://www.opengis.net/gml" '
+            'xmlns:xlink="http://www.w3.org/1999/xlink"><gml:boundedBy><gml:Envelope srsName="%s"/></gml:boundedBy>')
+
+
+def gml_polygon(pos, hole="", pid=""):
+    ident = ' gml:id="%s"' % pid if pid else ""
+    inner = "<gml:interior><gml:LinearRing><gml:posList>%s</gml:posList></gml:LinearRing></gml:interior>" % hole if hole else ""
+    return ("<gml:Polygon%s><gml:exterior><gml:LinearRing><gml:posList srsDimension=\"3\">%s</gml:posList></gml:LinearRing>"
+            "</gml:exterior>%s</gml:Polygon>" % (ident, pos, inner))
+
+
+def gml_member(body):
+    return "<core:cityObjectMember>%s</core:cityObjectMember>" % body
+
+
+GML_SEEDS = {
+    "house.gml": GML_HEAD % "urn:ogc:def:crs,crs:EPSG::25833,crs:EPSG::5783" + gml_member(
+        '<bldg:Building gml:id="house"><bldg:lod1Solid><gml:Solid><gml:exterior><gml:CompositeSurface><gml:surfaceMember>' +
+        gml_polygon("0 0 0 10 0 0 10 10 0 0 10 0 0 0 0") +
+        "</gml:surfaceMember></gml:CompositeSurface></gml:exterior></gml:Solid></bldg:lod1Solid>"
+        "<bldg:boundedBy><bldg:GroundSurface><bldg:lod2MultiSurface><gml:MultiSurface><gml:surfaceMember>" +
+        gml_polygon("0 0 0 0 10 0 10 10 0 10 0 0 0 0 0", "4 4 0 6 4 0 6 6 0 4 6 0 4 4 0") +
+        "</gml:surfaceMember></gml:MultiSurface></bldg:lod2MultiSurface></bldg:GroundSurface></bldg:boundedBy>"
+        "<bldg:boundedBy><bldg:RoofSurface><bldg:lod2MultiSurface><gml:MultiSurface><gml:surfaceMember>" +
+        gml_polygon("0 0 5 10 0 5 10 5 8 0 5 8 0 0 5") + '</gml:surfaceMember><gml:surfaceMember xlink:href="#north"/>'
+        "</gml:MultiSurface></bldg:lod2MultiSurface></bldg:RoofSurface></bldg:boundedBy></bldg:Building>") + gml_member(
+        '<bldg:Building gml:id="shed"><bldg:lod2MultiSurface><gml:MultiSurface><gml:surfaceMember>' +
+        gml_polygon("0 5 8 10 5 8 10 10 5 0 10 5 0 5 8", pid="north") + "</gml:surfaceMember><gml:surfaceMember>" +
+        gml_polygon("20 0 0 21 0 0 21 1") + "</gml:surfaceMember></gml:MultiSurface></bldg:lod2MultiSurface></bldg:Building>") +
+        "</core:CityModel>",
+    "citygml1_pos.gml": '<CityModel xmlns="http://www.opengis.net/citygml/1.0" xmlns:gml="http://www.opengis.net/gml" '
+                        'xmlns:bldg="http://www.opengis.net/citygml/building/1.0" xmlns:dem="http://www.opengis.net/citygml/relief/1.0">'
+                        '<cityObjectMember><dem:ReliefFeature gml:id="r"><dem:lod1MultiSurface><gml:Polygon><gml:exterior>'
+                        '<gml:LinearRing><gml:pos>0 0 1</gml:pos><gml:pos>9 0 1</gml:pos><gml:pos>9 9 2</gml:pos><gml:pos>0 0 1</gml:pos>'
+                        '</gml:LinearRing></gml:exterior></gml:Polygon></dem:lod1MultiSurface></dem:ReliefFeature></cityObjectMember>'
+                        '<cityObjectMember><bldg:Building><bldg:lod2MultiSurface><gml:Polygon srsName="urn:adv:crs:ETRS89_UTM32*DE_DHHN92_NH">'
+                        '<gml:outerBoundaryIs><gml:LinearRing><gml:coordinates>1,1,0 5,1,0 5,5,3 1,1,0</gml:coordinates></gml:LinearRing>'
+                        '</gml:outerBoundaryIs></gml:Polygon></bldg:lod2MultiSurface></bldg:Building></cityObjectMember></CityModel>',
+    "no_citymodel.gml": '<gml:FeatureCollection xmlns:gml="http://www.opengis.net/gml"><gml:featureMember/></gml:FeatureCollection>',
+    "not_xml.gml": '<CityModel><cityObjectMember><Building></cityObjectMember>',
+}
+for name, text in GML_SEEDS.items():
+    out(GML, name, text.encode())
+
 
 # ---------------------------------------------------------------- studio sessions (fuzz_session)
 def session_seeds():

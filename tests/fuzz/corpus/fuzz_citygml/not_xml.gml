@@ -1,0 +1,1 @@
+<CityModel><cityObjectMember><Building></cityObjectMember>
