@@ -58,10 +58,24 @@ double GeoAxes::x(double lonDeg) const { return ScalarField::Geographic::kEarthR
 double GeoAxes::y(double latDeg) const { return ScalarField::Geographic::kEarthRadiusKm * (latDeg - g.lat0) * kPi / 180.0; }
 double GeoAxes::z(double depthM) const { return -depthM / 1000.0 * g.verticalScale; }
 
-void checkImageOutput(const std::string& output) {
-    const std::size_t dot = output.find_last_of('.');
-    std::string ext = output.substr(dot == std::string::npos ? output.size() : dot);
+namespace {
+// The extension of `path`, lower case, with its dot ("" when none).
+std::string lowerExtension(const std::string& path) {
+    const std::size_t dot = path.find_last_of('.');
+    std::string ext = path.substr(dot == std::string::npos ? path.size() : dot);
     for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+}  // namespace
+
+void checkFigureFormat(const std::string& output) {
+    const std::string ext = lowerExtension(output);
+    if (ext != ".png" && ext != ".tif" && ext != ".tiff")
+        throw UsageError("a figure is written as PNG or TIFF: " + output + " must end in .png, .tif or .tiff");
+}
+
+void checkImageOutput(const std::string& output) {
+    const std::string ext = lowerExtension(output);
     bool known = false;
     for (const auto& e : io::imageExtensions()) known = known || e == ext;
     if (!known) throw UsageError("-o " + output + ": unknown image format '" + ext + "' (use " + joinNames(io::imageExtensions()) + ")");
@@ -70,8 +84,7 @@ void checkImageOutput(const std::string& output) {
 void checkFigureOptions(const FigureArgs& f, const std::string& output) {
     if (!f.enabled && (!f.title.empty() || f.printInches || f.scaleBar))
         throw UsageError(std::string(f.printInches ? "--print-size" : f.scaleBar ? "--scale-bar" : "--title") + " needs --figure");
-    if (f.enabled && !(output.size() >= 4 && (output.substr(output.size() - 4) == ".png" || output.substr(output.size() - 4) == ".PNG")))
-        throw UsageError("--figure writes a PNG: -o " + output + " must end in .png");
+    if (f.enabled) checkFigureFormat(output);
 }
 
 dvec2 parsePrintSize(const std::string& option, const std::string& text) {
@@ -95,12 +108,12 @@ dvec2 parsePrintSize(const std::string& option, const std::string& text) {
 }
 
 void addFigureOptions(OptionParser& p, FigureArgs& f, const std::string& shows) {
-    p.add({"figure", "", "write a publication figure (PNG): the image with a title, " +
+    p.add({"figure", "", "write a publication figure (PNG or TIFF, by -o's extension): the image with a title, " +
            (shows.empty() ? std::string("a colour bar with units, the variable, the region and labelled longitude/latitude/depth "
                                         "ticks on the bounding box") : shows) + " (default off: the plain image)",
            [&](const std::string&) { f.enabled = true; }});
     p.add({"title", "TEXT", "title of the figure (default: none)", [&](const std::string& v) { f.title = v; }});
-    p.add({"dpi", "N", "resolution in dots per inch, 36..1200, recorded in the PNG; a figure's fonts are 9 and 11 pt at it "
+    p.add({"dpi", "N", "resolution in dots per inch, 36..1200, recorded in the PNG or TIFF; a figure's fonts are 9 and 11 pt at it "
            "(default: 150 for --figure, none recorded for a plain image)",
            [&](const std::string& v) { f.dpi = parseInt("dpi", v, 36, 1200); }});
     p.add({"print-size", "WxH(mm|cm|in)", "figure size on paper, e.g. 180x120mm; its pixels are this times --dpi (default: --size is the whole figure)",

@@ -48,6 +48,9 @@ void addFigureOptions(OptionParser& p, FigureArgs& f, const std::string& shows =
 void checkImageOutput(const std::string& output);
 /// Refuses --title, --print-size or --scale-bar without --figure, and a figure not written as a PNG.
 void checkFigureOptions(const FigureArgs& f, const std::string& output);
+/// A figure is written as PNG or TIFF (.png, .tif, .tiff, any case); EXR holds linear data, no
+/// annotations. UsageError naming `output` otherwise.
+void checkFigureFormat(const std::string& output);
 
 /// "WxH" with a unit mm, cm or in (e.g. "180x120mm", "7x5in"), in inches. Throws UsageError.
 dvec2 parsePrintSize(const std::string& option, const std::string& text);

@@ -292,8 +292,7 @@ void Engine::exportFigure(const StudioState& state, const QString& path, int wid
             if (width < 1 || height < 1 || width > kMaxExportSide || height > kMaxExportSide)
                 throw UsageError("export size " + std::to_string(width) + "x" + std::to_string(height) +
                                  ": each side must be 1.." + std::to_string(kMaxExportSide) + " pixels");
-            if (state.figure && !path.endsWith(QStringLiteral(".png"), Qt::CaseInsensitive))
-                throw UsageError("a figure is written as PNG: " + path.toStdString() + " must end in .png");
+            if (state.figure) cli::checkFigureFormat(path.toStdString());
             // The figure's layout first: the plot is the part of the image that is rendered.
             const std::optional<io::FigureLayout> layout = figureLayoutFor(state, width, height);
             const std::uint64_t bytes = Frame::bytesFor(width, height) * (layout ? 2 : 1) + std::uint64_t(width) * std::uint64_t(height) * 24;

@@ -71,6 +71,10 @@ std::vector<std::uint8_t> TiffWriter::encode(const Frame& frame, const ImageWrit
               TIFFSetField(tif, TIFFTAG_COMPRESSION, COMPRESSION_ADOBE_DEFLATE) &&
               TIFFSetField(tif, TIFFTAG_PREDICTOR, PREDICTOR_HORIZONTAL) &&
               TIFFSetField(tif, TIFFTAG_ROWSPERSTRIP, std::min(kRowsPerStrip, h));
+    if (ok && options.dpi > 0)
+        ok = TIFFSetField(tif, TIFFTAG_XRESOLUTION, float(options.dpi)) &&
+             TIFFSetField(tif, TIFFTAG_YRESOLUTION, float(options.dpi)) &&
+             TIFFSetField(tif, TIFFTAG_RESOLUTIONUNIT, RESUNIT_INCH);
     if (ok && channels == 4) {
         const std::uint16_t extra[1] = {EXTRASAMPLE_UNASSALPHA};
         ok = TIFFSetField(tif, TIFFTAG_EXTRASAMPLES, 1, extra);

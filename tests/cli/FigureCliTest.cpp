@@ -132,7 +132,28 @@ TEST(FigureCli, RefusesFigureOptionsThatCannotApply) {
     }
     Result r = run({"render", "analytic:sphere:9", "--figure", "-o", s.path("x.exr")});
     EXPECT_EQ(r.code, 2);
-    EXPECT_NE(r.err.find("PNG"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("a figure is written as PNG or TIFF"), std::string::npos) << r.err;
+}
+
+TEST(FigureCli, ATiffFigureHasThePngFiguresPixelsAndDpi) {
+    Scratch s;
+    const std::vector<std::string> base{"render", "analytic:torus:33", "--iso", "0", "--depth", "6", "--figure",
+                                        "--title", "Torus", "--scale-bar", "--size", "400x300", "--dpi", "240"};
+    for (const char* out : {"fig.png", "fig.TIF", "fig.tiff"}) {
+        std::vector<std::string> args = base;
+        args.insert(args.end(), {"-o", s.path(out)});
+        Result r = run(args);
+        ASSERT_EQ(r.code, 0) << out << ": " << r.err;
+    }
+    const auto png = octrace::test::decodePng(octrace::test::readBytes(s.path("fig.png")));
+    for (const char* out : {"fig.TIF", "fig.tiff"}) {
+        const auto tif = octrace::test::decodeTiff(s.path(out));
+        EXPECT_EQ(int(tif.width), png.width) << out;
+        EXPECT_EQ(int(tif.height), png.height) << out;
+        EXPECT_EQ(int(tif.samples), png.channels) << out;
+        EXPECT_EQ(tif.pixels, png.pixels) << out;
+        EXPECT_EQ(tif.dpi, 240.0f) << out;
+    }
 }
 
 TEST(FigureCli, ScaleBarIsDrawnInThePlotsLowerLeftCornerOnly) {

@@ -3,6 +3,7 @@
 // OpenEXR) to read back what the writers produced.
 #include <gtest/gtest.h>
 #include <png.h>
+#include <tiffio.h>
 
 #include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
@@ -143,6 +144,41 @@ inline DecodedExr readExr(const std::string& path) {
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);
     return out;
+}
+
+/// A TIFF as libtiff reads it, scanline by scanline (no conversion).
+struct DecodedTiff {
+    std::uint32_t width = 0, height = 0;
+    std::uint16_t samples = 0, bits = 0, photometric = 0, extra = 0;
+    std::vector<std::uint8_t> pixels;  // as stored, samples per pixel
+    float dpi = 0.0f;                  // XResolution when the unit is the inch, else 0
+};
+
+inline DecodedTiff decodeTiff(const std::string& path) {
+    DecodedTiff d;
+    TIFF* tif = TIFFOpen(path.c_str(), "r");
+    if (!tif) {
+        ADD_FAILURE() << "libtiff cannot open " << path;
+        return d;
+    }
+    TIFFGetField(tif, TIFFTAG_IMAGEWIDTH, &d.width);
+    TIFFGetField(tif, TIFFTAG_IMAGELENGTH, &d.height);
+    TIFFGetField(tif, TIFFTAG_SAMPLESPERPIXEL, &d.samples);
+    TIFFGetField(tif, TIFFTAG_BITSPERSAMPLE, &d.bits);
+    TIFFGetField(tif, TIFFTAG_PHOTOMETRIC, &d.photometric);
+    std::uint16_t* types = nullptr;
+    if (TIFFGetField(tif, TIFFTAG_EXTRASAMPLES, &d.extra, &types) && d.extra == 1) d.extra = types[0] == EXTRASAMPLE_UNASSALPHA ? 1 : 99;
+    std::uint16_t unit = 0;
+    float xres = 0.0f;
+    if (TIFFGetField(tif, TIFFTAG_XRESOLUTION, &xres) && TIFFGetFieldDefaulted(tif, TIFFTAG_RESOLUTIONUNIT, &unit) &&
+        unit == RESUNIT_INCH)
+        d.dpi = xres;
+    d.pixels.resize(std::size_t(d.width) * d.height * d.samples);
+    for (std::uint32_t y = 0; y < d.height; ++y)
+        if (TIFFReadScanline(tif, d.pixels.data() + std::size_t(y) * d.width * d.samples, y, 0) != 1)
+            ADD_FAILURE() << "row " << y << " unreadable";
+    TIFFClose(tif);
+    return d;
 }
 
 }  // namespace octrace::test

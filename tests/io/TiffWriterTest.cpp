@@ -6,11 +6,12 @@
 #include "octrace/util/Error.h"
 
 #include <gtest/gtest.h>
-#include <tiffio.h>
 
 using namespace octrace;
 using octrace::test::readBytes;
 using octrace::test::ScratchDir;
+using octrace::test::decodeTiff;
+using octrace::test::DecodedTiff;
 
 namespace {
 
@@ -24,35 +25,6 @@ Frame testFrame(int w, int h, bool translucent) {
         }
     f.rgba[0] = vec4(2.0f, -1.0f, 0.5f, translucent ? 0.0f : 1.0f);
     return f;
-}
-
-struct DecodedTiff {
-    std::uint32_t width = 0, height = 0;
-    std::uint16_t samples = 0, bits = 0, photometric = 0, extra = 0;
-    std::vector<std::uint8_t> pixels;  // as stored, samples per pixel
-};
-
-/// libtiff's reader, scanline by scanline (no conversion).
-DecodedTiff decodeTiff(const std::string& path) {
-    DecodedTiff d;
-    TIFF* tif = TIFFOpen(path.c_str(), "r");
-    if (!tif) {
-        ADD_FAILURE() << "libtiff cannot open " << path;
-        return d;
-    }
-    TIFFGetField(tif, TIFFTAG_IMAGEWIDTH, &d.width);
-    TIFFGetField(tif, TIFFTAG_IMAGELENGTH, &d.height);
-    TIFFGetField(tif, TIFFTAG_SAMPLESPERPIXEL, &d.samples);
-    TIFFGetField(tif, TIFFTAG_BITSPERSAMPLE, &d.bits);
-    TIFFGetField(tif, TIFFTAG_PHOTOMETRIC, &d.photometric);
-    std::uint16_t* types = nullptr;
-    if (TIFFGetField(tif, TIFFTAG_EXTRASAMPLES, &d.extra, &types) && d.extra == 1) d.extra = types[0] == EXTRASAMPLE_UNASSALPHA ? 1 : 99;
-    d.pixels.resize(std::size_t(d.width) * d.height * d.samples);
-    for (std::uint32_t y = 0; y < d.height; ++y)
-        if (TIFFReadScanline(tif, d.pixels.data() + std::size_t(y) * d.width * d.samples, y, 0) != 1)
-            ADD_FAILURE() << "row " << y << " unreadable";
-    TIFFClose(tif);
-    return d;
 }
 
 }  // namespace
@@ -96,4 +68,15 @@ TEST(TiffWriter, RefusesAnEmptyFrameAndNamesThePath) {
         EXPECT_NE(std::string(e.what()).find("c.tif"), std::string::npos) << e.what();
     }
     EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(TiffWriter, RecordsTheDpiAsAResolutionInInches) {
+    ScratchDir dir;
+    io::ImageWriteOptions o;
+    o.dpi = 300;
+    io::writeImage(testFrame(20, 10, false), dir.file("a.tif"), o);
+    io::writeImage(testFrame(20, 10, false), dir.file("b.tif"));
+    EXPECT_EQ(decodeTiff(dir.file("a.tif")).dpi, 300.0f);
+    EXPECT_EQ(decodeTiff(dir.file("b.tif")).dpi, 0.0f);  // none recorded
+    EXPECT_EQ(decodeTiff(dir.file("a.tif")).pixels, decodeTiff(dir.file("b.tif")).pixels);
 }
