@@ -94,9 +94,10 @@ dvec2 parsePrintSize(const std::string& option, const std::string& text) {
     return dvec2(w / perInch, h / perInch);
 }
 
-void addFigureOptions(OptionParser& p, FigureArgs& f) {
-    p.add({"figure", "", "write a publication figure (PNG): the image with a title, a colour bar with units, the variable, "
-           "the region and labelled longitude/latitude/depth ticks on the bounding box (default off: the plain image)",
+void addFigureOptions(OptionParser& p, FigureArgs& f, const std::string& shows) {
+    p.add({"figure", "", "write a publication figure (PNG): the image with a title, " +
+           (shows.empty() ? std::string("a colour bar with units, the variable, the region and labelled longitude/latitude/depth "
+                                        "ticks on the bounding box") : shows) + " (default off: the plain image)",
            [&](const std::string&) { f.enabled = true; }});
     p.add({"title", "TEXT", "title of the figure (default: none)", [&](const std::string& v) { f.title = v; }});
     p.add({"dpi", "N", "resolution in dots per inch, 36..1200, recorded in the PNG; a figure's fonts are 9 and 11 pt at it "

@@ -39,8 +39,9 @@ std::string longitudeText(double lon);
 /// "35°N", "10°S", "0°".
 std::string latitudeText(double lat);
 
-/// --figure, --title, --dpi, --print-size, --scale-bar.
-void addFigureOptions(OptionParser& p, FigureArgs& f);
+/// --figure, --title, --dpi, --print-size, --scale-bar; `shows` says what a figure shows
+/// besides the image (default: render's colour bar, variable, region and labelled box).
+void addFigureOptions(OptionParser& p, FigureArgs& f, const std::string& shows = "");
 
 /// Refuses (UsageError) an output whose extension is not an image format (io::imageExtensions),
 /// before any long work.

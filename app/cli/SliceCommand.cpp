@@ -9,6 +9,7 @@
 
 #include "octrace/io/AtomicFile.h"
 #include "octrace/io/CityReader.h"
+#include "octrace/io/Figure.h"
 #include "octrace/io/ImageWriter.h"
 #include "octrace/render/Shading.h"
 #include "octrace/render/SliceView.h"
@@ -17,6 +18,7 @@
 #include "octrace/util/Memory.h"
 #include "octrace/util/Timer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <sstream>
@@ -61,7 +63,7 @@ OptionParser makeParser(SliceArgs& a) {
     p.add({"index", "N", "where the plane lies: sample N (0-based) of the grid axis across the plane (default: the middle one, n/2)",
            [&](const std::string& v) { a.index = parseInt("index", v, 0, 1 << 30); }});
     p.add({"size", "WxH", "image size in pixels, the slice fitted and centred, its aspect kept (default: one pixel per sample of "
-           "the finer in-plane spacing, so anisotropic voxels keep their shape)",
+           "the finer in-plane spacing, so anisotropic voxels keep their shape; with --figure the whole figure, 1200x1000)",
            [&](const std::string& v) { parseSize("size", v, a.width, a.height); }});
     addWindowOption(p, a, "the slice by a display window",
                     "the window stored in a DICOM file; else for a patient volume its whole value range in grey; else the colour map");
@@ -70,13 +72,15 @@ OptionParser makeParser(SliceArgs& a) {
                         "thermal/haline/speed/viridis)",
                         "values mapped onto the colour map's ends (default: the slice's range of values)",
                         "masked samples (land, missing values, outside a resampled gantry-tilted stack)");
-    p.add({"background", "R,G,B[,A]", "colour outside the grid, sRGB components in [0,1] (default 0,0,0,1)",
+    p.add({"background", "R,G,B[,A]", "colour outside the grid, sRGB components in [0,1] (default 0,0,0,1; with --figure 0,0,0,0: the paper)",
            [&](const std::string& v) { a.background = parseColour("background", v, true); }});
     addGeographicOptions(p, a.request);
     addSeriesOption(p, a.request);
     p.add({"stats", "FILE.json", "write the slice's geometry and colouring as JSON (keys: docs/user/cli.md)",
            [&](const std::string& v) { a.statsPath = v; }});
     addThreadsOption(p, a, "the image");
+    addFigureOptions(p, a.figure, "the grey or colour bar with units, the variable, the plane and window, and the A/P, R/L, "
+                     "S/I letters with a scale bar (patient volumes) or labelled longitude/latitude/depth ticks");
     addMessageOptions(p, a);
     return p;
 }
@@ -140,6 +144,129 @@ Colouring chooseColouring(const SliceArgs& a, const ScalarField& f, const SliceV
     return out;
 }
 
+
+/// The letter of a patient direction (LPS world axis vector): L/R, P/A, S/I.
+const char* patientLetter(const dvec3& d) {
+    if (d.x > 0.5) return "L";
+    if (d.x < -0.5) return "R";
+    if (d.y > 0.5) return "P";
+    if (d.y < -0.5) return "A";
+    return d.z > 0.5 ? "S" : "I";
+}
+
+/// The world axis of a screen direction (a signed world axis).
+int worldAxisOf(const dvec3& d) { return std::abs(d.x) > 0.5 ? 0 : std::abs(d.y) > 0.5 ? 1 : 2; }
+
+/// A screen direction as the figure labels it: a patient letter, else "+x", "-y", ...
+std::string directionName(const ScalarField& f, const dvec3& d) {
+    if (f.patientLps) return patientLetter(d);
+    const int a = worldAxisOf(d);
+    return std::string(d[a] > 0.0 ? "+" : "-") + char('x' + a);
+}
+
+/// Rough width of a label in label heights (DejaVu Sans: about 0.6 of the height a character).
+double labelWidth(const std::string& text) {
+    int n = 0;
+    for (unsigned char ch : text) n += (ch & 0xC0) != 0x80;
+    return 0.6 * n;
+}
+
+/// Bands (label heights) between the plot's edges and the slice: left, top, right, bottom.
+struct Bands {
+    double left, top, right, bottom;
+};
+Bands figureBands(const ScalarField& f, bool scaleBar) {
+    if (f.patientLps) return {1.8, 1.8, 1.8, 3.6};
+    return {5.0, 1.0, 1.8, scaleBar ? 5.0 : 2.4};
+}
+
+/// Text of a world coordinate along world axis `a` (longitude, latitude, depth on a geographic
+/// grid, else "x 1.5"), and the tick values (world) on [lo, hi].
+struct AxisTicks {
+    std::vector<double> world;
+    std::vector<std::string> text;
+};
+AxisTicks axisTicks(const ScalarField& f, int a, double lo, double hi, int count) {
+    AxisTicks t;
+    if (!f.geographic.valid) {
+        for (double v : io::niceTicks(lo, hi, count)) t.world.push_back(v), t.text.push_back(number(v, 4));
+        return t;
+    }
+    const GeoAxes g{f.geographic};
+    if (a == 0) {
+        for (double lon : io::niceTicks(g.lon(lo), g.lon(hi), count)) t.world.push_back(g.x(lon)), t.text.push_back(longitudeText(lon));
+    } else if (a == 1) {
+        for (double lat : io::niceTicks(g.lat(lo), g.lat(hi), count)) t.world.push_back(g.y(lat)), t.text.push_back(latitudeText(lat));
+    } else {
+        for (double d : io::niceTicks(g.depthM(hi), g.depthM(lo), count)) t.world.push_back(g.z(d)), t.text.push_back(number(d) + " m");
+    }
+    return t;
+}
+
+
+/// The figure around a slice: the frame of the grid, orientation letters and a scale bar
+/// (patient volumes) or labelled ticks (longitude, latitude, depth; world x, y, z), the grey
+/// or colour bar, and the subtitle. `offset`: where the slice image lies in the plot.
+io::FigureSpec sliceFigureSpec(const SliceArgs& a, const ScalarField& f, const SliceView& v, const SliceColouring& c, dvec2 offset) {
+    io::FigureSpec spec;
+    spec.title = a.figure.title;
+    // The content's edges in the plot (whose pixel x spans [x, x + 1)).
+    const dvec2 lo = offset + v.gridMin + dvec2(0.5 - v.margin), hi = offset + v.gridMax + dvec2(0.5 + v.margin);
+    spec.lines = {{{lo.x, lo.y}, {hi.x, lo.y}}, {{hi.x, lo.y}, {hi.x, hi.y}}, {{hi.x, hi.y}, {lo.x, hi.y}}, {{lo.x, hi.y}, {lo.x, lo.y}}};
+    const dvec3 R = v.screenRight(), U = v.screenUp();
+    const dvec2 mid = 0.5 * (lo + hi);
+    if (f.patientLps) {
+        spec.labels.push_back({{hi.x, mid.y}, patientLetter(R), 0.9, 0.0});
+        spec.labels.push_back({{lo.x, mid.y}, patientLetter(-R), -0.9, 0.0});
+        spec.labels.push_back({{mid.x, lo.y}, patientLetter(U), 0.0, -0.9});
+        spec.labels.push_back({{mid.x, hi.y}, patientLetter(-U), 0.0, 0.9});
+    } else {
+        const int aR = worldAxisOf(R), aU = worldAxisOf(U);
+        const dvec3 tl = v.world(v.gridMin.x, v.gridMin.y), br = v.world(v.gridMax.x, v.gridMax.y);
+        const double r0 = std::min(tl[aR], br[aR]), r1 = std::max(tl[aR], br[aR]);
+        const double u0 = std::min(tl[aU], br[aU]), u1 = std::max(tl[aU], br[aU]);
+        const AxisTicks xt = axisTicks(f, aR, r0, r1, 6), yt = axisTicks(f, aU, u0, u1, 5);
+        for (std::size_t i = 0; i < xt.world.size(); ++i) {
+            const double px = offset.x + v.gridMin.x + 0.5 + (xt.world[i] - tl[aR]) * R[aR] / v.pixelSize;
+            spec.labels.push_back({{px, hi.y}, xt.text[i], 0.0, 1.0});
+        }
+        for (std::size_t i = 0; i < yt.world.size(); ++i) {
+            const double py = offset.y + v.gridMin.y + 0.5 + (tl[aU] - yt.world[i]) * U[aU] / v.pixelSize;
+            spec.labels.push_back({{lo.x, py}, yt.text[i], -(0.5 * labelWidth(yt.text[i]) + 0.6), 0.0});
+        }
+    }
+    // The scale bar (the figure's own, in the plot's lower left corner under the slice):
+    // always for patient volumes, with --scale-bar for other grids.
+    if (f.patientLps || a.figure.scaleBar) {
+        const double length = io::scaleBarLength(v.pixelSize, v.width);
+        if (length > 0.0) {
+            spec.scaleBarPx = length / v.pixelSize;
+            spec.scaleBarLabel = number(length) + (f.patientLps ? " mm" : f.geographic.valid ? " km" : "");
+        }
+    }
+    // The bar and the subtitle.
+    const std::string units = f.units.empty() ? "" : " (" + f.units + ")";
+    spec.barLabel = f.name + units;
+    std::string sub = f.patientLps                  ? f.name + ", " + slicePlaneName(v.plane) + " at " + positionText(f, v)
+                      : !f.geographic.valid          ? f.name + ", " + slicePlaneName(v.plane) + " plane at " + positionText(f, v)
+                      : sliceNormalAxis(v.plane) == 2 ? f.name + " at " + positionText(f, v)
+                                                      : f.name + ", section at " + positionText(f, v);
+    if (c.window.valid()) {
+        spec.greyRamp = true;
+        spec.invertedGrey = c.invertedGrey;
+        spec.low = c.window.centre - 0.5 * c.window.width;
+        spec.high = c.window.centre + 0.5 * c.window.width;
+        sub += ", window " + number(c.window.centre) + "/" + number(c.window.width);
+        if (!a.windowName.empty() && ctWindowPreset(a.windowName)) sub += " (" + a.windowName + ")";
+    } else {
+        spec.colormap = c.colormap;
+        spec.low = c.low;
+        spec.high = c.high;
+    }
+    spec.subtitle = sub;
+    return spec;
+}
+
 }  // namespace
 
 int runSlice(const std::vector<std::string>& args) {
@@ -171,7 +298,23 @@ int runSlice(const std::vector<std::string>& args) {
     } else {
         position = slicePositionOfIndex(field, plane, a.index.value_or(field.dims[sliceGridAxis(field, plane)] / 2));
     }
-    const SliceView view = makeSliceView(field, plane, position, a.width, a.height);
+    // A figure: the slice fills the plot that its layout leaves (--size or --print-size is the
+    // whole figure), less bands around it for the letters, ticks and scale bar.
+    std::optional<io::FigureLayout> layout;
+    int width = a.width, height = a.height;
+    dvec2 offset(0.0);
+    if (a.figure.enabled) {
+        layout = figureLayout(a.figure, a.width ? a.width : 1200, a.height ? a.height : 1000, true);
+        const Bands b = figureBands(field, a.figure.scaleBar);
+        const double lp = layout->labelPx;
+        offset = dvec2(double(std::lround(b.left * lp)), double(std::lround(b.top * lp)));
+        width = layout->plotW - int(offset.x) - int(std::lround(b.right * lp));
+        height = layout->plotH - int(offset.y) - int(std::lround(b.bottom * lp));
+        if (width < 16 || height < 16)
+            throw UsageError("--figure: " + std::to_string(layout->width) + "x" + std::to_string(layout->height) + " pixels at " +
+                             std::to_string(layout->dpi) + " dpi leave no room for the slice (make it larger or lower the dpi)");
+    }
+    const SliceView view = makeSliceView(field, plane, position, width, height);
     checkMemoryBudget(a.input + ": a slice of " + std::to_string(view.width) + "x" + std::to_string(view.height) + " pixels",
                       Frame::bytesFor(view.width, view.height) + std::uint64_t(view.width) * std::uint64_t(view.height) * 29, budget);
     const SliceValues values = sampleSlice(field, view, a.threads);
@@ -179,7 +322,16 @@ int runSlice(const std::vector<std::string>& args) {
     const Frame image = colourSlice(values, colouring.c);
     io::ImageWriteOptions options;
     options.dpi = a.figure.dpi;
-    io::writeImage(image, a.output, options);
+    if (layout) {
+        Frame plot(layout->plotW, layout->plotH);
+        std::fill(plot.rgba.begin(), plot.rgba.end(), vec4(0.0f));  // the paper
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x) plot.rgba[plot.pixel(int(offset.x) + x, int(offset.y) + y)] = image.rgba[image.pixel(x, y)];
+        options.dpi = layout->dpi;
+        io::writeImage(io::composeFigure(plot, sliceFigureSpec(a, field, view, colouring.c, offset), *layout), a.output, options);
+    } else {
+        io::writeImage(image, a.output, options);
+    }
 
     std::uint64_t valid = 0, masked = 0;
     for (SliceSample s : values.state) valid += s == SliceSample::Valid, masked += s == SliceSample::Masked;
@@ -210,6 +362,15 @@ int runSlice(const std::vector<std::string>& args) {
         js.set("height", view.height);
         js.set("pixel_size", view.pixelSize);
         js.set("patient_lps", field.patientLps);
+        js.set("screen_right", directionName(field, view.screenRight()));
+        js.set("screen_up", directionName(field, view.screenUp()));
+        if (layout) {
+            js.set("figure_width", layout->width);
+            js.set("figure_height", layout->height);
+            js.set("figure_dpi", layout->dpi);
+            js.set("figure_slice", std::to_string(layout->plotX + int(offset.x)) + "," + std::to_string(layout->plotY + int(offset.y)) +
+                                       "," + std::to_string(view.width) + "," + std::to_string(view.height));
+        }
         if (c.window.valid()) {
             js.set("window_centre", c.window.centre);
             js.set("window_width", c.window.width);

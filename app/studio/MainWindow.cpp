@@ -939,11 +939,18 @@ void MainWindow::setFigure(bool figure, const QString& title, int dpi, bool scal
     state_.scaleBar = scaleBar;
 }
 
+int scaledDpi(int dpi, int fromWidth, int toWidth) {
+    if (fromWidth < 1 || toWidth < 1) return dpi;
+    return std::clamp(int(std::lround(double(dpi) * double(toWidth) / double(fromWidth))), 36, 1200);
+}
+
 void MainWindow::chooseExport() {
     QDialog dlg(this);
+    dlg.setObjectName(QStringLiteral("exportDialog"));
     dlg.setWindowTitle(tr("Export figure"));
     auto* form = new QFormLayout(&dlg);
     auto* path = new QLineEdit(&dlg);
+    path->setObjectName(QStringLiteral("exportPath"));
     path->setText(QStringLiteral("figure.png"));
     auto* browse = new QPushButton(tr("Browse..."), &dlg);
     connect(browse, &QPushButton::clicked, &dlg, [&] {
@@ -961,15 +968,19 @@ void MainWindow::chooseExport() {
         s->setRange(1, kMaxExportSide);
         s->setSuffix(QStringLiteral(" px"));
     }
+    w->setObjectName(QStringLiteral("exportWidth"));
+    h->setObjectName(QStringLiteral("exportHeight"));
     w->setValue(state_.exportWidth);
     h->setValue(state_.exportHeight);
     form->addRow(tr("Width"), w);
     form->addRow(tr("Height"), h);
     auto* transparent = new QCheckBox(tr("Transparent background"), &dlg);
+    transparent->setObjectName(QStringLiteral("exportTransparent"));
     transparent->setChecked(state_.transparent);
     form->addRow(transparent);
-    // A publication figure, as render --figure: the text is set in points at the dpi, so that
-    // it keeps its size on paper whatever the pixel size.
+    // A publication figure, as render --figure: the text is set in points at the dpi. The dpi
+    // follows the width (text, lines and bars keep their share of the figure: the annotations
+    // scale with the image) until it is set by hand.
     auto* figure = new QGroupBox(tr("Figure (PNG): title, colour bar, box with ticks"), &dlg);
     figure->setObjectName(QStringLiteral("figureBox"));
     figure->setCheckable(true);
@@ -983,7 +994,11 @@ void MainWindow::chooseExport() {
     dpi->setRange(36, 1200);
     dpi->setValue(state_.dpi);
     dpi->setSuffix(tr(" dpi"));
-    dpi->setToolTip(tr("Text is 9 and 11 pt at this resolution: raise it with the size to keep the text in proportion"));
+    dpi->setToolTip(tr("Text is 9 and 11 pt at this resolution; it follows the width, so that the annotations scale with the image"));
+    connect(w, &QSpinBox::valueChanged, dpi, [dpi, last = w->value()](int width) mutable {
+        dpi->setValue(scaledDpi(dpi->value(), last, width));
+        last = width;
+    });
     figureForm->addRow(tr("Resolution"), dpi);
     auto* scaleBar = new QCheckBox(tr("Scale bar"), figure);
     scaleBar->setObjectName(QStringLiteral("figureScaleBar"));

@@ -31,6 +31,10 @@ class ViewInput;
 class RenderView;
 class SurfelView;
 
+/// The export dialog's dpi when the figure's width goes from `fromWidth` to `toWidth` pixels:
+/// in proportion, so that the text keeps its share of the figure (36..1200).
+int scaledDpi(int dpi, int fromWidth, int toWidth);
+
 class MainWindow : public QMainWindow {
     Q_OBJECT
 public:

@@ -149,6 +149,9 @@ SliceView makeSliceView(const ScalarField& f, SlicePlane plane, double position,
     const double left = fitted ? cR - 0.5 * (v.width - 1) * v.pixelSize : lo[0];
     const double top = fitted ? cU + 0.5 * (v.height - 1) * v.pixelSize : hi[1];
     v.topLeft = R * left + U * top + normal * position;
+    v.gridMin = dvec2((lo[0] - left) / v.pixelSize, (top - hi[1]) / v.pixelSize);
+    v.gridMax = dvec2((hi[0] - left) / v.pixelSize, (top - lo[1]) / v.pixelSize);
+    v.margin = 0.5 * p0 / v.pixelSize;
     v.right = R * v.pixelSize;
     v.down = -U * v.pixelSize;
     return v;
@@ -174,6 +177,12 @@ SliceValues sampleSlice(const ScalarField& f, const SliceView& v, int threads) {
     parallelFor(std::size_t(v.height), threads, [&](std::size_t row) {
         for (int px = 0; px < v.width; ++px) {
             const std::size_t out = row * std::size_t(v.width) + std::size_t(px);
+            // The image's content ends half a pixel-sample past the grid's extent (gridMin,
+            // gridMax), whatever the spacing across it.
+            const double eps = 1e-6;
+            if (px < v.gridMin.x - v.margin - eps || px > v.gridMax.x + v.margin + eps || double(row) < v.gridMin.y - v.margin - eps ||
+                double(row) > v.gridMax.y + v.margin + eps)
+                continue;
             const dvec3 local = toLocal * (v.world(px, double(row)) - f.origin);
             int i0[3];
             double t[3], w[3];

@@ -248,10 +248,11 @@ Frame composeFigure(const Frame& plot, const FigureSpec& spec, const FigureLayou
     if (!spec.subtitle.empty()) font.draw(canvas, spec.subtitle, l.plotX, m + 1.5 * l.titlePx + font.capHeight() * 0.5, kInk);
 
     // Colour bar: each row the map's colour for its value, high at the top, a frame around.
-    if (!spec.colormap.empty() && l.barW > 0) {
+    if ((!spec.colormap.empty() || spec.greyRamp) && l.barW > 0) {
         for (int r = 0; r < l.barH; ++r) {
             const float t = 1.0f - (float(r) + 0.5f) / float(l.barH);
-            const vec3 c = colormap(spec.colormap, t);
+            const float grey = srgb8ToLinear(std::uint8_t(std::lround((spec.invertedGrey ? 1.0f - t : t) * 255.0f)));
+            const vec3 c = spec.greyRamp ? vec3(grey) : colormap(spec.colormap, t);
             for (int x = 0; x < l.barW; ++x) f.rgba[f.pixel(l.barX + x, l.barY + r)] = vec4(c, 1.0f);
         }
         const double x0 = l.barX - 0.5, x1 = l.barX + l.barW - 0.5 + 1.0, y0 = l.barY - 0.5, y1 = l.barY + l.barH - 0.5 + 1.0;

@@ -1,5 +1,6 @@
 // octrace csg and the cut-away options of render: operands of every kind, exit codes, images.
 #include "CliRunner.h"
+#include "../io/ImageTestSupport.h"
 
 #include <gtest/gtest.h>
 
@@ -152,4 +153,26 @@ TEST(CliCsg, OceanMinusTheSeaFloorOfARelief) {
     r = run({"render", "analytic:sphere:17", "--extend-down", "-o", s.path("x.png")});
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("--extend-down applies to geographic fields"), std::string::npos) << r.err;
+}
+
+TEST(CliCsg, ACutFaceShowsTheWindowGreyOfTheFieldUnderIt) {
+    Scratch s;
+    // The sphere field is 0.7 - r: cut in half and seen face on, lit from the camera, its cut
+    // face is greyed by the window 0..0.7 (centre 0.35, width 0.7): white at the centre,
+    // darkening to the rim, as the field does.
+    const Result r = run({"render", "analytic:sphere:65", "--iso", "0", "--depth", "7", "--cut", "halfspace:0,0,0,-1,0,0",
+                          "--window", "0.35,0.7", "--camera-pos", "3,0,0", "--look-at", "0,0,0", "--up", "0,0,1", "--fov", "30",
+                          "--light", "0,0,1", "--size", "101x101", "-o", s.path("w.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto png = octrace::test::decodePng(octrace::test::readBytes(s.path("w.png")));
+    auto grey = [&](int x) {
+        EXPECT_EQ(png.at(x, 50, 0), png.at(x, 50, 1)) << x;
+        EXPECT_EQ(png.at(x, 50, 1), png.at(x, 50, 2)) << x;
+        return int(png.at(x, 50, 0));
+    };
+    EXPECT_GT(grey(50), 200);
+    // 0.55 from the centre (pixel 85 at 0.804 world units per 50.5 pixels) the field is 0.15.
+    EXPECT_LT(grey(85), grey(50) - 80);
+    EXPECT_GT(grey(60), grey(70));
+    EXPECT_GT(grey(70), grey(80));
 }

@@ -208,3 +208,70 @@ TEST(SliceCli, RefusesWhatDoesNotApply) {
     EXPECT_EQ(png.width, 40);
     EXPECT_EQ(png.height, 30);
 }
+
+// --figure: the stats name the screen's directions as the letters drawn; the slice inside the
+// figure is the plain slice of the same size, pixel for pixel away from the frame drawn round it.
+TEST(SliceCli, FigureLettersNameTheScreenDirectionsAndItsSliceIsThePlainSlice) {
+    Scratch s;
+    const ObliqueCt ct;
+    octrace::io::DicomSeriesWriter::write(ct.f, s.path("ct"));
+    const char* expected[][3] = {{"axial", "L", "A"}, {"coronal", "L", "S"}, {"sagittal", "P", "S"}};
+    for (const auto& e : expected) {
+        Result r = run({"slice", s.path("ct"), "--plane", e[0], "--window", "bone", "--figure", "--size", "500x400", "--stats",
+                        s.path("f.json"), "-o", s.path("f.png")});
+        ASSERT_EQ(r.code, 0) << r.err;
+        const std::string js = slurp(s.path("f.json"));
+        EXPECT_TRUE(has(js, std::string("\"screen_right\": \"") + e[1] + "\"")) << js;
+        EXPECT_TRUE(has(js, std::string("\"screen_up\": \"") + e[2] + "\"")) << js;
+        const std::size_t at = js.find("\"figure_slice\": \"");
+        ASSERT_NE(at, std::string::npos) << js;
+        int x0 = 0, y0 = 0, w = 0, h = 0;
+        ASSERT_EQ(std::sscanf(js.c_str() + at + 17, "%d,%d,%d,%d", &x0, &y0, &w, &h), 4) << js;
+        const auto fig = octrace::test::decodePng(octrace::test::readBytes(s.path("f.png")));
+        EXPECT_EQ(fig.width, 500);
+        EXPECT_EQ(fig.height, 400);
+        r = run({"slice", s.path("ct"), "--plane", e[0], "--window", "bone", "--size", std::to_string(w) + "x" + std::to_string(h),
+                 "--background", "1,1,1", "-o", s.path("p.png")});
+        ASSERT_EQ(r.code, 0) << r.err;
+        const auto plain = octrace::test::decodePng(octrace::test::readBytes(s.path("p.png")));
+        ASSERT_EQ(plain.width, w);
+        ASSERT_EQ(plain.height, h);
+        int differ = 0, inside = 0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                if (plain.at(x, y, 0) == 255 && plain.at(x, y, 1) == 255 && plain.at(x, y, 2) == 255) continue;  // background
+                ++inside;
+                differ += fig.at(x0 + x, y0 + y, 0) != plain.at(x, y, 0);
+            }
+        EXPECT_GT(inside, w * h / 10) << e[0];
+        EXPECT_LT(differ, inside / 20) << e[0];  // the frame's line over the content's edge pixels
+    }
+}
+
+// A MONOCHROME1 series with its own window: the file's window by default, its grey inverted
+// (the marker, the densest voxel, is the darkest pixel).
+TEST(SliceCli, Monochrome1SeriesIsShownInvertedInItsOwnWindow) {
+    Scratch s;
+    const ObliqueCt ct;
+    octrace::io::DicomSeriesWriteOptions o;
+    o.monochrome1 = true;
+    o.window = {0.0, 1000.0};
+    octrace::io::DicomSeriesWriter::write(ct.f, s.path("ct"), o);
+    const dvec3 m = ct.markerWorld();
+    Result r = run({"slice", s.path("ct"), "--at", std::to_string(m.z), "--stats", s.path("st.json"), "-o", s.path("ax.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const std::string js = slurp(s.path("st.json"));
+    EXPECT_TRUE(has(js, "\"window_centre\": 0,")) << js;
+    EXPECT_TRUE(has(js, "\"window_inverted\": true")) << js;
+    const auto png = octrace::test::decodePng(octrace::test::readBytes(s.path("ax.png")));
+    const octrace::Box3 box = ct.f.worldBounds();
+    int checked = 0;
+    for (int y = 0; y < png.height; ++y)
+        for (int x = 0; x < png.width; ++x) {
+            const dvec3 p(box.lo.x + 0.8 * x, box.lo.y + 0.8 * y, m.z);
+            const int want = glm::length(p - m) < 1e-6 ? 0 : 255 - greyByte(ct.huAt(p), 0.0, 1000.0);
+            EXPECT_NEAR(png.at(x, y, 0), want, 1) << x << "," << y;
+            ++checked;
+        }
+    EXPECT_EQ(checked, 12 * 8);
+}

@@ -17,6 +17,9 @@
 
 #include <QCheckBox>
 #include <QComboBox>
+#include <QDialog>
+#include <QGroupBox>
+#include <QTimer>
 #include <QDoubleSpinBox>
 #include <QImage>
 #include <QLineEdit>
@@ -350,21 +353,78 @@ private slots:
         waitFrame();
     }
 
+    void exportDialogSetsTheFigure() {
+        // File > Export Figure... as a user fills it in: a smaller figure (its dpi follows the
+        // width: the annotations keep their share of the image), a title and a scale bar.
+        QAction* action = nullptr;
+        for (QAction* a : window_->findChildren<QAction*>())
+            if (a->text() == QStringLiteral("&Export Figure...")) action = a;
+        QVERIFY(action);
+        const QString studioPng = tmp_.filePath(QStringLiteral("dialog-studio.png"));
+        const QString cliPng = tmp_.filePath(QStringLiteral("dialog-cli.png"));
+        int widthBefore = 0, dpiBefore = 0, dpiAfter = 0;
+        bool filled = false;
+        QTimer fill;
+        fill.setInterval(20);
+        connect(&fill, &QTimer::timeout, this, [&] {
+            auto* dlg = qobject_cast<QDialog*>(QApplication::activeModalWidget());
+            if (!dlg || dlg->objectName() != QStringLiteral("exportDialog")) return;
+            fill.stop();
+            auto* width = dlg->findChild<QSpinBox*>(QStringLiteral("exportWidth"));
+            auto* height = dlg->findChild<QSpinBox*>(QStringLiteral("exportHeight"));
+            auto* dpi = dlg->findChild<QSpinBox*>(QStringLiteral("figureDpi"));
+            auto* figure = dlg->findChild<QGroupBox*>(QStringLiteral("figureBox"));
+            auto* title = dlg->findChild<QLineEdit*>(QStringLiteral("figureTitle"));
+            auto* scaleBar = dlg->findChild<QCheckBox*>(QStringLiteral("figureScaleBar"));
+            auto* path = dlg->findChild<QLineEdit*>(QStringLiteral("exportPath"));
+            if (width && height && dpi && figure && title && scaleBar && path) {
+                path->setText(studioPng);
+                widthBefore = width->value();
+                dpiBefore = dpi->value();
+                width->setValue(640);
+                height->setValue(480);
+                dpiAfter = dpi->value();
+                figure->setChecked(true);
+                title->setText(QStringLiteral("From the dialog"));
+                scaleBar->setChecked(true);
+                filled = true;
+            }
+            dlg->accept();
+        });
+        fill.start();
+        QSignalSpy exported(&window_->engine(), &Engine::exported);
+        action->trigger();  // the dialog runs until the timer has filled it in
+        QVERIFY(filled);
+        QVERIFY(exported.wait(kWaitMs));
+        QCOMPARE(dpiAfter, octrace::studio::scaledDpi(dpiBefore, widthBefore, 640));
+        QVERIFY(widthBefore == 640 || dpiAfter != dpiBefore);
+        QVERIFY(window_->state().figure && window_->state().scaleBar);
+        QCOMPARE(window_->state().title, std::string("From the dialog"));
+        QCOMPARE(window_->state().dpi, dpiAfter);
+        QCOMPARE(QImage(studioPng).size(), QSize(640, 480));
+        QCOMPARE(runCli(window_->commandLine(cliPng, 640, 480)), 0);
+        QCOMPARE(differingPixels(studioPng, cliPng), 0);
+        window_->setFigure(false, QString(), 150, false);
+    }
+
     void lightingControlsMatchTheCli() {
         auto* ambient = window_->findChild<QDoubleSpinBox*>(QStringLiteral("ambientSpin"));
         auto* lighting = window_->findChild<QComboBox*>(QStringLiteral("lightingCombo"));
         auto* ao = window_->findChild<QSpinBox*>(QStringLiteral("bakeAoSpin"));
         QVERIFY(ambient && lighting && ao);
-        // Dynamic lighting with more ambient light: only a frame.
-        const QImage before = window_->view(0)->image();
+        // Dynamic lighting (a build: the octree's baked light follows the mode), then more
+        // ambient light: only a frame.
+        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
         lighting->setCurrentIndex(lighting->findData(QStringLiteral("dynamic")));
+        QVERIFY(built.wait(kWaitMs));
+        waitFrame();
+        const QImage before = window_->view(0)->image();
         ambient->setValue(0.45);
         waitFrame();
         QCOMPARE(window_->state().ambient, 0.45);
         QVERIFY(window_->view(0)->image() != before);
         exportEqualsCli(QStringLiteral("dynamic-ambient"), 220, 160, false);
         // Precomputed lighting: a build that bakes light, shadows and ambient occlusion.
-        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
         lighting->setCurrentIndex(lighting->findData(QStringLiteral("baked")));
         QVERIFY(built.wait(kWaitMs));
         QVERIFY(!window_->engine().tree()->baked.empty());

@@ -41,6 +41,12 @@ struct SliceView {
     /// plane along it (an integer when the plane passes through samples of an aligned grid).
     int gridAxis = 2;
     double gridIndex = 0.0;
+    /// The grid's extent in the image, in pixels (pixel centres at integers): the first and
+    /// last sample positions along the screen's right (x) and down (y).
+    dvec2 gridMin{0.0}, gridMax{0.0};
+    /// How far the image's content reaches beyond the first and last samples, in pixels (half
+    /// a sample of the finer in-plane spacing).
+    double margin = 0.5;
 
     dvec3 world(double px, double py) const { return topLeft + px * right + py * down; }
     /// Unit directions of the screen's right and up in world space.
@@ -74,6 +80,7 @@ enum class SliceSample : std::uint8_t { Valid, Masked, Outside };
 /// The field's values at the pixel centres (row-major, row 0 at the top): trilinear between
 /// the 8 surrounding samples, or the nearest sample's value when one of them is masked (so a
 /// mask's edge stays sharp); positions within half a sample of the grid are clamped onto it.
+/// Pixels beyond the grid's extent in the image by more than SliceView::margin are Outside.
 struct SliceValues {
     int width = 0, height = 0;
     std::vector<float> values;          ///< NaN where not Valid

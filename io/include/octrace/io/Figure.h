@@ -40,6 +40,9 @@ struct FigureSpec {
     /// Colour bar: map name (Shading.h), value range and its label ("TEMP (DEG C)"); no colour
     /// bar when colormap is empty.
     std::string colormap;
+    /// Instead of a colour map, a display window's grey ramp (low .. high = C - W/2 .. C + W/2,
+    /// black .. white as display values, white .. black when invertedGrey: MONOCHROME1).
+    bool greyRamp = false, invertedGrey = false;
     double low = 0.0, high = 1.0;
     std::string barLabel;
     /// Lines over the plot (the bounding box's edges, plot pixels) and labelled ticks on them.
