@@ -77,11 +77,11 @@ struct Subtree {
 
 class Voxelizer {
 public:
-    /// `terrain[t]`: triangle t belongs to terrain; `terrainDepth`: the level at which a node
-    /// crossed by terrain only becomes a coarse leaf (>= depth: never).
-    Voxelizer(const CityModel& model, const std::vector<CellTriangle>& tris, const std::vector<std::uint8_t>& terrain,
-              int terrainDepth, const Octree& tree)
-        : model_(model), tris_(tris), terrain_(terrain), terrainDepth_(terrainDepth), tree_(tree),
+    /// `stop[t]`: the level down to which triangle t is voxelized; a node of that level or
+    /// deeper whose triangles all stop there (or above) becomes a coarse leaf.
+    Voxelizer(const CityModel& model, const std::vector<CellTriangle>& tris, const std::vector<std::uint8_t>& stop,
+              const Octree& tree)
+        : model_(model), tris_(tris), stop_(stop), tree_(tree),
           scratch_(std::size_t(tree.depth) + 1) {}
 
     /// Builds the node at `level`, `cell` (crossed by `tris`) into `pool`; its own record goes
@@ -120,8 +120,8 @@ public:
             if (!(mask & (1u << c))) continue;
             const ivec3 cc = cell * 2 + ivec3((c >> 2) & 1, (c >> 1) & 1, c & 1);
             const auto& kt = kids[std::size_t(c)];
-            if (level + 1 >= terrainDepth_ && std::all_of(kt.begin(), kt.end(), [&](std::uint32_t t) { return terrain_[t] != 0; })) {
-                // Terrain only: a coarse leaf, its voxel in the voxel pool.
+            if (std::all_of(kt.begin(), kt.end(), [&](std::uint32_t t) { return stop_[t] <= level + 1; })) {
+                // Only triangles that stop here (terrain, shallower sources): a coarse leaf.
                 out.termMask |= std::uint8_t(1u << c);
                 pool.nodes[slot] = OctreeNode{std::uint32_t(pool.voxels.size()), 0, 0, 0};
                 leaf(cc, level + 1, kt, pool);
@@ -168,8 +168,7 @@ private:
 
     const CityModel& model_;
     const std::vector<CellTriangle>& tris_;
-    const std::vector<std::uint8_t>& terrain_;
-    const int terrainDepth_;
+    const std::vector<std::uint8_t>& stop_;
     const Octree& tree_;
     std::vector<std::array<std::vector<std::uint32_t>, 8>> scratch_;
 };
@@ -226,9 +225,15 @@ Octree voxelizeCity(const CityModel& model, const CityBuildOptions& options, Bui
     if (options.terrainDepth < 0 || options.terrainDepth > Octree::kMaxDepth)
         throw UsageError("terrain depth must be in 1.." + std::to_string(Octree::kMaxDepth) + ", got " + std::to_string(options.terrainDepth));
     const int terrainDepth = options.terrainDepth > 0 && options.terrainDepth < options.depth ? options.terrainDepth : options.depth;
-    std::vector<std::uint8_t> terrain(model.triangles.size());
-    for (std::size_t i = 0; i < model.triangles.size(); ++i)
-        terrain[i] = model.objects[model.triangles[i].object].role == CityRole::Terrain;
+    std::vector<std::uint8_t> stop(model.triangles.size());
+    for (std::size_t i = 0; i < model.triangles.size(); ++i) {
+        const CityObject& o = model.objects[model.triangles[i].object];
+        if (o.depth > options.depth)
+            throw UsageError("object '" + o.id + "' asks for depth " + std::to_string(o.depth) + ", deeper than the octree's " +
+                             std::to_string(options.depth) + " (give a larger --depth)");
+        const int d = o.depth > 0 ? o.depth : o.role == CityRole::Terrain ? terrainDepth : options.depth;
+        stop[i] = std::uint8_t(std::clamp(d, 1, options.depth));
+    }
 
     // The top levels serially down to `split`, the subtrees below in parallel, joined in a
     // fixed order so that the result does not depend on the number of threads.
@@ -238,12 +243,12 @@ Octree voxelizeCity(const CityModel& model, const CityBuildOptions& options, Bui
     joined.levels.resize(1, 0);
     OctreeNode root;
     if (split == 0) {
-        Voxelizer(model, tris, terrain, terrainDepth, tree).build(0, ivec3(0), all, joined, root);
+        Voxelizer(model, tris, stop, tree).build(0, ivec3(0), all, joined, root);
     } else {
         std::vector<Subtree> subs;
-        Voxelizer(model, tris, terrain, terrainDepth, tree).build(0, ivec3(0), all, joined, root, split, &subs);
+        Voxelizer(model, tris, stop, tree).build(0, ivec3(0), all, joined, root, split, &subs);
         parallelFor(subs.size(), options.threads, [&](std::size_t i) {
-            Voxelizer v(model, tris, terrain, terrainDepth, tree);
+            Voxelizer v(model, tris, stop, tree);
             v.build(split, subs[i].cell, subs[i].tris, subs[i].pool, subs[i].root);
             subs[i].tris = {};
         });

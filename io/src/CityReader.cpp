@@ -2,6 +2,7 @@
 
 #include "CityGml.h"
 #include "CityJson.h"
+#include "CityScene.h"
 #include "CityRaster.h"
 #include "FootprintReader.h"
 #include "InputFile.h"
@@ -127,8 +128,6 @@ void toProjectedCrs(CityModel& m, const std::string& requested, const std::strin
 }  // namespace
 
 bool isCityInput(const std::string& path) {
-    const std::string name = detail::lower(std::filesystem::path(path).filename().string());
-    if (name.ends_with(".scene.json")) return false;
     return extensionOf(path) == ".json" || detail::isRasterExtension(path) || detail::isFootprintExtension(path) ||
            detail::isCityGmlExtension(path);
 }
@@ -137,7 +136,12 @@ CityModel readCityModel(const std::string& path, const CityRequest& req) {
     if (!req.crs.empty()) spatialReference(req.crs, "--crs");  // a bad --crs before the long read
     CityModel m;
     m.source = path;
-    if (detail::isRasterExtension(path)) {
+    std::string texture = req.texture;
+    if (detail::isCitySceneFile(path)) {
+        std::string sceneTexture;
+        m = detail::readCityScene(path, readAll(path), req, sceneTexture);
+        if (texture.empty()) texture = sceneTexture;  // --texture wins
+    } else if (detail::isRasterExtension(path)) {
         m.format = "DEM raster (GDAL), terrain";
         detail::addDemTerrain(m, path, req.maxSamples);
     } else if (detail::isFootprintExtension(path)) {
@@ -165,15 +169,15 @@ CityModel readCityModel(const std::string& path, const CityRequest& req) {
         m.append(dem);
     }
     if (m.triangles.empty()) throw EmptyResultError(path + ": no surface with area to voxelize");
-    if (!req.texture.empty()) {
-        if (m.crs.empty()) throw InputError(req.texture + ": the scene has no CRS to place the texture in (give --crs)");
+    if (!texture.empty()) {
+        if (m.crs.empty()) throw InputError(texture + ": the scene has no CRS to place the texture in (give --crs)");
         Box3 terrain = m.bounds(CityRole::Terrain);
-        if (!(terrain.hi.x >= terrain.lo.x)) throw InputError(req.texture + ": the scene has no terrain to drape the texture on");
+        if (!(terrain.hi.x >= terrain.lo.x)) throw InputError(texture + ": the scene has no terrain to drape the texture on");
         // A margin: voxel centres at the terrain's edge may lie half a voxel outside it.
         const double margin = 0.02 * std::max(terrain.size().x, terrain.size().y);
         terrain.lo -= dvec3(margin, margin, 0.0);
         terrain.hi += dvec3(margin, margin, 0.0);
-        m.texture = detail::readTexture(req.texture, m.crs, terrain, req.maxSamples);
+        m.texture = detail::readTexture(texture, m.crs, terrain, req.maxSamples);
     }
     return m;
 }
@@ -190,7 +194,7 @@ std::string describeCityInput(const std::string& path, const CityRequest& req) {
     for (const auto& [type, n] : types) s << "    " << type << ": " << n << "\n";
     s << "  triangles: " << m.triangles.size() << "\n  world bounds: [" << b.lo.x << ", " << b.hi.x << "] x [" << b.lo.y
       << ", " << b.hi.y << "] x [" << b.lo.z << ", " << b.hi.z << "]\n";
-    if (!m.texture.empty()) s << "  texture: " << req.texture << ", " << m.texture.width << " x " << m.texture.height << " pixels of " << m.texture.pixel.x << "\n";
+    if (!m.texture.empty()) s << "  texture: " << (req.texture.empty() ? std::string("the scene's") : req.texture) << ", " << m.texture.width << " x " << m.texture.height << " pixels of " << m.texture.pixel.x << "\n";
     for (const auto& n : m.notes) s << "  note: " << n << "\n";
     return s.str();
 }

@@ -2,6 +2,7 @@
 // real Delft file of ../shared/data/city.
 #include "CityGml.h"
 #include "CityJson.h"
+#include "CityScene.h"
 #include "IoTestSupport.h"
 #include "octrace/build/CityVoxelizer.h"
 #include "octrace/io/CityReader.h"
@@ -398,4 +399,62 @@ TEST(CityGml, ReadsBerlinsLod2BuildingsWithTheirRoofs) {
     const std::string info = describeCityInput(path);
     EXPECT_NE(info.find("crs: EPSG:25833"), std::string::npos) << info;
     EXPECT_NE(info.find("format: CityGML"), std::string::npos) << info;
+}
+
+TEST(CityScene, CombinesSourcesWithTheirDepthColourAndRole) {
+    octrace::test::TempDir dir;
+    const std::string scene = dir.file("two.scene.json");
+    {
+        std::ofstream f(scene);
+        f << R"({"crs": "EPSG:28992", "sources": [
+              {"path": ")" << kCube << R"(", "colour": [1, 0, 0]},
+              {"path": ")" << kCube << R"(", "lod": "1", "role": "terrain", "depth": 3, "colour": [0, 0, 1]}]})";
+    }
+    const CityModel m = readCityModel(scene);
+    EXPECT_EQ(m.crs, "EPSG:28992");
+    EXPECT_EQ(m.format, "city scene (2 sources)");
+    const CityModel cube = readCityModel(kCube);
+    ASSERT_GT(m.objects.size(), cube.objects.size());
+    for (std::size_t i = 0; i < m.objects.size(); ++i) {
+        const bool second = i >= cube.objects.size();
+        EXPECT_EQ(m.objects[i].colour, packColour(second ? vec3(0, 0, 1) : vec3(1, 0, 0)));
+        EXPECT_EQ(m.objects[i].depth, second ? 3 : 0);
+        if (second) EXPECT_EQ(m.objects[i].role, CityRole::Terrain);
+    }
+    // The second source stops at level 3: coarse leaves, blue; the first goes to the depth.
+    CityBuildOptions o;
+    o.depth = 6;
+    const Octree t = voxelizeCity(m, o);
+    t.validate();
+    ASSERT_TRUE(t.hasCoarseLeaves());
+    t.forEachLeaf([&](const ivec3&, int shift, std::uint32_t v) {
+        if (shift > 0) EXPECT_EQ(t.colours[v], packColour(vec3(0, 0, 1)));
+    });
+    o.depth = 2;
+    EXPECT_THROW(voxelizeCity(m, o), UsageError);  // a source deeper than the octree
+}
+
+TEST(CityScene, RefusesBadKeysAndValuesNamingThem) {
+    auto refused = [](const std::string& text, const std::string& what) {
+        try {
+            io::detail::parseCityScene(text, "s.scene.json");
+            ADD_FAILURE() << "accepted: " << text;
+        } catch (const FileError& e) {
+            EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+        }
+    };
+    refused("{", "s.scene.json: not valid JSON");
+    refused("{}", "no \"sources\" array");
+    refused(R"({"sources": []})", "\"sources\" must be a non-empty array");
+    refused(R"({"sources": [{"depth": 3}]})", "sources[0] has no \"path\"");
+    refused(R"({"sources": [{"path": "a.json", "depth": 15}]})", "sources[0].\"depth\" must be an integer in 1..14");
+    refused(R"({"sources": [{"path": "a.json", "colour": [1, 2, 0]}]})", "sources[0].\"colour\" must be [r, g, b] in [0, 1]");
+    refused(R"({"sources": [{"path": "a.json", "role": "water"}]})", "\"role\" must be \"terrain\" or \"solid\"");
+    refused(R"({"sources": [{"path": "a.json", "heigth_attr": "h"}]})", "\"heigth_attr\" is not a source key");
+    refused(R"({"source": []})", "\"source\" is not a scene key");
+    const auto s = io::detail::parseCityScene(R"({"texture": "t.tif", "sources": [{"path": "a.geojson", "height_attr": "H", "base_attr": "B"}]})", "s");
+    EXPECT_EQ(s.texture, "t.tif");
+    ASSERT_EQ(s.sources.size(), 1u);
+    EXPECT_EQ(s.sources[0].heightAttr, "H");
+    EXPECT_EQ(s.sources[0].baseAttr, "B");
 }

@@ -375,6 +375,19 @@ GML_SEEDS = {
 for name, text in GML_SEEDS.items():
     out(GML, name, text.encode())
 
+# City scene files: every key, a minimal one, and broken ones (unknown key, bad depth, colour).
+SCENE_SEEDS = {
+    "full.scene.json": '{"crs": "EPSG:3946", "texture": "ortho.tif", "sources": [{"path": "buildings.geojson", '
+                       '"height_attr": "HAUTEUR", "base_attr": "Z_MIN_SOL", "colour": [0.85, 0.45, 0.35], "depth": 12}, '
+                       '{"path": "ground.tif", "role": "terrain", "depth": 9, "color": [0.4, 0.6, 0.3]}, '
+                       '{"path": "city.gml", "lod": "2", "role": "solid"}]}',
+    "minimal.scene.json": '{"sources": [{"path": "a.json"}]}',
+    "unknown_key.scene.json": '{"sources": [{"path": "a.json", "heigth_attr": "h"}]}',
+    "bad_values.scene.json": '{"sources": [{"path": "a.json", "depth": 99, "colour": [1, 2]}], "crs": 7}',
+}
+for name, text in SCENE_SEEDS.items():
+    out("fuzz_scene", name, text.encode())
+
 
 # ---------------------------------------------------------------- studio sessions (fuzz_session)
 def session_seeds():

@@ -22,6 +22,10 @@ struct CityObject {
     std::string type;         ///< e.g. "Building", "Road", "TINRelief"
     CityRole role = CityRole::Solid;
     std::uint32_t colour = 0; ///< packColour (Octree.h)
+    /// Per-source depth (scene files): the deepest level this object is voxelized to; nodes
+    /// that only such objects cross stop there as coarse leaves (CityVoxelizer.h). 0: the
+    /// build's depth (terrain: its terrain depth).
+    int depth = 0;
 };
 
 struct CityTriangle {

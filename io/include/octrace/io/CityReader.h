@@ -30,8 +30,8 @@ struct CityRequest {
     int maxSamples = 4097;
 };
 
-/// Whether `path` is read as a city input: by its extension (.json but not .scene.json, a
-/// footprint format's or a DEM raster's). Does not open the file.
+/// Whether `path` is read as a city input: by its extension (.json, among them .scene.json
+/// scene files, CityGML's, a footprint format's or a DEM raster's). Does not open the file.
 bool isCityInput(const std::string& path);
 
 /// Reads `path` into a model in the request's CRS. What cannot be used (an open shell, a
