@@ -179,7 +179,8 @@ CityModel parseCityJson(const std::string& text, const std::string& name, const 
     json doc;
     try {
         doc = json::parse(text);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {
+        // Not only syntax errors: a number beyond double's range is out_of_range (406).
         throw FileError(name + ": not valid JSON (" + std::string(e.what()) + ")");
     }
     if (!doc.is_object() || doc.value("type", json()).is_null() || !doc["type"].is_string() || doc["type"] != "CityJSON")

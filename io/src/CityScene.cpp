@@ -63,7 +63,8 @@ CityScene parseCityScene(const std::string& textIn, const std::string& name) {
     json doc;
     try {
         doc = json::parse(textIn);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {
+        // Not only syntax errors: a number beyond double's range is out_of_range (406).
         throw FileError(name + ": not valid JSON (" + std::string(e.what()) + ")");
     }
     if (!doc.is_object()) throw FileError(name + ": a scene file is a JSON object");

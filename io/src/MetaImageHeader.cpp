@@ -16,6 +16,13 @@ namespace {
 // A header is a few hundred bytes; anything longer before ElementDataFile is not one.
 constexpr std::size_t kMaxHeaderBytes = 65536;
 
+// The keys octrace interprets, as MetaIO spells them.
+constexpr const char* kMetaImageKeys[] = {
+    "ObjectType", "NDims", "DimSize", "ElementSpacing", "ElementSize", "Offset", "Position", "Origin",
+    "TransformMatrix", "Rotation", "Orientation", "ElementType", "ElementNumberOfChannels", "CompressedData",
+    "BinaryDataByteOrderMSB", "ElementByteOrderMSB", "BinaryData", "HeaderSize", "AnatomicalOrientation",
+    "ElementDataFile"};
+
 // Element types of MetaIO (metaTypes.h) and their sizes.
 std::size_t elementSize(const std::string& t) {
     if (t == "MET_CHAR" || t == "MET_UCHAR") return 1;
@@ -84,6 +91,12 @@ MetaImageHeader MetaImageHeader::parseText(const std::string& path, const std::s
         const std::string key = trim(line.substr(0, eq)), value = trim(line.substr(eq + 1));
         const std::string k = lower(key);
         sawKey = true;
+        // VTK's MetaIO matches keys case-sensitively: a key octrace would read in another case
+        // is one VTK skips, and the two would see different headers (fuzz_metaimage found a
+        // header whose 'ElementDataFIle = LOCAL' octrace took for the end and VTK did not).
+        for (const char* canonical : kMetaImageKeys)
+            if (k == lower(canonical) && key != canonical)
+                p.fail("key '" + quoteBytes(key) + "' must be spelled '" + canonical + "' (MetaImage keys are case-sensitive)");
         if (k == "objecttype") {
             if (lower(value) != "image") p.fail("ObjectType '" + quoteBytes(value) + "' is not Image");
         } else if (k == "ndims") {

@@ -33,15 +33,18 @@ export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 # record TARGET LOG RESULT: one JSON line of libFuzzer's final counts into $OCTRACE_FUZZ_JSON.
 record() {
   [ -n "${OCTRACE_FUZZ_JSON:-}" ] || return 0
-  stat() { grep -Eo "^stat::$1: *[0-9]+" "$2" | grep -Eo '[0-9]+$' || echo 0; }
+  # The last value: a crash handler in a child process (the HDF5 guard's) prints stats too.
+  stat() { grep -Eo "^stat::$1: *[0-9]+" "$2" | tail -1 | grep -Eo '[0-9]+$' || echo 0; }
   printf '{"date": "%s", "target": "%s", "seconds": %s, "result": "%s", "executions": %s, "exec_per_sec": %s, "new_units": %s, "peak_rss_mb": %s, "corpus_found": %s, "corpus_bytes": %s, "seeds": %s, "commit": "%s"}\n' \
     "$(date -u +%Y-%m-%dT%H:%M:%SZ)" "$1" "$SECONDS_PER_TARGET" "$3" \
     "$(stat number_of_executed_units "$2")" "$(stat average_exec_per_sec "$2")" "$(stat new_units_added "$2")" \
     "$(stat peak_rss_mb "$2")" "$(ls "$BUILD/corpus/$1" | wc -l)" "$(du -sb "$BUILD/corpus/$1" | cut -f1)" \
-    "$(ls "$ROOT/tests/fuzz/corpus/$1" | wc -l)" "$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)" \
+    "$(ls "$ROOT/tests/fuzz/corpus/$1" | wc -l)" "$COMMIT" \
     >>"$OCTRACE_FUZZ_JSON"
 }
 
+# The commit the targets were built from (the tree may change while a long run goes on).
+COMMIT="$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)"
 passed=0
 failed=0
 for t in "${TARGETS[@]}"; do

@@ -80,6 +80,10 @@ TEST(CityReader, AWrongCrsIsAClearError) {
 TEST(CityReader, BrokenFilesAreToldApartFromOtherFormats) {
     EXPECT_THROW_WITH(io::detail::parseCityJson("{\"type\": \"FeatureCollection\"}", "a.json", ""), FormatNotSupported, "a.json: not CityJSON");
     EXPECT_THROW_WITH(io::detail::parseCityJson("{\"type\": \"CityJSON\", ", "b.json", ""), FileError, "b.json: not valid JSON");
+    // Found by fuzz_cityjson (long run of 2026-11-25): a number beyond double's range is not a
+    // syntax error to nlohmann::json but out_of_range, which escaped as std::terminate.
+    EXPECT_THROW_WITH(io::detail::parseCityJson("{\"type\": \"CityJSON\", \"transform\": [0.012e992]}", "d.json", ""),
+                      FileError, "d.json: not valid JSON ([json.exception.out_of_range.406] number overflow");
     std::string text = cubeText();
     text.replace(text.find("[[9, 10, 11]]"), 13, "[[9, 10, 99]]");
     EXPECT_THROW_WITH(io::detail::parseCityJson(text, "c.json", ""), FileError,
@@ -444,6 +448,7 @@ TEST(CityScene, RefusesBadKeysAndValuesNamingThem) {
         }
     };
     refused("{", "s.scene.json: not valid JSON");
+    refused(R"({"sources": [{"path": "a.json", "depth": 1e999}]})", "s.scene.json: not valid JSON");
     refused("{}", "no \"sources\" array");
     refused(R"({"sources": []})", "\"sources\" must be a non-empty array");
     refused(R"({"sources": [{"depth": 3}]})", "sources[0] has no \"path\"");

@@ -200,6 +200,13 @@ TEST(VolumeReader, BrokenFilesAreRefusedWithOneLine) {
     EXPECT_THROW_WITH(io::readField(dir.file("sheared.mhd")), FileError, "sheared");
     writeText(dir.file("huge.mha"), "NDims = 3\nDimSize = 16777216 16777216 2\nElementType = MET_DOUBLE\nElementDataFile = LOCAL\nxx");
     EXPECT_THROW_WITH(io::readField(dir.file("huge.mha")), FileError, "data truncated");
+    // Found by fuzz_metaimage (long run of 2026-11-25): a key in another case than MetaIO's.
+    // octrace took 'ElementDataFIle = LOCAL' for the end of the header, VTK (case-sensitive)
+    // read on to a later 'ElementDataFile = L' and leaked its buffers on the missing file.
+    EXPECT_THROW_WITH(io::readField(test::testData("invalid/invalid_key_case.mha")), FileError,
+                      "key 'ElementDataFIle' must be spelled 'ElementDataFile' (MetaImage keys are case-sensitive)");
+    writeText(dir.file("case.mhd"), head + "elementdatafile = ok.raw\n");
+    EXPECT_THROW_WITH(io::readField(dir.file("case.mhd")), FileError, "must be spelled 'ElementDataFile'");
     writeText(dir.file("noise.nii"), std::string(400, 'x'));
     EXPECT_THROW(io::readField(dir.file("noise.nii")), InputError);
     writeText(dir.file("noise.vti"), "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\"><ImageData WholeExtent=\"0 9");
