@@ -7,6 +7,7 @@
 #include "SurfelView.h"
 #include "ViewInput.h"
 
+#include "SolidSpec.h"
 #include "octrace/csg/Solid.h"
 #include "octrace/util/Error.h"
 
@@ -592,7 +593,7 @@ QString MainWindow::defaultCut(const QString& kind, const Box3& b) {
 void MainWindow::setCut(const QString& spec) {
     if (!spec.isEmpty()) {
         try {
-            parseSolid(spec.toStdString());
+            cli::checkSolidArgument(spec.toStdString());
         } catch (const std::exception& e) {
             showMessage(QString::fromStdString(e.what()), true);
             cutEdit_->setText(QString::fromStdString(state_.cut));

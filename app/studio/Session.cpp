@@ -1,5 +1,6 @@
 #include "Session.h"
 
+#include "SolidSpec.h"
 #include "SurfaceOptions.h"
 #include "octrace/csg/Solid.h"
 #include "octrace/io/AtomicFile.h"
@@ -174,7 +175,7 @@ StudioState parseSession(const QByteArray& json, const QString& baseFolder) {
     surface.text("cut", s.cut);
     if (!s.cut.empty()) {
         try {
-            parseSolid(s.cut);
+            cli::checkSolidArgument(s.cut);  // a primitive or relief:FILE, as --cut takes
         } catch (const UsageError& e) {
             surface.fail("cut", QString::fromStdString(e.what()));
         }

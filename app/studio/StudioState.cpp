@@ -55,7 +55,7 @@ cli::SurfaceArgs surfaceArgs(const StudioState& state) {
                                                : cli::SurfaceArgs::Lighting::Auto;
     a.bakeOptions.aoRays = state.bakeAo;
     a.bakeOptions.shadows = state.bakeShadows;
-    if (!state.cut.empty()) a.cuts.push_back(parseSolid(state.cut));
+    if (!state.cut.empty()) a.cuts.push_back(cli::SolidArgument(state.cut));  // relief:FILE read with the field
     a.clip = state.clip && !state.cut.empty();
     return a;
 }

@@ -641,6 +641,7 @@ private slots:
         row("lighting", R"({"octrace_studio_session": 1, "shading": {"lighting": "sunny"}})", "shading.lighting: expected");
         row("bake ao", R"({"octrace_studio_session": 1, "shading": {"bake_ao": -1}})", "shading.bake_ao: -1 is outside");
         row("cut", R"({"octrace_studio_session": 1, "surface": {"cut": "box:1,2"}})", "surface.cut:");
+        row("relief without a file", R"({"octrace_studio_session": 1, "surface": {"cut": "relief:"}})", "surface.cut:");
         row("clip type", R"({"octrace_studio_session": 1, "surface": {"clip": 1}})", "surface.clip: must be true or false");
         row("dpi", R"({"octrace_studio_session": 1, "export": {"dpi": 20}})", "export.dpi: 20 is outside");
         row("title type", R"({"octrace_studio_session": 1, "export": {"title": 3}})", "export.title: must be a string");
@@ -667,6 +668,11 @@ private slots:
         QCOMPARE(octrace::studio::parseSession(octrace::studio::sessionJson(s)).input, s.input);
         const auto a = octrace::studio::parseSession(R"({"octrace_studio_session": 1, "input": {"path": "analytic:torus"}})", QStringLiteral("/base"));
         QCOMPARE(a.input, std::string("analytic:torus"));
+        // A relief cut (the CLI's relief:FILE) is kept as typed; its file is read with the field.
+        const auto r = octrace::studio::parseSession(
+            R"({"octrace_studio_session": 1, "surface": {"cut": "relief:../shared/data/ocean/etopo20.cdf"}})");
+        QCOMPARE(r.cut, std::string("relief:../shared/data/ocean/etopo20.cdf"));
+        QCOMPARE(octrace::studio::parseSession(octrace::studio::sessionJson(r)).cut, r.cut);
     }
 
     void cleanupTestCase() { delete window_; }
