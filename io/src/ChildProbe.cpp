@@ -11,6 +11,7 @@
 #include <cstring>
 #include <thread>
 
+#include <fcntl.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -51,6 +52,11 @@ void probeInChild(const std::string& path, const std::string& what, double limit
         // The child: only the calling thread exists. It never logs (the sink may belong to a
         // GUI) and leaves with _exit, so no destructor or atexit handler of the parent's runs.
         log::setLevel(log::Level::Quiet);
+        // Nor does anything it runs: its stderr goes nowhere, so that a library's messages or a
+        // sanitizer's report about a corrupt file (an instrumented build) do not reach the
+        // user's terminal; the parent says what happened in one line.
+        const int devNull = open("/dev/null", O_WRONLY);
+        if (devNull >= 0) dup2(devNull, STDERR_FILENO);
         int status = kProbeReturned;
         try {
             probe();

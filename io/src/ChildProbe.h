@@ -14,7 +14,7 @@ namespace octrace::io::detail {
 /// OCTRACE_HDF5_OPEN_SECONDS when set to a positive number, otherwise 60.
 double hdf5OpenDeadline();
 
-/// Forks; the child runs `probe` and exits with a status of its own for "returned" and for
+/// Forks; the child (its stderr on /dev/null) runs `probe` and exits with a status of its own for "returned" and for
 /// "threw". Returns when the child has exited with one of those: the caller then runs the real
 /// work and meets the real error, if any. Throws FileError naming `path` and `what` when the
 /// child is still running after `seconds` (it is killed), died from a signal, or exited with
