@@ -296,6 +296,13 @@ void addLightingOption(OptionParser& p, SurfaceArgs& a) {
                if (!(x >= 0.0 && x <= 1.0)) throw UsageError("--ambient: must be in [0, 1], got " + v);
                a.ambient = float(x);
            }});
+    p.add({"shadows", "on|off", "shadow rays towards --light: sphere scenes in the object octree (default on) and the "
+           "dynamic shading of voxel octrees (default off: one more ray per shaded pixel, and baked light has its own "
+           "shadows)",
+           [&](const std::string& v) {
+               if (v != "on" && v != "off") throw UsageError("--shadows: choose on or off, got '" + v + "'");
+               a.shadows = v == "on";
+           }});
 }
 
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result) {
@@ -588,6 +595,7 @@ void applyColour(const SurfaceArgs& a, const Surface& s, RenderSettings& setting
 
 void applyLighting(const SurfaceArgs& a, RenderSettings& settings) {
     settings.baked = a.lighting != SurfaceArgs::Lighting::Dynamic;
+    settings.shadows = a.shadows;
     if (a.ambient) {
         settings.ambient = *a.ambient;
         settings.diffuse = 1.0f - *a.ambient;
