@@ -514,7 +514,7 @@ void readSurfaceField(const SurfaceArgs& a, Surface& s) {
     io::FieldRequest request = a.request;
     request.memoryBudget = memoryBudget(a);
     Timer t;
-    s.field = loadField(a.input, request, a.depth);
+    s.field = loadField(a.input, request, a.depth, &s.spheres);
     s.loadMs = t.ms();
 }
 
@@ -559,6 +559,12 @@ void buildFromField(const SurfaceArgs& a, Surface& s, const BuildHooks& hooks) {
     s.tree.source = sourceDescription(a.input, s.field);
     if (hooks.progress && hooks.endLine) std::fputs("\n", stderr);
     finishSurface(a, s);
+    // A molecule's voxels keep their atoms' colours, as a city's keep their buildings'.
+    if (s.spheres) {
+        Timer t;
+        s.tree.colours = sphereColoursAtVoxels(s.tree, *s.spheres, a.threads);
+        log::debug("voxels coloured by their nearest spheres in " + std::to_string(t.ms()) + " ms");
+    }
     if (colourBy) {
         s.tree.voxelValues = sampleAtVoxels(s.tree, *colourBy, a.threads);
         s.tree.valueName = colourBy->name;

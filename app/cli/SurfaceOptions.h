@@ -14,10 +14,12 @@
 #include "octrace/io/FieldRequest.h"
 #include "octrace/octree/Octree.h"
 #include "octrace/render/RenderSettings.h"
+#include "octrace/scene/Spheres.h"
 
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -135,6 +137,9 @@ struct Surface {
     bool invertedGrey = false;
     std::string windowSource;  ///< where the window comes from, for messages and stats
     BakeReport bake;           ///< when lighting was baked here
+    /// A sphere input's spheres (the field is their distance field): the voxels take their
+    /// colours (sphereColoursAtVoxels). Shared, so that a rebuild from the same field keeps them.
+    std::shared_ptr<const SphereSet> spheres;
 };
 
 /// Applies --quiet / --verbose to the log. A city input (CityJSON) is read into one projected
