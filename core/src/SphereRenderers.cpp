@@ -82,6 +82,33 @@ private:
     double eps_;
 };
 
+/// A box's projection on the screen, bounded by the projections of its 8 corners (pixel
+/// units); not valid when the box reaches behind a perspective eye.
+struct PixelBounds {
+    double xLo = kInf, xHi = -kInf, yLo = kInf, yHi = -kInf;
+    bool valid = false;
+};
+PixelBounds projectBox(const RayGenerator& gen, const Box3& b) {
+    // Camera coordinates of the low corner and of the three edges: the corners are sums.
+    const dvec3 &right = gen.right(), &up = gen.up(), &back = gen.back();
+    const dvec3 rel = b.lo - gen.eye(), size = b.hi - b.lo;
+    const dvec3 c0(glm::dot(rel, right), glm::dot(rel, up), glm::dot(rel, back));
+    const dvec3 e[3] = {size.x * dvec3(right.x, up.x, back.x), size.y * dvec3(right.y, up.y, back.y), size.z * dvec3(right.z, up.z, back.z)};
+    PixelBounds o;
+    for (int k = 0; k < 8; ++k) {
+        const dvec3 p = c0 + ((k & 4) ? e[0] : dvec3(0.0)) + ((k & 2) ? e[1] : dvec3(0.0)) + ((k & 1) ? e[2] : dvec3(0.0));
+        if (!gen.orthographic() && !(p.z < 0.0)) return {};
+        double x, y;
+        gen.toPixel(p.x, p.y, p.z, x, y);
+        o.xLo = std::min(o.xLo, x);
+        o.xHi = std::max(o.xHi, x);
+        o.yLo = std::min(o.yLo, y);
+        o.yHi = std::max(o.yHi, y);
+    }
+    o.valid = true;
+    return o;
+}
+
 /// The sphere slots of the tile being traced on this thread, by sphere index (-1: none yet).
 /// Kept per thread so that a tile does not clear an array of every sphere; BeamTile puts back
 /// the entries it used.
@@ -119,6 +146,7 @@ public:
         up_ = gen.up();
         back_ = gen.back();
         perspective_ = !gen.orthographic();
+        eps_ = tree.cubeSide * 1e-9;
     }
     ~BeamTile() {
         for (const Slot& e : slots_) slotOf_[e.sphere] = -1;
@@ -173,26 +201,11 @@ private:
         return i0 < i1 && j0 < j1;
     }
 
-    /// Cuts the rectangle to the box's projected bounds (its 8 corners); a box reaching behind
-    /// a perspective eye does not cut. False when no ray is left.
+    /// Cuts the rectangle to the box's projected bounds; a box reaching behind a perspective
+    /// eye does not cut. False when no ray is left.
     bool cutToBox(const Box3& b, int& i0, int& i1, int& j0, int& j1) const {
-        // Camera coordinates of the low corner and of the three edges: the corners are sums.
-        const dvec3 rel = b.lo - gen_.eye(), size = b.hi - b.lo;
-        const dvec3 c0(glm::dot(rel, right_), glm::dot(rel, up_), glm::dot(rel, back_));
-        const dvec3 e[3] = {size.x * dvec3(right_.x, up_.x, back_.x), size.y * dvec3(right_.y, up_.y, back_.y),
-                            size.z * dvec3(right_.z, up_.z, back_.z)};
-        double pxLo = kInf, pxHi = -kInf, pyLo = kInf, pyHi = -kInf;
-        for (int k = 0; k < 8; ++k) {
-            const dvec3 p = c0 + ((k & 4) ? e[0] : dvec3(0.0)) + ((k & 2) ? e[1] : dvec3(0.0)) + ((k & 1) ? e[2] : dvec3(0.0));
-            if (perspective_ && !(p.z < 0.0)) return true;  // reaches behind the eye: no cut
-            double x, y;
-            gen_.toPixel(p.x, p.y, p.z, x, y);
-            pxLo = std::min(pxLo, x);
-            pxHi = std::max(pxHi, x);
-            pyLo = std::min(pyLo, y);
-            pyHi = std::max(pyHi, y);
-        }
-        return cutToPixels(pxLo, pxHi, pyLo, pyHi, i0, i1, j0, j1);
+        const PixelBounds p = projectBox(gen_, b);
+        return !p.valid || cutToPixels(p.xLo, p.xHi, p.yLo, p.yHi, i0, i1, j0, j1);
     }
 
     /// The tile's rays that may hit sphere s: within its projected bounds, taken from its box
@@ -279,16 +292,30 @@ private:
                     }
         }
         for (std::uint32_t k : touched_) {
-            const Ray& r = rays_[k];
-            double t0, t1;
-            slabInterval(box, r.origin, 1.0 / r.direction, r.direction, t0, t1);
-            if (!(t0 > t1 || t1 < 0.0 || nearT_[k] > t1)) {  // else not this leaf's hit
+            if (inLeaf(box, rays_[k], nearT_[k])) {
                 hits_[k] = SphereHit{nearT_[k], nearSphere_[k]};
                 live_[std::size_t(int(k) / w_ * words_ + int(k) % w_ / 64)] &= ~(std::uint64_t(1) << (int(k) % w_ % 64));
                 --remaining_;
             }
             nearT_[k] = kInf;
         }
+    }
+
+    /// The leaf rule's last test: the ray crosses the leaf and its hit at t is not beyond the
+    /// leaf's exit (slab test, as nearestInLeaf's callers). The divisions of the slab test are
+    /// spared when the hit point lies inside the leaf, or beyond one of its exit faces, by far
+    /// more than rounding (eps_): the slab test could not say otherwise.
+    bool inLeaf(const Box3& box, const Ray& r, double t) const {
+        const dvec3 p = r.origin + r.direction * t;
+        bool inside = true;
+        for (int a = 0; a < 3; ++a) {
+            if (r.direction[a] > 0.0 ? p[a] > box.hi[a] + eps_ : r.direction[a] < 0.0 && p[a] < box.lo[a] - eps_) return false;
+            inside = inside && p[a] > box.lo[a] + eps_ && p[a] < box.hi[a] - eps_;
+        }
+        if (inside) return true;
+        double t0, t1;
+        slabInterval(box, r.origin, 1.0 / r.direction, r.direction, t0, t1);
+        return !(t0 > t1 || t1 < 0.0 || t > t1);
     }
 
     static constexpr double kMargin = 1e-6;  // pixels; the projection's rounding is far below
@@ -310,6 +337,7 @@ private:
     std::size_t remaining_ = 0;
     dvec3 right_, up_, back_;
     bool perspective_ = true;
+    double eps_ = 0.0;  // scene units: far above the rounding of a point on a ray in the cube
 };
 
 }  // namespace
@@ -328,6 +356,7 @@ RenderStats renderSphereScene(SphereTracer tracer, const std::string& name, cons
     const RayGenerator gen(sampleCamera);
     const SphereShader shader(tree, camera, settings);
     const Box3 cube = tree.cube();
+    const PixelBounds cubeBounds = projectBox(gen, cube);
     const int tilesX = (camera.width + kTilePixels - 1) / kTilePixels, tilesY = (camera.height + kTilePixels - 1) / kTilePixels;
     std::vector<RenderStats> tileStats(std::size_t(tilesX) * std::size_t(tilesY));
     parallelFor(tileStats.size(), settings.threads, [&](std::size_t t) {
@@ -342,13 +371,16 @@ RenderStats renderSphereScene(SphereTracer tracer, const std::string& name, cons
         // The statistic "rays meeting the scene cube": the rays whose points on the view plane
         // meet the cube form a convex set there, so when the rays one sample beyond the tile's
         // four corners meet it, so does every ray of the tile, each at least a sample inside;
-        // else each ray's slab test says.
+        // when the tile's samples lie a sample or more outside the cube's projected bounds,
+        // none does; else each ray's slab test says.
         const auto meetsCube = [&](const Ray& r) {
             double t0, t1;
             slabInterval(cube, r.origin, 1.0 / r.direction, r.direction, t0, t1);
             return t0 <= t1 && t1 >= 0.0;
         };
-        const bool allMeetCube = meetsCube(gen(sx0 - 1, sy0 - 1)) && meetsCube(gen(sx0 + w, sy0 - 1)) &&
+        const bool noneMeetCube = cubeBounds.valid && (sx0 + w - 0.5 < cubeBounds.xLo - 1.0 || sx0 + 0.5 > cubeBounds.xHi + 1.0 ||
+                                                       sy0 + h - 0.5 < cubeBounds.yLo - 1.0 || sy0 + 0.5 > cubeBounds.yHi + 1.0);
+        const bool allMeetCube = !noneMeetCube && meetsCube(gen(sx0 - 1, sy0 - 1)) && meetsCube(gen(sx0 + w, sy0 - 1)) &&
                                  meetsCube(gen(sx0 - 1, sy0 + h)) && meetsCube(gen(sx0 + w, sy0 + h));
         ObjectTraceCounters primary, secondary;
         if (tracer == SphereTracer::Beam) {
@@ -372,7 +404,7 @@ RenderStats renderSphereScene(SphereTracer tracer, const std::string& name, cons
                         const int i = (x - px0) * s + a, j = (y - py0) * s + b;
                         const SphereHit& hit = hits[std::size_t(j) * std::size_t(w) + std::size_t(i)];
                         const Ray& r = rays[std::size_t(j) * std::size_t(w) + std::size_t(i)];
-                        st.rays += allMeetCube || meetsCube(r);
+                        st.rays += allMeetCube || (!noneMeetCube && meetsCube(r));
                         st.hits += hit.hit();
                         sum += shader.shade(r.origin, r.direction, hit, 0, secondary, st.secondaryRays);
                         alpha += hit.hit() ? 1.0f : settings.background.a;
