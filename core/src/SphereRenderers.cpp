@@ -109,13 +109,33 @@ PixelBounds projectBox(const RayGenerator& gen, const Box3& b) {
     return o;
 }
 
-/// The sphere slots of the tile being traced on this thread, by sphere index (-1: none yet).
-/// Kept per thread so that a tile does not clear an array of every sphere; BeamTile puts back
-/// the entries it used.
-std::vector<std::int32_t>& threadSphereSlots(std::size_t spheres) {
-    thread_local std::vector<std::int32_t> slots;
-    if (slots.size() < spheres) slots.assign(spheres, -1);
-    return slots;
+/// A sphere met by a tile: the rectangle of the tile's rays that may hit it, for a perspective
+/// eye (every ray's origin) the terms of intersectSphereFrom, and where its rays' sphere tests
+/// are kept (a sphere listed in several leaves is tested once per ray).
+struct SphereSlot {
+    std::uint32_t sphere;
+    int i0, i1, j0, j1;
+    dvec3 oc;
+    double c;
+    std::size_t tests;  // first of (i1 - i0) x (j1 - j0) parameters in BeamScratch::tests, row by row
+};
+
+/// The buffers of the tile being traced on this thread, kept from tile to tile: a tile does
+/// not allocate them again nor clear an array of every sphere (BeamTile puts back the slots it
+/// used).
+struct BeamScratch {
+    std::vector<std::int32_t> slotOf;   // per sphere of the scene: its slot, -1 when none
+    std::vector<SphereSlot> slots;
+    std::vector<double> tests;          // per slot and ray: the sphere test's t, NaN: not made yet
+    std::vector<std::uint64_t> live;    // per row, words of bits: bit i set while ray i is not hit
+    std::vector<double> nearT;          // per ray: nearest hit among the current leaf's spheres
+    std::vector<std::uint32_t> nearSphere;
+    std::vector<std::uint32_t> touched; // rays with a nearest hit in the current leaf
+};
+BeamScratch& threadBeamScratch(std::size_t spheres) {
+    thread_local BeamScratch scratch;
+    if (scratch.slotOf.size() < spheres) scratch.slotOf.assign(spheres, -1);
+    return scratch;
 }
 
 /// Primary rays of one tile as beams (paper B): the beam is the eye and the screen rectangle
@@ -131,17 +151,19 @@ public:
     BeamTile(const ObjectOctree& tree, const RayGenerator& gen, int x0, int y0, int w, int h, const std::vector<Ray>& rays,
              std::vector<SphereHit>& hits, ObjectTraceCounters& c, std::uint64_t& beams)
         : tree_(tree), gen_(gen), w_(w), h_(h), rays_(rays), hits_(hits), c_(c), beams_(beams),
-          slotOf_(threadSphereSlots(tree.scene.spheres.size())) {
+          x_(threadBeamScratch(tree.scene.spheres.size())) {
         // Sample (x0 + i, y0 + j) is centred on pixel coordinates (x0 + i + 0.5, y0 + j + 0.5).
         xOff_ = x0 + 0.5;
         yOff_ = y0 + 0.5;
         words_ = (w + 63) / 64;
-        live_.assign(std::size_t(h) * std::size_t(words_), 0);
+        x_.live.resize(std::size_t(h) * std::size_t(words_));
         for (int j = 0; j < h; ++j)
-            for (int i = 0; i < w; ++i) live_[std::size_t(j * words_ + i / 64)] |= std::uint64_t(1) << (i % 64);
+            for (int wi = 0; wi < words_; ++wi) x_.live[std::size_t(j * words_ + wi)] = columnMask(wi, 0, w);
         remaining_ = std::size_t(w) * std::size_t(h);
-        nearT_.assign(remaining_, kInf);
-        nearSphere_.resize(remaining_);
+        x_.nearT.assign(remaining_, kInf);
+        x_.nearSphere.resize(remaining_);
+        x_.slots.clear();
+        x_.tests.clear();
         right_ = gen.right();
         up_ = gen.up();
         back_ = gen.back();
@@ -149,22 +171,13 @@ public:
         eps_ = tree.cubeSide * 1e-9;
     }
     ~BeamTile() {
-        for (const Slot& e : slots_) slotOf_[e.sphere] = -1;
+        for (const SphereSlot& e : x_.slots) x_.slotOf[e.sphere] = -1;
     }
     BeamTile(const BeamTile&) = delete;
     BeamTile& operator=(const BeamTile&) = delete;
     void run() { visit(0, 0, w_, 0, h_); }
 
 private:
-    /// A sphere met by the tile: the rectangle of the tile's rays that may hit it, and for a
-    /// perspective eye (every ray's origin) the terms of intersectSphereFrom.
-    struct Slot {
-        std::uint32_t sphere;
-        int i0, i1, j0, j1;
-        dvec3 oc;
-        double c;
-    };
-
     void visit(std::uint32_t node, int i0, int i1, int j0, int j1) {
         const ObjectNode& nd = tree_.nodes[node];
         if (nd.leaf() && nd.objectCount == 0) return;  // empty: the beam only moves on
@@ -231,18 +244,19 @@ private:
 
     /// The tile's slot of a sphere, made the first time the tile meets it; nullptr when no ray
     /// of the tile can hit it.
-    const Slot* slot(std::uint32_t sphere) {
-        std::int32_t& k = slotOf_[sphere];
+    const SphereSlot* slot(std::uint32_t sphere) {
+        std::int32_t& k = x_.slotOf[sphere];
         if (k < 0) {
             const Sphere& s = tree_.scene.spheres[sphere];
-            Slot e{sphere, 0, w_, 0, h_, dvec3(0.0), 0.0};
+            SphereSlot e{sphere, 0, w_, 0, h_, dvec3(0.0), 0.0, x_.tests.size()};
             if (!sphereRect(s, e.i0, e.i1, e.j0, e.j1)) e.i0 = e.i1 = 0;
             e.oc = s.centre - gen_.eye();
             e.c = glm::dot(e.oc, e.oc) - s.radius * s.radius;
-            k = std::int32_t(slots_.size());
-            slots_.push_back(e);
+            if (e.i0 < e.i1) x_.tests.resize(e.tests + std::size_t(e.i1 - e.i0) * std::size_t(e.j1 - e.j0), kNotTested);
+            k = std::int32_t(x_.slots.size());
+            x_.slots.push_back(e);
         }
-        const Slot& e = slots_[std::size_t(k)];
+        const SphereSlot& e = x_.slots[std::size_t(k)];
         return e.i0 < e.i1 ? &e : nullptr;
     }
 
@@ -256,7 +270,7 @@ private:
     bool anyLive(int i0, int i1, int j0, int j1) const {
         for (int j = j0; j < j1; ++j)
             for (int wi = i0 / 64; wi <= (i1 - 1) / 64; ++wi)
-                if (live_[std::size_t(j * words_ + wi)] & columnMask(wi, i0, i1)) return true;
+                if (x_.live[std::size_t(j * words_ + wi)] & columnMask(wi, i0, i1)) return true;
         return false;
     }
 
@@ -269,35 +283,43 @@ private:
     // that hit a sphere.
     void intersect(const ObjectNode& leaf, const Box3& box, int i0, int i1, int j0, int j1) {
         const std::uint32_t* list = tree_.objects.data() + leaf.firstObject;
-        touched_.clear();
+        std::vector<double>& nearT = x_.nearT;
+        x_.touched.clear();
         for (std::uint32_t q = 0; q < leaf.objectCount; ++q) {
-            const Slot* e = slot(list[q]);
+            const SphereSlot* e = slot(list[q]);
             if (!e) continue;
             const int a0 = std::max(i0, e->i0), a1 = std::min(i1, e->i1), b0 = std::max(j0, e->j0), b1 = std::min(j1, e->j1);
             if (a0 >= a1 || b0 >= b1) continue;
             const Sphere& sp = tree_.scene.spheres[list[q]];
-            for (int j = b0; j < b1; ++j)
+            const int pitch = e->i1 - e->i0;
+            for (int j = b0; j < b1; ++j) {
+                double* tests = x_.tests.data() + e->tests + std::size_t((j - e->j0) * pitch);  // column e->i0 first
                 for (int wi = a0 / 64; wi <= (a1 - 1) / 64; ++wi)
-                    for (std::uint64_t m = live_[std::size_t(j * words_ + wi)] & columnMask(wi, a0, a1); m; m &= m - 1) {
-                        const std::size_t k = std::size_t(j) * std::size_t(w_) + std::size_t(wi * 64 + std::countr_zero(m));
-                        const Ray& r = rays_[k];
-                        ++c_.intersections;
-                        const double t = perspective_ ? intersectSphereFrom(e->oc, e->c, r.direction, 0.0)
-                                                      : intersectSphere(sp, r.origin, r.direction, 0.0);
-                        if (t < nearT_[k]) {
-                            if (nearT_[k] == kInf) touched_.push_back(std::uint32_t(k));
-                            nearT_[k] = t;
-                            nearSphere_[k] = list[q];
+                    for (std::uint64_t m = x_.live[std::size_t(j * words_ + wi)] & columnMask(wi, a0, a1); m; m &= m - 1) {
+                        const int i = wi * 64 + std::countr_zero(m);
+                        const std::size_t k = std::size_t(j) * std::size_t(w_) + std::size_t(i);
+                        double& t = tests[i - e->i0];
+                        if (std::isnan(t)) {
+                            const Ray& r = rays_[k];
+                            ++c_.intersections;
+                            t = perspective_ ? intersectSphereFrom(e->oc, e->c, r.direction, 0.0) : intersectSphere(sp, r.origin, r.direction, 0.0);
+                        }
+                        if (t < nearT[k]) {
+                            if (nearT[k] == kInf) x_.touched.push_back(std::uint32_t(k));
+                            nearT[k] = t;
+                            x_.nearSphere[k] = list[q];
                         }
                     }
+            }
         }
-        for (std::uint32_t k : touched_) {
-            if (inLeaf(box, rays_[k], nearT_[k])) {
-                hits_[k] = SphereHit{nearT_[k], nearSphere_[k]};
-                live_[std::size_t(int(k) / w_ * words_ + int(k) % w_ / 64)] &= ~(std::uint64_t(1) << (int(k) % w_ % 64));
+        for (std::uint32_t k : x_.touched) {
+            if (inLeaf(box, rays_[k], nearT[k])) {
+                hits_[k] = SphereHit{nearT[k], x_.nearSphere[k]};
+                const int i = int(k) % w_, j = int(k) / w_;
+                x_.live[std::size_t(j * words_ + i / 64)] &= ~(std::uint64_t(1) << (i % 64));
                 --remaining_;
             }
-            nearT_[k] = kInf;
+            nearT[k] = kInf;
         }
     }
 
@@ -319,6 +341,7 @@ private:
     }
 
     static constexpr double kMargin = 1e-6;  // pixels; the projection's rounding is far below
+    static constexpr double kNotTested = std::numeric_limits<double>::quiet_NaN();
     const ObjectOctree& tree_;
     const RayGenerator& gen_;
     int w_, h_;
@@ -326,14 +349,9 @@ private:
     std::vector<SphereHit>& hits_;
     ObjectTraceCounters& c_;
     std::uint64_t& beams_;
-    std::vector<std::int32_t>& slotOf_;
-    std::vector<Slot> slots_;
+    BeamScratch& x_;
     double xOff_ = 0.0, yOff_ = 0.0;
     int words_ = 1;
-    std::vector<std::uint64_t> live_;        // per row, words_ words: bit i set while ray i is not hit
-    std::vector<double> nearT_;               // per ray: nearest hit among the current leaf's spheres
-    std::vector<std::uint32_t> nearSphere_;
-    std::vector<std::uint32_t> touched_;      // rays with a nearest hit in the current leaf
     std::size_t remaining_ = 0;
     dvec3 right_, up_, back_;
     bool perspective_ = true;
