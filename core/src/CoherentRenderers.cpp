@@ -109,7 +109,7 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
         ++st.hits;
         f.hitId[p] = hit.voxel;
         if (c.cells) c.cells[p] = hit.cell;
-        f.rgba[p] = c.shader.shade(hit);
+        f.rgba[p] = c.shader.shade(hit, &st.secondaryRays);
         f.depth[p] = c.shader.distance(c.rays.world(x, y, dir), hit);
     }
     if (!c.srgb.empty()) c.srgb[p] = packSrgb(f.rgba[p]);
