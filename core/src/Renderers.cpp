@@ -52,7 +52,7 @@ RenderStats renderPerPixel(const std::string& name, const Octree& tree, const Ca
                 ++st.hits;
                 frame.flags[p] = Frame::kTraced;
                 frame.hitId[p] = hit.voxel;
-                frame.rgba[p] = shader.shade(hit);
+                frame.rgba[p] = shader.shade(hit, &st.secondaryRays);
                 frame.depth[p] = shader.distance(rays.world(x, y, dir), hit);
             }
         st.nodesVisited = counters.nodes;

@@ -47,7 +47,7 @@ public:
         const bool inside = glm::dot(n, d) > 0.0;
         if (inside) n = -n;
         double lambert = std::max(0.0, glm::dot(n, light_));
-        if (lambert > 0.0 && s_.shadows) {
+        if (lambert > 0.0 && s_.shadows.value_or(true)) {
             ++secondary;
             if (traceSamet(tree_, p, light_, eps_, c).hit()) lambert = 0.0;
         }

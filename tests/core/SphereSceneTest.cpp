@@ -1,4 +1,5 @@
 // Sphere scenes, the object octree and its three tracers (reference, samet, beam).
+#include "octrace/build/OctreeBuilder.h"
 #include "octrace/render/Renderer.h"
 #include "octrace/scene/ObjectOctree.h"
 #include "octrace/scene/Spheres.h"
@@ -298,4 +299,34 @@ TEST(SphereDistanceField, IsNegativeInsideAndCentredOnZero) {
     EXPECT_FLOAT_EQ(lo, -hi);
     EXPECT_EQ(std::max({f.dims.x, f.dims.y, f.dims.z}), 65);
     EXPECT_THROW(sphereDistanceField(s, 2000, 1000), LimitError);
+}
+
+TEST(SphereVoxels, KeepTheColourOfTheSphereWhoseSurfaceIsNearest) {
+    // A big red sphere and a small blue one overlapping it, a green one apart.
+    SphereSet set;
+    set.spheres = {{{0, 0, 0}, 1.0, {1.0f, 0.0f, 0.0f}, 0}, {{1.2, 0, 0}, 0.5, {0.0f, 0.0f, 1.0f}, 0}, {{0, 2.0, 0}, 0.4, {0.0f, 1.0f, 0.0f}, 0}};
+    set.name = set.source = "three spheres";
+    const Octree t = buildShellOctree(sphereDistanceField(set, (1 << 6) + 5), {6, 0.0, 0});
+    const std::vector<std::uint32_t> colours = sphereColoursAtVoxels(t, set, 1);
+    ASSERT_EQ(colours.size(), t.voxels.size());
+    EXPECT_EQ(sphereColoursAtVoxels(t, set, 3), colours);
+    const std::uint32_t red = packColour({1, 0, 0}), blue = packColour({0, 0, 1}), green = packColour({0, 1, 0});
+    std::size_t n[3] = {0, 0, 0};
+    const double h = t.voxelSize();
+    t.forEachVoxel([&](const ivec3& cell, std::uint32_t v) {
+        const dvec3 p = t.cubeOrigin + (dvec3(cell) + 0.5) * h;
+        if (p.y > 1.3) {  // around the green sphere only
+            EXPECT_EQ(colours[v], green);
+            ++n[2];
+        } else if (p.x < 0.6) {  // the red sphere's side of where the two surfaces cross (x = 0.7708)
+            EXPECT_EQ(colours[v], red) << p.x << "," << p.y << "," << p.z;
+            ++n[0];
+        } else if (p.x > 1.0) {
+            EXPECT_EQ(colours[v], blue) << p.x << "," << p.y << "," << p.z;
+            ++n[1];
+        }
+    });
+    EXPECT_GT(n[0], 500u);
+    EXPECT_GT(n[1], 50u);
+    EXPECT_GT(n[2], 50u);
 }
