@@ -219,6 +219,11 @@ public:
             remaining_ += !done_[k];
         }
         eye_ = tree.toOctreeSpace(gen.eye());
+        worldPerUnit_ = tree.cubeSide / double(L);
+        const dvec3 rel0 = tree.cubeOrigin - gen.eye();
+        camOrigin_ = dvec3(glm::dot(rel0, gen.right()), glm::dot(rel0, gen.up()), glm::dot(rel0, gen.back()));
+        for (int a = 0; a < 3; ++a)
+            camAxis_[a] = dvec3(gen.right()[a], gen.up()[a], gen.back()[a]) * worldPerUnit_;
         const dvec3 d = -gen.back();
         for (int a = 0; a < 3; ++a)
             if (d[a] < 0.0) orthoSign_ |= axisBit(a);
@@ -280,7 +285,8 @@ private:
     /// hit that crosses it has it as its hit, being visited in the ray's own order.
     void intersect(int level, const ivec3& cell, std::uint32_t voxel, Rect r, unsigned fMask, unsigned fSign) {
         ++beams_;
-        if (!cut(level, cell, r)) return;
+        // A few rays are tested faster than the leaf is projected.
+        if ((r.i1 - r.i0) * (r.j1 - r.j0) > kFewRays && !cut(level, cell, r)) return;
         const int shift = tree_.depth - level;
         for (int j = r.j0; j < r.j1; ++j)
             for (int i = r.i0; i < r.i1; ++i) {
@@ -310,11 +316,13 @@ private:
     bool cut(int level, const ivec3& cell, Rect& r) const {
         const double side = std::ldexp(1.0, N - level);
         const dvec3 lo = dvec3(cell) * side - kEyeTolerance, hi = dvec3(cell + 1) * side + kEyeTolerance;
-        dvec3 cam[8];  // corners in camera coordinates: along right, up, back from the eye
-        for (int k = 0; k < 8; ++k) {
-            const dvec3 p((k & 4) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 1) ? hi.z : lo.z);
-            const dvec3 rel = tree_.worldFromOctreeSpace(p) - gen_.eye();
-            cam[k] = dvec3(glm::dot(rel, gen_.right()), glm::dot(rel, gen_.up()), glm::dot(rel, gen_.back()));
+        // Corners in camera coordinates (along right, up, back from the eye): affine in octree space.
+        dvec3 cam[8];
+        cam[0] = camOrigin_ + camAxis_[0] * lo.x + camAxis_[1] * lo.y + camAxis_[2] * lo.z;
+        const double edge = hi.x - lo.x;
+        for (int k = 1; k < 8; ++k) {
+            const int a = k & 4 ? 0 : k & 2 ? 1 : 2;  // the highest axis bit of k: k = (k ^ bit) + bit
+            cam[k] = cam[k ^ int(axisBit(a))] + camAxis_[a] * edge;
         }
         double pxLo = kInf, pxHi = -kInf, pyLo = kInf, pyHi = -kInf;
         auto add = [&](const dvec3& c) {
@@ -333,9 +341,7 @@ private:
             }
             if (!front) return false;  // behind the view plane
         } else {
-            const dvec3 e = tree_.toOctreeSpace(gen_.eye());
-            const dvec3 nearest = glm::clamp(e, lo, hi);
-            const double dist = glm::length(tree_.worldFromOctreeSpace(nearest) - gen_.eye());
+            const double dist = glm::length(glm::clamp(eye_, lo, hi) - eye_) * worldPerUnit_;
             if (!(dist > 0.0)) return true;  // the eye in the box
             const double eps = 0.5 * cosWidest_ * dist;
             bool front = false;
@@ -360,6 +366,7 @@ private:
     }
 
     static constexpr double kEyeTolerance = 1.0 / 64.0;  // lattice units, far above the quantization's 2^-12
+    static constexpr int kFewRays = 4;
     static constexpr double kMargin = 1e-6;              // pixels: the projection's rounding is far below
     static constexpr double kInf = std::numeric_limits<double>::infinity();
     const Octree& tree_;
@@ -374,11 +381,13 @@ private:
     std::vector<double> xs_, ys_;
     std::vector<std::uint8_t> done_;
     std::size_t remaining_ = 0;
-    dvec3 eye_;
+    dvec3 eye_;                 // octree space
+    double worldPerUnit_ = 1.0;  // world length of one lattice unit
+    dvec3 camOrigin_, camAxis_[3];  // camera coordinates of the lattice origin and per unit along each axis
     unsigned orthoSign_ = 0;
 };
 
-constexpr int kBeamTile = 16;  // the initial beams: screen tiles of 16 x 16 pixels
+constexpr int kBeamTile = 32;  // the initial beams: screen tiles of 32 x 32 pixels
 
 RenderStats renderBeams(const std::string& name, const Octree& tree, const Camera& camera, const RenderSettings& settings,
                         Frame& frame) {
@@ -403,7 +412,7 @@ RenderStats renderBeams(const std::string& name, const Octree& tree, const Camer
         for (int j = 0; j < h; ++j)
             for (int i = 0; i < w; ++i) {
                 QuantizedRay& r = q[std::size_t(j) * std::size_t(w) + std::size_t(i)];
-                r = rays.quantized(x0 + i, y0 + j, rays.direction(x0 + i, y0 + j));
+                if (rays.mayMeetCube(x0 + i, y0 + j)) r = rays.quantized(x0 + i, y0 + j, rays.direction(x0 + i, y0 + j));
                 st.rays += r.meetsCube;
             }
         TraversalCounters counters;
@@ -426,6 +435,7 @@ RenderStats renderVoxelTracer(VoxelTracer tracer, const std::string& name, const
     if (tracer == VoxelTracer::Beam) return renderBeams(name, tree, camera, settings, frame);
     return renderPerPixel(name, tree, camera, settings, frame,
                           [&](const PixelRays& rays, int x, int y, const dvec3& d, TraversalCounters& c, bool& meets) {
+                              if (!rays.mayMeetCube(x, y)) return TraversalHit{};  // meets stays false
                               const QuantizedRay q = rays.quantized(x, y, d);
                               meets = q.meetsCube;
                               return traverseSamet(tree, q, c);
