@@ -23,6 +23,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <memory>
 
 namespace octrace::detail {
 namespace {
@@ -35,7 +37,7 @@ struct Context {
     Frame& frame;
     const Shader& shader;
     const PixelRays& rays;
-    std::vector<ivec3>& cells;
+    ivec3* cells;  // hit cells, read only at pixels that hit (nullptr: no pattern reads them)
     std::vector<std::uint32_t>& srgb;  // packed 8-bit colour of traced pixels (colour coherence)
     const LodCut& cut;
 };
@@ -55,18 +57,24 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
         ++st.raysFull;
         f.flags[p] = Frame::kTraced;
         f.rgba[p] = c.settings.background;
+        f.depth[p] = std::numeric_limits<float>::infinity();
+        f.hitId[p] = kNoHit;
         if (!c.srgb.empty()) c.srgb[p] = packSrgb(f.rgba[p]);
     };
     // Outside the cube's outline: no ray to quantize.
     if (!c.rays.mayMeetCube(x, y)) return background();
+    // Meets the cube perhaps, but not the surface's bounding box (rounded out to the nodes a
+    // multi-resolution cut may draw whole): nothing to find. The ray is quantized only to be
+    // counted in `rays`, and not even that well inside the cube's outline.
+    if (!c.rays.mayHitSurface(x, y)) {
+        if (c.rays.meetsCube(x, y)) ++st.rays;
+        return background();
+    }
     const dvec3 dir = c.rays.direction(x, y);
     const QuantizedRay q = c.rays.quantized(x, y, dir);
     if (q.meetsCube) ++st.rays;
     TraversalHit hit;
     std::uint8_t flags = Frame::kTraced;
-    // Meets the cube perhaps, but not the surface's bounding box (rounded out to the nodes a
-    // multi-resolution cut may draw whole): nothing to find.
-    if (!c.rays.mayHitSurface(x, y)) return background();
     const bool usePartners = partners && mode != Start::Root && f.hitId[partners[0]] != kNoHit &&
                              f.hitId[partners[1]] != kNoHit && q.meetsCube;
     if (usePartners) {
@@ -95,10 +103,12 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
     f.flags[p] = flags;
     if (!hit.hit()) {
         f.rgba[p] = c.settings.background;
+        f.depth[p] = std::numeric_limits<float>::infinity();
+        f.hitId[p] = kNoHit;
     } else {
         ++st.hits;
         f.hitId[p] = hit.voxel;
-        c.cells[p] = hit.cell;
+        if (c.cells) c.cells[p] = hit.cell;
         f.rgba[p] = c.shader.shade(hit);
         f.depth[p] = c.shader.distance(c.rays.world(x, y, dir), hit);
     }
@@ -125,14 +135,16 @@ bool tryFill(const Context& c, int x, int y, const std::size_t* partners, Render
     ++st.colourFilled;
     if (!hitA) {
         f.rgba[p] = c.settings.background;
-        if (c.rays.quantized(x, y, c.rays.direction(x, y)).meetsCube) ++st.rays;
+        f.depth[p] = std::numeric_limits<float>::infinity();
+        f.hitId[p] = kNoHit;
+        if (c.rays.meetsCube(x, y)) ++st.rays;
         return true;
     }
     // The ray lies between two rays that hit voxels inside the convex scene cube: it meets it.
     f.rgba[p] = 0.5f * (f.rgba[a] + f.rgba[b]);
     f.depth[p] = 0.5f * (f.depth[a] + f.depth[b]);
     f.hitId[p] = f.hitId[a];
-    c.cells[p] = c.cells[a];
+    if (c.cells) c.cells[p] = c.cells[a];
     ++st.rays;
     ++st.hits;
     return true;
@@ -153,15 +165,16 @@ RenderStats DiscreteRenderer::render(const Octree& tree, const Camera& camera, c
     Timer timer;
     RenderSettings settings = settingsIn;
     settings.colourCoherence = settingsIn.colourCoherence || colour_;
-    frame.resize(camera.width, camera.height);
+    frame.reshape(camera.width, camera.height);  // every pixel is written below
     const Shader shader(tree, camera, settings);
     const LodCut cut(tree, camera, settings.lodPixels, settings.level);
     const PixelRays rays(tree, camera, cut.coarsestLevel());
-    std::vector<ivec3> cells(frame.hitId.size(), ivec3(0));
+    // Written at every hit before any pattern reads it there: left uninitialised.
+    std::unique_ptr<ivec3[]> cells(pattern_ == Pattern::Full ? nullptr : new ivec3[frame.hitId.size()]);
     std::vector<std::uint32_t> srgb(settings.colourCoherence ? frame.hitId.size() : 0, 0u);
     if (cut.active() && pattern_ != Pattern::Full)
         throw UsageError("renderer " + name() + " has no multi-resolution mode (--lod, --level): use full, direct or direct-f2b");
-    const Context ctx{tree, settings, frame, shader, rays, cells, srgb, cut};
+    const Context ctx{tree, settings, frame, shader, rays, cells.get(), srgb, cut};
     const int W = camera.width, H = camera.height;
     const Start mode = pattern_ == Pattern::Full ? Start::Root : exact_ ? Start::Guided : Start::Branch;
     const bool colour = settings.colourCoherence;

@@ -199,6 +199,7 @@ public:
         f.Fc = (((u0 + h) << Q) - r_.U0) * r_.dV - (((v0 + h) << Q) - r_.V0) * r_.dU;
         f.partial = (m0 << Q) < r_.eyeM;
         f.lazy = false;
+        f.pathChild = 0;
         f.pos = 0;
         f.order = 0;
     }

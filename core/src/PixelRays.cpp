@@ -7,7 +7,7 @@ namespace octrace::detail {
 
 PixelRays::PixelRays(const Octree& tree, const Camera& camera, int surfaceLevel) : tree_(tree), gen_(camera) {
     const Box3 cube{tree.cubeOrigin, tree.cubeOrigin + dvec3(tree.cubeSide)};
-    cubeSpans_ = outline(cube, camera.width, camera.height);
+    cubeSpans_ = outline(cube, camera.width, camera.height, &cubeInnerSpans_);
     ivec3 lo, hi;
     tree.occupiedCells(lo, hi);
     if (lo.x > hi.x) {
@@ -24,8 +24,9 @@ PixelRays::PixelRays(const Octree& tree, const Camera& camera, int surfaceLevel)
                             camera.height);
 }
 
-PixelRays::Spans PixelRays::outline(const Box3& box, int width, int height) const {
+PixelRays::Spans PixelRays::outline(const Box3& box, int width, int height, Spans* inner) const {
     Spans spans(std::size_t(std::max(height, 0)), {0, width - 1});
+    if (inner) inner->assign(spans.size(), {1, 0});  // until the hull is known: none certain
     const double size = std::max({box.hi.x - box.lo.x, box.hi.y - box.lo.y, box.hi.z - box.lo.z});
     // The cube's corners in pixel coordinates.
     struct P {
@@ -88,6 +89,36 @@ PixelRays::Spans PixelRays::outline(const Box3& box, int width, int height) cons
         if (!(lo <= hi)) {
             spans[std::size_t(y)] = {1, 0};  // the band misses the outline
             continue;
+        }
+        if (inner) {
+            // The hull's extent on both edges of the band; the hull is convex, so every line of
+            // the band holds the intersection of the two. A centre a further pixel inside it
+            // is inside the hull by more than a pixel.
+            double ilo = -std::numeric_limits<double>::infinity(), ihi = -ilo;
+            for (double yb : {b0, b1}) {
+                double l = std::numeric_limits<double>::infinity(), h = -l;
+                for (std::size_t i = 0; i < hull.size(); ++i) {
+                    const P& a = hull[i];
+                    const P& b = hull[(i + 1) % hull.size()];
+                    if (a.y == yb) {
+                        l = std::min(l, a.x);
+                        h = std::max(h, a.x);
+                    }
+                    if ((a.y - yb) * (b.y - yb) < 0.0) {
+                        const double x = a.x + (b.x - a.x) * (yb - a.y) / (b.y - a.y);
+                        l = std::min(l, x);
+                        h = std::max(h, x);
+                    }
+                }
+                ilo = std::max(ilo, l);
+                ihi = std::min(ihi, h);
+            }
+            if (ilo <= ihi && std::isfinite(ilo) && std::isfinite(ihi)) {
+                const double x0 = std::ceil(ilo - 0.5) + 1.0, x1 = std::floor(ihi - 0.5) - 1.0;
+                if (x0 <= x1)
+                    (*inner)[std::size_t(y)] = {int(std::clamp(x0, 0.0, double(width))),
+                                                int(std::clamp(x1, -1.0, double(width - 1)))};
+            }
         }
         // Pixel x has its centre at x + 0.5.
         const double x0 = std::floor(lo - 0.5) - 1.0, x1 = std::ceil(hi - 0.5) + 1.0;

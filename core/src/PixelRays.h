@@ -32,6 +32,17 @@ public:
         const auto& s = cubeSpans_[std::size_t(y)];
         return x >= s.first && x <= s.second;
     }
+    /// True only when the pixel's quantized ray certainly meets the scene cube: the pixel's
+    /// centre lies more than a pixel inside the cube's projected outline, so no rounding of the
+    /// ray can take it out (a pixel at the screen is far wider than the fixed point's unit). A
+    /// renderer that would quantize the ray only to count it in `rays` may count it unquantized.
+    bool surelyMeetsCube(int x, int y) const {
+        const auto& s = cubeInnerSpans_[std::size_t(y)];
+        return x >= s.first && x <= s.second;
+    }
+    /// Whether the pixel's quantized ray meets the cube, quantizing it only when that is not
+    /// certain (for counting rays that are not traced).
+    bool meetsCube(int x, int y) const { return surelyMeetsCube(x, y) || quantized(x, y, direction(x, y)).meetsCube; }
     /// False only when the pixel's ray cannot hit a boundary voxel: outside the projected
     /// outline of the surface's bounding box (Octree::occupiedCells), in the same way.
     bool mayHitSurface(int x, int y) const {
@@ -43,8 +54,10 @@ private:
     const Octree& tree_;
     RayGenerator gen_;
     using Spans = std::vector<std::pair<int, int>>;  // per row: pixels that may see the box
-    Spans outline(const Box3& box, int width, int height) const;
-    Spans cubeSpans_, surfaceSpans_;
+    /// Per row, the pixels whose rays may meet the box's projected outline; with `inner`, those
+    /// whose rays certainly do (empty spans when that cannot be told).
+    Spans outline(const Box3& box, int width, int height, Spans* inner = nullptr) const;
+    Spans cubeSpans_, cubeInnerSpans_, surfaceSpans_;
 };
 
 }  // namespace octrace::detail

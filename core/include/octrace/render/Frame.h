@@ -21,7 +21,13 @@ public:
     Frame(const Frame&) = default;
     Frame& operator=(const Frame&) = default;
 
+    /// Sizes the frame and clears it: background-less black, depth +inf, no hits, no flags.
     void resize(int width, int height);
+    /// Sizes the frame without clearing it when it already has that size (a renderer that
+    /// writes every field of every pixel re-renders into the same frame without the clear).
+    void reshape(int width, int height) {
+        if (width != this->width || height != this->height || rgba.size() != pixel(0, height)) resize(width, height);
+    }
 
     int width = 0;
     int height = 0;

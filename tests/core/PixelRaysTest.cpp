@@ -1,0 +1,69 @@
+// The per-pixel ray set-up shared by the ray casters (core/src/PixelRays.h): the screen-space
+// outlines that let a renderer skip work must never change what a pixel shows or counts.
+#include "RenderTestUtil.h"
+
+#include "PixelRays.h"
+
+#include <gtest/gtest.h>
+
+using namespace octrace;
+using namespace octrace::test;
+
+namespace {
+
+std::vector<NamedCamera> camerasNearAndFar(const Octree& t) {
+    std::vector<NamedCamera> cams = allTestCameras(t);
+    // Close to the cube (its outline fills and leaves the screen) and far (a few pixels).
+    cams.push_back({"close", makeCamera(dvec3(1.3, 0.4, 0.9), dvec3(0.0), dvec3(0, 0, 1), 60, 97, 61)});
+    cams.push_back({"far", makeCamera(dvec3(40.0, -25.0, 18.0), dvec3(0.0), dvec3(0, 0, 1), 20, 97, 61)});
+    const std::size_t n = cams.size();
+    for (std::size_t i = 0; i < n; ++i) {
+        Camera o = cams[i].camera;
+        o.frameOrthographic(cubeOf(t));
+        cams.push_back({cams[i].name + ", orthographic", o});
+    }
+    return cams;
+}
+
+}  // namespace
+
+TEST(PixelRays, APixelSaidSurelyToMeetTheCubeHasAQuantizedRayThatMeetsIt) {
+    const Octree& tree = sphereTree();
+    std::size_t sure = 0, meet = 0;
+    for (const NamedCamera& nc : camerasNearAndFar(tree)) {
+        SCOPED_TRACE(nc.name);
+        const detail::PixelRays rays(tree, nc.camera);
+        for (int y = 0; y < nc.camera.height; ++y)
+            for (int x = 0; x < nc.camera.width; ++x) {
+                const bool meets = rays.quantized(x, y, rays.direction(x, y)).meetsCube;
+                meet += meets;
+                if (rays.surelyMeetsCube(x, y)) {
+                    ++sure;
+                    ASSERT_TRUE(meets) << "pixel " << x << "," << y;
+                    ASSERT_TRUE(rays.mayMeetCube(x, y));
+                }
+                if (!rays.mayMeetCube(x, y)) ASSERT_FALSE(meets) << "pixel " << x << "," << y;
+                ASSERT_EQ(rays.meetsCube(x, y), meets);
+            }
+    }
+    // The shortcut must actually apply to most of the pixels whose rays meet the cube.
+    EXPECT_GT(sure, meet / 2);
+}
+
+TEST(PixelRays, RenderingIntoAUsedFrameGivesTheFreshFrame) {
+    // The ray casters re-render into a frame of the same size without clearing it first.
+    const Octree& tree = torusTree();
+    const Camera cam = Camera::framing(cubeOf(tree), 120, 90);
+    const Camera other = makeCamera({-1.3, 1.1, -0.9}, {0.1, -0.05, 0.2}, {0, 1, 0}, 50, 120, 90);
+    for (const std::string name : {"full", "area", "linear-exact", "area+colour"}) {
+        SCOPED_TRACE(name);
+        Frame fresh, used;
+        render(name, tree, cam, fresh);
+        render(name, noiseTree(), other, used);  // another scene and view, same size
+        ASSERT_EQ(used.width, fresh.width);
+        render(name, tree, cam, used);
+        const FrameDiff d = diffFrames(used, fresh);
+        EXPECT_TRUE(d.identical()) << d.first;
+        EXPECT_EQ(used.flags, fresh.flags);
+    }
+}
