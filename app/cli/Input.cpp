@@ -97,11 +97,13 @@ bool isOctreeInput(const std::string& input) {
 
 Octree loadOctree(const std::string& input, std::uint64_t memoryBudget) { return io::readOctreeFile(input, memoryBudget); }
 
-ScalarField loadField(const std::string& input, const io::FieldRequest& req, int depth) {
+ScalarField loadField(const std::string& input, const io::FieldRequest& req, int depth, std::shared_ptr<const SphereSet>* spheres) {
     if (isSphereInput(input)) {
         if (req.hasRegion) throw UsageError("--region applies to geographic NetCDF inputs, not to " + input);
         if (!req.series.empty()) throw UsageError("--series applies to DICOM inputs, not to " + input);
-        ScalarField f = sphereDistanceField(loadSpheres(input, req.memoryBudget), (1 << std::min(depth, 12)) + 5, req.memoryBudget);
+        auto set = std::make_shared<const SphereSet>(loadSpheres(input, req.memoryBudget));
+        ScalarField f = sphereDistanceField(*set, (1 << std::min(depth, 12)) + 5, req.memoryBudget);
+        if (spheres) *spheres = std::move(set);
         if (!req.variable.empty() && req.variable != f.name)
             throw InputError(input + ": no variable '" + req.variable + "' (it has: " + f.name + ")");
         return f;

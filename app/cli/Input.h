@@ -6,6 +6,7 @@
 #include "octrace/scene/Spheres.h"
 
 #include <cstdint>
+#include <memory>
 #include <string>
 
 namespace octrace::cli {
@@ -13,7 +14,9 @@ namespace octrace::cli {
 /// or a sphere scene (isSphereInput) as its signed distance field (sphereDistanceField) with
 /// 2^depth + 5 samples along its longest side (`depth`: the octree depth it is built at).
 /// Both refuse (LimitError) samples that would need more than req.memoryBudget.
-ScalarField loadField(const std::string& input, const io::FieldRequest& req, int depth);
+/// `spheres`, when given, receives a sphere input's spheres (left empty for other inputs).
+ScalarField loadField(const std::string& input, const io::FieldRequest& req, int depth,
+                      std::shared_ptr<const SphereSet>* spheres = nullptr);
 /// Whether INPUT is a sphere scene: "sphereflake:L" (Haines' SphereFlake, L 1..4),
 /// "random:N[:SEED]" (N seeded random spheres, seed default 1) or a molecule file (.pdb,
 /// .ent, .cif, .mmcif).

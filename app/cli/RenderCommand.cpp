@@ -57,7 +57,6 @@ struct RenderArgs : SurfaceArgs {
     std::string octreeKind;  // "object", "voxel" or empty: by the renderer
     int leafObjects = ObjectOctreeOptions{}.leafObjects;
     int samples = 1, bounces = RenderSettings{}.bounces;
-    bool shadows = RenderSettings{}.shadows;
     std::vector<std::string> sphereOptions;  // given, for the check that they apply
 };
 
@@ -160,13 +159,6 @@ OptionParser makeParser(RenderArgs& a) {
                a.sphereOptions.push_back("--samples");
            }});
     sphereInt("bounces", "object octree: Whitted depth, reflected and transmitted rays at most N deep", 0, 16, a.bounces);
-    p.add({"shadows", "on|off", "object octree: shadow rays towards the light (default on)",
-           [&](const std::string& v) {
-               if (v == "on") a.shadows = true;
-               else if (v == "off") a.shadows = false;
-               else throw UsageError("--shadows: choose on or off, got '" + v + "'");
-               a.sphereOptions.push_back("--shadows");
-           }});
     addFigureOptions(p, a.figure);
     addMessageOptions(p, a);
     return p;
@@ -308,7 +300,7 @@ int renderObjectOctree(const RenderArgs& a) {
     if (a.light) rs.lightCamera = *a.light;
     rs.samples = a.samples;
     rs.bounces = a.bounces;
-    rs.shadows = a.shadows;
+    rs.shadows = a.shadows;  // unset: on (SphereRenderers.cpp)
 
     for (const std::string& name : {a.rendererName, a.baseline})
         if (!name.empty() && !makeRenderer(name)->drawsSpheres())
@@ -329,7 +321,7 @@ int renderObjectOctree(const RenderArgs& a) {
     js.set("threads", threads);
     js.set("samples", a.samples);
     js.set("bounces", a.bounces);
-    js.set("shadows", std::string(a.shadows ? "on" : "off"));
+    js.set("shadows", std::string(a.shadows.value_or(true) ? "on" : "off"));
     js.set("pixels", st.pixels);
     js.set("rays", st.rays);
     js.set("hits", st.hits);
@@ -449,6 +441,9 @@ int runRender(const std::vector<std::string>& args) {
     rs.colourFillsBackground = a.colourFillsBackground;
     rs.lodPixels = a.lod;
     rs.level = a.level;
+    if (a.shadows.value_or(false) && !Shader(tree, cam, rs).shadows())
+        log::warning("--shadows on: the octree is shaded by its baked light, which has its own shadows "
+                     "(--bake-shadows); give --lighting dynamic for shadow rays towards --light");
 
     Frame frame;
     const RepeatedRender rep = renderRepeated(a, frame, [&](const Renderer& r, Frame& f) {
@@ -489,6 +484,8 @@ int runRender(const std::vector<std::string>& args) {
     js.set("load_ms", loadMs);
     js.set("build_ms", report.buildMs);
     js.set("lighting", std::string(rs.baked && !tree.baked.empty() ? "baked" : "dynamic"));
+    js.set("shadows", std::string(Shader(tree, cam, rs).shadows() ? "on" : "off"));
+    js.set("shadow_rays", st.secondaryRays);
     js.set("bake_ms", surface.bake.bakeMs);
     js.set("render_ms", st.renderMs);
     setRepeatStats(js, a, rep);

@@ -296,6 +296,13 @@ void addLightingOption(OptionParser& p, SurfaceArgs& a) {
                if (!(x >= 0.0 && x <= 1.0)) throw UsageError("--ambient: must be in [0, 1], got " + v);
                a.ambient = float(x);
            }});
+    p.add({"shadows", "on|off", "shadow rays towards --light: sphere scenes in the object octree (default on) and the "
+           "dynamic shading of voxel octrees (default off: one more ray per shaded pixel, and baked light has its own "
+           "shadows)",
+           [&](const std::string& v) {
+               if (v != "on" && v != "off") throw UsageError("--shadows: choose on or off, got '" + v + "'");
+               a.shadows = v == "on";
+           }});
 }
 
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result) {
@@ -507,7 +514,7 @@ void readSurfaceField(const SurfaceArgs& a, Surface& s) {
     io::FieldRequest request = a.request;
     request.memoryBudget = memoryBudget(a);
     Timer t;
-    s.field = loadField(a.input, request, a.depth);
+    s.field = loadField(a.input, request, a.depth, &s.spheres);
     s.loadMs = t.ms();
 }
 
@@ -552,6 +559,12 @@ void buildFromField(const SurfaceArgs& a, Surface& s, const BuildHooks& hooks) {
     s.tree.source = sourceDescription(a.input, s.field);
     if (hooks.progress && hooks.endLine) std::fputs("\n", stderr);
     finishSurface(a, s);
+    // A molecule's voxels keep their atoms' colours, as a city's keep their buildings'.
+    if (s.spheres) {
+        Timer t;
+        s.tree.colours = sphereColoursAtVoxels(s.tree, *s.spheres, a.threads);
+        log::debug("voxels coloured by their nearest spheres in " + std::to_string(t.ms()) + " ms");
+    }
     if (colourBy) {
         s.tree.voxelValues = sampleAtVoxels(s.tree, *colourBy, a.threads);
         s.tree.valueName = colourBy->name;
@@ -588,6 +601,7 @@ void applyColour(const SurfaceArgs& a, const Surface& s, RenderSettings& setting
 
 void applyLighting(const SurfaceArgs& a, RenderSettings& settings) {
     settings.baked = a.lighting != SurfaceArgs::Lighting::Dynamic;
+    settings.shadows = a.shadows;
     if (a.ambient) {
         settings.ambient = *a.ambient;
         settings.diffuse = 1.0f - *a.ambient;

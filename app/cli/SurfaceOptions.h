@@ -14,10 +14,12 @@
 #include "octrace/io/FieldRequest.h"
 #include "octrace/octree/Octree.h"
 #include "octrace/render/RenderSettings.h"
+#include "octrace/scene/Spheres.h"
 
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -61,6 +63,7 @@ struct SurfaceArgs {
     bool bakeLightGiven = false;
     enum class Lighting { Auto, Baked, Dynamic } lighting = Lighting::Auto;  // --lighting (render)
     std::optional<float> ambient;  // --ambient (render): diffuse is 1 - ambient, dynamic and baked
+    std::optional<bool> shadows;   // --shadows (render); unset: the scene's default (RenderSettings::shadows)
 };
 
 /// The window --window TEXT sets: a CT preset, "C,W", or "none" (an invalid window, which
@@ -84,7 +87,7 @@ void addFormOptions(OptionParser& p, SurfaceArgs& a);
 void addExtendDownOption(OptionParser& p, SurfaceArgs& a);
 /// --bake, --bake-light, --bake-ao, --bake-ao-distance, --bake-shadows.
 void addBakeOptions(OptionParser& p, SurfaceArgs& a);
-/// --lighting baked|dynamic, --ambient A.
+/// --lighting baked|dynamic, --ambient A, --shadows on|off.
 void addLightingOption(OptionParser& p, SurfaceArgs& a);
 /// --threads; `result` names what does not depend on it ("the image").
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result);
@@ -134,6 +137,9 @@ struct Surface {
     bool invertedGrey = false;
     std::string windowSource;  ///< where the window comes from, for messages and stats
     BakeReport bake;           ///< when lighting was baked here
+    /// A sphere input's spheres (the field is their distance field): the voxels take their
+    /// colours (sphereColoursAtVoxels). Shared, so that a rebuild from the same field keeps them.
+    std::shared_ptr<const SphereSet> spheres;
 };
 
 /// Applies --quiet / --verbose to the log. A city input (CityJSON) is read into one projected
@@ -176,7 +182,7 @@ void buildFromField(const SurfaceArgs& a, Surface& s, const BuildHooks& hooks = 
 /// (RenderSettings::window, invertedGrey).
 void applyColour(const SurfaceArgs& a, const Surface& s, RenderSettings& settings);
 /// The lighting options as RenderSettings: baked light unless --lighting dynamic, and with
-/// --ambient its ambient and diffuse (1 - ambient) shares.
+/// --ambient its ambient and diffuse (1 - ambient) shares; --shadows as given.
 void applyLighting(const SurfaceArgs& a, RenderSettings& settings);
 
 }  // namespace octrace::cli

@@ -189,6 +189,7 @@ void Engine::startBuild(const StudioState& state) {
         // The field is lent to this build (jobs run one at a time) and given back whatever happens.
         auto surface = std::make_shared<cli::Surface>();
         surface->field = std::move(base->field);
+        surface->spheres = base->spheres;
         struct GiveBack {
             cli::Surface& from;
             cli::Surface& to;

@@ -479,6 +479,16 @@ QWidget* MainWindow::buildControls() {
     bakeRow->addWidget(bakeAoSpin_);
     bakeRow->addWidget(bakeShadowsCheck_);
     renderForm->addRow(tr("Bake"), bakeRow);
+    shadowsCheck_ = new QCheckBox(tr("shadow rays"), renderBox);
+    shadowsCheck_->setObjectName(QStringLiteral("shadowsCheck"));
+    shadowsCheck_->setChecked(state_.shadows);
+    shadowsCheck_->setToolTip(tr("Dynamic lighting: one shadow ray per pixel towards the light (baked light has its own shadows)"));
+    connect(shadowsCheck_, &QCheckBox::toggled, this, [this](bool on) {
+        if (updating_) return;
+        state_.shadows = on;
+        lightingChanged(false);
+    });
+    renderForm->addRow(tr("Dynamic"), shadowsCheck_);
     colormapCombo_ = new QComboBox(renderBox);
     colormapCombo_->setObjectName(QStringLiteral("colormapCombo"));
     colormapCombo_->addItem(tr("(uniform colour)"));
@@ -539,6 +549,7 @@ void MainWindow::colouringChanged() {
 void MainWindow::lightingChanged(bool rebuild) {
     bakeAoSpin_->setEnabled(state_.lighting == "baked");
     bakeShadowsCheck_->setEnabled(state_.lighting == "baked");
+    shadowsCheck_->setEnabled(state_.lighting != "baked");
     if (rebuild) scheduleBuild();
     else requestRender(false);
 }
@@ -698,6 +709,7 @@ void MainWindow::showState() {
     lightingCombo_->setCurrentIndex(std::max(0, lightingCombo_->findData(QString::fromStdString(state_.lighting))));
     bakeAoSpin_->setValue(state_.bakeAo);
     bakeShadowsCheck_->setChecked(state_.bakeShadows);
+    shadowsCheck_->setChecked(state_.shadows);
     clipCheck_->setChecked(state_.clip);
     showCut();
     colormapCombo_->setCurrentIndex(state_.colormap.empty() ? 0 : colormapCombo_->findText(QString::fromStdString(state_.colormap)));
@@ -709,6 +721,7 @@ void MainWindow::showState() {
     updateColourBar();
     bakeAoSpin_->setEnabled(state_.lighting == "baked");
     bakeShadowsCheck_->setEnabled(state_.lighting == "baked");
+    shadowsCheck_->setEnabled(state_.lighting != "baked");
 }
 
 void MainWindow::addRecent(const QString& input) {

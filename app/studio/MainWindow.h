@@ -132,7 +132,7 @@ private:
               *colormapCombo_ = nullptr, *windowCombo_ = nullptr, *isoPresetCombo_ = nullptr, *lightingCombo_ = nullptr,
               *cutCombo_ = nullptr;
     QLineEdit* cutEdit_ = nullptr;
-    QCheckBox *clipCheck_ = nullptr, *bakeShadowsCheck_ = nullptr;
+    QCheckBox *clipCheck_ = nullptr, *bakeShadowsCheck_ = nullptr, *shadowsCheck_ = nullptr;
     QDoubleSpinBox* ambientSpin_ = nullptr;
     QSpinBox* bakeAoSpin_ = nullptr;
     QLineEdit* timeEdit_ = nullptr;

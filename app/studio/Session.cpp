@@ -137,7 +137,8 @@ QByteArray sessionJson(const StudioState& s) {
                         {"ambient", s.ambient},
                         {"lighting", QString::fromStdString(s.lighting)},
                         {"bake_ao", s.bakeAo},
-                        {"bake_shadows", s.bakeShadows}};
+                        {"bake_shadows", s.bakeShadows},
+                        {"shadows", s.shadows}};
     QJsonObject exportSettings{{"width", s.exportWidth}, {"height", s.exportHeight}, {"transparent", s.transparent},
                                {"figure", s.figure},     {"title", QString::fromStdString(s.title)},
                                {"dpi", s.dpi},           {"scale_bar", s.scaleBar}};
@@ -241,6 +242,7 @@ StudioState parseSession(const QByteArray& json, const QString& baseFolder) {
         shading.fail("lighting", QStringLiteral("expected \"\", \"baked\" or \"dynamic\", got '%1'").arg(QString::fromStdString(s.lighting)));
     shading.integer("bake_ao", s.bakeAo, 0, 1024);
     shading.flag("bake_shadows", s.bakeShadows);
+    shading.flag("shadows", s.shadows);
 
     const Reader exportSettings = root.object("export");
     exportSettings.integer("width", s.exportWidth, 1, kMaxExportSide);

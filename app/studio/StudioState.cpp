@@ -55,6 +55,7 @@ cli::SurfaceArgs surfaceArgs(const StudioState& state) {
                                                : cli::SurfaceArgs::Lighting::Auto;
     a.bakeOptions.aoRays = state.bakeAo;
     a.bakeOptions.shadows = state.bakeShadows;
+    if (state.shadows && state.lighting != "baked") a.shadows = true;
     if (!state.cut.empty()) a.cuts.push_back(cli::SolidArgument(state.cut));  // relief:FILE read with the field
     a.clip = state.clip && !state.cut.empty();
     return a;
@@ -109,6 +110,8 @@ std::vector<std::string> renderArguments(const StudioState& state, const Camera&
     if (state.lighting == "baked") {
         args.insert(args.end(), {"--bake-ao", std::to_string(state.bakeAo)});
         if (!state.bakeShadows) args.insert(args.end(), {"--bake-shadows", "off"});
+    } else if (state.shadows) {
+        args.insert(args.end(), {"--shadows", "on"});
     }
     if (state.ambient != StudioState().ambient) args.insert(args.end(), {"--ambient", number(state.ambient)});
     args.insert(args.end(), {"--renderer", state.renderer,

@@ -41,13 +41,14 @@ struct StudioState {
     /// "none", or a CT preset (CtPresets.h).
     std::string window;
     vec4 background{1.0f, 1.0f, 1.0f, 1.0f};  ///< sRGB, alpha
-    // Lighting (the CLI's --ambient, --lighting, --bake-ao, --bake-shadows).
+    // Lighting (the CLI's --ambient, --lighting, --bake-ao, --bake-shadows, --shadows).
     double ambient = 0.15;  ///< share of light independent of the normal; the light's is 1 - ambient
     /// "" (baked light when the octree has it, else dynamic), "baked" (baked at build when the
     /// octree has none), "dynamic" (from the normals and `light`).
     std::string lighting;
     int bakeAo = BakeOptions{}.aoRays;
     bool bakeShadows = true;
+    bool shadows = false;  ///< --shadows: shadow rays of the dynamic light (not with baked light)
     // CSG: a cut-away solid (the CLI's --cut syntax: box:..., sphere:..., halfspace:...,
     // cylinder:...; empty: none) and --clip.
     std::string cut;

@@ -13,7 +13,7 @@
 namespace octrace::studio {
 namespace {
 
-// The CPU renderers' shading (Shader::shadeNormal): two-sided Lambert with RenderSettings'
+// The CPU renderers' shading (Shader::shadeLambert): two-sided Lambert with RenderSettings'
 // ambient and diffuse over the surfel's albedo, in linear RGB; sRGB encoded on output.
 const char* kVertexShader = R"(#version 330 core
 layout(location = 0) in vec3 position;

@@ -1,6 +1,7 @@
 #include "octrace/lighting/Bake.h"
 
-#include "octrace/render/DiscreteTraversal.h"
+#include "ShadowTracer.h"
+
 #include "octrace/util/Error.h"
 #include "octrace/util/Parallel.h"
 #include "octrace/util/Timer.h"
@@ -32,51 +33,6 @@ dmat3 frameAround(const dvec3& n) {
     const dvec3 t = glm::normalize(glm::cross(a, n)), b = glm::cross(n, t);
     return dmat3(t, b, n);
 }
-
-class ShadowTracer {
-public:
-    explicit ShadowTracer(const Octree& t) : t_(t), toOS_(double(1u << Octree::kIntBits) / t.cubeSide) {}
-
-    /// World distance from `origin` along unit `dir` to the first boundary voxel not next to
-    /// `start` (cell space), or +inf.
-    double firstHit(dvec3 origin, const dvec3& dir, const ivec3& start, std::uint64_t& rays) const {
-        const double h = t_.voxelSize();
-        double travelled = 0.0;
-        for (int attempt = 0; attempt < 4; ++attempt) {
-            ++rays;
-            TraversalCounters counters;
-            const QuantizedRay q = quantizeRay(t_.toOctreeSpace(origin), dir * toOS_);
-            if (!q.meetsCube) return INFINITY;
-            const TraversalHit hit = traverseDiscrete(t_, q, counters);
-            if (!hit.hit()) return INFINITY;
-            const Box3 box = t_.voxelBox(hit.cell);
-            const double tin = entry(origin, dir, box), tout = exit(origin, dir, box);
-            const ivec3 d = glm::abs(hit.cell - start);
-            if (std::max(d.x, std::max(d.y, d.z)) > 1) return travelled + tin;
-            // The surface's own neighbour: continue just past it.
-            const double step = std::max(tout, 0.0) + 1e-3 * h;
-            origin += dir * step;
-            travelled += step;
-        }
-        return INFINITY;
-    }
-
-private:
-    static double entry(const dvec3& o, const dvec3& d, const Box3& b) {
-        double t = 0.0;
-        for (int a = 0; a < 3; ++a)
-            if (d[a] != 0.0) t = std::max(t, std::min((b.lo[a] - o[a]) / d[a], (b.hi[a] - o[a]) / d[a]));
-        return t;
-    }
-    static double exit(const dvec3& o, const dvec3& d, const Box3& b) {
-        double t = INFINITY;
-        for (int a = 0; a < 3; ++a)
-            if (d[a] != 0.0) t = std::min(t, std::max((b.lo[a] - o[a]) / d[a], (b.hi[a] - o[a]) / d[a]));
-        return t;
-    }
-    const Octree& t_;
-    double toOS_;
-};
 
 }  // namespace
 
@@ -118,7 +74,7 @@ void bakeLighting(Octree& tree, const BakeOptions& o, BakeReport* report) {
     std::vector<ivec3> cells(tree.voxels.size());
     tree.forEachVoxel([&](const ivec3& c, std::uint32_t v) { cells[v] = c; });
     tree.baked.assign(tree.voxels.size(), 0);
-    const ShadowTracer tracer(tree);
+    const detail::ShadowTracer tracer(tree);
     std::atomic<std::uint64_t> rays{0};
     const std::size_t n = cells.size(), chunk = 1024;
     parallelFor((n + chunk - 1) / chunk, o.threads, [&](std::size_t k) {
@@ -137,7 +93,7 @@ void bakeLighting(Octree& tree, const BakeOptions& o, BakeReport* report) {
                 if (cosine == 0.0) continue;
                 if (o.shadows) {
                     const dvec3 side = cosine > 0.0 ? nrm : -nrm;
-                    if (tracer.firstHit(centre + side * h, dir, cell, local) < dist) continue;
+                    if (tracer.firstHit(centre + side * h, dir, cell, 0, local) < dist) continue;
                 }
                 light += double(l.intensity) * std::abs(cosine);
             }
@@ -148,7 +104,7 @@ void bakeLighting(Octree& tree, const BakeOptions& o, BakeReport* report) {
                     const dmat3 f = frameAround(s * nrm);
                     int open = 0;
                     for (const dvec3& d : dirs)
-                        open += tracer.firstHit(centre + s * nrm * h, f * d, cell, local) >= aoDistance;
+                        open += tracer.firstHit(centre + s * nrm * h, f * d, cell, 0, local) >= aoDistance;
                     ao = std::max(ao, double(open) / double(dirs.size()));
                 }
             }

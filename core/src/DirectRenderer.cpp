@@ -166,22 +166,23 @@ private:
             if (r.empty()) continue;
             if (f2b_ && whollyCovered(r)) continue;
             const std::uint32_t slot = node.firstChild + childRank(node.childMask, c);
-            if (level + 1 == tree_.depth) splat(slot, kNoHit, childCell, childLo, childSide, r, st);
+            if (level + 1 == tree_.depth) splat(slot, kNoHit, childCell, 0, childLo, childSide, r, st);
             else if (node.termMask & (1u << c)) {
                 // A coarse leaf (shell form) is drawn as a solid cube of its level; an interior
                 // term (volume form) is not drawn.
                 if (tree_.form == OctreeForm::Shell)
-                    splat(tree_.nodes[slot].firstChild, kNoHit, childCell << (tree_.depth - level - 1), childLo, childSide, r, st);
+                    splat(tree_.nodes[slot].firstChild, kNoHit, childCell << (tree_.depth - level - 1), tree_.depth - level - 1,
+                          childLo, childSide, r, st);
             }
-            else if (cut_.stops(level + 1, childCell)) splat(tree_.summaries[slot].firstVoxel, slot, childCell, childLo, childSide, r, st);
+            else if (cut_.stops(level + 1, childCell)) splat(tree_.summaries[slot].firstVoxel, slot, childCell, 0, childLo, childSide, r, st);
             else visit(slot, level + 1, childCell, st);
         }
     }
 
-    /// Writes the voxel (or, multi-resolution, the inner node drawn whole) into every pixel of
-    /// r whose ray meets its box.
-    void splat(std::uint32_t voxel, std::uint32_t node, const ivec3& cell, const dvec3& lo, double side, const Rect& r,
-               RenderStats& st) {
+    /// Writes the voxel (or a coarse leaf of side 2^leafShift voxels, or, multi-resolution,
+    /// the inner node drawn whole) into every pixel of r whose ray meets its box.
+    void splat(std::uint32_t voxel, std::uint32_t node, const ivec3& cell, int leafShift, const dvec3& lo, double side,
+               const Rect& r, RenderStats& st) {
         const dvec3 hi = lo + dvec3(side);
         if (invDir_.empty()) prepareRays();
         const bool ortho = gen_.orthographic();
@@ -221,7 +222,7 @@ private:
                 }
                 if (tmin > tmax || tmax < 0.0) continue;
                 if (!shaded) {
-                    colour = node == kNoHit ? shader_.shade(voxel, cell) : shader_.shadeNode(node);
+                    colour = node == kNoHit ? shader_.shade(voxel, cell, leafShift, &st.secondaryRays) : shader_.shadeNode(node);
                     shaded = true;
                     ++st.voxelsSplatted;
                 }

@@ -36,19 +36,6 @@ bool inseparable(const Box3& node, const std::vector<std::uint32_t>& list, const
 }
 }  // namespace
 
-double intersectSphere(const Sphere& s, const dvec3& origin, const dvec3& dir, double tMin) {
-    // |o + t d - c|^2 = r^2 with |d| = 1: t = b -+ sqrt(b^2 - (|o-c|^2 - r^2)), b = d.(c-o).
-    const dvec3 oc = s.centre - origin;
-    const double b = glm::dot(dir, oc);
-    const double disc = b * b - (glm::dot(oc, oc) - s.radius * s.radius);
-    if (disc < 0.0) return kInf;
-    const double q = std::sqrt(disc);
-    const double t0 = b - q;
-    if (t0 >= tMin) return t0;
-    const double t1 = b + q;
-    return t1 >= tMin ? t1 : kInf;
-}
-
 void slabInterval(const Box3& b, const dvec3& o, const dvec3& inv, const dvec3& d, double& t0, double& t1) {
     t0 = -kInf;
     t1 = kInf;

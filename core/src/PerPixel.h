@@ -29,7 +29,7 @@ inline void writePixelHit(Frame& frame, int x, int y, const TraversalHit& hit, c
     }
     ++st.hits;
     frame.hitId[p] = hit.voxel;
-    frame.rgba[p] = shader.shade(hit);
+    frame.rgba[p] = shader.shade(hit, &st.secondaryRays);
     frame.depth[p] = shader.distance(rays.world(x, y, dir), hit);
 }
 

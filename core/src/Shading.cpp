@@ -1,5 +1,7 @@
 #include "octrace/render/Shading.h"
 
+#include "ShadowTracer.h"
+
 #include "octrace/util/Error.h"
 
 #include <algorithm>
@@ -128,20 +130,28 @@ Shader::Shader(const Octree& tree, const Camera& camera, const RenderSettings& s
     l = glm::normalize(l);
     light_ = vec3(glm::normalize(l.x * right + l.y * up + l.z * back));
     if (settings.baked && !tree.baked.empty() && tree.baked.size() == tree.voxels.size()) baked_ = &tree.baked;
+    shadows_ = settings.shadows.value_or(false) && !baked_ && tree.form == OctreeForm::Shell;
 }
 
-vec4 Shader::shade(std::uint32_t voxel, const ivec3& cell) const {
+vec4 Shader::shade(std::uint32_t voxel, const ivec3& cell, int leafShift, std::uint64_t* shadowRays) const {
     if (baked_) return vec4(albedo_.at(voxel, float(cell.z) + 0.5f) * (float((*baked_)[voxel]) * (1.0f / 255.0f)), 1.0f);
-    return shadeNormal(decodeNormal(tree_.voxels[voxel].normal), voxel, float(cell.z) + 0.5f);
+    const vec3 n = decodeNormal(tree_.voxels[voxel].normal);
+    float lambert = std::abs(glm::dot(n, light_));
+    if (shadows_ && lambert > 0.0f) {
+        std::uint64_t rays = 0;
+        if (!detail::ShadowTracer(tree_).seesDirectionalLight(cell, leafShift, dvec3(n), dvec3(light_), rays)) lambert = 0.0f;
+        if (shadowRays) *shadowRays += rays;
+    }
+    return shadeLambert(voxel, float(cell.z) + 0.5f, lambert);
 }
 
 vec4 Shader::shadeNode(std::uint32_t node) const {
     const NodeSummary& s = tree_.summaries[node];
-    return shadeNormal(decodeNormal(s.normal), s.firstVoxel, s.meanZ);
+    return shadeLambert(s.firstVoxel, s.meanZ, std::abs(glm::dot(decodeNormal(s.normal), light_)));
 }
 
-vec4 Shader::shadeNormal(vec3 n, std::uint32_t voxel, float zCells) const {
-    float lambert = std::abs(glm::dot(n, light_));
+/// ambient + diffuse x lambert (|n . l|, 0 in shadow), times the surface colour.
+vec4 Shader::shadeLambert(std::uint32_t voxel, float zCells, float lambert) const {
     float intensity = settings_.ambient + settings_.diffuse * lambert;
     return vec4(albedo_.at(voxel, zCells) * intensity, 1.0f);
 }

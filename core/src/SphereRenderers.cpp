@@ -7,7 +7,7 @@
 #include "octrace/util/Timer.h"
 
 #include <algorithm>
-#include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -49,7 +49,7 @@ public:
         const bool inside = glm::dot(n, d) > 0.0;
         if (inside) n = -n;
         double lambert = std::max(0.0, glm::dot(n, light_));
-        if (lambert > 0.0 && s_.shadows) {
+        if (lambert > 0.0 && s_.shadows.value_or(true)) {
             ++secondary;
             if (traceSamet(tree_, p, light_, eps_, c).hit()) lambert = 0.0;
         }
@@ -84,49 +84,111 @@ private:
     double eps_;
 };
 
+/// A box's projection on the screen, bounded by the projections of its 8 corners (pixel
+/// units); not valid when the box reaches behind a perspective eye.
+struct PixelBounds {
+    double xLo = kInf, xHi = -kInf, yLo = kInf, yHi = -kInf;
+    bool valid = false;
+};
+PixelBounds projectBox(const RayGenerator& gen, const Box3& b) {
+    // Camera coordinates of the low corner and of the three edges: the corners are sums.
+    const dvec3 &right = gen.right(), &up = gen.up(), &back = gen.back();
+    const dvec3 rel = b.lo - gen.eye(), size = b.hi - b.lo;
+    const dvec3 c0(glm::dot(rel, right), glm::dot(rel, up), glm::dot(rel, back));
+    const dvec3 e[3] = {size.x * dvec3(right.x, up.x, back.x), size.y * dvec3(right.y, up.y, back.y), size.z * dvec3(right.z, up.z, back.z)};
+    PixelBounds o;
+    for (int k = 0; k < 8; ++k) {
+        const dvec3 p = c0 + ((k & 4) ? e[0] : dvec3(0.0)) + ((k & 2) ? e[1] : dvec3(0.0)) + ((k & 1) ? e[2] : dvec3(0.0));
+        if (!gen.orthographic() && !(p.z < 0.0)) return {};
+        double x, y;
+        gen.toPixel(p.x, p.y, p.z, x, y);
+        o.xLo = std::min(o.xLo, x);
+        o.xHi = std::max(o.xHi, x);
+        o.yLo = std::min(o.yLo, y);
+        o.yHi = std::max(o.yHi, y);
+    }
+    o.valid = true;
+    return o;
+}
+
+/// A sphere met by a tile: the rectangle of the tile's rays that may hit it, for a perspective
+/// eye (every ray's origin) the terms of intersectSphereFrom, and where its rays' sphere tests
+/// are kept (a sphere listed in several leaves is tested once per ray).
+struct SphereSlot {
+    std::uint32_t sphere;
+    int i0, i1, j0, j1;
+    dvec3 oc;
+    double c;
+    std::size_t tests;  // first of (i1 - i0) x (j1 - j0) parameters in BeamScratch::tests, row by row
+};
+
+/// The buffers of the tile being traced on this thread, kept from tile to tile: a tile does
+/// not allocate them again nor clear an array of every sphere (BeamTile puts back the slots it
+/// used).
+struct BeamScratch {
+    std::vector<std::int32_t> slotOf;   // per sphere of the scene: its slot, -1 when none
+    std::vector<SphereSlot> slots;
+    std::vector<double> tests;          // per slot and ray: the sphere test's t, NaN: not made yet
+    std::vector<std::uint64_t> live;    // per row, words of bits: bit i set while ray i is not hit
+    std::vector<double> nearT;          // per ray: nearest hit among the current leaf's spheres
+    std::vector<std::uint32_t> nearSphere;
+    std::vector<std::uint32_t> touched; // rays with a nearest hit in the current leaf
+};
+BeamScratch& threadBeamScratch(std::size_t spheres) {
+    thread_local BeamScratch scratch;
+    if (scratch.slotOf.size() < spheres) scratch.slotOf.assign(spheres, -1);
+    return scratch;
+}
+
 /// Primary rays of one tile as beams (paper B): the beam is the eye and the screen rectangle
 /// of its rays (a corner direction and two spanning vectors); it is cut by each node's
-/// projected bounds on the way down, visited front to back; empty leaves only move it on;
-/// in an occupied leaf its rays are selected from the tile's sorted ray matrix by binary
-/// search, row by row within the leaf's projected outline, and intersected one by one; once
-/// every ray of the tile is hit the tile ends.
+/// projected bounds on the way down, visited front to back, and ends where every ray of its
+/// rectangle is already hit (the rays not yet hit are a bit mask per row); empty leaves only
+/// move it on. In an occupied leaf each sphere's rays are the unhit ones of the beam inside
+/// the sphere's projected rectangle; each is tested, the nearest hit per ray kept, and a ray
+/// whose nearest hit is not beyond its exit from the leaf is marked.
 class BeamTile {
 public:
     /// `rays`: the tile's w x h rays, row by row, of the samples (x0 + i, y0 + j).
     BeamTile(const ObjectOctree& tree, const RayGenerator& gen, int x0, int y0, int w, int h, const std::vector<Ray>& rays,
              std::vector<SphereHit>& hits, ObjectTraceCounters& c, std::uint64_t& beams)
-        : tree_(tree), gen_(gen), w_(w), h_(h), rays_(rays), hits_(hits), c_(c), beams_(beams) {
-        // The sorted ray matrix: sample centres along x (columns) and y (rows), pixel units.
-        xs_.resize(std::size_t(w));
-        ys_.resize(std::size_t(h));
-        for (int i = 0; i < w; ++i) xs_[std::size_t(i)] = x0 + i + 0.5;
-        for (int j = 0; j < h; ++j) ys_[std::size_t(j)] = y0 + j + 0.5;
+        : tree_(tree), gen_(gen), w_(w), h_(h), rays_(rays), hits_(hits), c_(c), beams_(beams),
+          x_(threadBeamScratch(tree.scene.spheres.size())) {
+        // Sample (x0 + i, y0 + j) is centred on pixel coordinates (x0 + i + 0.5, y0 + j + 0.5).
+        xOff_ = x0 + 0.5;
+        yOff_ = y0 + 0.5;
+        words_ = (w + 63) / 64;
+        x_.live.resize(std::size_t(h) * std::size_t(words_));
+        for (int j = 0; j < h; ++j)
+            for (int wi = 0; wi < words_; ++wi) x_.live[std::size_t(j * words_ + wi)] = columnMask(wi, 0, w);
         remaining_ = std::size_t(w) * std::size_t(h);
-        marked_.assign(remaining_, 0);
+        x_.nearT.assign(remaining_, kInf);
+        x_.nearSphere.resize(remaining_);
+        x_.slots.clear();
+        x_.tests.clear();
         right_ = gen.right();
         up_ = gen.up();
         back_ = gen.back();
+        perspective_ = !gen.orthographic();
+        eps_ = tree.cubeSide * 1e-9;
     }
+    ~BeamTile() {
+        for (const SphereSlot& e : x_.slots) x_.slotOf[e.sphere] = -1;
+    }
+    BeamTile(const BeamTile&) = delete;
+    BeamTile& operator=(const BeamTile&) = delete;
     void run() { visit(0, 0, w_, 0, h_); }
 
 private:
-    /// A node's box projected on the screen: its 8 corners in pixel units, unless a corner
-    /// lies behind the eye (then no outline: every ray of the beam is tried).
-    struct Outline {
-        double x[8], y[8];
-        bool valid = false;
-    };
-
     void visit(std::uint32_t node, int i0, int i1, int j0, int j1) {
         const ObjectNode& nd = tree_.nodes[node];
         if (nd.leaf() && nd.objectCount == 0) return;  // empty: the beam only moves on
+        const Box3 box = tree_.nodeBox(node);
+        if (!cutToBox(box, i0, i1, j0, j1) || !anyLive(i0, i1, j0, j1)) return;
         ++beams_;
         ++c_.nodes;
-        const Box3 box = tree_.nodeBox(node);
-        Outline outline;
-        if (!cut(box, outline, i0, i1, j0, j1)) return;
         if (nd.leaf()) {
-            intersect(nd, box, outline, i0, i1, j0, j1);
+            intersect(nd, box, i0, i1, j0, j1);
             return;
         }
         // Front to back: children on the eye's side of each mid-plane first (for parallel
@@ -134,113 +196,154 @@ private:
         unsigned mask = 0;
         const dvec3 mid = box.centre();
         for (int a = 0; a < 3; ++a) {
-            const bool high = gen_.orthographic() ? (-back_[a] < 0.0) : (gen_.eye()[a] > mid[a]);
+            const bool high = perspective_ ? (gen_.eye()[a] > mid[a]) : (-back_[a] < 0.0);
             if (high) mask |= 4u >> a;
         }
         for (unsigned k = 0; k < 8 && remaining_ > 0; ++k) visit(nd.firstChild + (k ^ mask), i0, i1, j0, j1);
     }
 
-    // Narrows [i0,i1) x [j0,j1) to the rays inside the projected bounds of the box (binary
-    // search in the sorted sample coordinates). False when none is left.
-    bool cut(const Box3& b, Outline& o, int& i0, int& i1, int& j0, int& j1) const {
-        double pxLo = kInf, pxHi = -kInf, pyLo = kInf, pyHi = -kInf;
-        for (int k = 0; k < 8; ++k) {
-            const dvec3 p((k & 4) ? b.hi.x : b.lo.x, (k & 2) ? b.hi.y : b.lo.y, (k & 1) ? b.hi.z : b.lo.z);
-            const dvec3 rel = p - gen_.eye();
-            const double cz = glm::dot(rel, back_);
-            if (!gen_.orthographic() && !(cz < 0.0)) return true;  // reaches behind the eye: no cut
-            gen_.toPixel(glm::dot(rel, right_), glm::dot(rel, up_), cz, o.x[k], o.y[k]);
-            pxLo = std::min(pxLo, o.x[k]);
-            pxHi = std::max(pxHi, o.x[k]);
-            pyLo = std::min(pyLo, o.y[k]);
-            pyHi = std::max(pyHi, o.y[k]);
-        }
-        o.valid = true;
-        i0 = std::max(i0, int(std::lower_bound(xs_.begin(), xs_.end(), pxLo - kMargin) - xs_.begin()));
-        i1 = std::min(i1, int(std::upper_bound(xs_.begin(), xs_.end(), pxHi + kMargin) - xs_.begin()));
-        j0 = std::max(j0, int(std::lower_bound(ys_.begin(), ys_.end(), pyLo - kMargin) - ys_.begin()));
-        j1 = std::min(j1, int(std::upper_bound(ys_.begin(), ys_.end(), pyHi + kMargin) - ys_.begin()));
+    /// Narrows [i0,i1) x [j0,j1) to the rays whose samples lie within [pxLo, pxHi] x [pyLo, pyHi]
+    /// (pixel units) widened by kMargin. False when none is left.
+    bool cutToPixels(double pxLo, double pxHi, double pyLo, double pyHi, int& i0, int& i1, int& j0, int& j1) const {
+        // Sample i is inside when xOff_ + i >= pxLo - kMargin and <= pxHi + kMargin; the
+        // clamps keep far-off bounds (a box grazing the eye plane) in int range.
+        const auto first = [](double lo, int n) { return int(std::ceil(std::clamp(lo, -1.0, double(n) + 1.0))); };
+        const auto last = [](double hi, int n) { return int(std::floor(std::clamp(hi, -2.0, double(n)))) + 1; };
+        i0 = std::max(i0, first(pxLo - kMargin - xOff_, w_));
+        i1 = std::min(i1, last(pxHi + kMargin - xOff_, w_));
+        j0 = std::max(j0, first(pyLo - kMargin - yOff_, h_));
+        j1 = std::min(j1, last(pyHi + kMargin - yOff_, h_));
         return i0 < i1 && j0 < j1;
     }
 
-    /// The columns [i0, i1) of row j that lie within the outline (the convex hull of the 8
-    /// projected corners: on a horizontal line, its extremes are where segments between two
-    /// corners cross the line), widened by kMargin.
-    void rowSpan(const Outline& o, int j, int& i0, int& i1) const {
-        const double y = ys_[std::size_t(j)];
-        double lo = kInf, hi = -kInf;
-        for (int a = 0; a < 8; ++a)
-            for (int b = a + 1; b < 8; ++b) {
-                const double ya = o.y[a], yb = o.y[b];
-                if ((ya < y - kMargin && yb < y - kMargin) || (ya > y + kMargin && yb > y + kMargin)) continue;
-                double x0 = o.x[a], x1 = o.x[b];
-                if (std::abs(yb - ya) > kMargin) {
-                    const double f = std::clamp((y - ya) / (yb - ya), 0.0, 1.0);
-                    x0 = x1 = o.x[a] + f * (o.x[b] - o.x[a]);
-                }
-                lo = std::min({lo, x0, x1});
-                hi = std::max({hi, x0, x1});
-            }
-        if (!(lo <= hi)) {
-            i1 = i0;
-            return;
-        }
-        i0 = std::max(i0, int(std::lower_bound(xs_.begin(), xs_.end(), lo - kMargin) - xs_.begin()));
-        i1 = std::min(i1, int(std::upper_bound(xs_.begin(), xs_.end(), hi + kMargin) - xs_.begin()));
+    /// Cuts the rectangle to the box's projected bounds; a box reaching behind a perspective
+    /// eye does not cut. False when no ray is left.
+    bool cutToBox(const Box3& b, int& i0, int& i1, int& j0, int& j1) const {
+        const PixelBounds p = projectBox(gen_, b);
+        return !p.valid || cutToPixels(p.xLo, p.xHi, p.yLo, p.yHi, i0, i1, j0, j1);
     }
 
-    // The leaf rule (nearestInLeaf) for the beam's rays not yet hit: the nearest sphere hit,
-    // kept when the ray crosses the leaf and the hit is not beyond its exit. The beam first
-    // culls the leaf's spheres: a ray is tested only against the spheres whose projected box
-    // (widened by kMargin) holds its sample, since a ray that meets a sphere passes through its
-    // box. The tests made are those of nearestInLeaf less ones that cannot hit, in the same
-    // order, so the hit is the same. The exit comes from the slab test, made only for a ray
-    // that hits a sphere; the outline only spares the rays that cannot cross the leaf.
-    void intersect(const ObjectNode& leaf, const Box3& box, const Outline& o, int i0, int i1, int j0, int j1) {
-        const std::uint32_t* list = tree_.objects.data() + leaf.firstObject;
-        const std::uint32_t n = leaf.objectCount;
-        rects_.resize(n);
-        for (std::uint32_t q = 0; q < n; ++q) {
-            const Sphere& sp = tree_.scene.spheres[list[q]];
-            Outline so;
-            int a0 = 0, a1 = w_, b0 = 0, b1 = h_;
-            if (!cut(Box3{sp.centre - sp.radius, sp.centre + sp.radius}, so, a0, a1, b0, b1)) a0 = a1 = b0 = b1 = 0;
-            rects_[q] = {a0, a1, b0, b1};
+    /// The tile's rays that may hit sphere s: within its projected bounds, taken from its box
+    /// in camera coordinates (centre -+ radius on each camera axis), divided by the nearest
+    /// and farthest depth as the sign requires. False when none.
+    bool sphereRect(const Sphere& s, int& i0, int& i1, int& j0, int& j1) const {
+        const dvec3 rel = s.centre - gen_.eye();
+        const double r = s.radius * (1.0 + 1e-12);  // the camera axes are unit up to rounding
+        const double cx = glm::dot(rel, right_), cy = glm::dot(rel, up_), cz = glm::dot(rel, back_);
+        double x[2], y[2];
+        if (perspective_) {
+            const double nearW = -cz - r, farW = -cz + r;  // depth in front of the eye
+            if (!(nearW > 0.0)) return true;               // reaches behind the eye: every ray
+            const double xl = cx - r, xh = cx + r, yl = cy - r, yh = cy + r;
+            gen_.toPixel(xl / (xl >= 0.0 ? farW : nearW), yl / (yl >= 0.0 ? farW : nearW), -1.0, x[0], y[0]);
+            gen_.toPixel(xh / (xh >= 0.0 ? nearW : farW), yh / (yh >= 0.0 ? nearW : farW), -1.0, x[1], y[1]);
+        } else {
+            gen_.toPixel(cx - r, cy - r, cz, x[0], y[0]);
+            gen_.toPixel(cx + r, cy + r, cz, x[1], y[1]);
         }
-        for (int j = j0; j < j1; ++j) {
-            int r0 = i0, r1 = i1;
-            if (o.valid) rowSpan(o, j, r0, r1);
-            if (r0 >= r1) continue;
-            rowSpheres_.clear();
-            for (std::uint32_t q = 0; q < n; ++q)
-                if (rects_[q][2] <= j && j < rects_[q][3] && rects_[q][0] < r1 && r0 < rects_[q][1]) rowSpheres_.push_back(q);
-            if (rowSpheres_.empty()) continue;
-            for (int i = r0; i < r1; ++i) {
-                const std::size_t k = std::size_t(j) * std::size_t(w_) + std::size_t(i);
-                if (marked_[k]) continue;
-                const Ray& r = rays_[k];
-                SphereHit h;
-                for (std::uint32_t q : rowSpheres_) {
-                    if (i < rects_[q][0] || i >= rects_[q][1]) continue;
-                    ++c_.intersections;
-                    const double t = intersectSphere(tree_.scene.spheres[list[q]], r.origin, r.direction, 0.0);
-                    if (t < h.t) {
-                        h.t = t;
-                        h.sphere = list[q];
+        return cutToPixels(std::min(x[0], x[1]), std::max(x[0], x[1]), std::min(y[0], y[1]), std::max(y[0], y[1]), i0, i1, j0, j1);
+    }
+
+    /// The tile's slot of a sphere, made the first time the tile meets it; nullptr when no ray
+    /// of the tile can hit it.
+    const SphereSlot* slot(std::uint32_t sphere) {
+        std::int32_t& k = x_.slotOf[sphere];
+        if (k < 0) {
+            const Sphere& s = tree_.scene.spheres[sphere];
+            SphereSlot e{sphere, 0, w_, 0, h_, dvec3(0.0), 0.0, x_.tests.size()};
+            if (!sphereRect(s, e.i0, e.i1, e.j0, e.j1)) e.i0 = e.i1 = 0;
+            e.oc = s.centre - gen_.eye();
+            e.c = glm::dot(e.oc, e.oc) - s.radius * s.radius;
+            if (e.i0 < e.i1) x_.tests.resize(e.tests + std::size_t(e.i1 - e.i0) * std::size_t(e.j1 - e.j0), kNotTested);
+            k = std::int32_t(x_.slots.size());
+            x_.slots.push_back(e);
+        }
+        const SphereSlot& e = x_.slots[std::size_t(k)];
+        return e.i0 < e.i1 ? &e : nullptr;
+    }
+
+    /// Bits of the columns [i0, i1) in word wi of a row.
+    static std::uint64_t columnMask(int wi, int i0, int i1) {
+        const int lo = std::max(i0 - wi * 64, 0), hi = std::min(i1 - wi * 64, 64);
+        if (lo >= hi) return 0;
+        const std::uint64_t upto = hi == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << hi) - 1;
+        return upto & ~((std::uint64_t(1) << lo) - 1);
+    }
+    bool anyLive(int i0, int i1, int j0, int j1) const {
+        for (int j = j0; j < j1; ++j)
+            for (int wi = i0 / 64; wi <= (i1 - 1) / 64; ++wi)
+                if (x_.live[std::size_t(j * words_ + wi)] & columnMask(wi, i0, i1)) return true;
+        return false;
+    }
+
+    // The leaf rule (nearestInLeaf) for the beam's rays not yet hit: per ray, the nearest
+    // sphere hit in the order of the leaf's list (ties to the earlier sphere, as nearestInLeaf),
+    // kept when the ray crosses the leaf and the hit is not beyond its exit. A ray is tested
+    // only against the spheres whose projected rectangle (widened by kMargin) holds its sample,
+    // since a ray that meets a sphere passes through its projection: the tests left out cannot
+    // hit, so the hit is the same. The exit comes from the slab test, made only for the rays
+    // that hit a sphere.
+    void intersect(const ObjectNode& leaf, const Box3& box, int i0, int i1, int j0, int j1) {
+        const std::uint32_t* list = tree_.objects.data() + leaf.firstObject;
+        std::vector<double>& nearT = x_.nearT;
+        x_.touched.clear();
+        for (std::uint32_t q = 0; q < leaf.objectCount; ++q) {
+            const SphereSlot* e = slot(list[q]);
+            if (!e) continue;
+            const int a0 = std::max(i0, e->i0), a1 = std::min(i1, e->i1), b0 = std::max(j0, e->j0), b1 = std::min(j1, e->j1);
+            if (a0 >= a1 || b0 >= b1) continue;
+            const Sphere& sp = tree_.scene.spheres[list[q]];
+            const int pitch = e->i1 - e->i0;
+            for (int j = b0; j < b1; ++j) {
+                double* tests = x_.tests.data() + e->tests + std::size_t((j - e->j0) * pitch);  // column e->i0 first
+                for (int wi = a0 / 64; wi <= (a1 - 1) / 64; ++wi)
+                    for (std::uint64_t m = x_.live[std::size_t(j * words_ + wi)] & columnMask(wi, a0, a1); m; m &= m - 1) {
+                        const int i = wi * 64 + std::countr_zero(m);
+                        const std::size_t k = std::size_t(j) * std::size_t(w_) + std::size_t(i);
+                        double& t = tests[i - e->i0];
+                        if (std::isnan(t)) {
+                            const Ray& r = rays_[k];
+                            ++c_.intersections;
+                            t = perspective_ ? intersectSphereFrom(e->oc, e->c, r.direction, 0.0) : intersectSphere(sp, r.origin, r.direction, 0.0);
+                        }
+                        if (t < nearT[k]) {
+                            if (nearT[k] == kInf) x_.touched.push_back(std::uint32_t(k));
+                            nearT[k] = t;
+                            x_.nearSphere[k] = list[q];
+                        }
                     }
-                }
-                if (!h.hit()) continue;
-                double t0, t1;
-                slabInterval(box, r.origin, 1.0 / r.direction, r.direction, t0, t1);
-                if (t0 > t1 || t1 < 0.0 || h.t > t1) continue;  // not this leaf's hit
-                hits_[k] = h;
-                marked_[k] = 1;
-                --remaining_;
             }
         }
+        for (std::uint32_t k : x_.touched) {
+            if (inLeaf(box, rays_[k], nearT[k])) {
+                hits_[k] = SphereHit{nearT[k], x_.nearSphere[k]};
+                const int i = int(k) % w_, j = int(k) / w_;
+                x_.live[std::size_t(j * words_ + i / 64)] &= ~(std::uint64_t(1) << (i % 64));
+                --remaining_;
+            }
+            nearT[k] = kInf;
+        }
+    }
+
+    /// The leaf rule's last test: the ray crosses the leaf and its hit at t is not beyond the
+    /// leaf's exit (slab test, as nearestInLeaf's callers). The divisions of the slab test are
+    /// spared when the hit point lies inside the leaf, or beyond one of its exit faces, by far
+    /// more than rounding (eps_): the slab test could not say otherwise.
+    bool inLeaf(const Box3& box, const Ray& r, double t) const {
+        const dvec3 p = r.origin + r.direction * t;
+        bool inside = true;
+        for (int a = 0; a < 3; ++a) {
+            if (r.direction[a] > 0.0 ? p[a] > box.hi[a] + eps_ : r.direction[a] < 0.0 && p[a] < box.lo[a] - eps_) return false;
+            inside = inside && p[a] > box.lo[a] + eps_ && p[a] < box.hi[a] - eps_;
+        }
+        if (inside) return true;
+        double t0, t1;
+        slabInterval(box, r.origin, 1.0 / r.direction, r.direction, t0, t1);
+        return !(t0 > t1 || t1 < 0.0 || t > t1);
     }
 
     static constexpr double kMargin = 1e-6;  // pixels; the projection's rounding is far below
+    static constexpr double kNotTested = std::numeric_limits<double>::quiet_NaN();
     const ObjectOctree& tree_;
     const RayGenerator& gen_;
     int w_, h_;
@@ -248,12 +351,13 @@ private:
     std::vector<SphereHit>& hits_;
     ObjectTraceCounters& c_;
     std::uint64_t& beams_;
-    std::vector<double> xs_, ys_;
-    std::vector<std::uint8_t> marked_;
-    std::vector<std::array<int, 4>> rects_;      // per sphere of the leaf: columns [0,1), rows [2,3) its box covers
-    std::vector<std::uint32_t> rowSpheres_;      // the leaf's spheres whose rows hold the current row
+    BeamScratch& x_;
+    double xOff_ = 0.0, yOff_ = 0.0;
+    int words_ = 1;
     std::size_t remaining_ = 0;
     dvec3 right_, up_, back_;
+    bool perspective_ = true;
+    double eps_ = 0.0;  // scene units: far above the rounding of a point on a ray in the cube
 };
 
 }  // namespace
@@ -272,6 +376,7 @@ RenderStats renderSphereScene(SphereTracer tracer, const std::string& name, cons
     const RayGenerator gen(sampleCamera);
     const SphereShader shader(tree, camera, settings);
     const Box3 cube = tree.cube();
+    const PixelBounds cubeBounds = projectBox(gen, cube);
     const int tilesX = (camera.width + kTilePixels - 1) / kTilePixels, tilesY = (camera.height + kTilePixels - 1) / kTilePixels;
     std::vector<RenderStats> tileStats(std::size_t(tilesX) * std::size_t(tilesY));
     parallelFor(tileStats.size(), settings.threads, [&](std::size_t t) {
@@ -283,6 +388,20 @@ RenderStats renderSphereScene(SphereTracer tracer, const std::string& name, cons
         std::vector<Ray> rays(hits.size());
         for (int j = 0; j < h; ++j)
             for (int i = 0; i < w; ++i) rays[std::size_t(j) * std::size_t(w) + std::size_t(i)] = gen(sx0 + i, sy0 + j);
+        // The statistic "rays meeting the scene cube": the rays whose points on the view plane
+        // meet the cube form a convex set there, so when the rays one sample beyond the tile's
+        // four corners meet it, so does every ray of the tile, each at least a sample inside;
+        // when the tile's samples lie a sample or more outside the cube's projected bounds,
+        // none does; else each ray's slab test says.
+        const auto meetsCube = [&](const Ray& r) {
+            double t0, t1;
+            slabInterval(cube, r.origin, 1.0 / r.direction, r.direction, t0, t1);
+            return t0 <= t1 && t1 >= 0.0;
+        };
+        const bool noneMeetCube = cubeBounds.valid && (sx0 + w - 0.5 < cubeBounds.xLo - 1.0 || sx0 + 0.5 > cubeBounds.xHi + 1.0 ||
+                                                       sy0 + h - 0.5 < cubeBounds.yLo - 1.0 || sy0 + 0.5 > cubeBounds.yHi + 1.0);
+        const bool allMeetCube = !noneMeetCube && meetsCube(gen(sx0 - 1, sy0 - 1)) && meetsCube(gen(sx0 + w, sy0 - 1)) &&
+                                 meetsCube(gen(sx0 - 1, sy0 + h)) && meetsCube(gen(sx0 + w, sy0 + h));
         ObjectTraceCounters primary, secondary;
         if (tracer == SphereTracer::Beam) {
             BeamTile(tree, gen, sx0, sy0, w, h, rays, hits, primary, st.beams).run();
@@ -305,9 +424,7 @@ RenderStats renderSphereScene(SphereTracer tracer, const std::string& name, cons
                         const int i = (x - px0) * s + a, j = (y - py0) * s + b;
                         const SphereHit& hit = hits[std::size_t(j) * std::size_t(w) + std::size_t(i)];
                         const Ray& r = rays[std::size_t(j) * std::size_t(w) + std::size_t(i)];
-                        double t0, t1;
-                        slabInterval(cube, r.origin, 1.0 / r.direction, r.direction, t0, t1);
-                        st.rays += t0 <= t1 && t1 >= 0.0;
+                        st.rays += allMeetCube || (!noneMeetCube && meetsCube(r));
                         st.hits += hit.hit();
                         sum += shader.shade(r.origin, r.direction, hit, 0, secondary, st.secondaryRays);
                         alpha += hit.hit() ? 1.0f : settings.background.a;

@@ -1,7 +1,9 @@
 #include "octrace/scene/Spheres.h"
 
+#include "octrace/render/ImageCompare.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Memory.h"
+#include "octrace/util/Parallel.h"
 
 #include <algorithm>
 #include <array>
@@ -153,6 +155,90 @@ ScalarField sphereDistanceField(const SphereSet& set, int samples, std::uint64_t
     f.notes = set.notes;
     f.notes.push_back("signed distance to the spheres, sample spacing " + std::to_string(h) + ", clamped to +-" + std::to_string(clampAt));
     return f;
+}
+
+namespace {
+
+/// The spheres' centres in a uniform grid of cubic buckets (indices into the set).
+class SphereBuckets {
+public:
+    explicit SphereBuckets(const SphereSet& set) : set_(set) {
+        const Box3 b = set.bounds();
+        double rmax = 0.0;
+        for (const Sphere& s : set.spheres) rmax = std::max(rmax, s.radius);
+        rmax_ = rmax;
+        const double extent = std::max({b.size().x, b.size().y, b.size().z});
+        side_ = std::max({2.0 * rmax, extent / 128.0, 1e-300});  // at most ~128^3 buckets
+        lo_ = b.lo;
+        for (int a = 0; a < 3; ++a) dims_[a] = std::max(1, int(std::ceil(b.size()[a] / side_)));
+        start_.assign(std::size_t(dims_.x) * dims_.y * dims_.z + 1, 0);
+        std::vector<std::size_t> bucketOf(set.spheres.size());
+        for (std::size_t i = 0; i < set.spheres.size(); ++i) ++start_[(bucketOf[i] = index(bucket(set.spheres[i].centre))) + 1];
+        for (std::size_t k = 1; k < start_.size(); ++k) start_[k] += start_[k - 1];
+        items_.resize(set.spheres.size());
+        std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
+        for (std::size_t i = 0; i < set.spheres.size(); ++i) items_[fill[bucketOf[i]]++] = std::uint32_t(i);  // in set order
+    }
+
+    /// The sphere whose surface is nearest p (the lowest index on a tie): rings of buckets
+    /// around p's bucket, until no sphere further out can be nearer.
+    std::uint32_t nearest(const dvec3& p) const {
+        const ivec3 c = bucket(p);
+        double best = std::numeric_limits<double>::infinity();
+        std::uint32_t found = 0;
+        const int maxRing = std::max({dims_.x, dims_.y, dims_.z});
+        for (int ring = 0; ring <= maxRing; ++ring) {
+            // Every centre within ring x side of p has been seen once this ring is done.
+            for (int k = c.z - ring; k <= c.z + ring; ++k)
+                for (int j = c.y - ring; j <= c.y + ring; ++j)
+                    for (int i = c.x - ring; i <= c.x + ring; ++i) {
+                        if (std::max({std::abs(i - c.x), std::abs(j - c.y), std::abs(k - c.z)}) != ring) continue;
+                        if (i < 0 || j < 0 || k < 0 || i >= dims_.x || j >= dims_.y || k >= dims_.z) continue;
+                        const std::size_t b = index(ivec3(i, j, k));
+                        for (std::uint32_t q = start_[b]; q < start_[b + 1]; ++q) {
+                            const Sphere& s = set_.spheres[items_[q]];
+                            const double d = glm::length(p - s.centre) - s.radius;
+                            if (d < best || (d == best && items_[q] < found)) best = d, found = items_[q];
+                        }
+                    }
+            if (best < double(ring) * side_ - rmax_) break;  // strict: a tie further out is still seen
+        }
+        return found;
+    }
+
+private:
+    ivec3 bucket(const dvec3& p) const {
+        ivec3 c;
+        for (int a = 0; a < 3; ++a) c[a] = std::clamp(int(std::floor((p[a] - lo_[a]) / side_)), 0, dims_[a] - 1);
+        return c;
+    }
+    std::size_t index(const ivec3& c) const { return std::size_t(c.x) + std::size_t(dims_.x) * (std::size_t(c.y) + std::size_t(dims_.y) * std::size_t(c.z)); }
+    const SphereSet& set_;
+    dvec3 lo_{0.0};
+    double side_ = 1.0, rmax_ = 0.0;
+    ivec3 dims_{1};
+    std::vector<std::uint32_t> start_, items_;
+};
+
+}  // namespace
+
+std::vector<std::uint32_t> sphereColoursAtVoxels(const Octree& tree, const SphereSet& set, int threads) {
+    set.validate();
+    const SphereBuckets buckets(set);
+    std::vector<dvec3> centres(tree.voxels.size());
+    const double h = tree.voxelSize();
+    tree.forEachLeaf([&](const ivec3& cell, int shift, std::uint32_t v) {
+        centres[v] = tree.cubeOrigin + (dvec3(cell) + 0.5 * double(1 << shift)) * h;
+    });
+    std::vector<std::uint32_t> colours(tree.voxels.size());
+    const std::size_t chunk = 4096;
+    parallelFor((colours.size() + chunk - 1) / chunk, threads, [&](std::size_t k) {
+        for (std::size_t v = k * chunk; v < std::min(colours.size(), (k + 1) * chunk); ++v) {
+            const vec3 c = set.spheres[buckets.nearest(centres[v])].colour;
+            colours[v] = packColour(vec3(linearToSrgb8(c.r), linearToSrgb8(c.g), linearToSrgb8(c.b)) / 255.0f);
+        }
+    });
+    return colours;
 }
 
 }  // namespace octrace

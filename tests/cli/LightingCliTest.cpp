@@ -41,3 +41,36 @@ TEST(CliLighting, BakedLightIsStoredAndUsedUnlessDynamicIsAsked) {
     EXPECT_EQ(run({"build", "analytic:torus:33", "--bake-shadows", "maybe", "-o", s.path("x.oct")}).code, 2);
     EXPECT_EQ(run({"build", "analytic:torus:33", "--bake", "--form", "volume", "-o", s.path("x.oct")}).code, 2);
 }
+
+TEST(CliLighting, ShadowRaysOnVoxelOctreesAreOffByDefaultAndAlikeForEveryExactRenderer) {
+    Scratch s;
+    auto render = [&](std::vector<std::string> extra, const std::string& out) {
+        std::vector<std::string> args{"render", "analytic:torus:33", "--iso", "0", "--depth", "6", "--size", "120x90",
+                                      "--light", "1,0.2,0.1", "--verify", "-o", s.path(out), "--stats", s.path(out + ".json")};
+        args.insert(args.end(), extra.begin(), extra.end());
+        return run(args);
+    };
+    Result r = render({}, "off.png");
+    ASSERT_EQ(r.code, 0) << r.err;
+    std::string js = slurp(s.path("off.png.json"));
+    EXPECT_NE(js.find("\"shadows\": \"off\""), std::string::npos) << js;
+    EXPECT_NE(js.find("\"shadow_rays\": 0,"), std::string::npos) << js;
+    for (const char* renderer : {"full", "area-exact", "direct"}) {
+        const std::string out = std::string(renderer) + ".png";
+        r = render({"--shadows", "on", "--renderer", renderer}, out);
+        ASSERT_EQ(r.code, 0) << r.err;
+        js = slurp(s.path(out + ".json"));
+        EXPECT_NE(js.find("\"shadows\": \"on\""), std::string::npos) << js;
+        EXPECT_EQ(js.find("\"shadow_rays\": 0,"), std::string::npos) << js;
+        EXPECT_NE(js.find("\"mismatched_pixels\": 0,"), std::string::npos) << js;
+    }
+    // The torus shadows its own far side: the light's share is gone there.
+    EXPECT_NE(slurp(s.path("full.png")), slurp(s.path("off.png")));
+    EXPECT_EQ(slurp(s.path("full.png")), slurp(s.path("area-exact.png")));
+    // Baked light keeps its own shadows: --shadows on is told and traces nothing.
+    r = render({"--shadows", "on", "--lighting", "baked"}, "baked.png");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("baked light"), std::string::npos) << r.err;
+    EXPECT_NE(slurp(s.path("baked.png.json")).find("\"shadow_rays\": 0,"), std::string::npos);
+    EXPECT_EQ(render({"--shadows", "yes"}, "x.png").code, 2);
+}

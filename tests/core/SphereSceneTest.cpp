@@ -1,4 +1,5 @@
 // Sphere scenes, the object octree and its three tracers (reference, samet, beam).
+#include "octrace/build/OctreeBuilder.h"
 #include "octrace/render/Renderer.h"
 #include "octrace/scene/ObjectOctree.h"
 #include "octrace/scene/Spheres.h"
@@ -172,6 +173,82 @@ TEST(SphereRenderers, SametAndBeamGiveTheReferenceHitForEveryRay) {
     }
 }
 
+namespace {
+/// Beam and samet against the reference, ray by ray (the samples' colours average into the
+/// pixel, so equal colours mean equal hits) and by the first sample's hit.
+void expectBeamAndSametGiveTheReference(const ObjectOctree& t, const Camera& cam, int samples, const std::string& what) {
+    RenderSettings rs;
+    rs.threads = 2;
+    rs.bounces = 0;
+    rs.samples = samples;
+    Frame ref, samet, beam;
+    const RenderStats rst = makeRenderer("reference")->renderSpheres(t, cam, rs, ref);
+    const RenderStats sst = makeRenderer("samet")->renderSpheres(t, cam, rs, samet);
+    const RenderStats bst = makeRenderer("beam")->renderSpheres(t, cam, rs, beam);
+    EXPECT_GT(rst.hits, 0u) << what;
+    EXPECT_EQ(bst.hits, rst.hits) << what;
+    EXPECT_EQ(bst.rays, rst.rays) << what;
+    EXPECT_EQ(sst.rays, rst.rays) << what;
+    EXPECT_EQ(beam.hitId, ref.hitId) << what;
+    EXPECT_EQ(samet.hitId, ref.hitId) << what;
+    EXPECT_EQ(beam.rgba, ref.rgba) << what;
+}
+}  // namespace
+
+TEST(SphereRenderers, BeamRowsOfSeveralMaskWordsAndPartWords) {
+    // 16 x 16-pixel tiles: 3 x 3 samples give 48-ray rows (part of a 64-bit word), 5 x 5 give
+    // 80 (a word and part of one), 16 x 16 give 256 (four whole words).
+    const ObjectOctree t = ObjectOctree::build(makeRandomSpheres(2000, 5, 0.04));
+    for (int samples : {9, 25, 256}) {
+        Camera cam = cameraFor(t, samples == 256 ? 24 : 50, samples == 256 ? 18 : 37);
+        expectBeamAndSametGiveTheReference(t, cam, samples, "samples " + std::to_string(samples));
+    }
+}
+
+TEST(SphereRenderers, BeamGivesTheReferenceFromAnEyeInsideTheScene) {
+    // Nodes and spheres that reach behind the eye do not cut the beam; the spheres around the
+    // eye are hit from inside or behind.
+    const ObjectOctree t = ObjectOctree::build(makeRandomSpheres(3000, 6, 0.02));
+    for (const dvec3& eye : {dvec3(0.5, 0.5, 0.5), dvec3(0.1, 0.9, 0.3)}) {
+        Camera cam;
+        cam.position = eye;
+        cam.lookAt = eye + dvec3(0.3, -0.2, 1.0);
+        cam.fovYDegrees = 100.0;
+        cam.width = 64;
+        cam.height = 48;
+        expectBeamAndSametGiveTheReference(t, cam, 1, "inside");
+        expectBeamAndSametGiveTheReference(t, cam, 4, "inside, 4 samples");
+    }
+}
+
+TEST(SphereRenderers, BeamGivesTheReferenceForRaysInNodeFaces) {
+    // The eye on the root's mid-plane x (a face of a node at every level) looking along it: the
+    // middle column's rays (odd width: screen x exactly 0) lie in that plane, and so do the
+    // orthographic rays of the middle column; spheres are centred on it too.
+    SphereSet s = makeRandomSpheres(1500, 9, 0.03);
+    ObjectOctree probe = ObjectOctree::build(makeRandomSpheres(1500, 9, 0.03));
+    const double mid = probe.nodeBox(probe.nodes[0].firstChild).hi.x;
+    // Copies of every third sphere moved onto the plane: the bounds, hence the cube, stay.
+    for (std::size_t i = 0, n = s.spheres.size(); i < n; i += 3) {
+        Sphere c = s.spheres[i];
+        c.centre.x = mid;
+        s.spheres.push_back(c);
+    }
+    const ObjectOctree t = ObjectOctree::build(std::move(s));
+    ASSERT_EQ(t.nodeBox(t.nodes[0].firstChild).hi.x, mid);
+    for (bool ortho : {false, true}) {
+        Camera cam;
+        cam.position = dvec3(mid, 0.35, 3.0);
+        cam.lookAt = dvec3(mid, 0.5, 0.5);
+        cam.width = 41;
+        cam.height = 31;
+        if (ortho) cam.frameOrthographic(t.scene.bounds());
+        const Ray r = RayGenerator(cam)(20, 7);
+        ASSERT_EQ(ortho ? r.origin.x : r.direction.x, ortho ? mid : 0.0);
+        expectBeamAndSametGiveTheReference(t, cam, 1, ortho ? "face, orthographic" : "face");
+    }
+}
+
 TEST(SphereRenderers, SupersamplingTracesTheRaysOfTheFinerGrid) {
     ObjectOctree t = ObjectOctree::build(makeSphereFlake(2));
     Camera cam = cameraFor(t, 40, 30), fine = cameraFor(t, 80, 60);
@@ -230,4 +307,34 @@ TEST(SphereDistanceField, IsNegativeInsideAndCentredOnZero) {
     EXPECT_FLOAT_EQ(lo, -hi);
     EXPECT_EQ(std::max({f.dims.x, f.dims.y, f.dims.z}), 65);
     EXPECT_THROW(sphereDistanceField(s, 2000, 1000), LimitError);
+}
+
+TEST(SphereVoxels, KeepTheColourOfTheSphereWhoseSurfaceIsNearest) {
+    // A big red sphere and a small blue one overlapping it, a green one apart.
+    SphereSet set;
+    set.spheres = {{{0, 0, 0}, 1.0, {1.0f, 0.0f, 0.0f}, 0}, {{1.2, 0, 0}, 0.5, {0.0f, 0.0f, 1.0f}, 0}, {{0, 2.0, 0}, 0.4, {0.0f, 1.0f, 0.0f}, 0}};
+    set.name = set.source = "three spheres";
+    const Octree t = buildShellOctree(sphereDistanceField(set, (1 << 6) + 5), {6, 0.0, 0});
+    const std::vector<std::uint32_t> colours = sphereColoursAtVoxels(t, set, 1);
+    ASSERT_EQ(colours.size(), t.voxels.size());
+    EXPECT_EQ(sphereColoursAtVoxels(t, set, 3), colours);
+    const std::uint32_t red = packColour({1, 0, 0}), blue = packColour({0, 0, 1}), green = packColour({0, 1, 0});
+    std::size_t n[3] = {0, 0, 0};
+    const double h = t.voxelSize();
+    t.forEachVoxel([&](const ivec3& cell, std::uint32_t v) {
+        const dvec3 p = t.cubeOrigin + (dvec3(cell) + 0.5) * h;
+        if (p.y > 1.3) {  // around the green sphere only
+            EXPECT_EQ(colours[v], green);
+            ++n[2];
+        } else if (p.x < 0.6) {  // the red sphere's side of where the two surfaces cross (x = 0.7708)
+            EXPECT_EQ(colours[v], red) << p.x << "," << p.y << "," << p.z;
+            ++n[0];
+        } else if (p.x > 1.0) {
+            EXPECT_EQ(colours[v], blue) << p.x << "," << p.y << "," << p.z;
+            ++n[1];
+        }
+    });
+    EXPECT_GT(n[0], 500u);
+    EXPECT_GT(n[1], 50u);
+    EXPECT_GT(n[2], 50u);
 }

@@ -2,9 +2,13 @@
 // and alternate locations, the messages for broken files, the limit before allocation.
 #include "IoTestSupport.h"
 
+#include "octrace/build/OctreeBuilder.h"
 #include "octrace/io/SphereReader.h"
+#include "octrace/render/ImageCompare.h"
+#include "octrace/scene/Spheres.h"
 #include "octrace/util/Error.h"
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -168,4 +172,35 @@ TEST(SphereReader, ReadsHaemoglobin) {
     EXPECT_EQ(radii[2.0], 4u);      // the four haem irons
     // The first atom: ATOM 1 N VAL A 1 at (6.204, 16.869, 4.854).
     EXPECT_EQ(s.spheres[0].centre, dvec3(6.204, 16.869, 4.854));
+}
+
+TEST(SphereReader, HaemoglobinVoxelsKeepTheirAtomsElementColours) {
+    OCTRACE_SHARED_FILE_OR_SKIP(path, "molecule/4HHB.pdb");
+    const SphereSet s = io::readMolecule(path);
+    const Octree t = buildShellOctree(sphereDistanceField(s, (1 << 6) + 5), {6, 0.0, 0});
+    const std::vector<std::uint32_t> colours = sphereColoursAtVoxels(t, s);
+    ASSERT_EQ(colours.size(), t.voxels.size());
+    // Against every atom in turn (no buckets): the atom whose surface is nearest the voxel's
+    // centre gives its CPK colour; count the voxels of oxygen, nitrogen, carbon and sulphur.
+    const std::uint32_t oxygen = packColour({1.0f, 13 / 255.0f, 13 / 255.0f});  // Jmol CPK O: 255,13,13
+    std::map<std::uint32_t, std::size_t> byColour;
+    const double h = t.voxelSize();
+    std::size_t checked = 0;
+    t.forEachVoxel([&](const ivec3& cell, std::uint32_t v) {
+        if (v % 7 != 0) return;  // a seventh of the voxels keeps the brute force quick
+        const dvec3 p = t.cubeOrigin + (dvec3(cell) + 0.5) * h;
+        double best = INFINITY;
+        std::size_t atom = 0;
+        for (std::size_t i = 0; i < s.spheres.size(); ++i) {
+            const double d = glm::length(p - s.spheres[i].centre) - s.spheres[i].radius;
+            if (d < best) best = d, atom = i;
+        }
+        const vec3 c = s.spheres[atom].colour;
+        ASSERT_EQ(colours[v], packColour(vec3(linearToSrgb8(c.r), linearToSrgb8(c.g), linearToSrgb8(c.b)) / 255.0f)) << "voxel " << v;
+        ++byColour[colours[v]];
+        ++checked;
+    });
+    EXPECT_GT(checked, 1000u);
+    EXPECT_GE(byColour.size(), 4u);  // C, N, O, S at least
+    EXPECT_GT(byColour[oxygen], checked / 10);
 }

@@ -424,6 +424,18 @@ private slots:
         QCOMPARE(window_->state().ambient, 0.45);
         QVERIFY(window_->view(0)->image() != before);
         exportEqualsCli(QStringLiteral("dynamic-ambient"), 220, 160, false);
+        // Shadow rays of the dynamic light: only a frame, the same as the CLI's.
+        auto* shadows = window_->findChild<QCheckBox*>(QStringLiteral("shadowsCheck"));
+        QVERIFY(shadows && shadows->isEnabled());
+        const QImage unshadowed = window_->view(0)->image();
+        shadows->setChecked(true);
+        waitFrame();
+        QVERIFY(window_->state().shadows);
+        QVERIFY(window_->view(0)->image() != unshadowed);
+        QVERIFY(window_->commandLine(QStringLiteral("x.png"), 10, 10).join(QLatin1Char(' ')).contains(QStringLiteral("--shadows on")));
+        exportEqualsCli(QStringLiteral("dynamic-shadows"), 220, 160, false);
+        shadows->setChecked(false);
+        waitFrame();
         // Precomputed lighting: a build that bakes light, shadows and ambient occlusion.
         lighting->setCurrentIndex(lighting->findData(QStringLiteral("baked")));
         QVERIFY(built.wait(kWaitMs));
@@ -640,6 +652,7 @@ private slots:
         row("ambient", R"({"octrace_studio_session": 1, "shading": {"ambient": 1.5}})", "shading.ambient: 1.5 is outside");
         row("lighting", R"({"octrace_studio_session": 1, "shading": {"lighting": "sunny"}})", "shading.lighting: expected");
         row("bake ao", R"({"octrace_studio_session": 1, "shading": {"bake_ao": -1}})", "shading.bake_ao: -1 is outside");
+        row("shadows type", R"({"octrace_studio_session": 1, "shading": {"shadows": "on"}})", "shading.shadows: must be true or false");
         row("cut", R"({"octrace_studio_session": 1, "surface": {"cut": "box:1,2"}})", "surface.cut:");
         row("relief without a file", R"({"octrace_studio_session": 1, "surface": {"cut": "relief:"}})", "surface.cut:");
         row("clip type", R"({"octrace_studio_session": 1, "surface": {"clip": 1}})", "surface.clip: must be true or false");

@@ -4,6 +4,7 @@
 #include "octrace/util/Math.h"
 
 #include <limits>
+#include <optional>
 #include <string>
 
 namespace octrace {
@@ -55,8 +56,13 @@ struct RenderSettings {
     /// Whitted depth: reflected / transmitted rays spawned after a primary hit, at most this
     /// many deep (0 = local shading only).
     int bounces = 2;
-    /// Shadow rays towards the (directional) light.
-    bool shadows = true;
+    /// Shadow rays towards the (directional) light. Unset: the scene's default, on for sphere
+    /// scenes (Whitted shading, SphereRenderers.cpp) and off for voxel octrees, where each
+    /// shaded pixel would cost one more traversal and baked light (lighting/Bake.h) already has
+    /// shadows. Voxel octrees: only with dynamic shading (not baked); a voxel the light does
+    /// not reach gets the ambient term only (Shader::shade); inner nodes drawn whole by
+    /// multi-resolution are not shadowed.
+    std::optional<bool> shadows;
 };
 
 }  // namespace octrace

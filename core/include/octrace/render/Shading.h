@@ -73,26 +73,35 @@ class Shader {
 public:
     Shader(const Octree& tree, const Camera& camera, const RenderSettings& settings);
     /// Two-sided Lambert: ambient + diffuse * |n . l|, times the surface colour; or the baked
-    /// light times the surface colour (RenderSettings::baked).
-    vec4 shade(std::uint32_t voxel, const ivec3& cell) const;
+    /// light times the surface colour (RenderSettings::baked). With RenderSettings::shadows
+    /// and dynamic shading, ambient only where the light does not reach the leaf: a shadow ray
+    /// by the discrete traversal from the leaf (`cell`, its lowest voxel cell; side
+    /// 2^leafShift voxels) towards the light, offset by one leaf side to the light's side of
+    /// the normal, as the bake's (lighting/Bake.h). Its traversals are added to `shadowRays`
+    /// when given. The colour depends only on the leaf, so renderers that find the same
+    /// leaf give the same pixel.
+    vec4 shade(std::uint32_t voxel, const ivec3& cell, int leafShift = 0, std::uint64_t* shadowRays = nullptr) const;
     /// Distance from the camera along the (unit) ray to where it enters the voxel's box.
     float distance(const Ray& ray, const ivec3& cell) const;
     /// An inner node drawn whole (multi-resolution): its summary's normal and mean height.
     vec4 shadeNode(std::uint32_t node) const;
     /// Either kind of hit.
-    vec4 shade(const TraversalHit& hit) const {
-        return hit.nodeHit() ? shadeNode(hit.node) : shade(hit.voxel, hit.cell);
+    vec4 shade(const TraversalHit& hit, std::uint64_t* shadowRays = nullptr) const {
+        return hit.nodeHit() ? shadeNode(hit.node) : shade(hit.voxel, hit.cell, hit.leafShift, shadowRays);
     }
+    /// Whether shade() traces shadow rays.
+    bool shadows() const { return shadows_; }
     float distance(const Ray& ray, const TraversalHit& hit) const;
 
 private:
-    vec4 shadeNormal(vec3 n, std::uint32_t voxel, float zCells) const;
+    vec4 shadeLambert(std::uint32_t voxel, float zCells, float lambert) const;
     float distanceToBox(const Ray& ray, const Box3& b) const;
     const Octree& tree_;
     const RenderSettings& settings_;
     vec3 light_;
     Albedo albedo_;
     const std::vector<std::uint8_t>* baked_ = nullptr;  // RenderSettings::baked and the octree has it
+    bool shadows_ = false;  // RenderSettings::shadows, dynamic shading of a shell octree
 };
 
 }  // namespace octrace

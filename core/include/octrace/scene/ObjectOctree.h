@@ -12,6 +12,7 @@
 #include "octrace/scene/Spheres.h"
 #include "octrace/util/Math.h"
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -38,10 +39,28 @@ struct ObjectOctreeOptions {
     std::uint64_t memoryBudget = 0;  ///< bytes, 0 = no limit (LimitError when exceeded)
 };
 
+/// intersectSphere from the terms that depend on the ray's origin only: oc = centre - origin
+/// and c = dot(oc, oc) - radius^2. Rays that share an origin (a perspective eye) compute them
+/// once per sphere and get the same number as intersectSphere, which is this function.
+inline double intersectSphereFrom(const dvec3& oc, double c, const dvec3& dir, double tMin) {
+    // |o + t d - c|^2 = r^2 with |d| = 1: t = b -+ sqrt(b^2 - (|o-c|^2 - r^2)), b = d.(c-o).
+    const double b = glm::dot(dir, oc);
+    const double disc = b * b - c;
+    if (disc < 0.0) return std::numeric_limits<double>::infinity();
+    const double q = std::sqrt(disc);
+    const double t0 = b - q;
+    if (t0 >= tMin) return t0;
+    const double t1 = b + q;
+    return t1 >= tMin ? t1 : std::numeric_limits<double>::infinity();
+}
+
 /// Nearest intersection of a ray with a sphere at a parameter t >= tMin (the entry point, or
 /// the exit point from inside); +inf when none. The one function every tracer uses, so that
 /// they all compute the same number for the same ray and sphere.
-double intersectSphere(const Sphere& s, const dvec3& origin, const dvec3& dir, double tMin);
+inline double intersectSphere(const Sphere& s, const dvec3& origin, const dvec3& dir, double tMin) {
+    const dvec3 oc = s.centre - origin;
+    return intersectSphereFrom(oc, glm::dot(oc, oc) - s.radius * s.radius, dir, tMin);
+}
 
 class ObjectOctree {
 public:

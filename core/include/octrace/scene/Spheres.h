@@ -4,6 +4,7 @@
 /// and a material each, and the generators of the procedural ones. Readers of molecule files
 /// live in io (SphereReader.h).
 #include "octrace/build/ScalarField.h"
+#include "octrace/octree/Octree.h"
 #include "octrace/util/Math.h"
 
 #include <cstdint>
@@ -71,5 +72,12 @@ SphereSet makeRandomSpheres(std::size_t count, std::uint64_t seed, double radius
 /// [-c, c] whenever some sphere holds a grid point, so the middle of the range is 0.
 /// Throws LimitError when the samples need more than `memoryBudget` bytes (0 = no limit).
 ScalarField sphereDistanceField(const SphereSet& set, int samples, std::uint64_t memoryBudget = 0);
+
+/// Per-voxel colours (Octree::colours, packColour of the 8-bit sRGB value) for an octree of
+/// the set's distance field: each boundary leaf takes the colour of the sphere whose surface
+/// is nearest its centre (smallest |p - centre| - radius; the first such sphere on a tie),
+/// found in a uniform grid of buckets. A molecule's voxels thus keep their atoms' CPK colours
+/// as a city's keep their buildings'. The same result for any `threads`.
+std::vector<std::uint32_t> sphereColoursAtVoxels(const Octree& tree, const SphereSet& set, int threads = 0);
 
 }  // namespace octrace
