@@ -1,5 +1,7 @@
 #include "SphereRenderers.h"
 
+#include "VoxelTracers.h"
+
 #include "octrace/util/Error.h"
 #include "octrace/util/Parallel.h"
 #include "octrace/util/Timer.h"
@@ -454,10 +456,12 @@ public:
     std::string name() const override { return name_; }
     bool multiResolution() const override { return false; }
     bool drawsSpheres() const override { return true; }
-    bool drawsVoxels() const override { return false; }
-    RenderStats render(const Octree&, const Camera&, const RenderSettings&, Frame&) const override {
-        throw UsageError("renderer " + name_ + " draws sphere scenes (object octree) only: give a .pdb, .cif, sphereflake:L or random:N input");
+    RenderStats render(const Octree& tree, const Camera& camera, const RenderSettings& settings, Frame& frame) const override {
+        if (tracer_ == SphereTracer::BruteForce)
+            throw UsageError("renderer " + name_ + " draws sphere scenes (object octree) only: give a .pdb, .cif, sphereflake:L or random:N input");
+        return renderVoxelTracer(tracer_ == SphereTracer::Beam ? VoxelTracer::Beam : VoxelTracer::Samet, name_, tree, camera, settings, frame);
     }
+    bool drawsVoxels() const override { return tracer_ != SphereTracer::BruteForce; }
     RenderStats renderSpheres(const ObjectOctree& tree, const Camera& camera, const RenderSettings& settings,
                               Frame& frame) const override {
         return renderSphereScene(tracer_, name_, tree, camera, settings, frame);
