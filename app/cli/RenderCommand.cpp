@@ -132,7 +132,7 @@ OptionParser makeParser(RenderArgs& a) {
     addSeriesOption(p, a.request);
     p.add({"repeat", "N", "render N times and report the fastest as render_ms (benchmarks on a noisy machine; default 1)",
            [&](const std::string& v) { a.repeat = parseInt("repeat", v, 1, 1000); }});
-    p.add({"baseline", "NAME", "also render with renderer NAME, alternating with the main one --repeat times, and report baseline_render_ms and speedup_over_baseline (default: none)",
+    p.add({"baseline", "NAME", "also render with renderer NAME, alternating with the main one --repeat times, and report baseline_render_ms, speedup_over_baseline and baseline_differing_pixels (pixels whose colour differs) (default: none)",
            [&](const std::string& v) {
                makeRenderer(v);
                a.baseline = v;
@@ -213,6 +213,7 @@ struct RepeatedRender {
     RenderStats stats;
     std::vector<double> times;  // sorted
     double baselineMs = std::numeric_limits<double>::infinity();
+    std::uint64_t baselineDiffering = 0;  // pixels whose colour differs from the baseline's
 };
 
 RepeatedRender renderRepeated(const RenderArgs& a, Frame& frame, const std::function<RenderStats(const Renderer&, Frame&)>& draw) {
@@ -231,6 +232,7 @@ RepeatedRender renderRepeated(const RenderArgs& a, Frame& frame, const std::func
         if (baseline) r.baselineMs = std::min(r.baselineMs, draw(*baseline, baseFrame).renderMs);
     }
     std::sort(r.times.begin(), r.times.end());
+    if (baseline) r.baselineDiffering = compareImages(frame, baseFrame).differingPixels;
     if (r.stats.hits == 0) log::warning("the scene is not in view: every pixel is background");
     if (!a.figure.enabled) {  // a figure is written by the caller, around the frame
         io::ImageWriteOptions options;
@@ -250,6 +252,7 @@ void setRepeatStats(StatsJson& js, const RenderArgs& a, const RepeatedRender& r)
         js.set("baseline", a.baseline);
         js.set("baseline_render_ms", r.baselineMs);
         js.set("speedup_over_baseline", r.stats.renderMs > 0 ? r.baselineMs / r.stats.renderMs : 0.0);
+        js.set("baseline_differing_pixels", r.baselineDiffering);
     }
 }
 
@@ -499,6 +502,8 @@ int runRender(const std::vector<std::string>& args) {
     if (rs.colourCoherence) js.set("colour_tolerance", double(rs.colourTolerance));
     js.set("nodes_visited", st.nodesVisited);
     js.set("nodes_per_ray", st.rays ? double(st.nodesVisited) / double(st.rays) : 0.0);
+    js.set("beams", st.beams);
+    js.set("intersections", st.intersections);
     js.set("boundary_voxels", std::uint64_t(tree.boundaryVoxels()));
     if (!tree.voxelMaterials.empty())
         js.set("floor_voxels", std::uint64_t(std::count(tree.voxelMaterials.begin(), tree.voxelMaterials.end(),

@@ -115,6 +115,35 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
     if (!c.srgb.empty()) c.srgb[p] = packSrgb(f.rgba[p]);
 }
 
+/// Writes the background to the pixels of row y whose rays cannot hit the surface, counted as
+/// tracePixel counts them, in one pass; returns the pixels left to the patterns (lo > hi: none).
+std::pair<int, int> fillOutsideSurface(const Context& c, int y, RenderStats& st) {
+    Frame& f = c.frame;
+    const int W = f.width;
+    const auto [first, second] = c.rays.surfaceSpan(y);
+    const int lo = std::max(first, 0), hi = std::min(second, W - 1);
+    const std::uint32_t bg = c.srgb.empty() ? 0u : packSrgb(c.settings.background);
+    auto fill = [&](int x0, int x1) {
+        for (int x = x0; x < x1; ++x) {
+            const std::size_t p = f.pixel(x, y);
+            f.flags[p] = Frame::kTraced;
+            f.rgba[p] = c.settings.background;
+            f.depth[p] = std::numeric_limits<float>::infinity();
+            f.hitId[p] = kNoHit;
+            if (!c.srgb.empty()) c.srgb[p] = bg;
+            if (c.rays.mayMeetCube(x, y) && c.rays.meetsCube(x, y)) ++st.rays;
+        }
+        st.raysFull += std::uint64_t(std::max(x1 - x0, 0));
+    };
+    if (lo > hi) {
+        fill(0, W);
+        return {1, 0};
+    }
+    fill(0, lo);
+    fill(hi + 1, W);
+    return {lo, hi};
+}
+
 /// Colour coherence: fills pixel p from its partners when both were traced and their colours
 /// agree. Both showing the surface: the average colour and depth, the first partner's hit id.
 /// Both background (paper A fills any pair of close colours): the background, no hit. Either
@@ -122,7 +151,7 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
 bool tryFill(const Context& c, int x, int y, const std::size_t* partners, RenderStats& st) {
     Frame& f = c.frame;
     const std::size_t a = partners[0], b = partners[1];
-    if (!(f.flags[a] & Frame::kTraced) || !(f.flags[b] & Frame::kTraced)) return false;
+    if (!(f.flags[a] & (Frame::kTraced | Frame::kColourFilled)) || !(f.flags[b] & (Frame::kTraced | Frame::kColourFilled))) return false;
     const bool hitA = f.hitId[a] != kNoHit, hitB = f.hitId[b] != kNoHit;
     if (hitA != hitB) return false;
     if (!hitA && !c.settings.colourFillsBackground) return false;
@@ -145,6 +174,7 @@ bool tryFill(const Context& c, int x, int y, const std::size_t* partners, Render
     f.depth[p] = 0.5f * (f.depth[a] + f.depth[b]);
     f.hitId[p] = f.hitId[a];
     if (c.cells) c.cells[p] = c.cells[a];
+    c.srgb[p] = packSrgb(f.rgba[p]);
     ++st.rays;
     ++st.hits;
     return true;
@@ -184,17 +214,28 @@ RenderStats DiscreteRenderer::render(const Octree& tree, const Camera& camera, c
     auto isSupportCol = [&](int x) { return x % 4 == 0 || x == W - 1; };
     auto isBaseRow = [&](int y) { return y % 4 == 0 || y == H - 1; };
 
+    // Pixels whose rays cannot hit the surface are background whatever the pattern, except
+    // that paper A's colour fill of background pairs marks some of them filled: written in
+    // one pass per row first, unless that fill is on.
+    const bool fillFirst = !(colour && settings.colourFillsBackground);
+    auto patternSpan = [&](int y, RenderStats& st) {
+        return fillFirst ? fillOutsideSurface(ctx, y, st) : std::pair<int, int>{0, W - 1};
+    };
     // One row along its own pattern, all phases while the row is in cache.
     auto doRow = [&](int y, TraversalCounters& k) {
         RenderStats& st = rowStats[std::size_t(y)];
+        const auto [lo, hi] = patternSpan(y, st);
+        auto outside = [lo = lo, hi = hi](int x) { return x < lo || x > hi; };
         if (pattern_ == Pattern::Full) {
             if (!colour) {
-                for (int x = 0; x < W; ++x) tracePixel(ctx, x, y, nullptr, mode, st, k);
+                for (int x = lo; x <= hi; ++x) tracePixel(ctx, x, y, nullptr, mode, st, k);
                 return;
             }
-            for (int x = 0; x < W; x += 2) tracePixel(ctx, x, y, nullptr, mode, st, k);
-            if (W % 2 == 0) tracePixel(ctx, W - 1, y, nullptr, mode, st, k);
+            for (int x = 0; x < W; x += 2)
+                if (!outside(x)) tracePixel(ctx, x, y, nullptr, mode, st, k);
+            if (W % 2 == 0 && !outside(W - 1)) tracePixel(ctx, W - 1, y, nullptr, mode, st, k);
             for (int x = 1; x < W - 1; x += 2) {
+                if (outside(x)) continue;
                 const std::size_t pr[2] = {frame.pixel(x - 1, y), frame.pixel(x + 1, y)};
                 if (!tryFill(ctx, x, y, pr, st)) tracePixel(ctx, x, y, nullptr, mode, st, k);
             }
@@ -202,16 +243,16 @@ RenderStats DiscreteRenderer::render(const Octree& tree, const Camera& camera, c
         }
         // 1. supporting columns
         for (int x = 0; x < W; ++x)
-            if (isSupportCol(x)) tracePixel(ctx, x, y, nullptr, mode, st, k);
+            if (isSupportCol(x) && !outside(x)) tracePixel(ctx, x, y, nullptr, mode, st, k);
         // 2. middle of each 4-pixel group, from the supporting pixels 2 away
         for (int x = 2; x < W; x += 4) {
-            if (isSupportCol(x)) continue;
+            if (isSupportCol(x) || outside(x)) continue;
             const std::size_t pr[2] = {frame.pixel(x - 2, y), frame.pixel(std::min(x + 2, W - 1), y)};
             tracePixel(ctx, x, y, pr, mode, st, k);
         }
         // 3. the two remaining pixels, from their neighbours at distance 1
         for (int x = 1; x < W; ++x) {
-            if (isSupportCol(x) || x % 4 == 2) continue;
+            if (isSupportCol(x) || x % 4 == 2 || outside(x)) continue;
             const std::size_t pr[2] = {frame.pixel(x - 1, y), frame.pixel(x + 1, y)};
             if (!(colour && tryFill(ctx, x, y, pr, st))) tracePixel(ctx, x, y, pr, mode, st, k);
         }
@@ -219,11 +260,14 @@ RenderStats DiscreteRenderer::render(const Octree& tree, const Camera& camera, c
     // The rows strictly between base row b and the next base row, from the pixels above and below.
     auto doBand = [&](int b, TraversalCounters& k) {
         const int next = std::min(b + 4, H - 1);
+        std::pair<int, int> span[4];
+        for (int y = b + 1; y < next; ++y) span[y - b - 1] = patternSpan(y, rowStats[std::size_t(y)]);
         for (int pass = 0; pass < 2; ++pass)
             for (int y = b + 1; y < next; ++y) {
                 if ((y % 4 == 2) != (pass == 0)) continue;  // first the middle row, then the others
                 RenderStats& st = rowStats[std::size_t(y)];
-                for (int x = 0; x < W; ++x) {
+                const auto [lo, hi] = span[y - b - 1];
+                for (int x = std::max(lo, 0); x <= std::min(hi, W - 1); ++x) {
                     if (y % 4 == 2) {
                         const std::size_t pr[2] = {frame.pixel(x, y - 2), frame.pixel(x, std::min(y + 2, H - 1))};
                         tracePixel(ctx, x, y, pr, mode, st, k);

@@ -465,6 +465,13 @@ TraversalHit traverseDiscreteObserved(const Octree& tree, const QuantizedRay& ra
     return traverse<true>(tree, ray, counters, &observe);
 }
 
+bool rayCrossesCell(const QuantizedRay& ray, const ivec3& cell, int level) {
+    if (!ray.meetsCube) return false;
+    i64 m0, u0, v0;
+    mirroredOrigin(ray, cell, level, m0, u0, v0);
+    return boxCrossed(ray, ray.dU == 0, ray.dV == 0, m0, u0, v0, i64(1) << (N - level));
+}
+
 BranchNode branchNode(const Octree& tree, const ivec3& a, const ivec3& b) {
     BranchNode bn;
     const int depth = tree.depth;

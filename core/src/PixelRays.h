@@ -49,6 +49,9 @@ public:
         const auto& s = surfaceSpans_[std::size_t(y)];
         return x >= s.first && x <= s.second;
     }
+    /// The pixels x of row y for which mayHitSurface holds: first <= x <= second (first >
+    /// second: none; the ends may lie outside the image).
+    std::pair<int, int> surfaceSpan(int y) const { return surfaceSpans_[std::size_t(y)]; }
 
 private:
     const Octree& tree_;

@@ -1,5 +1,6 @@
 #include "CoherentRenderers.h"
 #include "DirectRenderer.h"
+#include "PerPixel.h"
 #include "PixelRays.h"
 #include "SphereRenderers.h"
 #include "octrace/render/DiscreteTraversal.h"
@@ -16,50 +17,6 @@
 namespace octrace {
 namespace {
 
-constexpr int kTile = 32;
-
-/// Renders tile by tile (in parallel); each pixel is traced on its own by `trace`, which maps
-/// a ray in octree space to a hit. Counters are kept per tile and summed in tile order.
-template <class Trace>
-RenderStats renderPerPixel(const std::string& name, const Octree& tree, const Camera& camera,
-                           const RenderSettings& settings, Frame& frame, const Trace& trace) {
-    camera.validate();
-    Timer timer;
-    frame.resize(camera.width, camera.height);
-    const Shader shader(tree, camera, settings);
-    const detail::PixelRays rays(tree, camera);
-    const int tilesX = (camera.width + kTile - 1) / kTile, tilesY = (camera.height + kTile - 1) / kTile;
-    std::vector<RenderStats> tileStats(std::size_t(tilesX) * tilesY);
-    parallelFor(tileStats.size(), settings.threads, [&](std::size_t t) {
-        RenderStats& st = tileStats[t];
-        TraversalCounters counters;
-        const int x0 = int(t % std::size_t(tilesX)) * kTile, y0 = int(t / std::size_t(tilesX)) * kTile;
-        const int x1 = std::min(x0 + kTile, camera.width), y1 = std::min(y0 + kTile, camera.height);
-        for (int y = y0; y < y1; ++y)
-            for (int x = x0; x < x1; ++x) {
-                const std::size_t p = frame.pixel(x, y);
-                ++st.pixels;
-                const dvec3 dir = rays.direction(x, y);
-                bool meets = false;
-                TraversalHit hit = trace(rays, x, y, dir, counters, meets);
-                if (meets) ++st.rays;
-                ++st.raysFull;
-                if (!hit.hit()) {
-                    frame.flags[p] = Frame::kTraced;
-                    frame.rgba[p] = settings.background;
-                    continue;
-                }
-                ++st.hits;
-                frame.flags[p] = Frame::kTraced;
-                frame.hitId[p] = hit.voxel;
-                frame.rgba[p] = shader.shade(hit, &st.secondaryRays);
-                frame.depth[p] = shader.distance(rays.world(x, y, dir), hit);
-            }
-        st.nodesVisited = counters.nodes;
-    });
-    return RenderStats::total(name, tileStats, timer.ms());
-}
-
 class ReferenceRenderer final : public Renderer {
 public:
     explicit ReferenceRenderer(bool quantized) : quantized_(quantized) {}
@@ -67,7 +24,7 @@ public:
     RenderStats render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
                        Frame& frame) const override {
         const LodCut cut(tree, camera, settings.lodPixels, settings.level);
-        return renderPerPixel(name(), tree, camera, settings, frame,
+        return detail::renderPerPixel(name(), tree, camera, settings, frame,
                               [&](const detail::PixelRays& rays, int x, int y, const dvec3& d, TraversalCounters& c, bool& meets) {
                                   QuantizedRay q = rays.quantized(x, y, d);
                                   ReferenceRay r = quantized_ ? referenceRayFromQuantized(q)

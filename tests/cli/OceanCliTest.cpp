@@ -66,3 +66,27 @@ TEST(OceanCli, TimeAndDepthRangeAreCheckedOnTheCommandLineAndAgainstTheFile) {
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("depth range 100,120 m holds 1 level(s), need at least 2"), std::string::npos) << r.err;
 }
+
+TEST(OceanCli, SametAndBeamHitTheReferencesVoxelsOnTheLevitusTemperature) {
+    // Paper B's tracers on the voxel octree, on real data: the 10 degC isosurface (Table 1's T
+    // scene, its camera), every pixel's hit voxel the reference's, the image full's.
+    const std::string lev = sharedData(kLevitus);
+    if (!haveShared(kLevitus)) GTEST_SKIP() << "shared data absent: " << lev;
+    Scratch s;
+    const std::vector<std::string> scene{"render", lev, "--var", "TEMP", "--iso", "10", "--region", "120,180,10,60",
+                                         "--depth", "8", "--size", "320x240", "--camera-pos", "7738.087169,-14069.2494,9870.868124",
+                                         "--look-at", "0,0,-681.068925", "--up", "0,0,1", "--fov", "30", "--quiet"};
+    for (const std::string renderer : {"samet", "beam"}) {
+        std::vector<std::string> args = scene;
+        for (const std::string& a : {"--renderer", renderer.c_str(), "--baseline", "full", "--verify", "--stats"}) args.push_back(a);
+        args.push_back(s.path(renderer + ".json"));
+        args.push_back("-o");
+        args.push_back(s.path(renderer + ".png"));
+        Result r = run(args);
+        ASSERT_EQ(r.code, 0) << r.err;
+        const std::string js = slurp(s.path(renderer + ".json"));
+        EXPECT_NE(js.find("\"mismatched_pixels\": 0,"), std::string::npos) << js;
+        EXPECT_NE(js.find("\"baseline_differing_pixels\": 0,"), std::string::npos) << js;
+        EXPECT_EQ(js.find("\"hits\": 0,"), std::string::npos) << js;
+    }
+}

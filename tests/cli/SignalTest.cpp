@@ -88,7 +88,9 @@ TEST(Signals, InterruptedWhileWritingRemovesItsTemporaryAndEndsBySignal) {
             }
             ::close(watch);
             ASSERT_FALSE(tmp.empty()) << "no temporary appeared:\n" << slurp(logs.path("stderr"));
-            ::kill(child.pid(), SIGSTOP);
+            // Wait for its own stop. No SIGSTOP of ours: sent between the temporary's creation
+            // and the child's raise, it would be consumed first, and the child's own stop would
+            // come after our signal and SIGCONT, leaving it stopped for good.
             int status = child.wait(true);
             if (!WIFSTOPPED(status) || !std::filesystem::exists(dir.path(tmp))) {
                 // Finished writing first: the output is then complete and the temporary gone.

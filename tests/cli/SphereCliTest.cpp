@@ -85,6 +85,14 @@ TEST(SphereCli, VoxelRenderersDrawTheSpheresVoxelized) {
     // The reference on the voxelized scene when asked for.
     const std::string ref = renderVerified(s, "random:50", "reference", {"--octree", "voxel", "--depth", "5"});
     EXPECT_GT(statNumber(ref, "boundary_voxels"), 0.0) << ref;
+    // samet and beam too: the reference's hit voxel in every pixel, with their own counters.
+    for (const std::string renderer : {"samet", "beam"}) {
+        const std::string js = renderVerified(s, "sphereflake:2", renderer, {"--octree", "voxel", "--depth", "6"});
+        EXPECT_EQ(statNumber(js, "mismatched_pixels"), 0.0) << js;
+        EXPECT_GT(statNumber(js, "hits"), 1000.0) << js;
+        EXPECT_GT(statNumber(js, "nodes_visited"), 0.0) << js;
+        if (renderer == "beam") EXPECT_GT(statNumber(js, "beams"), 0.0) << js;
+    }
 }
 
 TEST(SphereCli, InfoDescribesGeneratedScenes) {

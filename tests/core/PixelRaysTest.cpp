@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <climits>
+
 using namespace octrace;
 using namespace octrace::test;
 
@@ -66,4 +68,27 @@ TEST(PixelRays, RenderingIntoAUsedFrameGivesTheFreshFrame) {
         EXPECT_TRUE(d.identical()) << d.first;
         EXPECT_EQ(used.flags, fresh.flags);
     }
+}
+
+TEST(PixelRays, TheSurfaceBoxIsTheBoxOfEveryLeaf) {
+    // Octree::occupiedCells skips nodes inside the box found so far; it must still give the
+    // box of all leaves.
+    for (const Octree* t : {&sphereTree(), &torusTree(), &noiseTree()}) {
+        ivec3 lo(INT_MAX), hi(INT_MIN);
+        std::size_t leaves = 0;
+        t->forEachLeaf([&](const ivec3& c, int shift, std::uint32_t) {
+            lo = glm::min(lo, c);
+            hi = glm::max(hi, c + ((1 << shift) - 1));
+            ++leaves;
+        });
+        ASSERT_GT(leaves, 0u);
+        ivec3 olo, ohi;
+        t->occupiedCells(olo, ohi);
+        EXPECT_EQ(olo, lo);
+        EXPECT_EQ(ohi, hi);
+    }
+    Octree empty;
+    ivec3 lo, hi;
+    empty.occupiedCells(lo, hi);
+    EXPECT_GT(lo.x, hi.x);
 }

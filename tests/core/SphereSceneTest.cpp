@@ -284,12 +284,20 @@ TEST(SphereRenderers, WhittedRaysChangeTheMirrorsAndShadowsDarken) {
     EXPECT_GT(st.secondaryRays, st.hits);
 }
 
-TEST(SphereRenderers, VoxelRenderersRefuseSphereScenesAndBackwards) {
+TEST(SphereRenderers, VoxelRenderersRefuseSphereScenesAndTheBruteForceVoxels) {
     ObjectOctree t = ObjectOctree::build(makeSphereFlake(1));
     Frame f;
     EXPECT_THROW(makeRenderer("full")->renderSpheres(t, cameraFor(t, 8, 8), {}, f), UsageError);
     Octree empty;
-    EXPECT_THROW(makeRenderer("beam")->render(empty, cameraFor(t, 8, 8), {}, f), UsageError);
+    EXPECT_THROW(makeBruteForceSphereRenderer()->render(empty, cameraFor(t, 8, 8), {}, f), UsageError);
+    EXPECT_FALSE(makeBruteForceSphereRenderer()->drawsVoxels());
+    // samet and beam draw both kinds: an empty voxel octree is all background.
+    for (const char* name : {"samet", "beam"}) {
+        EXPECT_TRUE(makeRenderer(name)->drawsVoxels());
+        const RenderStats st = makeRenderer(name)->render(empty, cameraFor(t, 8, 8), {}, f);
+        EXPECT_EQ(st.hits, 0u) << name;
+        EXPECT_EQ(st.pixels, 64u) << name;
+    }
 }
 
 TEST(SphereDistanceField, IsNegativeInsideAndCentredOnZero) {

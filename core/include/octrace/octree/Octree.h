@@ -170,8 +170,8 @@ public:
     std::uint32_t findVoxel(const ivec3& cell) const;
 
     /// Smallest cell-space box [lo, hi] (inclusive) holding every boundary voxel; lo > hi
-    /// when there is none. Computed by descending only the nodes on the box's faces' sides:
-    /// O(voxels) at worst.
+    /// when there is none. Computed without entering nodes that lie inside the box found so
+    /// far: O(voxels) at worst.
     void occupiedCells(ivec3& lo, ivec3& hi) const;
     /// World box of the occupied cells (the surface's bounding box).
     Box3 occupiedBounds() const;

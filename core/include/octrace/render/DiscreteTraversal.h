@@ -77,6 +77,19 @@ TraversalHit traverseDiscrete(const Octree& tree, const QuantizedRay& ray, Trave
 TraversalHit traverseDiscreteObserved(const Octree& tree, const QuantizedRay& ray, TraversalCounters& counters,
                                       const std::function<void(unsigned sign, unsigned stateByte)>& observe);
 
+/// Whether the quantized ray visits the cell (original coordinates at `level`, 0 .. depth of
+/// the finest lattice Octree::kMaxDepth): the state byte's exact interval tests for one box,
+/// under the same semantics (half-open mirrored cells, in front of the eye). Thread-safe.
+bool rayCrossesCell(const QuantizedRay& ray, const ivec3& cell, int level);
+
+/// Samet's neighbour finding on the voxel octree (renderer samet): the ray goes leaf to leaf,
+/// from the leaf holding its first point; at each leaf its exit point, the neighbour of equal
+/// size across the exit face, edge or corner (climb the root-to-leaf path to the common
+/// ancestor, descend the mirrored path), then down to the leaf holding the exit point. Exact
+/// rational arithmetic on the quantized line: the same hit as traverseDiscrete.
+/// counters.nodes counts the inner nodes stepped through. Thread-safe.
+TraversalHit traverseSamet(const Octree& tree, const QuantizedRay& ray, TraversalCounters& counters);
+
 /// An inner node where a coherent ray starts: the smallest node holding the hit voxels of two
 /// neighbouring rays (the *branch node* of their common path), with its path from the root.
 struct BranchNode {

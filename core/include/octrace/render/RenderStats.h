@@ -23,7 +23,7 @@ struct RenderStats {
     // Direct renderers (they trace no rays: rays = 0):
     std::uint64_t voxelsSplatted = 0;  ///< voxel footprints drawn, counted once per screen tile they cover
     // Sphere scenes (object octree):
-    std::uint64_t intersections = 0;   ///< ray-sphere tests of the primary rays
+    std::uint64_t intersections = 0;   ///< ray-sphere tests of the primary rays (beam on voxels: exact ray-leaf tests)
     std::uint64_t secondaryRays = 0;   ///< shadow, reflected and transmitted rays (Samet)
     std::uint64_t beams = 0;           ///< beam renderer: beams (node, screen rectangle) processed
     double renderMs = 0.0;

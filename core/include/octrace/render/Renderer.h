@@ -32,7 +32,7 @@ public:
                                Frame& frame) const = 0;
     /// Whether renderSpheres draws sphere scenes (reference, samet, beam).
     virtual bool drawsSpheres() const { return false; }
-    /// Whether render() draws the voxel octree (false for samet and beam for now).
+    /// Whether render() draws the voxel octree (every renderer but the brute-force sphere oracle).
     virtual bool drawsVoxels() const { return true; }
     /// Renders a sphere scene through its object octree: hitId is the sphere index of the
     /// pixel's first sample, depth that sample's distance, rgba the average of the samples
