@@ -151,7 +151,7 @@ std::pair<int, int> fillOutsideSurface(const Context& c, int y, RenderStats& st)
 bool tryFill(const Context& c, int x, int y, const std::size_t* partners, RenderStats& st) {
     Frame& f = c.frame;
     const std::size_t a = partners[0], b = partners[1];
-    if (!(f.flags[a] & Frame::kTraced) || !(f.flags[b] & Frame::kTraced)) return false;
+    if (!(f.flags[a] & (Frame::kTraced | Frame::kColourFilled)) || !(f.flags[b] & (Frame::kTraced | Frame::kColourFilled))) return false;
     const bool hitA = f.hitId[a] != kNoHit, hitB = f.hitId[b] != kNoHit;
     if (hitA != hitB) return false;
     if (!hitA && !c.settings.colourFillsBackground) return false;
@@ -174,6 +174,7 @@ bool tryFill(const Context& c, int x, int y, const std::size_t* partners, Render
     f.depth[p] = 0.5f * (f.depth[a] + f.depth[b]);
     f.hitId[p] = f.hitId[a];
     if (c.cells) c.cells[p] = c.cells[a];
+    c.srgb[p] = packSrgb(f.rgba[p]);
     ++st.rays;
     ++st.hits;
     return true;

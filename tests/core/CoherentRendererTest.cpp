@@ -157,6 +157,40 @@ TEST(CoherentRenderers, ColourCoherenceFillsOnlyBetweenTracedSurfacePixelsWithin
     EXPECT_GT(makeRenderer("full")->render(t, cam, s, f).colourFilled, 0u);
 }
 
+TEST(CoherentRenderers, ColourCoherenceFillsABandPixelFromAFilledBaseRowPixelWithItsColour) {
+    // Paper A compares the outer pixels' colours however they were made: in `area`, a pixel of
+    // a band row next to a base row can be filled from that row's filled pixel (at most two
+    // generations: filled pixels of the bands are no one's partners). Its average must use
+    // the filled pixel's own colour.
+    const Octree& t = tree(0);
+    const Camera cam = cameras(t)[1];
+    Frame full, f;
+    draw("full", t, cam, full);
+    RenderSettings s;
+    s.colourTolerance = 255.0f;  // every pair of surface pixels fills
+    makeRenderer("area+colour")->render(t, cam, s, f);
+    std::size_t fromFilled = 0;
+    for (int y = 1; y + 1 < f.height; y += 4)
+        for (int x = 1; x + 1 < f.width; x += 2) {
+            const std::size_t p = f.pixel(x, y), above = f.pixel(x, y - 1), below = f.pixel(x, y + 1);
+            if (!(f.flags[above] & Frame::kColourFilled) || f.hitId[below] == kNoHit) continue;
+            ASSERT_TRUE(f.flags[p] & Frame::kColourFilled) << x << "," << y;
+            ++fromFilled;
+            for (int ch = 0; ch < 3; ++ch)
+                EXPECT_FLOAT_EQ(f.rgba[p][ch], 0.5f * (f.rgba[above][ch] + f.rgba[below][ch])) << x << "," << y;
+        }
+    EXPECT_GT(fromFilled, 0u);
+    const ImageDifference d = compareImages(f, full);
+    EXPECT_GE(d.psnrDb, 30.0) << "even at the loosest tolerance the image stays close";
+    // At the default tolerance the filled pixel's colour is compared (it must have one).
+    makeRenderer("area+colour")->render(t, cam, RenderSettings{}, f);
+    std::size_t filledFromFilled = 0;
+    for (int y = 1; y + 1 < f.height; y += 4)
+        for (int x = 1; x + 1 < f.width; x += 2)
+            filledFromFilled += (f.flags[f.pixel(x, y)] & Frame::kColourFilled) && (f.flags[f.pixel(x, y - 1)] & Frame::kColourFilled);
+    EXPECT_GT(filledFromFilled, 0u);
+}
+
 TEST(CoherentRenderers, ColourCoherenceBetweenBackgroundPixelsFillsBackgroundAndStillCountsTheRays) {
     const Octree& t = tree(1);
     const Camera cam = cameras(t)[0];
