@@ -68,7 +68,7 @@ OptionParser makeParser(RenderArgs& a) {
     addFormOptions(p, a);
     addLightingOption(p, a);
     addBakeOptions(p, a);
-    p.add({"renderer", "NAME", "renderer: " + joinNames(rendererNames()) + " (default full)",
+    p.add({"renderer", "NAME", "renderer: " + joinNames(rendererNames()) + "; samet and beam (paper B) draw sphere scenes and voxel octrees alike (default full)",
            [&](const std::string& v) {
                makeRenderer(v);  // validates the name
                a.rendererName = v;
@@ -137,7 +137,7 @@ OptionParser makeParser(RenderArgs& a) {
                makeRenderer(v);
                a.baseline = v;
            }});
-    p.add({"octree", "object|voxel", "sphere inputs: trace the spheres in paper B's object octree (renderers reference, samet, beam) or voxelize them into the voxel octree at --depth (every voxel renderer) (default: object for reference, samet, beam; voxel for the others)",
+    p.add({"octree", "object|voxel", "sphere inputs: trace the spheres in paper B's object octree (renderers reference, samet, beam) or voxelize them into the voxel octree at --depth (every voxel renderer, samet and beam included) (default: object for reference, samet, beam; voxel for the others)",
            [&](const std::string& v) {
                if (v != "object" && v != "voxel") throw UsageError("--octree: choose object or voxel, got '" + v + "'");
                a.octreeKind = v;

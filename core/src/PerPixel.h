@@ -10,14 +10,16 @@
 #include "octrace/util/Timer.h"
 
 #include <algorithm>
+#include <limits>
 #include <string>
 #include <vector>
 
 namespace octrace::detail {
 
-/// Writes pixel (x, y) from its primary ray's hit (or miss): flags, background or hit id,
-/// colour and depth, and counts the pixel and the hit. Every ray caster shades through this, so
-/// equal hits give equal pixels.
+/// Writes every field of pixel (x, y) from its primary ray's hit (or miss): flags, hit id,
+/// colour (or the background) and depth, and counts the pixel and the hit; a renderer that
+/// writes every pixel this way needs no clear (Frame::reshape). Every ray caster shades
+/// through this, so equal hits give equal pixels.
 inline void writePixelHit(Frame& frame, int x, int y, const TraversalHit& hit, const Shader& shader,
                           const PixelRays& rays, const dvec3& dir, const RenderSettings& settings, RenderStats& st) {
     const std::size_t p = frame.pixel(x, y);
@@ -25,6 +27,8 @@ inline void writePixelHit(Frame& frame, int x, int y, const TraversalHit& hit, c
     frame.flags[p] = Frame::kTraced;
     if (!hit.hit()) {
         frame.rgba[p] = settings.background;
+        frame.depth[p] = std::numeric_limits<float>::infinity();
+        frame.hitId[p] = kNoHit;
         return;
     }
     ++st.hits;
@@ -42,7 +46,7 @@ RenderStats renderPerPixel(const std::string& name, const Octree& tree, const Ca
                            const RenderSettings& settings, Frame& frame, const Trace& trace) {
     camera.validate();
     Timer timer;
-    frame.resize(camera.width, camera.height);
+    frame.reshape(camera.width, camera.height);  // every pixel is written below
     const Shader shader(tree, camera, settings);
     const PixelRays rays(tree, camera);
     const int tilesX = (camera.width + kPerPixelTile - 1) / kPerPixelTile;

@@ -206,17 +206,27 @@ private:
 class VoxelBeamTile {
 public:
     VoxelBeamTile(const Octree& tree, const RayGenerator& gen, int x0, int y0, int w, int h,
-                  const std::vector<QuantizedRay>& rays, std::vector<TraversalHit>& hits, TraversalCounters& c,
+                  const PixelRays& pixels, const std::vector<std::uint8_t>& meets, std::vector<TraversalHit>& hits, TraversalCounters& c,
                   double cosWidest, std::uint64_t& beams, std::uint64_t& tests)
-        : tree_(tree), gen_(gen), cosWidest_(cosWidest), w_(w), rays_(rays), hits_(hits), c_(c), beams_(beams), tests_(tests) {
+        : tree_(tree), gen_(gen), cosWidest_(cosWidest), x0_(x0), y0_(y0), w_(w), pixels_(pixels), hits_(hits), c_(c),
+          beams_(beams), tests_(tests) {
         xs_.resize(std::size_t(w));
         ys_.resize(std::size_t(h));
         for (int i = 0; i < w; ++i) xs_[std::size_t(i)] = x0 + i + 0.5;
         for (int j = 0; j < h; ++j) ys_[std::size_t(j)] = y0 + j + 0.5;
-        done_.resize(rays.size());
-        for (std::size_t k = 0; k < rays.size(); ++k) {
-            done_[k] = !rays[k].meetsCube;
-            remaining_ += !done_[k];
+        // A ray is quantized when a leaf first tests it; its direction signs (the quantized
+        // ray's, for every ray that meets the cube) are known at once.
+        const std::size_t n = meets.size();
+        done_.resize(n);
+        rays_.resize(n);
+        quantized_.assign(n, 0);
+        signs_.assign(n, 0);
+        for (std::size_t k = 0; k < n; ++k) {
+            done_[k] = !meets[k];
+            remaining_ += meets[k];
+            const dvec3 d = pixels.direction(x0 + int(k % std::size_t(w)), y0 + int(k / std::size_t(w)));
+            for (int a = 0; a < 3; ++a)
+                if (d[a] < 0.0) signs_[k] |= std::uint8_t(axisBit(a));
         }
         eye_ = tree.toOctreeSpace(gen.eye());
         worldPerUnit_ = tree.cubeSide / double(L);
@@ -291,8 +301,12 @@ private:
         for (int j = r.j0; j < r.j1; ++j)
             for (int i = r.i0; i < r.i1; ++i) {
                 const std::size_t k = std::size_t(j) * std::size_t(w_) + std::size_t(i);
-                if (done_[k] || (rays_[k].sign & fMask) != fSign) continue;
+                if (done_[k] || (signs_[k] & fMask) != fSign) continue;
                 ++tests_;
+                if (!quantized_[k]) {
+                    rays_[k] = pixels_.quantized(x0_ + i, y0_ + j, pixels_.direction(x0_ + i, y0_ + j));
+                    quantized_[k] = 1;
+                }
                 if (!rayCrossesCell(rays_[k], cell, level)) continue;
                 TraversalHit& h = hits_[k];
                 h.voxel = voxel;
@@ -372,8 +386,10 @@ private:
     const Octree& tree_;
     const RayGenerator& gen_;
     double cosWidest_;
-    int w_, h_ = 0;
-    const std::vector<QuantizedRay>& rays_;
+    int x0_, y0_, w_, h_ = 0;
+    const PixelRays& pixels_;
+    std::vector<QuantizedRay> rays_;
+    std::vector<std::uint8_t> quantized_, signs_;
     std::vector<TraversalHit>& hits_;
     TraversalCounters& c_;
     std::uint64_t& beams_;
@@ -393,7 +409,7 @@ RenderStats renderBeams(const std::string& name, const Octree& tree, const Camer
                         Frame& frame) {
     camera.validate();
     Timer timer;
-    frame.resize(camera.width, camera.height);
+    frame.reshape(camera.width, camera.height);  // every pixel is written below
     const Shader shader(tree, camera, settings);
     const PixelRays rays(tree, camera);
     const RayGenerator gen(camera);
@@ -407,16 +423,16 @@ RenderStats renderBeams(const std::string& name, const Octree& tree, const Camer
         const int x0 = int(t % std::size_t(tilesX)) * kBeamTile, y0 = int(t / std::size_t(tilesX)) * kBeamTile;
         const int x1 = std::min(x0 + kBeamTile, camera.width), y1 = std::min(y0 + kBeamTile, camera.height);
         const int w = x1 - x0, h = y1 - y0;
-        std::vector<QuantizedRay> q(std::size_t(w) * std::size_t(h));
-        std::vector<TraversalHit> hits(q.size());
+        std::vector<std::uint8_t> meets(std::size_t(w) * std::size_t(h));
+        std::vector<TraversalHit> hits(meets.size());
         for (int j = 0; j < h; ++j)
             for (int i = 0; i < w; ++i) {
-                QuantizedRay& r = q[std::size_t(j) * std::size_t(w) + std::size_t(i)];
-                if (rays.mayMeetCube(x0 + i, y0 + j)) r = rays.quantized(x0 + i, y0 + j, rays.direction(x0 + i, y0 + j));
-                st.rays += r.meetsCube;
+                const bool m = rays.mayMeetCube(x0 + i, y0 + j) && rays.meetsCube(x0 + i, y0 + j);
+                meets[std::size_t(j) * std::size_t(w) + std::size_t(i)] = m;
+                st.rays += m;
             }
         TraversalCounters counters;
-        VoxelBeamTile(tree, gen, x0, y0, w, h, q, hits, counters, cosWidest, st.beams, st.intersections).run();
+        VoxelBeamTile(tree, gen, x0, y0, w, h, rays, meets, hits, counters, cosWidest, st.beams, st.intersections).run();
         for (int j = 0; j < h; ++j)
             for (int i = 0; i < w; ++i)
                 writePixelHit(frame, x0 + i, y0 + j, hits[std::size_t(j) * std::size_t(w) + std::size_t(i)], shader, rays,

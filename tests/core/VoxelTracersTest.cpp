@@ -156,6 +156,19 @@ TEST(VoxelTracers, AreDeterministicForAnyThreadCount) {
     }
 }
 
+TEST(VoxelTracers, RenderIntoAFrameHoldingAnotherImageAsIntoAFreshOne) {
+    // The frame is not cleared when its size stays (Frame::reshape): every pixel is written.
+    const Camera a = Camera::framing(cubeOf(torusTree()), 90, 70);
+    const Camera b = makeCamera({0.35, -0.2, 0.15}, {-0.5, 0.6, -0.1}, {0, 0, 1}, 70, 90, 70);
+    for (const char* name : {"samet", "beam", "reference"}) {
+        Frame fresh, reused;
+        render(name, torusTree(), a, fresh);
+        render(name, noiseTree(), b, reused);
+        render(name, torusTree(), a, reused);
+        EXPECT_TRUE(diffFrames(fresh, reused).identical()) << name;
+    }
+}
+
 TEST(VoxelTracers, RefuseAMultiResolutionCut) {
     Octree t = buildShellOctree(makeAnalyticField("sphere", 33), {6, 0.0, 0});
     t.computeSummaries();
