@@ -292,6 +292,7 @@ public:
             ch.Fc = n.Fc + (hu ? qa : -qa) - (hv ? qb : -qb);
             ch.partial = n.partial && (ch.m0 << Q) < r_.eyeM;
             ch.lazy = false;
+            ch.pathChild = 0;
             if (guide_ && ch.level < guide_->level && slot == guide_->path[ch.level]) {
                 const unsigned z = guide_->childIndex[ch.level];
                 const unsigned childMask = tree_.nodes[slot].childMask;

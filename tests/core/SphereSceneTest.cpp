@@ -59,7 +59,7 @@ TEST(ObjectOctree, SplitsWhileANodeHoldsMoreThanTheThreshold) {
     t.validate();
     EXPECT_GT(t.nodes.size(), 8u);
     for (const ObjectNode& n : t.nodes)
-        if (n.leaf()) EXPECT_TRUE(int(n.objectCount) <= 4 || n.level == o.maxDepth);
+        if (n.leaf()) { EXPECT_TRUE(int(n.objectCount) <= 4 || n.level == o.maxDepth); }
     // Every sphere is listed in every leaf its box meets (spot check by the leaf of its centre).
     for (std::uint32_t i = 0; i < 2000; i += 37) {
         const std::uint32_t leaf = t.locateLeaf(t.scene.spheres[i].centre, dvec3(1, 1, 1));
@@ -104,7 +104,7 @@ TEST(ObjectOctree, FaceNeighbourIsTheAdjacentNodeOfEqualOrLargerSize) {
                 EXPECT_EQ(pos ? o.lo[axis] : o.hi[axis], face);  // shares the face
                 EXPECT_LE(t.nodes[nb].level, t.nodes[n].level);  // equal or larger
                 for (int a = 0; a < 3; ++a)
-                    if (a != axis) EXPECT_TRUE(o.lo[a] <= b.lo[a] && o.hi[a] >= b.hi[a]);  // covers the face
+                    if (a != axis) { EXPECT_TRUE(o.lo[a] <= b.lo[a] && o.hi[a] >= b.hi[a]); }  // covers the face
                 ++checked;
             }
     }
@@ -126,7 +126,7 @@ TEST(ObjectOctree, ReferenceAndSametFindTheBruteForceHitOnRandomRays) {
             const SphereHit s = traceSamet(t, o, d, 0.0, c);
             ASSERT_EQ(r.sphere, b.sphere) << i;
             ASSERT_EQ(s.sphere, b.sphere) << i;
-            if (b.hit()) EXPECT_EQ(r.t, b.t);
+            if (b.hit()) { EXPECT_EQ(r.t, b.t); }
             hits += b.hit();
         }
         EXPECT_GT(hits, 2000);

@@ -460,7 +460,7 @@ private slots:
         QVERIFY(cut && edit && clip);
         const std::size_t whole = window_->engine().tree()->boundaryVoxels();
         QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
-        for (const QString kind : {QStringLiteral("box"), QStringLiteral("sphere"), QStringLiteral("halfspace")}) {
+        for (const QString& kind : {QStringLiteral("box"), QStringLiteral("sphere"), QStringLiteral("halfspace")}) {
             cut->setCurrentIndex(cut->findData(kind));
             emit cut->activated(cut->currentIndex());  // as a user's choice
             QVERIFY(built.wait(kWaitMs));
