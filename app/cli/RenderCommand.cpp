@@ -96,7 +96,7 @@ OptionParser makeParser(RenderArgs& a) {
                a.orthoHeight = parseNumber("ortho-height", v);
                if (!(*a.orthoHeight > 0.0)) throw UsageError("--ortho-height: must be positive, got " + v);
            }});
-    p.add({"lod", "PIXELS", "multi-resolution: stop at octree nodes whose projected size is below PIXELS and draw them whole; renderers full, direct, direct-f2b (default 0 = exact)",
+    p.add({"lod", "PIXELS", "multi-resolution: stop at octree nodes whose projected size is below PIXELS and draw them whole; renderers " + voxelRenderersThat(&Renderer::multiResolution) + " (default 0 = exact)",
            [&](const std::string& v) {
                a.lod = parseNumber("lod", v);
                if (!(a.lod >= 0.0 && a.lod <= 1e6)) throw UsageError("--lod: must be a number of pixels >= 0, got " + v);
@@ -271,7 +271,8 @@ int renderObjectOctree(const RenderArgs& a) {
                          " traces the spheres themselves (--octree voxel voxelizes them)");
     if (a.lod > 0.0 || a.level >= 0) throw UsageError("--lod/--level: the object octree has no multi-resolution mode");
     if (a.figure.enabled) throw UsageError("--figure applies to voxel surfaces, not to the object octree of " + a.input);
-    if (a.colourCoherence) throw UsageError("--colour-coherence applies to the voxel renderers");
+    if (a.colourCoherence)
+        throw UsageError("--colour-coherence applies to the voxel ray casters " + voxelRenderersThat(&Renderer::colourCoherence));
     const int threads = a.threads == 0 ? hardwareThreads() : a.threads;
     const std::uint64_t budget = memoryBudget(a);
     const std::uint64_t frameBytes = outputFrameBytes(a);
@@ -396,10 +397,13 @@ int runRender(const std::vector<std::string>& args) {
         throw UsageError(a.sphereOptions.front() + " applies to sphere scenes in the object octree (renderers reference, samet, beam)");
     if (a.level > a.depth) throw UsageError("--level " + std::to_string(a.level) + " is deeper than --depth " + std::to_string(a.depth));
     const bool multires = a.lod > 0.0 || (a.level >= 0 && a.level < a.depth);
+    if (a.colourCoherence && !makeRenderer(a.rendererName)->colourCoherence())
+        throw UsageError("--colour-coherence: renderer " + a.rendererName + " does not fill pixels by colour (use " +
+                         voxelRenderersThat(&Renderer::colourCoherence) + ")");
     if (multires) {
         for (const std::string& r : {a.rendererName, a.baseline})
             if (!r.empty() && !makeRenderer(r)->multiResolution())
-                throw UsageError("--lod/--level: renderer " + r + " has no multi-resolution mode (use full, direct or direct-f2b)");
+                throw UsageError("--lod/--level: renderer " + r + " has no multi-resolution mode (use " + voxelRenderersThat(&Renderer::multiResolution) + ")");
     }
     const int threads = a.threads == 0 ? hardwareThreads() : a.threads;
 
@@ -541,6 +545,7 @@ int runRender(const std::vector<std::string>& args) {
     summary << tree.boundaryVoxels() << " boundary voxels at depth " << tree.depth << " built in " << report.buildMs << " ms";
 
     if (a.verify) {
+        log::info("verifying: rendering the frame again with the reference traversal (slower than the renderers)");
         auto ref = makeRenderer("reference");
         Frame rf;
         RenderStats rst = ref->render(tree, cam, rs, rf);
@@ -592,8 +597,8 @@ int runRender(const std::vector<std::string>& args) {
         }
         js.set("depth_max_error_voxel_diagonals", diagonals);
         summary << "; verify: " << mismatched << " pixels differ from the reference (" << qdiff
-                << " from the unquantized rays), hit agreement " << agreement * 100.0 << "%, depth within "
-                << diagonals << " voxel diagonals";
+                << " from the unquantized rays), PSNR " << d.psnrDb << " dB (max channel error " << d.maxChannelError
+                << "), hit agreement " << agreement * 100.0 << "%, depth within " << diagonals << " voxel diagonals";
         if (mismatched != 0) log::warning(std::to_string(mismatched) + " pixels differ from the reference traversal");
     }
     log::info(summary.str());

@@ -528,8 +528,13 @@ void buildFromField(const SurfaceArgs& a, Surface& s, const BuildHooks& hooks) {
     }
     auto [vmin, vmax] = s.field.validRange();
     if (!a.isoPreset.empty()) requireHounsfield(s.field, a.input, "--iso " + a.isoPreset);
-    s.iso = !a.isoPreset.empty() ? *ctIsoPreset(a.isoPreset) : a.iso ? *a.iso : 0.5 * (double(vmin) + double(vmax));
-    if (!a.iso && a.isoPreset.empty()) {
+    // A sphere input's field is the signed distance to its spheres: their surface is at 0.
+    const bool sphereDistance = isSphereInput(a.input);
+    s.iso = !a.isoPreset.empty() ? *ctIsoPreset(a.isoPreset)
+            : a.iso                ? *a.iso
+            : sphereDistance       ? 0.0
+                                   : 0.5 * (double(vmin) + double(vmax));
+    if (!a.iso && a.isoPreset.empty() && !sphereDistance) {
         std::ostringstream m;
         m << "no --iso given: using " << s.iso << ", the middle of the range [" << vmin << ", " << vmax << "] of '"
           << s.field.name << "'";

@@ -203,7 +203,7 @@ RenderStats DiscreteRenderer::render(const Octree& tree, const Camera& camera, c
     std::unique_ptr<ivec3[]> cells(pattern_ == Pattern::Full ? nullptr : new ivec3[frame.hitId.size()]);
     std::vector<std::uint32_t> srgb(settings.colourCoherence ? frame.hitId.size() : 0, 0u);
     if (cut.active() && pattern_ != Pattern::Full)
-        throw UsageError("renderer " + name() + " has no multi-resolution mode (--lod, --level): use full, direct or direct-f2b");
+        throw UsageError("renderer " + name() + " has no multi-resolution mode (--lod, --level): use " + voxelRenderersThat(&Renderer::multiResolution));
     const Context ctx{tree, settings, frame, shader, rays, cells.get(), srgb, cut};
     const int W = camera.width, H = camera.height;
     const Start mode = pattern_ == Pattern::Full ? Start::Root : exact_ ? Start::Guided : Start::Branch;

@@ -10,6 +10,7 @@ public:
     DiscreteRenderer(Pattern pattern, bool exact, bool colour) : pattern_(pattern), exact_(exact), colour_(colour) {}
     std::string name() const override;
     bool multiResolution() const override { return pattern_ == Pattern::Full; }
+    bool colourCoherence() const override { return true; }
     RenderStats render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
                        Frame& frame) const override;
 

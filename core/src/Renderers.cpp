@@ -76,6 +76,18 @@ std::vector<std::string> rendererNames() {
     return {"full", "linear", "area", "area+colour", "linear-exact", "area-exact", "reference", "reference-unquantized", "direct", "direct-f2b", "samet", "beam"};
 }
 
+std::string voxelRenderersThat(bool (Renderer::*honours)() const) {
+    std::vector<std::string> names;
+    for (const std::string& n : rendererNames()) {
+        const auto r = makeRenderer(n);
+        if (r->drawsVoxels() && ((*r).*honours)()) names.push_back(n);
+    }
+    std::string list;
+    for (std::size_t i = 0; i < names.size(); ++i)
+        list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+    return list;
+}
+
 std::unique_ptr<Renderer> makeRenderer(const std::string& nameIn) {
     using detail::DiscreteRenderer;
     std::string name = nameIn;

@@ -58,6 +58,10 @@ TEST(Cli, CommandLineMistakesExitTwoWithAUsageHint) {
         {"render", "analytic:sphere", "-o", "x.png", "--region", "1,2,3"},
         {"render", "analytic:sphere", "-o", "x.jpg"},
         {"render", "analytic:sphere", "-o", "x.png", "--depth"},
+        // Options a renderer would silently ignore.
+        {"render", "analytic:sphere", "-o", "x.png", "--renderer", "samet", "--colour-coherence"},
+        {"render", "analytic:sphere", "-o", "x.png", "--renderer", "direct", "--colour-coherence"},
+        {"render", "analytic:sphere", "-o", "x.png", "--renderer", "beam", "--lod", "2"},
         {"export"},
         {"export", "analytic:sphere"},
         {"export", "analytic:sphere", "analytic:torus", "-o", "x.ply"},
@@ -214,6 +218,27 @@ TEST(Cli, ProjectionMistakesAreUsageErrors) {
         EXPECT_NE(r.err.find(args[0]), std::string::npos) << r.err;
     }
     EXPECT_EQ(countEntries(s.dir()), 0);
+}
+
+TEST(Cli, RefusalsNameTheRenderersThatHonourTheOption) {
+    Scratch s;
+    Result r = run({"render", "analytic:sphere", "-o", s.path("x.png"), "--renderer", "samet", "--colour-coherence"});
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("(use full, linear, area, area+colour, linear-exact or area-exact)"), std::string::npos) << r.err;
+    r = run({"render", "analytic:sphere", "-o", s.path("x.png"), "--renderer", "beam", "--level", "3"});
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("(use full, reference, reference-unquantized, direct or direct-f2b)"), std::string::npos) << r.err;
+    const Result h = run({"render", "--help"});
+    EXPECT_NE(h.out.find("renderers full, reference, reference-unquantized, direct or direct-f2b"), std::string::npos);
+}
+
+TEST(Cli, VerifyTellsWhenItStartsAndPrintsTheImageDifference) {
+    Scratch s;
+    const Result r = run({"render", "analytic:sphere", "--iso", "0", "--depth", "6", "--size", "120x90", "--renderer",
+                          "area+colour", "--verify", "-o", s.path("v.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("verifying: rendering the frame again with the reference traversal"), std::string::npos) << r.err;
+    EXPECT_TRUE(std::regex_search(r.err, std::regex("PSNR [0-9.inf]+ dB \\(max channel error [0-9]+\\)"))) << r.err;
 }
 
 TEST(Cli, MultiResolutionRendersTheSameCutAsTheReferenceAndReportsItsDifference) {

@@ -83,7 +83,7 @@ TEST(SphereCli, VoxelRenderersDrawTheSpheresVoxelized) {
     EXPECT_EQ(statNumber(js, "depth"), 6.0);
     EXPECT_GT(statNumber(js, "boundary_voxels"), 0.0);
     // The reference on the voxelized scene when asked for.
-    const std::string ref = renderVerified(s, "random:50", "reference", {"--octree", "voxel", "--depth", "5"});
+    const std::string ref = renderVerified(s, "random:50", "reference", {"--octree", "voxel", "--depth", "7"});
     EXPECT_GT(statNumber(ref, "boundary_voxels"), 0.0) << ref;
     // samet and beam too: the reference's hit voxel in every pixel, with their own counters.
     for (const std::string renderer : {"samet", "beam"}) {
@@ -91,8 +91,18 @@ TEST(SphereCli, VoxelRenderersDrawTheSpheresVoxelized) {
         EXPECT_EQ(statNumber(js, "mismatched_pixels"), 0.0) << js;
         EXPECT_GT(statNumber(js, "hits"), 1000.0) << js;
         EXPECT_GT(statNumber(js, "nodes_visited"), 0.0) << js;
-        if (renderer == "beam") EXPECT_GT(statNumber(js, "beams"), 0.0) << js;
+        if (renderer == "beam") { EXPECT_GT(statNumber(js, "beams"), 0.0) << js; }
     }
+}
+
+TEST(SphereCli, TheVoxelizedSpheresAreTheirDistanceFieldsZeroWithoutAskingForAnIso) {
+    Scratch s;
+    const std::string stats = s.path("iso.json");
+    const Result r = run({"render", "random:40:3", "--octree", "voxel", "--depth", "7", "--size", "64x48", "--stats", stats,
+                          "-o", s.path("iso.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.err.find("no --iso given"), std::string::npos) << r.err;  // nothing for the user to choose
+    EXPECT_EQ(statNumber(slurp(stats), "iso"), 0.0);
 }
 
 TEST(SphereCli, InfoDescribesGeneratedScenes) {

@@ -44,7 +44,7 @@ TEST(PixelRays, APixelSaidSurelyToMeetTheCubeHasAQuantizedRayThatMeetsIt) {
                     ASSERT_TRUE(meets) << "pixel " << x << "," << y;
                     ASSERT_TRUE(rays.mayMeetCube(x, y));
                 }
-                if (!rays.mayMeetCube(x, y)) ASSERT_FALSE(meets) << "pixel " << x << "," << y;
+                if (!rays.mayMeetCube(x, y)) { ASSERT_FALSE(meets) << "pixel " << x << "," << y; }
                 ASSERT_EQ(rays.meetsCube(x, y), meets);
             }
     }

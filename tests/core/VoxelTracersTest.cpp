@@ -87,7 +87,7 @@ void expectSameFrames(const Octree& t, const std::string& treeName, const std::s
                                        << " depths differ; first: " << d.first;
             EXPECT_EQ(s.rays, rs.rays);
             EXPECT_EQ(s.hits, rs.hits);
-            if (rs.rays > 0) EXPECT_GT(s.nodesVisited, 0u);
+            if (rs.rays > 0) { EXPECT_GT(s.nodesVisited, 0u); }
             if (std::string(name) == "beam" && rs.hits > 0) {
                 EXPECT_GT(s.beams, 0u);
                 EXPECT_GE(s.intersections, s.hits);

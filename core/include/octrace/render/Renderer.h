@@ -26,6 +26,9 @@ public:
     /// Whether RenderSettings::lodPixels / level are honoured (Lod.h); the others throw
     /// UsageError when asked for a cut.
     virtual bool multiResolution() const { return true; }
+    /// Whether RenderSettings::colourCoherence is honoured (the discrete ray casters); the CLI
+    /// refuses the option for the others.
+    virtual bool colourCoherence() const { return false; }
     /// Renders into `frame` (resized to the camera's size). Deterministic: the result does not
     /// depend on settings.threads. Thread-safe for distinct frames.
     virtual RenderStats render(const Octree& octree, const Camera& camera, const RenderSettings& settings,
@@ -58,6 +61,9 @@ std::unique_ptr<Renderer> makeBruteForceSphereRenderer();
 
 /// Names accepted by makeRenderer, in the order the help text lists them.
 std::vector<std::string> rendererNames();
+/// The renderers that draw voxels and pass `honours` (e.g. &Renderer::multiResolution), as
+/// "a, b or c": for help texts and errors.
+std::string voxelRenderersThat(bool (Renderer::*honours)() const);
 /// Throws UsageError for an unknown name.
 std::unique_ptr<Renderer> makeRenderer(const std::string& name);
 
