@@ -50,6 +50,7 @@ struct RenderArgs : SurfaceArgs {
     std::optional<dvec3> light;
     bool colourCoherence = false;
     float colourTolerance = 3.0f;
+    bool colourToleranceGiven = false;
     bool colourFillsBackground = false;
     int repeat = 1;
     std::string baseline;
@@ -117,7 +118,7 @@ OptionParser makeParser(RenderArgs& a) {
            }});
     addColourOptions(p, a);
     addLayerOptions(p, a);
-    p.add({"colour-coherence", "", "colour coherence on any discrete renderer: a pixel between two traced neighbours of nearly the same colour gets their average untraced (default off; on in area+colour)",
+    p.add({"colour-coherence", "", "colour coherence on the discrete ray casters: a pixel between two neighbours of nearly the same colour gets their average untraced (default off; on in area+colour)",
            [&](const std::string&) { a.colourCoherence = true; }});
     p.add({"colour-fill-background", "", "colour coherence also between two background pixels, as paper A does: the pixel between is taken as background untraced (default off: only between surface pixels)",
            [&](const std::string&) { a.colourFillsBackground = true; }});
@@ -126,6 +127,7 @@ OptionParser makeParser(RenderArgs& a) {
                double t = parseNumber("colour-tolerance", v);
                if (t < 0.0 || t > 255.0) throw UsageError("--colour-tolerance: must be in [0, 255], got " + v);
                a.colourTolerance = float(t);
+               a.colourToleranceGiven = true;
            }});
     addGeographicOptions(p, a.request);
     addCityOptions(p, a);
@@ -400,6 +402,13 @@ int runRender(const std::vector<std::string>& args) {
     if (a.colourCoherence && !makeRenderer(a.rendererName)->colourCoherence())
         throw UsageError("--colour-coherence: renderer " + a.rendererName + " does not fill pixels by colour (use " +
                          voxelRenderersThat(&Renderer::colourCoherence) + ")");
+    if (!a.colourCoherence && a.rendererName.find("+colour") == std::string::npos) {
+        // Accepted (a script may set them always), but told: they change nothing here.
+        for (const auto& [given, option] : {std::pair{a.colourToleranceGiven, "--colour-tolerance"},
+                                            std::pair{a.colourFillsBackground, "--colour-fill-background"}})
+            if (given)
+                log::warning(std::string(option) + " has no effect without colour coherence (--colour-coherence or a +colour renderer)");
+    }
     if (multires) {
         for (const std::string& r : {a.rendererName, a.baseline})
             if (!r.empty() && !makeRenderer(r)->multiResolution())

@@ -232,6 +232,19 @@ TEST(Cli, RefusalsNameTheRenderersThatHonourTheOption) {
     EXPECT_NE(h.out.find("renderers full, reference, reference-unquantized, direct or direct-f2b"), std::string::npos);
 }
 
+TEST(Cli, ColourOptionsWithoutColourCoherenceAreToldToChangeNothing) {
+    Scratch s;
+    Result r = run({"render", "analytic:sphere", "--iso", "0", "--depth", "5", "--size", "64x48", "--colour-tolerance", "5",
+                    "--colour-fill-background", "-o", s.path("a.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("--colour-tolerance has no effect without colour coherence"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--colour-fill-background has no effect without colour coherence"), std::string::npos) << r.err;
+    r = run({"render", "analytic:sphere", "--iso", "0", "--depth", "5", "--size", "64x48", "--renderer", "area+colour",
+             "--colour-tolerance", "5", "-o", s.path("b.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.err.find("no effect"), std::string::npos) << r.err;
+}
+
 TEST(Cli, VerifyTellsWhenItStartsAndPrintsTheImageDifference) {
     Scratch s;
     const Result r = run({"render", "analytic:sphere", "--iso", "0", "--depth", "6", "--size", "120x90", "--renderer",
