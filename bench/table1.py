@@ -98,6 +98,18 @@ def run(args, scene, depth, renderer, threads, verify, outdir):
         return json.load(f)
 
 
+def table1_scenes():
+    """The scene files of bench/scenes/ marked "table1", each with its "file" (relative path)."""
+    scenes = []
+    for path in sorted(glob.glob(os.path.join(ROOT, "bench", "scenes", "*.json"))):
+        with open(path) as f:
+            s = json.load(f)
+        if s.get("table1"):
+            s["file"] = os.path.relpath(path, ROOT)
+            scenes.append(s)
+    return scenes
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--octrace", default=os.path.join(ROOT, "build", "app", "octrace"))
@@ -115,14 +127,7 @@ def main():
     outdir = os.path.join(ROOT, "docs", "benchmarks", "table1")
     os.makedirs(outdir, exist_ok=True)
 
-    scenes = []
-    for path in sorted(glob.glob(os.path.join(ROOT, "bench", "scenes", "*.json"))):
-        with open(path) as f:
-            s = json.load(f)
-        if not s.get("table1"):
-            continue
-        s["file"] = os.path.relpath(path, ROOT)
-        scenes.append(s)
+    scenes = table1_scenes()
     order = {k: i for i, k in enumerate(["T", "V", "S"])}
     scenes.sort(key=lambda s: (order.get(s["key"], len(order)), s["key"]))
 

@@ -13,8 +13,6 @@ Usage: bench/voxel_tracers.py [--octrace PATH] [--data DIR] [--repeat R] [--scen
                               [--all-depths] [--write-dicom PATH]
 """
 import argparse
-import glob
-import json
 import os
 import sys
 
@@ -43,12 +41,9 @@ def main():
     os.makedirs(outdir, exist_ok=True)
 
     scenes = []
-    for path in sorted(glob.glob(os.path.join(ROOT, "bench", "scenes", "*.json"))):
-        with open(path) as f:
-            s = json.load(f)
-        if not s.get("table1") or (keys and s["key"] not in keys):
+    for s in table1.table1_scenes():
+        if keys and s["key"] not in keys:
             continue
-        s["file"] = os.path.relpath(path, ROOT)
         if s["input"].endswith((".pdb", ".cif")):
             s["args"] = s.get("args", []) + ["--octree", "voxel"]
         scenes.append(s)
