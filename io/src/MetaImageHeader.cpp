@@ -3,8 +3,10 @@
 #include "InputFile.h"
 #include "octrace/util/Error.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
@@ -77,13 +79,26 @@ MetaImageHeader MetaImageHeader::parseText(const std::string& path, const std::s
         if (lastLine) end = text.size();
         std::string line = text.substr(pos, end - pos);
         pos = end + 1;
-        if (line.find('\0') != std::string::npos) {
+        // Plain text only: a control character other than a tab (and the CR of a CRLF line end)
+        // is where MetaIO and octrace would split the line differently. MetaIO ends a key at a
+        // CR and does not skip a CR before a value, so 'ElementDataFile = <CR>LOCAL' names a
+        // data file to VTK and LOCAL to octrace (fuzz_metaimage found it).
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        const auto control = std::find_if(line.begin(), line.end(), [](char c) {
+            const auto u = static_cast<unsigned char>(c);
+            return (u < 0x20 && c != '\t') || u == 0x7f;
+        });
+        if (control != line.end()) {
             if (!sawKey) throw FormatNotSupported(path + ": not a MetaImage header (binary data)");
-            p.fail("NUL byte in the header before ElementDataFile");
+            char what[32];
+            std::snprintf(what, sizeof what, "control character 0x%02X", unsigned(static_cast<unsigned char>(*control)));
+            p.fail(std::string(*control == '\0' ? "NUL byte" : what) + " in the header before ElementDataFile (line '" +
+                   quoteBytes(trim(line).substr(0, 60)) + "'): a MetaImage header is plain text");
         }
         line = trim(line);
         if (line.empty()) continue;
-        const std::size_t eq = line.find('=');
+        // MetaIO ends a key at '=' or ':', whichever comes first.
+        const std::size_t eq = line.find_first_of("=:");
         if (eq == std::string::npos) {
             if (!sawKey) throw FormatNotSupported(path + ": not a MetaImage header (first line '" + quoteBytes(line.substr(0, 40)) + "')");
             p.fail("line '" + quoteBytes(line.substr(0, 60)) + "' is not 'Key = Value'");

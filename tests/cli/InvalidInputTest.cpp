@@ -58,6 +58,8 @@ const Case kCases[] = {
     {"invalid_nan_coordinate.nc", nullptr, "non-finite value"},
     {"invalid_repeated_coordinate.nc", nullptr, "not strictly monotonic"},
     {"invalid_infinite_extent.nc", nullptr, "must be positive and finite"},
+    {"invalid_key_case.mha", nullptr, "must be spelled 'ElementDataFile'"},
+    {"invalid_cr_in_value.mha", nullptr, "control character 0x0D in the header"},
 };
 }  // namespace
 

@@ -207,10 +207,29 @@ TEST(VolumeReader, BrokenFilesAreRefusedWithOneLine) {
                       "key 'ElementDataFIle' must be spelled 'ElementDataFile' (MetaImage keys are case-sensitive)");
     writeText(dir.file("case.mhd"), head + "elementdatafile = ok.raw\n");
     EXPECT_THROW_WITH(io::readField(dir.file("case.mhd")), FileError, "must be spelled 'ElementDataFile'");
+    // Found by a CI smoke run of fuzz_metaimage (2026-11-25): 'ElementDataFile = ' then seven
+    // CRs then 'LOCAL'. octrace trimmed the CRs and read LOCAL; MetaIO skips only blanks before
+    // a value, looked for a data file named '\r...\rLOCAL' and leaked its buffers.
+    EXPECT_THROW_WITH(io::readField(test::testData("invalid/invalid_cr_in_value.mha")), FileError,
+                      "control character 0x0D in the header before ElementDataFile (line 'ElementDataFile = ");
+    writeText(dir.file("tab.mhd"), head + "Comment = a\vb\nElementDataFile = ok.raw\n");
+    EXPECT_THROW_WITH(io::readField(dir.file("tab.mhd")), FileError, "control character 0x0B");
     writeText(dir.file("noise.nii"), std::string(400, 'x'));
     EXPECT_THROW(io::readField(dir.file("noise.nii")), InputError);
     writeText(dir.file("noise.vti"), "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\"><ImageData WholeExtent=\"0 9");
     EXPECT_THROW(io::readField(dir.file("noise.vti")), InputError);
+}
+
+TEST(VolumeReader, MetaImageHeadersWithCrlfTabsAndColonsAreRead) {
+    // CRLF line ends, tabs and MetaIO's other separator ':' are plain text: MetaIO reads them
+    // as octrace does.
+    test::TempDir dir;
+    std::string crlf = "ObjectType\t= Image\r\nNDims : 3\r\nDimSize = 4 4 4\r\nElementType = MET_UCHAR\r\nElementDataFile = LOCAL\r\n";
+    crlf += std::string(64, '\x07');
+    writeText(dir.file("crlf.mha"), crlf);
+    const ScalarField crlfField = io::readField(dir.file("crlf.mha"));
+    EXPECT_EQ(crlfField.dims, ivec3(4));
+    EXPECT_EQ(crlfField.values.back(), 7.0f);
 }
 
 TEST(VolumeReader, MemoryBudgetRefusesBeforeDecoding) {
