@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace octrace {
 
@@ -35,6 +38,34 @@ RayGenerator::RayGenerator(const Camera& camera) : eye_(camera.position), ortho_
     pixelY0_ = 0.5 * camera.height;
     pixelScaleX_ = 0.5 * camera.width / halfW_;
     pixelScaleY_ = 0.5 * camera.height / halfH_;
+}
+
+void RayGenerator::row(int x0, int y, int n, Ray* out) const {
+    if (ortho_) {
+        for (int i = 0; i < n; ++i) out[i] = (*this)(x0 + i, y);
+        return;
+    }
+    // As operator(): d = screenX * right + screenY * up - back, then d * (1 / sqrt(dot(d, d)))
+    // with glm's order of operations, so the results are the same bits.
+    const double sy = screenY(y);
+    const dvec3 base = sy * up_;
+    int i = 0;
+#if defined(__SSE2__)
+    const __m128d one = _mm_set1_pd(1.0);
+    for (; i + 1 < n; i += 2) {
+        const __m128d sx = _mm_set_pd(screenX(x0 + i + 1), screenX(x0 + i));
+        __m128d d[3];
+        for (int a = 0; a < 3; ++a)
+            d[a] = _mm_sub_pd(_mm_add_pd(_mm_mul_pd(sx, _mm_set1_pd(right_[a])), _mm_set1_pd(base[a])), _mm_set1_pd(back_[a]));
+        const __m128d len2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(d[0], d[0]), _mm_mul_pd(d[1], d[1])), _mm_mul_pd(d[2], d[2]));
+        const __m128d inv = _mm_div_pd(one, _mm_sqrt_pd(len2));
+        double v[3][2];
+        for (int a = 0; a < 3; ++a) _mm_storeu_pd(v[a], _mm_mul_pd(d[a], inv));
+        out[i] = {eye_, dvec3(v[0][0], v[1][0], v[2][0])};
+        out[i + 1] = {eye_, dvec3(v[0][1], v[1][1], v[2][1])};
+    }
+#endif
+    for (; i < n; ++i) out[i] = (*this)(x0 + i, y);
 }
 
 Camera Camera::framing(const Box3& box, int width, int height, double fovYDegrees) {

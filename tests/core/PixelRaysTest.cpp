@@ -92,3 +92,31 @@ TEST(PixelRays, TheSurfaceBoxIsTheBoxOfEveryLeaf) {
     empty.occupiedCells(lo, hi);
     EXPECT_GT(lo.x, hi.x);
 }
+
+// RayGenerator::row computes two rays at a time: the same bits as one at a time, for odd and
+// even row lengths and starts, perspective and orthographic, rows off the image too.
+TEST(RayGenerator, RowGivesTheSameRaysBitForBitAsOneAtATime) {
+    std::vector<Camera> cams = {makeCamera(dvec3(1.3, 0.4, 0.9), dvec3(0.0), dvec3(0, 0, 1), 60, 97, 61),
+                                makeCamera(dvec3(40.0, -25.0, 18.0), dvec3(0.1, 0.2, -0.3), dvec3(0, 0, 1), 20, 1600, 1200),
+                                makeCamera(dvec3(-0.2, 3.0, -1.0), dvec3(0.0), dvec3(0, 1, 0), 90, 33, 200)};
+    Camera o = cams[0];
+    o.frameOrthographic(Box3{dvec3(-1.0), dvec3(1.0)});
+    cams.push_back(o);
+    for (const Camera& cam : cams) {
+        const RayGenerator gen(cam);
+        for (int y : {-1, 0, 7, cam.height - 1, cam.height + 3})
+            for (int x0 : {-2, 0, 5, cam.width - 9})
+                for (int n : {0, 1, 2, 9, 64}) {
+                    std::vector<Ray> row(std::size_t(n) + 1);
+                    row[std::size_t(n)].origin = dvec3(7.0);  // the slot past the row stays untouched
+                    gen.row(x0, y, n, row.data());
+                    for (int i = 0; i < n; ++i) {
+                        const Ray one = gen(x0 + i, y);
+                        const Ray& r = row[std::size_t(i)];
+                        ASSERT_TRUE(r.origin == one.origin && r.direction == one.direction)
+                            << "x " << x0 + i << " y " << y << " of a row of " << n;
+                    }
+                    EXPECT_EQ(row[std::size_t(n)].origin, dvec3(7.0));
+                }
+    }
+}
