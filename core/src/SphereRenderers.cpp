@@ -94,26 +94,101 @@ struct PixelBounds {
     double xLo = kInf, xHi = -kInf, yLo = kInf, yHi = -kInf;
     bool valid = false;
 };
-PixelBounds projectBox(const RayGenerator& gen, const Box3& b) {
+/// The pixel coordinates of a box's 8 corners; false when one is not in front of a
+/// perspective eye.
+bool projectCorners(const RayGenerator& gen, const Box3& b, dvec2 (&out)[8]) {
     // Camera coordinates of the low corner and of the three edges: the corners are sums.
     const dvec3 &right = gen.right(), &up = gen.up(), &back = gen.back();
     const dvec3 rel = b.lo - gen.eye(), size = b.hi - b.lo;
     const dvec3 c0(glm::dot(rel, right), glm::dot(rel, up), glm::dot(rel, back));
     const dvec3 e[3] = {size.x * dvec3(right.x, up.x, back.x), size.y * dvec3(right.y, up.y, back.y), size.z * dvec3(right.z, up.z, back.z)};
-    PixelBounds o;
     for (int k = 0; k < 8; ++k) {
         const dvec3 p = c0 + ((k & 4) ? e[0] : dvec3(0.0)) + ((k & 2) ? e[1] : dvec3(0.0)) + ((k & 1) ? e[2] : dvec3(0.0));
-        if (!gen.orthographic() && !(p.z < 0.0)) return {};
-        double x, y;
-        gen.toPixel(p.x, p.y, p.z, x, y);
-        o.xLo = std::min(o.xLo, x);
-        o.xHi = std::max(o.xHi, x);
-        o.yLo = std::min(o.yLo, y);
-        o.yHi = std::max(o.yHi, y);
+        if (!gen.orthographic() && !(p.z < 0.0)) return false;
+        gen.toPixel(p.x, p.y, p.z, out[k].x, out[k].y);
+    }
+    return true;
+}
+PixelBounds projectBox(const RayGenerator& gen, const Box3& b) {
+    dvec2 c[8];
+    if (!projectCorners(gen, b, c)) return {};
+    PixelBounds o;
+    for (const dvec2& p : c) {
+        o.xLo = std::min(o.xLo, p.x);
+        o.xHi = std::max(o.xHi, p.x);
+        o.yLo = std::min(o.yLo, p.y);
+        o.yHi = std::max(o.yHi, p.y);
     }
     o.valid = true;
     return o;
 }
+
+/// Counts the rays that meet the scene cube (the statistic `rays`), row by row. The rays whose
+/// points on the screen meet the cube are those inside the convex hull of its 8 projected
+/// corners when they all lie in front of the eye: a row's samples well inside the hull's span
+/// on that row are counted, those well outside are not, and only the one or two near each end
+/// get the slab test (as every sample does when the eye is inside the cube or beside it).
+class CubeRayCounter {
+public:
+    CubeRayCounter(const RayGenerator& gen, const Box3& cube) : gen_(gen), cube_(cube) {
+        dvec2 c[8];
+        if (!projectCorners(gen, cube, c)) return;
+        // Monotone chain over the 8 points.
+        std::sort(std::begin(c), std::end(c), [](const dvec2& a, const dvec2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+        const auto cross = [](const dvec2& o, const dvec2& a, const dvec2& b) { return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x); };
+        for (int pass = 0; pass < 2; ++pass) {
+            const std::size_t start = hull_.size();
+            for (int n = 0; n < 8; ++n) {
+                const dvec2& p = c[pass == 0 ? n : 7 - n];
+                while (hull_.size() >= start + 2 && cross(hull_[hull_.size() - 2], hull_.back(), p) <= 0.0) hull_.pop_back();
+                hull_.push_back(p);
+            }
+            hull_.pop_back();
+        }
+        valid_ = hull_.size() >= 3;
+    }
+    /// Rays of samples x0 .. x0 + w - 1 of sample row y that meet the cube.
+    std::uint64_t row(int x0, int w, int y) const {
+        if (!valid_) return countExactly(x0, x0 + w, y);
+        // The hull's span on the row's centre line.
+        const double yc = y + 0.5;
+        double xl = kInf, xh = -kInf;
+        for (std::size_t e = 0; e < hull_.size(); ++e) {
+            const dvec2 &p = hull_[e], &q = hull_[(e + 1) % hull_.size()];
+            if ((p.y - yc) * (q.y - yc) > 0.0) continue;
+            const double x = p.y == q.y ? p.x : p.x + (yc - p.y) * (q.x - p.x) / (q.y - p.y);
+            const double x2 = p.y == q.y ? q.x : x;
+            xl = std::min({xl, x, x2});
+            xh = std::max({xh, x, x2});
+        }
+        if (!(xl <= xh)) xl = xh = -1e9;  // no span: only the band test below, on nothing
+        // Sample x (centre x + 0.5) is surely in when xl + m < x + 0.5 < xh - m and surely
+        // out when x + 0.5 < xl - m or > xh + m; m is far above the projection's rounding.
+        constexpr double m = 1e-3;
+        const auto clampX = [&](double v) { return int(std::clamp(v, double(x0) - 1.0, double(x0 + w) + 1.0)); };
+        const int first = std::max(x0, clampX(std::ceil(xl - m - 0.5))), last = std::min(x0 + w - 1, clampX(std::floor(xh + m - 0.5)));
+        if (first > last) return 0;
+        const int in0 = std::max(first, clampX(std::floor(xl + m - 0.5) + 1.0)), in1 = std::min(last, clampX(std::ceil(xh - m - 0.5) - 1.0));
+        if (in0 > in1) return countExactly(first, last + 1, y);
+        return countExactly(first, in0, y) + std::uint64_t(in1 - in0 + 1) + countExactly(in1 + 1, last + 1, y);
+    }
+
+private:
+    std::uint64_t countExactly(int x0, int x1, int y) const {
+        std::uint64_t n = 0;
+        for (int x = x0; x < x1; ++x) {
+            const Ray r = gen_(x, y);
+            double t0, t1;
+            slabInterval(cube_, r.origin, 1.0 / r.direction, r.direction, t0, t1);
+            n += t0 <= t1 && t1 >= 0.0;
+        }
+        return n;
+    }
+    const RayGenerator& gen_;
+    Box3 cube_;
+    std::vector<dvec2> hull_;
+    bool valid_ = false;
+};
 
 /// A sphere met by a tile: the rectangle of the tile's rays that may hit it, for a perspective
 /// eye (every ray's origin) the terms of intersectSphereFrom, and where its rays' sphere tests
@@ -381,7 +456,7 @@ RenderStats renderSphereScene(SphereTracer tracer, const std::string& name, cons
     const RayGenerator gen(sampleCamera);
     const SphereShader shader(tree, camera, settings);
     const Box3 cube = tree.cube();
-    const PixelBounds cubeBounds = projectBox(gen, cube);
+    const CubeRayCounter cubeRays(gen, cube);
     const int tilePixels = std::max(1, kTileSamples / s);
     const int tilesX = (camera.width + tilePixels - 1) / tilePixels, tilesY = (camera.height + tilePixels - 1) / tilePixels;
     std::vector<RenderStats> tileStats(std::size_t(tilesX) * std::size_t(tilesY));
@@ -397,20 +472,7 @@ RenderStats renderSphereScene(SphereTracer tracer, const std::string& name, cons
         hits.assign(std::size_t(w) * std::size_t(h), SphereHit{});
         rays.resize(hits.size());
         for (int j = 0; j < h; ++j) gen.row(sx0, sy0 + j, w, rays.data() + std::size_t(j) * std::size_t(w));
-        // The statistic "rays meeting the scene cube": the rays whose points on the view plane
-        // meet the cube form a convex set there, so when the rays one sample beyond the tile's
-        // four corners meet it, so does every ray of the tile, each at least a sample inside;
-        // when the tile's samples lie a sample or more outside the cube's projected bounds,
-        // none does; else each ray's slab test says.
-        const auto meetsCube = [&](const Ray& r) {
-            double t0, t1;
-            slabInterval(cube, r.origin, 1.0 / r.direction, r.direction, t0, t1);
-            return t0 <= t1 && t1 >= 0.0;
-        };
-        const bool noneMeetCube = cubeBounds.valid && (sx0 + w - 0.5 < cubeBounds.xLo - 1.0 || sx0 + 0.5 > cubeBounds.xHi + 1.0 ||
-                                                       sy0 + h - 0.5 < cubeBounds.yLo - 1.0 || sy0 + 0.5 > cubeBounds.yHi + 1.0);
-        const bool allMeetCube = !noneMeetCube && meetsCube(gen(sx0 - 1, sy0 - 1)) && meetsCube(gen(sx0 + w, sy0 - 1)) &&
-                                 meetsCube(gen(sx0 - 1, sy0 + h)) && meetsCube(gen(sx0 + w, sy0 + h));
+        for (int j = 0; j < h; ++j) st.rays += cubeRays.row(sx0, w, sy0 + j);
         ObjectTraceCounters primary, secondary;
         if (tracer == SphereTracer::Beam) {
             BeamTile(tree, gen, sx0, sy0, w, h, rays, hits, primary, st.beams).run();
@@ -433,7 +495,6 @@ RenderStats renderSphereScene(SphereTracer tracer, const std::string& name, cons
                         const int i = (x - px0) * s + a, j = (y - py0) * s + b;
                         const SphereHit& hit = hits[std::size_t(j) * std::size_t(w) + std::size_t(i)];
                         const Ray& r = rays[std::size_t(j) * std::size_t(w) + std::size_t(i)];
-                        st.rays += allMeetCube || (!noneMeetCube && meetsCube(r));
                         st.hits += hit.hit();
                         sum += shader.shade(r.origin, r.direction, hit, 0, secondary, st.secondaryRays);
                         alpha += hit.hit() ? 1.0f : settings.background.a;

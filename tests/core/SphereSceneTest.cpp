@@ -196,13 +196,63 @@ void expectBeamAndSametGiveTheReference(const ObjectOctree& t, const Camera& cam
 }  // namespace
 
 TEST(SphereRenderers, BeamRowsOfSeveralMaskWordsAndPartWords) {
-    // 16 x 16-pixel tiles: 3 x 3 samples give 48-ray rows (part of a 64-bit word), 5 x 5 give
-    // 80 (a word and part of one), 16 x 16 give 256 (four whole words).
+    // Tiles of 128 x 128 rays in whole pixels: 3 x 3 samples give tiles of 42 pixels, rows of
+    // 126 rays (a 64-bit word and part of one) and, at the image's right edge, 24; 5 x 5 give
+    // 125; 16 x 16 give tiles of 8 pixels, 128 rays (two whole words).
     const ObjectOctree t = ObjectOctree::build(makeRandomSpheres(2000, 5, 0.04));
     for (int samples : {9, 25, 256}) {
         Camera cam = cameraFor(t, samples == 256 ? 24 : 50, samples == 256 ? 18 : 37);
         expectBeamAndSametGiveTheReference(t, cam, samples, "samples " + std::to_string(samples));
     }
+}
+
+TEST(SphereRenderers, RaysCountsEverySampleWhoseRayMeetsTheSceneCube) {
+    // The statistic is counted from the cube's outline on the screen, with the slab test only
+    // near its edges (or everywhere when the eye is inside the cube or beside it); it must be
+    // the count of slab tests over every ray.
+    const ObjectOctree t = ObjectOctree::build(makeRandomSpheres(300, 3, 0.05));
+    const Box3 cube = t.cube();
+    std::vector<Camera> cams;
+    cams.push_back(cameraFor(t, 61, 47));
+    Camera c = cameraFor(t, 61, 47);
+    c.position = cube.centre() + dvec3(0.9, -0.4, 0.3) * cube.size().x;  // the cube leaves the screen
+    c.fovYDegrees = 70.0;
+    cams.push_back(c);
+    c.position = cube.centre() + dvec3(0.1, 0.2, -0.1);  // inside
+    cams.push_back(c);
+    c.position = cube.centre() + dvec3(0.0, 0.0, 0.6) * cube.size().x;  // beside: corners behind the eye
+    c.lookAt = c.position + dvec3(1.0, 0.0, 0.0);
+    cams.push_back(c);
+    Camera o = cameraFor(t, 61, 47);
+    o.frameOrthographic(t.scene.bounds());
+    cams.push_back(o);
+    o.position = cube.centre() + dvec3(0.0, 0.0, 3.0);  // along an axis: the outline is a square
+    o.lookAt = cube.centre();
+    o.up = dvec3(0.0, 1.0, 0.0);
+    cams.push_back(o);
+    for (std::size_t k = 0; k < cams.size(); ++k)
+        for (int samples : {1, 4}) {
+            RenderSettings rs;
+            rs.bounces = 0;
+            rs.samples = samples;
+            Frame f;
+            const RenderStats st = makeRenderer("beam")->renderSpheres(t, cams[k], rs, f);
+            Camera fine = cams[k];
+            const int side = samples == 4 ? 2 : 1;
+            fine.width *= side;
+            fine.height *= side;
+            const RayGenerator gen(fine);
+            std::uint64_t expected = 0;
+            for (int y = 0; y < fine.height; ++y)
+                for (int x = 0; x < fine.width; ++x) {
+                    const Ray r = gen(x, y);
+                    double t0, t1;
+                    slabInterval(cube, r.origin, 1.0 / r.direction, r.direction, t0, t1);
+                    expected += t0 <= t1 && t1 >= 0.0;
+                }
+            EXPECT_EQ(st.rays, expected) << "camera " << k << ", samples " << samples;
+            if (k == 0 || k == 2) EXPECT_GT(expected, 0u);
+        }
 }
 
 TEST(SphereRenderers, BeamGivesTheReferenceFromAnEyeInsideTheScene) {
