@@ -49,7 +49,9 @@ public:
         if (!hit.hit()) return miss(d);
         const Sphere& sp = tree_.scene.spheres[hit.sphere];
         const dvec3 p = o + d * hit.t;
-        dvec3 n = glm::normalize(p - sp.centre);
+        // The hit point lies on the sphere: dividing by the radius normalises (to rounding),
+        // without normalize's square root.
+        dvec3 n = (p - sp.centre) * (1.0 / sp.radius);
         const bool inside = glm::dot(n, d) > 0.0;
         if (inside) n = -n;
         double lambert = std::max(0.0, glm::dot(n, light_));
