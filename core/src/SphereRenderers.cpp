@@ -77,6 +77,18 @@ public:
     /// A ray that leaves the scene: the light's colour (white) within half a degree of the
     /// light's direction, else the background.
     vec3 miss(const dvec3& d) const { return glm::dot(d, light_) > kCosLight ? vec3(1.0f) : vec3(s_.background); }
+    vec3 background() const { return vec3(s_.background); }
+    /// False when no ray through the rectangle of samples x0..x1, y0..y1 can come within half
+    /// a degree of the light (miss() is then the background for each): the rays lie in the
+    /// circular cone around the normalised sum of the corner rays that holds the corner rays.
+    bool lightMayShow(const RayGenerator& gen, int x0, int y0, int x1, int y1) const {
+        const dvec3 c[4] = {gen(x0, y0).direction, gen(x1, y0).direction, gen(x0, y1).direction, gen(x1, y1).direction};
+        const dvec3 axis = glm::normalize(c[0] + c[1] + c[2] + c[3]);
+        double spread = 0.0;
+        for (const dvec3& d : c) spread = std::max(spread, std::acos(std::clamp(glm::dot(axis, d), -1.0, 1.0)));
+        const double toLight = std::acos(std::clamp(glm::dot(axis, light_), -1.0, 1.0));
+        return spread > 1.4 || toLight <= spread + std::acos(kCosLight) + 1e-6;
+    }
 
 private:
     vec3 follow(const dvec3& p, const dvec3& d, int depth, ObjectTraceCounters& c, std::uint64_t& secondary) const {
@@ -88,6 +100,11 @@ private:
     const RenderSettings& s_;
     dvec3 light_;
     double eps_;
+};
+
+/// Columns first .. last of a tile's row (none when first > last).
+struct ColumnSpan {
+    int first, last;
 };
 
 /// A box's projection on the screen, bounded by the projections of its 8 corners (pixel
@@ -149,9 +166,15 @@ public:
         }
         valid_ = hull_.size() >= 3;
     }
-    /// Rays of samples x0 .. x0 + w - 1 of sample row y that meet the cube.
-    std::uint64_t row(int x0, int w, int y) const {
-        if (!valid_) return countExactly(x0, x0 + w, y);
+    /// Of samples x0 .. x0 + w - 1 of sample row y: those whose rays may meet the cube,
+    /// first .. last (none when first > last; every ray outside surely misses it), and the
+    /// number that do.
+    struct Span {
+        int first, last;
+        std::uint64_t meeting;
+    };
+    Span row(int x0, int w, int y) const {
+        if (!valid_) return {x0, x0 + w - 1, countExactly(x0, x0 + w, y)};
         // The hull's span on the row's centre line.
         const double yc = y + 0.5;
         double xl = kInf, xh = -kInf;
@@ -169,10 +192,10 @@ public:
         constexpr double m = 1e-3;
         const auto clampX = [&](double v) { return int(std::clamp(v, double(x0) - 1.0, double(x0 + w) + 1.0)); };
         const int first = std::max(x0, clampX(std::ceil(xl - m - 0.5))), last = std::min(x0 + w - 1, clampX(std::floor(xh + m - 0.5)));
-        if (first > last) return 0;
+        if (first > last) return {x0, x0 - 1, 0};
         const int in0 = std::max(first, clampX(std::floor(xl + m - 0.5) + 1.0)), in1 = std::min(last, clampX(std::ceil(xh - m - 0.5) - 1.0));
-        if (in0 > in1) return countExactly(first, last + 1, y);
-        return countExactly(first, in0, y) + std::uint64_t(in1 - in0 + 1) + countExactly(in1 + 1, last + 1, y);
+        if (in0 > in1) return {first, last, countExactly(first, last + 1, y)};
+        return {first, last, countExactly(first, in0, y) + std::uint64_t(in1 - in0 + 1) + countExactly(in1 + 1, last + 1, y)};
     }
 
 private:
@@ -230,9 +253,10 @@ BeamScratch& threadBeamScratch(std::size_t spheres) {
 /// whose nearest hit is not beyond its exit from the leaf is marked.
 class BeamTile {
 public:
-    /// `rays`: the tile's w x h rays, row by row, of the samples (x0 + i, y0 + j).
+    /// `rays`: the tile's w x h rays, row by row, of the samples (x0 + i, y0 + j); only the
+    /// columns spans[j].first .. spans[j].last of row j are traced (the others miss the scene).
     BeamTile(const ObjectOctree& tree, const RayGenerator& gen, int x0, int y0, int w, int h, const std::vector<Ray>& rays,
-             std::vector<SphereHit>& hits, ObjectTraceCounters& c, std::uint64_t& beams)
+             const std::vector<ColumnSpan>& spans, std::vector<SphereHit>& hits, ObjectTraceCounters& c, std::uint64_t& beams)
         : tree_(tree), gen_(gen), w_(w), h_(h), rays_(rays), hits_(hits), c_(c), beams_(beams),
           x_(threadBeamScratch(tree.scene.spheres.size())) {
         // Sample (x0 + i, y0 + j) is centred on pixel coordinates (x0 + i + 0.5, y0 + j + 0.5).
@@ -240,11 +264,14 @@ public:
         yOff_ = y0 + 0.5;
         words_ = (w + 63) / 64;
         x_.live.resize(std::size_t(h) * std::size_t(words_));
-        for (int j = 0; j < h; ++j)
-            for (int wi = 0; wi < words_; ++wi) x_.live[std::size_t(j * words_ + wi)] = columnMask(wi, 0, w);
-        remaining_ = std::size_t(w) * std::size_t(h);
-        x_.nearT.assign(remaining_, kInf);
-        x_.nearSphere.resize(remaining_);
+        remaining_ = 0;
+        for (int j = 0; j < h; ++j) {
+            const ColumnSpan& sp = spans[std::size_t(j)];
+            for (int wi = 0; wi < words_; ++wi) x_.live[std::size_t(j * words_ + wi)] = columnMask(wi, sp.first, sp.last + 1);
+            remaining_ += std::size_t(std::max(0, sp.last - sp.first + 1));
+        }
+        x_.nearT.assign(std::size_t(w) * std::size_t(h), kInf);
+        x_.nearSphere.resize(std::size_t(w) * std::size_t(h));
         x_.slots.clear();
         x_.tests.clear();
         right_ = gen.right();
@@ -469,23 +496,35 @@ RenderStats renderSphereScene(SphereTracer tracer, const std::string& name, cons
         const int sx0 = px0 * s, sy0 = py0 * s, w = (px1 - px0) * s, h = (py1 - py0) * s;
         // The tile's rays and hits, in buffers kept per thread (a tile holds up to 786 KB of
         // rays: allocated per tile, every tile would fault its pages in).
+        // Only the rays that may meet the scene cube are made and traced (on the ray-traced
+        // scenes of Figure 5, most of the screen is outside it): the others surely miss every
+        // sphere, and are shaded as misses.
         thread_local std::vector<SphereHit> hits;
         thread_local std::vector<Ray> rays;
+        thread_local std::vector<ColumnSpan> spans;
         hits.assign(std::size_t(w) * std::size_t(h), SphereHit{});
         rays.resize(hits.size());
-        for (int j = 0; j < h; ++j) gen.row(sx0, sy0 + j, w, rays.data() + std::size_t(j) * std::size_t(w));
-        for (int j = 0; j < h; ++j) st.rays += cubeRays.row(sx0, w, sy0 + j);
+        spans.resize(std::size_t(h));
+        for (int j = 0; j < h; ++j) {
+            const CubeRayCounter::Span r = cubeRays.row(sx0, w, sy0 + j);
+            st.rays += r.meeting;
+            spans[std::size_t(j)] = {r.first - sx0, r.last - sx0};
+            if (r.first <= r.last) gen.row(r.first, sy0 + j, r.last - r.first + 1, rays.data() + std::size_t(j) * std::size_t(w) + std::size_t(r.first - sx0));
+        }
         ObjectTraceCounters primary, secondary;
         if (tracer == SphereTracer::Beam) {
-            BeamTile(tree, gen, sx0, sy0, w, h, rays, hits, primary, st.beams).run();
+            BeamTile(tree, gen, sx0, sy0, w, h, rays, spans, hits, primary, st.beams).run();
         } else {
-            for (std::size_t k = 0; k < rays.size(); ++k) {
-                const Ray& r = rays[k];
-                if (tracer == SphereTracer::Samet) hits[k] = traceSamet(tree, r.origin, r.direction, 0.0, primary);
-                else if (tracer == SphereTracer::Reference) hits[k] = traceReference(tree, r.origin, r.direction, 0.0, primary);
-                else hits[k] = traceBruteForce(tree.scene, r.origin, r.direction, 0.0);
-            }
+            for (int j = 0; j < h; ++j)
+                for (int i = spans[std::size_t(j)].first; i <= spans[std::size_t(j)].last; ++i) {
+                    const std::size_t k = std::size_t(j) * std::size_t(w) + std::size_t(i);
+                    const Ray& r = rays[k];
+                    if (tracer == SphereTracer::Samet) hits[k] = traceSamet(tree, r.origin, r.direction, 0.0, primary);
+                    else if (tracer == SphereTracer::Reference) hits[k] = traceReference(tree, r.origin, r.direction, 0.0, primary);
+                    else hits[k] = traceBruteForce(tree.scene, r.origin, r.direction, 0.0);
+                }
         }
+        const bool lightMayShow = shader.lightMayShow(gen, sx0, sy0, sx0 + w - 1, sy0 + h - 1);
         // Shade every sample, average per pixel.
         const float inv = 1.0f / float(s * s);
         for (int y = py0; y < py1; ++y)
@@ -496,10 +535,15 @@ RenderStats renderSphereScene(SphereTracer tracer, const std::string& name, cons
                     for (int a = 0; a < s; ++a) {
                         const int i = (x - px0) * s + a, j = (y - py0) * s + b;
                         const SphereHit& hit = hits[std::size_t(j) * std::size_t(w) + std::size_t(i)];
+                        alpha += hit.hit() ? 1.0f : settings.background.a;
+                        const ColumnSpan& span = spans[std::size_t(j)];
+                        if (i < span.first || i > span.last) {  // outside the cube: no ray made
+                            sum += lightMayShow ? shader.miss(gen(sx0 + i, sy0 + j).direction) : shader.background();
+                            continue;
+                        }
                         const Ray& r = rays[std::size_t(j) * std::size_t(w) + std::size_t(i)];
                         st.hits += hit.hit();
                         sum += shader.shade(r.origin, r.direction, hit, 0, secondary, st.secondaryRays);
-                        alpha += hit.hit() ? 1.0f : settings.background.a;
                     }
                 const std::size_t p = frame.pixel(x, y);
                 const SphereHit& first = hits[std::size_t((y - py0) * s) * std::size_t(w) + std::size_t((x - px0) * s)];

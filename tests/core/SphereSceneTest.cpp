@@ -255,6 +255,58 @@ TEST(SphereRenderers, RaysCountsEverySampleWhoseRayMeetsTheSceneCube) {
         }
 }
 
+TEST(SphereRenderers, TheLightShowsWhereRaysBesideTheSceneCubePointAtIt) {
+    // Rays beside the scene cube are not traced (they miss every sphere) but still show the
+    // light where they point within half a degree of it: a far camera, the light ahead and to
+    // the right of the small cube, a black background. Every pixel is checked against the rule.
+    const ObjectOctree t = ObjectOctree::build(makeSphereFlake(2));
+    const Box3 cube = t.cube();
+    Camera cam;
+    cam.position = cube.centre() + dvec3(0.0, -8.0, 0.0) * cube.size().x;
+    cam.lookAt = cube.centre();
+    cam.width = 240;
+    cam.height = 180;
+    cam.fovYDegrees = 20.0;
+    cam.up = dvec3(0.0, 0.0, 1.0);
+    dvec3 right, up, back;
+    cam.basis(right, up, back);
+    for (int samples : {1, 4}) {
+        RenderSettings rs;
+        rs.bounces = 0;
+        rs.samples = samples;
+        rs.background = vec4(0.0f, 0.0f, 0.0f, 1.0f);
+        rs.lightCamera = dvec3(0.12, 0.05, -1.0);
+        const dvec3 l = glm::normalize(rs.lightCamera);
+        const dvec3 light = glm::normalize(l.x * right + l.y * up + l.z * back);
+        Frame f;
+        makeRenderer("beam")->renderSpheres(t, cam, rs, f);
+        Camera fine = cam;
+        const int side = samples == 4 ? 2 : 1;
+        fine.width *= side;
+        fine.height *= side;
+        const RayGenerator gen(fine);
+        int lit = 0;
+        for (int y = 0; y < cam.height; ++y)
+            for (int x = 0; x < cam.width; ++x) {
+                float expected = 0.0f;
+                bool beside = true;
+                for (int b = 0; b < side; ++b)
+                    for (int a = 0; a < side; ++a) {
+                        const Ray r = gen(x * side + a, y * side + b);
+                        double t0, t1;
+                        slabInterval(cube, r.origin, 1.0 / r.direction, r.direction, t0, t1);
+                        beside = beside && !(t0 <= t1 && t1 >= 0.0);
+                        expected += glm::dot(r.direction, light) > 0.99996192306 ? 1.0f : 0.0f;
+                    }
+                if (!beside) continue;
+                expected /= float(side * side);
+                lit += expected > 0.0f;
+                ASSERT_EQ(f.rgba[f.pixel(x, y)], vec4(vec3(expected), 1.0f)) << x << " " << y << ", samples " << samples;
+            }
+        EXPECT_GT(lit, 10) << "the light is not on the screen, samples " << samples;
+    }
+}
+
 TEST(SphereRenderers, BeamGivesTheReferenceFromAnEyeInsideTheScene) {
     // Nodes and spheres that reach behind the eye do not cut the beam; the spheres around the
     // eye are hit from inside or behind.
