@@ -169,6 +169,10 @@ void ObjectOctree::validate() const {
         const ObjectNode& n = nodes[i];
         if (n.leaf()) {
             if (std::uint64_t(n.firstObject) + n.objectCount > objects.size()) throw Error("object octree: leaf " + std::to_string(i) + " lists objects past the end");
+            // Ascending: the beam tracer breaks ties of equal hits by the sphere number, the leaf
+            // rule by the list order.
+            if (!std::is_sorted(objects.begin() + n.firstObject, objects.begin() + n.firstObject + n.objectCount))
+                throw Error("object octree: leaf " + std::to_string(i) + " lists its spheres out of order");
             continue;
         }
         if (n.firstChild + 8 > nodes.size() || n.firstChild <= i) throw Error("object octree: node " + std::to_string(i) + " has children out of range");

@@ -223,7 +223,13 @@ struct SphereSlot {
     int i0, i1, j0, j1;
     dvec3 oc;
     double c;
-    std::size_t tests;  // first of (i1 - i0) x (j1 - j0) parameters in BeamScratch::tests, row by row
+    std::int32_t owners;  // first entry of the list of rays whose nearest sphere so far this is (BeamScratch::owners), -1: none
+};
+
+/// An entry of a sphere's list of rays (row << 16 | column) and the next entry (-1: none).
+struct OwnerEntry {
+    std::uint32_t ray;
+    std::int32_t next;
 };
 
 /// The buffers of the tile being traced on this thread, kept from tile to tile: a tile does
@@ -232,11 +238,10 @@ struct SphereSlot {
 struct BeamScratch {
     std::vector<std::int32_t> slotOf;   // per sphere of the scene: its slot, -1 when none
     std::vector<SphereSlot> slots;
-    std::vector<double> tests;          // per slot and ray: the sphere test's t, NaN: not made yet
+    std::vector<OwnerEntry> owners;     // the slots' lists of rays
     std::vector<std::uint64_t> live;    // per row, words of bits: bit i set while ray i is not hit
-    std::vector<double> nearT;          // per ray: nearest hit among the current leaf's spheres
+    std::vector<double> nearT;          // per ray: nearest hit among the spheres tested so far
     std::vector<std::uint32_t> nearSphere;
-    std::vector<std::uint32_t> touched; // rays with a nearest hit in the current leaf, row << 16 | column
 };
 BeamScratch& threadBeamScratch(std::size_t spheres) {
     thread_local BeamScratch scratch;
@@ -248,9 +253,10 @@ BeamScratch& threadBeamScratch(std::size_t spheres) {
 /// of its rays (a corner direction and two spanning vectors); it is cut by each node's
 /// projected bounds on the way down, visited front to back, and ends where every ray of its
 /// rectangle is already hit (the rays not yet hit are a bit mask per row); empty leaves only
-/// move it on. In an occupied leaf each sphere's rays are the unhit ones of the beam inside
-/// the sphere's projected rectangle; each is tested, the nearest hit per ray kept, and a ray
-/// whose nearest hit is not beyond its exit from the leaf is marked.
+/// move it on. A sphere is tested against the unhit rays of its projected rectangle when the
+/// tile first meets it, each ray keeping its nearest hit; in an occupied leaf, a ray whose
+/// nearest hit is one of the leaf's spheres and not beyond its exit from the leaf is hit
+/// (intersect() says why that is the leaf rule).
 class BeamTile {
 public:
     /// `rays`: the tile's w x h rays, row by row, of the samples (x0 + i, y0 + j); only the
@@ -273,7 +279,7 @@ public:
         x_.nearT.assign(std::size_t(w) * std::size_t(h), kInf);
         x_.nearSphere.resize(std::size_t(w) * std::size_t(h));
         x_.slots.clear();
-        x_.tests.clear();
+        x_.owners.clear();
         right_ = gen.right();
         up_ = gen.up();
         back_ = gen.back();
@@ -354,19 +360,19 @@ private:
 
     /// The tile's slot of a sphere, made the first time the tile meets it; nullptr when no ray
     /// of the tile can hit it.
-    const SphereSlot* slot(std::uint32_t sphere) {
+    SphereSlot* slot(std::uint32_t sphere) {
         std::int32_t& k = x_.slotOf[sphere];
         if (k < 0) {
             const Sphere& s = tree_.scene.spheres[sphere];
-            SphereSlot e{sphere, 0, w_, 0, h_, dvec3(0.0), 0.0, x_.tests.size()};
+            SphereSlot e{sphere, 0, w_, 0, h_, dvec3(0.0), 0.0, -1};
             if (!sphereRect(s, e.i0, e.i1, e.j0, e.j1)) e.i0 = e.i1 = 0;
             e.oc = s.centre - gen_.eye();
             e.c = glm::dot(e.oc, e.oc) - s.radius * s.radius;
-            if (e.i0 < e.i1) x_.tests.resize(e.tests + std::size_t(e.i1 - e.i0) * std::size_t(e.j1 - e.j0), kNotTested);
             k = std::int32_t(x_.slots.size());
             x_.slots.push_back(e);
+            if (e.i0 < e.i1) testAll(x_.slots.back());
         }
-        const SphereSlot& e = x_.slots[std::size_t(k)];
+        SphereSlot& e = x_.slots[std::size_t(k)];
         return e.i0 < e.i1 ? &e : nullptr;
     }
 
@@ -384,53 +390,67 @@ private:
         return false;
     }
 
-    // The leaf rule (nearestInLeaf) for the beam's rays not yet hit: per ray, the nearest
-    // sphere hit in the order of the leaf's list (ties to the earlier sphere, as nearestInLeaf),
-    // kept when the ray crosses the leaf and the hit is not beyond its exit. A ray is tested
-    // only against the spheres whose projected rectangle (widened by kMargin) holds its sample,
-    // since a ray that meets a sphere passes through its projection: the tests left out cannot
-    // hit, so the hit is the same. The exit comes from the slab test, made only for the rays
-    // that hit a sphere.
+    /// Tests sphere e against every ray of its rectangle not yet hit, the first time the tile
+    /// meets the sphere: a ray whose nearest hit so far this is (nearer, or as near and a lower
+    /// sphere number) joins the sphere's list of owned rays.
+    void testAll(SphereSlot& e) {
+        const Sphere& sp = tree_.scene.spheres[e.sphere];
+        std::vector<double>& nearT = x_.nearT;
+        for (int j = e.j0; j < e.j1; ++j)
+            for (int wi = e.i0 / 64; wi <= (e.i1 - 1) / 64; ++wi)
+                for (std::uint64_t m = x_.live[std::size_t(j * words_ + wi)] & columnMask(wi, e.i0, e.i1); m; m &= m - 1) {
+                    const int i = wi * 64 + std::countr_zero(m);
+                    const std::size_t k = std::size_t(j) * std::size_t(w_) + std::size_t(i);
+                    const Ray& r = rays_[k];
+                    ++c_.intersections;
+                    const double t = perspective_ ? intersectSphereFrom(e.oc, e.c, r.direction, 0.0) : intersectSphere(sp, r.origin, r.direction, 0.0);
+                    if (t < nearT[k] || (t == nearT[k] && t != kInf && e.sphere < x_.nearSphere[k])) {
+                        nearT[k] = t;
+                        x_.nearSphere[k] = e.sphere;
+                        x_.owners.push_back({std::uint32_t(j) << 16 | std::uint32_t(i), e.owners});
+                        e.owners = std::int32_t(x_.owners.size() - 1);
+                    }
+                }
+    }
+
+    // The leaf rule (nearestInLeaf: per leaf, the nearest hit among its spheres, ties to the
+    // earlier in its list, kept when not beyond the ray's exit from the leaf), for the beam's
+    // rays not yet hit, found another way. Each sphere is tested once per ray, when the tile
+    // first meets it (testAll), and each ray keeps its nearest hit over the spheres tested so
+    // far. At a leaf the ray crosses, every sphere of the leaf has been tested (the leaf's are
+    // tested first), so when that nearest hit is not beyond the leaf's exit it is the leaf
+    // rule's hit: a nearer hit of a sphere in the leaf would be the ray's nearest, and a hit
+    // not beyond the exit lies in this leaf or one before it on the ray, whose spheres have been
+    // tested as well. Ties go to the lower sphere number, the leaf lists' order (ascending, as
+    // ObjectOctree::build makes them). So only the rays whose nearest sphere is one of the
+    // leaf's need checking: each sphere keeps the list of rays it is nearest for (entries that
+    // are out of date, because the ray was hit or found a nearer sphere, are dropped on the way).
     void intersect(const ObjectNode& leaf, const Box3& box, int i0, int i1, int j0, int j1) {
         const std::uint32_t* list = tree_.objects.data() + leaf.firstObject;
-        std::vector<double>& nearT = x_.nearT;
-        x_.touched.clear();
-        for (std::uint32_t q = 0; q < leaf.objectCount; ++q) {
-            const SphereSlot* e = slot(list[q]);
+        for (std::uint32_t q = 0; q < leaf.objectCount; ++q) slot(list[q]);  // tests the spheres met for the first time
+        for (std::uint32_t q = 0; q < leaf.objectCount && remaining_ > 0; ++q) {
+            SphereSlot* e = slot(list[q]);
             if (!e) continue;
-            const int a0 = std::max(i0, e->i0), a1 = std::min(i1, e->i1), b0 = std::max(j0, e->j0), b1 = std::min(j1, e->j1);
-            if (a0 >= a1 || b0 >= b1) continue;
-            const Sphere& sp = tree_.scene.spheres[list[q]];
-            const int pitch = e->i1 - e->i0;
-            for (int j = b0; j < b1; ++j) {
-                double* tests = x_.tests.data() + e->tests + std::size_t((j - e->j0) * pitch);  // column e->i0 first
-                for (int wi = a0 / 64; wi <= (a1 - 1) / 64; ++wi)
-                    for (std::uint64_t m = x_.live[std::size_t(j * words_ + wi)] & columnMask(wi, a0, a1); m; m &= m - 1) {
-                        const int i = wi * 64 + std::countr_zero(m);
-                        const std::size_t k = std::size_t(j) * std::size_t(w_) + std::size_t(i);
-                        double& t = tests[i - e->i0];
-                        if (std::isnan(t)) {
-                            const Ray& r = rays_[k];
-                            ++c_.intersections;
-                            t = perspective_ ? intersectSphereFrom(e->oc, e->c, r.direction, 0.0) : intersectSphere(sp, r.origin, r.direction, 0.0);
-                        }
-                        if (t < nearT[k]) {
-                            if (nearT[k] == kInf) x_.touched.push_back(std::uint32_t(j) << 16 | std::uint32_t(i));
-                            nearT[k] = t;
-                            x_.nearSphere[k] = list[q];
-                        }
-                    }
+            std::int32_t* link = &e->owners;
+            while (*link >= 0) {
+                OwnerEntry& en = x_.owners[std::size_t(*link)];
+                const int i = int(en.ray & 0xffff), j = int(en.ray >> 16);
+                const std::size_t k = std::size_t(j) * std::size_t(w_) + std::size_t(i);
+                const bool live = (x_.live[std::size_t(j * words_ + i / 64)] >> (i % 64)) & 1u;
+                if (!live || x_.nearSphere[k] != list[q]) {  // out of date: unlink
+                    *link = en.next;
+                    continue;
+                }
+                // Rays outside the leaf's projected rectangle do not cross the leaf.
+                if (i >= i0 && i < i1 && j >= j0 && j < j1 && inLeaf(box, rays_[k], x_.nearT[k])) {
+                    hits_[k] = SphereHit{x_.nearT[k], list[q]};
+                    x_.live[std::size_t(j * words_ + i / 64)] &= ~(std::uint64_t(1) << (i % 64));
+                    --remaining_;
+                    *link = en.next;
+                    continue;
+                }
+                link = &en.next;
             }
-        }
-        for (const std::uint32_t ij : x_.touched) {
-            const int i = int(ij & 0xffff), j = int(ij >> 16);
-            const std::size_t k = std::size_t(j) * std::size_t(w_) + std::size_t(i);
-            if (inLeaf(box, rays_[k], nearT[k])) {
-                hits_[k] = SphereHit{nearT[k], x_.nearSphere[k]};
-                x_.live[std::size_t(j * words_ + i / 64)] &= ~(std::uint64_t(1) << (i % 64));
-                --remaining_;
-            }
-            nearT[k] = kInf;
         }
     }
 
@@ -452,7 +472,6 @@ private:
     }
 
     static constexpr double kMargin = 1e-6;  // pixels; the projection's rounding is far below
-    static constexpr double kNotTested = std::numeric_limits<double>::quiet_NaN();
     const ObjectOctree& tree_;
     const RayGenerator& gen_;
     int w_, h_;

@@ -351,6 +351,37 @@ TEST(SphereRenderers, BeamGivesTheReferenceForRaysInNodeFaces) {
     }
 }
 
+TEST(SphereRenderers, BeamBreaksTiesOfCoincidentSpheresAsTheReference) {
+    // Copies of spheres (a higher number, another colour) give exactly equal hits: the leaf rule
+    // takes the earlier sphere of the leaf's list, and the beam, which keeps each ray's nearest
+    // hit across leaves, must take the same one. Copies placed before the originals in the
+    // list too (the set is built with them first).
+    SphereSet base = makeRandomSpheres(1500, 11, 0.04);
+    for (bool copiesFirst : {false, true}) {
+        SphereSet s;
+        s.materials = base.materials;
+        std::vector<Sphere> copies;
+        for (std::size_t i = 0; i < base.spheres.size(); i += 3) {
+            Sphere c = base.spheres[i];
+            c.colour = vec3(1.0f, 0.0f, 1.0f) - c.colour;
+            copies.push_back(c);
+        }
+        if (copiesFirst) s.spheres = copies;
+        s.spheres.insert(s.spheres.end(), base.spheres.begin(), base.spheres.end());
+        if (!copiesFirst) s.spheres.insert(s.spheres.end(), copies.begin(), copies.end());
+        for (int leafObjects : {1, 8}) {
+            ObjectOctreeOptions opt;
+            opt.leafObjects = leafObjects;
+            SphereSet scene;
+            scene.materials = s.materials;
+            scene.spheres = s.spheres;
+            const ObjectOctree t = ObjectOctree::build(std::move(scene), opt);
+            expectBeamAndSametGiveTheReference(t, cameraFor(t, 90, 70), 1, "coincident, leaf objects " + std::to_string(leafObjects));
+            expectBeamAndSametGiveTheReference(t, cameraFor(t, 45, 35), 4, "coincident, 4 samples");
+        }
+    }
+}
+
 TEST(SphereRenderers, SupersamplingTracesTheRaysOfTheFinerGrid) {
     ObjectOctree t = ObjectOctree::build(makeSphereFlake(2));
     Camera cam = cameraFor(t, 40, 30), fine = cameraFor(t, 80, 60);

@@ -111,7 +111,7 @@ public:
     /// (optional) counts the nodes climbed and descended.
     std::uint32_t faceNeighbour(std::uint32_t n, int axis, bool positive, std::uint64_t* steps = nullptr) const;
 
-    /// Structural checks (children, parents, cells, object ranges). Throws Error.
+    /// Structural checks (children, parents, cells, object ranges, lists in ascending order). Throws Error.
     void validate() const;
 };
 
