@@ -223,7 +223,8 @@ struct SphereSlot {
     int i0, i1, j0, j1;
     dvec3 oc;
     double c;
-    std::int32_t owners;  // first entry of the list of rays whose nearest sphere so far this is (BeamScratch::owners), -1: none
+    std::int32_t owners;   // first entry of the list of rays whose nearest sphere so far this is (BeamScratch::owners), -1: none
+    std::uint32_t ownerCount;  // entries in that list (some may be out of date)
 };
 
 /// An entry of a sphere's list of rays (row << 16 | column) and the next entry (-1: none).
@@ -239,6 +240,8 @@ struct BeamScratch {
     std::vector<std::int32_t> slotOf;   // per sphere of the scene: its slot, -1 when none
     std::vector<SphereSlot> slots;
     std::vector<OwnerEntry> owners;     // the slots' lists of rays
+    std::vector<std::uint32_t> leafMark; // per sphere of the scene: the number of the last leaf that listed it
+    std::uint32_t leaf = 0;             // leaves visited on this thread
     std::vector<std::uint64_t> live;    // per row, words of bits: bit i set while ray i is not hit
     std::vector<double> nearT;          // per ray: nearest hit among the spheres tested so far
     std::vector<std::uint32_t> nearSphere;
@@ -246,6 +249,7 @@ struct BeamScratch {
 BeamScratch& threadBeamScratch(std::size_t spheres) {
     thread_local BeamScratch scratch;
     if (scratch.slotOf.size() < spheres) scratch.slotOf.assign(spheres, -1);
+    if (scratch.leafMark.size() < spheres) scratch.leafMark.assign(spheres, 0);
     return scratch;
 }
 
@@ -364,7 +368,7 @@ private:
         std::int32_t& k = x_.slotOf[sphere];
         if (k < 0) {
             const Sphere& s = tree_.scene.spheres[sphere];
-            SphereSlot e{sphere, 0, w_, 0, h_, dvec3(0.0), 0.0, -1};
+            SphereSlot e{sphere, 0, w_, 0, h_, dvec3(0.0), 0.0, -1, 0};
             if (!sphereRect(s, e.i0, e.i1, e.j0, e.j1)) e.i0 = e.i1 = 0;
             e.oc = s.centre - gen_.eye();
             e.c = glm::dot(e.oc, e.oc) - s.radius * s.radius;
@@ -391,8 +395,7 @@ private:
     }
 
     /// Tests sphere e against every ray of its rectangle not yet hit, the first time the tile
-    /// meets the sphere: a ray whose nearest hit so far this is (nearer, or as near and a lower
-    /// sphere number) joins the sphere's list of owned rays.
+    /// meets the sphere; each ray keeps its nearest hit (ties to the lower sphere number).
     void testAll(SphereSlot& e) {
         const Sphere& sp = tree_.scene.spheres[e.sphere];
         std::vector<double>& nearT = x_.nearT;
@@ -409,6 +412,7 @@ private:
                         x_.nearSphere[k] = e.sphere;
                         x_.owners.push_back({std::uint32_t(j) << 16 | std::uint32_t(i), e.owners});
                         e.owners = std::int32_t(x_.owners.size() - 1);
+                        ++e.ownerCount;
                     }
                 }
     }
@@ -417,40 +421,70 @@ private:
     // earlier in its list, kept when not beyond the ray's exit from the leaf), for the beam's
     // rays not yet hit, found another way. Each sphere is tested once per ray, when the tile
     // first meets it (testAll), and each ray keeps its nearest hit over the spheres tested so
-    // far. At a leaf the ray crosses, every sphere of the leaf has been tested (the leaf's are
-    // tested first), so when that nearest hit is not beyond the leaf's exit it is the leaf
-    // rule's hit: a nearer hit of a sphere in the leaf would be the ray's nearest, and a hit
+    // far. At a leaf the ray crosses, every sphere of the leaf has been tested (the leaf's new
+    // ones are tested first), so when that nearest hit is not beyond the leaf's exit it is the
+    // leaf rule's hit: a nearer hit of a sphere in the leaf would be the ray's nearest, and a hit
     // not beyond the exit lies in this leaf or one before it on the ray, whose spheres have been
     // tested as well. Ties go to the lower sphere number, the leaf lists' order (ascending, as
-    // ObjectOctree::build makes them). So only the rays whose nearest sphere is one of the
-    // leaf's need checking: each sphere keeps the list of rays it is nearest for (entries that
-    // are out of date, because the ray was hit or found a nearer sphere, are dropped on the way).
+    // ObjectOctree::validate checks). So a leaf checks its rectangle's unhit rays whose nearest
+    // sphere so far is one of its own. They are found either from each sphere's list of the
+    // rays it is nearest for, or by scanning the leaf's rectangle for rays whose nearest sphere
+    // is marked with the leaf's number, whichever has fewer rays to look at (a large sphere of
+    // many leaves has a long list, most of it outside any one leaf).
     void intersect(const ObjectNode& leaf, const Box3& box, int i0, int i1, int j0, int j1) {
         const std::uint32_t* list = tree_.objects.data() + leaf.firstObject;
-        for (std::uint32_t q = 0; q < leaf.objectCount; ++q) slot(list[q]);  // tests the spheres met for the first time
-        for (std::uint32_t q = 0; q < leaf.objectCount && remaining_ > 0; ++q) {
-            SphereSlot* e = slot(list[q]);
-            if (!e) continue;
-            std::int32_t* link = &e->owners;
-            while (*link >= 0) {
-                OwnerEntry& en = x_.owners[std::size_t(*link)];
-                const int i = int(en.ray & 0xffff), j = int(en.ray >> 16);
-                const std::size_t k = std::size_t(j) * std::size_t(w_) + std::size_t(i);
-                const bool live = (x_.live[std::size_t(j * words_ + i / 64)] >> (i % 64)) & 1u;
-                if (!live || x_.nearSphere[k] != list[q]) {  // out of date: unlink
-                    *link = en.next;
-                    continue;
-                }
-                // Rays outside the leaf's projected rectangle do not cross the leaf.
-                if (i >= i0 && i < i1 && j >= j0 && j < j1 && inLeaf(box, rays_[k], x_.nearT[k])) {
-                    hits_[k] = SphereHit{x_.nearT[k], list[q]};
-                    x_.live[std::size_t(j * words_ + i / 64)] &= ~(std::uint64_t(1) << (i % 64));
+        if (++x_.leaf == 0) {  // the numbers wrapped around: forget the old marks
+            std::fill(x_.leafMark.begin(), x_.leafMark.end(), 0u);
+            x_.leaf = 1;
+        }
+        std::size_t listed = 0;
+        for (std::uint32_t q = 0; q < leaf.objectCount; ++q) {
+            const SphereSlot* e = slot(list[q]);  // tests the spheres met for the first time
+            if (e) listed += e->ownerCount;
+            x_.leafMark[list[q]] = x_.leaf;
+        }
+        if (listed <= std::size_t(i1 - i0) * std::size_t(j1 - j0)) {
+            for (std::uint32_t q = 0; q < leaf.objectCount && remaining_ > 0; ++q)
+                if (SphereSlot* e = slot(list[q])) checkOwners(*e, box, i0, i1, j0, j1);
+            return;
+        }
+        for (int j = j0; j < j1; ++j)
+            for (int wi = i0 / 64; wi <= (i1 - 1) / 64; ++wi)
+                for (std::uint64_t m = x_.live[std::size_t(j * words_ + wi)] & columnMask(wi, i0, i1); m; m &= m - 1) {
+                    const int i = wi * 64 + std::countr_zero(m);
+                    const std::size_t k = std::size_t(j) * std::size_t(w_) + std::size_t(i);
+                    const double t = x_.nearT[k];
+                    if (t == kInf || x_.leafMark[x_.nearSphere[k]] != x_.leaf || !inLeaf(box, rays_[k], t)) continue;
+                    hits_[k] = SphereHit{t, x_.nearSphere[k]};
+                    x_.live[std::size_t(j * words_ + wi)] &= ~(std::uint64_t(1) << (i % 64));
                     --remaining_;
-                    *link = en.next;
-                    continue;
                 }
-                link = &en.next;
+    }
+
+    /// The rays sphere e is nearest for, inside the leaf's rectangle: hit where the leaf rule
+    /// says so. Entries out of date (ray hit, or nearer to another sphere since) are dropped.
+    void checkOwners(SphereSlot& e, const Box3& box, int i0, int i1, int j0, int j1) {
+        std::int32_t* link = &e.owners;
+        while (*link >= 0) {
+            OwnerEntry& en = x_.owners[std::size_t(*link)];
+            const int i = int(en.ray & 0xffff), j = int(en.ray >> 16);
+            const std::size_t k = std::size_t(j) * std::size_t(w_) + std::size_t(i);
+            std::uint64_t& word = x_.live[std::size_t(j * words_ + i / 64)];
+            const std::uint64_t bit = std::uint64_t(1) << (i % 64);
+            if (!(word & bit) || x_.nearSphere[k] != e.sphere) {
+                *link = en.next;
+                --e.ownerCount;
+                continue;
             }
+            if (i >= i0 && i < i1 && j >= j0 && j < j1 && inLeaf(box, rays_[k], x_.nearT[k])) {
+                hits_[k] = SphereHit{x_.nearT[k], e.sphere};
+                word &= ~bit;
+                --remaining_;
+                *link = en.next;
+                --e.ownerCount;
+                continue;
+            }
+            link = &en.next;
         }
     }
 
