@@ -93,7 +93,7 @@ def plot(path, series, width=800, height=500):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--octrace", default=os.path.join(ROOT, "build", "app", "octrace"))
-    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--threads", type=int, default=2)
     args = ap.parse_args()
     args.tmp = "/tmp/octrace-figure5"
