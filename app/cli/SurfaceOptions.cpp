@@ -120,7 +120,13 @@ void finishSurface(const SurfaceArgs& a, Surface& s) {
         s.report.buildMs += t.ms();
     }
     if (!a.keepVolume) s.tree = extractShell(s.tree);
-    if (a.bake || (a.lighting == SurfaceArgs::Lighting::Baked && s.tree.baked.empty())) {
+    // render --bake --lighting dynamic: the light would be baked into an octree that is
+    // neither shaded by it nor saved.
+    const bool bakeUnused = a.bake && a.lighting == SurfaceArgs::Lighting::Dynamic;
+    if (bakeUnused)
+        log::warning("--bake with --lighting dynamic: nothing baked (dynamic shading does not use baked light; "
+                     "leave out --lighting dynamic to render with it)");
+    if ((a.bake && !bakeUnused) || (a.lighting == SurfaceArgs::Lighting::Baked && s.tree.baked.empty())) {
         if (s.tree.form != OctreeForm::Shell) throw UsageError("--bake applies to the shell form (not with --form volume)");
         BakeOptions o = a.bakeOptions;
         o.threads = a.threads;

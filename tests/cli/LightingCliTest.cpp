@@ -35,6 +35,12 @@ TEST(CliLighting, BakedLightIsStoredAndUsedUnlessDynamicIsAsked) {
     r = render({"render", "analytic:torus:33", "--iso", "0", "--depth", "6", "--lighting", "baked"}, "field.png");
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_EQ(slurp(s.path("field.png.json")).find("\"bake_ms\": 0,"), std::string::npos);
+    // --bake with --lighting dynamic would bake for nothing: told, and not baked.
+    r = render({"render", "analytic:torus:33", "--iso", "0", "--depth", "6", "--bake", "--lighting", "dynamic"}, "unused.png");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("--bake with --lighting dynamic: nothing baked"), std::string::npos) << r.err;
+    EXPECT_NE(slurp(s.path("unused.png.json")).find("\"bake_ms\": 0,"), std::string::npos);
+    EXPECT_NE(slurp(s.path("unused.png.json")).find("\"lighting\": \"dynamic\""), std::string::npos);
     // Usage errors.
     EXPECT_EQ(run({"render", "analytic:torus:33", "--lighting", "flat", "-o", s.path("x.png")}).code, 2);
     EXPECT_EQ(run({"build", "analytic:torus:33", "--bake-light", "sun:1,1,1", "-o", s.path("x.oct")}).code, 2);
