@@ -37,6 +37,8 @@ bool among(std::string_view text, const std::string_view (&list)[N]) {
 }
 bool isVr(std::string_view vr) { return among(vr, kShortVrs) || among(vr, kLongVrs); }
 
+constexpr std::uint32_t kPixelDataTag = 0x7FE00010u;
+
 std::string tagName(std::uint16_t group, std::uint16_t element) {
     char text[16];
     std::snprintf(text, sizeof text, "(%04X,%04X)", group, element);
@@ -90,6 +92,7 @@ public:
     /// up to and including the item delimitation. Returns where the walk ended.
     std::size_t dataSet(std::size_t at, Container c, Syntax s, int depth, bool delimited) const {
         std::size_t p = at;
+        std::uint32_t pastPixelData = 0;  // the first top-level tag at or past (7FE0,0010), 0: none yet
         for (;;) {
             if (p == c.end) {
                 if (delimited)
@@ -107,6 +110,17 @@ public:
                 }
                 fail(p, std::string("item tag ") + tagName(group, element) + " where a data element was expected");
             }
+            // The standard orders a data set's elements by ascending tag. GDCM reads a header up
+            // to the pixel data by stopping at the first top-level tag at or past (7FE0,0010), so
+            // an element below that tag after one past it is hidden from the header and not from
+            // the image reader (fuzz_dicom: functional groups after (FFD8,F4FD) reached an
+            // assertion). Other disorder GDCM sorts out, and is let through.
+            const std::uint32_t tag = std::uint32_t(group) << 16 | element;
+            if (depth == 0 && pastPixelData && tag < kPixelDataTag)
+                fail(p, std::string("element ") + tagName(group, element) + " comes after " +
+                            tagName(std::uint16_t(pastPixelData >> 16), std::uint16_t(pastPixelData & 0xFFFF)) +
+                            ": elements below the pixel data (7FE0,0010) must come before those at or past it (ascending tag order)");
+            if (depth == 0 && !pastPixelData && tag >= kPixelDataTag) pastPixelData = tag;
             p = this->element(p, c, s, depth).next;
         }
     }

@@ -42,6 +42,7 @@ const Case kCases[] = {
     {"invalid_unterminated_fragments.dcm", nullptr, "encapsulated pixel data have no sequence delimitation"},
     {"invalid_vr_mismatch.dcm", nullptr, "element (0028,0103) has VR UI, the DICOM dictionary's is US"},
     {"invalid_enhanced_without_orientation.dcm", nullptr, "multi-frame image with functional groups but no ImageOrientationPatient"},
+    {"invalid_tag_order.dcm", nullptr, "element (0028,0103) comes after (FFD8,F4FD)"},
     {"invalid_huge_sizes.nrrd", nullptr, "octrace reads along one axis"},
     {"invalid_too_many_samples.nrrd", nullptr, "exceed the supported 2^32 samples"},
     {"invalid_size_overflow.nrrd", nullptr, "octrace reads along one axis"},

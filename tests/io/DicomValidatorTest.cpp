@@ -187,6 +187,23 @@ TEST(DicomValidator, RefusesTheGdcmAbortReproducerALengthRunningPastTheEndOfTheF
                   "element (7FE0,0010) OW declares 2147483646 bytes, only 2 remain in the file");
 }
 
+TEST(DicomValidator, RefusesElementsBelowThePixelDataTagAfterOnesPastIt) {
+    // GDCM reads a header up to the first top-level tag at or past (7FE0,0010): an element below
+    // it that comes after one past it is hidden from the header but not from the image reader
+    // (found by fuzz_dicom: functional groups after (FFD8,F4FD), and GDCM asserted).
+    const std::string start = part10(kExplicitLE) + patient();
+    const std::string late = el(0xFFD8, 0xF4FD, "US", le16(15));
+    expectRefused(start + late + el(0x0028, 0x0103, "US", le16(0)), start.size() + late.size(),
+                  "element (0028,0103) comes after (FFD8,F4FD): elements below the pixel data (7FE0,0010) must come before those at or past it (ascending tag order)");
+    expectRefused(start + el(0x7FE0, 0x0010, "OW", "abcd") + patient(), start.size() + 12 + 4, "element (0010,0010) comes after (7FE0,0010)");
+    // Disorder below the pixel data GDCM sorts out itself, and elements past it in any order
+    // after it (trailing padding) are let through; so is disorder inside items.
+    EXPECT_TRUE(validate(start + el(0x0008, 0x0060, "CS", "CT") + el(0x7FE0, 0x0010, "OW", "abcd") + el(0xFFFC, 0xFFFC, "OB", "xx")));
+    EXPECT_TRUE(validate(start + el(0x0008, 0x1140, "SQ", item(patient() + el(0x0008, 0x0060, "CS", "CT")))));
+    EXPECT_TRUE(validate(start + el(0xFFFC, 0xFFFC, "OB", "xx") + el(0x7FE0, 0x0010, "OW", "abcd")));
+    expectRefused(slurp(test::testData("invalid/invalid_tag_order.dcm")), 422, "element (0028,0103) comes after (FFD8,F4FD)");
+}
+
 TEST(DicomValidator, ChecksEveryLengthAgainstItsEnclosingItemAndSequence) {
     const std::string start = part10(kExplicitLE) + patient();
     // An element longer than its item (the file goes on after it).
