@@ -216,8 +216,8 @@ private:
 };
 
 /// A sphere met by a tile: the rectangle of the tile's rays that may hit it, for a perspective
-/// eye (every ray's origin) the terms of intersectSphereFrom, and where its rays' sphere tests
-/// are kept (a sphere listed in several leaves is tested once per ray).
+/// eye (every ray's origin) the terms of intersectSphereFrom, and the rays it is the nearest
+/// sphere for so far.
 struct SphereSlot {
     std::uint32_t sphere;
     int i0, i1, j0, j1;
@@ -399,22 +399,37 @@ private:
     void testAll(SphereSlot& e) {
         const Sphere& sp = tree_.scene.spheres[e.sphere];
         std::vector<double>& nearT = x_.nearT;
-        for (int j = e.j0; j < e.j1; ++j)
-            for (int wi = e.i0 / 64; wi <= (e.i1 - 1) / 64; ++wi)
-                for (std::uint64_t m = x_.live[std::size_t(j * words_ + wi)] & columnMask(wi, e.i0, e.i1); m; m &= m - 1) {
+        forEachLive(e.i0, e.i1, e.j0, e.j1, [&](int i, int j, std::size_t k) {
+            const Ray& r = rays_[k];
+            ++c_.intersections;
+            const double t = perspective_ ? intersectSphereFrom(e.oc, e.c, r.direction, 0.0) : intersectSphere(sp, r.origin, r.direction, 0.0);
+            if (t < nearT[k] || (t == nearT[k] && t != kInf && e.sphere < x_.nearSphere[k])) {
+                nearT[k] = t;
+                x_.nearSphere[k] = e.sphere;
+                x_.owners.push_back({std::uint32_t(j) << 16 | std::uint32_t(i), e.owners});
+                e.owners = std::int32_t(x_.owners.size() - 1);
+                ++e.ownerCount;
+            }
+        });
+    }
+
+    /// Calls f(i, j, k) for each ray not yet hit in columns [i0, i1) of rows [j0, j1) (k: its
+    /// index in the tile); f may mark the ray hit.
+    template <class F>
+    void forEachLive(int i0, int i1, int j0, int j1, F&& f) {
+        for (int j = j0; j < j1; ++j)
+            for (int wi = i0 / 64; wi <= (i1 - 1) / 64; ++wi)
+                for (std::uint64_t m = x_.live[std::size_t(j * words_ + wi)] & columnMask(wi, i0, i1); m; m &= m - 1) {
                     const int i = wi * 64 + std::countr_zero(m);
-                    const std::size_t k = std::size_t(j) * std::size_t(w_) + std::size_t(i);
-                    const Ray& r = rays_[k];
-                    ++c_.intersections;
-                    const double t = perspective_ ? intersectSphereFrom(e.oc, e.c, r.direction, 0.0) : intersectSphere(sp, r.origin, r.direction, 0.0);
-                    if (t < nearT[k] || (t == nearT[k] && t != kInf && e.sphere < x_.nearSphere[k])) {
-                        nearT[k] = t;
-                        x_.nearSphere[k] = e.sphere;
-                        x_.owners.push_back({std::uint32_t(j) << 16 | std::uint32_t(i), e.owners});
-                        e.owners = std::int32_t(x_.owners.size() - 1);
-                        ++e.ownerCount;
-                    }
+                    f(i, j, std::size_t(j) * std::size_t(w_) + std::size_t(i));
                 }
+    }
+
+    /// Ray (i, j) (index k) hits `sphere` at its nearest t.
+    void markHit(int i, int j, std::size_t k, std::uint32_t sphere) {
+        hits_[k] = SphereHit{x_.nearT[k], sphere};
+        x_.live[std::size_t(j * words_ + i / 64)] &= ~(std::uint64_t(1) << (i % 64));
+        --remaining_;
     }
 
     // The leaf rule (nearestInLeaf: per leaf, the nearest hit among its spheres, ties to the
@@ -448,17 +463,10 @@ private:
                 if (SphereSlot* e = slot(list[q])) checkOwners(*e, box, i0, i1, j0, j1);
             return;
         }
-        for (int j = j0; j < j1; ++j)
-            for (int wi = i0 / 64; wi <= (i1 - 1) / 64; ++wi)
-                for (std::uint64_t m = x_.live[std::size_t(j * words_ + wi)] & columnMask(wi, i0, i1); m; m &= m - 1) {
-                    const int i = wi * 64 + std::countr_zero(m);
-                    const std::size_t k = std::size_t(j) * std::size_t(w_) + std::size_t(i);
-                    const double t = x_.nearT[k];
-                    if (t == kInf || x_.leafMark[x_.nearSphere[k]] != x_.leaf || !inLeaf(box, rays_[k], t)) continue;
-                    hits_[k] = SphereHit{t, x_.nearSphere[k]};
-                    x_.live[std::size_t(j * words_ + wi)] &= ~(std::uint64_t(1) << (i % 64));
-                    --remaining_;
-                }
+        forEachLive(i0, i1, j0, j1, [&](int i, int j, std::size_t k) {
+            const double t = x_.nearT[k];
+            if (t != kInf && x_.leafMark[x_.nearSphere[k]] == x_.leaf && inLeaf(box, rays_[k], t)) markHit(i, j, k, x_.nearSphere[k]);
+        });
     }
 
     /// The rays sphere e is nearest for, inside the leaf's rectangle: hit where the leaf rule
@@ -469,17 +477,14 @@ private:
             OwnerEntry& en = x_.owners[std::size_t(*link)];
             const int i = int(en.ray & 0xffff), j = int(en.ray >> 16);
             const std::size_t k = std::size_t(j) * std::size_t(w_) + std::size_t(i);
-            std::uint64_t& word = x_.live[std::size_t(j * words_ + i / 64)];
-            const std::uint64_t bit = std::uint64_t(1) << (i % 64);
-            if (!(word & bit) || x_.nearSphere[k] != e.sphere) {
+            const bool live = (x_.live[std::size_t(j * words_ + i / 64)] >> (i % 64)) & 1u;
+            if (!live || x_.nearSphere[k] != e.sphere) {
                 *link = en.next;
                 --e.ownerCount;
                 continue;
             }
             if (i >= i0 && i < i1 && j >= j0 && j < j1 && inLeaf(box, rays_[k], x_.nearT[k])) {
-                hits_[k] = SphereHit{x_.nearT[k], e.sphere};
-                word &= ~bit;
-                --remaining_;
+                markHit(i, j, k, e.sphere);
                 *link = en.next;
                 --e.ownerCount;
                 continue;
