@@ -40,6 +40,7 @@ struct Context {
     ivec3* cells;  // hit cells, read only at pixels that hit (nullptr: no pattern reads them)
     std::vector<std::uint32_t>& srgb;  // packed 8-bit colour of traced pixels (colour coherence)
     const LodCut& cut;
+    std::uint32_t backgroundSrgb;  // packSrgb(settings.background), for colour coherence
 };
 
 std::uint32_t packSrgb(const vec4& v) {
@@ -59,7 +60,7 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
         f.rgba[p] = c.settings.background;
         f.depth[p] = std::numeric_limits<float>::infinity();
         f.hitId[p] = kNoHit;
-        if (!c.srgb.empty()) c.srgb[p] = packSrgb(f.rgba[p]);
+        if (!c.srgb.empty()) c.srgb[p] = c.backgroundSrgb;
     };
     // Outside the cube's outline: no ray to quantize.
     if (!c.rays.mayMeetCube(x, y)) return background();
@@ -112,28 +113,43 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
         f.rgba[p] = c.shader.shade(hit, &st.secondaryRays);
         f.depth[p] = c.shader.distance(c.rays.world(x, y, dir), hit);
     }
-    if (!c.srgb.empty()) c.srgb[p] = packSrgb(f.rgba[p]);
+    if (!c.srgb.empty()) c.srgb[p] = hit.hit() ? packSrgb(f.rgba[p]) : c.backgroundSrgb;
 }
 
 /// Writes the background to the pixels of row y whose rays cannot hit the surface, counted as
 /// tracePixel counts them, in one pass; returns the pixels left to the patterns (lo > hi: none).
+/// Each field is filled as a run (raw pointers: the byte-wide flags would otherwise make the
+/// compiler reload every buffer's address per pixel), and the rays are counted per run: all of
+/// the run inside the cube's inner outline, a quantization only between it and the outline.
 std::pair<int, int> fillOutsideSurface(const Context& c, int y, RenderStats& st) {
     Frame& f = c.frame;
     const int W = f.width;
     const auto [first, second] = c.rays.surfaceSpan(y);
     const int lo = std::max(first, 0), hi = std::min(second, W - 1);
-    const std::uint32_t bg = c.srgb.empty() ? 0u : packSrgb(c.settings.background);
+    const std::uint32_t bg = c.backgroundSrgb;
+    const auto [cubeLo, cubeHi] = c.rays.cubeSpan(y);
+    const auto [innerLo, innerHi] = c.rays.cubeInnerSpan(y);
     auto fill = [&](int x0, int x1) {
-        for (int x = x0; x < x1; ++x) {
-            const std::size_t p = f.pixel(x, y);
-            f.flags[p] = Frame::kTraced;
-            f.rgba[p] = c.settings.background;
-            f.depth[p] = std::numeric_limits<float>::infinity();
-            f.hitId[p] = kNoHit;
-            if (!c.srgb.empty()) c.srgb[p] = bg;
-            if (c.rays.mayMeetCube(x, y) && c.rays.meetsCube(x, y)) ++st.rays;
+        if (x1 <= x0) return;
+        const std::size_t p = f.pixel(x0, y), n = std::size_t(x1 - x0);
+        std::fill_n(f.flags.data() + p, n, std::uint8_t(Frame::kTraced));
+        std::fill_n(f.rgba.data() + p, n, c.settings.background);
+        std::fill_n(f.depth.data() + p, n, std::numeric_limits<float>::infinity());
+        std::fill_n(f.hitId.data() + p, n, kNoHit);
+        if (!c.srgb.empty()) std::fill_n(c.srgb.data() + p, n, bg);
+        st.raysFull += n;
+        // Rays meeting the cube: the pixels in the inner span surely do, those outside the
+        // outline cannot, those in between are quantized.
+        const int a = std::max(x0, cubeLo), b = std::min(x1 - 1, cubeHi);
+        for (int x = a; x <= b; ++x) {
+            if (x >= innerLo && x <= innerHi) {
+                const int last = std::min(b, innerHi);
+                st.rays += std::uint64_t(last - x + 1);
+                x = last;
+            } else if (c.rays.meetsCube(x, y)) {
+                ++st.rays;
+            }
         }
-        st.raysFull += std::uint64_t(std::max(x1 - x0, 0));
     };
     if (lo > hi) {
         fill(0, W);
@@ -204,7 +220,7 @@ RenderStats DiscreteRenderer::render(const Octree& tree, const Camera& camera, c
     std::vector<std::uint32_t> srgb(settings.colourCoherence ? frame.hitId.size() : 0, 0u);
     if (cut.active() && pattern_ != Pattern::Full)
         throw UsageError("renderer " + name() + " has no multi-resolution mode (--lod, --level): use " + voxelRenderersThat(&Renderer::multiResolution));
-    const Context ctx{tree, settings, frame, shader, rays, cells.get(), srgb, cut};
+    const Context ctx{tree, settings, frame, shader, rays, cells.get(), srgb, cut, packSrgb(settings.background)};
     const int W = camera.width, H = camera.height;
     const Start mode = pattern_ == Pattern::Full ? Start::Root : exact_ ? Start::Guided : Start::Branch;
     const bool colour = settings.colourCoherence;

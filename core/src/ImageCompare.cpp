@@ -20,12 +20,21 @@ double srgbToLinear(double encoded) {
 // i.e. at linear srgbToLinear((k − 0.5)/255). Comparing against these 255 thresholds rounds
 // to nearest without a pow() per channel, and gives the same code on every machine for a
 // given input (no dependence on how the caller's libm rounds pow near a tie).
+// Instead of a binary search over them, a value in [0, 1) starts from the code of the lower
+// end of its 1/4096 bucket and steps over the (at most two) thresholds inside the bucket: the
+// same count of thresholds at or below the value, found in a look-up and a compare or two.
 struct SrgbTables {
-    std::array<double, 255> thresholds{};  // thresholds[k-1]: smallest linear value with code >= k
+    static constexpr int kBuckets = 4096;
+    std::array<double, 256> thresholds{};  // thresholds[k-1]: smallest linear value with code >= k; [255] = +inf
     std::array<float, 256> toLinear{};
+    std::array<std::uint8_t, kBuckets> bucketCode{};  // code of linear value i / kBuckets
     SrgbTables() {
         for (int k = 1; k <= 255; ++k) thresholds[std::size_t(k - 1)] = srgbToLinear((k - 0.5) / 255.0);
+        thresholds[255] = std::numeric_limits<double>::infinity();
         for (int k = 0; k <= 255; ++k) toLinear[std::size_t(k)] = float(srgbToLinear(k / 255.0));
+        for (int i = 0; i < kBuckets; ++i)
+            bucketCode[std::size_t(i)] = std::uint8_t(
+                std::upper_bound(thresholds.begin(), thresholds.end() - 1, double(i) / kBuckets) - thresholds.begin());
     }
 };
 
@@ -55,8 +64,11 @@ void checkFrame(const Frame& f, const char* which) {
 std::uint8_t linearToSrgb8(float linear) {
     if (!(linear > 0.0f)) return 0;  // also NaN
     if (linear >= 1.0f) return 255;
-    const auto& t = tables().thresholds;
-    return std::uint8_t(std::upper_bound(t.begin(), t.end(), double(linear)) - t.begin());
+    const SrgbTables& t = tables();
+    // linear * 4096 is exact (a power of two) and below 4096: truncation is the bucket.
+    std::size_t code = t.bucketCode[std::size_t(linear * float(SrgbTables::kBuckets))];
+    while (t.thresholds[code] <= double(linear)) ++code;  // thresholds[255] = inf stops it
+    return std::uint8_t(code);
 }
 
 float srgb8ToLinear(std::uint8_t code) { return tables().toLinear[code]; }

@@ -40,6 +40,10 @@ public:
         const auto& s = cubeInnerSpans_[std::size_t(y)];
         return x >= s.first && x <= s.second;
     }
+    /// The pixels x of row y for which mayMeetCube holds, and those for which surelyMeetsCube
+    /// holds (first > second: none), as surfaceSpan.
+    std::pair<int, int> cubeSpan(int y) const { return cubeSpans_[std::size_t(y)]; }
+    std::pair<int, int> cubeInnerSpan(int y) const { return cubeInnerSpans_[std::size_t(y)]; }
     /// Whether the pixel's quantized ray meets the cube, quantizing it only when that is not
     /// certain (for counting rays that are not traced).
     bool meetsCube(int x, int y) const { return surelyMeetsCube(x, y) || quantized(x, y, direction(x, y)).meetsCube; }

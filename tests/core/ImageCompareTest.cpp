@@ -51,6 +51,22 @@ TEST(LinearToSrgb8, RoundsTheTransferFunctionToNearestOnADenseSweep) {
     EXPECT_GT(checked, 999000);
 }
 
+TEST(LinearToSrgb8, SwitchesCodeExactlyAtEachRoundingThreshold) {
+    // Code k starts at the linear value whose encoding is (k - 0.5) / 255: the float just below
+    // that value has code k - 1, the float at or just above it code k (the quantization's look-up
+    // table must not move any of these 255 switches).
+    for (int k = 1; k <= 255; ++k) {
+        const double e = (k - 0.5) / 255.0;
+        const double t = e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4);
+        float at = float(t);
+        if (double(at) < t) at = std::nextafter(at, 2.0f);
+        const float below = std::nextafter(at, -1.0f);
+        ASSERT_EQ(int(linearToSrgb8(below)), k - 1) << "code " << k;
+        ASSERT_EQ(int(linearToSrgb8(at)), k) << "code " << k;
+    }
+    EXPECT_EQ(int(linearToSrgb8(std::nextafter(1.0f, 0.0f))), 255);
+}
+
 TEST(LinearToSrgb8, IsMonotonic) {
     int previous = 0;
     for (int i = 0; i <= 100000; ++i) {
