@@ -52,6 +52,8 @@ struct RenderArgs : SurfaceArgs {
     float colourTolerance = 3.0f;
     bool colourToleranceGiven = false;
     bool colourFillsBackground = false;
+    int branchUp = 0;
+    bool branchUpGiven = false;
     int repeat = 1;
     std::string baseline;
     // Sphere scenes.
@@ -128,6 +130,11 @@ OptionParser makeParser(RenderArgs& a) {
                if (t < 0.0 || t > 255.0) throw UsageError("--colour-tolerance: must be in [0, 255], got " + v);
                a.colourTolerance = float(t);
                a.colourToleranceGiven = true;
+           }});
+    p.add({"branch-up", "N", "trajectory coherence (linear, area, their exact and +colour variants): start a common-path ray N octree levels above its partners' branch node; fewer pixels differ from full traversal, at some speed (default 0: paper A, at the branch node)",
+           [&](const std::string& v) {
+               a.branchUp = parseInt("branch-up", v, 0, Octree::kMaxDepth);
+               a.branchUpGiven = true;
            }});
     addGeographicOptions(p, a.request);
     addCityOptions(p, a);
@@ -409,6 +416,8 @@ int runRender(const std::vector<std::string>& args) {
             if (given)
                 log::warning(std::string(option) + " has no effect without colour coherence (--colour-coherence or a +colour renderer)");
     }
+    if (a.branchUpGiven && a.rendererName.rfind("linear", 0) != 0 && a.rendererName.rfind("area", 0) != 0)
+        log::warning("--branch-up has no effect on renderer " + a.rendererName + " (only on linear and area and their variants)");
     if (multires) {
         for (const std::string& r : {a.rendererName, a.baseline})
             if (!r.empty() && !makeRenderer(r)->multiResolution())
@@ -452,6 +461,7 @@ int runRender(const std::vector<std::string>& args) {
     rs.colourCoherence = a.colourCoherence;
     rs.colourTolerance = a.colourTolerance;
     rs.colourFillsBackground = a.colourFillsBackground;
+    rs.branchUp = a.branchUp;
     rs.lodPixels = a.lod;
     rs.level = a.level;
     if (a.shadows.value_or(false) && !Shader(tree, cam, rs).shadows())
@@ -513,6 +523,7 @@ int runRender(const std::vector<std::string>& args) {
     js.set("states_deferred", st.statesDeferred);
     js.set("colour_filled", st.colourFilled);
     if (rs.colourCoherence) js.set("colour_tolerance", double(rs.colourTolerance));
+    js.set("branch_up", rs.branchUp);
     js.set("nodes_visited", st.nodesVisited);
     js.set("nodes_per_ray", st.rays ? double(st.nodesVisited) / double(st.rays) : 0.0);
     js.set("beams", st.beams);

@@ -79,7 +79,7 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
     const bool usePartners = partners && mode != Start::Root && f.hitId[partners[0]] != kNoHit &&
                              f.hitId[partners[1]] != kNoHit && q.meetsCube;
     if (usePartners) {
-        const BranchNode bn = branchNode(c.tree, c.cells[partners[0]], c.cells[partners[1]]);
+        const BranchNode bn = branchNode(c.tree, c.cells[partners[0]], c.cells[partners[1]], c.settings.branchUp);
         ++st.raysCommonPath;
         flags |= Frame::kCommonPath;
         if (mode == Start::Branch) {

@@ -473,12 +473,13 @@ bool rayCrossesCell(const QuantizedRay& ray, const ivec3& cell, int level) {
     return boxCrossed(ray, ray.dU == 0, ray.dV == 0, m0, u0, v0, i64(1) << (N - level));
 }
 
-BranchNode branchNode(const Octree& tree, const ivec3& a, const ivec3& b) {
+BranchNode branchNode(const Octree& tree, const ivec3& a, const ivec3& b, int up) {
     BranchNode bn;
     const int depth = tree.depth;
     const unsigned diff = unsigned((a.x ^ b.x) | (a.y ^ b.y) | (a.z ^ b.z));
     const int width = diff ? 32 - std::countl_zero(diff) : 0;
-    const int level = std::min(depth - width, depth - 1);
+    int level = std::min(depth - width, depth - 1);
+    if (up > 0 && level >= 0) level = std::max(level - up, 0);
     if (level < 0 || tree.nodes.empty()) return bn;
     std::uint32_t node = 0;
     bn.path[0] = 0;

@@ -245,6 +245,22 @@ TEST(Cli, ColourOptionsWithoutColourCoherenceAreToldToChangeNothing) {
     EXPECT_EQ(r.err.find("no effect"), std::string::npos) << r.err;
 }
 
+TEST(Cli, BranchUpIsRecordedWarnedAboutWhereUselessAndRangeChecked) {
+    Scratch s;
+    Result r = run({"render", "analytic:sphere", "--iso", "0", "--depth", "5", "--size", "64x48", "--renderer", "area",
+                    "--branch-up", "2", "--stats", s.path("a.json"), "-o", s.path("a.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.err.find("no effect"), std::string::npos) << r.err;
+    EXPECT_NE(slurp(s.path("a.json")).find("\"branch_up\": 2"), std::string::npos);
+    r = run({"render", "analytic:sphere", "--iso", "0", "--depth", "5", "--size", "64x48", "--branch-up", "1", "-o",
+             s.path("b.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("--branch-up has no effect on renderer full"), std::string::npos) << r.err;
+    r = run({"render", "analytic:sphere", "--renderer", "linear", "--branch-up", "-1", "-o", s.path("c.png")});
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("--branch-up"), std::string::npos) << r.err;
+}
+
 TEST(Cli, VerifyTellsWhenItStartsAndPrintsTheImageDifference) {
     Scratch s;
     const Result r = run({"render", "analytic:sphere", "--iso", "0", "--depth", "6", "--size", "120x90", "--renderer",

@@ -3,6 +3,7 @@
 // scene built for it shows; colour coherence fills only between traced surface pixels.
 #include "octrace/build/AnalyticField.h"
 #include "octrace/build/OctreeBuilder.h"
+#include "octrace/render/DiscreteTraversal.h"
 #include "octrace/render/ImageCompare.h"
 #include "octrace/render/Renderer.h"
 
@@ -34,9 +35,10 @@ std::vector<Camera> cameras(const Octree& t) {
     return cams;
 }
 
-RenderStats draw(const std::string& name, const Octree& t, const Camera& c, Frame& f) {
+RenderStats draw(const std::string& name, const Octree& t, const Camera& c, Frame& f, int branchUp = 0) {
     RenderSettings s;
     s.threads = 2;
+    s.branchUp = branchUp;
     return makeRenderer(name)->render(t, c, s, f);
 }
 
@@ -130,6 +132,60 @@ TEST(CoherentRenderers, ApproximateVariantsMissAThinRodInFrontThatTheExactOnesSe
     EXPECT_GT(differingHits(area, full), H / 4);
     EXPECT_EQ(differingHits(linExact, full), 0);
     EXPECT_EQ(differingHits(areaExact, full), 0);
+}
+
+TEST(CoherentRenderers, StartingAboveTheBranchNodeFindsTheRodAndFromTheRootEqualsFull) {
+    // The rod scene above: a start high enough to hold the rod sees it. branchUp = depth starts
+    // every common-path ray at the root, which is the full traversal; the exact variants stay
+    // exact at any start.
+    const int W = 200, H = 150;
+    Camera cam;
+    cam.position = dvec3(0, 0, 3);
+    cam.lookAt = dvec3(0, 0, 0);
+    cam.up = dvec3(0, 1, 0);
+    cam.width = W;
+    cam.height = H;
+    cam.fovYDegrees = 40;
+    const Ray r = cam.primaryRay(102, H / 2);
+    const double t = (0.5 - r.origin.z) / r.direction.z;
+    const double x0 = r.origin.x + t * r.direction.x;
+    ScalarField f = sampleFunction("rod", ivec3(129), dvec3(-1.0), dvec3(2.0 / 128), [x0](const dvec3& p) {
+        double sheet = 0.05 - std::abs(p.z + 0.6);
+        double rod = 0.012 - std::hypot(p.x - x0, p.z - 0.5);
+        return float(std::max(sheet, rod));
+    });
+    const Octree t8 = buildShellOctree(f, {8, 0.0, 0});
+    Frame full;
+    draw("full", t8, cam, full);
+    for (const char* name : {"linear", "area"}) {
+        SCOPED_TRACE(name);
+        Frame atBranch, fromRoot, exact;
+        draw(name, t8, cam, atBranch, 0);
+        const RenderStats st = draw(name, t8, cam, fromRoot, t8.depth);
+        EXPECT_GT(differingHits(atBranch, full), H / 4);
+        EXPECT_EQ(differingHits(fromRoot, full), 0);
+        EXPECT_GT(st.raysCommonPath, 0u);  // still the common-path code, started at the root
+        draw(std::string(name) + "-exact", t8, cam, exact, 3);
+        EXPECT_EQ(differingHits(exact, full), 0);
+    }
+}
+
+TEST(CoherentRenderers, BranchNodeUpIsTheAncestorOnTheSamePath) {
+    const Octree& t = tree(0);
+    ivec3 a(-1), b(-1);
+    t.forEachVoxel([&](const ivec3& cell, std::uint32_t) {
+        if (a.x < 0) a = cell;
+        else if (b.x < 0 && cell != a) b = cell;
+    });
+    const BranchNode bn = branchNode(t, a, b);
+    ASSERT_TRUE(bn.valid());
+    for (int up : {1, 2, 100}) {
+        const BranchNode above = branchNode(t, a, b, up);
+        ASSERT_TRUE(above.valid());
+        EXPECT_EQ(above.level, std::max(bn.level - up, 0));
+        EXPECT_EQ(above.cell, a >> (t.depth - above.level));
+        for (int l = 0; l <= above.level; ++l) EXPECT_EQ(above.path[l], bn.path[l]) << l;
+    }
 }
 
 TEST(CoherentRenderers, ColourCoherenceFillsOnlyBetweenTracedSurfacePixelsWithinTheTolerance) {

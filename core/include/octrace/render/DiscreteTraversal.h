@@ -101,8 +101,9 @@ struct BranchNode {
 };
 
 /// Branch node of two boundary voxels (their smallest common ancestor, at most at level
-/// depth-1). Invalid when a cell is not a boundary voxel of the tree.
-BranchNode branchNode(const Octree& tree, const ivec3& cellA, const ivec3& cellB);
+/// depth-1), or its ancestor `up` levels above it (at the root at most). Invalid when a cell
+/// is not a boundary voxel of the tree.
+BranchNode branchNode(const Octree& tree, const ivec3& cellA, const ivec3& cellB, int up = 0);
 
 /// Paper A's trajectory coherence, approximate: traverses only the branch node's subtree; when
 /// the ray does not cross the node or finds nothing in it, retraces from the root

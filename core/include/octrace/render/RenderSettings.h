@@ -45,6 +45,12 @@ struct RenderSettings {
     /// Colour coherence also between two background pixels (the middle one is then taken as
     /// background untraced); off: only between two surface pixels.
     bool colourFillsBackground = false;
+    /// Trajectory coherence (linear, area and their exact variants): a common-path ray starts
+    /// this many levels above the branch node of its two partners (0 = paper A: at the branch
+    /// node; at the octree's depth or more: from the root). Each level up makes the approximate
+    /// variants differ from full traversal on fewer pixels and costs speed; the exact variants
+    /// stay exact at any value.
+    int branchUp = 0;
     /// Multi-resolution (Lod.h; needs Octree::computeSummaries): stop descending at a node
     /// whose projected size is below lodPixels pixels (0 = exact), and at level `level` at the
     /// latest (< 0 = down to the voxels). Supported by full, reference and the direct renderers.
