@@ -72,8 +72,10 @@ def scene_input(args, scene):
     return folder
 
 
-def run(args, scene, depth, renderer, threads, verify, outdir):
-    tag = "%s_d%d_%s_t%d" % (scene["key"], depth, renderer.replace("+", "_"), threads)
+def run(args, scene, depth, renderer, threads, verify, outdir, extra=(), tag_suffix=""):
+    """One cell: its stats JSON (rendered unless a row not asked for). `extra`: further options
+    (e.g. bench/branch_up.py's --branch-up), with `tag_suffix` added to the file names."""
+    tag = "%s_d%d_%s_t%d%s" % (scene["key"], depth, renderer.replace("+", "_"), threads, tag_suffix)
     stats = os.path.join(outdir, tag + ".json")
     if args.only and scene["key"] not in args.only:
         if not os.path.exists(stats):
@@ -88,7 +90,7 @@ def run(args, scene, depth, renderer, threads, verify, outdir):
     cmd += ["--size", scene["size"], "--camera-pos", scene["camera_pos"], "--look-at", scene["look_at"],
            "--up", scene["up"], "--fov", str(scene["fov"]), "--renderer", renderer,
            "--threads", str(threads), "--repeat", str(args.repeat), "--stats", stats, "--quiet",
-           "-o", os.path.join(args.tmp, tag + ".png")]
+           "-o", os.path.join(args.tmp, tag + ".png")] + list(extra)
     if verify:
         cmd.append("--verify")
     if renderer != "full":
