@@ -38,15 +38,10 @@ struct Context {
     const Shader& shader;
     const PixelRays& rays;
     ivec3* cells;  // hit cells, read only at pixels that hit (nullptr: no pattern reads them)
-    std::vector<std::uint32_t>& srgb;  // packed 8-bit colour of traced pixels (colour coherence)
+    std::uint32_t* srgb;  // packed 8-bit colour of traced and filled pixels (colour coherence; nullptr: off)
     const LodCut& cut;
-    std::uint32_t backgroundSrgb;  // packSrgb(settings.background), for colour coherence
+    std::uint32_t backgroundSrgb;  // packSrgb8(settings.background), for colour coherence
 };
-
-std::uint32_t packSrgb(const vec4& v) {
-    return std::uint32_t(linearToSrgb8(v.r)) | std::uint32_t(linearToSrgb8(v.g)) << 8 |
-           std::uint32_t(linearToSrgb8(v.b)) << 16 | std::uint32_t(alphaTo8(v.a)) << 24;
-}
 
 /// Traces pixel (x, y) and writes it; `partners` are the two neighbours whose hits give the
 /// branch node (nullptr: from the root).
@@ -60,7 +55,7 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
         f.rgba[p] = c.settings.background;
         f.depth[p] = std::numeric_limits<float>::infinity();
         f.hitId[p] = kNoHit;
-        if (!c.srgb.empty()) c.srgb[p] = c.backgroundSrgb;
+        if (c.srgb) c.srgb[p] = c.backgroundSrgb;
     };
     // Outside the cube's outline: no ray to quantize.
     if (!c.rays.mayMeetCube(x, y)) return background();
@@ -113,7 +108,7 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
         f.rgba[p] = c.shader.shade(hit, &st.secondaryRays);
         f.depth[p] = c.shader.distance(c.rays.world(x, y, dir), hit);
     }
-    if (!c.srgb.empty()) c.srgb[p] = hit.hit() ? packSrgb(f.rgba[p]) : c.backgroundSrgb;
+    if (c.srgb) c.srgb[p] = hit.hit() ? packSrgb8(f.rgba[p]) : c.backgroundSrgb;
 }
 
 /// Writes the background to the pixels of row y whose rays cannot hit the surface, counted as
@@ -136,7 +131,7 @@ std::pair<int, int> fillOutsideSurface(const Context& c, int y, RenderStats& st)
         std::fill_n(f.rgba.data() + p, n, c.settings.background);
         std::fill_n(f.depth.data() + p, n, std::numeric_limits<float>::infinity());
         std::fill_n(f.hitId.data() + p, n, kNoHit);
-        if (!c.srgb.empty()) std::fill_n(c.srgb.data() + p, n, bg);
+        if (c.srgb) std::fill_n(c.srgb + p, n, bg);
         st.raysFull += n;
         // Rays meeting the cube: the pixels in the inner span surely do, those outside the
         // outline cannot, those in between are quantized.
@@ -182,6 +177,7 @@ bool tryFill(const Context& c, int x, int y, const std::size_t* partners, Render
         f.rgba[p] = c.settings.background;
         f.depth[p] = std::numeric_limits<float>::infinity();
         f.hitId[p] = kNoHit;
+        c.srgb[p] = c.backgroundSrgb;
         if (c.rays.meetsCube(x, y)) ++st.rays;
         return true;
     }
@@ -190,7 +186,7 @@ bool tryFill(const Context& c, int x, int y, const std::size_t* partners, Render
     f.depth[p] = 0.5f * (f.depth[a] + f.depth[b]);
     f.hitId[p] = f.hitId[a];
     if (c.cells) c.cells[p] = c.cells[a];
-    c.srgb[p] = packSrgb(f.rgba[p]);
+    c.srgb[p] = packSrgb8(f.rgba[p]);
     ++st.rays;
     ++st.hits;
     return true;
@@ -217,10 +213,11 @@ RenderStats DiscreteRenderer::render(const Octree& tree, const Camera& camera, c
     const PixelRays rays(tree, camera, cut.coarsestLevel());
     // Written at every hit before any pattern reads it there: left uninitialised.
     std::unique_ptr<ivec3[]> cells(pattern_ == Pattern::Full ? nullptr : new ivec3[frame.hitId.size()]);
-    std::vector<std::uint32_t> srgb(settings.colourCoherence ? frame.hitId.size() : 0, 0u);
+    // Written at every traced or filled pixel before a partner reads it: left uninitialised.
+    std::unique_ptr<std::uint32_t[]> srgb(settings.colourCoherence ? new std::uint32_t[frame.hitId.size()] : nullptr);
     if (cut.active() && pattern_ != Pattern::Full)
         throw UsageError("renderer " + name() + " has no multi-resolution mode (--lod, --level): use " + voxelRenderersThat(&Renderer::multiResolution));
-    const Context ctx{tree, settings, frame, shader, rays, cells.get(), srgb, cut, packSrgb(settings.background)};
+    const Context ctx{tree, settings, frame, shader, rays, cells.get(), srgb.get(), cut, packSrgb8(settings.background)};
     const int W = camera.width, H = camera.height;
     const Start mode = pattern_ == Pattern::Full ? Start::Root : exact_ ? Start::Guided : Start::Branch;
     const bool colour = settings.colourCoherence;

@@ -61,14 +61,25 @@ void checkFrame(const Frame& f, const char* which) {
 
 }  // namespace
 
-std::uint8_t linearToSrgb8(float linear) {
+namespace {
+
+inline std::uint8_t toSrgb8(const SrgbTables& t, float linear) {
     if (!(linear > 0.0f)) return 0;  // also NaN
     if (linear >= 1.0f) return 255;
-    const SrgbTables& t = tables();
     // linear * 4096 is exact (a power of two) and below 4096: truncation is the bucket.
     std::size_t code = t.bucketCode[std::size_t(linear * float(SrgbTables::kBuckets))];
     while (t.thresholds[code] <= double(linear)) ++code;  // thresholds[255] = inf stops it
     return std::uint8_t(code);
+}
+
+}  // namespace
+
+std::uint8_t linearToSrgb8(float linear) { return toSrgb8(tables(), linear); }
+
+std::uint32_t packSrgb8(const vec4& v) {
+    const SrgbTables& t = tables();
+    return std::uint32_t(toSrgb8(t, v.r)) | std::uint32_t(toSrgb8(t, v.g)) << 8 | std::uint32_t(toSrgb8(t, v.b)) << 16 |
+           std::uint32_t(alphaTo8(v.a)) << 24;
 }
 
 float srgb8ToLinear(std::uint8_t code) { return tables().toLinear[code]; }

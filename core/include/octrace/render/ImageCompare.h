@@ -17,6 +17,10 @@ namespace octrace {
 /// and NaN give 0, values above 1 give 255. Example: 0.5 -> 188.
 std::uint8_t linearToSrgb8(float linear);
 
+/// R, G, B through linearToSrgb8 and A through alphaTo8, packed R | G << 8 | B << 16 | A << 24
+/// (one call for a pixel, for per-pixel use such as colour coherence).
+std::uint32_t packSrgb8(const vec4& rgba);
+
 /// 8-bit sRGB code -> linear value (the inverse transfer function, exact to float precision).
 /// linearToSrgb8(srgb8ToLinear(k)) == k for every k.
 float srgb8ToLinear(std::uint8_t code);
