@@ -122,8 +122,9 @@ std::pair<int, int> fillOutsideSurface(const Context& c, int y, RenderStats& st)
     const auto [first, second] = c.rays.surfaceSpan(y);
     const int lo = std::max(first, 0), hi = std::min(second, W - 1);
     const std::uint32_t bg = c.backgroundSrgb;
-    const auto [cubeLo, cubeHi] = c.rays.cubeSpan(y);
-    const auto [innerLo, innerHi] = c.rays.cubeInnerSpan(y);
+    // Plain ints, not structured bindings: clang 14 (the fuzz build) cannot capture those.
+    const int cubeLo = c.rays.cubeSpan(y).first, cubeHi = c.rays.cubeSpan(y).second;
+    const int innerLo = c.rays.cubeInnerSpan(y).first, innerHi = c.rays.cubeInnerSpan(y).second;
     auto fill = [&](int x0, int x1) {
         if (x1 <= x0) return;
         const std::size_t p = f.pixel(x0, y), n = std::size_t(x1 - x0);
