@@ -62,14 +62,15 @@ def main():
          "deepest depth. `mismatched` = pixels whose hit voxel differs from the exact reference (`--verify`);",
          "the target of issue 3 is at most 0.01%%. Speed-up = `full` / renderer, both the fastest of %d renders" % args.repeat,
          "taking turns in one process (`--baseline full`). `fallbacks` = rays that found nothing below their",
-         "start and were retraced from the root.", "",
-         "| scene | depth | renderer | --branch-up | mismatched (%) | speed-up over full | fallbacks |",
-         "|---|---|---|---|---|---|---|"]
+         "start and were retraced from the root; `miss-filled` = pixels taken as background because both partners",
+         "missed (miss coherence, on by default; - = measured before it existed), which --branch-up does not change.", "",
+         "| scene | depth | renderer | --branch-up | mismatched (%) | speed-up over full | fallbacks | miss-filled |",
+         "|---|---|---|---|---|---|---|---|"]
     for s, depth, renderer, up, d in rows:
         m = d["mismatched_pixels"]
-        L.append("| %s | %d | %s | %d | %s (%.4f%%) | %.2fx | %s |" % (
+        L.append("| %s | %d | %s | %d | %s (%.4f%%) | %.2fx | %s | %s |" % (
             s["name"], depth, renderer, up, "{:,}".format(m), 100.0 * m / d["pixels"], d["speedup_over_baseline"],
-            "{:,}".format(d["fallbacks"])))
+            "{:,}".format(d["fallbacks"]), "{:,}".format(d["miss_filled"]) if "miss_filled" in d else "-"))
     with open(os.path.join(ROOT, "docs", "benchmarks", "branch-up.md"), "w") as f:
         f.write("\n".join(L) + "\n")
     print("branch_up.py: wrote docs/benchmarks/branch-up.md")

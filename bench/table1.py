@@ -209,19 +209,22 @@ def main():
     L.append("`mismatched` = traced pixels whose hit voxel differs from the exact reference (the same as")
     L.append("`full`); for `area+colour` the colour-filled pixels are judged by the image difference instead.")
     L.append("`certified` = exact variants: rays found below the branch node without computing any state")
-    L.append("byte above it. PSNR against the reference image (inf = identical).\n")
+    L.append("byte above it. `miss-filled` = approximate variants: pixels taken as background, untraced,")
+    L.append("because both partners missed (miss coherence, `--miss-coherence`; - = measured before it existed).")
+    L.append("PSNR against the reference image (inf = identical).\n")
     L.append("`hit agreement` = of the pixels that either hits, the share both hit; `depth error` = largest")
     L.append("depth difference where both hit, in voxel diagonals.\n")
-    L.append("| scene | depth | renderer | common-path rays | fallbacks | certified | colour-filled | mismatched (%) | PSNR dB | max channel error | hit agreement | depth error |")
-    L.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    L.append("| scene | depth | renderer | common-path rays | fallbacks | certified | colour-filled | miss-filled | mismatched (%) | PSNR dB | max channel error | hit agreement | depth error |")
+    L.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for s in scenes:
         for depth in s["depths"]:
             for r in RENDERERS + DIRECT:
                 d = results[(s["key"], depth, r, 1)]
                 psnr = d.get("psnr_db")
-                L.append("| %s | %d | %s | %s | %s | %s | %s | %d (%.4f%%) | %s | %d | %.6f | %.3f |" % (
+                L.append("| %s | %d | %s | %s | %s | %s | %s | %s | %d (%.4f%%) | %s | %d | %.6f | %.3f |" % (
                     s["name"], depth, r, format(d["rays_common_path"], ","), format(d["fallbacks"], ","),
-                    format(d["rays_certified"], ","), format(d["colour_filled"], ","), d["mismatched_pixels"],
+                    format(d["rays_certified"], ","), format(d["colour_filled"], ","),
+                    format(d["miss_filled"], ",") if "miss_filled" in d else "-", d["mismatched_pixels"],
                     100.0 * d["mismatched_pixels"] / d["pixels"], "inf" if psnr is None else "%.1f" % psnr,
                     d["max_channel_error"], d["hit_agreement"], d["depth_max_error_voxel_diagonals"]))
     L.append("")

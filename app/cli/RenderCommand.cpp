@@ -54,6 +54,8 @@ struct RenderArgs : SurfaceArgs {
     bool colourFillsBackground = false;
     int branchUp = 0;
     bool branchUpGiven = false;
+    bool missCoherence = true;
+    bool missCoherenceGiven = false;
     int repeat = 1;
     std::string baseline;
     // Sphere scenes.
@@ -135,6 +137,12 @@ OptionParser makeParser(RenderArgs& a) {
            [&](const std::string& v) {
                a.branchUp = parseInt("branch-up", v, 0, Octree::kMaxDepth);
                a.branchUpGiven = true;
+           }});
+    p.add({"miss-coherence", "on|off", "approximate linear and area (and +colour): a common-path pixel whose two partners both missed is taken as background untraced (default on; off: traced from the root)",
+           [&](const std::string& v) {
+               if (v != "on" && v != "off") throw UsageError("--miss-coherence: choose on or off, got '" + v + "'");
+               a.missCoherence = v == "on";
+               a.missCoherenceGiven = true;
            }});
     addGeographicOptions(p, a.request);
     addCityOptions(p, a);
@@ -418,6 +426,9 @@ int runRender(const std::vector<std::string>& args) {
     }
     if (a.branchUpGiven && a.rendererName.rfind("linear", 0) != 0 && a.rendererName.rfind("area", 0) != 0)
         log::warning("--branch-up has no effect on renderer " + a.rendererName + " (only on linear and area and their variants)");
+    if (a.missCoherenceGiven && ((a.rendererName.rfind("linear", 0) != 0 && a.rendererName.rfind("area", 0) != 0) ||
+                                 a.rendererName.find("-exact") != std::string::npos))
+        log::warning("--miss-coherence has no effect on renderer " + a.rendererName + " (only on the approximate linear and area and their +colour variants)");
     if (multires) {
         for (const std::string& r : {a.rendererName, a.baseline})
             if (!r.empty() && !makeRenderer(r)->multiResolution())
@@ -462,6 +473,7 @@ int runRender(const std::vector<std::string>& args) {
     rs.colourTolerance = a.colourTolerance;
     rs.colourFillsBackground = a.colourFillsBackground;
     rs.branchUp = a.branchUp;
+    rs.missCoherence = a.missCoherence;
     rs.lodPixels = a.lod;
     rs.level = a.level;
     if (a.shadows.value_or(false) && !Shader(tree, cam, rs).shadows())
@@ -522,8 +534,10 @@ int runRender(const std::vector<std::string>& args) {
     js.set("rays_certified", st.raysCertified);
     js.set("states_deferred", st.statesDeferred);
     js.set("colour_filled", st.colourFilled);
+    js.set("miss_filled", st.missFilled);
     if (rs.colourCoherence) js.set("colour_tolerance", double(rs.colourTolerance));
     js.set("branch_up", rs.branchUp);
+    js.set("miss_coherence", std::string(rs.missCoherence ? "on" : "off"));
     js.set("nodes_visited", st.nodesVisited);
     js.set("nodes_per_ray", st.rays ? double(st.nodesVisited) / double(st.rays) : 0.0);
     js.set("beams", st.beams);

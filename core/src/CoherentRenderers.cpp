@@ -9,7 +9,8 @@
 //   area:   base rows as linear; 4. rows y % 4 == 2 from (y-2, y+2); 5. odd rows from (y-1, y+1)
 //   full:   1. every pixel (with colour coherence: even x, then odd x filled or traced)
 // Colour coherence fills a pixel of the last phase of its row or column pattern when its two
-// partners were both traced and their 8-bit colours agree within the tolerance.
+// partners were both traced and their 8-bit colours agree within the tolerance. Miss coherence
+// (approximate linear and area) takes a common-path pixel whose partners both missed as a miss.
 #include "CoherentRenderers.h"
 #include "PixelRays.h"
 
@@ -49,22 +50,29 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
                 TraversalCounters& counters) {
     Frame& f = c.frame;
     const std::size_t p = f.pixel(x, y);
-    auto background = [&] {
-        ++st.raysFull;
-        f.flags[p] = Frame::kTraced;
+    auto background = [&](std::uint8_t flags) {
+        f.flags[p] = flags;
         f.rgba[p] = c.settings.background;
         f.depth[p] = std::numeric_limits<float>::infinity();
         f.hitId[p] = kNoHit;
         if (c.srgb) c.srgb[p] = c.backgroundSrgb;
     };
     // Outside the cube's outline: no ray to quantize.
-    if (!c.rays.mayMeetCube(x, y)) return background();
+    if (!c.rays.mayMeetCube(x, y)) {
+        ++st.raysFull;
+        return background(Frame::kTraced);
+    }
     // Meets the cube perhaps, but not the surface's bounding box (rounded out to the nodes a
     // multi-resolution cut may draw whole): nothing to find. The ray is quantized only to be
-    // counted in `rays`, and not even that well inside the cube's outline.
-    if (!c.rays.mayHitSurface(x, y)) {
+    // counted in `rays`, and not even that well inside the cube's outline. Miss coherence: the
+    // same for a pixel whose partners both missed, taken as a miss (not certain: not traced).
+    const bool cannotHit = !c.rays.mayHitSurface(x, y);
+    const bool missFill = !cannotHit && partners && mode == Start::Branch && c.settings.missCoherence &&
+                          f.hitId[partners[0]] == kNoHit && f.hitId[partners[1]] == kNoHit;
+    if (cannotHit || missFill) {
         if (c.rays.meetsCube(x, y)) ++st.rays;
-        return background();
+        ++(missFill ? st.missFilled : st.raysFull);
+        return background(missFill ? Frame::kMissFilled : Frame::kTraced);
     }
     const dvec3 dir = c.rays.direction(x, y);
     const QuantizedRay q = c.rays.quantized(x, y, dir);
@@ -156,14 +164,15 @@ std::pair<int, int> fillOutsideSurface(const Context& c, int y, RenderStats& st)
     return {lo, hi};
 }
 
-/// Colour coherence: fills pixel p from its partners when both were traced and their colours
-/// agree. Both showing the surface: the average colour and depth, the first partner's hit id.
+/// Colour coherence: fills pixel p from its partners when both are known (traced, or filled by
+/// colour or miss coherence) and their colours agree. Both showing the surface: the average colour and depth, the first partner's hit id.
 /// Both background (paper A fills any pair of close colours): the background, no hit. Either
 /// way only the ray's quantization is computed, to count it in `rays` when it meets the cube.
 bool tryFill(const Context& c, int x, int y, const std::size_t* partners, RenderStats& st) {
     Frame& f = c.frame;
     const std::size_t a = partners[0], b = partners[1];
-    if (!(f.flags[a] & (Frame::kTraced | Frame::kColourFilled)) || !(f.flags[b] & (Frame::kTraced | Frame::kColourFilled))) return false;
+    constexpr std::uint8_t known = Frame::kTraced | Frame::kColourFilled | Frame::kMissFilled;
+    if (!(f.flags[a] & known) || !(f.flags[b] & known)) return false;
     const bool hitA = f.hitId[a] != kNoHit, hitB = f.hitId[b] != kNoHit;
     if (hitA != hitB) return false;
     if (!hitA && !c.settings.colourFillsBackground) return false;

@@ -261,6 +261,39 @@ TEST(Cli, BranchUpIsRecordedWarnedAboutWhereUselessAndRangeChecked) {
     EXPECT_NE(r.err.find("--branch-up"), std::string::npos) << r.err;
 }
 
+TEST(Cli, MissCoherenceIsOnByDefaultRecordedWarnedAboutWhereUselessAndChecked) {
+    Scratch s;
+    const std::vector<std::string> torus = {"render", "analytic:torus", "--iso", "0", "--depth", "6", "--size", "96x72",
+                                            "--renderer", "area"};
+    auto with = [&](std::vector<std::string> extra, const std::string& name) {
+        std::vector<std::string> args = torus;
+        extra.insert(extra.end(), {"--stats", s.path(name + ".json"), "-o", s.path(name + ".png")});
+        args.insert(args.end(), extra.begin(), extra.end());
+        return run(args);
+    };
+    Result r = with({}, "on");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const std::string on = slurp(s.path("on.json"));
+    EXPECT_NE(on.find("\"miss_coherence\": \"on\""), std::string::npos) << on;
+    EXPECT_NE(on.find("\"miss_filled\": "), std::string::npos) << on;
+    EXPECT_EQ(on.find("\"miss_filled\": 0"), std::string::npos) << "the torus's hole lies between misses";
+    r = with({"--miss-coherence", "off"}, "off");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.err.find("no effect"), std::string::npos) << r.err;
+    const std::string off = slurp(s.path("off.json"));
+    EXPECT_NE(off.find("\"miss_coherence\": \"off\""), std::string::npos) << off;
+    EXPECT_NE(off.find("\"miss_filled\": 0"), std::string::npos) << off;
+    for (const char* renderer : {"full", "area-exact"}) {
+        r = run({"render", "analytic:torus", "--iso", "0", "--depth", "5", "--size", "64x48", "--renderer", renderer,
+                 "--miss-coherence", "on", "-o", s.path("w.png")});
+        ASSERT_EQ(r.code, 0) << r.err;
+        EXPECT_NE(r.err.find("--miss-coherence has no effect on renderer " + std::string(renderer)), std::string::npos) << r.err;
+    }
+    r = run({"render", "analytic:torus", "--renderer", "area", "--miss-coherence", "maybe", "-o", s.path("x.png")});
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("--miss-coherence: choose on or off"), std::string::npos) << r.err;
+}
+
 TEST(Cli, VerifyTellsWhenItStartsAndPrintsTheImageDifference) {
     Scratch s;
     const Result r = run({"render", "analytic:sphere", "--iso", "0", "--depth", "6", "--size", "120x90", "--renderer",

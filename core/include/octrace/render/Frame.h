@@ -42,7 +42,8 @@ public:
         kFallback = 4,      ///< started there but retraced from the root
         kCertified = 8,     ///< exact variant: root skipped
         kColourFilled = 16, ///< average of two neighbours, not traced (hitId = a neighbour's)
-        kSplatted = 32      ///< drawn by a direct renderer (no ray traced)
+        kSplatted = 32,     ///< drawn by a direct renderer (no ray traced)
+        kMissFilled = 64    ///< background between two missing neighbours, not traced (miss coherence)
     };
 
     std::size_t pixel(int x, int y) const { return std::size_t(y) * std::size_t(width) + std::size_t(x); }

@@ -51,6 +51,12 @@ struct RenderSettings {
     /// variants differ from full traversal on fewer pixels and costs speed; the exact variants
     /// stay exact at any value.
     int branchUp = 0;
+    /// Miss coherence (the approximate linear and area variants): a common-path pixel whose two
+    /// partners both found nothing is taken as background without being traced, as paper A's
+    /// colour coherence does between two background pixels. Approximate in the same way as the
+    /// start at the branch node: what lies between two missing rays and neither of them meets
+    /// is not seen. The exact variants ignore it; off: such a pixel is traced from the root.
+    bool missCoherence = true;
     /// Multi-resolution (Lod.h; needs Octree::computeSummaries): stop descending at a node
     /// whose projected size is below lodPixels pixels (0 = exact), and at level `level` at the
     /// latest (< 0 = down to the voxels). Supported by full, reference and the direct renderers.

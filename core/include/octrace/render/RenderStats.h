@@ -20,6 +20,7 @@ struct RenderStats {
     std::uint64_t raysCertified = 0;   ///< exact variants: found below the branch node, root skipped
     std::uint64_t statesDeferred = 0;  ///< exact variants: path nodes whose state byte was never needed
     std::uint64_t colourFilled = 0;    ///< pixels filled by colour coherence, not traced
+    std::uint64_t missFilled = 0;      ///< pixels taken as background by miss coherence, not traced
     // Direct renderers (they trace no rays: rays = 0):
     std::uint64_t voxelsSplatted = 0;  ///< voxel footprints drawn, counted once per screen tile they cover
     // Sphere scenes (object octree):
@@ -38,6 +39,7 @@ struct RenderStats {
         raysCertified += o.raysCertified;
         statesDeferred += o.statesDeferred;
         colourFilled += o.colourFilled;
+        missFilled += o.missFilled;
         voxelsSplatted += o.voxelsSplatted;
         intersections += o.intersections;
         secondaryRays += o.secondaryRays;
