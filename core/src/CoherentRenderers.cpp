@@ -165,9 +165,10 @@ std::pair<int, int> fillOutsideSurface(const Context& c, int y, RenderStats& st)
 }
 
 /// Colour coherence: fills pixel p from its partners when both are known (traced, or filled by
-/// colour or miss coherence) and their colours agree. Both showing the surface: the average colour and depth, the first partner's hit id.
-/// Both background (paper A fills any pair of close colours): the background, no hit. Either
-/// way only the ray's quantization is computed, to count it in `rays` when it meets the cube.
+/// colour or miss coherence) and their colours agree. Both showing the surface: the average
+/// colour and depth, the first partner's hit id. Both background (paper A fills any pair of
+/// close colours): the background, no hit. Either way only the ray's quantization is computed,
+/// to count it in `rays` when it meets the cube.
 bool tryFill(const Context& c, int x, int y, const std::size_t* partners, RenderStats& st) {
     Frame& f = c.frame;
     const std::size_t a = partners[0], b = partners[1];
