@@ -198,6 +198,9 @@ TEST(Renderer, GivesBitwiseIdenticalFramesAndCountersForOneTwoAndSevenThreads) {
             EXPECT_EQ(r->rays, r1.rays);
             EXPECT_EQ(r->hits, r1.hits);
             EXPECT_EQ(r->nodesVisited, r1.nodesVisited);
+            EXPECT_EQ(r->raysCommonPath, r1.raysCommonPath);
+            EXPECT_EQ(r->colourFilled, r1.colourFilled);
+            EXPECT_EQ(r->missFilled, r1.missFilled);
         }
         EXPECT_EQ(r1.renderer, name);
     }
