@@ -9,7 +9,7 @@ set -euo pipefail
 PACKAGES=(
   cmake ninja-build g++ pkg-config
   libgdal-dev libgdcm-dev libgdcm-tools libvtk9-dev libopenexr-dev libglm-dev libtbb-dev
-  libgtest-dev libbenchmark-dev libpng-dev libtiff-dev libzstd-dev nlohmann-json3-dev libfreetype-dev fonts-dejavu-core
+  libgtest-dev libbenchmark-dev libpng-dev libtiff-dev libzstd-dev zlib1g-dev nlohmann-json3-dev libfreetype-dev fonts-dejavu-core
   qt6-base-dev libqt6opengl6-dev libgl-dev libxkbcommon-dev xvfb xauth libgl1-mesa-dri
 )
 if [ "${1:-}" = "--fuzz" ]; then

@@ -3,12 +3,17 @@
 #include "InputFile.h"
 #include "octrace/util/Error.h"
 
+#include <zlib.h>
+
 #include <algorithm>
+#include <bit>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <vector>
 
@@ -22,8 +27,11 @@ constexpr std::size_t kMaxHeaderBytes = 65536;
 constexpr const char* kMetaImageKeys[] = {
     "ObjectType", "NDims", "DimSize", "ElementSpacing", "ElementSize", "Offset", "Position", "Origin",
     "TransformMatrix", "Rotation", "Orientation", "ElementType", "ElementNumberOfChannels", "CompressedData",
-    "BinaryDataByteOrderMSB", "ElementByteOrderMSB", "BinaryData", "HeaderSize", "AnatomicalOrientation",
-    "ElementDataFile"};
+    "CompressedDataSize", "BinaryDataByteOrderMSB", "ElementByteOrderMSB", "BinaryData", "HeaderSize",
+    "AnatomicalOrientation", "ElementDataFile"};
+
+// Deflate expands at most 1032:1 (zlib's technical details).
+constexpr std::uint64_t kMaxDeflateRatio = 1032;
 
 // Element types of MetaIO (metaTypes.h) and their sizes.
 std::size_t elementSize(const std::string& t) {
@@ -38,6 +46,9 @@ struct Parser {
     const std::string& path;
     [[noreturn]] void fail(const std::string& what) const { throw FileError(path + ": MetaImage header: " + what); }
 
+    static std::string howMany(std::size_t count, const char* kind) {
+        return count == 1 ? std::string("a ") + kind + "number" : std::to_string(count) + " " + kind + "numbers";
+    }
     std::vector<double> numbers(const std::string& key, const std::string& value, std::size_t count) const {
         std::istringstream in(value);
         std::vector<double> v;
@@ -46,10 +57,10 @@ struct Parser {
             errno = 0;
             const double x = std::strtod(item.c_str(), &end);
             if (*end != '\0' || errno == ERANGE || !std::isfinite(x))
-                fail(key + " '" + quoteBytes(value) + "' is not " + std::to_string(count) + " finite numbers");
+                fail(key + " '" + quoteBytes(value) + "' is not " + howMany(count, "finite "));
             v.push_back(x);
         }
-        if (v.size() != count) fail(key + " '" + quoteBytes(value) + "' is not " + std::to_string(count) + " numbers");
+        if (v.size() != count) fail(key + " '" + quoteBytes(value) + "' is not " + howMany(count, ""));
         return v;
     }
     bool boolean(const std::string& key, const std::string& value) const {
@@ -147,6 +158,11 @@ MetaImageHeader MetaImageHeader::parseText(const std::string& path, const std::s
             if (value != "1") p.fail("ElementNumberOfChannels " + quoteBytes(value) + ": a volume needs one value per sample");
         } else if (k == "compresseddata") {
             h.compressed = p.boolean(key, value);
+        } else if (k == "compresseddatasize") {
+            // MetaIO reads it as a number; 0 means unknown, as when it is absent.
+            const double n = p.numbers(key, value, 1)[0];
+            if (n < 0 || n != std::floor(n) || n > 9e18) p.fail("CompressedDataSize '" + quoteBytes(value) + "' is not a byte count");
+            h.compressedSize = std::uint64_t(n);
         } else if (k == "binarydatabyteordermsb" || k == "elementbyteordermsb") {
             h.bigEndian = p.boolean(key, value);
         } else if (k == "binarydata") {
@@ -195,15 +211,134 @@ void MetaImageHeader::checkData() const {
     }
     const std::uintmax_t size = fileSize(file);
     const std::uintmax_t start = std::min<std::uintmax_t>(dataOffset, size);
+    const std::uint64_t need = std::uint64_t(sampleCount()) * typeSize;
     if (compressed) {
         if (size <= start) throw FileError(path + ": no compressed data in '" + file + "'");
+        if (compressedSize > size - start)
+            throw FileError(path + ": CompressedDataSize " + std::to_string(compressedSize) + " but '" + file + "' holds " +
+                            std::to_string(size - start) + " bytes from byte " + std::to_string(start));
+        const std::uint64_t have = compressedSize ? compressedSize : size - start;
+        if (need / kMaxDeflateRatio > have)
+            throw FileError(path + ": compressed data truncated: " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
+                            std::to_string(dims.z) + " " + elementType + " need " + std::to_string(need) + " bytes, " +
+                            std::to_string(have) + " compressed bytes inflate to at most " + std::to_string(have * kMaxDeflateRatio) +
+                            " (deflate expands at most 1032:1)");
         return;
     }
-    const std::uint64_t need = std::uint64_t(sampleCount()) * typeSize;
     if (size - start < need)
         throw FileError(path + ": data truncated: " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
                         std::to_string(dims.z) + " " + elementType + " need " + std::to_string(need) + " bytes, '" + file +
                         "' holds " + std::to_string(size - start) + " from byte " + std::to_string(start));
+}
+
+namespace {
+
+// `n` samples of type T from `bytes`, byte order reversed when `swap`.
+template <class T>
+void toFloats(const unsigned char* bytes, std::size_t n, bool swap, float* out) {
+    unsigned char b[sizeof(T)];
+    for (std::size_t i = 0; i < n; ++i, bytes += sizeof(T)) {
+        std::memcpy(b, bytes, sizeof(T));
+        if (swap) std::reverse(b, b + sizeof(T));
+        T v;
+        std::memcpy(&v, b, sizeof(T));
+        out[i] = static_cast<float>(v);
+    }
+}
+
+// Ends a zlib stream however the inflation is left.
+struct Inflater {
+    z_stream z{};
+    Inflater() {
+        if (inflateInit2(&z, 15 + 32) != Z_OK) throw FileError("zlib: cannot start inflating");  // zlib or gzip header
+    }
+    ~Inflater() { inflateEnd(&z); }
+    Inflater(const Inflater&) = delete;
+    Inflater& operator=(const Inflater&) = delete;
+};
+
+// Inflates `total` bytes of `in` (zlib or gzip) into exactly `need` bytes.
+std::vector<unsigned char> inflateExactly(std::ifstream& in, std::uint64_t total, std::uint64_t need, const std::string& path,
+                                          const std::string& file, const std::string& shape) {
+    std::uint64_t left = total;
+    std::vector<unsigned char> bytes(need);
+    std::vector<unsigned char> chunk(std::size_t(1) << 20);
+    Inflater inf;
+    z_stream& z = inf.z;
+    std::uint64_t produced = 0;
+    int rc = Z_OK;
+    while (rc != Z_STREAM_END) {
+        if (z.avail_in == 0) {
+            if (left == 0) break;
+            const std::size_t n = std::size_t(std::min<std::uint64_t>(left, chunk.size()));
+            in.read(reinterpret_cast<char*>(chunk.data()), std::streamsize(n));
+            if (std::size_t(in.gcount()) != n) throw FileError(path + ": cannot read the compressed data of '" + file + "'");
+            left -= n;
+            z.next_in = chunk.data();
+            z.avail_in = uInt(n);
+        }
+        // Once every sample is in, one byte more tells a stream that holds more from one
+        // that only has its end (and checksum) to go.
+        unsigned char extra = 0;
+        const bool full = produced == need;
+        z.next_out = full ? &extra : bytes.data() + produced;
+        z.avail_out = full ? 1u : uInt(std::min<std::uint64_t>(need - produced, std::uint64_t(1) << 30));
+        const uInt before = z.avail_out;
+        rc = inflate(&z, Z_NO_FLUSH);
+        if (rc == Z_NEED_DICT || rc == Z_DATA_ERROR || rc == Z_MEM_ERROR || rc == Z_STREAM_ERROR)
+            throw FileError(path + ": compressed data corrupt after " + std::to_string(produced) + " of " + std::to_string(need) +
+                            " bytes (" + shape + "): zlib: " + (z.msg ? z.msg : rc == Z_NEED_DICT ? "needs a preset dictionary" : "error"));
+        if (full && z.avail_out == 0)
+            throw FileError(path + ": compressed data inflate to more than the " + std::to_string(need) + " bytes of " + shape);
+        if (!full) produced += before - z.avail_out;
+    }
+    if (rc == Z_STREAM_END && produced < need)
+        throw FileError(path + ": compressed data truncated: " + shape + " need " + std::to_string(need) +
+                        " bytes, the zlib stream ends after " + std::to_string(produced));
+    if (rc != Z_STREAM_END)
+        throw FileError(path + ": compressed data truncated: " + shape + " need " + std::to_string(need) + " bytes, the " +
+                        std::to_string(total - left) + " compressed bytes stop after " + std::to_string(produced) +
+                        (produced == need ? " without the end of the zlib stream" : ""));
+    return bytes;
+}
+
+}  // namespace
+
+std::vector<float> MetaImageHeader::readSamples() const {
+    const std::string file = dataFile == "LOCAL" ? path : dataFile;
+    const std::uintmax_t size = fileSize(file);
+    const std::uint64_t need = std::uint64_t(sampleCount()) * typeSize;
+    const std::string shape = std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" + std::to_string(dims.z) + " " + elementType;
+    std::ifstream in(file, std::ios::binary);
+    in.seekg(std::streamoff(dataOffset));
+    if (!in) throw FileError(path + ": cannot read the data of '" + file + "'");
+    std::vector<unsigned char> bytes;
+    if (compressed) {
+        bytes = inflateExactly(in, compressedSize ? compressedSize : (size > dataOffset ? size - dataOffset : 0), need, path, file, shape);
+    } else {
+        bytes.resize(need);
+        in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(need));
+        if (std::uint64_t(in.gcount()) != need)
+            throw FileError(path + ": cannot read the " + std::to_string(need) + " bytes of " + shape + " from '" + file + "'");
+    }
+
+    std::vector<float> values(sampleCount());
+    const bool swap = bigEndian != (std::endian::native == std::endian::big);
+    const unsigned char* b = bytes.data();
+    float* out = values.data();
+    const std::size_t n = values.size();
+    if (elementType == "MET_CHAR") toFloats<std::int8_t>(b, n, swap, out);
+    else if (elementType == "MET_UCHAR") toFloats<std::uint8_t>(b, n, swap, out);
+    else if (elementType == "MET_SHORT") toFloats<std::int16_t>(b, n, swap, out);
+    else if (elementType == "MET_USHORT") toFloats<std::uint16_t>(b, n, swap, out);
+    else if (elementType == "MET_INT") toFloats<std::int32_t>(b, n, swap, out);
+    else if (elementType == "MET_UINT") toFloats<std::uint32_t>(b, n, swap, out);
+    else if (elementType == "MET_FLOAT") toFloats<float>(b, n, swap, out);
+    else if (elementType == "MET_LONG_LONG") toFloats<std::int64_t>(b, n, swap, out);
+    else if (elementType == "MET_ULONG_LONG") toFloats<std::uint64_t>(b, n, swap, out);
+    else if (elementType == "MET_DOUBLE") toFloats<double>(b, n, swap, out);
+    else throw FileError(path + ": ElementType '" + elementType + "' cannot be decoded");
+    return values;
 }
 
 }  // namespace octrace::io::detail

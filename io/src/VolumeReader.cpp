@@ -13,7 +13,6 @@
 #include <vtkInformation.h>
 #include <vtkMatrix3x3.h>
 #include <vtkMatrix4x4.h>
-#include <vtkMetaImageReader.h>
 #include <vtkNIFTIImageHeader.h>
 #include <vtkNIFTIImageReader.h>
 #include <vtkNew.h>
@@ -72,13 +71,7 @@ ScalarField readMetaImage(const std::string& path, std::uint64_t budget) {
     detail::setAxes(axes, f, path + ": MetaImage TransformMatrix");
     f.validateGeometry();
     checkBudget(path, h.dims, h.typeSize, budget);
-
-    vtkNew<vtkMetaImageReader> reader;
-    detail::VtkMessages messages;
-    messages.watch(reader);
-    reader->SetFileName(path.c_str());
-    update(reader, messages, path, "MetaImage");
-    finish(f, detail::scalarsAsFloat(reader->GetOutput(), h.sampleCount(), path));
+    finish(f, h.readSamples());
     if (!h.anatomicalOrientation.empty()) f.notes.push_back("MetaImage AnatomicalOrientation: " + h.anatomicalOrientation);
     return f;
 }

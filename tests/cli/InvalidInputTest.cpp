@@ -61,6 +61,8 @@ const Case kCases[] = {
     {"invalid_infinite_extent.nc", nullptr, "must be positive and finite"},
     {"invalid_key_case.mha", nullptr, "must be spelled 'ElementDataFile'"},
     {"invalid_cr_in_value.mha", nullptr, "control character 0x0D in the header"},
+    {"invalid_truncated_zlib.mha", nullptr, "compressed data truncated: 16x16x16 MET_UCHAR need 4096 bytes, the 154 compressed bytes stop after "},
+    {"invalid_compressed_size_past_end.mha", nullptr, "holds 309 bytes from byte 196"},
 };
 }  // namespace
 
