@@ -1,6 +1,6 @@
 // Fuzz target: MetaImage files, from the header text (MetaImageHeader: DimSize, spacing,
 // offset, TransformMatrix, element types, byte order, compression, data file) through the data
-// checks to VTK's decoding (VolumeReader::read). The input is the bytes of a file; it is read
+// checks to the decoding and inflating of the samples (VolumeReader::read). The input is the bytes of a file; it is read
 // once as 'input.mha' (samples after the header, or a detached file the header names) and once
 // as 'input.mhd'. The private folder also holds 'data.raw' (4 KiB), so headers naming a
 // detached data file reach the decoding.

@@ -6,7 +6,9 @@
 # is in build-fuzz/findings/TARGET/. Needs clang (scripts/setup.sh --fuzz). See docs/dev/fuzzing.md.
 # Usage: tests/fuzz/run.sh [SECONDS] [TARGET...]
 # With OCTRACE_FUZZ_JSON=FILE each target's final counts are also appended to FILE, one JSON
-# object per line (the raw record of a long run, docs/dev/fuzzing.md).
+# object per line (the raw record of a long run, docs/dev/fuzzing.md). With OCTRACE_FUZZ_SEED=N
+# libFuzzer starts from that seed (-seed=N) instead of a random one, so a run from the same
+# corpus tries the same inputs in the same order (CI sets it: scripts/test.sh).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 BUILD="$ROOT/build-fuzz"
@@ -54,7 +56,8 @@ for t in "${TARGETS[@]}"; do
   args=(-max_total_time="$SECONDS_PER_TARGET" -timeout=10 -rss_limit_mb=2048 -max_len=16384
         -print_final_stats=1 -artifact_prefix="$findings/")
   [ -f "$ROOT/tests/fuzz/$t.dict" ] && args+=(-dict="$ROOT/tests/fuzz/$t.dict")
-  echo "fuzz: $t for ${SECONDS_PER_TARGET} s"
+  [ -n "${OCTRACE_FUZZ_SEED:-}" ] && args+=(-seed="$OCTRACE_FUZZ_SEED")
+  echo "fuzz: $t for ${SECONDS_PER_TARGET} s${OCTRACE_FUZZ_SEED:+, seed $OCTRACE_FUZZ_SEED}"
   log="$BUILD/$t.log"
   if "$BUILD/tests/fuzz/$t" "${args[@]}" "$work" "$ROOT/tests/fuzz/corpus/$t" >"$log" 2>&1; then
     grep -E "^stat::(number_of_executed_units|average_exec_per_sec|new_units_added|peak_rss_mb)" "$log" |
