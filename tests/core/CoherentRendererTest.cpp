@@ -47,8 +47,10 @@ RenderStats draw(const std::string& name, const Octree& t, const Camera& c, Fram
 /// A thin rod along y at z = 0.5 that, seen from the camera, covers about pixel column 102,
 /// between the supporting columns 100 and 104; with `sheet`, a sheet at z = -0.6 behind it.
 /// The rod at its distance spans the whole image height, the sheet not: rows above and below
-/// the sheet see the rod in front of nothing. `full`: the full traversal's frame.
-struct RodScene {
+/// the sheet see the rod in front of nothing. `full`: the full traversal's frame. The fixtures
+/// RodAlone and RodBeforeSheet below give a test its members by name.
+class RodScene : public ::testing::Test {
+protected:
     static constexpr int W = 200, H = 150;
     Camera cam;
     Octree tree;
@@ -72,6 +74,16 @@ struct RodScene {
         tree = buildShellOctree(f, {8, 0.0, 0});
         draw("full", tree, cam, full);
     }
+};
+
+class RodAlone : public RodScene {
+protected:
+    RodAlone() : RodScene(false) {}
+};
+
+class RodBeforeSheet : public RodScene {
+protected:
+    RodBeforeSheet() : RodScene(true) {}
 };
 
 long differingHits(const Frame& a, const Frame& b) {
@@ -127,23 +139,18 @@ TEST(CoherentRenderers, CountEveryPixelOnceAsFullCommonPathOrFilled) {
     }
 }
 
-TEST(CoherentRenderers, MissCoherenceTakesThePixelsBetweenTwoMissesAsBackground) {
+TEST_F(RodAlone, MissCoherenceTakesThePixelsBetweenTwoMissesAsBackground) {
     // The rod alone: nothing behind it, so the supporting columns 100 and 104 miss and the rod
     // between them is seen only by full traversal, the exact variants, and the approximate
     // ones with miss coherence off.
-    const RodScene scene(false);
-    const Octree& t = scene.tree;
-    const Camera& cam = scene.cam;
-    const Frame& full = scene.full;
-    const int H = RodScene::H;
     long rodPixels = 0;
     for (int y = 0; y < H; ++y) rodPixels += full.hitId[full.pixel(102, y)] != kNoHit;
     ASSERT_GT(rodPixels, H / 2);
     for (const char* name : {"linear", "area"}) {
         SCOPED_TRACE(name);
         Frame on, off;
-        const RenderStats st = draw(name, t, cam, on);
-        const RenderStats stOff = draw(name, t, cam, off, 0, false);
+        const RenderStats st = draw(name, tree, cam, on);
+        const RenderStats stOff = draw(name, tree, cam, off, 0, false);
         EXPECT_GT(differingHits(on, full), H / 2) << "the rod should hide between its missing partners";
         EXPECT_EQ(differingHits(off, full), 0);
         EXPECT_TRUE(off.rgba == full.rgba);
@@ -162,7 +169,7 @@ TEST(CoherentRenderers, MissCoherenceTakesThePixelsBetweenTwoMissesAsBackground)
     }
     for (const char* name : {"linear-exact", "area-exact"}) {
         Frame f;
-        EXPECT_EQ(draw(name, t, cam, f).missFilled, 0u) << name;
+        EXPECT_EQ(draw(name, tree, cam, f).missFilled, 0u) << name;
         EXPECT_EQ(differingHits(f, full), 0) << name;
     }
 }
@@ -180,45 +187,35 @@ TEST(CoherentRenderers, ApproximateVariantsDifferRarelyOnSmoothSurfaces) {
         }
 }
 
-TEST(CoherentRenderers, ApproximateVariantsMissAThinRodInFrontThatTheExactOnesSee) {
+TEST_F(RodBeforeSheet, ApproximateVariantsMissAThinRodInFrontThatTheExactOnesSee) {
     // A sheet at z = -0.6 and, in front of it, a thin rod along y that only the pixels between
     // the supporting columns see: the branch node of two supporting rays lies in the sheet, so
     // the paper's shortcut finds the sheet behind the rod.
-    const RodScene scene(true);
-    const Octree& t8 = scene.tree;
-    const Camera& cam = scene.cam;
-    const Frame& full = scene.full;
-    const int H = RodScene::H;
     Frame lin, linExact, area, areaExact;
-    draw("linear", t8, cam, lin);
-    draw("linear-exact", t8, cam, linExact);
-    draw("area", t8, cam, area);
-    draw("area-exact", t8, cam, areaExact);
+    draw("linear", tree, cam, lin);
+    draw("linear-exact", tree, cam, linExact);
+    draw("area", tree, cam, area);
+    draw("area-exact", tree, cam, areaExact);
     EXPECT_GT(differingHits(lin, full), H / 2) << "the rod should hide from the linear shortcut";
     EXPECT_GT(differingHits(area, full), H / 4);
     EXPECT_EQ(differingHits(linExact, full), 0);
     EXPECT_EQ(differingHits(areaExact, full), 0);
 }
 
-TEST(CoherentRenderers, StartingAboveTheBranchNodeFindsTheRodAndFromTheRootEqualsFull) {
+TEST_F(RodBeforeSheet, StartingAboveTheBranchNodeFindsTheRodAndFromTheRootEqualsFull) {
     // The rod scene above: a start high enough to hold the rod sees it. branchUp = depth starts
     // every common-path ray at the root, which is the full traversal (without miss coherence,
     // which would still take the rod between two missing rays above and below the sheet as
     // background); the exact variants stay exact at any start.
-    const RodScene scene(true);
-    const Octree& t8 = scene.tree;
-    const Camera& cam = scene.cam;
-    const Frame& full = scene.full;
-    const int H = RodScene::H;
     for (const char* name : {"linear", "area"}) {
         SCOPED_TRACE(name);
         Frame atBranch, fromRoot, exact;
-        draw(name, t8, cam, atBranch, 0);
-        const RenderStats st = draw(name, t8, cam, fromRoot, t8.depth, false);
+        draw(name, tree, cam, atBranch, 0);
+        const RenderStats st = draw(name, tree, cam, fromRoot, tree.depth, false);
         EXPECT_GT(differingHits(atBranch, full), H / 4);
         EXPECT_EQ(differingHits(fromRoot, full), 0);
         EXPECT_GT(st.raysCommonPath, 0u);  // still the common-path code, started at the root
-        draw(std::string(name) + "-exact", t8, cam, exact, 3);
+        draw(std::string(name) + "-exact", tree, cam, exact, 3);
         EXPECT_EQ(differingHits(exact, full), 0);
     }
 }
