@@ -414,20 +414,20 @@ int runRender(const std::vector<std::string>& args) {
         throw UsageError(a.sphereOptions.front() + " applies to sphere scenes in the object octree (renderers reference, samet, beam)");
     if (a.level > a.depth) throw UsageError("--level " + std::to_string(a.level) + " is deeper than --depth " + std::to_string(a.depth));
     const bool multires = a.lod > 0.0 || (a.level >= 0 && a.level < a.depth);
-    if (a.colourCoherence && !makeRenderer(a.rendererName)->colourCoherence())
+    const std::unique_ptr<Renderer> chosen = makeRenderer(a.rendererName);
+    if (a.colourCoherence && !chosen->colourCoherence())
         throw UsageError("--colour-coherence: renderer " + a.rendererName + " does not fill pixels by colour (use " +
                          voxelRenderersThat(&Renderer::colourCoherence) + ")");
-    if (!a.colourCoherence && a.rendererName.find("+colour") == std::string::npos) {
+    if (!a.colourCoherence && !chosen->fillsByColour()) {
         // Accepted (a script may set them always), but told: they change nothing here.
         for (const auto& [given, option] : {std::pair{a.colourToleranceGiven, "--colour-tolerance"},
                                             std::pair{a.colourFillsBackground, "--colour-fill-background"}})
             if (given)
                 log::warning(std::string(option) + " has no effect without colour coherence (--colour-coherence or a +colour renderer)");
     }
-    if (a.branchUpGiven && a.rendererName.rfind("linear", 0) != 0 && a.rendererName.rfind("area", 0) != 0)
+    if (a.branchUpGiven && !chosen->trajectoryCoherence())
         log::warning("--branch-up has no effect on renderer " + a.rendererName + " (only on linear and area and their variants)");
-    if (a.missCoherenceGiven && ((a.rendererName.rfind("linear", 0) != 0 && a.rendererName.rfind("area", 0) != 0) ||
-                                 a.rendererName.find("-exact") != std::string::npos))
+    if (a.missCoherenceGiven && !chosen->missCoherence())
         log::warning("--miss-coherence has no effect on renderer " + a.rendererName + " (only on the approximate linear and area and their +colour variants)");
     if (multires) {
         for (const std::string& r : {a.rendererName, a.baseline})

@@ -56,6 +56,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <vector>
 
 namespace octrace::studio {
 namespace {
@@ -394,6 +396,7 @@ QWidget* MainWindow::buildControls() {
     secondCombo_->setCurrentText(QString::fromStdString(state_.secondRenderer));
     connect(rendererCombo_, &QComboBox::currentTextChanged, this, [this](const QString& t) {
         state_.renderer = t.toStdString();
+        showCoherence();
         requestRender(false);
     });
     secondCombo_->addItem(QString::fromLatin1(kOpenGlPane));
@@ -401,10 +404,52 @@ QWidget* MainWindow::buildControls() {
     connect(secondCombo_, &QComboBox::currentTextChanged, this, [this](const QString& t) {
         state_.secondRenderer = t.toStdString();
         differenceAction_->setEnabled(state_.split && state_.secondRenderer != kOpenGlPane);
+        showCoherence();
         requestRender(false);
     });
     renderForm->addRow(tr("Renderer"), rendererCombo_);
     renderForm->addRow(tr("Right pane"), secondCombo_);
+    // Coherence (render --colour-tolerance, --branch-up, --miss-coherence): enabled for the
+    // renderers that have it.
+    colourToleranceSpin_ = new QDoubleSpinBox(renderBox);
+    colourToleranceSpin_->setObjectName(QStringLiteral("colourToleranceSpin"));
+    colourToleranceSpin_->setRange(0.0, 255.0);
+    colourToleranceSpin_->setDecimals(1);
+    colourToleranceSpin_->setValue(state_.colourTolerance);
+    colourToleranceSpin_->setKeyboardTracking(false);
+    colourToleranceSpin_->setToolTip(tr("+colour renderers: the middle of three pixels whose outer colours differ by at most this "
+                                        "much per 8-bit sRGB channel gets their average, untraced (--colour-tolerance)"));
+    connect(colourToleranceSpin_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
+        if (updating_) return;
+        state_.colourTolerance = float(v);
+        requestRender(false);
+    });
+    renderForm->addRow(tr("Colour tolerance"), colourToleranceSpin_);
+    branchUpSpin_ = new QSpinBox(renderBox);
+    branchUpSpin_->setObjectName(QStringLiteral("branchUpSpin"));
+    branchUpSpin_->setRange(0, Octree::kMaxDepth);
+    branchUpSpin_->setValue(state_.branchUp);
+    branchUpSpin_->setKeyboardTracking(false);
+    branchUpSpin_->setToolTip(tr("linear and area: start a ray this many octree levels above its partners' branch node; "
+                                 "fewer pixels differ from full traversal, at some speed (--branch-up)"));
+    connect(branchUpSpin_, &QSpinBox::valueChanged, this, [this](int n) {
+        if (updating_) return;
+        state_.branchUp = n;
+        requestRender(false);
+    });
+    renderForm->addRow(tr("Branch up"), branchUpSpin_);
+    missCoherenceCheck_ = new QCheckBox(tr("pixels between two misses are background"), renderBox);
+    missCoherenceCheck_->setObjectName(QStringLiteral("missCoherenceCheck"));
+    missCoherenceCheck_->setChecked(state_.missCoherence);
+    missCoherenceCheck_->setToolTip(tr("Approximate linear and area: a pixel whose two partners both missed is taken as "
+                                       "background, untraced (--miss-coherence)"));
+    connect(missCoherenceCheck_, &QCheckBox::toggled, this, [this](bool on) {
+        if (updating_) return;
+        state_.missCoherence = on;
+        requestRender(false);
+    });
+    renderForm->addRow(tr("Miss coherence"), missCoherenceCheck_);
+    showCoherence();
     fovSpin_ = new QDoubleSpinBox(renderBox);
     fovSpin_->setObjectName(QStringLiteral("fovSpin"));
     fovSpin_->setRange(1.0, 170.0);
@@ -544,6 +589,18 @@ void MainWindow::colouringChanged() {
         scheduleBuild();
     else
         requestRender(false);
+}
+
+void MainWindow::showCoherence() {
+    std::vector<std::unique_ptr<Renderer>> panes;
+    panes.push_back(makeRenderer(state_.renderer));
+    if (state_.split && state_.secondRenderer != kOpenGlPane) panes.push_back(makeRenderer(state_.secondRenderer));
+    const auto any = [&panes](bool (Renderer::*has)() const) {
+        return std::any_of(panes.begin(), panes.end(), [has](const auto& r) { return ((*r).*has)(); });
+    };
+    colourToleranceSpin_->setEnabled(any(&Renderer::fillsByColour));
+    branchUpSpin_->setEnabled(any(&Renderer::trajectoryCoherence));
+    missCoherenceCheck_->setEnabled(any(&Renderer::missCoherence));
 }
 
 void MainWindow::lightingChanged(bool rebuild) {
@@ -710,6 +767,10 @@ void MainWindow::showState() {
     bakeAoSpin_->setValue(state_.bakeAo);
     bakeShadowsCheck_->setChecked(state_.bakeShadows);
     shadowsCheck_->setChecked(state_.shadows);
+    colourToleranceSpin_->setValue(state_.colourTolerance);
+    branchUpSpin_->setValue(state_.branchUp);
+    missCoherenceCheck_->setChecked(state_.missCoherence);
+    showCoherence();
     clipCheck_->setChecked(state_.clip);
     showCut();
     colormapCombo_->setCurrentIndex(state_.colormap.empty() ? 0 : colormapCombo_->findText(QString::fromStdString(state_.colormap)));
@@ -870,6 +931,7 @@ void MainWindow::setSplit(bool on) {
     state_.split = on;
     secondPane_->setVisible(on);
     differenceAction_->setEnabled(on && state_.secondRenderer != kOpenGlPane);
+    showCoherence();
     exactTimer_.start();
 }
 

@@ -100,6 +100,9 @@ private:
     /// After a change of the lighting: builds again when `rebuild` (the baked light depends on
     /// it), else renders.
     void lightingChanged(bool rebuild);
+    /// Enables the coherence controls that the main pane's renderer, or the split view's
+    /// second one, honours.
+    void showCoherence();
     QWidget* buildCutControls(QWidget* parent);
     /// A solid of `kind` (box, sphere, halfspace) that cuts the part of `bounds` facing the default view.
     static QString defaultCut(const QString& kind, const Box3& bounds);
@@ -132,9 +135,9 @@ private:
               *colormapCombo_ = nullptr, *windowCombo_ = nullptr, *isoPresetCombo_ = nullptr, *lightingCombo_ = nullptr,
               *cutCombo_ = nullptr;
     QLineEdit* cutEdit_ = nullptr;
-    QCheckBox *clipCheck_ = nullptr, *bakeShadowsCheck_ = nullptr, *shadowsCheck_ = nullptr;
-    QDoubleSpinBox* ambientSpin_ = nullptr;
-    QSpinBox* bakeAoSpin_ = nullptr;
+    QCheckBox *clipCheck_ = nullptr, *bakeShadowsCheck_ = nullptr, *shadowsCheck_ = nullptr, *missCoherenceCheck_ = nullptr;
+    QDoubleSpinBox *ambientSpin_ = nullptr, *colourToleranceSpin_ = nullptr;
+    QSpinBox *bakeAoSpin_ = nullptr, *branchUpSpin_ = nullptr;
     QLineEdit* timeEdit_ = nullptr;
     QSlider* isoSlider_ = nullptr;
     QDoubleSpinBox *isoSpin_ = nullptr, *fovSpin_ = nullptr, *lightSpin_[3] = {nullptr, nullptr, nullptr};

@@ -122,7 +122,10 @@ QByteArray sessionJson(const StudioState& s) {
                         {"clip", s.clip}};
     QJsonObject renderers{{"main", QString::fromStdString(s.renderer)},
                           {"second", QString::fromStdString(s.secondRenderer)},
-                          {"split", s.split}};
+                          {"split", s.split},
+                          {"colour_tolerance", double(s.colourTolerance)},
+                          {"branch_up", s.branchUp},
+                          {"miss_coherence", s.missCoherence}};
     QJsonObject camera{{"fov", s.fov}};
     if (s.cameraSet) {
         camera.insert("position", array(s.position));
@@ -189,6 +192,9 @@ StudioState parseSession(const QByteArray& json, const QString& baseFolder) {
     renderers.text("second", s.secondRenderer);
     if (s.secondRenderer != kOpenGlPane) checkRenderer(renderers, "second", s.secondRenderer);
     renderers.flag("split", s.split);
+    if (renderers.has("colour_tolerance")) s.colourTolerance = float(renderers.number("colour_tolerance", 0.0, 255.0));
+    renderers.integer("branch_up", s.branchUp, 0, Octree::kMaxDepth);
+    renderers.flag("miss_coherence", s.missCoherence);
 
     const Reader camera = root.object("camera");
     if (camera.has("fov")) {

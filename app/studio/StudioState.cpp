@@ -4,6 +4,7 @@
 #include "SurfaceOptions.h"
 
 #include "octrace/io/CityReader.h"
+#include "octrace/render/Renderer.h"
 
 #include <cstdio>
 
@@ -92,6 +93,9 @@ RenderSettings renderSettingsFor(const StudioState& state, bool transparent, con
     cli::applyColour(a, look, rs);
     cli::applyLighting(a, rs);
     rs.lightCamera = state.light;
+    rs.colourTolerance = state.colourTolerance;
+    rs.branchUp = state.branchUp;
+    rs.missCoherence = state.missCoherence;
     return rs;
 }
 
@@ -121,6 +125,15 @@ std::vector<std::string> renderArguments(const StudioState& state, const Camera&
                              "--up", triple(camera.up.x, camera.up.y, camera.up.z),
                              "--fov", number(camera.fovYDegrees),
                              "--light", triple(state.light.x, state.light.y, state.light.z)});
+    // The coherence options, where they differ from the defaults and the renderer has them.
+    const StudioState defaults;
+    const std::unique_ptr<Renderer> renderer = makeRenderer(state.renderer);
+    if (renderer->fillsByColour() && state.colourTolerance != defaults.colourTolerance)
+        args.insert(args.end(), {"--colour-tolerance", number(state.colourTolerance)});
+    if (renderer->trajectoryCoherence() && state.branchUp != defaults.branchUp)
+        args.insert(args.end(), {"--branch-up", std::to_string(state.branchUp)});
+    if (renderer->missCoherence() && state.missCoherence != defaults.missCoherence)
+        args.insert(args.end(), {"--miss-coherence", state.missCoherence ? "on" : "off"});
     if (colourGiven(state)) args.insert(args.end(), {"--colour", triple(state.colour.r, state.colour.g, state.colour.b)});
     if (!state.colormap.empty()) args.insert(args.end(), {"--colormap", state.colormap});
     if (!state.window.empty()) args.insert(args.end(), {"--window", state.window});

@@ -29,6 +29,11 @@ struct StudioState {
     std::string renderer = "full";
     std::string secondRenderer = "direct";  ///< a renderer's name, or kOpenGlPane
     bool split = false;
+    // Coherence of the renderers that have it (the CLI's --colour-tolerance, --branch-up,
+    // --miss-coherence; Renderer::fillsByColour, trajectoryCoherence, missCoherence).
+    float colourTolerance = RenderSettings{}.colourTolerance;  ///< 8-bit sRGB units, 0..255
+    int branchUp = RenderSettings{}.branchUp;
+    bool missCoherence = RenderSettings{}.missCoherence;
     // Camera; unset: framing the surface as `octrace render` does without camera options.
     bool cameraSet = false;
     dvec3 position{0.0, 0.0, 1.0}, lookAt{0.0}, up{0.0, 0.0, 1.0};

@@ -11,6 +11,9 @@ public:
     std::string name() const override;
     bool multiResolution() const override { return pattern_ == Pattern::Full; }
     bool colourCoherence() const override { return true; }
+    bool fillsByColour() const override { return colour_; }
+    bool trajectoryCoherence() const override { return pattern_ != Pattern::Full; }
+    bool missCoherence() const override { return pattern_ != Pattern::Full && !exact_; }
     RenderStats render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
                        Frame& frame) const override;
 

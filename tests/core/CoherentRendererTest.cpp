@@ -94,6 +94,19 @@ long differingHits(const Frame& a, const Frame& b) {
 
 }  // namespace
 
+TEST(CoherentRenderers, SayWhichCoherenceSettingsTheyHonour) {
+    // What the CLI's warnings and the studio's controls go by.
+    for (const std::string& name : rendererNames()) {
+        SCOPED_TRACE(name);
+        const auto r = makeRenderer(name);
+        const bool trajectory = name.rfind("linear", 0) == 0 || name.rfind("area", 0) == 0;
+        EXPECT_EQ(r->trajectoryCoherence(), trajectory);
+        EXPECT_EQ(r->missCoherence(), trajectory && name.find("-exact") == std::string::npos);
+        EXPECT_EQ(r->fillsByColour(), name.find("+colour") != std::string::npos);
+        if (r->fillsByColour()) EXPECT_TRUE(r->colourCoherence());
+    }
+}
+
 TEST(CoherentRenderers, ExactVariantsGiveTheFullTraversalsImageBitForBit) {
     long certified = 0, commonPath = 0;
     for (int ti = 0; ti < 3; ++ti)

@@ -453,6 +453,49 @@ private slots:
         waitFrame();
     }
 
+    void coherenceControlsMatchTheCli() {
+        auto* combo = window_->findChild<QComboBox*>(QStringLiteral("rendererCombo"));
+        auto* tolerance = window_->findChild<QDoubleSpinBox*>(QStringLiteral("colourToleranceSpin"));
+        auto* branchUp = window_->findChild<QSpinBox*>(QStringLiteral("branchUpSpin"));
+        auto* miss = window_->findChild<QCheckBox*>(QStringLiteral("missCoherenceCheck"));
+        QVERIFY(combo && tolerance && branchUp && miss);
+        // Enabled where a shown pane's renderer has them.
+        QVERIFY(!window_->state().split);
+        combo->setCurrentText(QStringLiteral("full"));
+        QVERIFY(!tolerance->isEnabled() && !branchUp->isEnabled() && !miss->isEnabled());
+        combo->setCurrentText(QStringLiteral("area-exact"));
+        QVERIFY(!tolerance->isEnabled() && branchUp->isEnabled() && !miss->isEnabled());
+        combo->setCurrentText(QStringLiteral("area+colour"));
+        QVERIFY(tolerance->isEnabled() && branchUp->isEnabled() && miss->isEnabled());
+        waitFrame();
+        // Each changes the frame only, and the export equals the CLI's with the same options
+        // (whose image differs from the defaults' one).
+        const QImage before = window_->view(0)->image();
+        tolerance->setValue(12.0);
+        branchUp->setValue(2);
+        miss->setChecked(false);
+        waitFrame();
+        QVERIFY(window_->view(0)->image() != before);
+        QCOMPARE(window_->state().colourTolerance, 12.0f);
+        QCOMPARE(window_->state().branchUp, 2);
+        QVERIFY(!window_->state().missCoherence);
+        const QString line = window_->commandLine(QStringLiteral("x.png"), 10, 10).join(QLatin1Char(' '));
+        QVERIFY2(line.contains(QStringLiteral("--colour-tolerance 12 --branch-up 2 --miss-coherence off")), qPrintable(line));
+        exportEqualsCli(QStringLiteral("coherence"), 220, 160, false);
+        // Saved with the session and read back.
+        const auto restored = octrace::studio::parseSession(octrace::studio::sessionJson(window_->state()));
+        QCOMPARE(restored.colourTolerance, 12.0f);
+        QCOMPARE(restored.branchUp, 2);
+        QVERIFY(!restored.missCoherence);
+        // The defaults again: no option on the command line.
+        tolerance->setValue(3.0);
+        branchUp->setValue(0);
+        miss->setChecked(true);
+        combo->setCurrentText(QStringLiteral("full"));
+        waitFrame();
+        QVERIFY(!window_->commandLine(QStringLiteral("x.png"), 10, 10).join(QLatin1Char(' ')).contains(QStringLiteral("coherence")));
+    }
+
     void cutAwayMatchesTheCli() {
         auto* cut = window_->findChild<QComboBox*>(QStringLiteral("cutCombo"));
         auto* edit = window_->findChild<QLineEdit*>(QStringLiteral("cutEdit"));
@@ -658,6 +701,11 @@ private slots:
         row("clip type", R"({"octrace_studio_session": 1, "surface": {"clip": 1}})", "surface.clip: must be true or false");
         row("dpi", R"({"octrace_studio_session": 1, "export": {"dpi": 20}})", "export.dpi: 20 is outside");
         row("title type", R"({"octrace_studio_session": 1, "export": {"title": 3}})", "export.title: must be a string");
+        row("colour tolerance", R"({"octrace_studio_session": 1, "renderers": {"colour_tolerance": 300}})",
+            "renderers.colour_tolerance: 300 is outside [0, 255]");
+        row("branch up", R"({"octrace_studio_session": 1, "renderers": {"branch_up": 1.5}})", "renderers.branch_up: must be a whole number");
+        row("miss coherence type", R"({"octrace_studio_session": 1, "renderers": {"miss_coherence": "off"}})",
+            "renderers.miss_coherence: must be true or false");
     }
 
     void sessionParserChecksEveryMember() {

@@ -29,6 +29,15 @@ public:
     /// Whether RenderSettings::colourCoherence is honoured (the discrete ray casters); the CLI
     /// refuses the option for the others.
     virtual bool colourCoherence() const { return false; }
+    /// Whether it always fills pixels by colour coherence (the +colour variants), so that
+    /// RenderSettings::colourTolerance applies without RenderSettings::colourCoherence.
+    virtual bool fillsByColour() const { return false; }
+    /// Whether RenderSettings::branchUp is honoured (trajectory coherence: linear and area and
+    /// their exact and +colour variants).
+    virtual bool trajectoryCoherence() const { return false; }
+    /// Whether RenderSettings::missCoherence is honoured (the approximate linear and area and
+    /// their +colour variants; never the exact ones).
+    virtual bool missCoherence() const { return false; }
     /// Renders into `frame` (resized to the camera's size). Deterministic: the result does not
     /// depend on settings.threads. Thread-safe for distinct frames.
     virtual RenderStats render(const Octree& octree, const Camera& camera, const RenderSettings& settings,
