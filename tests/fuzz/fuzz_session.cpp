@@ -21,7 +21,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         if (again.input != s.input || again.depth != s.depth || again.renderer != s.renderer ||
             again.cameraSet != s.cameraSet || again.iso != s.iso || again.cut != s.cut || again.clip != s.clip ||
             again.lighting != s.lighting || again.ambient != s.ambient || again.bakeAo != s.bakeAo ||
-            again.figure != s.figure || again.title != s.title || again.dpi != s.dpi || again.scaleBar != s.scaleBar)
+            again.figure != s.figure || again.title != s.title || again.dpi != s.dpi || again.scaleBar != s.scaleBar ||
+            again.colourTolerance != s.colourTolerance || again.branchUp != s.branchUp || again.missCoherence != s.missCoherence)
             __builtin_trap();
     } catch (const octrace::InputError&) {
     }
