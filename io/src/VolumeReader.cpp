@@ -176,7 +176,7 @@ ScalarField readVti(const std::string& path, std::uint64_t budget) {
     messages.watch(reader);
     reader->SetFileName(path.c_str());
     reader->UpdateInformation();
-    if (!messages.errors().empty()) throw FileError(path + ": cannot read the VTK image data header: " + messages.errors());
+    if (!messages.errors().empty()) throw FileError(path + ": cannot read the VTK image data file: " + messages.errors());
     int extent[6] = {0, -1, 0, -1, 0, -1};
     vtkInformation* info = reader->GetOutputInformation(0);
     if (!info || !info->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))

@@ -16,6 +16,7 @@
 #include <vtkOutputWindow.h>
 #include <vtkPointData.h>
 
+#include <algorithm>
 #include <sstream>
 
 namespace octrace::io::detail {
@@ -71,6 +72,17 @@ std::string cleanVtkText(const std::string& raw) {
 void VtkMessages::onEvent(vtkObject*, unsigned long event, void* clientData, void* callData) {
     auto* self = static_cast<VtkMessages*>(clientData);
     std::string text = callData ? cleanVtkText(static_cast<const char*>(callData)) : std::string();
+    // The pipeline's "Algorithm vtkX(0x...) returned failure for request: vtkInformation (0x...)
+    // Debug: Off Modified Time: ..." follows the reader's own error and only dumps the request:
+    // dropped after one, cut to its first words when it is the only one.
+    if (const auto at = text.find(" returned failure for request"); event == vtkCommand::ErrorEvent && at != std::string::npos) {
+        if (!self->errors_.empty()) {
+            log::debug("VTK: " + text);
+            return;
+        }
+        const auto address = text.find("(0x");
+        text = text.substr(0, std::min(at, address)) + " failed";
+    }
     if (event == vtkCommand::ErrorEvent) {
         if (!self->errors_.empty()) self->errors_ += "; ";
         self->errors_ += text;
