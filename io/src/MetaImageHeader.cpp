@@ -202,8 +202,12 @@ MetaImageHeader MetaImageHeader::parse(const std::string& path) {
     return parseText(path, head);
 }
 
+std::string MetaImageHeader::shapeText() const {
+    return std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" + std::to_string(dims.z) + " " + elementType;
+}
+
 void MetaImageHeader::checkData() const {
-    const std::string file = dataFile == "LOCAL" ? path : dataFile;
+    const std::string& file = sampleFile();
     if (file != path) {
         std::error_code ec;
         if (!std::filesystem::is_regular_file(file, ec)) throw FileError(path + ": data file '" + file + "' not found");
@@ -211,23 +215,21 @@ void MetaImageHeader::checkData() const {
     }
     const std::uintmax_t size = fileSize(file);
     const std::uintmax_t start = std::min<std::uintmax_t>(dataOffset, size);
-    const std::uint64_t need = std::uint64_t(sampleCount()) * typeSize;
+    const std::uint64_t need = byteCount();
     if (compressed) {
         if (size <= start) throw FileError(path + ": no compressed data in '" + file + "'");
         if (compressedSize > size - start)
             throw FileError(path + ": CompressedDataSize " + std::to_string(compressedSize) + " but '" + file + "' holds " +
                             std::to_string(size - start) + " bytes from byte " + std::to_string(start));
-        const std::uint64_t have = compressedSize ? compressedSize : size - start;
+        const std::uint64_t have = compressedBytes(size);
         if (need / kMaxDeflateRatio > have)
-            throw FileError(path + ": compressed data truncated: " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
-                            std::to_string(dims.z) + " " + elementType + " need " + std::to_string(need) + " bytes, " +
+            throw FileError(path + ": compressed data truncated: " + shapeText() + " need " + std::to_string(need) + " bytes, " +
                             std::to_string(have) + " compressed bytes inflate to at most " + std::to_string(have * kMaxDeflateRatio) +
                             " (deflate expands at most 1032:1)");
         return;
     }
     if (size - start < need)
-        throw FileError(path + ": data truncated: " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
-                        std::to_string(dims.z) + " " + elementType + " need " + std::to_string(need) + " bytes, '" + file +
+        throw FileError(path + ": data truncated: " + shapeText() + " need " + std::to_string(need) + " bytes, '" + file +
                         "' holds " + std::to_string(size - start) + " from byte " + std::to_string(start));
 }
 
@@ -305,16 +307,15 @@ std::vector<unsigned char> inflateExactly(std::ifstream& in, std::uint64_t total
 }  // namespace
 
 std::vector<float> MetaImageHeader::readSamples() const {
-    const std::string file = dataFile == "LOCAL" ? path : dataFile;
-    const std::uintmax_t size = fileSize(file);
-    const std::uint64_t need = std::uint64_t(sampleCount()) * typeSize;
-    const std::string shape = std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" + std::to_string(dims.z) + " " + elementType;
+    const std::string& file = sampleFile();
+    const std::uint64_t need = byteCount();
+    const std::string shape = shapeText();
     std::ifstream in(file, std::ios::binary);
     in.seekg(std::streamoff(dataOffset));
     if (!in) throw FileError(path + ": cannot read the data of '" + file + "'");
     std::vector<unsigned char> bytes;
     if (compressed) {
-        bytes = inflateExactly(in, compressedSize ? compressedSize : (size > dataOffset ? size - dataOffset : 0), need, path, file, shape);
+        bytes = inflateExactly(in, compressedBytes(fileSize(file)), need, path, file, shape);
     } else {
         bytes.resize(need);
         in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(need));

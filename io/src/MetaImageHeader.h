@@ -39,6 +39,17 @@ struct MetaImageHeader {
     static MetaImageHeader parse(const std::string& path);
 
     std::size_t sampleCount() const { return std::size_t(dims.x) * std::size_t(dims.y) * std::size_t(dims.z); }
+    /// The bytes of every sample, uncompressed: DimSize x ElementType.
+    std::uint64_t byteCount() const { return std::uint64_t(sampleCount()) * typeSize; }
+    /// "WxHxD TYPE", as messages name the volume.
+    std::string shapeText() const;
+    /// The file that holds the samples: `path` for LOCAL data, else `dataFile`.
+    const std::string& sampleFile() const { return dataFile == "LOCAL" ? path : dataFile; }
+    /// The compressed bytes, given the size of the sample file: CompressedDataSize, else the
+    /// rest of the file from dataOffset.
+    std::uint64_t compressedBytes(std::uintmax_t fileBytes) const {
+        return compressedSize ? compressedSize : (fileBytes > dataOffset ? fileBytes - dataOffset : 0);
+    }
 
     /// Checks that the data file exists and holds every sample: the raw bytes, or compressed
     /// bytes (at least CompressedDataSize of them) that can inflate to them, deflate expanding
