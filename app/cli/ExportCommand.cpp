@@ -29,7 +29,7 @@ OptionParser makeParser(ExportArgs& a) {
     addSurfaceOptions(p, a);
     addFormOptions(p, a);
     p.add({"level", "L", "one surfel per non-empty octree node at level L (1..depth), for previews (default: one per boundary voxel)",
-           [&](const std::string& v) { a.level = parseInt("level", v, 1, Octree::kMaxDepth); }});
+           [&](const std::string& v) { a.level = tableInt(model::opt::level, v); }});
     p.add({"format", "NAME", "output format: ply (default: from the extension of -o)",
            [&](const std::string& v) {
                if (v != "ply") throw UsageError("--format: unknown format '" + v + "' (formats: ply)");

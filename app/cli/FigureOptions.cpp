@@ -113,9 +113,7 @@ void addFigureOptions(OptionParser& p, FigureArgs& f, const std::string& shows) 
                                         "ticks on the bounding box") : shows) + " (default off: the plain image)",
            [&](const std::string&) { f.enabled = true; }});
     p.add({"title", "TEXT", "title of the figure (default: none)", [&](const std::string& v) { f.title = v; }});
-    p.add({"dpi", "N", "resolution in dots per inch, 36..1200, recorded in the PNG or TIFF; a figure's fonts are 9 and 11 pt at it "
-           "(default: 150 for --figure, none recorded for a plain image)",
-           [&](const std::string& v) { f.dpi = parseInt("dpi", v, 36, 1200); }});
+    p.add(tableOption(model::opt::dpi, [&](const std::string& v) { f.dpi = tableInt(model::opt::dpi, v); }));
     p.add({"print-size", "WxH(mm|cm|in)", "figure size on paper, e.g. 180x120mm; its pixels are this times --dpi (default: --size is the whole figure)",
            [&](const std::string& v) { f.printInches = parsePrintSize("print-size", v); }});
     p.add({"scale-bar", "", "draw a scale bar in the plot's lower left corner, a round length in km (geographic grids), "

@@ -20,7 +20,7 @@ struct FigureArgs {
     bool scaleBar = false;    // --scale-bar
 };
 
-inline constexpr int kDefaultDpi = 150;
+inline constexpr int kDefaultDpi = int(model::opt::dpi.defaultValue);
 
 /// World <-> longitude, latitude (degrees) and depth (metres, positive down) on a geographic
 /// grid, by the contract's mapping (ScalarField::Geographic).

@@ -34,11 +34,11 @@ int runInfo(const std::vector<std::string>& args) {
     int status = 0;
     for (const auto& in : inputs) {
         try {
-            std::fputs(describe(in, request, city.city).c_str(), stdout);
+            std::fputs(model::sayForCli(describe(in, request, city.city)).c_str(), stdout);
         } catch (const UsageError&) {
             throw;
         } catch (const Error& e) {
-            std::fprintf(stderr, "octrace: error: %s\n", e.what());
+            std::fprintf(stderr, "octrace: error: %s\n", model::sayForCli(e.what()).c_str());
             status = 1;
         }
     }

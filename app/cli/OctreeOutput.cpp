@@ -13,8 +13,7 @@
 namespace octrace::cli {
 
 void addOctreeFileOptions(OptionParser& p, OctreeFileArgs& a) {
-    p.add({"compression", "LEVEL", "zstd compression level of the file's chunks, 1..22 (default 19)",
-           [&](const std::string& v) { a.level = parseInt("compression", v, 1, 22); }});
+    p.add(tableOption(model::opt::compression, [&](const std::string& v) { a.level = tableInt(model::opt::compression, v); }));
     p.add({"stats", "FILE.json", "write timings and sizes as JSON (keys: docs/user/cli.md)",
            [&](const std::string& v) { a.statsPath = v; }});
     addThreadsOption(p, a, "the file");

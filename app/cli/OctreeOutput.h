@@ -15,7 +15,7 @@ namespace octrace::cli {
 /// The arguments of a command that writes an octree file.
 struct OctreeFileArgs : SurfaceArgs {
     std::string output, statsPath;
-    int level = 19;  // --compression
+    int level = int(model::opt::compression.defaultValue);  // --compression
 };
 
 /// --compression, --stats, --threads, --region, --vertical-scale, --series, --max-memory,

@@ -1,8 +1,10 @@
 #include "Options.h"
 
 #include "octrace/util/Error.h"
+#include "octrace/util/Log.h"
 #include "octrace/util/Memory.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -13,6 +15,7 @@ namespace octrace::cli {
 
 std::vector<std::string> OptionParser::parse(const std::vector<std::string>& args) const {
     std::vector<std::string> positional;
+    given_.clear();
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         if (a == "--") {
@@ -39,6 +42,7 @@ std::vector<std::string> OptionParser::parse(const std::vector<std::string>& arg
         for (const auto& s : specs_)
             if (s.name == name) spec = &s;
         if (!spec) throw UsageError("unknown option '" + a + "' for '" + command_ + "'");
+        if (std::find(given_.begin(), given_.end(), name) == given_.end()) given_.push_back(name);
         if (spec->argument.empty()) {
             if (hasValue) throw UsageError("option --" + name + " takes no value");
             spec->apply("");
@@ -64,6 +68,19 @@ std::string OptionParser::help() const {
         s << o.help << "\n";
     }
     return s.str();
+}
+
+OptionSpec tableOption(const model::Option& o, std::function<void(const std::string&)> apply) {
+    return {o.flag, o.kind == model::OptionKind::Flag ? "" : o.argument, model::sayForCli(o.helpLine()), std::move(apply)};
+}
+
+void warnUnused(const OptionParser& p, const Renderer& renderer, const std::string& rendererName,
+                const std::function<bool(const model::Option&)>& skip) {
+    for (const std::string& name : p.given()) {
+        const model::Option* o = model::findFlag(p.command(), name);
+        if (!o || (skip && skip(*o))) continue;
+        if (auto w = model::unusedWarning(*o, renderer, rendererName)) log::warning(*w);
+    }
 }
 
 double parseNumber(const std::string& option, const std::string& text) {
@@ -131,8 +148,9 @@ vec4 parseColour(const std::string& option, const std::string& text, bool allowA
 void parseSize(const std::string& option, const std::string& text, int& w, int& h) {
     auto x = text.find('x');
     if (x == std::string::npos) throw UsageError("--" + option + ": expected WxH (e.g. 1600x1200), got '" + text + "'");
-    w = parseInt(option, text.substr(0, x), 1, 16384);
-    h = parseInt(option, text.substr(x + 1), 1, 16384);
+    (void)option;
+    w = model::parseInteger(model::opt::width, text.substr(0, x));
+    h = model::parseInteger(model::opt::height, text.substr(x + 1));
 }
 
 std::uint64_t parseByteSize(const std::string& option, const std::string& text) {

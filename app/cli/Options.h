@@ -1,6 +1,7 @@
 #pragma once
 // GNU-style long option parsing for the octrace CLI: "--name value" or "--name=value",
 // flags without a value, positional arguments. Every option states its default in --help.
+#include "octrace/model/OptionTable.h"
 #include "octrace/util/Math.h"
 
 #include <cstdint>
@@ -23,6 +24,8 @@ public:
     void add(OptionSpec spec) { specs_.push_back(std::move(spec)); }
     /// Parses args; returns the positional arguments. Throws UsageError.
     std::vector<std::string> parse(const std::vector<std::string>& args) const;
+    /// The options the last parse() met, by name, in order (repeated ones once each).
+    const std::vector<std::string>& given() const { return given_; }
     std::string help() const;
     const std::string& usage() const { return usage_; }
     const std::string& command() const { return command_; }
@@ -30,7 +33,21 @@ public:
 private:
     std::string command_, usage_;
     std::vector<OptionSpec> specs_;
+    mutable std::vector<std::string> given_;
 };
+
+/// An option of the table (model/OptionTable.h): its flag, argument and help line come from there.
+OptionSpec tableOption(const model::Option& o, std::function<void(const std::string&)> apply);
+/// The table's checks of a numeric or choice option, for the apply function of tableOption;
+/// they throw UsageError naming the option (`key`: the CLI says its flag).
+inline double tableNumber(const model::Option& o, const std::string& text) { return model::parseNumber(o, text); }
+inline int tableInt(const model::Option& o, const std::string& text) { return model::parseInteger(o, text); }
+inline bool tableOnOff(const model::Option& o, const std::string& text) { return model::parseChoice(o, text) == "on"; }
+
+/// Warns (log) for each option given in `p`'s last parse that `renderer` does not read
+/// (model::unusedWarning), skipping those for which `skip` returns true.
+void warnUnused(const OptionParser& p, const Renderer& renderer, const std::string& rendererName,
+                const std::function<bool(const model::Option&)>& skip = {});
 
 // Strict value parsers; they throw UsageError naming the option and the text.
 double parseNumber(const std::string& option, const std::string& text);

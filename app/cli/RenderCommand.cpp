@@ -38,9 +38,9 @@ std::string vecText(const dvec3& v) {
 struct RenderArgs : SurfaceArgs {
     FigureArgs figure;
     std::string output, statsPath, rendererName = "full";
-    int width = 1600, height = 1200;
+    int width = int(model::opt::width.defaultValue), height = int(model::opt::height.defaultValue);
     std::optional<dvec3> cameraPos, lookAt, up;
-    double fov = 30.0;
+    double fov = model::opt::fov.defaultValue;
     bool ortho = false;
     double lod = 0.0;
     int level = -1;
@@ -49,19 +49,16 @@ struct RenderArgs : SurfaceArgs {
     vec4 background{1.0f, 1.0f, 1.0f, 1.0f};
     std::optional<dvec3> light;
     bool colourCoherence = false;
-    float colourTolerance = 3.0f;
-    bool colourToleranceGiven = false;
+    float colourTolerance = float(model::opt::colourTolerance.defaultValue);
     bool colourFillsBackground = false;
-    int branchUp = 0;
-    bool branchUpGiven = false;
-    bool missCoherence = true;
-    bool missCoherenceGiven = false;
-    int repeat = 1;
+    int branchUp = int(model::opt::branchUp.defaultValue);
+    bool missCoherence = model::opt::missCoherence.defaultChoice() == "on";
+    int repeat = int(model::opt::repeat.defaultValue);
     std::string baseline;
     // Sphere scenes.
     std::string octreeKind;  // "object", "voxel" or empty: by the renderer
-    int leafObjects = ObjectOctreeOptions{}.leafObjects;
-    int samples = 1, bounces = RenderSettings{}.bounces;
+    int leafObjects = int(model::opt::leafObjects.defaultValue);
+    int samples = int(model::opt::samples.defaultValue), bounces = int(model::opt::bounces.defaultValue);
     std::vector<std::string> sphereOptions;  // given, for the check that they apply
 };
 
@@ -78,36 +75,22 @@ OptionParser makeParser(RenderArgs& a) {
                makeRenderer(v);  // validates the name
                a.rendererName = v;
            }});
-    p.add({"size", "WxH", "image size in pixels (default 1600x1200)",
+    p.add({"size", "WxH", "image size in pixels, each side " + model::opt::width.rangeText() + " (default " +
+           model::opt::width.defaultSaid() + "x" + model::opt::height.defaultSaid() + ")",
            [&](const std::string& v) { parseSize("size", v, a.width, a.height); }});
     p.add({"camera-pos", "X,Y,Z", "camera position, world units (default: framing the surface from south-east, above)",
            [&](const std::string& v) { a.cameraPos = parseVec3("camera-pos", v); }});
     p.add({"look-at", "X,Y,Z", "point the camera looks at (default: centre of the surface's bounding box)",
            [&](const std::string& v) { a.lookAt = parseVec3("look-at", v); }});
     p.add({"up", "X,Y,Z", "camera up direction (default 0,0,1)", [&](const std::string& v) { a.up = parseVec3("up", v); }});
-    p.add({"fov", "DEG", "vertical field of view in degrees, (0,180) (default 30)",
-           [&](const std::string& v) {
-               a.fov = parseNumber("fov", v);
-               if (!(a.fov > 0.0 && a.fov < 180.0)) throw UsageError("--fov: must be in (0, 180) degrees, got " + v);
-           }});
-    p.add({"projection", "perspective|ortho", "camera projection; ortho draws every ray parallel to the view direction (default perspective)",
-           [&](const std::string& v) {
-               if (v == "perspective") a.ortho = false;
-               else if (v == "ortho" || v == "orthographic") a.ortho = true;
-               else throw UsageError("--projection: choose perspective or ortho, got '" + v + "'");
-           }});
-    p.add({"ortho-height", "H", "height of the orthographic view window in world units (default: framing the surface)",
-           [&](const std::string& v) {
-               a.orthoHeight = parseNumber("ortho-height", v);
-               if (!(*a.orthoHeight > 0.0)) throw UsageError("--ortho-height: must be positive, got " + v);
-           }});
-    p.add({"lod", "PIXELS", "multi-resolution: stop at octree nodes whose projected size is below PIXELS and draw them whole; renderers " + voxelRenderersThat(&Renderer::multiResolution) + " (default 0 = exact)",
-           [&](const std::string& v) {
-               a.lod = parseNumber("lod", v);
-               if (!(a.lod >= 0.0 && a.lod <= 1e6)) throw UsageError("--lod: must be a number of pixels >= 0, got " + v);
-           }});
-    p.add({"level", "L", "draw the octree at level L (1..depth) at the finest, for previews; renderers as --lod (default: the voxels)",
-           [&](const std::string& v) { a.level = parseInt("level", v, 1, Octree::kMaxDepth); }});
+    p.add(tableOption(model::opt::fov, [&](const std::string& v) { a.fov = tableNumber(model::opt::fov, v); }));
+    p.add(tableOption(model::opt::projection, [&](const std::string& v) {
+        a.ortho = v == "orthographic" || model::parseChoice(model::opt::projection, v) == "ortho";
+    }));
+    p.add(tableOption(model::opt::orthoHeight,
+                      [&](const std::string& v) { a.orthoHeight = tableNumber(model::opt::orthoHeight, v); }));
+    p.add(tableOption(model::opt::lod, [&](const std::string& v) { a.lod = tableNumber(model::opt::lod, v); }));
+    p.add(tableOption(model::opt::level, [&](const std::string& v) { a.level = tableInt(model::opt::level, v); }));
     addThreadsOption(p, a, "the image");
     p.add({"stats", "FILE.json", "write timings and counters as JSON (keys: docs/user/cli.md)",
            [&](const std::string& v) { a.statsPath = v; }});
@@ -122,60 +105,39 @@ OptionParser makeParser(RenderArgs& a) {
            }});
     addColourOptions(p, a);
     addLayerOptions(p, a);
-    p.add({"colour-coherence", "", "colour coherence on the discrete ray casters: a pixel between two neighbours of nearly the same colour gets their average untraced (default off; on in area+colour)",
-           [&](const std::string&) { a.colourCoherence = true; }});
-    p.add({"colour-fill-background", "", "colour coherence also between two background pixels, as paper A does: the pixel between is taken as background untraced (default off: only between surface pixels)",
-           [&](const std::string&) { a.colourFillsBackground = true; }});
-    p.add({"colour-tolerance", "T", "largest difference per 8-bit sRGB channel for colour coherence, 0..255 (default 3)",
-           [&](const std::string& v) {
-               double t = parseNumber("colour-tolerance", v);
-               if (t < 0.0 || t > 255.0) throw UsageError("--colour-tolerance: must be in [0, 255], got " + v);
-               a.colourTolerance = float(t);
-               a.colourToleranceGiven = true;
-           }});
-    p.add({"branch-up", "N", "trajectory coherence (linear, area, their exact and +colour variants): start a common-path ray N octree levels above its partners' branch node; fewer pixels differ from full traversal, at some speed (default 0: paper A, at the branch node)",
-           [&](const std::string& v) {
-               a.branchUp = parseInt("branch-up", v, 0, Octree::kMaxDepth);
-               a.branchUpGiven = true;
-           }});
-    p.add({"miss-coherence", "on|off", "approximate linear and area (and +colour): a common-path pixel whose two partners both missed is taken as background untraced (default on; off: traced from the root)",
-           [&](const std::string& v) {
-               if (v != "on" && v != "off") throw UsageError("--miss-coherence: choose on or off, got '" + v + "'");
-               a.missCoherence = v == "on";
-               a.missCoherenceGiven = true;
-           }});
+    p.add(tableOption(model::opt::colourCoherence, [&](const std::string&) { a.colourCoherence = true; }));
+    p.add(tableOption(model::opt::colourFillBackground, [&](const std::string&) { a.colourFillsBackground = true; }));
+    p.add(tableOption(model::opt::colourTolerance, [&](const std::string& v) {
+        a.colourTolerance = float(tableNumber(model::opt::colourTolerance, v));
+    }));
+    p.add(tableOption(model::opt::branchUp, [&](const std::string& v) { a.branchUp = tableInt(model::opt::branchUp, v); }));
+    p.add(tableOption(model::opt::missCoherence,
+                      [&](const std::string& v) { a.missCoherence = tableOnOff(model::opt::missCoherence, v); }));
     addGeographicOptions(p, a.request);
     addCityOptions(p, a);
     addSeriesOption(p, a.request);
-    p.add({"repeat", "N", "render N times and report the fastest as render_ms (benchmarks on a noisy machine; default 1)",
-           [&](const std::string& v) { a.repeat = parseInt("repeat", v, 1, 1000); }});
+    p.add(tableOption(model::opt::repeat, [&](const std::string& v) { a.repeat = tableInt(model::opt::repeat, v); }));
     p.add({"baseline", "NAME", "also render with renderer NAME, alternating with the main one --repeat times, and report baseline_render_ms, speedup_over_baseline and baseline_differing_pixels (pixels whose colour differs) (default: none)",
            [&](const std::string& v) {
                makeRenderer(v);
                a.baseline = v;
            }});
-    p.add({"octree", "object|voxel", "sphere inputs: trace the spheres in paper B's object octree (renderers reference, samet, beam) or voxelize them into the voxel octree at --depth (every voxel renderer, samet and beam included) (default: object for reference, samet, beam; voxel for the others)",
-           [&](const std::string& v) {
-               if (v != "object" && v != "voxel") throw UsageError("--octree: choose object or voxel, got '" + v + "'");
-               a.octreeKind = v;
-           }});
+    p.add(tableOption(model::opt::octree, [&](const std::string& v) { a.octreeKind = model::parseChoice(model::opt::octree, v); }));
     // An integer option of the object octree, noted as given (it applies to sphere scenes only).
-    auto sphereInt = [&](const std::string& name, const std::string& help, int lo, int hi, int& target) {
-        p.add({name, "N", help + ", " + std::to_string(lo) + ".." + std::to_string(hi) + " (default " + std::to_string(target) + ")",
-               [&a, &target, name, lo, hi](const std::string& v) {
-                   target = parseInt(name, v, lo, hi);
-                   a.sphereOptions.push_back("--" + name);
-               }});
+    auto sphereInt = [&](const model::Option& o, int& target) {
+        p.add(tableOption(o, [&a, &target, &o](const std::string& v) {
+            target = tableInt(o, v);
+            a.sphereOptions.push_back(std::string("--") + o.flag);
+        }));
     };
-    sphereInt("leaf-objects", "object octree: split a node while it holds more than N spheres", 1, 100000, a.leafObjects);
-    p.add({"samples", "N", "object octree: rays per pixel on a sqrt(N) x sqrt(N) grid, averaged; a square 1..256 (default 1)",
-           [&](const std::string& v) {
-               a.samples = parseInt("samples", v, 1, 256);
-               const int side = int(std::lround(std::sqrt(double(a.samples))));
-               if (side * side != a.samples) throw UsageError("--samples: must be a square number (1, 4, 9, 16, ...), got " + v);
-               a.sphereOptions.push_back("--samples");
-           }});
-    sphereInt("bounces", "object octree: Whitted depth, reflected and transmitted rays at most N deep", 0, 16, a.bounces);
+    sphereInt(model::opt::leafObjects, a.leafObjects);
+    p.add(tableOption(model::opt::samples, [&](const std::string& v) {
+        a.samples = tableInt(model::opt::samples, v);
+        const int side = int(std::lround(std::sqrt(double(a.samples))));
+        if (side * side != a.samples) throw UsageError("--samples: must be a square number (1, 4, 9, 16, ...), got " + v);
+        a.sphereOptions.push_back("--samples");
+    }));
+    sphereInt(model::opt::bounces, a.bounces);
     addFigureOptions(p, a.figure);
     addMessageOptions(p, a);
     return p;
@@ -400,7 +362,8 @@ int renderObjectOctree(const RenderArgs& a) {
 
 int runRender(const std::vector<std::string>& args) {
     RenderArgs a;
-    if (!parseCommandLine(makeParser(a), args, a, a.output, "an output image: -o OUT.png, -o OUT.exr or -o OUT.tif")) return 0;
+    const OptionParser parser = makeParser(a);
+    if (!parseCommandLine(parser, args, a, a.output, "an output image: -o OUT.png, -o OUT.exr or -o OUT.tif")) return 0;
     checkImageOutput(a.output);
     if (a.orthoHeight && !a.ortho) throw UsageError("--ortho-height needs --projection ortho");
     checkFigureOptions(a.figure, a.output);
@@ -418,17 +381,11 @@ int runRender(const std::vector<std::string>& args) {
     if (a.colourCoherence && !chosen->colourCoherence())
         throw UsageError("--colour-coherence: renderer " + a.rendererName + " does not fill pixels by colour (use " +
                          voxelRenderersThat(&Renderer::colourCoherence) + ")");
-    if (!a.colourCoherence && !chosen->fillsByColour()) {
-        // Accepted (a script may set them always), but told: they change nothing here.
-        for (const auto& [given, option] : {std::pair{a.colourToleranceGiven, "--colour-tolerance"},
-                                            std::pair{a.colourFillsBackground, "--colour-fill-background"}})
-            if (given)
-                log::warning(std::string(option) + " has no effect without colour coherence (--colour-coherence or a +colour renderer)");
-    }
-    if (a.branchUpGiven && !chosen->trajectoryCoherence())
-        log::warning("--branch-up has no effect on renderer " + a.rendererName + " (only on linear and area and their variants)");
-    if (a.missCoherenceGiven && !chosen->missCoherence())
-        log::warning("--miss-coherence has no effect on renderer " + a.rendererName + " (only on the approximate linear and area and their +colour variants)");
+    // Options the renderer does not read are accepted (a script may set them always), but told.
+    // --colour-coherence makes any discrete caster read the colour coherence settings.
+    warnUnused(parser, *chosen, a.rendererName, [&](const model::Option& o) {
+        return a.colourCoherence && o.renderers == &Renderer::fillsByColour;
+    });
     if (multires) {
         for (const std::string& r : {a.rendererName, a.baseline})
             if (!r.empty() && !makeRenderer(r)->multiResolution())

@@ -60,8 +60,7 @@ OptionParser makeParser(SliceArgs& a) {
            "coronal, z for axial); on a geographic grid the depth in metres (positive down) for z, the longitude or latitude in "
            "degrees for x or y (default: the middle sample)",
            [&](const std::string& v) { a.at = parseNumber("at", v); }});
-    p.add({"index", "N", "where the plane lies: sample N (0-based) of the grid axis across the plane (default: the middle one, n/2)",
-           [&](const std::string& v) { a.index = parseInt("index", v, 0, 1 << 30); }});
+    p.add(tableOption(model::opt::index, [&](const std::string& v) { a.index = tableInt(model::opt::index, v); }));
     p.add({"size", "WxH", "image size in pixels, the slice fitted and centred, its aspect kept (default: one pixel per sample of "
            "the finer in-plane spacing, so anisotropic voxels keep their shape; with --figure the whole figure, 1200x1000)",
            [&](const std::string& v) { parseSize("size", v, a.width, a.height); }});

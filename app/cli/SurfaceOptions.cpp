@@ -221,20 +221,18 @@ void addSurfaceOptions(OptionParser& p, SurfaceArgs& a) {
                if (ctIsoPreset(v)) a.isoPreset = v;
                else a.iso = parseNumber("iso", v);
            }});
-    p.add({"depth", "N", "octree depth, voxels = 2^N per cube edge (1.." + std::to_string(Octree::kMaxDepth) + ", default 8)",
-           [&](const std::string& v) {
-               a.depth = parseInt("depth", v, 1, Octree::kMaxDepth);
-               a.depthGiven = true;
-           }});
+    p.add(tableOption(model::opt::depth, [&](const std::string& v) {
+        a.depth = tableInt(model::opt::depth, v);
+        a.depthGiven = true;
+    }));
 }
 
 void addInsideOption(OptionParser& p, SurfaceArgs& a, const std::string& applies) {
-    p.add({"inside", "above|below", applies + ": the solid is where the value is >= iso (above) or < iso (below) (default above)",
-           [&](const std::string& v) {
-               if (v != "above" && v != "below") throw UsageError("--inside: expected above or below, got '" + v + "'");
-               a.insideBelow = v == "below";
-               a.formGiven = true;
-           }});
+    (void)applies;
+    p.add(tableOption(model::opt::inside, [&](const std::string& v) {
+        a.insideBelow = model::parseChoice(model::opt::inside, v) == "below";
+        a.formGiven = true;
+    }));
 }
 
 void addExtendDownOption(OptionParser& p, SurfaceArgs& a) {
@@ -244,13 +242,10 @@ void addExtendDownOption(OptionParser& p, SurfaceArgs& a) {
 }
 
 void addFormOptions(OptionParser& p, SurfaceArgs& a) {
-    p.add({"form", "shell|volume", "octree form: the isosurface's boundary voxels (shell), or the solid it bounds with its "
-           "interior and caps where the grid ends (volume) (default shell)",
-           [&](const std::string& v) {
-               if (v != "shell" && v != "volume") throw UsageError("--form: expected shell or volume, got '" + v + "'");
-               a.form = v == "volume" ? OctreeForm::Volume : OctreeForm::Shell;
-               a.formGiven = true;
-           }});
+    p.add(tableOption(model::opt::form, [&](const std::string& v) {
+        a.form = model::parseChoice(model::opt::form, v) == "volume" ? OctreeForm::Volume : OctreeForm::Shell;
+        a.formGiven = true;
+    }));
     addInsideOption(p, a, "volume form");
     p.add({"cut", "SOLID", "cut a solid away: box:X0,Y0,Z0,X1,Y1,Z1, sphere:X,Y,Z,R, cylinder:X0,Y0,Z0,X1,Y1,Z1,R or "
            "halfspace:X,Y,Z,NX,NY,NZ in world units, or relief:FILE, the ground under a relief raster (e.g. ETOPO; geographic "
@@ -274,46 +269,26 @@ void addBakeOptions(OptionParser& p, SurfaceArgs& a) {
                a.bakeLightGiven = true;
                a.bakeOptions.lights.push_back(parseBakeLight(v));
            }});
-    p.add({"bake-ao", "N", "ambient-occlusion rays per side of the surface, 0 = none (default 8)",
-           [&](const std::string& v) { a.bakeOptions.aoRays = parseInt("bake-ao", v, 0, 1024); }});
-    p.add({"bake-ao-distance", "D", "how far an occluder darkens, world units (default: 1/8 of the octree's cube)",
-           [&](const std::string& v) {
-               a.bakeOptions.aoDistance = parseNumber("bake-ao-distance", v);
-               if (!(a.bakeOptions.aoDistance > 0.0)) throw UsageError("--bake-ao-distance: must be positive, got " + v);
-           }});
-    p.add({"bake-shadows", "on|off", "hard shadows from the baked lights (default on)",
-           [&](const std::string& v) {
-               if (v != "on" && v != "off") throw UsageError("--bake-shadows: expected on or off, got '" + v + "'");
-               a.bakeOptions.shadows = v == "on";
-           }});
+    p.add(tableOption(model::opt::bakeAo, [&](const std::string& v) { a.bakeOptions.aoRays = tableInt(model::opt::bakeAo, v); }));
+    p.add(tableOption(model::opt::bakeAoDistance, [&](const std::string& v) {
+        a.bakeOptions.aoDistance = tableNumber(model::opt::bakeAoDistance, v);
+    }));
+    p.add(tableOption(model::opt::bakeShadows,
+                      [&](const std::string& v) { a.bakeOptions.shadows = tableOnOff(model::opt::bakeShadows, v); }));
 }
 
 void addLightingOption(OptionParser& p, SurfaceArgs& a) {
-    p.add({"lighting", "baked|dynamic", "shade by the octree's baked light (baking it first when it has none) or by the "
-           "normals and --light (default: baked when the octree has it, else dynamic)",
-           [&](const std::string& v) {
-               if (v != "baked" && v != "dynamic") throw UsageError("--lighting: expected baked or dynamic, got '" + v + "'");
-               a.lighting = v == "baked" ? SurfaceArgs::Lighting::Baked : SurfaceArgs::Lighting::Dynamic;
-           }});
-    p.add({"ambient", "A", "share of the light every voxel gets whatever its normal, in [0,1]; the light's own share is "
-           "1 - A (dynamic shading and --bake) (default 0.15)",
-           [&](const std::string& v) {
-               const double x = parseNumber("ambient", v);
-               if (!(x >= 0.0 && x <= 1.0)) throw UsageError("--ambient: must be in [0, 1], got " + v);
-               a.ambient = float(x);
-           }});
-    p.add({"shadows", "on|off", "shadow rays towards --light: sphere scenes in the object octree (default on) and the "
-           "dynamic shading of voxel octrees (default off: one more ray per shaded pixel, and baked light has its own "
-           "shadows)",
-           [&](const std::string& v) {
-               if (v != "on" && v != "off") throw UsageError("--shadows: choose on or off, got '" + v + "'");
-               a.shadows = v == "on";
-           }});
+    p.add(tableOption(model::opt::lighting, [&](const std::string& v) {
+        a.lighting = model::parseChoice(model::opt::lighting, v) == "baked" ? SurfaceArgs::Lighting::Baked
+                                                                            : SurfaceArgs::Lighting::Dynamic;
+    }));
+    p.add(tableOption(model::opt::ambient, [&](const std::string& v) { a.ambient = float(tableNumber(model::opt::ambient, v)); }));
+    p.add(tableOption(model::opt::shadows, [&](const std::string& v) { a.shadows = tableOnOff(model::opt::shadows, v); }));
 }
 
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result) {
-    p.add({"threads", "N", "worker threads, 0 = all cores (default 0); " + result + " does not depend on it",
-           [&](const std::string& v) { a.threads = parseInt("threads", v, 0, 1024); }});
+    (void)result;
+    p.add(tableOption(model::opt::threads, [&](const std::string& v) { a.threads = tableInt(model::opt::threads, v); }));
 }
 
 void addWindowOption(OptionParser& p, SurfaceArgs& a, const std::string& what, const std::string& byDefault) {
@@ -400,11 +375,8 @@ void addGeographicOptions(OptionParser& p, io::FieldRequest& request) {
                io::checkTimeText(v);
                request.time = v;
            }});
-    p.add({"vertical-scale", "S", "vertical exaggeration of depth, NetCDF only (default: depth extent = 1/4 of the larger horizontal extent)",
-           [&](const std::string& v) {
-               request.verticalScale = parseNumber("vertical-scale", v);
-               if (!(request.verticalScale > 0.0)) throw UsageError("--vertical-scale: must be positive, got " + v);
-           }});
+    p.add(tableOption(model::opt::verticalScale,
+                      [&](const std::string& v) { request.verticalScale = tableNumber(model::opt::verticalScale, v); }));
 }
 
 void addCityOptions(OptionParser& p, SurfaceArgs& a) {
@@ -423,12 +395,10 @@ void addCityOptions(OptionParser& p, SurfaceArgs& a) {
                    a.cityGiven = true;
                }});
     };
-    p.add({"terrain-depth", "N", "city inputs: per-region depth, terrain to depth N and buildings to --depth in one octree "
-           "(nodes that only terrain crosses stop at level N as coarse leaves; 1..--depth, default: --depth)",
-           [&](const std::string& v) {
-               a.terrainDepth = parseInt("terrain-depth", v, 1, Octree::kMaxDepth);
-               a.cityGiven = true;
-           }});
+    p.add(tableOption(model::opt::terrainDepth, [&](const std::string& v) {
+        a.terrainDepth = tableInt(model::opt::terrainDepth, v);
+        a.cityGiven = true;
+    }));
     text("dem", "RASTER", "city inputs: a DEM raster (GeoTIFF or any GDAL raster, any CRS) added as terrain (default: none)",
          &io::CityRequest::dem, "a raster file");
     text("texture", "RASTER", "city inputs: a colour raster (orthophoto, map; any GDAL raster, any CRS) draped on the terrain "

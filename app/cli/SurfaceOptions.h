@@ -37,7 +37,7 @@ struct SurfaceArgs {
     ValueWindow window;
     bool colourGiven = false;  ///< --colour / --color given
     bool colours = false;      ///< the command colours the surface (has the colour options)
-    int depth = 8, threads = 0;
+    int depth = int(model::opt::depth.defaultValue), threads = int(model::opt::threads.defaultValue);
     bool depthGiven = false;  // --depth given (an octree file input fixes the depth)
     vec3 colour{0.85f, 0.62f, 0.35f};  // sRGB display values, as the user gives them
     std::string colormap;              // empty: uniform colour, or the colour-by variable's default

@@ -4,6 +4,7 @@
 
 #include "octrace/io/AtomicFile.h"
 #include "octrace/util/Error.h"
+#include "octrace/model/OptionTable.h"
 #include "octrace/util/Log.h"
 
 #include <cstdio>
@@ -36,6 +37,8 @@ const char* kTopHelp =
 int main(int argc, char** argv) {
     // Ctrl-C or a kill while an output is being written must not leave its temporary behind.
     octrace::io::removeTemporariesOnSignals();
+    // Core and io name parameters by key (util/Parameter.h); the CLI says its flags.
+    octrace::log::setWording([](const std::string& text) { return octrace::model::sayForCli(text); });
     std::vector<std::string> args(argv + 1, argv + argc);
     if (args.empty()) {
         std::fputs(kTopHelp, stderr);
@@ -61,11 +64,11 @@ int main(int argc, char** argv) {
         if (cmd == "slice") return octrace::cli::runSlice(rest);
         throw octrace::UsageError("unknown command '" + cmd + "' (commands: render, export, build, csg, slice, info, sample)");
     } catch (const octrace::UsageError& e) {
-        std::fprintf(stderr, "octrace: %s\nTry 'octrace %s --help'.\n", e.what(),
+        std::fprintf(stderr, "octrace: %s\nTry 'octrace %s --help'.\n", octrace::model::sayForCli(e.what()).c_str(),
                      (cmd == "render" || cmd == "export" || cmd == "build" || cmd == "csg" || cmd == "slice" || cmd == "info" || cmd == "sample") ? cmd.c_str() : "");
         return 2;
     } catch (const octrace::Error& e) {
-        std::fprintf(stderr, "octrace: error: %s\n", e.what());
+        std::fprintf(stderr, "octrace: error: %s\n", octrace::model::sayForCli(e.what()).c_str());
         return 1;
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "octrace: error: out of memory\n");

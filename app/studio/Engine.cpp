@@ -1,5 +1,7 @@
 #include "Engine.h"
 
+#include "octrace/model/OptionTable.h"
+
 #include "Input.h"
 #include "SurfaceOptions.h"
 
@@ -35,7 +37,8 @@ std::vector<double> histogramOf(const ScalarField& f, double lo, double hi) {
     return bins;
 }
 
-QString errorText(const std::exception& e) { return QString::fromStdString(e.what()); }
+// Core and io name parameters by key (util/Parameter.h); the studio says its controls' labels.
+QString errorText(const std::exception& e) { return QString::fromStdString(model::sayForStudio(e.what())); }
 
 /// The preview level while the camera moves: two levels above the voxels, at least 1.
 int previewLevel(int depth) { return std::max(1, depth - 2); }

@@ -1,5 +1,7 @@
 #include "MainWindow.h"
 
+#include "OptionWidgets.h"
+
 #include "HistogramView.h"
 #include "Navigation.h"
 #include "RenderView.h"
@@ -185,6 +187,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     });
 
     // Library messages (warnings of the readers) go to the Messages panel, from any thread.
+    log::setWording([](const std::string& text) { return model::sayForStudio(text); });
     log::setSink([this](log::Level level, const std::string& text) {
         QMetaObject::invokeMethod(this, [this, level, t = QString::fromStdString(text)] {
             messages_->appendPlainText((level >= log::Level::Warning ? tr("warning: ") : QString()) + t);
@@ -194,7 +197,10 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     resize(1200, 800);
 }
 
-MainWindow::~MainWindow() { log::setSink({}); }
+MainWindow::~MainWindow() {
+    log::setSink({});
+    log::setWording({});
+}
 
 void MainWindow::connectNavigation(ViewInput* input) {
     connect(input, &ViewInput::orbitBy, this, [this](double yaw, double pitch) {
@@ -368,10 +374,9 @@ QWidget* MainWindow::buildControls() {
     surfForm->addRow(histogram_);
     depthSpin_ = new QSpinBox(surfBox);
     depthSpin_->setObjectName(QStringLiteral("depthSpin"));
-    depthSpin_->setRange(1, Octree::kMaxDepth);
+    configure(depthSpin_, model::opt::depth);
     depthSpin_->setValue(state_.depth);
     depthSpin_->setKeyboardTracking(false);
-    depthSpin_->setToolTip(tr("Octree depth: 2^depth voxels along the cube's edge"));
     connect(depthSpin_, &QSpinBox::valueChanged, this, [this](int d) {
         if (updating_) return;
         state_.depth = d;
@@ -413,53 +418,47 @@ QWidget* MainWindow::buildControls() {
     // renderers that have it.
     colourToleranceSpin_ = new QDoubleSpinBox(renderBox);
     colourToleranceSpin_->setObjectName(QStringLiteral("colourToleranceSpin"));
-    colourToleranceSpin_->setRange(0.0, 255.0);
-    colourToleranceSpin_->setDecimals(1);
+    configure(colourToleranceSpin_, model::opt::colourTolerance, 1);
     colourToleranceSpin_->setValue(state_.colourTolerance);
     colourToleranceSpin_->setKeyboardTracking(false);
-    colourToleranceSpin_->setToolTip(tr("+colour renderers: the middle of three pixels whose outer colours differ by at most this "
-                                        "much per 8-bit sRGB channel gets their average, untraced (--colour-tolerance)"));
     connect(colourToleranceSpin_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
         if (updating_) return;
         state_.colourTolerance = float(v);
         requestRender(false);
     });
-    renderForm->addRow(tr("Colour tolerance"), colourToleranceSpin_);
+    renderForm->addRow(tr(model::opt::colourTolerance.label), colourToleranceSpin_);
     branchUpSpin_ = new QSpinBox(renderBox);
     branchUpSpin_->setObjectName(QStringLiteral("branchUpSpin"));
-    branchUpSpin_->setRange(0, Octree::kMaxDepth);
+    configure(branchUpSpin_, model::opt::branchUp);
     branchUpSpin_->setValue(state_.branchUp);
     branchUpSpin_->setKeyboardTracking(false);
-    branchUpSpin_->setToolTip(tr("linear and area: start a ray this many octree levels above its partners' branch node; "
-                                 "fewer pixels differ from full traversal, at some speed (--branch-up)"));
     connect(branchUpSpin_, &QSpinBox::valueChanged, this, [this](int n) {
         if (updating_) return;
         state_.branchUp = n;
         requestRender(false);
     });
-    renderForm->addRow(tr("Branch up"), branchUpSpin_);
+    renderForm->addRow(tr(model::opt::branchUp.label), branchUpSpin_);
     missCoherenceCheck_ = new QCheckBox(tr("pixels between two misses are background"), renderBox);
     missCoherenceCheck_->setObjectName(QStringLiteral("missCoherenceCheck"));
     missCoherenceCheck_->setChecked(state_.missCoherence);
-    missCoherenceCheck_->setToolTip(tr("Approximate linear and area: a pixel whose two partners both missed is taken as "
-                                       "background, untraced (--miss-coherence)"));
+    configure(missCoherenceCheck_, model::opt::missCoherence);
     connect(missCoherenceCheck_, &QCheckBox::toggled, this, [this](bool on) {
         if (updating_) return;
         state_.missCoherence = on;
         requestRender(false);
     });
-    renderForm->addRow(tr("Miss coherence"), missCoherenceCheck_);
+    renderForm->addRow(tr(model::opt::missCoherence.label), missCoherenceCheck_);
     showCoherence();
     fovSpin_ = new QDoubleSpinBox(renderBox);
     fovSpin_->setObjectName(QStringLiteral("fovSpin"));
-    fovSpin_->setRange(1.0, 170.0);
+    configure(fovSpin_, model::opt::fov, 1);
     fovSpin_->setSuffix(QStringLiteral(" deg"));
     fovSpin_->setValue(state_.fov);
     connect(fovSpin_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
         state_.fov = v;
         requestRender(false);
     });
-    renderForm->addRow(tr("Field of view"), fovSpin_);
+    renderForm->addRow(tr(model::opt::fov.label), fovSpin_);
     auto* lightRow = new QHBoxLayout;
     for (int i = 0; i < 3; ++i) {
         lightSpin_[i] = new QDoubleSpinBox(renderBox);
@@ -477,17 +476,15 @@ QWidget* MainWindow::buildControls() {
     renderForm->addRow(tr("Light"), lightRow);
     ambientSpin_ = new QDoubleSpinBox(renderBox);
     ambientSpin_->setObjectName(QStringLiteral("ambientSpin"));
-    ambientSpin_->setRange(0.0, 1.0);
+    configure(ambientSpin_, model::opt::ambient, 2);
     ambientSpin_->setSingleStep(0.05);
-    ambientSpin_->setDecimals(2);
     ambientSpin_->setValue(state_.ambient);
-    ambientSpin_->setToolTip(tr("Share of light every voxel gets whatever its normal; the light's share is 1 - ambient"));
     connect(ambientSpin_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
         if (updating_) return;
         state_.ambient = v;
         lightingChanged(state_.lighting == "baked");  // a bake uses it
     });
-    renderForm->addRow(tr("Ambient"), ambientSpin_);
+    renderForm->addRow(tr(model::opt::ambient.label), ambientSpin_);
     lightingCombo_ = new QComboBox(renderBox);
     lightingCombo_->setObjectName(QStringLiteral("lightingCombo"));
     lightingCombo_->addItem(tr("auto (baked if the octree has it)"), QString());
@@ -504,7 +501,7 @@ QWidget* MainWindow::buildControls() {
     auto* bakeRow = new QHBoxLayout;
     bakeAoSpin_ = new QSpinBox(renderBox);
     bakeAoSpin_->setObjectName(QStringLiteral("bakeAoSpin"));
-    bakeAoSpin_->setRange(0, 1024);
+    configure(bakeAoSpin_, model::opt::bakeAo);
     bakeAoSpin_->setValue(state_.bakeAo);
     bakeAoSpin_->setPrefix(tr("AO rays "));
     bakeAoSpin_->setKeyboardTracking(false);
@@ -516,6 +513,7 @@ QWidget* MainWindow::buildControls() {
     bakeShadowsCheck_ = new QCheckBox(tr("shadows"), renderBox);
     bakeShadowsCheck_->setObjectName(QStringLiteral("bakeShadowsCheck"));
     bakeShadowsCheck_->setChecked(state_.bakeShadows);
+    configure(bakeShadowsCheck_, model::opt::bakeShadows);
     connect(bakeShadowsCheck_, &QCheckBox::toggled, this, [this](bool on) {
         if (updating_) return;
         state_.bakeShadows = on;
@@ -527,7 +525,7 @@ QWidget* MainWindow::buildControls() {
     shadowsCheck_ = new QCheckBox(tr("shadow rays"), renderBox);
     shadowsCheck_->setObjectName(QStringLiteral("shadowsCheck"));
     shadowsCheck_->setChecked(state_.shadows);
-    shadowsCheck_->setToolTip(tr("Dynamic lighting: one shadow ray per pixel towards the light (baked light has its own shadows)"));
+    configure(shadowsCheck_, model::opt::shadows);
     connect(shadowsCheck_, &QCheckBox::toggled, this, [this](bool on) {
         if (updating_) return;
         state_.shadows = on;
@@ -663,7 +661,7 @@ void MainWindow::setCut(const QString& spec) {
         try {
             cli::checkSolidArgument(spec.toStdString());
         } catch (const std::exception& e) {
-            showMessage(QString::fromStdString(e.what()), true);
+            showMessage(QString::fromStdString(model::sayForStudio(e.what())), true);
             cutEdit_->setText(QString::fromStdString(state_.cut));
             return;
         }
@@ -730,7 +728,7 @@ bool MainWindow::saveSessionTo(const QString& path) {
     try {
         saveSession(state_, path);
     } catch (const std::exception& e) {
-        showMessage(QString::fromStdString(e.what()), true);
+        showMessage(QString::fromStdString(model::sayForStudio(e.what())), true);
         return false;
     }
     showMessage(tr("Saved session %1").arg(path));
@@ -742,7 +740,7 @@ bool MainWindow::openSession(const QString& path) {
     try {
         s = loadSession(path);
     } catch (const std::exception& e) {
-        showMessage(QString::fromStdString(e.what()), true);
+        showMessage(QString::fromStdString(model::sayForStudio(e.what())), true);
         return false;
     }
     state_ = s;
@@ -766,6 +764,7 @@ void MainWindow::showState() {
     lightingCombo_->setCurrentIndex(std::max(0, lightingCombo_->findData(QString::fromStdString(state_.lighting))));
     bakeAoSpin_->setValue(state_.bakeAo);
     bakeShadowsCheck_->setChecked(state_.bakeShadows);
+    configure(bakeShadowsCheck_, model::opt::bakeShadows);
     shadowsCheck_->setChecked(state_.shadows);
     colourToleranceSpin_->setValue(state_.colourTolerance);
     branchUpSpin_->setValue(state_.branchUp);
@@ -964,7 +963,7 @@ void MainWindow::requestRender(bool preview) {
     try {
         r.camera.validate();
     } catch (const std::exception& e) {
-        showMessage(QString::fromStdString(e.what()), true);
+        showMessage(QString::fromStdString(model::sayForStudio(e.what())), true);
         return;
     }
     r.settings = engine_.settingsFor(state_, false);
@@ -1040,10 +1039,9 @@ void MainWindow::chooseExport() {
     form->addRow(tr("File (.png, .exr, .tif)"), row);
     auto* w = new QSpinBox(&dlg);
     auto* h = new QSpinBox(&dlg);
-    for (QSpinBox* s : {w, h}) {
-        s->setRange(1, kMaxExportSide);
-        s->setSuffix(QStringLiteral(" px"));
-    }
+    configure(w, model::opt::width);
+    configure(h, model::opt::height);
+    for (QSpinBox* s : {w, h}) s->setSuffix(QStringLiteral(" px"));
     w->setObjectName(QStringLiteral("exportWidth"));
     h->setObjectName(QStringLiteral("exportHeight"));
     w->setValue(state_.exportWidth);
@@ -1067,10 +1065,9 @@ void MainWindow::chooseExport() {
     figureForm->addRow(tr("Title"), title);
     auto* dpi = new QSpinBox(figure);
     dpi->setObjectName(QStringLiteral("figureDpi"));
-    dpi->setRange(36, 1200);
+    configure(dpi, model::opt::dpi);
     dpi->setValue(state_.dpi);
     dpi->setSuffix(tr(" dpi"));
-    dpi->setToolTip(tr("Text is 9 and 11 pt at this resolution; it follows the width, so that the annotations scale with the image"));
     connect(w, &QSpinBox::valueChanged, dpi, [dpi, last = w->value()](int width) mutable {
         dpi->setValue(scaledDpi(dpi->value(), last, width));
         last = width;

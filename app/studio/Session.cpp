@@ -3,6 +3,7 @@
 #include "SolidSpec.h"
 #include "SurfaceOptions.h"
 #include "octrace/csg/Solid.h"
+#include "octrace/model/OptionTable.h"
 #include "octrace/io/AtomicFile.h"
 #include "octrace/octree/Octree.h"
 #include "octrace/render/Renderer.h"
@@ -63,6 +64,20 @@ public:
         if (d < lo || d > hi) fail(key, QStringLiteral("%1 is outside [%2, %3]").arg(d).arg(lo).arg(hi));
         return d;
     }
+    /// A numeric setting of the options table, stored under its session member: the range (and
+    /// whether it must be whole) come from the table.
+    template <typename T>
+    void setting(const model::Option& o, T& out) const {
+        const std::string member = model::sessionMember(o);
+        const char* key = member.c_str();
+        if (!has(key)) return;
+        const QJsonValue v = o_.value(QLatin1String(key));
+        if (!v.isDouble() || !std::isfinite(v.toDouble())) fail(key, QStringLiteral("must be a number"));
+        if (auto problem = model::valueProblem(o, v.toDouble())) fail(key, QString::fromStdString(*problem));
+        out = T(v.toDouble());
+    }
+    /// An on|off setting of the options table, stored as true or false.
+    void onOff(const model::Option& o, bool& out) const { flag(model::sessionMember(o).c_str(), out); }
     void integer(const char* key, int& out, int lo, int hi) const {
         if (!has(key)) return;
         const double d = number(key, lo, hi);
@@ -116,17 +131,18 @@ QByteArray sessionJson(const StudioState& s) {
                       {"variable", QString::fromStdString(s.variable)},
                       {"time", QString::fromStdString(s.time)},
                       {"series", QString::fromStdString(s.series)}};
+    const auto member = [](const model::Option& o) { return QString::fromStdString(model::sessionMember(o)); };
     QJsonObject surface{{"iso", s.iso ? QJsonValue(*s.iso) : QJsonValue()},
-                        {"depth", s.depth},
+                        {member(model::opt::depth), s.depth},
                         {"cut", QString::fromStdString(s.cut)},
                         {"clip", s.clip}};
     QJsonObject renderers{{"main", QString::fromStdString(s.renderer)},
                           {"second", QString::fromStdString(s.secondRenderer)},
                           {"split", s.split},
-                          {"colour_tolerance", double(s.colourTolerance)},
-                          {"branch_up", s.branchUp},
-                          {"miss_coherence", s.missCoherence}};
-    QJsonObject camera{{"fov", s.fov}};
+                          {member(model::opt::colourTolerance), double(s.colourTolerance)},
+                          {member(model::opt::branchUp), s.branchUp},
+                          {member(model::opt::missCoherence), s.missCoherence}};
+    QJsonObject camera{{member(model::opt::fov), s.fov}};
     if (s.cameraSet) {
         camera.insert("position", array(s.position));
         camera.insert("look_at", array(s.lookAt));
@@ -137,14 +153,18 @@ QByteArray sessionJson(const StudioState& s) {
                         {"colormap", QString::fromStdString(s.colormap)},
                         {"window", QString::fromStdString(s.window)},
                         {"background", array(s.background)},
-                        {"ambient", s.ambient},
-                        {"lighting", QString::fromStdString(s.lighting)},
-                        {"bake_ao", s.bakeAo},
-                        {"bake_shadows", s.bakeShadows},
-                        {"shadows", s.shadows}};
-    QJsonObject exportSettings{{"width", s.exportWidth}, {"height", s.exportHeight}, {"transparent", s.transparent},
-                               {"figure", s.figure},     {"title", QString::fromStdString(s.title)},
-                               {"dpi", s.dpi},           {"scale_bar", s.scaleBar}};
+                        {member(model::opt::ambient), s.ambient},
+                        {member(model::opt::lighting), QString::fromStdString(s.lighting)},
+                        {member(model::opt::bakeAo), s.bakeAo},
+                        {member(model::opt::bakeShadows), s.bakeShadows},
+                        {member(model::opt::shadows), s.shadows}};
+    QJsonObject exportSettings{{member(model::opt::width), s.exportWidth},
+                               {member(model::opt::height), s.exportHeight},
+                               {"transparent", s.transparent},
+                               {"figure", s.figure},
+                               {"title", QString::fromStdString(s.title)},
+                               {member(model::opt::dpi), s.dpi},
+                               {"scale_bar", s.scaleBar}};
     QJsonObject root{{kFormatKey, kFormatVersion}, {"input", input},     {"surface", surface}, {"renderers", renderers},
                      {"camera", camera},           {"shading", shading}, {"export", exportSettings}};
     return QJsonDocument(root).toJson(QJsonDocument::Indented);
@@ -175,7 +195,7 @@ StudioState parseSession(const QByteArray& json, const QString& baseFolder) {
 
     const Reader surface = root.object("surface");
     if (surface.has("iso")) s.iso = surface.number("iso", -1e300, 1e300);
-    surface.integer("depth", s.depth, 1, Octree::kMaxDepth);
+    surface.setting(model::opt::depth, s.depth);
     surface.text("cut", s.cut);
     if (!s.cut.empty()) {
         try {
@@ -192,15 +212,12 @@ StudioState parseSession(const QByteArray& json, const QString& baseFolder) {
     renderers.text("second", s.secondRenderer);
     if (s.secondRenderer != kOpenGlPane) checkRenderer(renderers, "second", s.secondRenderer);
     renderers.flag("split", s.split);
-    if (renderers.has("colour_tolerance")) s.colourTolerance = float(renderers.number("colour_tolerance", 0.0, 255.0));
-    renderers.integer("branch_up", s.branchUp, 0, Octree::kMaxDepth);
-    renderers.flag("miss_coherence", s.missCoherence);
+    renderers.setting(model::opt::colourTolerance, s.colourTolerance);
+    renderers.setting(model::opt::branchUp, s.branchUp);
+    renderers.onOff(model::opt::missCoherence, s.missCoherence);
 
     const Reader camera = root.object("camera");
-    if (camera.has("fov")) {
-        s.fov = camera.number("fov", 0.0, 180.0);
-        if (s.fov <= 0.0 || s.fov >= 180.0) camera.fail("fov", QStringLiteral("must be in (0, 180) degrees"));
-    }
+    camera.setting(model::opt::fov, s.fov);
     const int given = int(camera.has("position")) + int(camera.has("look_at")) + int(camera.has("up"));
     if (given != 0 && given != 3) camera.fail("position", QStringLiteral("position, look_at and up go together"));
     if (given == 3) {
@@ -242,21 +259,21 @@ StudioState parseSession(const QByteArray& json, const QString& baseFolder) {
             shading.fail("window", QStringLiteral("a display window and a colour map both colour the surface: give one"));
     }
     shading.colour("background", s.background);
-    if (shading.has("ambient")) s.ambient = shading.number("ambient", 0.0, 1.0);
+    shading.setting(model::opt::ambient, s.ambient);
     shading.text("lighting", s.lighting);
     if (!s.lighting.empty() && s.lighting != "baked" && s.lighting != "dynamic")
         shading.fail("lighting", QStringLiteral("expected \"\", \"baked\" or \"dynamic\", got '%1'").arg(QString::fromStdString(s.lighting)));
-    shading.integer("bake_ao", s.bakeAo, 0, 1024);
-    shading.flag("bake_shadows", s.bakeShadows);
-    shading.flag("shadows", s.shadows);
+    shading.setting(model::opt::bakeAo, s.bakeAo);
+    shading.onOff(model::opt::bakeShadows, s.bakeShadows);
+    shading.onOff(model::opt::shadows, s.shadows);
 
     const Reader exportSettings = root.object("export");
-    exportSettings.integer("width", s.exportWidth, 1, kMaxExportSide);
-    exportSettings.integer("height", s.exportHeight, 1, kMaxExportSide);
+    exportSettings.setting(model::opt::width, s.exportWidth);
+    exportSettings.setting(model::opt::height, s.exportHeight);
     exportSettings.flag("transparent", s.transparent);
     exportSettings.flag("figure", s.figure);
     exportSettings.text("title", s.title);
-    exportSettings.integer("dpi", s.dpi, 36, 1200);
+    exportSettings.setting(model::opt::dpi, s.dpi);
     exportSettings.flag("scale_bar", s.scaleBar);
     return s;
 }

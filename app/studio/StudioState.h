@@ -6,6 +6,7 @@
 #include "FigureOptions.h"
 #include "SurfaceOptions.h"
 
+#include "octrace/model/OptionTable.h"
 #include "octrace/render/Camera.h"
 #include "octrace/render/RenderSettings.h"
 #include "octrace/util/Math.h"
@@ -24,20 +25,20 @@ struct StudioState {
     std::string series;    ///< DICOM series; empty: the largest
     // Surface.
     std::optional<double> iso;  ///< empty: the middle of the valid range
-    int depth = 8;
+    int depth = int(model::opt::depth.defaultValue);
     // Renderers: the main view's, and the second one of the split view.
     std::string renderer = "full";
     std::string secondRenderer = "direct";  ///< a renderer's name, or kOpenGlPane
     bool split = false;
     // Coherence of the renderers that have it (the CLI's --colour-tolerance, --branch-up,
     // --miss-coherence; Renderer::fillsByColour, trajectoryCoherence, missCoherence).
-    float colourTolerance = RenderSettings{}.colourTolerance;  ///< 8-bit sRGB units, 0..255
-    int branchUp = RenderSettings{}.branchUp;
-    bool missCoherence = RenderSettings{}.missCoherence;
+    float colourTolerance = float(model::opt::colourTolerance.defaultValue);  ///< 8-bit sRGB units
+    int branchUp = int(model::opt::branchUp.defaultValue);
+    bool missCoherence = model::opt::missCoherence.defaultChoice() == "on";
     // Camera; unset: framing the surface as `octrace render` does without camera options.
     bool cameraSet = false;
     dvec3 position{0.0, 0.0, 1.0}, lookAt{0.0}, up{0.0, 0.0, 1.0};
-    double fov = 30.0;
+    double fov = model::opt::fov.defaultValue;
     // Shading (RenderSettings, display values as a user picks them).
     dvec3 light{0.4, 0.6, 1.0};
     vec3 colour{0.85f, 0.62f, 0.35f};  ///< sRGB
@@ -47,19 +48,19 @@ struct StudioState {
     std::string window;
     vec4 background{1.0f, 1.0f, 1.0f, 1.0f};  ///< sRGB, alpha
     // Lighting (the CLI's --ambient, --lighting, --bake-ao, --bake-shadows, --shadows).
-    double ambient = 0.15;  ///< share of light independent of the normal; the light's is 1 - ambient
+    double ambient = model::opt::ambient.defaultValue;  ///< share of light independent of the normal; the light's is 1 - ambient
     /// "" (baked light when the octree has it, else dynamic), "baked" (baked at build when the
     /// octree has none), "dynamic" (from the normals and `light`).
     std::string lighting;
-    int bakeAo = BakeOptions{}.aoRays;
-    bool bakeShadows = true;
+    int bakeAo = int(model::opt::bakeAo.defaultValue);
+    bool bakeShadows = model::opt::bakeShadows.defaultChoice() == "on";
     bool shadows = false;  ///< --shadows: shadow rays of the dynamic light (not with baked light)
     // CSG: a cut-away solid (the CLI's --cut syntax: box:..., sphere:..., halfspace:...,
     // cylinder:...; empty: none) and --clip.
     std::string cut;
     bool clip = false;
     // Export.
-    int exportWidth = 1600, exportHeight = 1200;
+    int exportWidth = int(model::opt::width.defaultValue), exportHeight = int(model::opt::height.defaultValue);
     bool transparent = false;  ///< export with a transparent background (alpha 0)
     // Export as a figure (render --figure, PNG): title, dpi (fonts scale with it), scale bar;
     // the colour bar comes with a colour map.
@@ -73,7 +74,7 @@ struct StudioState {
 inline constexpr const char* kOpenGlPane = "opengl";
 
 /// The largest export side in pixels.
-inline constexpr int kMaxExportSide = 8192;
+inline constexpr int kMaxExportSide = int(model::opt::width.max);
 
 /// Whether the state's surface colour is not the default one (the CLI's --colour given: it
 /// then replaces an input's own voxel colours).

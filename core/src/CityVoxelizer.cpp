@@ -230,7 +230,7 @@ Octree voxelizeCity(const CityModel& model, const CityBuildOptions& options, Bui
         const CityObject& o = model.objects[model.triangles[i].object];
         if (o.depth > options.depth)
             throw UsageError("object '" + o.id + "' asks for depth " + std::to_string(o.depth) + ", deeper than the octree's " +
-                             std::to_string(options.depth) + " (give a larger --depth)");
+                             std::to_string(options.depth) + " (give a larger `depth`)");
         const int d = o.depth > 0 ? o.depth : o.role == CityRole::Terrain ? terrainDepth : options.depth;
         stop[i] = std::uint8_t(std::clamp(d, 1, options.depth));
     }

@@ -227,7 +227,7 @@ RenderStats DiscreteRenderer::render(const Octree& tree, const Camera& camera, c
     // Written at every traced or filled pixel before a partner reads it: left uninitialised.
     std::unique_ptr<std::uint32_t[]> srgb(settings.colourCoherence ? new std::uint32_t[frame.hitId.size()] : nullptr);
     if (cut.active() && pattern_ != Pattern::Full)
-        throw UsageError("renderer " + name() + " has no multi-resolution mode (--lod, --level): use " + voxelRenderersThat(&Renderer::multiResolution));
+        throw UsageError("renderer " + name() + " has no multi-resolution mode (`lod`, `level`): use " + voxelRenderersThat(&Renderer::multiResolution));
     const Context ctx{tree, settings, frame, shader, rays, cells.get(), srgb.get(), cut, packSrgb8(settings.background)};
     const int W = camera.width, H = camera.height;
     const Start mode = pattern_ == Pattern::Full ? Start::Root : exact_ ? Start::Guided : Start::Branch;

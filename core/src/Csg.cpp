@@ -323,7 +323,7 @@ Grid commonGrid(const Octree* a, const Octree* b) {
     for (const Octree* t : {a, b})
         if (t && t->form != OctreeForm::Volume)
             throw UsageError("csg: " + (t->source.empty() ? std::string("an operand") : t->source) +
-                             " is a shell octree; CSG needs the volume form (octrace build --form volume)");
+                             " is a shell octree; CSG needs the volume form (build it with `form` volume)");
     if (!a || !b) {
         const Octree* t = a ? a : b;
         return {t->cubeOrigin, t->cubeSide, t->depth};

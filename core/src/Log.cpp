@@ -9,6 +9,7 @@ namespace {
 std::atomic<Level> gLevel{Level::Info};
 std::mutex gMutex;
 std::function<void(Level, const std::string&)> gSink;
+std::function<std::string(const std::string&)> gWording;
 const char* prefix(Level l) {
     switch (l) {
     case Level::Debug: return "debug: ";
@@ -26,9 +27,14 @@ void setSink(std::function<void(Level, const std::string&)> sink) {
     std::lock_guard<std::mutex> lock(gMutex);
     gSink = std::move(sink);
 }
-void message(Level l, const std::string& text) {
+void setWording(std::function<std::string(const std::string&)> wording) {
+    std::lock_guard<std::mutex> lock(gMutex);
+    gWording = std::move(wording);
+}
+void message(Level l, const std::string& raw) {
     if (l < gLevel.load()) return;
     std::lock_guard<std::mutex> lock(gMutex);
+    const std::string text = gWording ? gWording(raw) : raw;
     if (gSink) {
         gSink(l, text);
         return;

@@ -77,7 +77,7 @@ std::string formatBytes(std::uint64_t bytes) {
 void checkMemoryBudget(const std::string& what, std::uint64_t bytes, std::uint64_t budget) {
     if (budget == 0 || bytes <= budget) return;
     throw LimitError(what + " needs about " + formatBytes(bytes) + ", more than the memory budget of " + formatBytes(budget) +
-                     " (--max-memory)");
+                     " (`max_memory`)");
 }
 
 }  // namespace octrace

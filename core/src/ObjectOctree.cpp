@@ -52,7 +52,7 @@ void slabInterval(const Box3& b, const dvec3& o, const dvec3& inv, const dvec3& 
 }
 
 ObjectOctree ObjectOctree::build(SphereSet scene, const ObjectOctreeOptions& opt) {
-    if (opt.leafObjects < 1) throw UsageError("--leaf-objects must be at least 1, got " + std::to_string(opt.leafObjects));
+    if (opt.leafObjects < 1) throw UsageError("`leaf_objects` must be at least 1, got " + std::to_string(opt.leafObjects));
     if (opt.maxDepth < 0 || opt.maxDepth > kMaxDepth)
         throw UsageError("object octree depth must be 0.." + std::to_string(kMaxDepth) + ", got " + std::to_string(opt.maxDepth));
     scene.validate();

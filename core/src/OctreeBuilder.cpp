@@ -262,8 +262,8 @@ private:
     [[noreturn]] void fail() const {
         throw LimitError(field_.source + ": building the octree of '" + field_.name + "' at depth " + std::to_string(depth_) +
                          " stopped before going over the memory budget of " + formatBytes(budget_) +
-                         " (--max-memory; it was estimated at " + formatBytes(estimate_) +
-                         "); try a smaller --depth or a larger --max-memory");
+                         " (`max_memory`; it was estimated at " + formatBytes(estimate_) +
+                         "); try a smaller `depth` or a larger `max_memory`");
     }
 
     const ScalarField& field_;
@@ -755,14 +755,14 @@ void refuseOverBudget(const ScalarField& field, const std::vector<BuildMemoryEst
     std::ostringstream s;
     if (est.size() == 1 && e.octreeBytes == 0) {  // checked before the sampler is made
         s << field.source << ": building the octree of '" << field.name << "' needs more than the memory budget of "
-          << formatBytes(budget) << " (--max-memory) at any depth: the field and the sampler alone need about "
+          << formatBytes(budget) << " (`max_memory`) at any depth: the field and the sampler alone need about "
           << formatBytes(e.total());
         throw LimitError(s.str());
     }
     s << field.source << ": the octree of '" << field.name << "' at depth " << e.depth << " needs about "
       << formatBytes(e.total()) << " (field " << formatBytes(e.fieldBytes) << ", sampler " << formatBytes(e.samplerBytes)
       << ", octree " << formatBytes(e.octreeBytes) << " for about " << aboutCount(e.boundaryVoxels)
-      << " boundary voxels), more than the memory budget of " << formatBytes(budget) << " (--max-memory); ";
+      << " boundary voxels), more than the memory budget of " << formatBytes(budget) << " (`max_memory`); ";
     int fits = 0;
     for (const auto& x : est)
         if (x.total() <= budget) fits = x.depth;

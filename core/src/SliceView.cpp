@@ -98,7 +98,7 @@ double slicePositionOfIndex(const ScalarField& f, SlicePlane plane, int index) {
     const int a = sliceGridAxis(f, plane);
     const int count = f.dims[a];
     if (index < 0 || index >= count)
-        throw UsageError("--index: " + std::to_string(index) + " is outside the " + std::to_string(count) +
+        throw UsageError("`index`: " + std::to_string(index) + " is outside the " + std::to_string(count) +
                          " samples (0.." + std::to_string(count - 1) + ") of grid axis " + std::to_string(a) +
                          ", the one across the " + slicePlaneName(plane) + " plane");
     ivec3 ijk(0);

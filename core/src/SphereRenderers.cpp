@@ -30,7 +30,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 int samplesPerSide(int samples) {
     const int s = int(std::lround(std::sqrt(double(samples))));
     if (samples < 1 || s * s != samples || s > 16)
-        throw UsageError("--samples must be a square number of rays per pixel (1, 4, 9, 16, ... 256), got " + std::to_string(samples));
+        throw UsageError("`samples` must be a square number of rays per pixel (1, 4, 9, 16, ... 256), got " + std::to_string(samples));
     return s;
 }
 
@@ -532,7 +532,7 @@ private:
 RenderStats renderSphereScene(SphereTracer tracer, const std::string& name, const ObjectOctree& tree, const Camera& camera,
                               const RenderSettings& settings, Frame& frame) {
     camera.validate();
-    if (settings.bounces < 0) throw UsageError("--bounces must be >= 0");
+    if (settings.bounces < 0) throw UsageError("`bounces` must be >= 0");
     const int s = samplesPerSide(settings.samples);
     Timer timer;
     frame.resize(camera.width, camera.height);

@@ -48,6 +48,16 @@ std::string describeCreateFailure(const std::string& path, int err) {
     throw OutputError("cannot write '" + path + "': " + reason);
 }
 
+}  // namespace
+
+void checkOutputFolder(const std::string& path) {
+    std::error_code ec;
+    const auto st = std::filesystem::status(folderOf(path), ec);
+    if (!std::filesystem::is_directory(st)) fail(path, describeCreateFailure(path, ENOENT));
+}
+
+namespace {
+
 std::string temporaryNameFor(const std::string& path) {
     static std::atomic<unsigned> counter{0};
     return path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);

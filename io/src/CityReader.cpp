@@ -66,9 +66,9 @@ void toProjectedCrs(CityModel& m, const std::string& requested, const std::strin
             m.notes.push_back(path + ": no coordinate reference system given; coordinates taken as they are");
             return;
         }
-        const OGRSpatialReference target = spatialReference(requested, "--crs");
+        const OGRSpatialReference target = spatialReference(requested, "`crs`");
         m.crs = crsName(target);
-        m.notes.push_back(path + ": no coordinate reference system given; taken to be in " + m.crs + " (--crs)");
+        m.notes.push_back(path + ": no coordinate reference system given; taken to be in " + m.crs + " (`crs`)");
         return;
     }
     const OGRSpatialReference source = spatialReference(m.crs, path);
@@ -88,11 +88,11 @@ void toProjectedCrs(CityModel& m, const std::string& requested, const std::strin
         if (!toWgs || !toWgs->Transform(1, &c.x, &c.y, &c.z))
             throw InputError(path + ": cannot place its centre in longitude/latitude from " + crsName(source));
         target = utmZone(c.x, c.y);
-        m.notes.push_back(path + ": " + crsName(source) + " is geographic; reprojected to " + target + " (UTM, metres; --crs to choose)");
+        m.notes.push_back(path + ": " + crsName(source) + " is geographic; reprojected to " + target + " (UTM, metres; `crs` to choose)");
     }
-    const OGRSpatialReference dest = spatialReference(target, "--crs");
+    const OGRSpatialReference dest = spatialReference(target, "`crs`");
     if (!dest.IsProjected() && !dest.IsLocal())
-        throw InputError("--crs " + target + ": not a projected CRS (octrace needs metres-like units on all three axes)");
+        throw InputError("`crs` " + target + ": not a projected CRS (octrace needs metres-like units on all three axes)");
     if (source.IsSame(&dest)) {
         m.crs = crsName(dest);
         return;
@@ -133,7 +133,7 @@ bool isCityInput(const std::string& path) {
 }
 
 CityModel readCityModel(const std::string& path, const CityRequest& req) {
-    if (!req.crs.empty()) spatialReference(req.crs, "--crs");  // a bad --crs before the long read
+    if (!req.crs.empty()) spatialReference(req.crs, "`crs`");  // a bad --crs before the long read
     CityModel m;
     m.source = path;
     std::string texture = req.texture;
@@ -160,7 +160,7 @@ CityModel readCityModel(const std::string& path, const CityRequest& req) {
         }
     }
     if (m.format != "building footprints (OGR)" && (!req.heightAttr.empty() || !req.baseAttr.empty()))
-        throw InputError(path + ": --height-attr and --base-attr apply to building footprints, not to this " + m.format + " input");
+        throw InputError(path + ": `height_attr` and `base_attr` apply to building footprints, not to this " + m.format + " input");
     toProjectedCrs(m, req.crs, path);
     if (!req.dem.empty()) {
         CityModel dem;
@@ -170,7 +170,7 @@ CityModel readCityModel(const std::string& path, const CityRequest& req) {
     }
     if (m.triangles.empty()) throw EmptyResultError(path + ": no surface with area to voxelize");
     if (!texture.empty()) {
-        if (m.crs.empty()) throw InputError(texture + ": the scene has no CRS to place the texture in (give --crs)");
+        if (m.crs.empty()) throw InputError(texture + ": the scene has no CRS to place the texture in (give `crs`)");
         Box3 terrain = m.bounds(CityRole::Terrain);
         if (!(terrain.hi.x >= terrain.lo.x)) throw InputError(texture + ": the scene has no terrain to drape the texture on");
         // A margin: voxel centres at the terrain's edge may lie half a voxel outside it.

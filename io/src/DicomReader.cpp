@@ -224,7 +224,7 @@ ScalarField readScanned(const Scan& s, const std::string& path, const std::strin
     // Said when there was a choice to make; a folder of one series gets a debugging line.
     const std::string said = path + ": series " + std::to_string(chosen + 1) + " of " + std::to_string(s.series.size()) +
                              ", " + seriesLine(info);
-    if (s.series.size() > 1) log::info(said + (want.empty() ? ": the largest; choose another with --series" : ""));
+    if (s.series.size() > 1) log::info(said + (want.empty() ? ": the largest; choose another with `series`" : ""));
     else log::debug(said);
     return assemble(s.series[chosen], path, memoryBudget);
 }

@@ -53,11 +53,11 @@ void refuseRegion(const std::string& path, const FieldRequest& req, const std::s
     if (req.hasDepthRange)
         throw InputError(path + ": a depth range needs a geographic (NetCDF longitude/latitude/depth) grid, " + format +
                          " volumes have none");
-    if (!req.time.empty()) throw InputError(path + ": --time chooses a NetCDF time step, " + format + " volumes have none");
+    if (!req.time.empty()) throw InputError(path + ": `time` chooses a NetCDF time step, " + format + " volumes have none");
 }
 
 void refuseSeries(const std::string& path, const FieldRequest& req) {
-    if (!req.series.empty()) throw InputError(path + ": --series chooses a DICOM series, this input is not DICOM");
+    if (!req.series.empty()) throw InputError(path + ": `series` chooses a DICOM series, this input is not DICOM");
 }
 
 std::optional<VolumeReader::Format> volumeFormat(FileKind kind) {

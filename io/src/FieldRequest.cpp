@@ -50,12 +50,12 @@ std::array<double, 2> parseDepthRange(const std::string& text) {
 }
 
 void checkTimeText(const std::string& text) {
-    if (text.empty()) throw UsageError("--time: empty (give a time index or a date YYYY-MM-DD)");
+    if (text.empty()) throw UsageError("`time`: empty (give a time index or a date YYYY-MM-DD)");
     if (text.find_first_not_of("0123456789") == std::string::npos) {
-        if (text.size() > 9) throw UsageError("--time: index " + text + " is too large");
+        if (text.size() > 9) throw UsageError("`time`: index " + text + " is too large");
         return;
     }
-    (void)detail::parseIsoDate(text, "--time");
+    (void)detail::parseIsoDate(text, "`time`");
 }
 
 void checkRegion(const double region[4], const std::string& what) {

@@ -79,12 +79,12 @@ void addFootprints(CityModel& model, const std::string& path, const CityRequest&
             std::string fields;
             for (int i = 0; i < defn->GetFieldCount(); ++i) fields += std::string(i ? ", " : "") + defn->GetFieldDefn(i)->GetNameRef();
             throw InputError(path + ": " +
-                             (req.heightAttr.empty() ? std::string("no height attribute found; give --height-attr")
-                                                     : "no attribute '" + req.heightAttr + "' (--height-attr)") +
+                             (req.heightAttr.empty() ? std::string("no height attribute found; give `height_attr`")
+                                                     : "no attribute '" + req.heightAttr + "' (`height_attr`)") +
                              " (its attributes: " + (fields.empty() ? std::string("none") : fields) + ")");
         }
         const int baseField = req.baseAttr.empty() ? -1 : defn->GetFieldIndex(req.baseAttr.c_str());
-        if (!req.baseAttr.empty() && baseField < 0) throw InputError(path + ": no attribute '" + req.baseAttr + "' (--base-attr)");
+        if (!req.baseAttr.empty() && baseField < 0) throw InputError(path + ": no attribute '" + req.baseAttr + "' (`base_attr`)");
         const int idField = defn->GetFieldIndex("ID") >= 0 ? defn->GetFieldIndex("ID") : defn->GetFieldIndex("id");
         // The layer's CRS, and the way to the DEM's.
         const OGRSpatialReference* srs = layer->GetSpatialRef();
@@ -147,7 +147,7 @@ void addFootprints(CityModel& model, const std::string& path, const CityRequest&
                 }
                 base = lowest;
             } else if (!baseZeroSaid) {
-                model.notes.push_back(path + ": no --base-attr or --dem: the footprints stand on z = 0");
+                model.notes.push_back(path + ": no `base_attr` or `dem`: the footprints stand on z = 0");
                 baseZeroSaid = true;
             }
             CityObject o;

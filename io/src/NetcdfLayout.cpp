@@ -32,7 +32,7 @@ std::size_t selectTime(const std::string& path, const VariableInfo& var, const A
     const std::string what = path + ": variable '" + var.shortName + "': dimension '" + axis.name + "' (time)";
     if (req.time.empty()) {
         std::string msg = "dimension '" + axis.name + "' (time): first of " + std::to_string(axis.size) +
-                          " steps used" + sayTime(axis, 0) + "; choose one with --time";
+                          " steps used" + sayTime(axis, 0) + "; choose one with `time`";
         if (axis.size > 1) log::warning(path + ": variable '" + var.shortName + "': " + msg);
         notes.push_back(msg);
         return 0;
@@ -42,21 +42,21 @@ std::size_t selectTime(const std::string& path, const VariableInfo& var, const A
         std::size_t n = std::stoul(req.time);
         if (n >= axis.size)
             throw InputError(what + " has " + std::to_string(axis.size) + " step(s), indices 0.." +
-                             std::to_string(axis.size - 1) + "; --time " + req.time + " is beyond them");
+                             std::to_string(axis.size - 1) + "; `time` " + req.time + " is beyond them");
         notes.push_back("time step " + std::to_string(n) + " of " + std::to_string(axis.size) + sayTime(axis, n));
         return n;
     }
-    DateTime date = parseIsoDate(req.time, "--time");
-    if (axis.values.empty()) throw InputError(what + " has no coordinate variable: give --time as an index");
+    DateTime date = parseIsoDate(req.time, "`time`");
+    if (axis.values.empty()) throw InputError(what + " has no coordinate variable: give `time` as an index");
     if (!isTimeUnits(axis.units))
-        throw InputError(what + ": units '" + axis.units + "' are not 'UNIT since DATE': give --time as an index");
+        throw InputError(what + ": units '" + axis.units + "' are not 'UNIT since DATE': give `time` as an index");
     TimeUnits u = parseTimeUnits(axis.units, axis.calendar, path + ": time axis '" + axis.name + "'");
-    double wanted = encodeTime(u, date, "--time " + req.time);
+    double wanted = encodeTime(u, date, "`time` " + req.time);
     std::size_t best = 0;
     for (std::size_t n = 1; n < axis.values.size(); ++n)
         if (std::abs(axis.values[n] - wanted) < std::abs(axis.values[best] - wanted)) best = n;
     auto [lo, hi] = std::minmax_element(axis.values.begin(), axis.values.end());
-    std::string msg = "--time " + req.time + ": nearest step " + std::to_string(best) + " of " +
+    std::string msg = "`time` " + req.time + ": nearest step " + std::to_string(best) + " of " +
                       std::to_string(axis.size) + sayTime(axis, best);
     if (wanted < *lo || wanted > *hi) {
         msg += "; the date lies outside the time axis " + formatDate(decodeTime(u, *lo)) + " .. " +
@@ -158,7 +158,7 @@ Layout layoutFor(const std::string& path, const NetcdfFile& file, const Variable
         }
     }
     if (!req.time.empty() && !timeChosen)
-        throw InputError(path + ": --time " + req.time + ": variable " + var.signature() + " has no time axis");
+        throw InputError(path + ": `time` " + req.time + ": variable " + var.signature() + " has no time axis");
 
     if (geographic) {
         const AxisClass& vc = cls[vert[0]];

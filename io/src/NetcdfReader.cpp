@@ -70,7 +70,7 @@ const VariableInfo* chooseVariable(const std::string& path, const NetcdfFile& fi
         if (vols.empty()) throw InputError(path + ": no 3-D variable (variables: " + listOf(data) + ")");
         std::string names;
         for (const auto* v : vols) names += (names.empty() ? "" : ", ") + v->shortName;
-        throw InputError(path + ": several 3-D variables (" + names + "); choose one with --var");
+        throw InputError(path + ": several 3-D variables (" + names + "); choose one with `var`");
     }
     std::vector<const VariableInfo*> hits;
     for (const auto& v : file.variables())
@@ -280,7 +280,7 @@ std::string describeNetcdf(const std::string& path, const std::string& format, c
     SoundSpeedSources src = soundSpeedSources(file);
     if (!hasSoundSpeed && src.problem.empty())
         s << "  sound_speed: derived from " << src.temperature->shortName << " and " << src.salinity->shortName
-          << " with --var sound_speed (UNESCO 1983)\n";
+          << " with `var` sound_speed (UNESCO 1983)\n";
     describeGrid(s, path, file, req);
     return s.str();
 }

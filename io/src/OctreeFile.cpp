@@ -429,7 +429,7 @@ std::vector<std::uint8_t> readAll(const std::string& path) {
 std::vector<std::uint8_t> encodeOctreeFile(const Octree& tree, int zstdLevel) {
     if (tree.nodes.empty() || tree.voxels.empty()) throw Error("cannot write an empty octree");
     const Flattened f = flatten(tree);
-    if (f.anyTerm && tree.form != OctreeForm::Volume) throw Error("a mixed-depth octree (coarse leaves, e.g. from --terrain-depth) cannot be written to an octree file yet");
+    if (f.anyTerm && tree.form != OctreeForm::Volume) throw Error("a mixed-depth octree (coarse leaves, e.g. from `terrain_depth`) cannot be written to an octree file yet");
     if (!tree.baked.empty() && tree.form != OctreeForm::Shell) throw Error("baked light is kept in the shell form only");
     Writer w;
     w.raw(kMagic, sizeof kMagic);

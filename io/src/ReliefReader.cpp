@@ -28,7 +28,7 @@ void checkBudget(const std::string& path, std::uint64_t samples, std::uint64_t b
     const std::uint64_t need = samples * (sizeof(double) + 2 * sizeof(float));  // the read, the heights, the pyramid
     if (budget && need > budget)
         throw LimitError(path + ": the relief's " + std::to_string(samples) + " heights need about " + std::to_string(need >> 20) +
-                         " MiB, more than the memory budget (--max-memory)");
+                         " MiB, more than the memory budget (`max_memory`)");
 }
 
 /// Metres per unit of the heights; InputError for units that are not a length.

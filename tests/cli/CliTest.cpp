@@ -237,8 +237,8 @@ TEST(Cli, ColourOptionsWithoutColourCoherenceAreToldToChangeNothing) {
     Result r = run({"render", "analytic:sphere", "--iso", "0", "--depth", "5", "--size", "64x48", "--colour-tolerance", "5",
                     "--colour-fill-background", "-o", s.path("a.png")});
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.err.find("--colour-tolerance has no effect without colour coherence"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("--colour-fill-background has no effect without colour coherence"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--colour-tolerance has no effect on renderer full (only on the +colour renderers, or with --colour-coherence)"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--colour-fill-background has no effect on renderer full (only on the +colour renderers, or with --colour-coherence)"), std::string::npos) << r.err;
     r = run({"render", "analytic:sphere", "--iso", "0", "--depth", "5", "--size", "64x48", "--renderer", "area+colour",
              "--colour-tolerance", "5", "-o", s.path("b.png")});
     ASSERT_EQ(r.code, 0) << r.err;

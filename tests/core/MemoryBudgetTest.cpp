@@ -73,7 +73,7 @@ TEST(Memory, ACheckOverTheBudgetNamesTheNeedAndTheBudget) {
         FAIL() << "no exception";
     } catch (const LimitError& e) {
         EXPECT_STREQ(e.what(), "f.nrrd: reading 4000x4000x4000 float samples needs about 9 GiB, more than the memory "
-                               "budget of 1 GiB (--max-memory)");
+                               "budget of 1 GiB (`max_memory`)");
     }
 }
 
@@ -131,7 +131,7 @@ TEST(BuildMemory, RefusesADepthOverTheBudgetNamingTheLargestDepthThatFits) {
               0u)
         << m;
     EXPECT_NE(m.find("boundary voxels), more than the memory budget of " + formatBytes(o.memoryBudget) +
-                     " (--max-memory); the largest depth that fits is 8 (about " + formatBytes(est[7].total()) + ")"),
+                     " (`max_memory`); the largest depth that fits is 8 (about " + formatBytes(est[7].total()) + ")"),
               std::string::npos)
         << m;
     // That depth builds within the same budget, and the budget does not change the octree.
@@ -150,7 +150,7 @@ TEST(BuildMemory, RefusesEveryDepthWhenTheFieldAndItsSamplerAloneDoNotFit) {
     BuildOptions o;
     o.memoryBudget = 100 * 1024;
     EXPECT_EQ(limitMessage(f, o), "analytic:torus: building the octree of 'torus' needs more than the memory budget of "
-                                  "100 KiB (--max-memory) at any depth: the field and the sampler alone need about 332 KiB");
+                                  "100 KiB (`max_memory`) at any depth: the field and the sampler alone need about 332 KiB");
 }
 
 // The running check: a surface that only appears deeper than the probes makes the estimate
@@ -166,8 +166,8 @@ TEST(BuildMemory, StopsCleanlyWhenTheBuildGoesOverTheBudgetItsEstimateMissed) {
         o.memoryBudget = est[7].total() + (std::uint64_t(1) << 20);
         EXPECT_EQ(limitMessage(f, o).rfind("analytic:sphere: building the octree of 'spikes' at depth 8 stopped before going "
                                            "over the memory budget of " + formatBytes(o.memoryBudget) +
-                                           " (--max-memory; it was estimated at " + formatBytes(est[7].total()) +
-                                           "); try a smaller --depth or a larger --max-memory",
+                                           " (`max_memory`; it was estimated at " + formatBytes(est[7].total()) +
+                                           "); try a smaller `depth` or a larger `max_memory`",
                                            0),
                   0u)
             << limitMessage(f, o);

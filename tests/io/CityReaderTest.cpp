@@ -72,7 +72,7 @@ TEST(CityReader, ReprojectsIntoTheRequestedCrs) {
 TEST(CityReader, AWrongCrsIsAClearError) {
     CityRequest r;
     r.crs = "EPSG:999999";
-    EXPECT_THROW_WITH(readCityModel(kCube, r), InputError, "--crs: unknown coordinate reference system 'EPSG:999999'");
+    EXPECT_THROW_WITH(readCityModel(kCube, r), InputError, "`crs`: unknown coordinate reference system 'EPSG:999999'");
     r.crs = "EPSG:4326";
     EXPECT_THROW_WITH(readCityModel(kCube, r), InputError, "not a projected CRS");
 }
@@ -217,9 +217,9 @@ TEST(CityReader, FootprintsBecomePrismsAndTheBrokenOnesAreSaidAndLeftOut) {
     // A .json GeoJSON goes to the same reader; no height attribute is an error naming the fields.
     const std::string json = dir.file("f.json");
     writeText(json, kFootprints);
-    EXPECT_THROW_WITH(readCityModel(json), InputError, "no height attribute found; give --height-attr (its attributes: ID, h, ground)");
+    EXPECT_THROW_WITH(readCityModel(json), InputError, "no height attribute found; give `height_attr` (its attributes: ID, h, ground)");
     r.baseAttr = "floor";
-    EXPECT_THROW_WITH(readCityModel(json, r), InputError, "no attribute 'floor' (--base-attr)");
+    EXPECT_THROW_WITH(readCityModel(json, r), InputError, "no attribute 'floor' (`base_attr`)");
 }
 
 TEST(CityReader, AFootprintFileInTheWrongCrsIsAClearError) {

@@ -183,7 +183,7 @@ TEST(DicomReader, ListsEverySeriesAndReadsTheLargestUnlessOneIsChosen) {
 TEST(DicomReader, SeriesIsRefusedForOtherFormats) {
     io::FieldRequest r;
     r.series = "1";
-    EXPECT_THROW_WITH(io::readField(test::testData("netcdf/dateline_cf.nc"), r), InputError, "--series chooses a DICOM series");
+    EXPECT_THROW_WITH(io::readField(test::testData("netcdf/dateline_cf.nc"), r), InputError, "`series` chooses a DICOM series");
 }
 
 TEST(DicomReader, RefusesBrokenSeriesWithOneLineNamingTheInput) {

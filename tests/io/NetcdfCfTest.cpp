@@ -197,19 +197,19 @@ TEST(NetcdfCf, TimeStepsByIndexOrDateIn365DayCalendar) {
     EXPECT_EQ(surfaceCorner(io::NetcdfReader::read(path, at("2"))), 2000.0f);
     ScalarField march = io::NetcdfReader::read(path, at("2000-03-01"));
     EXPECT_EQ(surfaceCorner(march), 1000.0f);
-    EXPECT_TRUE(hasNote(march, "--time 2000-03-01: nearest step 1 of 3 (2000-03-01, calendar 365_day)"));
+    EXPECT_TRUE(hasNote(march, "`time` 2000-03-01: nearest step 1 of 3 (2000-03-01, calendar 365_day)"));
     EXPECT_EQ(surfaceCorner(io::NetcdfReader::read(path, at("2001-02-20"))), 2000.0f);  // nearest: 2001-03-01
     EXPECT_THROW_WITH(io::NetcdfReader::read(path, at("2000-02-29")), InputError,
                       "2000-02-29 is not a date of the 365_day calendar");
     EXPECT_THROW_WITH(io::NetcdfReader::read(path, at("3")), InputError,
-                      "dimension 'time' (time) has 3 step(s), indices 0..2; --time 3 is beyond them");
+                      "dimension 'time' (time) has 3 step(s), indices 0..2; `time` 3 is beyond them");
     EXPECT_THROW_WITH(io::NetcdfReader::read(path, at("March")), UsageError, "neither a time index nor a date");
     {
         test::LogCapture log;
         ScalarField first = io::NetcdfReader::read(path, {});
         EXPECT_EQ(surfaceCorner(first), 0.0f);
         ASSERT_EQ(log.warnings.size(), 1u);
-        EXPECT_NE(log.warnings[0].find("first of 3 steps used (2000-01-01, calendar 365_day); choose one with --time"),
+        EXPECT_NE(log.warnings[0].find("first of 3 steps used (2000-01-01, calendar 365_day); choose one with `time`"),
                   std::string::npos)
             << log.warnings[0];
     }
@@ -247,7 +247,7 @@ TEST(NetcdfCf, TimeOnAVariableWithoutTimeAxisIsRefused) {
         w.variable("temp", {"depth", "lat", "lon"}, GDT_Float32, ramp());
     }
     EXPECT_THROW_WITH(io::NetcdfReader::read(path, at("0")), InputError,
-                      "--time 0: variable temp(depth, lat, lon) has no time axis");
+                      "`time` 0: variable temp(depth, lat, lon) has no time axis");
 }
 
 // 2-D latitude and longitude (an ocean model's curvilinear grid) are refused, never drawn as if

@@ -132,7 +132,7 @@ TEST(NetcdfReaderLevitus, DescribeListsAxesVariablesAndRanges) {
                           "TEMP(ZAXLEVITR, YAXLEVITR, XAXLEVITR) Float32 [20 x 180 x 360], units 'DEG C', 'TEMPERATURE', "
                           "_FillValue -1e+10, missing_value -1e+10: valid range -2.02 .. 29.74 (718725 of 1296000 samples valid)",
                           "SALT(ZAXLEVITR, YAXLEVITR, XAXLEVITR)", "world bounds:", "z: rectilinear, 20 values",
-                          "sound_speed: derived from TEMP and SALT with --var sound_speed"})
+                          "sound_speed: derived from TEMP and SALT with `var` sound_speed"})
         EXPECT_NE(t.find(s), std::string::npos) << "missing '" << s << "' in:\n" << t;
 }
 

@@ -201,7 +201,7 @@ TEST(NrrdReader, RefusesSamplesBeyondTheMemoryBudgetBeforeDecodingThem) {
     std::filesystem::resize_file(path, header.size() + (std::uintmax_t(4) << 30));
     EXPECT_THROW_WITH(io::NrrdReader::read(path, std::uint64_t(1) << 30), LimitError,
                       path + ": reading 1024x1024x1024 float samples needs about 9 GiB, more than the memory budget of "
-                             "1 GiB (--max-memory)");
+                             "1 GiB (`max_memory`)");
     EXPECT_THROW_WITH(io::NrrdReader::describe(path, std::uint64_t(1) << 30), LimitError, "needs about 9 GiB");
     // Within the budget it is read as usual.
     const std::string small = dir.file("small.nrrd");

@@ -13,6 +13,8 @@
 #include "Navigation.h"
 #include "SurfelView.h"
 
+#include "OptionWidgets.h"
+#include "octrace/model/OptionTable.h"
 #include "octrace/util/Error.h"
 
 #include <QCheckBox>
@@ -546,9 +548,9 @@ private slots:
 
     void exportRefusesOversize() {
         QSignalSpy failed(&window_->engine(), &Engine::failed);
-        window_->exportFigure(tmp_.filePath(QStringLiteral("huge.png")), 8193, 10, false);
+        window_->exportFigure(tmp_.filePath(QStringLiteral("huge.png")), octrace::studio::kMaxExportSide + 1, 10, false);
         QVERIFY(failed.wait(kWaitMs));
-        QVERIFY(failed.takeFirst().at(0).toString().contains(QStringLiteral("8192")));
+        QVERIFY(failed.takeFirst().at(0).toString().contains(QString::number(octrace::studio::kMaxExportSide)));
         QVERIFY(!QFileInfo::exists(tmp_.filePath(QStringLiteral("huge.png"))));
         QVERIFY(window_->state().exportWidth <= octrace::studio::kMaxExportSide);
         for (auto* box : window_->findChildren<QWidget*>(QStringLiteral("errorBox"))) box->close();
@@ -676,10 +678,10 @@ private slots:
         row("version", R"({"octrace_studio_session": 3})", "format version 3");
         row("input type", R"({"octrace_studio_session": 1, "input": {"path": 5}})", "input.path: must be a string");
         row("depth", R"({"octrace_studio_session": 1, "surface": {"depth": 0}})", "surface.depth: 0 is outside");
-        row("depth fraction", R"({"octrace_studio_session": 1, "surface": {"depth": 7.5}})", "surface.depth: must be a whole number");
+        row("depth fraction", R"({"octrace_studio_session": 1, "surface": {"depth": 7.5}})", "surface.depth: 7.5 is not a whole number");
         row("iso", R"({"octrace_studio_session": 1, "surface": {"iso": "x"}})", "surface.iso: must be a number");
         row("renderer", R"({"octrace_studio_session": 1, "renderers": {"main": "warp"}})", "renderers.main: unknown renderer 'warp'");
-        row("fov", R"({"octrace_studio_session": 1, "camera": {"fov": 180}})", "camera.fov: must be in (0, 180)");
+        row("fov", R"({"octrace_studio_session": 1, "camera": {"fov": 180}})", "camera.fov: 180 is outside (0, 180) degrees");
         row("camera partial", R"({"octrace_studio_session": 1, "camera": {"position": [1, 2, 3]}})", "go together");
         row("camera degenerate",
             R"({"octrace_studio_session": 1, "camera": {"position": [1, 1, 1], "look_at": [1, 1, 1], "up": [0, 0, 1]}})",
@@ -687,7 +689,7 @@ private slots:
         row("light zero", R"({"octrace_studio_session": 1, "shading": {"light": [0, 0, 0]}})", "shading.light: direction must not be zero");
         row("colour range", R"({"octrace_studio_session": 1, "shading": {"colour": [1, 2, 0]}})", "shading.colour: 2 is outside");
         row("colormap", R"({"octrace_studio_session": 1, "shading": {"colormap": "rainbow2"}})", "unknown colour map 'rainbow2'");
-        row("export size", R"({"octrace_studio_session": 1, "export": {"width": 8193}})", "export.width: 8193 is outside");
+        row("export size", R"({"octrace_studio_session": 1, "export": {"width": 16385}})", "export.width: 16385 is outside");
         row("window", R"({"octrace_studio_session": 1, "shading": {"window": "liver"}})", "shading.window:");
         row("window and colormap", R"({"octrace_studio_session": 1, "shading": {"window": "bone", "colormap": "viridis"}})",
             "both colour the surface");
@@ -703,7 +705,7 @@ private slots:
         row("title type", R"({"octrace_studio_session": 1, "export": {"title": 3}})", "export.title: must be a string");
         row("colour tolerance", R"({"octrace_studio_session": 1, "renderers": {"colour_tolerance": 300}})",
             "renderers.colour_tolerance: 300 is outside [0, 255]");
-        row("branch up", R"({"octrace_studio_session": 1, "renderers": {"branch_up": 1.5}})", "renderers.branch_up: must be a whole number");
+        row("branch up", R"({"octrace_studio_session": 1, "renderers": {"branch_up": 1.5}})", "renderers.branch_up: 1.5 is not a whole number");
         row("miss coherence type", R"({"octrace_studio_session": 1, "renderers": {"miss_coherence": "off"}})",
             "renderers.miss_coherence: must be true or false");
     }
@@ -734,6 +736,96 @@ private slots:
             R"({"octrace_studio_session": 1, "surface": {"cut": "relief:../shared/data/ocean/etopo20.cdf"}})");
         QCOMPARE(r.cut, std::string("relief:../shared/data/ocean/etopo20.cdf"));
         QCOMPARE(octrace::studio::parseSession(octrace::studio::sessionJson(r)).cut, r.cut);
+    }
+
+    /// The widgets whose settings are in the options table, by key; the export dialog's are
+    /// read while it is open.
+    QMap<QString, QWidget*> optionWidgets(QWidget* root) {
+        QMap<QString, QWidget*> found;
+        for (QWidget* w : root->findChildren<QWidget*>()) {
+            const QVariant key = w->property(octrace::studio::kOptionProperty);
+            if (key.isValid()) found.insert(key.toString(), w);
+        }
+        return found;
+    }
+
+    /// Every numeric setting of the options table that the studio shows or saves, at its
+    /// minimum, its maximum and just outside both: the widgets' ranges read back from the
+    /// QSpinBox objects equal the table's (an open end one step inside), values past them are
+    /// clamped; a session file takes the ends and refuses the values outside, naming the member.
+    void optionTableRangesHoldInTheWidgetsAndSessions() {
+        namespace model = octrace::model;
+        // The export dialog's controls, read while it is open.
+        QMap<QString, QPair<double, double>> dialogRanges;
+        QTimer probe;
+        probe.setInterval(20);
+        connect(&probe, &QTimer::timeout, this, [&] {
+            auto* dlg = qobject_cast<QDialog*>(QApplication::activeModalWidget());
+            if (!dlg || dlg->objectName() != QStringLiteral("exportDialog")) return;
+            probe.stop();
+            for (auto [key, w] : optionWidgets(dlg).asKeyValueRange())
+                if (auto* box = qobject_cast<QSpinBox*>(w)) dialogRanges.insert(key, {double(box->minimum()), double(box->maximum())});
+            dlg->reject();
+        });
+        probe.start();
+        for (QAction* a : window_->findChildren<QAction*>())
+            if (a->text() == QStringLiteral("&Export Figure...")) a->trigger();
+        const QMap<QString, QWidget*> panel = optionWidgets(window_);
+        int widgets = 0, sessions = 0;
+        for (const model::Option* o : model::allOptions()) {
+            if (o->kind != model::OptionKind::Integer && o->kind != model::OptionKind::Number) continue;
+            const QString key = QString::fromLatin1(o->key);
+            if (*o->label) {
+                double lo = 0, hi = 0, step = 1;
+                if (auto* box = qobject_cast<QSpinBox*>(panel.value(key))) {
+                    const QSignalBlocker quiet(box);  // no rebuild at the probes
+                    const int was = box->value();
+                    const auto restore = qScopeGuard([&] { box->setValue(was); });
+                    lo = box->minimum(), hi = box->maximum();
+                    box->setValue(int(lo) - 1);
+                    QCOMPARE(box->value(), int(lo));
+                    box->setValue(int(hi) + 1);
+                    QCOMPARE(box->value(), int(hi));
+                } else if (auto* dbox = qobject_cast<QDoubleSpinBox*>(panel.value(key))) {
+                    const QSignalBlocker quiet(dbox);
+                    const double was = dbox->value();
+                    const auto restore = qScopeGuard([&] { dbox->setValue(was); });
+                    lo = dbox->minimum(), hi = dbox->maximum(), step = std::pow(10.0, -dbox->decimals());
+                    dbox->setValue(lo - step);
+                    QCOMPARE(dbox->value(), lo);
+                    dbox->setValue(hi + step);
+                    QCOMPARE(dbox->value(), hi);
+                } else if (dialogRanges.contains(key)) {
+                    lo = dialogRanges[key].first, hi = dialogRanges[key].second;
+                } else {
+                    QFAIL(qPrintable(QStringLiteral("no studio control for '%1' (label '%2')").arg(key, QLatin1String(o->label))));
+                }
+                QVERIFY2(o->minOpen ? (lo > o->min && lo <= o->min + step) : lo == o->min, qPrintable(key));
+                QVERIFY2(o->maxOpen ? (hi < o->max && hi >= o->max - step) : hi == o->max, qPrintable(key));
+                ++widgets;
+            }
+            if (*o->session) {
+                const QString path = QString::fromLatin1(o->session);
+                const QString group = path.section(QLatin1Char('.'), 0, 0), member = path.section(QLatin1Char('.'), 1);
+                const auto session = [&](double v) {
+                    return QStringLiteral(R"({"octrace_studio_session": 1, "%1": {"%2": %3}})").arg(group, member).arg(v, 0, 'g', 17).toUtf8();
+                };
+                const double inside = o->kind == model::OptionKind::Integer ? 1.0 : 1e-6;
+                for (double v : {o->minOpen ? o->min + inside : o->min, o->maxOpen ? o->max - inside : o->max})
+                    if (std::isfinite(v)) octrace::studio::parseSession(session(v));  // accepted: throws otherwise
+                for (double v : {o->minOpen ? o->min : o->min - inside, o->maxOpen ? o->max : o->max + inside}) {
+                    if (!std::isfinite(v)) continue;
+                    try {
+                        octrace::studio::parseSession(session(v));
+                        QFAIL(qPrintable(QStringLiteral("%1 = %2 was accepted").arg(path).arg(v)));
+                    } catch (const octrace::InputError& e) {
+                        QVERIFY2(QString::fromStdString(e.what()).contains(path + QStringLiteral(": ")), e.what());
+                    }
+                }
+                ++sessions;
+            }
+        }
+        QVERIFY(widgets >= 9 && sessions >= 9);
     }
 
     void cleanupTestCase() { delete window_; }

@@ -16,6 +16,10 @@ Level level();
 /// Replace the sink (e.g. the Qt application shows messages in a panel). Pass {} for stderr.
 void setSink(std::function<void(Level, const std::string&)> sink);
 
+/// Rewrite every message before it reaches the sink: a front end names the parameters of core
+/// and io messages (util/Parameter.h) in its own words. Pass {} to show them as they are.
+void setWording(std::function<std::string(const std::string&)> wording);
+
 void message(Level level, const std::string& text);
 inline void debug(const std::string& t) { message(Level::Debug, t); }
 inline void info(const std::string& t) { message(Level::Info, t); }

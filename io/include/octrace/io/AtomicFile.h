@@ -20,6 +20,10 @@ void writeFileAtomically(const std::string& path, std::span<const std::uint8_t> 
 /// Same, for text (e.g. the stats JSON).
 void writeFileAtomically(const std::string& path, std::string_view text);
 
+/// Refuses, before any long work, an output whose folder does not exist or is not a folder.
+/// @throws OutputError as writeFileAtomically would after the work.
+void checkOutputFolder(const std::string& path);
+
 /// Makes SIGINT, SIGTERM and SIGHUP first remove the temporaries of the
 /// writeFileAtomically() calls in progress, then end the process as the signal's default
 /// action would (so its exit status still names the signal: a shell reports 130 for SIGINT,

@@ -1,0 +1,203 @@
+#include "octrace/model/OptionTable.h"
+
+#include "octrace/util/Error.h"
+#include "octrace/util/Parameter.h"
+
+#include <array>
+#include <cerrno>
+#include <cstdlib>
+#include <sstream>
+
+namespace octrace::model {
+namespace {
+
+constexpr std::array kOptions{
+    &opt::depth,           &opt::iso,         &opt::variable,         &opt::time,        &opt::series,
+    &opt::form,            &opt::inside,      &opt::threads,          &opt::maxMemory,   &opt::verticalScale,
+    &opt::terrainDepth,    &opt::crs,         &opt::heightAttr,       &opt::baseAttr,    &opt::dem,
+    &opt::cut,             &opt::renderer,    &opt::fov,              &opt::orthoHeight, &opt::projection,
+    &opt::lod,             &opt::level,       &opt::colourCoherence,  &opt::colourFillBackground,
+    &opt::colourTolerance, &opt::branchUp,    &opt::missCoherence,    &opt::repeat,      &opt::width,
+    &opt::height,          &opt::octree,      &opt::leafObjects,      &opt::samples,     &opt::bounces,
+    &opt::ambient,         &opt::lighting,    &opt::shadows,          &opt::bakeAo,      &opt::bakeAoDistance,
+    &opt::bakeShadows,     &opt::dpi,         &opt::index,            &opt::compression, &opt::sampleCount,
+    &opt::seed,
+};
+
+std::string numberText(double v) {
+    std::ostringstream s;
+    s.precision(10);
+    s << v;
+    return s.str();
+}
+
+std::string withUnit(std::string text, const Option& o) {
+    if (*o.unit) text += std::string(" ") + o.unit;
+    return text;
+}
+
+[[noreturn]] void refuse(const Option& o, const std::string& what) { throw UsageError(param(o.key) + ": " + what); }
+
+std::vector<std::string> split(std::string_view text, char sep) {
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t end = text.find(sep, start);
+        parts.emplace_back(text.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start));
+        if (end == std::string_view::npos) break;
+        start = end + 1;
+    }
+    return parts;
+}
+
+std::string spaced(std::string_view key) {
+    std::string s(key);
+    for (char& c : s)
+        if (c == '_') c = ' ';
+    return s;
+}
+
+}  // namespace
+
+std::vector<std::string> Option::choiceList() const { return *choices ? split(choices, '|') : std::vector<std::string>{}; }
+
+std::string Option::defaultChoice() const {
+    const auto words = choiceList();
+    const std::size_t i = std::size_t(defaultValue);
+    return i < words.size() ? words[i] : std::string();
+}
+
+bool Option::inRange(double v) const {
+    if (!std::isfinite(v)) return false;
+    if (minOpen ? !(v > min) : !(v >= min)) return false;
+    if (maxOpen ? !(v < max) : !(v <= max)) return false;
+    return true;
+}
+
+std::string Option::rangeText() const {
+    const bool lo = std::isfinite(min), hi = std::isfinite(max);
+    if (lo && hi)
+        return withUnit(std::string(minOpen ? "(" : "[") + numberText(min) + ", " + numberText(max) + (maxOpen ? ")" : "]"), *this);
+    if (lo) return withUnit(std::string(minOpen ? "> " : ">= ") + numberText(min), *this);
+    if (hi) return withUnit(std::string(maxOpen ? "< " : "<= ") + numberText(max), *this);
+    return withUnit("any number", *this);
+}
+
+std::string Option::defaultSaid() const {
+    if (*defaultText) return defaultText;
+    switch (kind) {
+    case OptionKind::Flag: return "off";
+    case OptionKind::Integer:
+    case OptionKind::Number: return numberText(defaultValue);
+    case OptionKind::Choice: return defaultChoice();
+    case OptionKind::Text: return "none";
+    }
+    return {};
+}
+
+std::string Option::helpLine() const {
+    std::string line = help;
+    if (kind == OptionKind::Integer || kind == OptionKind::Number) line += ", " + rangeText();
+    if (renderers) line += "; renderers " + voxelRenderersThat(renderers);
+    return line + " (default " + defaultSaid() + ")";
+}
+
+bool Option::takenBy(std::string_view command) const {
+    for (const std::string& c : split(commands, ' '))
+        if (c == command) return true;
+    return false;
+}
+
+std::span<const Option* const> allOptions() { return kOptions; }
+
+const Option* findOption(std::string_view key) {
+    for (const Option* o : kOptions)
+        if (key == o->key) return o;
+    return nullptr;
+}
+
+const Option* findFlag(std::string_view command, std::string_view flag) {
+    for (const Option* o : kOptions)
+        if (flag == o->flag && o->takenBy(command)) return o;
+    return nullptr;
+}
+
+std::optional<std::string> valueProblem(const Option& o, double value) {
+    if (o.kind == OptionKind::Integer && std::isfinite(value) && value != std::floor(value))
+        return numberText(value) + " is not a whole number";
+    if (!o.inRange(value)) return numberText(value) + " is outside " + o.rangeText();
+    return std::nullopt;
+}
+
+std::string sessionMember(const Option& o) {
+    const std::string_view s = o.session;
+    const std::size_t dot = s.rfind('.');
+    return std::string(dot == std::string_view::npos ? s : s.substr(dot + 1));
+}
+
+double checkNumber(const Option& o, double value) {
+    if (auto problem = valueProblem(o, value)) refuse(o, *problem);
+    return value;
+}
+
+int checkInteger(const Option& o, double value) { return int(checkNumber(o, value)); }
+
+double parseNumber(const Option& o, const std::string& text) {
+    const char* b = text.c_str();
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(b, &end);
+    if (text.empty() || end != b + text.size() || errno == ERANGE || !std::isfinite(v))
+        refuse(o, "'" + text + "' is not a finite number");
+    return checkNumber(o, v);
+}
+
+int parseInteger(const Option& o, const std::string& text) {
+    const char* b = text.c_str();
+    char* end = nullptr;
+    errno = 0;
+    const long v = std::strtol(b, &end, 10);
+    if (text.empty() || end != b + text.size() || errno == ERANGE) refuse(o, "'" + text + "' is not an integer");
+    return checkInteger(o, double(v));
+}
+
+std::string parseChoice(const Option& o, const std::string& text) {
+    const auto words = o.choiceList();
+    for (const auto& w : words)
+        if (w == text) return w;
+    std::string said;
+    for (std::size_t i = 0; i < words.size(); ++i) said += (i == 0 ? "" : i + 1 == words.size() ? " or " : ", ") + words[i];
+    refuse(o, "choose " + said + ", got '" + text + "'");
+}
+
+std::optional<std::string> unusedWarning(const Option& o, const Renderer& renderer, const std::string& rendererName) {
+    if (!o.renderers || (renderer.*o.renderers)()) return std::nullopt;
+    return param(o.key) + " has no effect on renderer " + rendererName + (*o.renderersSaid ? std::string(" (only on ") + o.renderersSaid + ")" : "");
+}
+
+std::string sayForCli(std::string_view text) {
+    return sayParameters(text, [](std::string_view key) -> std::optional<std::string> {
+        const Option* o = findOption(key);
+        if (o && *o->flag) return "--" + std::string(o->flag);
+        if (key == "width" || key == "height") return "--size";
+        return spaced(key);
+    });
+}
+
+std::string sayForSession(std::string_view text) {
+    return sayParameters(text, [](std::string_view key) -> std::optional<std::string> {
+        const Option* o = findOption(key);
+        if (o && *o->session) return std::string(o->session);
+        return spaced(key);
+    });
+}
+
+std::string sayForStudio(std::string_view text) {
+    return sayParameters(text, [](std::string_view key) -> std::optional<std::string> {
+        const Option* o = findOption(key);
+        if (o && *o->label) return "'" + std::string(o->label) + "'";
+        return spaced(key);
+    });
+}
+
+}  // namespace octrace::model

@@ -1,0 +1,282 @@
+#pragma once
+/// @file OptionTable.h
+/// The options table: every setting that a front end offers, declared once with its key, kind,
+/// default, range or choices, unit, help, CLI flag, session member, studio control and what
+/// reads it. The CLI's parser and --help, the session files, the studio's widgets and (later)
+/// Python's keyword arguments take their names, limits, defaults and help from here, and a
+/// setting that the chosen renderer does not read is reported from here (unusedWarning). The
+/// pattern of F3D's options.json and of pbrt-v4's ParameterDictionary::ReportUnused.
+///
+/// Keys are what core and io messages name (util/Parameter.h); sayForCli, sayForSession and
+/// sayForStudio turn them into each front end's words.
+#include "octrace/octree/Octree.h"
+#include "octrace/render/Renderer.h"
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace octrace::model {
+
+enum class OptionKind {
+    Flag,     ///< given or not (CLI flag without a value; a session bool)
+    Integer,  ///< a whole number within [min, max]
+    Number,   ///< a finite number within min..max, each end closed or open
+    Choice,   ///< one word of `choices`
+    Text,     ///< free text, checked by the code that reads it
+};
+
+/// A renderer capability (Renderer.h): the renderers for which it returns true read the option.
+using RendererCapability = bool (Renderer::*)() const;
+
+inline constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+
+/// One setting. Aggregate, so that the table below reads as a list of designated fields.
+struct Option {
+    const char* key = "";       ///< snake_case; messages name it as `key`; Python's keyword
+    OptionKind kind = OptionKind::Text;
+    const char* flag = "";      ///< CLI flag without the dashes ("" none)
+    const char* argument = "";  ///< the CLI's name for the value ("N", "DEG"); "" for a flag
+    const char* session = "";   ///< member of a studio session file, "group.member" ("" not saved)
+    const char* label = "";     ///< the studio control's label ("" no control)
+    double defaultValue = 0.0;  ///< Integer, Number; Choice: the index of the default choice
+    const char* defaultText = "";  ///< the default as --help says it when it is not defaultValue
+    double min = -kUnbounded, max = kUnbounded;
+    bool minOpen = false, maxOpen = false;  ///< the end itself is outside
+    const char* choices = "";   ///< Choice: the words, separated by '|'
+    const char* unit = "";      ///< Integer, Number: "degrees", "pixels" ("" none)
+    const char* help = "";      ///< one line, without the range and the default
+    const char* commands = "";  ///< the CLI commands that take it, separated by spaces
+    RendererCapability renderers = nullptr;  ///< non-null: only renderers with it read the option
+    const char* renderersSaid = "";          ///< who reads it, for unusedWarning ("linear and area")
+
+    /// The choices as words.
+    std::vector<std::string> choiceList() const;
+    /// Choice: the default word.
+    std::string defaultChoice() const;
+    /// Integer or Number: whether `v` lies within the range.
+    bool inRange(double v) const;
+    /// "[1, 14]", "(0, 180) degrees", "> 0", ">= 0 pixels".
+    std::string rangeText() const;
+    /// What --help says of the default: defaultText, or the default value or choice.
+    std::string defaultSaid() const;
+    /// The help line: help, the range (numbers) or choices, and "(default ...)".
+    std::string helpLine() const;
+    /// Whether the CLI command `command` takes the option.
+    bool takenBy(std::string_view command) const;
+};
+
+// The table. Integer and Number limits are written once, here; code that needs a limit reads
+// it from these (opt::depth.max), never writes the number again.
+namespace opt {
+// Surface.
+inline constexpr Option depth{.key = "depth", .kind = OptionKind::Integer, .flag = "depth", .argument = "N",
+    .session = "surface.depth", .label = "Depth", .defaultValue = 8, .min = 1, .max = Octree::kMaxDepth,
+    .help = "octree depth, voxels = 2^N per cube edge", .commands = "render export build csg"};
+inline constexpr Option iso{.key = "iso", .kind = OptionKind::Text, .flag = "iso", .argument = "VALUE|NAME",
+    .session = "surface.iso", .label = "Iso value", .defaultText = "the middle of the variable's valid range",
+    .help = "iso value of the surface, or a CT preset in Hounsfield units", .commands = "render export build csg"};
+inline constexpr Option variable{.key = "var", .kind = OptionKind::Text, .flag = "var", .argument = "NAME",
+    .session = "input.variable", .label = "Variable", .defaultText = "the file's only 3-D variable",
+    .help = "variable to draw, by name or CF standard_name; sound_speed is derived from temperature and salinity when "
+            "the file has none",
+    .commands = "render export build csg slice"};
+inline constexpr Option time{.key = "time", .kind = OptionKind::Text, .flag = "time", .argument = "INDEX|DATE",
+    .session = "input.time", .label = "Time", .defaultText = "the first",
+    .help = "time step, NetCDF only: a 0-based index or a date YYYY-MM-DD[THH:MM[:SS]] in the file's calendar, nearest step",
+    .commands = "render export build slice"};
+inline constexpr Option series{.key = "series", .kind = OptionKind::Text, .flag = "series", .argument = "UID|INDEX|DESCRIPTION",
+    .session = "input.series", .label = "Series", .defaultText = "the largest",
+    .help = "DICOM series to read: its UID, its number in `octrace info`'s list or its description",
+    .commands = "render export build slice"};
+inline constexpr Option form{.key = "form", .kind = OptionKind::Choice, .flag = "form", .argument = "shell|volume",
+    .choices = "shell|volume",
+    .help = "octree form: the isosurface's boundary voxels (shell), or the solid it bounds with its interior and caps where "
+            "the grid ends (volume)",
+    .commands = "render export build"};
+inline constexpr Option inside{.key = "inside", .kind = OptionKind::Choice, .flag = "inside", .argument = "above|below",
+    .choices = "above|below", .help = "volume form: the solid is where the value is >= iso (above) or < iso (below)",
+    .commands = "render export build csg"};
+inline constexpr Option threads{.key = "threads", .kind = OptionKind::Integer, .flag = "threads", .argument = "N",
+    .defaultValue = 0, .min = 0, .max = 1024, .help = "worker threads, 0 = all cores; the result does not depend on it",
+    .commands = "render export build csg"};
+inline constexpr Option maxMemory{.key = "max_memory", .kind = OptionKind::Text, .flag = "max-memory", .argument = "SIZE",
+    .help = "memory budget for reading the field, building the octree and the output: bytes, K, M, G, T (powers of 1024) "
+            "or N% of the physical memory; a larger job is refused up front",
+    .commands = "render export build csg slice info"};
+inline constexpr Option verticalScale{.key = "vertical_scale", .kind = OptionKind::Number, .flag = "vertical-scale",
+    .argument = "S", .defaultText = "depth extent = 1/4 of the larger horizontal extent", .min = 0, .minOpen = true,
+    .help = "vertical exaggeration of depth, NetCDF only", .commands = "render export build slice"};
+inline constexpr Option terrainDepth{.key = "terrain_depth", .kind = OptionKind::Integer, .flag = "terrain-depth",
+    .argument = "N", .defaultText = "`depth`", .min = 1, .max = Octree::kMaxDepth,
+    .help = "city inputs: per-region depth, terrain to depth N and buildings to `depth` in one octree (nodes that only "
+            "terrain crosses stop at level N as coarse leaves; at most `depth`)",
+    .commands = "render export build"};
+inline constexpr Option crs{.key = "crs", .kind = OptionKind::Text, .flag = "crs", .argument = "CRS",
+    .help = "city inputs: the projected CRS to work in (EPSG:NNNN, WKT or PROJ)", .commands = "render export build"};
+inline constexpr Option heightAttr{.key = "height_attr", .kind = OptionKind::Text, .flag = "height-attr", .argument = "NAME",
+    .help = "building footprints: the attribute that holds each building's height", .commands = "render export build"};
+inline constexpr Option baseAttr{.key = "base_attr", .kind = OptionKind::Text, .flag = "base-attr", .argument = "NAME",
+    .help = "building footprints: the attribute that holds each building's base height", .commands = "render export build"};
+inline constexpr Option dem{.key = "dem", .kind = OptionKind::Text, .flag = "dem", .argument = "RASTER",
+    .help = "city inputs: a DEM raster added as terrain", .commands = "render export build"};
+inline constexpr Option cut{.key = "cut", .kind = OptionKind::Text, .flag = "cut", .argument = "SOLID", .session = "surface.cut",
+    .label = "Cut-away", .help = "cut a solid away", .commands = "render export build"};
+
+// Rendering.
+inline constexpr Option renderer{.key = "renderer", .kind = OptionKind::Text, .flag = "renderer", .argument = "NAME",
+    .session = "renderers.main", .label = "Renderer", .defaultText = "full", .help = "renderer", .commands = "render"};
+inline constexpr Option fov{.key = "fov", .kind = OptionKind::Number, .flag = "fov", .argument = "DEG",
+    .session = "camera.fov", .label = "Field of view", .defaultValue = 30, .min = 0, .max = 180, .minOpen = true,
+    .maxOpen = true, .unit = "degrees", .help = "vertical field of view", .commands = "render"};
+inline constexpr Option orthoHeight{.key = "ortho_height", .kind = OptionKind::Number, .flag = "ortho-height", .argument = "H",
+    .defaultText = "framing the surface", .min = 0, .minOpen = true,
+    .help = "height of the orthographic view window in world units", .commands = "render"};
+inline constexpr Option projection{.key = "projection", .kind = OptionKind::Choice, .flag = "projection",
+    .argument = "perspective|ortho", .choices = "perspective|ortho",
+    .help = "camera projection; ortho draws every ray parallel to the view direction", .commands = "render"};
+inline constexpr Option lod{.key = "lod", .kind = OptionKind::Number, .flag = "lod", .argument = "PIXELS",
+    .defaultText = "0 = exact", .min = 0, .max = 1e6, .unit = "pixels",
+    .help = "multi-resolution: stop at octree nodes whose projected size is below PIXELS and draw them whole",
+    .commands = "render", .renderers = &Renderer::multiResolution, .renderersSaid = "the multi-resolution renderers"};
+inline constexpr Option level{.key = "level", .kind = OptionKind::Integer, .flag = "level", .argument = "L",
+    .defaultText = "the voxels", .min = 1, .max = Octree::kMaxDepth,
+    .help = "draw the octree at level L (at most `depth`) at the finest, for previews", .commands = "render export",
+    .renderers = &Renderer::multiResolution, .renderersSaid = "the multi-resolution renderers"};
+inline constexpr Option colourCoherence{.key = "colour_coherence", .kind = OptionKind::Flag, .flag = "colour-coherence",
+    .help = "colour coherence on the discrete ray casters: a pixel between two neighbours of nearly the same colour gets "
+            "their average untraced (on in area+colour)",
+    .commands = "render", .renderers = &Renderer::colourCoherence, .renderersSaid = "the discrete ray casters"};
+inline constexpr Option colourFillBackground{.key = "colour_fill_background", .kind = OptionKind::Flag,
+    .flag = "colour-fill-background",
+    .help = "colour coherence also between two background pixels, as paper A does: the pixel between is taken as "
+            "background untraced (off: only between surface pixels)",
+    .commands = "render", .renderers = &Renderer::fillsByColour,
+    .renderersSaid = "the +colour renderers, or with `colour_coherence`"};
+inline constexpr Option colourTolerance{.key = "colour_tolerance", .kind = OptionKind::Number, .flag = "colour-tolerance",
+    .argument = "T", .session = "renderers.colour_tolerance", .label = "Colour tolerance", .defaultValue = 3, .min = 0,
+    .max = 255, .unit = "per 8-bit sRGB channel",
+    .help = "largest colour difference of two neighbours for colour coherence", .commands = "render",
+    .renderers = &Renderer::fillsByColour, .renderersSaid = "the +colour renderers, or with `colour_coherence`"};
+inline constexpr Option branchUp{.key = "branch_up", .kind = OptionKind::Integer, .flag = "branch-up", .argument = "N",
+    .session = "renderers.branch_up", .label = "Branch up", .defaultValue = 0, .defaultText = "0: paper A, at the branch node",
+    .min = 0, .max = Octree::kMaxDepth,
+    .help = "trajectory coherence: start a common-path ray N octree levels above its partners' branch node; fewer pixels "
+            "differ from full traversal, at some speed",
+    .commands = "render", .renderers = &Renderer::trajectoryCoherence,
+    .renderersSaid = "linear and area and their variants"};
+inline constexpr Option missCoherence{.key = "miss_coherence", .kind = OptionKind::Choice, .flag = "miss-coherence",
+    .argument = "on|off", .session = "renderers.miss_coherence", .label = "Miss coherence", .defaultValue = 0,
+    .choices = "on|off",
+    .help = "a common-path pixel whose two partners both missed is taken as background untraced (off: traced from the root)",
+    .commands = "render", .renderers = &Renderer::missCoherence,
+    .renderersSaid = "the approximate linear and area and their +colour variants"};
+inline constexpr Option repeat{.key = "repeat", .kind = OptionKind::Integer, .flag = "repeat", .argument = "N",
+    .defaultValue = 1, .min = 1, .max = 1000,
+    .help = "render N times and report the fastest as render_ms (benchmarks on a noisy machine)", .commands = "render"};
+inline constexpr Option width{.key = "width", .kind = OptionKind::Integer, .session = "export.width", .label = "Width",
+    .defaultValue = 1600, .min = 1, .max = 16384, .unit = "pixels", .help = "image width (--size WxH)", .commands = "render"};
+inline constexpr Option height{.key = "height", .kind = OptionKind::Integer, .session = "export.height", .label = "Height",
+    .defaultValue = 1200, .min = 1, .max = 16384, .unit = "pixels", .help = "image height (--size WxH)", .commands = "render"};
+
+// Sphere scenes in the object octree.
+inline constexpr Option octree{.key = "octree", .kind = OptionKind::Choice, .flag = "octree", .argument = "object|voxel",
+    .defaultText = "object for reference, samet, beam; voxel for the others", .choices = "object|voxel",
+    .help = "sphere inputs: trace the spheres in paper B's object octree (renderers reference, samet, beam) or voxelize "
+            "them into the voxel octree at `depth` (every voxel renderer)",
+    .commands = "render"};
+inline constexpr Option leafObjects{.key = "leaf_objects", .kind = OptionKind::Integer, .flag = "leaf-objects",
+    .argument = "N", .defaultValue = 8, .min = 1, .max = 100000,
+    .help = "object octree: split a node while it holds more than N spheres", .commands = "render"};
+inline constexpr Option samples{.key = "samples", .kind = OptionKind::Integer, .flag = "samples", .argument = "N",
+    .defaultValue = 1, .min = 1, .max = 256,
+    .help = "object octree: rays per pixel on a sqrt(N) x sqrt(N) grid, averaged; a square number", .commands = "render"};
+inline constexpr Option bounces{.key = "bounces", .kind = OptionKind::Integer, .flag = "bounces", .argument = "N",
+    .defaultValue = 2, .min = 0, .max = 16,
+    .help = "object octree: Whitted depth, reflected and transmitted rays at most N deep", .commands = "render"};
+
+// Lighting.
+inline constexpr Option ambient{.key = "ambient", .kind = OptionKind::Number, .flag = "ambient", .argument = "A",
+    .session = "shading.ambient", .label = "Ambient", .defaultValue = 0.15, .min = 0, .max = 1,
+    .help = "share of the light every voxel gets whatever its normal; the light's own share is 1 - A (dynamic shading "
+            "and baking)",
+    .commands = "render"};
+inline constexpr Option lighting{.key = "lighting", .kind = OptionKind::Choice, .flag = "lighting", .argument = "baked|dynamic",
+    .session = "shading.lighting", .label = "Lighting", .defaultText = "baked when the octree has it, else dynamic",
+    .choices = "baked|dynamic",
+    .help = "shade by the octree's baked light (baking it first when it has none) or by the normals and the light direction",
+    .commands = "render"};
+inline constexpr Option shadows{.key = "shadows", .kind = OptionKind::Choice, .flag = "shadows", .argument = "on|off",
+    .session = "shading.shadows", .label = "Shadow rays",
+    .defaultText = "on for sphere scenes in the object octree; off for voxel octrees", .choices = "on|off",
+    .help = "shadow rays towards the light: sphere scenes in the object octree and the dynamic shading of voxel octrees "
+            "(one more ray per shaded pixel; baked light has its own shadows)",
+    .commands = "render"};
+inline constexpr Option bakeAo{.key = "bake_ao", .kind = OptionKind::Integer, .flag = "bake-ao", .argument = "N",
+    .session = "shading.bake_ao", .label = "AO rays", .defaultValue = 8, .min = 0, .max = 1024,
+    .help = "ambient-occlusion rays per side of the surface when baking, 0 = none", .commands = "render export build"};
+inline constexpr Option bakeAoDistance{.key = "bake_ao_distance", .kind = OptionKind::Number, .flag = "bake-ao-distance",
+    .argument = "D", .defaultText = "1/8 of the octree's cube", .min = 0, .minOpen = true,
+    .help = "how far an occluder darkens when baking, world units", .commands = "render export build"};
+inline constexpr Option bakeShadows{.key = "bake_shadows", .kind = OptionKind::Choice, .flag = "bake-shadows",
+    .argument = "on|off", .session = "shading.bake_shadows", .label = "Baked shadows", .defaultValue = 0,
+    .choices = "on|off", .help = "hard shadows from the baked lights", .commands = "render export build"};
+
+// Figures and slices.
+inline constexpr Option dpi{.key = "dpi", .kind = OptionKind::Integer, .flag = "dpi", .argument = "N", .session = "export.dpi",
+    .label = "Resolution", .defaultValue = 150, .defaultText = "150 for a figure, none recorded for a plain image",
+    .min = 36, .max = 1200, .unit = "dots per inch",
+    .help = "resolution recorded in the PNG or TIFF; a figure's fonts are 9 and 11 pt at it", .commands = "render slice"};
+inline constexpr Option index{.key = "index", .kind = OptionKind::Integer, .flag = "index", .argument = "N",
+    .defaultText = "the middle one, n/2", .min = 0, .max = 1 << 30,
+    .help = "where the plane lies: sample N (0-based) of the grid axis across the plane", .commands = "slice"};
+inline constexpr Option compression{.key = "compression", .kind = OptionKind::Integer, .flag = "compression",
+    .argument = "LEVEL", .defaultValue = 19, .min = 1, .max = 22, .help = "zstd compression level of the file's chunks",
+    .commands = "build csg"};
+inline constexpr Option sampleCount{.key = "grid_samples", .kind = OptionKind::Integer, .flag = "samples", .argument = "N",
+    .defaultValue = 65, .min = 2, .max = 1024, .help = "samples per axis over [-1,1]^3", .commands = "sample"};
+inline constexpr Option seed{.key = "seed", .kind = OptionKind::Integer, .flag = "seed", .argument = "S", .defaultValue = 1,
+    .min = 0, .max = 1 << 30, .help = "random seed of the 'noise' field", .commands = "sample"};
+}  // namespace opt
+
+/// Every option of the table, in the order of the declarations above.
+std::span<const Option* const> allOptions();
+/// The option of `key`, or null.
+const Option* findOption(std::string_view key);
+/// The option that the CLI command `command` takes as --`flag`, or null.
+const Option* findFlag(std::string_view command, std::string_view flag);
+
+/// What is wrong with `value` for the option ("180 is outside (0, 180) degrees", "2.5 is not a
+/// whole number"), or nothing.
+std::optional<std::string> valueProblem(const Option& o, double value);
+/// The last part of the option's session member ("renderers.branch_up" -> "branch_up").
+std::string sessionMember(const Option& o);
+
+/// Checks a value against the option's range (and, for an Integer, that it is whole).
+/// @returns the value. @throws UsageError naming the option as `key`, e.g.
+/// "`fov`: 180 is outside (0, 180) degrees".
+double checkNumber(const Option& o, double value);
+int checkInteger(const Option& o, double value);
+/// Parses `text` as the option's number (strtod/strtol rules, the whole text) and checks it.
+/// @throws UsageError "`key`: 'x' is not a number" and as checkNumber.
+double parseNumber(const Option& o, const std::string& text);
+int parseInteger(const Option& o, const std::string& text);
+/// Parses one of the option's choices. @throws UsageError "`key`: choose on or off, got 'x'".
+std::string parseChoice(const Option& o, const std::string& text);
+
+/// The warning for an option given although `rendererName` does not read it, e.g. "`branch_up`
+/// has no effect on renderer full (only on linear and area and their variants)", or nothing.
+std::optional<std::string> unusedWarning(const Option& o, const Renderer& renderer, const std::string& rendererName);
+
+/// Each front end's words for the parameters that core and io messages name (Parameter.h):
+/// the CLI's flag ("--max-memory"), a session file's member ("renderers.branch_up"), the
+/// studio control's label ("'Depth'"). A key without such a word is left as it is.
+std::string sayForCli(std::string_view text);
+std::string sayForSession(std::string_view text);
+std::string sayForStudio(std::string_view text);
+
+}  // namespace octrace::model

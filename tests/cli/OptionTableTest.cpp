@@ -1,0 +1,168 @@
+// The options table (app/model) through the CLI as a user meets it: every numeric setting with
+// a flag, at its minimum, its maximum and just outside both, on the real command line. A value
+// inside is accepted (the run goes on to the input, which does not exist: exit 1); one outside
+// is refused before any work with exit 2 and a message naming the flag. Also: core and io never
+// name a CLI flag, and the CLI and the studio each say a parameter in their own words.
+#include "CliRunner.h"
+
+#include "octrace/model/OptionTable.h"
+#include "octrace/util/Parameter.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
+
+using namespace octrace::testcli;
+namespace model = octrace::model;
+
+namespace {
+
+std::string numberText(double v) {
+    std::ostringstream s;
+    s.precision(17);
+    s << v;
+    return s.str();
+}
+
+/// The command line that gives option `o` the value `v`: its first command, an input that does
+/// not exist (or, for options that apply to sphere scenes only, a tiny sphere scene written to
+/// a folder that does not exist), and the options its check depends on.
+std::vector<std::string> probe(const model::Option& o, const std::string& v) {
+    std::string command = o.commands;
+    command = command.substr(0, command.find(' '));
+    const std::string missing = "/nonexistent-octrace-input/field.nc";
+    std::vector<std::string> args{command};
+    if (command == "sample") {
+        args.push_back("noise");  // its output folder does not exist: refused (exit 1) before the field is made
+    } else if (o.key == std::string("leaf_objects") || o.key == std::string("samples") || o.key == std::string("bounces")) {
+        args.insert(args.end(), {"random:3", "--size", "8x8", "--renderer", "samet"});
+    } else if (o.key == std::string("terrain_depth")) {
+        args.push_back("/nonexistent-octrace-input/city.json");
+    } else {
+        args.push_back(missing);
+    }
+    const std::string output = command == "build" || command == "csg" ? "x.oct" : command == "sample" ? "x.nrrd" : "x.png";
+    args.insert(args.end(), {"-o", "/nonexistent-octrace-output/" + output});
+    // Options whose check reads another one.
+    if (o.key == std::string("level") || o.key == std::string("terrain_depth"))
+        args.insert(args.end(), {"--depth", numberText(model::opt::depth.max)});
+    if (o.key == std::string("ortho_height")) args.insert(args.end(), {"--projection", "ortho"});
+    if (o.key == std::string("width")) args.insert(args.end(), {"--size", v + "x1"});
+    else if (o.key == std::string("height")) args.insert(args.end(), {"--size", "1x" + v});
+    else args.insert(args.end(), {std::string("--") + o.flag, v});
+    return args;
+}
+
+std::string said(const std::vector<std::string>& args) {
+    std::string s;
+    for (const auto& a : args) s += a + " ";
+    return s;
+}
+
+}  // namespace
+
+TEST(OptionTable, EveryNumericSettingIsAcceptedAtItsEndsAndRefusedJustOutsideOnTheCommandLine) {
+    int probed = 0;
+    for (const model::Option* o : model::allOptions()) {
+        if (o->kind != model::OptionKind::Integer && o->kind != model::OptionKind::Number) continue;
+        const bool sized = o->key == std::string("width") || o->key == std::string("height");
+        if (!*o->flag && !sized) continue;
+        const std::string flag = sized ? "--size" : std::string("--") + o->flag;
+        // Just inside and just outside each finite end: an integer's step is 1; a number's is
+        // a millionth of the range's scale.
+        const double step = o->kind == model::OptionKind::Integer ? 1.0 : 1e-6 * std::max(1.0, std::abs(o->max - o->min) < 1e300 ? std::abs(o->max - o->min) : 1.0);
+        std::vector<double> inside, outside;
+        if (std::isfinite(o->min)) {
+            inside.push_back(o->minOpen ? o->min + step : o->min);
+            outside.push_back(o->minOpen ? o->min : o->min - step);
+        }
+        if (std::isfinite(o->max)) {
+            inside.push_back(o->maxOpen ? o->max - step : o->max);
+            outside.push_back(o->maxOpen ? o->max : o->max + step);
+        }
+        for (double v : inside) {
+            const auto args = probe(*o, numberText(v));
+            const Result r = run(args);
+            EXPECT_EQ(r.code, 1) << said(args) << "\n" << r.err;
+            EXPECT_EQ(r.err.find(flag + ":"), std::string::npos) << said(args) << "\n" << r.err;
+        }
+        for (double v : outside) {
+            const auto args = probe(*o, numberText(v));
+            const Result r = run(args);
+            EXPECT_EQ(r.code, 2) << said(args) << "\n" << r.err;
+            EXPECT_NE(r.err.find("octrace: " + flag + ": "), std::string::npos) << said(args) << "\n" << r.err;
+        }
+        ++probed;
+    }
+    EXPECT_GE(probed, 20);  // the loop really ran over the table
+}
+
+TEST(OptionTable, KeysAndFlagsAreUniqueAndEveryHelpStatesItsDefault) {
+    std::map<std::string, int> keys;
+    for (const model::Option* o : model::allOptions()) {
+        EXPECT_EQ(keys[o->key]++, 0) << o->key;
+        EXPECT_TRUE(std::regex_match(std::string(o->key), std::regex("[a-z][a-z0-9_]*"))) << o->key;
+        EXPECT_NE(o->helpLine().find("(default "), std::string::npos) << o->key;
+        if (o->kind == model::OptionKind::Integer || o->kind == model::OptionKind::Number) {
+            EXPECT_TRUE(o->defaultText[0] || o->inRange(o->defaultValue)) << o->key << ": the default is outside the range";
+        }
+        if (o->kind == model::OptionKind::Choice) EXPECT_FALSE(o->defaultSaid().empty()) << o->key;
+        std::istringstream commands(o->commands);
+        for (std::string c; commands >> c;)
+            for (const model::Option* p : model::allOptions())
+                EXPECT_FALSE(p != o && *o->flag && std::string(p->flag) == o->flag && p->takenBy(c))
+                    << o->key << " and " << p->key << " are both --" << o->flag << " of " << c;
+    }
+}
+
+TEST(OptionTable, CoreAndIoNameParametersNeverCliFlags) {
+    // A string literal of core/ or io/ that names a flag ("--depth") would show the studio's
+    // and Python's users a flag they do not have: messages name `depth` instead (Parameter.h).
+    const std::filesystem::path root = std::filesystem::path(OCTRACE_SAMPLES).parent_path();
+    const std::regex literal(R"("(?:[^"\\\n]|\\.)*")"), flag("--[a-z]");
+    int files = 0;
+    for (const char* dir : {"core", "io"}) {
+        for (const auto& e : std::filesystem::recursive_directory_iterator(root / dir)) {
+            const std::string ext = e.path().extension().string();
+            if (ext != ".cpp" && ext != ".h" && ext != ".inc") continue;
+            ++files;
+            std::ifstream in(e.path());
+            int n = 0;
+            for (std::string line; std::getline(in, line);) {
+                ++n;
+                const std::size_t comment = line.find("//");
+                const std::string code = line.find('"') < comment ? line : line.substr(0, comment);
+                for (auto m = std::sregex_iterator(code.begin(), code.end(), literal); m != std::sregex_iterator(); ++m)
+                    EXPECT_FALSE(std::regex_search(m->str(), flag)) << e.path().string() << ":" << n << ": " << m->str();
+            }
+        }
+    }
+    EXPECT_GT(files, 100);
+}
+
+TEST(OptionTable, EachFrontEndSaysAParameterInItsOwnWords) {
+    // One core error text, as each front end shows it.
+    const std::string text = "more than the memory budget (" + octrace::param("max_memory") + "); try a smaller " +
+                             octrace::param("depth") + " or fewer `AO rays`";
+    EXPECT_EQ(model::sayForCli(text), "more than the memory budget (--max-memory); try a smaller --depth or fewer `AO rays`");
+    EXPECT_EQ(model::sayForStudio(text), "more than the memory budget (max memory); try a smaller 'Depth' or fewer `AO rays`");
+    EXPECT_EQ(model::sayForSession(text), "more than the memory budget (max memory); try a smaller surface.depth or fewer `AO rays`");
+    EXPECT_EQ(model::sayForCli("a ` alone, `unknown_key` and `branch_up`"), "a ` alone, unknown key and --branch-up");
+}
+
+TEST(OptionTable, TheCliNamesItsFlagsInCoreErrors) {
+    // A core error (the octree builder's memory budget) and an io error (a NetCDF file with
+    // several variables), through the real CLI: they name --max-memory and --var.
+    Scratch s;
+    Result r = run({"render", "analytic:sphere", "--iso", "0", "--depth", "12", "--max-memory", "2M", "-o", s.path("a.png")});
+    EXPECT_EQ(r.code, 1) << r.err;
+    EXPECT_NE(r.err.find("(--max-memory"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find('`'), std::string::npos) << r.err;
+    r = run({"render", "analytic:sphere", "--iso", "0", "--depth", "4", "--size", "16x16", "--branch-up", "2", "-o", s.path("b.png")});
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("--branch-up has no effect on renderer full (only on linear and area and their variants)"), std::string::npos)
+        << r.err;
+}
