@@ -8,7 +8,7 @@
 //
 // Usage: octrace_coherence_bound FIELD VAR ISO REGION DEPTH CAMPOS LOOKAT UP FOV WxH [REPEAT]
 // Prints one JSON object. Built with -DOCTRACE_BUILD_BENCH=ON; run by bench/coherence_bound.py.
-#include "../core/src/PixelRays.h"
+#include "../core/src/render/traversal/PixelRays.h"
 
 #include "octrace/build/OctreeBuilder.h"
 #include "octrace/io/FieldReader.h"

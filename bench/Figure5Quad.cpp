@@ -1,12 +1,12 @@
 // Paper B's Figure 5 as the paper ran it, in the plane: time against the number of rays for
 // beam tracing and Samet's one-ray-at-a-time tracing over quadtrees of a random scene and of the
-// 2D SphereFlake (core/include/octrace/scene/Quadtree2D.h). For each ray count the two tracers
+// 2D SphereFlake (bench/quadtree/Quadtree2D.h). For each ray count the two tracers
 // run alternately, REPEAT times each, on one thread, and the fastest of each is kept (a change in
 // the machine's load hits both alike); every ray's hit is compared with the brute force's.
 //
 // Usage: octrace_figure5_2d [REPEAT] [MAX_RAYS]
 // Prints one JSON object. Built with -DOCTRACE_BUILD_BENCH=ON; run by bench/figure5_2d.py.
-#include "octrace/scene/Quadtree2D.h"
+#include "quadtree/Quadtree2D.h"
 #include "octrace/util/Timer.h"
 
 #include <algorithm>

@@ -50,7 +50,7 @@ def main():
          "2D SphereFlake with 140): the beam tracer's time stays almost flat as the number of rays",
          "grows, Samet's individual tracing grows steadily, so the advantage grows with the number of",
          "rays.\n",
-         "**Here**: the same experiment (`core/include/octrace/scene/Quadtree2D.h`): a fan of rays from",
+         "**Here**: the same experiment (`bench/quadtree/Quadtree2D.h`): a fan of rays from",
          "an eye left of the scene just covering the quadtree's square; one thread; each time the",
          "fastest of %d runs, the two tracers alternating in one process (the machine is a shared" % data["repeat"],
          "2-core VM: read the ratios). Every ray's hit (circle and parameter) is compared with the",

@@ -87,7 +87,7 @@ def main():
     ne = json.loads(ne_text)
     md += ["", "## Quantized normals", "",
            "Every boundary voxel keeps its unit normal in 32 bits: octahedral encoding, 16 bits per component",
-           "(`encodeNormal` / `decodeNormal` in `core/src/Octree.cpp`). Angle between a unit vector and its",
+           "(`encodeNormal` / `decodeNormal` in `core/src/octree/Octree.cpp`). Angle between a unit vector and its",
            "decoded code, measured by `octrace_normal_error` (`bench/NormalError.cpp`, raw JSON",
            "`lighting/normal_error.json`):", "",
            "| set | vectors | max | mean | 99th percentile |", "|---|---|---|---|---|",

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Generates core/src/ColormapTables.inc: the colour maps of --colormap as 256-entry sRGB tables.
+"""Generates core/src/render/ColormapTables.inc: the colour maps of --colormap as 256-entry sRGB tables.
 
 Where each table comes from (published colour lists, taken as data, not code):
   thermal, haline, speed, gray  cmocean 4.0.3 (Thyng et al. 2016, "True colors of
@@ -12,7 +12,7 @@ Both wheels are fetched with pip (`pip download --no-deps`), unless --wheels DIR
 directory that already holds them. The values are written with 6 decimals (the published
 lists have 6 (viridis) or 19 (cmocean) digits; 6 decimals are 1/4000 of an 8-bit step).
 
-Usage: scripts/colormaps.py [--wheels DIR] [-o core/src/ColormapTables.inc]
+Usage: scripts/colormaps.py [--wheels DIR] [-o core/src/render/ColormapTables.inc]
 """
 import argparse
 import ast
@@ -57,7 +57,7 @@ def viridis_table(zf):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--wheels", help="directory with (or for) the two wheels (default: a temporary one)")
-    ap.add_argument("-o", default=os.path.join(os.path.dirname(__file__), "..", "core", "src", "ColormapTables.inc"))
+    ap.add_argument("-o", default=os.path.join(os.path.dirname(__file__), "..", "core", "src", "render", "ColormapTables.inc"))
     args = ap.parse_args()
     directory = args.wheels or tempfile.mkdtemp()
     tables = {"viridis": (viridis_table(wheel(directory, MATPLOTLIB)), MATPLOTLIB + " _cm_listed.py _viridis_data")}

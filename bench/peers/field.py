@@ -1,13 +1,13 @@
 """The scene's scalar field for the peer renderers, in octrace's world coordinates.
 
 Reads the NetCDF variable with the `netCDF4` module (Debian `python3-netcdf4`) and maps it the
-way octrace's reader does (io/src/GeoGrid.cpp, contract in ARCHITECTURE.md "Coordinates"):
+way octrace's reader does (io/src/netcdf/GeoGrid.cpp, contract in ARCHITECTURE.md "Coordinates"):
 kilometres, x = R (lon - lon0) cos(lat0), y = R (lat - lat0), z = -depth_km * vertical_scale,
 R = 6371, (lon0, lat0) the centre of the region, longitudes unwrapped from the region's west edge,
 missing_value/_FillValue masked (NaN here). Axes are returned increasing (z: deepest first).
 
 `lattice()` evaluates the trilinear field at the corners of octrace's 2^depth voxel lattice over
-its scene cube, exactly as octrace's builder does (core/src/OctreeBuilder.cpp: FieldSampler), so a
+its scene cube, exactly as octrace's builder does (core/src/build/OctreeBuilder.cpp: FieldSampler), so a
 peer can work at the same resolution: a corner is NaN when any sample its trilinear stencil uses
 is masked (a weight of exactly 0 does not use the sample).
 """
@@ -68,7 +68,7 @@ def load(path, var, region, vertical_scale=None):
 
 
 def cube(field):
-    """octrace's scene cube (core/src/OctreeBuilder.cpp): centred on the grid's world bounds, side
+    """octrace's scene cube (core/src/build/OctreeBuilder.cpp): centred on the grid's world bounds, side
     = the largest extent. Returns (origin[3], side)."""
     lo = [field[a][0] for a in "xyz"]
     hi = [field[a][-1] for a in "xyz"]

@@ -85,7 +85,7 @@ def extract(spec):
                 bad |= masked[dz:nz - 1 + dz, dy_:ny - 1 + dy_, dx_:nx - 1 + dx_]
     if spec["grid"] == "lattice":
         # octrace's boundary voxels: cells with 8 valid corners, some >= iso and some < iso
-        # (core/src/OctreeBuilder.cpp); must equal its `boundary_voxels` when the field is the same.
+        # (core/src/build/OctreeBuilder.cpp); must equal its `boundary_voxels` when the field is the same.
         cmin = np.full(bad.shape, np.inf, dtype=np.float32)
         cmax = np.full(bad.shape, -np.inf, dtype=np.float32)
         for dz in (0, 1):

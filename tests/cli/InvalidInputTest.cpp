@@ -92,7 +92,7 @@ TEST(InvalidInput, EveryCorpusFileExitsOneWithItsMessageAndNoOutput) {
 }
 
 // NetCDF-4 files on which HDF5 loops (found by fuzz_netcdf_cf): refused after the deadline of
-// OCTRACE_HDF5_OPEN_SECONDS (io/src/ChildProbe.h), exit 1, one line, no output; `info` too.
+// OCTRACE_HDF5_OPEN_SECONDS (io/src/input/ChildProbe.h), exit 1, one line, no output; `info` too.
 TEST(InvalidInput, Netcdf4FilesOnWhichHdf5LoopsAreRefusedAfterTheDeadline) {
     setenv("OCTRACE_HDF5_OPEN_SECONDS", "0.5", 1);
     Scratch s;

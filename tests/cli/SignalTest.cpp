@@ -55,7 +55,7 @@ TEST(Signals, InterruptedWhileRenderingEndsBySignalAndLeavesNoOutput) {
 // The output is written to a temporary name and renamed when complete. The writing takes tens
 // of milliseconds, too short to catch reliably on a loaded machine, so the child is run with
 // OCTRACE_TEST_STOP_WHILE_WRITING=1: it stops itself (SIGSTOP) right after creating its
-// temporary (io/src/AtomicFile.cpp). Then it gets the signal and is continued. A run that still
+// temporary (io/src/input/AtomicFile.cpp). Then it gets the signal and is continued. A run that still
 // finished writing first (the hook not honoured) is tried again and fails the test in the end.
 TEST(Signals, InterruptedWhileWritingRemovesItsTemporaryAndEndsBySignal) {
     for (int sig : {SIGINT, SIGTERM}) {

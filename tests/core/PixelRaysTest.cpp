@@ -1,8 +1,8 @@
-// The per-pixel ray set-up shared by the ray casters (core/src/PixelRays.h): the screen-space
+// The per-pixel ray set-up shared by the ray casters (core/src/render/traversal/PixelRays.h): the screen-space
 // outlines that let a renderer skip work must never change what a pixel shows or counts.
 #include "RenderTestUtil.h"
 
-#include "PixelRays.h"
+#include "render/traversal/PixelRays.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-// Paper B's 2D experiment (core/include/octrace/scene/Quadtree2D.h): the scenes, the quadtree,
+// Paper B's 2D experiment (bench/quadtree/Quadtree2D.h): the scenes, the quadtree,
 // and the three tracers, which must give every ray the same hit (circle and parameter).
-#include "octrace/scene/Quadtree2D.h"
+#include "quadtree/Quadtree2D.h"
 #include "octrace/util/Error.h"
 
 #include <gtest/gtest.h>

@@ -2,7 +2,7 @@
 // properties, roofs, xlink references, posList/pos/coordinates, srsName forms), the polygon
 // triangulation and the voxelizer at a small depth. The input is the bytes of a .gml file.
 #include "CityFuzz.h"
-#include "CityGml.h"
+#include "city/CityGml.h"
 #include "FuzzSupport.h"
 
 #include <string>

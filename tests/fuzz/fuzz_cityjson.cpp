@@ -1,7 +1,7 @@
 // Fuzz target: CityJSON text through the parser (transform, vertices, objects, geometries of
 // every type, levels of detail), the polygon triangulation, the watertightness check and the
 // voxelizer at a small depth. The input is the bytes of a .city.json file.
-#include "CityJson.h"
+#include "city/CityJson.h"
 #include "CityFuzz.h"
 #include "FuzzSupport.h"
 

@@ -1,7 +1,7 @@
 // Fuzz target: building footprints as GeoJSON through OGR in memory (/vsimem/), the height
 // and base attributes, polygon extrusion and triangulation, and the voxelizer at a small
 // depth. The input is the bytes of a .geojson file.
-#include "FootprintReader.h"
+#include "city/FootprintReader.h"
 #include "CityFuzz.h"
 #include "FuzzSupport.h"
 #include "octrace/util/Error.h"

@@ -4,8 +4,8 @@
 // file (classic or NetCDF-4/HDF5), handed to GDAL as an in-memory file (/vsimem/) after the
 // checks NetcdfReader::read makes on disk (signature; all of a classic file's data present).
 #include "FuzzSupport.h"
-#include "NetcdfClassicHeader.h"
-#include "NetcdfInterpretation.h"
+#include "netcdf/NetcdfClassicHeader.h"
+#include "netcdf/NetcdfInterpretation.h"
 #include "octrace/util/Error.h"
 
 #include <cpl_vsi.h>
@@ -57,7 +57,7 @@ bool passesTheOnDiskChecks(const std::string& bytes) {
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
     octrace::fuzz::quietLogs();
     // HDF5 can loop forever on a corrupt NetCDF-4 file; NetcdfFile reads the metadata first in
-    // a child process with this deadline (io/src/ChildProbe.h). An input is opened five times,
+    // a child process with this deadline (io/src/input/ChildProbe.h). An input is opened five times,
     // so one second each keeps such an input within libFuzzer's 10 s timeout.
     setenv("OCTRACE_HDF5_OPEN_SECONDS", "1", 0);
     return 0;

@@ -2,7 +2,7 @@
 // file's data end, so that NetcdfReader refuses truncated files before libnetcdf reads them
 // as zeros. The input is the first bytes of a file, read from memory.
 #include "FuzzSupport.h"
-#include "NetcdfClassicHeader.h"
+#include "netcdf/NetcdfClassicHeader.h"
 #include "octrace/util/Error.h"
 
 #include <sstream>

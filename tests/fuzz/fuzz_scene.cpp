@@ -2,7 +2,7 @@
 // (sources, paths, roles, depths, colours, the CRS and texture entries). The input is the bytes
 // of a scene file; the sources it names are not opened (what reading them does is the other
 // city targets').
-#include "CityScene.h"
+#include "city/CityScene.h"
 #include "FuzzSupport.h"
 #include "octrace/util/Error.h"
 

@@ -1,4 +1,4 @@
-#include "CfTime.h"
+#include "netcdf/CfTime.h"
 #include "IoTestSupport.h"
 
 #include "octrace/util/Error.h"

@@ -1,7 +1,7 @@
 // The child-process guard NetcdfFile puts around HDF5's reading of NetCDF-4 metadata
-// (io/src/ChildProbe.h): a probe that never ends is killed at the deadline and refused, one that
+// (io/src/input/ChildProbe.h): a probe that never ends is killed at the deadline and refused, one that
 // throws or returns lets the caller go on, one that dies from a signal is refused.
-#include "ChildProbe.h"
+#include "input/ChildProbe.h"
 #include "IoTestSupport.h"
 
 #include "octrace/io/NetcdfReader.h"

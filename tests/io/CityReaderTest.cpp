@@ -1,8 +1,8 @@
 // CityJSON through io::readCityModel: transform, levels of detail, CRS, broken files, and the
 // real Delft file of ../shared/data/city.
-#include "CityGml.h"
-#include "CityJson.h"
-#include "CityScene.h"
+#include "city/CityGml.h"
+#include "city/CityJson.h"
+#include "city/CityScene.h"
 #include "IoTestSupport.h"
 #include "octrace/build/CityVoxelizer.h"
 #include "octrace/io/CityReader.h"

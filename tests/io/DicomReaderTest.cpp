@@ -2,7 +2,7 @@
 // synthetic fixtures of tests/data/dicom (make_fixtures.py there says what each holds).
 #include "IoTestSupport.h"
 
-#include "DicomFile.h"
+#include "dicom/DicomFile.h"
 #include "octrace/io/DicomReader.h"
 #include "octrace/io/FieldReader.h"
 #include "octrace/util/Error.h"

@@ -1,11 +1,11 @@
-// The DICOM structure walk made before GDCM reads a file (io/src/DicomValidator.h): every real
+// The DICOM structure walk made before GDCM reads a file (io/src/dicom/DicomValidator.h): every real
 // file of ../shared/data/medical passes, every truncation of them is refused cleanly or read,
 // and hand-made files exercise each rule (lengths against their container, items and
 // delimiters, nesting, transfer syntaxes, layouts without preamble).
 #include "IoTestSupport.h"
 
-#include "DicomFile.h"
-#include "DicomValidator.h"
+#include "dicom/DicomFile.h"
+#include "dicom/DicomValidator.h"
 #include "octrace/util/Error.h"
 
 #include <algorithm>

@@ -3,7 +3,7 @@
 // grids, grids without coordinate variables, and sound speed derived from T and S.
 #include "CfFileWriter.h"
 #include "IoTestSupport.h"
-#include "SeaWater.h"
+#include "netcdf/SeaWater.h"
 
 #include "octrace/io/NetcdfReader.h"
 #include "octrace/util/Error.h"

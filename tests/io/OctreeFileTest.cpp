@@ -1,6 +1,6 @@
 // .oct octree files: exact round trips (shell and volume form), every flipped byte and every
 // truncation refused, future versions refused, CRC-32C against its published check value.
-#include "Crc32c.h"
+#include "octree/Crc32c.h"
 #include "IoTestSupport.h"
 #include "octrace/build/AnalyticField.h"
 #include "octrace/build/OctreeBuilder.h"

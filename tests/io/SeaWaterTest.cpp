@@ -1,6 +1,6 @@
 // The UNESCO 1983 algorithms against the check values printed with them in Fofonoff and
 // Millard (1983), Unesco Technical Papers in Marine Science 44.
-#include "SeaWater.h"
+#include "netcdf/SeaWater.h"
 
 #include <gtest/gtest.h>
 

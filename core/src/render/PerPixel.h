@@ -1,0 +1,74 @@
+#pragma once
+// Private to core: what the ray-casting renderers of the voxel octree share around their
+// traversals: writing a pixel from its hit (shading, depth, counters), and the per-pixel
+// renderer that traces every pixel on its own, tile by tile.
+#include "render/traversal/PixelRays.h"
+#include "octrace/render/DiscreteTraversal.h"
+#include "octrace/render/Renderer.h"
+#include "octrace/render/Shading.h"
+#include "octrace/util/Parallel.h"
+#include "octrace/util/Timer.h"
+
+#include <algorithm>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace octrace::detail {
+
+/// Writes every field of pixel (x, y) from its primary ray's hit (or miss): flags, hit id,
+/// colour (or the background) and depth, and counts the pixel and the hit; a renderer that
+/// writes every pixel this way needs no clear (Frame::reshape). Every ray caster shades
+/// through this, so equal hits give equal pixels.
+inline void writePixelHit(Frame& frame, int x, int y, const TraversalHit& hit, const Shader& shader,
+                          const PixelRays& rays, const dvec3& dir, const RenderSettings& settings, RenderStats& st) {
+    const std::size_t p = frame.pixel(x, y);
+    ++st.pixels;
+    frame.flags[p] = Frame::kTraced;
+    if (!hit.hit()) {
+        frame.rgba[p] = settings.background;
+        frame.depth[p] = std::numeric_limits<float>::infinity();
+        frame.hitId[p] = kNoHit;
+        return;
+    }
+    ++st.hits;
+    frame.hitId[p] = hit.voxel;
+    frame.rgba[p] = shader.shade(hit, &st.secondaryRays);
+    frame.depth[p] = shader.distance(rays.world(x, y, dir), hit);
+}
+
+constexpr int kPerPixelTile = 32;
+
+/// Renders tile by tile (in parallel); each pixel is traced on its own by `trace`, which maps
+/// a ray in octree space to a hit. Counters are kept per tile and summed in tile order.
+template <class Trace>
+RenderStats renderPerPixel(const std::string& name, const Octree& tree, const Camera& camera,
+                           const RenderSettings& settings, Frame& frame, const Trace& trace) {
+    camera.validate();
+    Timer timer;
+    frame.reshape(camera.width, camera.height);  // every pixel is written below
+    const Shader shader(tree, camera, settings);
+    const PixelRays rays(tree, camera);
+    const int tilesX = (camera.width + kPerPixelTile - 1) / kPerPixelTile;
+    const int tilesY = (camera.height + kPerPixelTile - 1) / kPerPixelTile;
+    std::vector<RenderStats> tileStats(std::size_t(tilesX) * tilesY);
+    parallelFor(tileStats.size(), settings.threads, [&](std::size_t t) {
+        RenderStats& st = tileStats[t];
+        TraversalCounters counters;
+        const int x0 = int(t % std::size_t(tilesX)) * kPerPixelTile, y0 = int(t / std::size_t(tilesX)) * kPerPixelTile;
+        const int x1 = std::min(x0 + kPerPixelTile, camera.width), y1 = std::min(y0 + kPerPixelTile, camera.height);
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x) {
+                const dvec3 dir = rays.direction(x, y);
+                bool meets = false;
+                const TraversalHit hit = trace(rays, x, y, dir, counters, meets);
+                if (meets) ++st.rays;
+                ++st.raysFull;
+                writePixelHit(frame, x, y, hit, shader, rays, dir, settings, st);
+            }
+        st.nodesVisited = counters.nodes;
+    });
+    return RenderStats::total(name, tileStats, timer.ms());
+}
+
+}  // namespace octrace::detail

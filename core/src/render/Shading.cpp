@@ -1,0 +1,182 @@
+#include "octrace/render/Shading.h"
+
+#include "lighting/ShadowTracer.h"
+
+#include "octrace/util/Error.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <limits>
+
+namespace octrace {
+namespace {
+#include "render/ColormapTables.inc"
+
+struct Map {
+    const char* name;
+    const float (*table)[3];  // sRGB control points, evenly spaced
+    std::size_t size;
+};
+// coolwarm: Moreland's diverging map (2009), five of its control points.
+constexpr float kCoolwarm[5][3] = {{0.230f, 0.299f, 0.754f}, {0.552f, 0.690f, 0.996f}, {0.866f, 0.866f, 0.866f},
+                                   {0.956f, 0.604f, 0.486f}, {0.706f, 0.016f, 0.150f}};
+const std::vector<Map>& maps() {
+    static const std::vector<Map> m = {
+        {"viridis", k_viridis, 256}, {"thermal", k_thermal, 256}, {"haline", k_haline, 256},
+        {"speed", k_speed, 256},     {"grey", k_gray, 256},       {"coolwarm", kCoolwarm, 5},
+    };
+    return m;
+}
+float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
+std::string lower(std::string s) {
+    for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+bool contains(const std::string& s, const char* part) { return s.find(part) != std::string::npos; }
+}  // namespace
+
+std::vector<std::string> colormapNames() {
+    std::vector<std::string> n;
+    for (const auto& m : maps()) n.push_back(m.name);
+    return n;
+}
+
+vec3 colormap(const std::string& nameIn, float t) {
+    const std::string name = nameIn == "gray" ? "grey" : nameIn;
+    for (const auto& m : maps()) {
+        if (name != m.name) continue;
+        t = std::clamp(std::isnan(t) ? 0.0f : t, 0.0f, 1.0f) * float(m.size - 1);
+        std::size_t i = std::min(std::size_t(t), m.size - 2);
+        float f = t - float(i);
+        vec3 c = vec3(m.table[i][0], m.table[i][1], m.table[i][2]) * (1.0f - f) +
+                 vec3(m.table[i + 1][0], m.table[i + 1][1], m.table[i + 1][2]) * f;
+        return vec3(srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z));
+    }
+    throw UsageError("unknown colour map '" + nameIn + "' (choose one of: viridis, thermal, haline, speed, grey, coolwarm)");
+}
+
+std::string defaultColormap(const std::string& standardName, const std::string& name) {
+    const std::string sn = lower(standardName), n = lower(name);
+    if (!sn.empty()) {
+        if (contains(sn, "speed_of_sound")) return "speed";
+        if (contains(sn, "temperature")) return "thermal";
+        if (contains(sn, "salinity")) return "haline";
+    }
+    if (contains(n, "sound") || n == "svel" || n == "c") return "speed";
+    if (contains(n, "temp") || n == "t" || n == "thetao" || n == "theta" || n == "pt") return "thermal";
+    if (contains(n, "sal") || n == "s" || n == "so" || n == "psal") return "haline";
+    return "viridis";
+}
+
+Albedo::Albedo(const Octree& tree, const RenderSettings& settings)
+    : tree_(tree), colour_(settings.colour), masked_(settings.maskedColour), floor_(settings.floorColour),
+      window_(settings.window), inverted_(settings.invertedGrey), colormap_(settings.colormap) {
+    for (int i = 0; i < 256; ++i) linear_[i] = srgbToLinear(float(i) / 255.0f);
+    const bool hasValues = !tree.voxelValues.empty() && tree.voxelValues.size() == tree.voxels.size();
+    if (hasValues && window_.valid()) {
+        values_ = &tree.voxelValues;
+        return;
+    }
+    if (hasValues && !colormap_.empty()) {
+        values_ = &tree.voxelValues;
+        float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+        for (std::size_t i = 0; i < values_->size(); ++i) {
+            const float v = (*values_)[i];
+            if (std::isfinite(v) && tree.material(std::uint32_t(i)) == VoxelMaterial::Surface) {
+                lo = std::min(lo, v);
+                hi = std::max(hi, v);
+            }
+        }
+        if (!(lo <= hi)) lo = hi = 0.0f;
+        lo_ = std::isnan(settings.colourMin) ? lo : settings.colourMin;
+        hi_ = std::isnan(settings.colourMax) ? hi : settings.colourMax;
+    }
+    if (colormap_.empty()) {
+        if (tree.hasColours() && settings.voxelColours) colours_ = &tree.colours;
+        return;
+    }
+    colormap(colormap_, 0.0f);  // validate the name once
+    ivec3 lo, hi;
+    tree.occupiedCells(lo, hi);
+    zLo_ = lo.z;
+    zHi_ = std::max(hi.z, lo.z);
+}
+
+vec3 Albedo::at(std::uint32_t voxel, float zCells) const {
+    if (!tree_.voxelMaterials.empty() && tree_.material(voxel) == VoxelMaterial::Floor) return floor_;
+    if (values_) {
+        const float v = (*values_)[voxel];
+        if (window_.valid()) return vec3(srgbToLinear(window_.grey(v, inverted_)));
+        if (std::isnan(v)) return masked_;
+        return colormap(colormap_, hi_ != lo_ ? (v - lo_) / (hi_ - lo_) : 0.5f);
+    }
+    if (colours_) {
+        const std::uint32_t c = (*colours_)[voxel];
+        return vec3(linear_[c & 0xFFu], linear_[(c >> 8) & 0xFFu], linear_[(c >> 16) & 0xFFu]);
+    }
+    if (colormap_.empty()) return colour_;
+    // Colour by height (world z) over the surface's extent.
+    const float t = (zCells - float(zLo_)) / float(zHi_ - zLo_ + 1);
+    return colormap(colormap_, t);
+}
+
+Shader::Shader(const Octree& tree, const Camera& camera, const RenderSettings& settings)
+    : tree_(tree), settings_(settings), albedo_(tree, settings) {
+    dvec3 right, up, back;
+    camera.basis(right, up, back);
+    dvec3 l = settings.lightCamera;
+    if (!(glm::length(l) > 0.0)) l = dvec3(0.4, 0.6, 1.0);
+    l = glm::normalize(l);
+    light_ = vec3(glm::normalize(l.x * right + l.y * up + l.z * back));
+    if (settings.baked && !tree.baked.empty() && tree.baked.size() == tree.voxels.size()) baked_ = &tree.baked;
+    shadows_ = settings.shadows.value_or(false) && !baked_ && tree.form == OctreeForm::Shell;
+}
+
+vec4 Shader::shade(std::uint32_t voxel, const ivec3& cell, int leafShift, std::uint64_t* shadowRays) const {
+    if (baked_) return vec4(albedo_.at(voxel, float(cell.z) + 0.5f) * (float((*baked_)[voxel]) * (1.0f / 255.0f)), 1.0f);
+    const vec3 n = decodeNormal(tree_.voxels[voxel].normal);
+    float lambert = std::abs(glm::dot(n, light_));
+    if (shadows_ && lambert > 0.0f) {
+        std::uint64_t rays = 0;
+        if (!detail::ShadowTracer(tree_).seesDirectionalLight(cell, leafShift, dvec3(n), dvec3(light_), rays)) lambert = 0.0f;
+        if (shadowRays) *shadowRays += rays;
+    }
+    return shadeLambert(voxel, float(cell.z) + 0.5f, lambert);
+}
+
+vec4 Shader::shadeNode(std::uint32_t node) const {
+    const NodeSummary& s = tree_.summaries[node];
+    return shadeLambert(s.firstVoxel, s.meanZ, std::abs(glm::dot(decodeNormal(s.normal), light_)));
+}
+
+/// ambient + diffuse x lambert (|n . l|, 0 in shadow), times the surface colour.
+vec4 Shader::shadeLambert(std::uint32_t voxel, float zCells, float lambert) const {
+    float intensity = settings_.ambient + settings_.diffuse * lambert;
+    return vec4(albedo_.at(voxel, zCells) * intensity, 1.0f);
+}
+
+float Shader::distance(const Ray& ray, const ivec3& cell) const { return distanceToBox(ray, tree_.voxelBox(cell)); }
+
+float Shader::distance(const Ray& ray, const TraversalHit& hit) const {
+    if (!hit.nodeHit() && hit.leafShift == 0) return distance(ray, hit.cell);
+    const int level = hit.nodeHit() ? hit.level : tree_.depth - hit.leafShift;
+    const double side = tree_.cubeSide / double(1u << level);
+    Box3 b;
+    b.lo = tree_.cubeOrigin + dvec3(hit.nodeHit() ? hit.cell : hit.cell >> hit.leafShift) * side;
+    b.hi = b.lo + dvec3(side);
+    return distanceToBox(ray, b);
+}
+
+float Shader::distanceToBox(const Ray& ray, const Box3& b) const {
+    double tin = 0.0;
+    for (int a = 0; a < 3; ++a) {
+        if (ray.direction[a] == 0.0) continue;
+        double t0 = (b.lo[a] - ray.origin[a]) / ray.direction[a];
+        double t1 = (b.hi[a] - ray.origin[a]) / ray.direction[a];
+        tin = std::max(tin, std::min(t0, t1));
+    }
+    return float(tin);
+}
+
+}  // namespace octrace

@@ -1,0 +1,346 @@
+// The discrete renderers: full traversal, paper A's trajectory coherence (linear, area) in
+// approximate and exact variants, and colour coherence as an option on any of them.
+//
+// Pixels are computed in phases; within a phase every pixel depends only on pixels of earlier
+// phases, so each phase runs in parallel over rows and the image does not depend on the
+// number of threads. Supporting pixels are every 4th column (and the last), base rows every
+// 4th row (and the last).
+//   linear: 1. x % 4 == 0 full   2. x % 4 == 2 from (x-2, x+2)   3. odd x from (x-1, x+1)
+//   area:   base rows as linear; 4. rows y % 4 == 2 from (y-2, y+2); 5. odd rows from (y-1, y+1)
+//   full:   1. every pixel (with colour coherence: even x, then odd x filled or traced)
+// Colour coherence fills a pixel of the last phase of its row or column pattern when its two
+// partners were both traced and their 8-bit colours agree within the tolerance. Miss coherence
+// (approximate linear and area) takes a common-path pixel whose partners both missed as a miss.
+#include "render/traversal/CoherentRenderers.h"
+#include "render/traversal/PixelRays.h"
+
+#include "octrace/render/DiscreteTraversal.h"
+#include "octrace/render/ImageCompare.h"
+#include "octrace/render/Lod.h"
+#include "octrace/render/Shading.h"
+#include "octrace/util/Error.h"
+#include "octrace/util/Parallel.h"
+#include "octrace/util/Timer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+namespace octrace::detail {
+namespace {
+
+enum class Start { Root, Branch, Guided };
+
+struct Context {
+    const Octree& tree;
+    const RenderSettings& settings;
+    Frame& frame;
+    const Shader& shader;
+    const PixelRays& rays;
+    ivec3* cells;  // hit cells, read only at pixels that hit (nullptr: no pattern reads them)
+    std::uint32_t* srgb;  // packed 8-bit colour of traced and filled pixels (colour coherence; nullptr: off)
+    const LodCut& cut;
+    std::uint32_t backgroundSrgb;  // packSrgb8(settings.background), for colour coherence
+};
+
+/// Traces pixel (x, y) and writes it; `partners` are the two neighbours whose hits give the
+/// branch node (nullptr: from the root).
+void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Start mode, RenderStats& st,
+                TraversalCounters& counters) {
+    Frame& f = c.frame;
+    const std::size_t p = f.pixel(x, y);
+    auto background = [&](std::uint8_t flags) {
+        f.flags[p] = flags;
+        f.rgba[p] = c.settings.background;
+        f.depth[p] = std::numeric_limits<float>::infinity();
+        f.hitId[p] = kNoHit;
+        if (c.srgb) c.srgb[p] = c.backgroundSrgb;
+    };
+    // Outside the cube's outline: no ray to quantize.
+    if (!c.rays.mayMeetCube(x, y)) {
+        ++st.raysFull;
+        return background(Frame::kTraced);
+    }
+    // Meets the cube perhaps, but not the surface's bounding box (rounded out to the nodes a
+    // multi-resolution cut may draw whole): nothing to find. The ray is quantized only to be
+    // counted in `rays`, and not even that well inside the cube's outline. Miss coherence: the
+    // same for a pixel whose partners both missed, taken as a miss (not certain: not traced).
+    const bool cannotHit = !c.rays.mayHitSurface(x, y);
+    const bool missFill = !cannotHit && partners && mode == Start::Branch && c.settings.missCoherence &&
+                          f.hitId[partners[0]] == kNoHit && f.hitId[partners[1]] == kNoHit;
+    if (cannotHit || missFill) {
+        if (c.rays.meetsCube(x, y)) ++st.rays;
+        ++(missFill ? st.missFilled : st.raysFull);
+        return background(missFill ? Frame::kMissFilled : Frame::kTraced);
+    }
+    const dvec3 dir = c.rays.direction(x, y);
+    const QuantizedRay q = c.rays.quantized(x, y, dir);
+    if (q.meetsCube) ++st.rays;
+    TraversalHit hit;
+    std::uint8_t flags = Frame::kTraced;
+    const bool usePartners = partners && mode != Start::Root && f.hitId[partners[0]] != kNoHit &&
+                             f.hitId[partners[1]] != kNoHit && q.meetsCube;
+    if (usePartners) {
+        const BranchNode bn = branchNode(c.tree, c.cells[partners[0]], c.cells[partners[1]], c.settings.branchUp);
+        ++st.raysCommonPath;
+        flags |= Frame::kCommonPath;
+        if (mode == Start::Branch) {
+            bool fellBack = false;
+            hit = traverseFromBranch(c.tree, q, bn, counters, fellBack);
+            if (fellBack) {
+                ++st.fallbacks;
+                flags |= Frame::kFallback;
+            }
+        } else {
+            bool certified = false;
+            hit = traverseGuided(c.tree, q, bn, counters, certified);
+            if (certified) {
+                ++st.raysCertified;
+                flags |= Frame::kCertified;
+            }
+        }
+    } else {
+        ++st.raysFull;
+        hit = traverseDiscrete(c.tree, q, counters, &c.cut);
+    }
+    f.flags[p] = flags;
+    if (!hit.hit()) {
+        f.rgba[p] = c.settings.background;
+        f.depth[p] = std::numeric_limits<float>::infinity();
+        f.hitId[p] = kNoHit;
+    } else {
+        ++st.hits;
+        f.hitId[p] = hit.voxel;
+        if (c.cells) c.cells[p] = hit.cell;
+        f.rgba[p] = c.shader.shade(hit, &st.secondaryRays);
+        f.depth[p] = c.shader.distance(c.rays.world(x, y, dir), hit);
+    }
+    if (c.srgb) c.srgb[p] = hit.hit() ? packSrgb8(f.rgba[p]) : c.backgroundSrgb;
+}
+
+/// Writes the background to the pixels of row y whose rays cannot hit the surface, counted as
+/// tracePixel counts them, in one pass; returns the pixels left to the patterns (lo > hi: none).
+/// Each field is filled as a run (raw pointers: the byte-wide flags would otherwise make the
+/// compiler reload every buffer's address per pixel), and the rays are counted per run: all of
+/// the run inside the cube's inner outline, a quantization only between it and the outline.
+std::pair<int, int> fillOutsideSurface(const Context& c, int y, RenderStats& st) {
+    Frame& f = c.frame;
+    const int W = f.width;
+    const auto [first, second] = c.rays.surfaceSpan(y);
+    const int lo = std::max(first, 0), hi = std::min(second, W - 1);
+    const std::uint32_t bg = c.backgroundSrgb;
+    // Plain ints, not structured bindings: clang 14 (the fuzz build) cannot capture those.
+    const int cubeLo = c.rays.cubeSpan(y).first, cubeHi = c.rays.cubeSpan(y).second;
+    const int innerLo = c.rays.cubeInnerSpan(y).first, innerHi = c.rays.cubeInnerSpan(y).second;
+    auto fill = [&](int x0, int x1) {
+        if (x1 <= x0) return;
+        const std::size_t p = f.pixel(x0, y), n = std::size_t(x1 - x0);
+        std::fill_n(f.flags.data() + p, n, std::uint8_t(Frame::kTraced));
+        std::fill_n(f.rgba.data() + p, n, c.settings.background);
+        std::fill_n(f.depth.data() + p, n, std::numeric_limits<float>::infinity());
+        std::fill_n(f.hitId.data() + p, n, kNoHit);
+        if (c.srgb) std::fill_n(c.srgb + p, n, bg);
+        st.raysFull += n;
+        // Rays meeting the cube: the pixels in the inner span surely do, those outside the
+        // outline cannot, those in between are quantized.
+        const int a = std::max(x0, cubeLo), b = std::min(x1 - 1, cubeHi);
+        for (int x = a; x <= b; ++x) {
+            if (x >= innerLo && x <= innerHi) {
+                const int last = std::min(b, innerHi);
+                st.rays += std::uint64_t(last - x + 1);
+                x = last;
+            } else if (c.rays.meetsCube(x, y)) {
+                ++st.rays;
+            }
+        }
+    };
+    if (lo > hi) {
+        fill(0, W);
+        return {1, 0};
+    }
+    fill(0, lo);
+    fill(hi + 1, W);
+    return {lo, hi};
+}
+
+/// Colour coherence: fills pixel p from its partners when both are known (traced, or filled by
+/// colour or miss coherence) and their colours agree. Both showing the surface: the average
+/// colour and depth, the first partner's hit id. Both background (paper A fills any pair of
+/// close colours): the background, no hit. Either way only the ray's quantization is computed,
+/// to count it in `rays` when it meets the cube.
+bool tryFill(const Context& c, int x, int y, const std::size_t* partners, RenderStats& st) {
+    Frame& f = c.frame;
+    const std::size_t a = partners[0], b = partners[1];
+    constexpr std::uint8_t known = Frame::kTraced | Frame::kColourFilled | Frame::kMissFilled;
+    if (!(f.flags[a] & known) || !(f.flags[b] & known)) return false;
+    const bool hitA = f.hitId[a] != kNoHit, hitB = f.hitId[b] != kNoHit;
+    if (hitA != hitB) return false;
+    if (!hitA && !c.settings.colourFillsBackground) return false;
+    for (int ch = 0; ch < 4; ++ch) {
+        const int da = int((c.srgb[a] >> (8 * ch)) & 0xFF), db = int((c.srgb[b] >> (8 * ch)) & 0xFF);
+        if (float(std::abs(da - db)) > c.settings.colourTolerance) return false;
+    }
+    const std::size_t p = f.pixel(x, y);
+    f.flags[p] = Frame::kColourFilled;
+    ++st.colourFilled;
+    if (!hitA) {
+        f.rgba[p] = c.settings.background;
+        f.depth[p] = std::numeric_limits<float>::infinity();
+        f.hitId[p] = kNoHit;
+        c.srgb[p] = c.backgroundSrgb;
+        if (c.rays.meetsCube(x, y)) ++st.rays;
+        return true;
+    }
+    // The ray lies between two rays that hit voxels inside the convex scene cube: it meets it.
+    f.rgba[p] = 0.5f * (f.rgba[a] + f.rgba[b]);
+    f.depth[p] = 0.5f * (f.depth[a] + f.depth[b]);
+    f.hitId[p] = f.hitId[a];
+    if (c.cells) c.cells[p] = c.cells[a];
+    c.srgb[p] = packSrgb8(f.rgba[p]);
+    ++st.rays;
+    ++st.hits;
+    return true;
+}
+
+}  // namespace
+
+std::string DiscreteRenderer::name() const {
+    std::string n = pattern_ == Pattern::Full ? "full" : pattern_ == Pattern::Linear ? "linear" : "area";
+    if (exact_) n += "-exact";
+    if (colour_) n += "+colour";
+    return n;
+}
+
+RenderStats DiscreteRenderer::render(const Octree& tree, const Camera& camera, const RenderSettings& settingsIn,
+                                     Frame& frame) const {
+    camera.validate();
+    Timer timer;
+    RenderSettings settings = settingsIn;
+    settings.colourCoherence = settingsIn.colourCoherence || colour_;
+    frame.reshape(camera.width, camera.height);  // every pixel is written below
+    const Shader shader(tree, camera, settings);
+    const LodCut cut(tree, camera, settings.lodPixels, settings.level);
+    const PixelRays rays(tree, camera, cut.coarsestLevel());
+    // Written at every hit before any pattern reads it there: left uninitialised.
+    std::unique_ptr<ivec3[]> cells(pattern_ == Pattern::Full ? nullptr : new ivec3[frame.hitId.size()]);
+    // Written at every traced or filled pixel before a partner reads it: left uninitialised.
+    std::unique_ptr<std::uint32_t[]> srgb(settings.colourCoherence ? new std::uint32_t[frame.hitId.size()] : nullptr);
+    if (cut.active() && pattern_ != Pattern::Full)
+        throw UsageError("renderer " + name() + " has no multi-resolution mode (`lod`, `level`): use " + voxelRenderersThat(&Renderer::multiResolution));
+    const Context ctx{tree, settings, frame, shader, rays, cells.get(), srgb.get(), cut, packSrgb8(settings.background)};
+    const int W = camera.width, H = camera.height;
+    const Start mode = pattern_ == Pattern::Full ? Start::Root : exact_ ? Start::Guided : Start::Branch;
+    const bool colour = settings.colourCoherence;
+
+    std::vector<RenderStats> rowStats(static_cast<std::size_t>(H));
+    std::vector<std::uint64_t> rowNodes(static_cast<std::size_t>(H), 0), rowDeferred(static_cast<std::size_t>(H), 0);
+    auto isSupportCol = [&](int x) { return x % 4 == 0 || x == W - 1; };
+    auto isBaseRow = [&](int y) { return y % 4 == 0 || y == H - 1; };
+
+    // Pixels whose rays cannot hit the surface are background whatever the pattern, except
+    // that paper A's colour fill of background pairs marks some of them filled: written in
+    // one pass per row first, unless that fill is on.
+    const bool fillFirst = !(colour && settings.colourFillsBackground);
+    auto patternSpan = [&](int y, RenderStats& st) {
+        return fillFirst ? fillOutsideSurface(ctx, y, st) : std::pair<int, int>{0, W - 1};
+    };
+    // One row along its own pattern, all phases while the row is in cache.
+    auto doRow = [&](int y, TraversalCounters& k) {
+        RenderStats& st = rowStats[std::size_t(y)];
+        const auto [lo, hi] = patternSpan(y, st);
+        auto outside = [lo = lo, hi = hi](int x) { return x < lo || x > hi; };
+        if (pattern_ == Pattern::Full) {
+            if (!colour) {
+                for (int x = lo; x <= hi; ++x) tracePixel(ctx, x, y, nullptr, mode, st, k);
+                return;
+            }
+            for (int x = 0; x < W; x += 2)
+                if (!outside(x)) tracePixel(ctx, x, y, nullptr, mode, st, k);
+            if (W % 2 == 0 && !outside(W - 1)) tracePixel(ctx, W - 1, y, nullptr, mode, st, k);
+            for (int x = 1; x < W - 1; x += 2) {
+                if (outside(x)) continue;
+                const std::size_t pr[2] = {frame.pixel(x - 1, y), frame.pixel(x + 1, y)};
+                if (!tryFill(ctx, x, y, pr, st)) tracePixel(ctx, x, y, nullptr, mode, st, k);
+            }
+            return;
+        }
+        // 1. supporting columns
+        for (int x = 0; x < W; ++x)
+            if (isSupportCol(x) && !outside(x)) tracePixel(ctx, x, y, nullptr, mode, st, k);
+        // 2. middle of each 4-pixel group, from the supporting pixels 2 away
+        for (int x = 2; x < W; x += 4) {
+            if (isSupportCol(x) || outside(x)) continue;
+            const std::size_t pr[2] = {frame.pixel(x - 2, y), frame.pixel(std::min(x + 2, W - 1), y)};
+            tracePixel(ctx, x, y, pr, mode, st, k);
+        }
+        // 3. the two remaining pixels, from their neighbours at distance 1
+        for (int x = 1; x < W; ++x) {
+            if (isSupportCol(x) || x % 4 == 2 || outside(x)) continue;
+            const std::size_t pr[2] = {frame.pixel(x - 1, y), frame.pixel(x + 1, y)};
+            if (!(colour && tryFill(ctx, x, y, pr, st))) tracePixel(ctx, x, y, pr, mode, st, k);
+        }
+    };
+    // The rows strictly between base row b and the next base row, from the pixels above and below.
+    auto doBand = [&](int b, TraversalCounters& k) {
+        const int next = std::min(b + 4, H - 1);
+        std::pair<int, int> span[4];
+        for (int y = b + 1; y < next; ++y) span[y - b - 1] = patternSpan(y, rowStats[std::size_t(y)]);
+        for (int pass = 0; pass < 2; ++pass)
+            for (int y = b + 1; y < next; ++y) {
+                if ((y % 4 == 2) != (pass == 0)) continue;  // first the middle row, then the others
+                RenderStats& st = rowStats[std::size_t(y)];
+                const auto [lo, hi] = span[y - b - 1];
+                for (int x = std::max(lo, 0); x <= std::min(hi, W - 1); ++x) {
+                    if (y % 4 == 2) {
+                        const std::size_t pr[2] = {frame.pixel(x, y - 2), frame.pixel(x, std::min(y + 2, H - 1))};
+                        tracePixel(ctx, x, y, pr, mode, st, k);
+                    } else {
+                        const std::size_t pr[2] = {frame.pixel(x, y - 1), frame.pixel(x, y + 1)};
+                        if (!(colour && tryFill(ctx, x, y, pr, st))) tracePixel(ctx, x, y, pr, mode, st, k);
+                    }
+                }
+            }
+    };
+    auto run = [&](std::size_t count, auto body) {
+        parallelFor(count, settings.threads, [&](std::size_t i) {
+            TraversalCounters k;
+            const int y = body(int(i), k);
+            if (y >= 0) {
+                rowNodes[std::size_t(y)] += k.nodes;
+                rowDeferred[std::size_t(y)] += k.statesDeferred;
+            }
+        });
+    };
+    if (pattern_ != Pattern::Area) {
+        run(std::size_t(H), [&](int y, TraversalCounters& k) {
+            doRow(y, k);
+            return y;
+        });
+    } else {
+        // Base rows first (each on its own), then the bands between them.
+        std::vector<int> base;
+        for (int y = 0; y < H; ++y)
+            if (isBaseRow(y)) base.push_back(y);
+        run(base.size(), [&](int i, TraversalCounters& k) {
+            doRow(base[std::size_t(i)], k);
+            return base[std::size_t(i)];
+        });
+        run(base.size(), [&](int i, TraversalCounters& k) {
+            doBand(base[std::size_t(i)], k);
+            return base[std::size_t(i)] + 1 < H ? base[std::size_t(i)] + 1 : -1;  // counters kept on a band row
+        });
+    }
+    RenderStats total;
+    total.renderer = name();
+    for (std::size_t y = 0; y < rowStats.size(); ++y) {
+        rowStats[y].nodesVisited = rowNodes[y];
+        rowStats[y].statesDeferred = rowDeferred[y];
+        rowStats[y].pixels = std::uint64_t(W);
+        total.add(rowStats[y]);
+    }
+    total.renderMs = timer.ms();
+    return total;
+}
+
+}  // namespace octrace::detail

@@ -1,0 +1,254 @@
+#include "octrace/io/DicomReader.h"
+
+#include "dicom/DicomFile.h"
+#include "dicom/DicomSeries.h"
+#include "input/FieldText.h"
+#include "input/InputFile.h"
+#include "octrace/util/Error.h"
+#include "octrace/util/Log.h"
+#include "octrace/util/Memory.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace octrace::io {
+namespace {
+
+using detail::DicomHeader;
+
+// 8 GiB of float samples: far beyond any real series, refused before decoding anything.
+constexpr double kMaxSamples = double(1u << 31);
+
+struct Series {
+    DicomSeriesInfo info;
+    std::vector<DicomHeader> headers;
+};
+
+// Runs `step` on one file of the input; a refusal names the input first when the input is a
+// folder, so that every message starts with the path the user gave.
+template <typename Step>
+auto forFile(const std::string& path, const std::string& file, Step step) {
+    try {
+        return step();
+    } catch (const FileError& e) {
+        if (file == path) throw;
+        throw FileError(path + ": " + e.what());
+    }
+}
+
+struct Scan {
+    bool folder = false;  ///< a folder or a DICOMDIR was given (several series possible)
+    std::vector<Series> series;
+};
+
+// The files to look at: the file itself, or every DICOM-looking file under the folder (the
+// DICOMDIR's folder), in path order so that messages do not depend on the file system.
+std::vector<std::string> candidateFiles(const std::string& path, bool& folder) {
+    std::error_code ec;
+    auto st = fs::status(path, ec);
+    if (ec || !fs::exists(st)) throw InputError(path + ": no such file");
+    fs::path root = path;
+    folder = fs::is_directory(st);
+    if (!folder && detail::isDicomDir(path)) {
+        folder = true;
+        root = fs::path(path).parent_path();
+        if (root.empty()) root = ".";
+    }
+    if (!folder) {
+        detail::requireReadableFile(path);
+        return {path};
+    }
+    std::vector<std::string> files;
+    for (fs::recursive_directory_iterator it(root, fs::directory_options::skip_permission_denied, ec), end; !ec && it != end;
+         it.increment(ec)) {
+        if (!it->is_regular_file(ec)) continue;
+        const std::string f = it->path().string();
+        if (!detail::isDicomDir(f) && detail::looksLikeDicom(f)) files.push_back(f);
+    }
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+Scan scan(const std::string& path) {
+    Scan s;
+    const std::vector<std::string> files = candidateFiles(path, s.folder);
+    std::map<std::string, Series> byUid;
+    std::size_t skipped = 0;
+    for (const std::string& f : files) {
+        std::string whyNot;
+        std::optional<DicomHeader> h = forFile(path, f, [&] { return detail::readDicomHeader(f, whyNot); });
+        if (!h) {
+            if (!s.folder) {
+                if (whyNot.rfind("not a DICOM", 0) == 0) throw FormatNotSupported(path + ": " + whyNot);
+                throw FileError(path + ": " + whyNot);
+            }
+            log::debug(f + ": skipped, " + whyNot);
+            ++skipped;
+            continue;
+        }
+        Series& series = byUid[h->seriesUid];
+        if (series.headers.empty())
+            series.info = {h->seriesUid, h->modality, h->description, h->seriesNumber, h->columns, h->rows, 0, 0};
+        series.info.slices += int(h->frames.size());
+        series.info.files += 1;
+        series.headers.push_back(std::move(*h));
+    }
+    if (byUid.empty())
+        throw FileError(path + ": no DICOM image (" + std::to_string(files.size()) + " DICOM-looking file(s), " +
+                        std::to_string(skipped) + " without an image)");
+    for (auto& [uid, series] : byUid) s.series.push_back(std::move(series));
+    std::stable_sort(s.series.begin(), s.series.end(), [](const Series& a, const Series& b) {
+        return a.info.seriesNumber < b.info.seriesNumber;  // then UID: the map's order
+    });
+    return s;
+}
+
+std::string seriesLine(const DicomSeriesInfo& i) {
+    std::ostringstream s;
+    s << (i.uid.empty() ? std::string("(no SeriesInstanceUID)") : i.uid) << " (" << (i.modality.empty() ? "?" : i.modality)
+      << (i.description.empty() ? std::string() : ", '" + i.description + "'") << ", " << i.columns << "x" << i.rows << "x"
+      << i.slices << ", " << i.files << " file" << (i.files == 1 ? "" : "s") << ")";
+    return s.str();
+}
+
+std::size_t chooseSeries(const Scan& s, const std::string& want, const std::string& path) {
+    const std::size_t n = s.series.size();
+    if (want.empty()) {
+        std::size_t best = 0;
+        for (std::size_t i = 1; i < n; ++i)
+            if (s.series[i].info.samples() > s.series[best].info.samples()) best = i;
+        return best;
+    }
+    for (std::size_t i = 0; i < n; ++i)
+        if (s.series[i].info.uid == want) return i;
+    if (want.find_first_not_of("0123456789") == std::string::npos && want.size() < 9) {
+        const std::size_t index = std::stoul(want);
+        if (index >= 1 && index <= n) return index - 1;
+    }
+    std::vector<std::size_t> described;
+    for (std::size_t i = 0; i < n; ++i)
+        if (detail::lower(s.series[i].info.description) == detail::lower(want)) described.push_back(i);
+    if (described.size() == 1) return described[0];
+    std::string list;
+    for (std::size_t i = 0; i < n; ++i) list += (i ? "; " : "") + std::to_string(i + 1) + ": " + seriesLine(s.series[i].info);
+    throw InputError(path + ": " + (described.size() > 1 ? "several series are described '" : "no series '") + want +
+                     "' (give a UID, an index or a description; series: " + list + ")");
+}
+
+// Stored values (rescaled for CT) of every slice, in the layout's z order.
+std::vector<float> decodeSlices(const std::vector<DicomHeader>& headers, const detail::SeriesLayout& L, bool rescale,
+                                const std::string& path) {
+    const std::size_t plane = std::size_t(L.sliceDims.x) * std::size_t(L.sliceDims.y);
+    std::vector<std::vector<std::pair<int, std::size_t>>> wanted(headers.size());  // per file: (frame, slice)
+    for (std::size_t k = 0; k < L.slices.size(); ++k) wanted[L.slices[k].header].push_back({L.slices[k].frame, k});
+    std::vector<float> stored(plane * L.slices.size());
+    for (std::size_t h = 0; h < headers.size(); ++h) {
+        const std::vector<float> frames = forFile(path, headers[h].file, [&] { return detail::decodeDicomFrames(headers[h]); });
+        for (auto [frame, k] : wanted[h]) {
+            const detail::DicomFrame& g = headers[h].frames[std::size_t(frame)];
+            const float* src = frames.data() + plane * std::size_t(frame);
+            float* dst = stored.data() + plane * k;
+            for (std::size_t i = 0; i < plane; ++i) dst[i] = rescale ? float(src[i] * g.slope + g.intercept) : src[i];
+        }
+    }
+    return stored;
+}
+
+// What reading the series costs at its peak: the stored slices as floats, the resampled grid
+// and its mask when tilted, and one file's decoded bytes and floats (files are decoded one by one).
+std::uint64_t peakBytes(const Series& series, double stored, double samples, bool tilted) {
+    double file = 0.0;
+    for (const DicomHeader& h : series.headers)
+        file = std::max(file, double(h.rows) * double(h.columns) * double(h.frames.size()) * (h.bitsAllocated / 8.0 + sizeof(float)));
+    const double total = stored * sizeof(float) + (tilted ? samples * (sizeof(float) + 1.0) : 0.0) + file;
+    return total >= 1.8e19 ? std::numeric_limits<std::uint64_t>::max() : std::uint64_t(total);
+}
+
+ScalarField assemble(const Series& series, const std::string& path, std::uint64_t memoryBudget) {
+    detail::SeriesLayout L = detail::layoutSeries(series.headers, path);
+    const double stored = double(L.sliceDims.x) * double(L.sliceDims.y) * double(L.sliceDims.z);
+    ivec3 dims = L.sliceDims;
+    dvec2 offset(0.0);
+    if (L.tilted) detail::shearedGrid(L, dims, offset);
+    const double samples = double(dims.x) * double(dims.y) * double(dims.z);
+    if (std::max(stored, samples) > kMaxSamples)
+        throw FileError(path + ": series " + series.info.uid + " is " + std::to_string(dims.x) + "x" + std::to_string(dims.y) +
+                        "x" + std::to_string(dims.z) + " samples, more than octrace reads (" + detail::num(kMaxSamples) + ")");
+
+    checkMemoryBudget(path + ": reading DICOM series " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
+                          std::to_string(dims.z),
+                      peakBytes(series, stored, samples, L.tilted), memoryBudget);
+
+    const bool ct = series.info.modality == "CT";
+    ScalarField f;
+    f.source = path;
+    f.name = series.info.modality.empty() ? "DICOM" : series.info.modality;
+    f.units = ct ? "HU" : "";
+    f.dims = dims;
+    f.direction = L.direction;
+    f.spacing = dvec3(L.spacing, L.uniform ? L.z.back() / double(L.z.size() - 1) : 1.0);
+    if (!L.uniform) f.coords[2] = L.z;
+    f.origin = L.origin + L.direction[0] * offset.x + L.direction[1] * offset.y;
+    std::vector<float> values = decodeSlices(series.headers, L, ct, path);
+    f.values = L.tilted ? detail::resampleSheared(values, L, dims, offset, f.valid) : std::move(values);
+    // The display the file recommends: the window of its first slice, MONOCHROME1's inversion.
+    const DicomHeader& first = series.headers[L.slices.front().header];
+    const detail::DicomFrame& firstFrame = first.frames[std::size_t(L.slices.front().frame)];
+    f.window = {firstFrame.windowCentre, firstFrame.windowWidth};
+    f.invertedGrey = first.monochrome1;
+    if (f.window.valid())
+        f.notes.push_back("display window: centre " + detail::num(f.window.centre) + ", width " + detail::num(f.window.width) +
+                          " (WindowCenter/WindowWidth)");
+    if (f.invertedGrey) f.notes.push_back("MONOCHROME1: low values displayed bright");
+
+    f.notes.push_back("DICOM series " + seriesLine(series.info));
+    f.notes.push_back(ct ? "values: Hounsfield units (RescaleSlope/Intercept of each image)" : "values: as stored");
+    f.notes.push_back("coordinates: patient LPS, mm");
+    f.patientLps = true;
+    for (const std::string& w : L.warnings) {
+        log::warning(path + ": " + w);
+        f.notes.push_back(w);
+    }
+    f.validate();
+    return f;
+}
+
+ScalarField readScanned(const Scan& s, const std::string& path, const std::string& want, std::uint64_t memoryBudget) {
+    const std::size_t chosen = chooseSeries(s, want, path);
+    const DicomSeriesInfo& info = s.series[chosen].info;
+    // Said when there was a choice to make; a folder of one series gets a debugging line.
+    const std::string said = path + ": series " + std::to_string(chosen + 1) + " of " + std::to_string(s.series.size()) +
+                             ", " + seriesLine(info);
+    if (s.series.size() > 1) log::info(said + (want.empty() ? ": the largest; choose another with `series`" : ""));
+    else log::debug(said);
+    return assemble(s.series[chosen], path, memoryBudget);
+}
+
+}  // namespace
+
+std::vector<DicomSeriesInfo> DicomReader::listSeries(const std::string& path) {
+    std::vector<DicomSeriesInfo> list;
+    for (const Series& s : scan(path).series) list.push_back(s.info);
+    return list;
+}
+
+ScalarField DicomReader::read(const std::string& path, const std::string& series, std::uint64_t memoryBudget) {
+    return readScanned(scan(path), path, series, memoryBudget);
+}
+
+std::string DicomReader::describe(const std::string& path, const std::string& series, std::uint64_t memoryBudget) {
+    const Scan s = scan(path);
+    std::ostringstream out;
+    out << path << "\nformat: DICOM, " << s.series.size() << " image series\n";
+    for (std::size_t i = 0; i < s.series.size(); ++i) out << "series " << i + 1 << ": " << seriesLine(s.series[i].info) << "\n";
+    const ScalarField f = readScanned(s, path, series, memoryBudget);
+    out << "chosen: series " << chooseSeries(s, series, path) + 1 << "\n" << detail::describeVolume(f);
+    return out.str();
+}
+
+}  // namespace octrace::io

@@ -1,0 +1,317 @@
+#include "netcdf/NetcdfFile.h"
+
+#include "input/ChildProbe.h"
+#include "octree/Crc32c.h"
+#include "input/GdalSupport.h"
+#include "input/InputFile.h"
+
+#include "octrace/util/Error.h"
+#include "octrace/util/Log.h"
+#include "octrace/util/Memory.h"
+
+#include <cpl_error.h>
+#include <cpl_vsi.h>
+#include <gdal_priv.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstring>
+#include <functional>
+#include <limits>
+#include <mutex>
+
+#include <sys/stat.h>
+
+namespace octrace::io::detail {
+namespace {
+
+std::string stringAttribute(const GDALMDArray& a, const char* name) {
+    auto attr = a.GetAttribute(name);
+    if (!attr || attr->GetDataType().GetClass() != GEDTC_STRING) return {};
+    const char* s = attr->ReadAsString();
+    return s ? s : "";
+}
+
+std::vector<double> numberAttribute(const GDALMDArray& a, const char* name) {
+    auto attr = a.GetAttribute(name);
+    if (!attr || attr->GetDataType().GetClass() != GEDTC_NUMERIC) return {};
+    return attr->ReadAsDoubleArray();
+}
+
+void collect(const std::shared_ptr<GDALGroup>& group, std::vector<VariableInfo>& out,
+             std::vector<std::shared_ptr<GDALMDArray>>& arrays) {
+    for (const auto& name : group->GetMDArrayNames()) {
+        auto a = group->OpenMDArray(name);
+        if (!a) continue;
+        VariableInfo v;
+        v.name = a->GetFullName();
+        v.shortName = a->GetName();
+        for (const auto& d : a->GetDimensions()) {
+            v.dimNames.push_back(d->GetName());
+            v.dimSizes.push_back(std::size_t(d->GetSize()));
+        }
+        v.numeric = a->GetDataType().GetClass() == GEDTC_NUMERIC;
+        v.dataType = v.numeric ? GDALGetDataTypeName(a->GetDataType().GetNumericDataType()) : "non-numeric";
+        v.units = a->GetUnit();
+        v.longName = stringAttribute(*a, "long_name");
+        v.standardName = stringAttribute(*a, "standard_name");
+        v.coordinates = stringAttribute(*a, "coordinates");
+        v.bounds = stringAttribute(*a, "bounds");
+        v.coordinate = v.dimNames.size() == 1 && v.dimNames[0] == v.shortName;
+        out.push_back(v);
+        arrays.push_back(a);
+    }
+    for (const auto& name : group->GetGroupNames())
+        if (auto sub = group->OpenGroup(name)) collect(sub, out, arrays);
+}
+
+// CF auxiliary variables: those another variable names as its coordinates or bounds.
+void markAuxiliary(std::vector<VariableInfo>& vars) {
+    for (const auto& v : vars) {
+        auto names = words(v.coordinates);
+        if (!v.bounds.empty()) names.push_back(v.bounds);
+        for (const auto& n : names)
+            for (auto& w : vars)
+                if (w.shortName == n && &w != &v) w.auxiliary = true;
+    }
+}
+
+// NetCDF's default fill values (netcdf.h NC_FILL_*), which mark unwritten samples when a
+// variable has no _FillValue. Bytes have none by the NetCDF User's Guide's convention.
+bool defaultFill(const std::string& type, double& fill) {
+    if (type == "Int16") fill = -32767.0;
+    else if (type == "UInt16") fill = 65535.0;
+    else if (type == "Int32") fill = -2147483647.0;
+    else if (type == "UInt32") fill = 4294967295.0;
+    else if (type == "Float32" || type == "Float64") fill = 9.9692099683868690e+36;
+    else return false;
+    return true;
+}
+
+// Whether the file (on disk or a GDAL virtual file) starts with the HDF5 signature, i.e. is
+// NetCDF-4. Only HDF5-based files are opened in a child first: classic files are walked by
+// octrace's own header reader before GDAL sees them.
+bool isHdf5(const std::string& path) {
+    static const char signature[8] = {'\x89', 'H', 'D', 'F', '\r', '\n', '\x1a', '\n'};
+    VSILFILE* f = VSIFOpenL(path.c_str(), "rb");
+    if (!f) return false;
+    char head[8] = {};
+    bool yes = VSIFReadL(head, 1, 8, f) == 8 && std::memcmp(head, signature, 8) == 0;
+    VSIFCloseL(f);
+    return yes;
+}
+
+// What identifies a file's state for the probe: on disk its device, inode, size and
+// modification time; for a GDAL in-memory file (/vsimem/, the fuzz target) its size and the
+// CRC-32C of its bytes. Empty when unknown (the file is then always probed).
+std::string fileIdentity(const std::string& path) {
+    if (path.rfind("/vsimem/", 0) == 0) {
+        vsi_l_offset length = 0;
+        GByte* bytes = VSIGetMemFileBuffer(path.c_str(), &length, FALSE);
+        if (!bytes) return {};
+        return path + "|" + std::to_string(length) + "|" + std::to_string(crc32c(bytes, std::size_t(length)));
+    }
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) return {};
+    return path + "|" + std::to_string(st.st_dev) + ":" + std::to_string(st.st_ino) + "|" + std::to_string(st.st_size) +
+           "|" + std::to_string(st.st_mtim.tv_sec) + "." + std::to_string(st.st_mtim.tv_nsec);
+}
+
+// Runs the metadata reading in a child first (ChildProbe.h), once per state of a file: the
+// CLI and the studio open the same file several times (listing, then reading), and each probe
+// costs a fork (and a refusal may have cost the whole deadline). The last few outcomes are
+// remembered: an empty message for a probe that finished, the refusal otherwise.
+void guardHdf5Metadata(const std::string& path, const std::function<void()>& probe) {
+    static std::mutex mutex;
+    static std::vector<std::pair<std::string, std::string>> outcomes;  // identity, refusal
+    const std::string id = fileIdentity(path);
+    {
+        std::lock_guard<std::mutex> lock(mutex);
+        for (const auto& [known, refusal] : outcomes)
+            if (!id.empty() && known == id) {
+                if (refusal.empty()) return;
+                throw FileError(refusal);
+            }
+    }
+    std::string refusal;
+    try {
+        probeInChild(path, "the NetCDF-4 (HDF5) metadata", hdf5OpenDeadline(), probe);
+    } catch (const FileError& e) {
+        refusal = e.what();
+    }
+    if (!id.empty()) {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (outcomes.size() >= 16) outcomes.erase(outcomes.begin());
+        outcomes.emplace_back(id, refusal);
+    }
+    if (!refusal.empty()) throw FileError(refusal);
+}
+
+struct Opened {
+    GDALDatasetUniquePtr dataset;
+    std::vector<VariableInfo> variables;
+    std::vector<std::shared_ptr<GDALMDArray>> arrays;
+};
+
+Opened openAndCollect(const std::string& path) {
+    GdalMessages messages;
+    Opened o;
+    const char* const drivers[] = {"netCDF", nullptr};
+    o.dataset.reset(GDALDataset::Open(path.c_str(), GDAL_OF_MULTIDIM_RASTER | GDAL_OF_READONLY, drivers));
+    if (!o.dataset) {
+        std::string detail = CPLGetLastErrorType() == CE_None ? std::string("the file is truncated or corrupt")
+                                                              : GdalMessages::last();
+        throw FileError(path + ": GDAL's netCDF driver cannot open it: " + detail);
+    }
+    auto root = o.dataset->GetRootGroup();
+    if (!root) throw FileError(path + ": GDAL gives no root group: " + GdalMessages::last());
+    collect(root, o.variables, o.arrays);
+    return o;
+}
+
+}  // namespace
+
+int VariableInfo::extent() const {
+    int n = 0;
+    for (auto s : dimSizes) n += s > 1 ? 1 : 0;
+    return n;
+}
+
+std::string VariableInfo::signature() const {
+    std::string s = shortName + "(";
+    for (std::size_t d = 0; d < dimNames.size(); ++d) s += (d ? ", " : "") + dimNames[d];
+    return s + ")";
+}
+
+bool SampleRules::isValid(double raw) const {
+    if (!std::isfinite(raw)) return false;
+    for (double m : missing)
+        if (raw == m || (m != 0.0 && std::abs(raw - m) <= 1e-6 * std::abs(m))) return false;
+    return raw >= validMin && raw <= validMax;
+}
+
+struct NetcdfFile::Impl {
+    std::string path;
+    GDALDatasetUniquePtr dataset;
+    std::vector<VariableInfo> variables;
+    std::vector<std::shared_ptr<GDALMDArray>> arrays;  // parallel to variables
+
+    const std::shared_ptr<GDALMDArray>& array(const VariableInfo& v) const {
+        for (std::size_t i = 0; i < variables.size(); ++i)
+            if (variables[i].name == v.name) return arrays[i];
+        throw InputError(path + ": no variable '" + v.name + "'");
+    }
+};
+
+NetcdfFile::NetcdfFile(const std::string& path) : impl_(std::make_unique<Impl>()) {
+    registerGdal();
+    impl_->path = path;
+    // HDF5 can hang on a corrupt NetCDF-4 file while its metadata are read (fuzzing.md): that
+    // part runs first in a child process with a deadline.
+    if (isHdf5(path)) guardHdf5Metadata(path, [&path] { openAndCollect(path); });
+    Opened o = openAndCollect(path);
+    impl_->dataset = std::move(o.dataset);
+    impl_->variables = std::move(o.variables);
+    impl_->arrays = std::move(o.arrays);
+    markAuxiliary(impl_->variables);
+}
+
+NetcdfFile::~NetcdfFile() = default;
+
+const std::vector<VariableInfo>& NetcdfFile::variables() const { return impl_->variables; }
+
+AxisInfo NetcdfFile::axis(const VariableInfo& variable, std::size_t dim) const {
+    GdalMessages messages;
+    auto d = impl_->array(variable)->GetDimensions().at(dim);
+    AxisInfo a;
+    a.name = d->GetName();
+    if (d->GetSize() > kMaxAxisPoints)
+        throw FileError(impl_->path + ": dimension '" + d->GetName() + "' has " + std::to_string(d->GetSize()) +
+                        " points, more than the " + std::to_string(kMaxAxisPoints) + " (2^24) octrace reads along one axis");
+    a.size = std::size_t(d->GetSize());
+    a.gdalType = d->GetType();
+    a.gdalDirection = d->GetDirection();
+    auto iv = d->GetIndexingVariable();
+    if (!iv || iv->GetDimensionCount() != 1 || iv->GetDataType().GetClass() != GEDTC_NUMERIC) {
+        iv.reset();
+        for (const auto& n : words(variable.coordinates))
+            for (std::size_t i = 0; i < impl_->variables.size() && !iv; ++i) {
+                const VariableInfo& c = impl_->variables[i];
+                if (c.shortName == n && c.numeric && c.dimNames.size() == 1 && c.dimNames[0] == a.name) iv = impl_->arrays[i];
+            }
+    }
+    if (!iv) return a;
+    a.coordinateVariable = iv->GetName();
+    a.units = iv->GetUnit();
+    a.positive = stringAttribute(*iv, "positive");
+    a.standardName = stringAttribute(*iv, "standard_name");
+    a.axis = stringAttribute(*iv, "axis");
+    a.longName = stringAttribute(*iv, "long_name");
+    a.calendar = stringAttribute(*iv, "calendar");
+    a.bounds = stringAttribute(*iv, "bounds");
+    std::vector<double> values(a.size);
+    GUInt64 start = 0;
+    std::size_t count = a.size;
+    if (!iv->Read(&start, &count, nullptr, nullptr, GDALExtendedDataType::Create(GDT_Float64), values.data()))
+        throw FileError(impl_->path + ": cannot read coordinate variable '" + iv->GetName() + "': " + GdalMessages::last());
+    a.values = std::move(values);
+    return a;
+}
+
+SampleRules NetcdfFile::rules(const VariableInfo& variable) const {
+    GdalMessages messages;
+    const auto& a = *impl_->array(variable);
+    SampleRules r;
+    for (const char* name : {"missing_value", "_FillValue"})
+        for (double v : numberAttribute(a, name)) r.missing.push_back(v);
+    bool hasNoData = false;
+    double noData = a.GetNoDataValueAsDouble(&hasNoData);
+    if (hasNoData) r.missing.push_back(noData);
+    double fill = 0.0;
+    if (!hasNoData && numberAttribute(a, "_FillValue").empty() && defaultFill(variable.dataType, fill)) r.missing.push_back(fill);
+    auto range = numberAttribute(a, "valid_range");
+    auto vmin = numberAttribute(a, "valid_min");
+    auto vmax = numberAttribute(a, "valid_max");
+    if (range.size() == 2) { r.validMin = range[0]; r.validMax = range[1]; }
+    if (!vmin.empty()) r.validMin = vmin[0];
+    if (!vmax.empty()) r.validMax = vmax[0];
+    bool has = false;
+    double scale = a.GetScale(&has);
+    if (has) r.scale = scale;
+    double offset = a.GetOffset(&has);
+    if (has) r.offset = offset;
+    return r;
+}
+
+std::string NetcdfFile::attributeText(const VariableInfo& variable, const char* name) const {
+    GdalMessages messages;
+    auto attr = impl_->array(variable)->GetAttribute(name);
+    if (!attr) return {};
+    if (attr->GetDataType().GetClass() == GEDTC_STRING) {
+        const char* s = attr->ReadAsString();
+        return s ? s : "";
+    }
+    if (attr->GetDataType().GetClass() != GEDTC_NUMERIC) return {};
+    std::string out;
+    for (double v : attr->ReadAsDoubleArray()) out += (out.empty() ? "" : " ") + num(v);
+    return out;
+}
+
+std::vector<double> NetcdfFile::read(const VariableInfo& variable, const std::vector<std::uint64_t>& start,
+                                     const std::vector<std::size_t>& count) const {
+    GdalMessages messages;
+    std::uint64_t n = 1;
+    for (auto c : count) n = saturatingMultiply(n, c);
+    if (n > std::uint64_t(std::numeric_limits<std::ptrdiff_t>::max()) / sizeof(double))
+        throw FileError(impl_->path + ": variable '" + variable.shortName + "' is too large to read (" + std::to_string(n) +
+                        " samples)");
+    std::vector<double> buffer(n);
+    std::vector<GUInt64> gstart(start.begin(), start.end());
+    if (!impl_->array(variable)->Read(gstart.data(), count.data(), nullptr, nullptr,
+                                      GDALExtendedDataType::Create(GDT_Float64), buffer.data()))
+        throw FileError(impl_->path + ": cannot read variable '" + variable.shortName + "': " + GdalMessages::last());
+    return buffer;
+}
+
+}  // namespace octrace::io::detail

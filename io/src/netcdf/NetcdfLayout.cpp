@@ -1,0 +1,289 @@
+#include "netcdf/NetcdfLayout.h"
+
+#include "netcdf/CfTime.h"
+#include "netcdf/GeoAxis.h"
+#include "input/InputFile.h"
+#include "octrace/util/Error.h"
+#include "octrace/util/Log.h"
+#include "octrace/util/Memory.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace octrace::io::detail {
+namespace {
+
+bool isDigits(const std::string& s) { return !s.empty() && s.find_first_not_of("0123456789") == std::string::npos; }
+
+std::string sayTime(const AxisInfo& axis, std::size_t index) {
+    if (index >= axis.values.size() || !isTimeUnits(axis.units)) return {};
+    try {
+        TimeUnits u = parseTimeUnits(axis.units, axis.calendar, axis.name);
+        return " (" + formatDate(decodeTime(u, axis.values[index])) + ", calendar " + u.calendarName + ")";
+    } catch (const Error&) {
+        return {};
+    }
+}
+
+// The step of a time dimension that `req.time` asks for: an index, or the step nearest to a date
+// in the axis's calendar. Adds a note (and, for the default first step, a warning).
+std::size_t selectTime(const std::string& path, const VariableInfo& var, const AxisInfo& axis, const FieldRequest& req,
+                       std::vector<std::string>& notes) {
+    const std::string what = path + ": variable '" + var.shortName + "': dimension '" + axis.name + "' (time)";
+    if (req.time.empty()) {
+        std::string msg = "dimension '" + axis.name + "' (time): first of " + std::to_string(axis.size) +
+                          " steps used" + sayTime(axis, 0) + "; choose one with `time`";
+        if (axis.size > 1) log::warning(path + ": variable '" + var.shortName + "': " + msg);
+        notes.push_back(msg);
+        return 0;
+    }
+    if (isDigits(req.time)) {
+        checkTimeText(req.time);
+        std::size_t n = std::stoul(req.time);
+        if (n >= axis.size)
+            throw InputError(what + " has " + std::to_string(axis.size) + " step(s), indices 0.." +
+                             std::to_string(axis.size - 1) + "; `time` " + req.time + " is beyond them");
+        notes.push_back("time step " + std::to_string(n) + " of " + std::to_string(axis.size) + sayTime(axis, n));
+        return n;
+    }
+    DateTime date = parseIsoDate(req.time, "`time`");
+    if (axis.values.empty()) throw InputError(what + " has no coordinate variable: give `time` as an index");
+    if (!isTimeUnits(axis.units))
+        throw InputError(what + ": units '" + axis.units + "' are not 'UNIT since DATE': give `time` as an index");
+    TimeUnits u = parseTimeUnits(axis.units, axis.calendar, path + ": time axis '" + axis.name + "'");
+    double wanted = encodeTime(u, date, "`time` " + req.time);
+    std::size_t best = 0;
+    for (std::size_t n = 1; n < axis.values.size(); ++n)
+        if (std::abs(axis.values[n] - wanted) < std::abs(axis.values[best] - wanted)) best = n;
+    auto [lo, hi] = std::minmax_element(axis.values.begin(), axis.values.end());
+    std::string msg = "`time` " + req.time + ": nearest step " + std::to_string(best) + " of " +
+                      std::to_string(axis.size) + sayTime(axis, best);
+    if (wanted < *lo || wanted > *hi) {
+        msg += "; the date lies outside the time axis " + formatDate(decodeTime(u, *lo)) + " .. " +
+               formatDate(decodeTime(u, *hi));
+        log::warning(path + ": variable '" + var.shortName + "': " + msg);
+    }
+    notes.push_back(msg);
+    return best;
+}
+
+bool isLonLat(const VariableInfo& v) {
+    AxisInfo a;
+    a.name = v.shortName;
+    a.units = v.units;
+    a.standardName = v.standardName;
+    AxisRole r = classifyAxis(a).role;
+    return r == AxisRole::Longitude || r == AxisRole::Latitude;
+}
+
+bool hasAllDims(const VariableInfo& var, const VariableInfo& c) {
+    for (const auto& d : c.dimNames)
+        if (std::find(var.dimNames.begin(), var.dimNames.end(), d) == var.dimNames.end()) return false;
+    return true;
+}
+
+}  // namespace
+
+std::vector<const VariableInfo*> curvilinearCoordinates(const NetcdfFile& file, const VariableInfo& var) {
+    std::vector<const VariableInfo*> out;
+    if (var.auxiliary || isLonLat(var)) return out;  // a coordinate itself
+    const auto named = words(var.coordinates);
+    for (const auto& c : file.variables()) {
+        if (&c == &var || !c.numeric || c.extent() < 2 || !isLonLat(c)) continue;
+        bool listed = std::find(named.begin(), named.end(), c.shortName) != named.end();
+        if (listed || (named.empty() && hasAllDims(var, c))) out.push_back(&c);
+    }
+    return out;
+}
+
+Layout layoutFor(const std::string& path, const NetcdfFile& file, const VariableInfo& var, const FieldRequest& req) {
+    std::vector<std::size_t> spread;  // dimensions with more than one sample
+    for (std::size_t d = 0; d < var.dimSizes.size(); ++d)
+        if (var.dimSizes[d] > 1) spread.push_back(d);
+
+    std::vector<AxisInfo> info(var.dimSizes.size());
+    std::vector<AxisClass> cls(var.dimSizes.size());
+    for (std::size_t d = 0; d < var.dimSizes.size(); ++d)
+        if (var.dimSizes[d] > 1 || !req.time.empty()) {
+            info[d] = file.axis(var, d);
+            cls[d] = classifyAxis(info[d]);
+        }
+    auto find = [&](AxisRole r) {
+        std::vector<std::size_t> hits;
+        for (std::size_t d : spread)
+            if (cls[d].role == r) hits.push_back(d);
+        return hits;
+    };
+    auto lon = find(AxisRole::Longitude), lat = find(AxisRole::Latitude), vert = find(AxisRole::Vertical);
+    bool geographic = lon.size() == 1 && lat.size() == 1 && vert.size() == 1 && !info[lon[0]].values.empty() &&
+                      !info[lat[0]].values.empty() && !info[vert[0]].values.empty();
+
+    auto curvilinear = curvilinearCoordinates(file, var);
+    if (!curvilinear.empty() && !(lon.size() == 1 && lat.size() == 1 && !info[lon[0]].values.empty() &&
+                                  !info[lat[0]].values.empty())) {
+        std::string names;
+        for (const auto* c : curvilinear) names += (names.empty() ? "" : " and ") + c->signature();
+        throw InputError(path + ": variable " + var.signature() + " is on a curvilinear grid: its coordinates " + names +
+                         " are 2-D; octrace reads longitude and latitude only as 1-D axes: regrid the variable "
+                         "onto a regular longitude/latitude grid first (e.g. cdo remapbil)");
+    }
+    if (spread.size() < 3)
+        throw InputError(path + ": variable " + var.signature() + " has " + std::to_string(spread.size()) +
+                         " dimension(s) longer than 1, a 3-D field is needed");
+
+    std::vector<std::size_t> spatial;
+    if (geographic) spatial = {vert[0], lat[0], lon[0]};
+    else {  // the three fastest-varying dimensions that are not time
+        for (auto d = spread.rbegin(); d != spread.rend() && spatial.size() < 3; ++d)
+            if (cls[*d].role != AxisRole::Time) spatial.push_back(*d);
+        if (spatial.size() < 3)
+            throw InputError(path + ": variable " + var.signature() + " has no 3 spatial axes (" +
+                             std::to_string(3 - spatial.size()) + " of its dimensions longer than 1 are time)");
+    }
+    std::sort(spatial.begin(), spatial.end());
+
+    Layout L;
+    L.fixedIndex.assign(var.dimSizes.size(), 0);
+    bool timeChosen = false;
+    for (std::size_t d = 0; d < var.dimSizes.size(); ++d) {
+        if (std::find(spatial.begin(), spatial.end(), d) != spatial.end()) continue;
+        if (cls[d].role == AxisRole::Time && !timeChosen && (var.dimSizes[d] > 1 || !req.time.empty())) {
+            L.fixedIndex[d] = selectTime(path, var, info[d], req, L.notes);
+            timeChosen = true;
+        } else if (var.dimSizes[d] > 1) {
+            std::string msg = "dimension '" + var.dimNames[d] + "' (" + roleName(cls[d].role) + "): first of " +
+                              std::to_string(var.dimSizes[d]) + " steps used";
+            log::warning(path + ": variable '" + var.shortName + "': " + msg);
+            L.notes.push_back(msg);
+        }
+    }
+    if (!req.time.empty() && !timeChosen)
+        throw InputError(path + ": `time` " + req.time + ": variable " + var.signature() + " has no time axis");
+
+    if (geographic) {
+        const AxisClass& vc = cls[vert[0]];
+        const std::vector<double>& levels = info[vert[0]].values;
+        std::vector<double> depthKm;
+        for (double v : levels) depthKm.push_back(v * vc.toKm * (vc.positiveDown ? 1.0 : -1.0) + 0.0);  // + 0.0: no -0
+        GeoMapping m = mapGeographic(path, info[lon[0]].values, info[lat[0]].values, depthKm, req);
+        L.geographic = true;
+        L.lon0 = m.lon0;
+        L.lat0 = m.lat0;
+        L.verticalScale = m.verticalScale;
+        L.dim = {lon[0], lat[0], vert[0]};
+        for (std::size_t j : m.y.stored) L.latitudeDeg.push_back(info[lat[0]].values[j]);
+        for (std::size_t k : m.z.stored) {
+            L.depthM.push_back(depthKm[k] * 1000.0);
+            if (vc.toDbar > 0.0) L.levelDbar.push_back(levels[k] * vc.toDbar * (vc.positiveDown ? 1.0 : -1.0));
+        }
+        L.latitudeAxis = info[lat[0]].name;
+        L.verticalAxis = info[vert[0]].name;
+        L.axes = {std::move(m.x), std::move(m.y), std::move(m.z)};
+        L.notes.insert(L.notes.end(), m.notes.begin(), m.notes.end());
+        if (!vc.note.empty()) L.notes.push_back(vc.note);
+        return L;
+    }
+
+    for (const char* option : {req.hasRegion ? "a region" : nullptr, req.hasDepthRange ? "a depth range" : nullptr})
+        if (option)
+            throw InputError(path + ": " + option + " needs a longitude/latitude/depth grid; variable " + var.signature() +
+                             " has axes " + roleName(cls[spatial[0]].role) + ", " + roleName(cls[spatial[1]].role) +
+                             ", " + roleName(cls[spatial[2]].role));
+    if (req.verticalScale != 0.0)
+        log::warning(path + ": vertical scale ignored, variable '" + var.shortName + "' is not on a geographic grid");
+    L.dim = {spatial[2], spatial[1], spatial[0]};  // x varies fastest
+    std::string axes, indexed;
+    for (int a = 0; a < 3; ++a) {
+        const AxisInfo& ai = info[L.dim[std::size_t(a)]];
+        std::vector<double> values = ai.values;
+        if (values.empty()) {
+            for (std::size_t n = 0; n < ai.size; ++n) values.push_back(double(n));
+            indexed += (indexed.empty() ? "'" : ", '") + ai.name + "'";
+        }
+        L.axes[std::size_t(a)] = increasingAxis(path, ai.name, values);
+        axes += std::string(a ? ", " : "") + "xyz"[a] + " = " + ai.name +
+                (ai.values.empty() ? " (index)" : ai.units.empty() ? "" : " (" + ai.units + ")");
+    }
+    if (!indexed.empty())
+        L.warning = path + ": variable '" + var.shortName + "': no coordinate variable for dimension(s) " + indexed +
+                    ": grid indices used as world units";
+    L.notes.push_back("not a geographic grid: world units are the file's coordinates: " + axes);
+    return L;
+}
+
+ScalarField shapeField(const std::string& path, const VariableInfo& var, const Layout& L, const FieldRequest& req,
+                       std::uint64_t bytesPerSample) {
+    ScalarField f;
+    f.source = path;
+    f.name = var.shortName;
+    f.units = var.units;
+    f.standardName = var.standardName;
+    if (L.geographic) f.geographic = {true, L.lon0, L.lat0, L.verticalScale};
+    for (int a = 0; a < 3; ++a) {
+        const auto& w = L.axes[std::size_t(a)].world;
+        f.dims[a] = int(w.size());
+        if (isUniform(w)) {
+            f.origin[a] = w.front();
+            f.spacing[a] = (w.back() - w.front()) / double(w.size() - 1);
+        } else {
+            f.origin[a] = 0.0;
+            f.coords[std::size_t(a)] = w;
+        }
+    }
+    if (double(f.dims.x) * double(f.dims.y) * double(f.dims.z) > 4294967296.0)
+        throw InputError(path + ": variable '" + var.shortName + "' has more than the supported 2^32 samples" +
+                         " in the requested grid; choose a smaller region");
+    f.validateGeometry();
+    checkMemoryBudget(path + ": reading '" + var.shortName + "' (" + std::to_string(f.dims.x) + "x" +
+                          std::to_string(f.dims.y) + "x" + std::to_string(f.dims.z) + " samples)",
+                      saturatingMultiply(f.sampleCount(), bytesPerSample), req.memoryBudget);
+    if (!L.warning.empty()) log::warning(L.warning);
+    return f;
+}
+
+// Reads one hyperslab per run of consecutive stored x indices (a region across the file's
+// longitude seam is two runs).
+void readSamples(const NetcdfFile& file, const VariableInfo& var, const Layout& L, const SampleRules& rules,
+                 ScalarField& f) {
+    const std::size_t nd = var.dimSizes.size();
+    std::vector<std::uint64_t> start = L.fixedIndex;
+    std::vector<std::size_t> count(nd, 1);
+    for (int a = 1; a < 3; ++a) {
+        const auto& s = L.axes[std::size_t(a)].stored;
+        auto [lo, hi] = std::minmax_element(s.begin(), s.end());
+        start[L.dim[std::size_t(a)]] = *lo;
+        count[L.dim[std::size_t(a)]] = *hi - *lo + 1;
+    }
+    const auto& sx = L.axes[0].stored;
+    const auto& sy = L.axes[1].stored;
+    const auto& sz = L.axes[2].stored;
+    f.values.assign(f.sampleCount(), 0.0f);
+    f.valid.assign(f.sampleCount(), 0);
+    for (std::size_t i0 = 0; i0 < sx.size();) {
+        std::size_t i1 = i0;
+        while (i1 + 1 < sx.size() && (sx[i1 + 1] == sx[i1] + 1 || sx[i1 + 1] + 1 == sx[i1]) &&
+               (i1 == i0 || (sx[i1 + 1] > sx[i1]) == (sx[i1] > sx[i1 - 1])))
+            ++i1;
+        std::size_t xlo = std::min(sx[i0], sx[i1]);
+        start[L.dim[0]] = xlo;
+        count[L.dim[0]] = i1 - i0 + 1;
+        std::vector<double> buf = file.read(var, start, count);
+        std::vector<std::size_t> stride(nd, 1);
+        for (std::size_t d = nd - 1; d > 0; --d) stride[d - 1] = stride[d] * count[d];
+        for (std::size_t k = 0; k < sz.size(); ++k)
+            for (std::size_t j = 0; j < sy.size(); ++j)
+                for (std::size_t i = i0; i <= i1; ++i) {
+                    std::size_t at = (sx[i] - xlo) * stride[L.dim[0]] + (sy[j] - start[L.dim[1]]) * stride[L.dim[1]] +
+                                     (sz[k] - start[L.dim[2]]) * stride[L.dim[2]];
+                    double raw = buf[at];
+                    std::size_t idx = f.index(int(i), int(j), int(k));
+                    if (!rules.isValid(raw)) continue;
+                    float v = float(raw * rules.scale + rules.offset);
+                    f.values[idx] = v;
+                    f.valid[idx] = std::isfinite(v) ? 1 : 0;
+                }
+        i0 = i1 + 1;
+    }
+}
+
+}  // namespace octrace::io::detail

@@ -1,0 +1,65 @@
+#pragma once
+// Which samples of a NetCDF variable make a ScalarField (internal, no GDAL types): the roles of
+// its dimensions by CF rules, the time step, the region and depth range, the geographic mapping,
+// and the reading of those samples with CF masking and unpacking. NetcdfReader reads one
+// variable through it; SoundSpeedField reads two on the same layout.
+#include "netcdf/GeoGrid.h"
+#include "netcdf/NetcdfFile.h"
+
+#include "octrace/build/ScalarField.h"
+#include "octrace/io/FieldRequest.h"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace octrace::io::detail {
+
+struct Layout {
+    std::array<std::size_t, 3> dim{};  ///< the variable's dimensions that make x, y, z
+    std::array<AxisSelection, 3> axes;
+    std::vector<std::uint64_t> fixedIndex;  ///< per dimension: the index read along a non-spatial one
+    std::vector<std::string> notes;
+    std::string warning;  ///< said by shapeField once the grid is known to be sound (e.g. index axes)
+    bool geographic = false;
+    // Geographic grids only, per output sample along y and z:
+    std::vector<double> latitudeDeg;  ///< latitude of each y
+    std::vector<double> depthM;       ///< depth of each z, metres, positive down
+    std::vector<double> levelDbar;    ///< pressure of each z when the vertical axis is pressure, else empty
+    std::string latitudeAxis, verticalAxis;  ///< dimension names, for messages
+    double lon0 = 0.0, lat0 = 0.0, verticalScale = 1.0;  ///< the mapping (ScalarField::Geographic)
+};
+
+/// The layout of `var` for `req`: spatial axes by CF rules (1-D coordinate variables, the
+/// `coordinates` attribute, units, standard_name, axis, positive), the time step `req.time`
+/// (index or date in the axis's calendar; default the first, with a warning), the first index
+/// of any other extra dimension (with a warning), region and depth range on geographic grids.
+/// @throws InputError (curvilinear grid, no 3 spatial axes, --time without a time axis or out
+///         of range, a region or depth range on a non-geographic grid), FileError, UsageError,
+///         EmptyResultError as NetcdfReader::read.
+Layout layoutFor(const std::string& path, const NetcdfFile& file, const VariableInfo& var, const FieldRequest& req);
+
+/// A field shaped by `L` (dims, origin, spacing or rectilinear coordinates), without samples,
+/// named after `var`; checks the sample count and that `bytesPerSample` of reading fit
+/// `req.memoryBudget` (LimitError).
+ScalarField shapeField(const std::string& path, const VariableInfo& var, const Layout& L, const FieldRequest& req,
+                       std::uint64_t bytesPerSample);
+
+/// Reads the samples of `var` selected by `L` into `f` (shaped by shapeField). A raw sample
+/// equal to a missing value, outside the valid range or not finite is invalid (masked before
+/// unpacking, CF 2.5.1); the others become raw * scale + offset.
+void readSamples(const NetcdfFile& file, const VariableInfo& var, const Layout& L, const SampleRules& rules,
+                 ScalarField& f);
+
+/// Bytes per sample that reading one variable needs: its float, its mask byte and the double
+/// GDAL reads it into.
+constexpr std::uint64_t kReadBytesPerSample = sizeof(float) + 1 + sizeof(double);
+
+/// Variables with the 2-D longitude/latitude coordinates of `var` (a curvilinear grid), by its
+/// `coordinates` attribute or, without one, by 2-D variables over its dimensions whose units or
+/// standard_name say longitude or latitude. Empty for a grid with 1-D axes.
+std::vector<const VariableInfo*> curvilinearCoordinates(const NetcdfFile& file, const VariableInfo& var);
+
+}  // namespace octrace::io::detail

@@ -1,0 +1,314 @@
+#include "octrace/io/NetcdfReader.h"
+
+#include "input/FormatSniffer.h"
+#include "netcdf/GeoAxis.h"
+#include "netcdf/GeoGrid.h"
+#include "input/InputFile.h"
+#include "netcdf/NetcdfClassicHeader.h"
+#include "netcdf/CfTime.h"
+#include "netcdf/NetcdfFile.h"
+#include "netcdf/NetcdfInterpretation.h"
+#include "netcdf/NetcdfLayout.h"
+#include "netcdf/SoundSpeedField.h"
+#include "octrace/util/Error.h"
+#include "octrace/util/Log.h"
+#include "octrace/util/Memory.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <sstream>
+
+namespace octrace::io {
+
+std::string detail::checkNetcdfOnDisk(const std::string& path) {
+    Sniffed s = sniffFormat(path);
+    if (s.kind != FileKind::NetCdf)
+        throw FormatNotSupported(path + ": not a NetCDF file: it starts with '" + quoteBytes(readPrefix(path, 8)) +
+                                 "', expected 'CDF\\x01', 'CDF\\x02', 'CDF\\x05' or the HDF5 signature");
+    if (s.description.rfind("NetCDF-3", 0) == 0) {
+        std::uint64_t need = classicDataEnd(path), have = fileSize(path);
+        if (have < need)
+            throw FileError(path + ": NetCDF data truncated: the header places data up to byte " + std::to_string(need) +
+                            ", the file has " + std::to_string(have) + " bytes");
+    }
+    return s.description;
+}
+
+namespace {
+
+using namespace detail;
+
+std::string listOf(const std::vector<const VariableInfo*>& vars) {
+    std::string s;
+    for (const auto* v : vars) s += (s.empty() ? "" : ", ") + v->signature();
+    return s.empty() ? std::string("none") : s;
+}
+
+std::vector<const VariableInfo*> dataVariables(const NetcdfFile& file) {
+    std::vector<const VariableInfo*> out;
+    for (const auto& v : file.variables())
+        if (v.numeric && !v.coordinate) out.push_back(&v);
+    return out;
+}
+
+// Variables with at least 3 dimensions longer than 1 (a 4-D one is read at its first time step).
+std::vector<const VariableInfo*> volumes(const NetcdfFile& file) {
+    std::vector<const VariableInfo*> out;
+    for (const auto* v : dataVariables(file))
+        if (v->extent() >= 3) out.push_back(v);
+    return out;
+}
+
+// The variable `wanted` names: its name, its full name or, failing those, its CF standard_name.
+// Null when `wanted` asks for sound speed and the file has none (it is then derived).
+const VariableInfo* chooseVariable(const std::string& path, const NetcdfFile& file, const std::string& wanted) {
+    auto data = dataVariables(file);
+    if (wanted.empty()) {
+        auto vols = volumes(file);
+        if (vols.size() == 1) return vols[0];
+        if (vols.empty()) throw InputError(path + ": no 3-D variable (variables: " + listOf(data) + ")");
+        std::string names;
+        for (const auto* v : vols) names += (names.empty() ? "" : ", ") + v->shortName;
+        throw InputError(path + ": several 3-D variables (" + names + "); choose one with `var`");
+    }
+    std::vector<const VariableInfo*> hits;
+    for (const auto& v : file.variables())
+        if (v.name == wanted || v.shortName == wanted) hits.push_back(&v);
+    if (hits.empty())
+        for (const auto* v : data)
+            if (!v->standardName.empty() && (v->standardName == wanted ||
+                                             (isSoundSpeedName(wanted) && isSoundSpeedName(v->standardName))))
+                hits.push_back(v);
+    if (hits.empty() && isSoundSpeedName(wanted)) return nullptr;
+    if (hits.empty()) throw InputError(path + ": no variable '" + wanted + "' (variables: " + listOf(data) + ")");
+    if (hits.size() > 1)
+        throw InputError(path + ": variable name '" + wanted + "' is ambiguous, use its full name (" + hits[0]->name +
+                         ", ...)");
+    if (!hits[0]->numeric) throw InputError(path + ": variable '" + wanted + "' is not numeric");
+    return hits[0];
+}
+
+std::string regionText(const FieldRequest& req) {
+    return num(req.region[0]) + "," + num(req.region[1]) + "," + num(req.region[2]) + "," + num(req.region[3]);
+}
+
+// Refuses a field without valid samples; drops the mask when every sample is valid.
+ScalarField finish(const std::string& path, ScalarField f, const FieldRequest& req) {
+    std::size_t valid = f.validCount();
+    if (valid == 0)
+        throw EmptyResultError(path + ": variable '" + f.name + "' has no valid sample" +
+                               (req.hasRegion ? " in region " + regionText(req) : std::string()) +
+                               (req.hasDepthRange ? " in depth range " + num(req.depthRange[0]) + "," +
+                                                        num(req.depthRange[1]) + " m"
+                                                  : std::string()) +
+                               " (all missing_value/_FillValue, outside valid_min/valid_max/valid_range or non-finite)");
+    if (valid == f.sampleCount()) f.valid.clear();
+    f.validate();
+    return f;
+}
+
+ScalarField readVariable(const std::string& path, const NetcdfFile& file, const VariableInfo& var,
+                         const FieldRequest& req) {
+    Layout L = layoutFor(path, file, var, req);
+    ScalarField f = shapeField(path, var, L, req, kReadBytesPerSample);
+    readSamples(file, var, L, file.rules(var), f);
+    if (!var.longName.empty()) f.notes.push_back(var.shortName + ": " + var.longName);
+    f.notes.insert(f.notes.end(), L.notes.begin(), L.notes.end());
+    return finish(path, std::move(f), req);
+}
+
+// The field `req` asks for: a variable of the file, or sound speed derived from T and S.
+ScalarField readRequested(const std::string& path, const NetcdfFile& file, const FieldRequest& req) {
+    if (const VariableInfo* var = chooseVariable(path, file, req.variable)) return readVariable(path, file, *var, req);
+    return finish(path, deriveSoundSpeed(path, file, req), req);
+}
+
+// ", calendar 365_day: 2001-01-01 .. 2001-12-27" for a time axis with CF units.
+void describeTimeRange(std::ostringstream& s, const AxisInfo& a) {
+    if (!isTimeUnits(a.units)) return;
+    try {
+        TimeUnits u = parseTimeUnits(a.units, a.calendar, a.name);
+        auto [lo, hi] = std::minmax_element(a.values.begin(), a.values.end());
+        s << ", calendar " << u.calendarName << (a.calendar.empty() ? " (by default)" : "") << ": "
+          << formatDate(decodeTime(u, *lo)) << " .. " << formatDate(decodeTime(u, *hi));
+    } catch (const Error& e) {
+        s << ", time not decoded: " << e.what();
+    }
+}
+
+void describeAxes(std::ostringstream& s, const NetcdfFile& file) {
+    s << "dimensions:\n";
+    std::vector<std::string> seen;
+    for (const auto& v : file.variables())
+        for (std::size_t d = 0; d < v.dimNames.size(); ++d) {
+            if (std::find(seen.begin(), seen.end(), v.dimNames[d]) != seen.end()) continue;
+            seen.push_back(v.dimNames[d]);
+            AxisInfo a = file.axis(v, d);
+            AxisClass c = classifyAxis(a);
+            s << "  " << a.name << " = " << a.size << ": " << roleName(c.role);
+            if (c.role == AxisRole::Vertical) s << (c.positiveDown ? " (positive down)" : " (positive up)");
+            if (!a.units.empty()) s << ", units '" << a.units << "'";
+            if (a.values.empty()) {
+                s << ", no coordinate variable\n";
+                continue;
+            }
+            s << ", " << num(a.values.front()) << " .. " << num(a.values.back());
+            if (c.role == AxisRole::Time) describeTimeRange(s, a);
+            if (a.values.size() > 1)
+                s << (isUniform(a.values) ? ", uniform step " + num((a.values.back() - a.values.front()) / double(a.values.size() - 1))
+                                        : std::string(", uneven"));
+            s << "\n";
+        }
+}
+
+void describeVariable(std::ostringstream& s, const NetcdfFile& file, const VariableInfo& v, std::uint64_t budget) {
+    s << "  " << v.signature() << " " << v.dataType << " [";
+    for (std::size_t d = 0; d < v.dimSizes.size(); ++d) s << (d ? " x " : "") << v.dimSizes[d];
+    s << "]";
+    if (!v.units.empty()) s << ", units '" << v.units << "'";
+    if (!v.longName.empty()) s << ", '" << v.longName << "'";
+    if (!v.standardName.empty()) s << ", standard_name " << v.standardName;
+    for (const char* attr : {"_FillValue", "missing_value", "valid_min", "valid_max", "valid_range", "scale_factor",
+                             "add_offset"}) {
+        std::string text = file.attributeText(v, attr);
+        if (!text.empty()) s << ", " << attr << " " << text;
+    }
+    if (!v.coordinates.empty()) s << ", coordinates '" << v.coordinates << "'";
+    auto curvilinear = curvilinearCoordinates(file, v);
+    if (!curvilinear.empty()) s << ", curvilinear (2-D " << curvilinear[0]->shortName << ", not drawn)";
+    std::uint64_t total = 1;
+    for (auto n : v.dimSizes) total = saturatingMultiply(total, n);
+    if (total > 200'000'000u || (budget && saturatingMultiply(total, sizeof(double)) > budget)) {
+        s << ", value range not computed (" << total << " samples" << (total > 200'000'000u ? "" : ", over the memory budget")
+          << ")\n";
+        return;
+    }
+    std::vector<std::uint64_t> start(v.dimSizes.size(), 0);
+    std::vector<double> raw = file.read(v, start, v.dimSizes);
+    SampleRules r = file.rules(v);
+    double lo = INFINITY, hi = -INFINITY;
+    std::size_t valid = 0;
+    for (double x : raw) {
+        if (!r.isValid(x)) continue;
+        double y = x * r.scale + r.offset;
+        lo = std::min(lo, y);
+        hi = std::max(hi, y);
+        ++valid;
+    }
+    if (valid == 0) s << ": no valid sample";
+    else s << ": valid range " << num(lo) << " .. " << num(hi);
+    s << " (" << valid << " of " << total << " samples valid)\n";
+}
+
+// The geometry of the field `req` asks for (default: the only, or first, 3-D variable). Without
+// a choice in `req`, what keeps it from being read is said in the text; with one, it is thrown.
+void describeGrid(std::ostringstream& s, const std::string& path, const NetcdfFile& file, FieldRequest req) {
+    const bool chosen = !req.variable.empty() || req.hasRegion || req.hasDepthRange || !req.time.empty();
+    auto vols = volumes(file);
+    if (vols.empty() && req.variable.empty()) {
+        s << "no 3-D variable: nothing to render\n";
+        return;
+    }
+    if (req.variable.empty()) {
+        s << (vols.size() == 1 ? "grid of " : "grid of the first 3-D variable, ") << vols[0]->shortName;
+        req.variable = vols[0]->name;
+    } else {
+        s << "grid of " << req.variable;
+    }
+    s << (req.hasRegion ? " in region " + regionText(req) : std::string(" (whole grid)")) << ":\n";
+    ScalarField f;
+    try {
+        f = readRequested(path, file, req);
+    } catch (const EmptyResultError& e) {
+        s << "  " << e.what() << "\n";
+        return;
+    } catch (const LimitError& e) {
+        s << "  " << e.what() << "\n";
+        return;
+    } catch (const FileError&) {
+        throw;
+    } catch (const InputError& e) {
+        if (chosen) throw;
+        s << "  cannot be drawn: " << e.what() << "\n";
+        return;
+    }
+    if (chosen) {
+        auto [lo, hi] = f.validRange();
+        s << "  values: " << num(lo) << " .. " << num(hi) << (f.units.empty() ? "" : " " + f.units) << " ("
+          << f.validCount() << " of " << f.sampleCount() << " samples valid)\n";
+    }
+    s << "  dims: " << f.dims.x << " x " << f.dims.y << " x " << f.dims.z << "\n";
+    for (int a = 0; a < 3; ++a) {
+        s << "  " << "xyz"[a] << ": ";
+        if (f.isRectilinear(a))
+            s << "rectilinear, " << f.dims[a] << " values " << num(f.coords[std::size_t(a)].front()) << " .. "
+              << num(f.coords[std::size_t(a)].back()) << "\n";
+        else
+            s << "uniform, spacing " << num(f.spacing[a]) << ", from " << num(f.origin[a]) << "\n";
+    }
+    s << "  origin: (" << num(f.origin.x) << ", " << num(f.origin.y) << ", " << num(f.origin.z) << ")\n";
+    Box3 b = f.worldBounds();
+    s << "  world bounds: (" << num(b.lo.x) << ", " << num(b.lo.y) << ", " << num(b.lo.z) << ") .. (" << num(b.hi.x)
+      << ", " << num(b.hi.y) << ", " << num(b.hi.z) << ")\n";
+    for (const auto& n : f.notes) s << "  note: " << n << "\n";
+}
+
+}  // namespace
+
+namespace detail {
+
+ScalarField interpretNetcdf(const std::string& path, const FieldRequest& req) {
+    if (req.hasRegion) checkRegion(req.region, path);
+    if (!(req.verticalScale >= 0.0) || !std::isfinite(req.verticalScale))
+        throw UsageError(path + ": vertical scale must be positive (0 = default), got " + num(req.verticalScale));
+    NetcdfFile file(path);
+    return readRequested(path, file, req);
+}
+
+std::string describeNetcdf(const std::string& path, const std::string& format, const FieldRequest& req) {
+    NetcdfFile file(path);
+    std::ostringstream s;
+    s << path << "\nformat: " << format << ", read through GDAL's netCDF driver\n";
+    describeAxes(s, file);
+    s << "variables:\n";
+    bool hasSoundSpeed = false;
+    for (const auto* v : dataVariables(file)) {
+        describeVariable(s, file, *v, req.memoryBudget);
+        hasSoundSpeed = hasSoundSpeed || isSoundSpeedName(v->shortName) || isSoundSpeedName(v->standardName);
+    }
+    SoundSpeedSources src = soundSpeedSources(file);
+    if (!hasSoundSpeed && src.problem.empty())
+        s << "  sound_speed: derived from " << src.temperature->shortName << " and " << src.salinity->shortName
+          << " with `var` sound_speed (UNESCO 1983)\n";
+    describeGrid(s, path, file, req);
+    return s.str();
+}
+
+}  // namespace detail
+
+ScalarField NetcdfReader::read(const std::string& path, const FieldRequest& req) {
+    checkNetcdfOnDisk(path);
+    return interpretNetcdf(path, req);
+}
+
+std::string NetcdfReader::describe(const std::string& path, std::uint64_t memoryBudget) {
+    FieldRequest req;
+    req.memoryBudget = memoryBudget;
+    return describe(path, req);
+}
+
+std::string NetcdfReader::describe(const std::string& path, const FieldRequest& req) {
+    if (req.hasRegion) checkRegion(req.region, path);
+    return describeNetcdf(path, checkNetcdfOnDisk(path), req);
+}
+
+std::vector<std::string> NetcdfReader::volumeVariables(const std::string& path) {
+    checkNetcdfOnDisk(path);
+    NetcdfFile file(path);
+    std::vector<std::string> names;
+    for (const auto* v : volumes(file)) names.push_back(v->shortName);
+    return names;
+}
+
+}  // namespace octrace::io

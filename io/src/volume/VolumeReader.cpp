@@ -1,0 +1,242 @@
+#include "octrace/io/VolumeReader.h"
+
+#include "input/FieldText.h"
+#include "input/InputFile.h"
+#include "metaimage/MetaImageHeader.h"
+#include "volume/VolumeGeometry.h"
+#include "volume/VtkSupport.h"
+#include "octrace/util/Error.h"
+#include "octrace/util/Memory.h"
+
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkMatrix3x3.h>
+#include <vtkMatrix4x4.h>
+#include <vtkNIFTIImageHeader.h>
+#include <vtkNIFTIImageReader.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkXMLImageDataReader.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <sstream>
+
+namespace octrace::io {
+namespace {
+
+using Format = VolumeReader::Format;
+
+std::string dimsText(ivec3 d) { return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z); }
+
+// Refuses a read whose file-typed samples, their floats and a validity mask exceed the budget.
+void checkBudget(const std::string& path, ivec3 dims, std::uint64_t typeSize, std::uint64_t budget) {
+    const std::uint64_t n = saturatingMultiply(saturatingMultiply(std::uint64_t(dims.x), std::uint64_t(dims.y)), std::uint64_t(dims.z));
+    checkMemoryBudget(path + ": reading " + dimsText(dims) + " samples", saturatingMultiply(n, typeSize + sizeof(float) + 1), budget);
+}
+
+// A sample count along one axis, 1..kMaxAxisPoints; `what` names it in the refusal.
+int axisSamples(long long n, const std::string& what) {
+    if (n < 1 || std::uint64_t(n) > detail::kMaxAxisPoints)
+        throw FileError(what + " = " + std::to_string(n) + " samples, must lie in 1.." + std::to_string(detail::kMaxAxisPoints));
+    return int(n);
+}
+
+// Runs the reader's pipeline; any VTK error becomes a FileError naming the file.
+void update(vtkAlgorithm* reader, detail::VtkMessages& messages, const std::string& path, const char* what) {
+    reader->Update();
+    if (!messages.errors().empty()) throw FileError(path + ": cannot decode the " + what + " data: " + messages.errors());
+}
+
+// The samples, NaN/inf marked invalid; then the field is checked.
+void finish(ScalarField& f, std::vector<float> values) {
+    f.values = std::move(values);
+    detail::markNonFinite(f);
+    f.validate();
+}
+
+ScalarField readMetaImage(const std::string& path, std::uint64_t budget) {
+    const detail::MetaImageHeader h = detail::MetaImageHeader::parse(path);
+    h.checkData();
+    ScalarField f;
+    f.source = path;
+    f.name = std::filesystem::path(path).stem().string();
+    f.dims = h.dims;
+    f.origin = h.origin;
+    dmat3 axes = h.direction;
+    for (int a = 0; a < 3; ++a) axes[a] *= h.spacing[a] / (glm::length(axes[a]) > 0.0 ? glm::length(axes[a]) : 1.0);
+    detail::setAxes(axes, f, path + ": MetaImage TransformMatrix");
+    f.validateGeometry();
+    checkBudget(path, h.dims, h.typeSize, budget);
+    finish(f, h.readSamples());
+    if (!h.anatomicalOrientation.empty()) f.notes.push_back("MetaImage AnatomicalOrientation: " + h.anatomicalOrientation);
+    return f;
+}
+
+// NIfTI's world is RAS; octrace's medical volumes are LPS.
+const dmat3 kRasToLps(dvec3(-1, 0, 0), dvec3(0, -1, 0), dvec3(0, 0, 1));
+
+bool endsWith(const std::string& s, const std::string& tail) {
+    return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+ScalarField readNifti(const std::string& path, std::uint64_t budget) {
+    detail::requireReadableFile(path);
+    vtkNew<vtkNIFTIImageReader> reader;
+    detail::VtkMessages messages;
+    messages.watch(reader);
+    reader->SetFileName(path.c_str());
+    reader->UpdateInformation();  // the header only
+    if (!messages.errors().empty()) throw FileError(path + ": cannot read the NIfTI header: " + messages.errors());
+    vtkNIFTIImageHeader* h = reader->GetNIFTIHeader();
+    if (!h) throw FileError(path + ": cannot read the NIfTI header");
+    const long long rank = h->GetDim(0);
+    if (rank < 3 || rank > 7) throw FileError(path + ": NIfTI dim[0] = " + std::to_string(rank) + ": octrace reads 3-D volumes");
+    for (int d = 4; d <= rank; ++d)
+        if (h->GetDim(d) > 1)
+            throw FileError(path + ": NIfTI image has " + std::to_string(h->GetDim(d)) + (d == 4 ? " time points" : " values along dimension " + std::to_string(d)) +
+                            ": octrace reads one 3-D volume");
+    ivec3 dims;
+    for (int a = 0; a < 3; ++a) dims[a] = axisSamples(h->GetDim(a + 1), path + ": NIfTI dim[" + std::to_string(a + 1) + "]");
+    const int bitpix = h->GetBitPix();
+    if (bitpix < 8 || bitpix > 64 || bitpix % 8 != 0)
+        throw FileError(path + ": NIfTI bitpix " + std::to_string(bitpix) + " (datatype " + std::to_string(h->GetDataType()) + ") is not supported");
+    const std::uint64_t typeSize = std::uint64_t(bitpix / 8);
+    ScalarField f;
+    f.source = path;
+    std::string stem = std::filesystem::path(path).filename().string();
+    for (const char* ext : {".nii.gz", ".nii", ".hdr", ".img"})
+        if (endsWith(detail::lower(stem), ext)) stem = stem.substr(0, stem.size() - std::strlen(ext));
+    f.name = stem;
+    f.dims = dims;
+
+    // The matrix from VTK's image coordinates (spacing applied) to RAS; VTK has already
+    // reversed the slices when qfac is -1 and adjusted both matrices to match.
+    vtkMatrix4x4* m = nullptr;
+    std::string which;
+    if (h->GetSFormCode() > 0 && reader->GetSFormMatrix()) {
+        m = reader->GetSFormMatrix();
+        which = "sform (code " + std::to_string(h->GetSFormCode()) + ")";
+    } else if (h->GetQFormCode() > 0 && reader->GetQFormMatrix()) {
+        m = reader->GetQFormMatrix();
+        which = "qform (code " + std::to_string(h->GetQFormCode()) + ")";
+    }
+    const double* spacing = reader->GetDataSpacing();
+    const double* origin = reader->GetDataOrigin();
+    dmat3 axes(1.0);
+    dvec3 start(0.0);
+    for (int a = 0; a < 3; ++a) {
+        if (!(spacing[a] > 0.0) || !std::isfinite(spacing[a]))
+            throw FileError(path + ": NIfTI pixdim[" + std::to_string(a + 1) + "] = " + detail::num(spacing[a]) + " must be positive");
+        dvec3 column(0.0);
+        column[a] = 1.0;
+        if (m) column = dvec3(m->GetElement(0, a), m->GetElement(1, a), m->GetElement(2, a));
+        axes[a] = column * spacing[a];
+        start += column * origin[a];
+    }
+    if (m) {
+        start += dvec3(m->GetElement(0, 3), m->GetElement(1, 3), m->GetElement(2, 3));
+        axes = kRasToLps * axes;
+        start = kRasToLps * start;
+        f.notes.push_back("NIfTI " + which + ", RAS turned into LPS (x and y negated)");
+        f.patientLps = true;
+    } else {
+        f.notes.push_back("NIfTI without qform or sform: grid axes scaled by pixdim");
+    }
+    f.origin = start;
+    detail::setAxes(axes, f, path + ": NIfTI " + (which.empty() ? std::string("pixdim") : which));
+    f.validateGeometry();
+    checkBudget(path, dims, typeSize, budget);
+    if (!endsWith(detail::lower(path), ".gz") && endsWith(detail::lower(path), ".nii")) {
+        const std::uint64_t need = std::uint64_t(f.sampleCount()) * typeSize + std::uint64_t(std::max<long long>(0, h->GetVoxOffset()));
+        if (detail::fileSize(path) < need)
+            throw FileError(path + ": NIfTI data truncated: " + dimsText(dims) + " x " + std::to_string(bitpix) + " bits from byte " +
+                            std::to_string(h->GetVoxOffset()) + " need " + std::to_string(need) + " bytes, the file has " +
+                            std::to_string(detail::fileSize(path)));
+    }
+
+    update(reader, messages, path, "NIfTI");
+    std::vector<float> values = detail::scalarsAsFloat(reader->GetOutput(), f.sampleCount(), path);
+    const double slope = h->GetSclSlope(), inter = h->GetSclInter();
+    if (slope != 0.0 && std::isfinite(slope) && std::isfinite(inter) && (slope != 1.0 || inter != 0.0)) {
+        for (float& v : values) v = float(double(v) * slope + inter);
+        f.notes.push_back("NIfTI scl_slope " + detail::num(slope) + ", scl_inter " + detail::num(inter) + " applied");
+    }
+    finish(f, std::move(values));
+    return f;
+}
+
+ScalarField readVti(const std::string& path, std::uint64_t budget) {
+    detail::requireReadableFile(path);
+    vtkNew<vtkXMLImageDataReader> reader;
+    detail::VtkMessages messages;
+    messages.watch(reader);
+    reader->SetFileName(path.c_str());
+    reader->UpdateInformation();
+    if (!messages.errors().empty()) throw FileError(path + ": cannot read the VTK image data file: " + messages.errors());
+    int extent[6] = {0, -1, 0, -1, 0, -1};
+    vtkInformation* info = reader->GetOutputInformation(0);
+    if (!info || !info->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+        throw FileError(path + ": VTK XML file without an ImageData extent");
+    info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+    ivec3 dims;
+    for (int a = 0; a < 3; ++a)
+        dims[a] = axisSamples((long long)extent[2 * a + 1] - extent[2 * a] + 1,
+                              path + ": ImageData extent " + std::to_string(extent[2 * a]) + ".." + std::to_string(extent[2 * a + 1]) +
+                                  " along axis " + std::to_string(a) + ",");
+    ScalarField f;
+    f.source = path;
+    f.dims = dims;
+    // The sample type is not known before the data are read: budget for doubles.
+    checkBudget(path, dims, sizeof(double), budget);
+    update(reader, messages, path, "VTK image data");
+    vtkImageData* image = reader->GetOutput();
+    vtkPointData* pd = image ? image->GetPointData() : nullptr;
+    if (!pd || pd->GetNumberOfArrays() == 0) throw FileError(path + ": no point data array in the ImageData");
+    if (!pd->GetScalars()) pd->SetScalars(pd->GetArray(0));
+    if (pd->GetNumberOfArrays() > 1) f.notes.push_back("VTI: " + std::to_string(pd->GetNumberOfArrays()) + " point arrays, the active scalars read");
+    const char* name = pd->GetScalars() ? pd->GetScalars()->GetName() : nullptr;
+    f.name = name && *name ? name : std::filesystem::path(path).stem().string();
+
+    const double* spacing = image->GetSpacing();
+    const double* origin = image->GetOrigin();
+    const double* d = image->GetDirectionMatrix()->GetData();  // row-major
+    dmat3 axes;
+    for (int a = 0; a < 3; ++a) axes[a] = dvec3(d[a], d[3 + a], d[6 + a]) * spacing[a];
+    detail::setAxes(axes, f, path + ": ImageData Direction");
+    f.origin = dvec3(origin[0], origin[1], origin[2]);
+    for (int a = 0; a < 3; ++a) f.origin += axes[a] * double(extent[2 * a]);
+    f.validateGeometry();
+    finish(f, detail::scalarsAsFloat(image, f.sampleCount(), path));
+    return f;
+}
+
+}  // namespace
+
+const char* VolumeReader::formatName(Format format) {
+    switch (format) {
+        case Format::MetaImage: return "MetaImage";
+        case Format::Nifti: return "NIfTI";
+        default: return "VTK image data";
+    }
+}
+
+ScalarField VolumeReader::read(const std::string& path, Format format, std::uint64_t memoryBudget) {
+    switch (format) {
+        case Format::MetaImage: return readMetaImage(path, memoryBudget);
+        case Format::Nifti: return readNifti(path, memoryBudget);
+        default: return readVti(path, memoryBudget);
+    }
+}
+
+std::string VolumeReader::describe(const std::string& path, Format format, std::uint64_t memoryBudget) {
+    const ScalarField f = read(path, format, memoryBudget);
+    std::ostringstream s;
+    s << path << "\nformat: " << formatName(format) << "\n" << detail::describeVolume(f);
+    return s.str();
+}
+
+}  // namespace octrace::io
