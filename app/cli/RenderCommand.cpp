@@ -8,6 +8,7 @@
 #include "FigureOptions.h"
 
 #include "octrace/io/AtomicFile.h"
+#include "octrace/model/Verify.h"
 #include "octrace/io/ImageWriter.h"
 #include "octrace/render/ImageCompare.h"
 #include "octrace/render/Renderer.h"
@@ -537,60 +538,26 @@ int runRender(const std::vector<std::string>& args) {
 
     if (a.verify) {
         log::info("verifying: rendering the frame again with the reference traversal (slower than the renderers)");
-        auto ref = makeRenderer("reference");
-        Frame rf;
-        RenderStats rst = ref->render(tree, cam, rs, rf);
-        for (int i = 1; i < a.repeat; ++i) rst.renderMs = std::min(rst.renderMs, ref->render(tree, cam, rs, rf).renderMs);
-        // Hit voxel or hit/miss differs, over the traced pixels (colour-filled pixels are not
-        // traced: they are judged by the image difference).
-        std::uint64_t mismatched = 0;
-        for (std::size_t i = 0; i < frame.hitId.size(); ++i)
-            mismatched += !(frame.flags[i] & Frame::kColourFilled) && frame.hitId[i] != rf.hitId[i];
-        ImageDifference d = compareImages(frame, rf);
-        js.set("mismatched_pixels", mismatched);
-        js.set("psnr_db", d.psnrDb);
-        js.set("max_channel_error", d.maxChannelError);
-        js.set("reference_render_ms", rst.renderMs);
-        js.set("reference_us_per_ray", rst.rays ? rst.renderMs * 1000.0 / double(rst.rays) : 0.0);
-        js.set("speedup_over_reference", st.renderMs > 0 ? rst.renderMs / st.renderMs : 0.0);
-        // What quantizing the ray changes: the reference on the exact (unquantized) rays.
-        auto unq = makeRenderer("reference-unquantized");
-        Frame uf;
-        unq->render(tree, cam, rs, uf);
-        std::uint64_t qdiff = 0;
-        for (std::size_t i = 0; i < rf.hitId.size(); ++i) qdiff += rf.hitId[i] != uf.hitId[i];
-        js.set("unquantized_mismatched_pixels", qdiff);
-        // Hit agreement, for renderers that do not trace the reference's rays (direct): over the
-        // pixels that either renderer hits, the share that both hit; and where both hit, how far
-        // apart the depths are, in voxel diagonals.
-        std::uint64_t either = 0, both = 0;
-        double depthErr = 0.0;
-        for (std::size_t i = 0; i < rf.hitId.size(); ++i) {
-            const bool h = frame.hitId[i] != kNoHit, r = rf.hitId[i] != kNoHit;
-            either += h || r;
-            both += h && r;
-            if (h && r) depthErr = std::max(depthErr, double(std::abs(frame.depth[i] - rf.depth[i])));
+        const model::Verification v = model::verifyFrame(tree, cam, rs, frame, *renderer, a.repeat);
+        js.set("mismatched_pixels", v.mismatchedPixels);
+        js.set("psnr_db", v.psnrDb);
+        js.set("max_channel_error", v.maxChannelError);
+        js.set("reference_render_ms", v.referenceMs);
+        js.set("reference_us_per_ray", v.referenceUsPerRay);
+        js.set("speedup_over_reference", st.renderMs > 0 ? v.referenceMs / st.renderMs : 0.0);
+        js.set("unquantized_mismatched_pixels", v.unquantizedMismatchedPixels);
+        js.set("hit_agreement", v.hitAgreement);
+        if (v.levelOfDetail) {
+            js.set("lod_psnr_db", v.levelOfDetail->psnrDb);
+            js.set("lod_differing_pixels", v.levelOfDetail->differingPixels);
+            summary << "; multi-resolution: PSNR " << v.levelOfDetail->psnrDb << " dB against the exact image";
         }
-        const double agreement = either ? double(both) / double(either) : 1.0;
-        const double diagonals = depthErr / (tree.voxelSize() * std::sqrt(3.0));
-        js.set("hit_agreement", agreement);
-        if (multires) {
-            // What the multi-resolution cut changes: the same renderer down to the voxels.
-            RenderSettings exactSettings = rs;
-            exactSettings.lodPixels = 0.0;
-            exactSettings.level = -1;
-            Frame exact;
-            renderer->render(tree, cam, exactSettings, exact);
-            const ImageDifference ld = compareImages(frame, exact);
-            js.set("lod_psnr_db", ld.psnrDb);
-            js.set("lod_differing_pixels", ld.differingPixels);
-            summary << "; multi-resolution: PSNR " << ld.psnrDb << " dB against the exact image";
-        }
-        js.set("depth_max_error_voxel_diagonals", diagonals);
-        summary << "; verify: " << mismatched << " pixels differ from the reference (" << qdiff
-                << " from the unquantized rays), PSNR " << d.psnrDb << " dB (max channel error " << d.maxChannelError
-                << "), hit agreement " << agreement * 100.0 << "%, depth within " << diagonals << " voxel diagonals";
-        if (mismatched != 0) log::warning(std::to_string(mismatched) + " pixels differ from the reference traversal");
+        js.set("depth_max_error_voxel_diagonals", v.depthMaxErrorDiagonals);
+        summary << "; verify: " << v.mismatchedPixels << " pixels differ from the reference (" << v.unquantizedMismatchedPixels
+                << " from the unquantized rays), PSNR " << v.psnrDb << " dB (max channel error " << v.maxChannelError
+                << "), hit agreement " << v.hitAgreement * 100.0 << "%, depth within " << v.depthMaxErrorDiagonals
+                << " voxel diagonals";
+        if (v.mismatchedPixels != 0) log::warning(std::to_string(v.mismatchedPixels) + " pixels differ from the reference traversal");
     }
     log::info(summary.str());
     if (!a.statsPath.empty()) io::writeFileAtomically(a.statsPath, std::string_view(js.text()));

@@ -28,7 +28,7 @@ double roundTripError(dvec3 n) {
     return angleDegrees(n, dvec3(d));
 }
 
-Octree copyOf(const Octree& t) { return copyOctree(t); }
+Octree copyOf(const Octree& t) { return t.copy(); }
 
 const Octree& noiseTree() {
     static const Octree t = buildShellOctree(makeAnalyticField("noise", 33, 5), {5, 0.0, 1});
@@ -295,4 +295,52 @@ TEST(Octree, ValidateRejectsBadMasksAndGeometry) {
         t.depth = 3;
         expectInvalid(t, "no root node");
     }
+}
+
+TEST(Octree, CopyKeepsEveryBufferAndAllProvenanceAndEmptyCopyOnlyTheProvenance) {
+    // The one copy of an octree: a build (csg, extractShell, the tests) that starts from it must
+    // lose nothing. Every per-voxel buffer filled, every provenance member set.
+    Octree t = copyOf(noiseTree());
+    const std::size_t n = t.voxels.size();
+    t.colours.assign(n, 0x11223344u);
+    t.voxelValues.assign(n, 2.5f);
+    t.baked.assign(n, 200);
+    t.voxelMaterials.assign(n, std::uint8_t(VoxelMaterial::Floor));
+    t.computeSummaries();
+    t.fieldName = "temp";
+    t.fieldUnits = "degC";
+    t.iso = 10.0;
+    t.insideBelow = true;
+    t.source = "a.nc";
+    t.crs = "EPSG:7415";
+    t.valueName = "salt";
+    t.valueUnits = "psu";
+    t.valueStandardName = "sea_water_salinity";
+    const Octree c = t.copy();
+    EXPECT_EQ(c.nodes.size(), t.nodes.size());
+    EXPECT_EQ(c.voxels.size(), n);
+    EXPECT_EQ(c.colours, t.colours);
+    EXPECT_EQ(c.voxelValues, t.voxelValues);
+    EXPECT_EQ(c.baked, t.baked);
+    EXPECT_EQ(c.voxelMaterials, t.voxelMaterials);
+    EXPECT_EQ(c.summaries.size(), t.summaries.size());
+    EXPECT_EQ(c.bytes(), t.bytes());
+    const Octree e = t.emptyCopy();
+    for (const Octree* o : {&c, &e}) {
+        EXPECT_EQ(o->depth, t.depth);
+        EXPECT_EQ(o->cubeOrigin, t.cubeOrigin);
+        EXPECT_EQ(o->cubeSide, t.cubeSide);
+        EXPECT_EQ(o->form, t.form);
+        EXPECT_EQ(o->fieldName, t.fieldName);
+        EXPECT_EQ(o->fieldUnits, t.fieldUnits);
+        EXPECT_EQ(o->iso, t.iso);
+        EXPECT_EQ(o->insideBelow, t.insideBelow);
+        EXPECT_EQ(o->source, t.source);
+        EXPECT_EQ(o->crs, t.crs);
+        EXPECT_EQ(o->valueName, t.valueName);
+        EXPECT_EQ(o->valueUnits, t.valueUnits);
+        EXPECT_EQ(o->valueStandardName, t.valueStandardName);
+    }
+    EXPECT_TRUE(e.nodes.empty() && e.voxels.empty() && e.colours.empty() && e.voxelValues.empty() && e.baked.empty() &&
+                e.voxelMaterials.empty() && e.summaries.empty());
 }

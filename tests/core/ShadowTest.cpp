@@ -152,7 +152,7 @@ TEST(Shadows, ImagesAndShadowRayCountsDoNotDependOnTheThreadCount) {
 }
 
 TEST(Shadows, AreOffByDefaultOnVoxelOctreesAndNeverDarkenBakedLight) {
-    Octree t = copyOctree(slabTree());
+    Octree t = slabTree().copy();
     const Camera cam = lowCamera();
     RenderSettings s = lightFromAbove(cam, false);
     s.shadows.reset();

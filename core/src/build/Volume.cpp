@@ -64,35 +64,9 @@ CellState cellState(const Octree& tree, const ivec3& cell, std::uint32_t* voxel)
     return s;
 }
 
-Octree emptyOctreeLike(const Octree& tree) {
-    Octree t;
-    t.depth = tree.depth;
-    t.cubeOrigin = tree.cubeOrigin;
-    t.cubeSide = tree.cubeSide;
-    t.form = tree.form;
-    t.fieldName = tree.fieldName;
-    t.fieldUnits = tree.fieldUnits;
-    t.iso = tree.iso;
-    t.insideBelow = tree.insideBelow;
-    t.source = tree.source;
-    t.crs = tree.crs;
-    return t;
-}
-
-Octree copyOctree(const Octree& tree) {
-    Octree t = emptyOctreeLike(tree);
-    t.nodes = tree.nodes;
-    t.voxels = tree.voxels;
-    t.voxelValues = tree.voxelValues;
-    t.baked = tree.baked;
-    t.summaries = tree.summaries;
-    t.colours = tree.colours;
-    return t;
-}
-
 Octree extractShell(const Octree& volume) {
-    if (volume.form == OctreeForm::Shell) return copyOctree(volume);
-    Octree out = emptyOctreeLike(volume);
+    if (volume.form == OctreeForm::Shell) return volume.copy();
+    Octree out = volume.emptyCopy();
     out.form = OctreeForm::Shell;
     detail::TreeAssembly pool;
     using detail::Octant;

@@ -364,7 +364,7 @@ const char* csgOpName(CsgOp op) {
 Octree csg(const CsgOperand& a, CsgOp op, const CsgOperand& b) {
     const Grid g = commonGrid(a.tree, b.tree);
     const std::unique_ptr<Source> sa = sourceOf(a, g), sb = sourceOf(b, g);
-    Octree out = emptyOctreeLike(a.tree ? *a.tree : *b.tree);
+    Octree out = (a.tree ? *a.tree : *b.tree).emptyCopy();
     out.cubeOrigin = g.origin;
     out.cubeSide = g.side;
     out.depth = g.depth;

@@ -75,6 +75,18 @@ Octree Octree::emptyCopy() const {
     return o;
 }
 
+Octree Octree::copy() const {
+    Octree o = emptyCopy();
+    o.nodes = nodes;
+    o.voxels = voxels;
+    o.summaries = summaries;
+    o.colours = colours;
+    o.voxelValues = voxelValues;
+    o.baked = baked;
+    o.voxelMaterials = voxelMaterials;
+    return o;
+}
+
 void Octree::computeSummaries() {
     summaries.assign(nodes.size(), NodeSummary{});
     if (nodes.empty()) return;

@@ -40,9 +40,5 @@ VoxelCount countVoxels(const Octree& tree);
 /// copied as it is. Throws EmptyResultError when the solid has no boundary voxel.
 Octree extractShell(const Octree& volume);
 
-/// A copy of `tree` (every buffer, form and provenance).
-Octree copyOctree(const Octree& tree);
-/// An octree with the cube, depth, form and provenance of `tree` and no nodes.
-Octree emptyOctreeLike(const Octree& tree);
 
 }  // namespace octrace

@@ -147,6 +147,10 @@ public:
     /// voxel values' name and units) but no nodes, voxels or per-voxel attributes: the start
     /// of an operation that makes a new node pool over the same cube.
     Octree emptyCopy() const;
+    /// A deep copy: emptyCopy() and every node, voxel and per-voxel buffer (normals, colours,
+    /// values, materials, baked light) and the node summaries. The one way to copy an octree
+    /// (it is move-only, since its buffers are large).
+    Octree copy() const;
 
     std::size_t boundaryVoxels() const { return voxels.size(); }
     /// Capacity in bytes of every buffer the octree owns.
