@@ -8,6 +8,7 @@ namespace octrace::cli {
 int runRender(const std::vector<std::string>& args);
 int runInfo(const std::vector<std::string>& args);
 int runSample(const std::vector<std::string>& args);
+int runOptions(const std::vector<std::string>& args);
 int runExport(const std::vector<std::string>& args);
 int runBuild(const std::vector<std::string>& args);
 int runCsg(const std::vector<std::string>& args);

@@ -70,8 +70,8 @@ std::string OptionParser::help() const {
     return s.str();
 }
 
-OptionSpec tableOption(const model::Option& o, std::function<void(const std::string&)> apply) {
-    return {o.flag, o.kind == model::OptionKind::Flag ? "" : o.argument, model::sayForCli(o.helpLine()), std::move(apply)};
+OptionSpec tableOption(const model::Option& o, std::function<void(const std::string&)> apply, const std::string& detail) {
+    return {o.flag, o.kind == model::OptionKind::Flag ? "" : o.argument, model::sayForCli(o.helpLine(detail)), std::move(apply)};
 }
 
 void warnUnused(const OptionParser& p, const Renderer& renderer, const std::string& rendererName,

@@ -37,7 +37,8 @@ private:
 };
 
 /// An option of the table (model/OptionTable.h): its flag, argument and help line come from there.
-OptionSpec tableOption(const model::Option& o, std::function<void(const std::string&)> apply);
+/// `detail` is what only the running program knows (model::Option::helpLine).
+OptionSpec tableOption(const model::Option& o, std::function<void(const std::string&)> apply, const std::string& detail = "");
 /// The table's checks of a numeric or choice option, for the apply function of tableOption;
 /// they throw UsageError naming the option (`key`: the CLI says its flag).
 inline double tableNumber(const model::Option& o, const std::string& text) { return model::parseNumber(o, text); }

@@ -38,7 +38,7 @@ std::string vecText(const dvec3& v) {
 
 struct RenderArgs : SurfaceArgs {
     FigureArgs figure;
-    std::string output, statsPath, rendererName = "full";
+    std::string output, statsPath, rendererName = model::opt::renderer.defaultText;
     int width = int(model::opt::width.defaultValue), height = int(model::opt::height.defaultValue);
     std::optional<dvec3> cameraPos, lookAt, up;
     double fov = model::opt::fov.defaultValue;
@@ -71,11 +71,10 @@ OptionParser makeParser(RenderArgs& a) {
     addFormOptions(p, a);
     addLightingOption(p, a);
     addBakeOptions(p, a);
-    p.add({"renderer", "NAME", "renderer: " + joinNames(rendererNames()) + "; samet and beam (paper B) draw sphere scenes and voxel octrees alike (default full)",
-           [&](const std::string& v) {
-               makeRenderer(v);  // validates the name
-               a.rendererName = v;
-           }});
+    p.add(tableOption(model::opt::renderer, [&](const std::string& v) {
+        makeRenderer(v);  // validates the name
+        a.rendererName = v;
+    }, "one of " + joinNames(rendererNames())));
     p.add({"size", "WxH", "image size in pixels, each side " + model::opt::width.rangeText() + " (default " +
            model::opt::width.defaultSaid() + "x" + model::opt::height.defaultSaid() + ")",
            [&](const std::string& v) { parseSize("size", v, a.width, a.height); }});

@@ -202,25 +202,21 @@ std::string joinNames(const std::vector<std::string>& names) {
 vec4 displayToLinear(vec4 c) { return vec4(srgbToLinear(c.r), srgbToLinear(c.g), srgbToLinear(c.b), c.a); }
 
 void addVariableOption(OptionParser& p, io::FieldRequest& request) {
-    p.add({"var", "NAME", "variable to draw, by name or CF standard_name; sound_speed is derived from temperature and "
-           "salinity when the file has none (default: the file's only 3-D variable)",
-           [&](const std::string& v) {
-               if (v.empty()) throw UsageError("--var: empty (give a variable name)");
-               request.variable = v;
-           }});
+    p.add(tableOption(model::opt::variable, [&](const std::string& v) {
+        if (v.empty()) throw UsageError("--var: empty (give a variable name)");
+        request.variable = v;
+    }));
 }
 
 void addSurfaceOptions(OptionParser& p, SurfaceArgs& a) {
     addVariableOption(p, a.request);
     std::string presets;
     for (const auto& pr : ctIsoPresets()) presets += std::string(presets.empty() ? "" : ", ") + pr.name + " " + huText(pr.hu);
-    p.add({"iso", "VALUE|NAME", "iso value of the surface, or a CT preset in Hounsfield units: " + presets +
-           " (default: middle of the variable's valid range)",
-           [&](const std::string& v) {
-               a.isoPreset.clear();
-               if (ctIsoPreset(v)) a.isoPreset = v;
-               else a.iso = parseNumber("iso", v);
-           }});
+    p.add(tableOption(model::opt::iso, [&](const std::string& v) {
+        a.isoPreset.clear();
+        if (ctIsoPreset(v)) a.isoPreset = v;
+        else a.iso = parseNumber("iso", v);
+    }, "presets " + presets));
     p.add(tableOption(model::opt::depth, [&](const std::string& v) {
         a.depth = tableInt(model::opt::depth, v);
         a.depthGiven = true;
@@ -369,12 +365,10 @@ void addGeographicOptions(OptionParser& p, io::FieldRequest& request) {
                request.depthRange[0] = r[0];
                request.depthRange[1] = r[1];
            }});
-    p.add({"time", "INDEX|DATE", "time step, NetCDF only: a 0-based index or a date YYYY-MM-DD[THH:MM[:SS]] in the file's "
-           "calendar, nearest step (default: the first)",
-           [&](const std::string& v) {
-               io::checkTimeText(v);
-               request.time = v;
-           }});
+    p.add(tableOption(model::opt::time, [&](const std::string& v) {
+        io::checkTimeText(v);
+        request.time = v;
+    }));
     p.add(tableOption(model::opt::verticalScale,
                       [&](const std::string& v) { request.verticalScale = tableNumber(model::opt::verticalScale, v); }));
 }
@@ -388,42 +382,34 @@ void addCityOptions(OptionParser& p, SurfaceArgs& a) {
                a.cityGiven = true;
            }});
     // A text option of CityRequest: not empty (`what` says what to give), marks a city option given.
-    auto text = [&](const char* name, const char* argument, std::string help, std::string io::CityRequest::*field, const char* what) {
-        p.add({name, argument, std::move(help), [&a, name, field, what](const std::string& v) {
+    auto text = [&](const model::Option& o, std::string io::CityRequest::*field, const char* what) {
+        const char* name = o.flag;
+        p.add(tableOption(o, [&a, name, field, what](const std::string& v) {
                    if (v.empty()) throw UsageError(std::string("--") + name + ": empty (give " + what + ")");
                    a.city.*field = v;
                    a.cityGiven = true;
-               }});
+               }));
     };
     p.add(tableOption(model::opt::terrainDepth, [&](const std::string& v) {
         a.terrainDepth = tableInt(model::opt::terrainDepth, v);
         a.cityGiven = true;
     }));
-    text("dem", "RASTER", "city inputs: a DEM raster (GeoTIFF or any GDAL raster, any CRS) added as terrain (default: none)",
-         &io::CityRequest::dem, "a raster file");
-    text("texture", "RASTER", "city inputs: a colour raster (orthophoto, map; any GDAL raster, any CRS) draped on the terrain "
-         "(default: none, colours per object type)", &io::CityRequest::texture, "a raster file");
-    text("height-attr", "NAME", "footprint inputs: the attribute holding each building's height (default: the first of height, "
-         "HEIGHT, hauteur, HAUTEUR, measuredHeight)", &io::CityRequest::heightAttr, "an attribute name");
-    text("base-attr", "NAME", "footprint inputs: the attribute holding each building's ground height (default: the lowest --dem "
-         "height under it, else 0)", &io::CityRequest::baseAttr, "an attribute name");
-    text("crs", "CRS", "city inputs: projected coordinate reference system to bring everything into, e.g. EPSG:28992 "
-         "(default: the input's own when projected, else the UTM zone of its centre)", &io::CityRequest::crs, "e.g. EPSG:28992");
+    text(model::opt::dem, &io::CityRequest::dem, "a raster file");
+    text(model::opt::texture, &io::CityRequest::texture, "a raster file");
+    text(model::opt::heightAttr, &io::CityRequest::heightAttr, "an attribute name");
+    text(model::opt::baseAttr, &io::CityRequest::baseAttr, "an attribute name");
+    text(model::opt::crs, &io::CityRequest::crs, "e.g. EPSG:28992");
 }
 
 void addSeriesOption(OptionParser& p, io::FieldRequest& request) {
-    p.add({"series", "UID|INDEX|DESCRIPTION", "DICOM series to read: its UID, its number in `octrace info`'s list or its description (default: the largest)",
-           [&](const std::string& v) {
-               if (v.empty()) throw UsageError("--series: empty (give a UID, an index or a description)");
-               request.series = v;
-           }});
+    p.add(tableOption(model::opt::series, [&](const std::string& v) {
+        if (v.empty()) throw UsageError("--series: empty (give a UID, an index or a description)");
+        request.series = v;
+    }));
 }
 
 void addMessageOptions(OptionParser& p, SurfaceArgs& a) {
-    p.add({"max-memory", "SIZE", "memory budget for reading the field, building the octree and the output: bytes, K, M, G, T "
-           "(powers of 1024) or N% of the physical memory; a larger job is refused up front (default " +
-           std::to_string(kDefaultMemoryBudgetPercent) + "%)",
-           [&](const std::string& v) { a.maxMemory = parseByteSize("max-memory", v); }});
+    p.add(tableOption(model::opt::maxMemory, [&](const std::string& v) { a.maxMemory = parseByteSize("max-memory", v); }));
     p.add({"quiet", "", "print only errors", [&](const std::string&) { a.quiet = true; }});
     p.add({"verbose", "", "print debugging details", [&](const std::string&) { a.verbose = true; }});
     p.add({"help", "", "show this help and exit", [&](const std::string&) { a.help = true; }});

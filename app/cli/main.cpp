@@ -27,6 +27,7 @@ const char* kTopHelp =
     "  slice INPUT -o OUT    an axial, coronal, sagittal or x/y/z slice of a field, greyed by a window or coloured (.png, .exr, .tif)\n"
     "  info INPUT...         describe inputs: format, variables, units, value ranges, grid, bounds\n"
     "  sample NAME -o OUT    write an analytic sample field (sphere, torus, gyroid, noise) as NRRD\n"
+    "  options               every setting: flag, range, default, session member, studio control\n"
     "\n"
     "INPUT is a NetCDF file (.nc, .cdf), a NRRD file (.nrrd, .nhdr), a DICOM file or folder, an octree\n"
     "file (.oct), or analytic:NAME[:SAMPLES].\n"
@@ -58,14 +59,15 @@ int main(int argc, char** argv) {
         if (cmd == "render") return octrace::cli::runRender(rest);
         if (cmd == "info") return octrace::cli::runInfo(rest);
         if (cmd == "sample") return octrace::cli::runSample(rest);
+        if (cmd == "options") return octrace::cli::runOptions(rest);
         if (cmd == "export") return octrace::cli::runExport(rest);
         if (cmd == "build") return octrace::cli::runBuild(rest);
         if (cmd == "csg") return octrace::cli::runCsg(rest);
         if (cmd == "slice") return octrace::cli::runSlice(rest);
-        throw octrace::UsageError("unknown command '" + cmd + "' (commands: render, export, build, csg, slice, info, sample)");
+        throw octrace::UsageError("unknown command '" + cmd + "' (commands: render, export, build, csg, slice, info, sample, options)");
     } catch (const octrace::UsageError& e) {
         std::fprintf(stderr, "octrace: %s\nTry 'octrace %s --help'.\n", octrace::model::sayForCli(e.what()).c_str(),
-                     (cmd == "render" || cmd == "export" || cmd == "build" || cmd == "csg" || cmd == "slice" || cmd == "info" || cmd == "sample") ? cmd.c_str() : "");
+                     (cmd == "render" || cmd == "export" || cmd == "build" || cmd == "csg" || cmd == "slice" || cmd == "info" || cmd == "sample" || cmd == "options") ? cmd.c_str() : "");
         return 2;
     } catch (const octrace::Error& e) {
         std::fprintf(stderr, "octrace: error: %s\n", octrace::model::sayForCli(e.what()).c_str());

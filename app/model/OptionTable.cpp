@@ -14,7 +14,7 @@ namespace {
 constexpr std::array kOptions{
     &opt::depth,           &opt::iso,         &opt::variable,         &opt::time,        &opt::series,
     &opt::form,            &opt::inside,      &opt::threads,          &opt::maxMemory,   &opt::verticalScale,
-    &opt::terrainDepth,    &opt::crs,         &opt::heightAttr,       &opt::baseAttr,    &opt::dem,
+    &opt::terrainDepth,    &opt::crs,         &opt::heightAttr,       &opt::baseAttr,    &opt::dem,         &opt::texture,
     &opt::cut,             &opt::renderer,    &opt::fov,              &opt::orthoHeight, &opt::projection,
     &opt::lod,             &opt::level,       &opt::colourCoherence,  &opt::colourFillBackground,
     &opt::colourTolerance, &opt::branchUp,    &opt::missCoherence,    &opt::repeat,      &opt::width,
@@ -90,16 +90,37 @@ std::string Option::defaultSaid() const {
     case OptionKind::Integer:
     case OptionKind::Number: return numberText(defaultValue);
     case OptionKind::Choice: return defaultChoice();
-    case OptionKind::Text: return "none";
+    case OptionKind::Text: return *unit ? numberText(defaultValue) + unit : "none";
     }
     return {};
 }
 
-std::string Option::helpLine() const {
+std::string Option::helpLine(const std::string& detail) const {
     std::string line = help;
+    if (!detail.empty()) line += "; " + detail;
     if (kind == OptionKind::Integer || kind == OptionKind::Number) line += ", " + rangeText();
     if (renderers) line += "; renderers " + voxelRenderersThat(renderers);
     return line + " (default " + defaultSaid() + ")";
+}
+
+std::string Option::docLine() const {
+    std::string line = "*Options table: default " + sayForCli(defaultSaid());
+    if (kind == OptionKind::Integer || kind == OptionKind::Number) line += "; " + rangeText();
+    if (kind == OptionKind::Choice) line += "; one of " + std::string(choices);
+    if (renderers) line += "; read by " + (*renderersSaid ? sayForCli(renderersSaid) : voxelRenderersThat(renderers));
+    if (*session) line += "; session member `" + std::string(session) + "`";
+    if (*label) line += "; studio control \"" + std::string(label) + "\"";
+    std::string also;
+    for (const std::string& c : split(commands, ' '))
+        if (c != docCommand()) also += (also.empty() ? "" : ", ") + c;
+    if (!also.empty()) line += "; also " + also;
+    return line + ".*";
+}
+
+std::string Option::docCommand() const {
+    if (takenBy("render")) return "render";
+    const auto all = split(commands, ' ');
+    return all.empty() ? std::string() : all.front();
 }
 
 bool Option::takenBy(std::string_view command) const {

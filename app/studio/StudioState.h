@@ -27,7 +27,7 @@ struct StudioState {
     std::optional<double> iso;  ///< empty: the middle of the valid range
     int depth = int(model::opt::depth.defaultValue);
     // Renderers: the main view's, and the second one of the split view.
-    std::string renderer = "full";
+    std::string renderer = model::opt::renderer.defaultText;
     std::string secondRenderer = "direct";  ///< a renderer's name, or kOpenGlPane
     bool split = false;
     // Coherence of the renderers that have it (the CLI's --colour-tolerance, --branch-up,

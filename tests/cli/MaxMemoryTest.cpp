@@ -100,6 +100,6 @@ TEST(MaxMemory, TakesBytesWithBinaryUnitsOrAShareOfTheMemoryAndRefusesAnythingEl
     }
     Result h = run({"render", "--help"});
     EXPECT_NE(h.out.find("--max-memory SIZE"), std::string::npos) << h.out;
-    EXPECT_NE(h.out.find("(default 50%)"), std::string::npos) << h.out;
+    EXPECT_NE(h.out.find("(default 50% of the physical memory)"), std::string::npos) << h.out;
     EXPECT_NE(run({"info", "--help"}).out.find("--max-memory SIZE"), std::string::npos);
 }

@@ -166,3 +166,35 @@ TEST(OptionTable, TheCliNamesItsFlagsInCoreErrors) {
     EXPECT_NE(r.err.find("--branch-up has no effect on renderer full (only on linear and area and their variants)"), std::string::npos)
         << r.err;
 }
+
+TEST(OptionTable, CliDocShowsTheTable) {
+    // docs/user/cli.md has a heading for every option with a flag, in the section of its command,
+    // and right under it the line the table generates (scripts/cli_doc.py writes them).
+    const std::filesystem::path doc = std::filesystem::path(OCTRACE_SAMPLES).parent_path() / "docs" / "user" / "cli.md";
+    std::vector<std::string> lines;
+    {
+        std::ifstream in(doc);
+        ASSERT_TRUE(in) << doc;
+        for (std::string l; std::getline(in, l);) lines.push_back(l);
+    }
+    int checked = 0;
+    for (const model::Option* o : model::allOptions()) {
+        if (!*o->flag) continue;
+        const std::string heading = std::string("### --") + o->flag;
+        std::size_t section = lines.size(), at = lines.size();
+        for (std::size_t i = 0; i < lines.size(); ++i)
+            if (lines[i].rfind("## octrace " + o->docCommand(), 0) == 0) section = i;
+        for (std::size_t i = section + 1; i < lines.size() && lines[i].rfind("## ", 0) != 0; ++i)
+            if (lines[i].rfind(heading, 0) == 0 && (lines[i].size() == heading.size() || lines[i][heading.size()] == ' ' ||
+                                                    lines[i][heading.size()] == ',')) {
+                at = i;
+                break;
+            }
+        ASSERT_LT(at, lines.size()) << "no '" << heading << "' in the section of octrace " << o->docCommand()
+                                    << " of docs/user/cli.md";
+        ASSERT_LT(at + 1, lines.size());
+        EXPECT_EQ(lines[at + 1], o->docLine()) << heading << ": run python3 scripts/cli_doc.py";
+        ++checked;
+    }
+    EXPECT_GE(checked, 40);
+}

@@ -11,6 +11,7 @@
 /// sayForStudio turn them into each front end's words.
 #include "octrace/octree/Octree.h"
 #include "octrace/render/Renderer.h"
+#include "octrace/util/Memory.h"
 
 #include <cmath>
 #include <limits>
@@ -64,8 +65,15 @@ struct Option {
     std::string rangeText() const;
     /// What --help says of the default: defaultText, or the default value or choice.
     std::string defaultSaid() const;
-    /// The help line: help, the range (numbers) or choices, and "(default ...)".
-    std::string helpLine() const;
+    /// The help line: help, `detail` (what only the running program knows, e.g. the renderers'
+    /// names) after "; ", the range of a number, the renderers that read it, "(default ...)".
+    std::string helpLine(const std::string& detail = "") const;
+    /// The line that docs/user/cli.md shows under the option's heading (generated, and checked
+    /// by a test): default, range or choices, who reads it, session member, studio control.
+    std::string docLine() const;
+    /// The command whose section of docs/user/cli.md documents the option: render when it
+    /// takes it, else the first of `commands`.
+    std::string docCommand() const;
     /// Whether the CLI command `command` takes the option.
     bool takenBy(std::string_view command) const;
 };
@@ -105,7 +113,7 @@ inline constexpr Option threads{.key = "threads", .kind = OptionKind::Integer, .
     .defaultValue = 0, .min = 0, .max = 1024, .help = "worker threads, 0 = all cores; the result does not depend on it",
     .commands = "render export build csg"};
 inline constexpr Option maxMemory{.key = "max_memory", .kind = OptionKind::Text, .flag = "max-memory", .argument = "SIZE",
-    .help = "memory budget for reading the field, building the octree and the output: bytes, K, M, G, T (powers of 1024) "
+    .defaultValue = kDefaultMemoryBudgetPercent, .unit = "% of the physical memory", .help = "memory budget for reading the field, building the octree and the output: bytes, K, M, G, T (powers of 1024) "
             "or N% of the physical memory; a larger job is refused up front",
     .commands = "render export build csg slice info"};
 inline constexpr Option verticalScale{.key = "vertical_scale", .kind = OptionKind::Number, .flag = "vertical-scale",
@@ -116,20 +124,30 @@ inline constexpr Option terrainDepth{.key = "terrain_depth", .kind = OptionKind:
     .help = "city inputs: per-region depth, terrain to depth N and buildings to `depth` in one octree (nodes that only "
             "terrain crosses stop at level N as coarse leaves; at most `depth`)",
     .commands = "render export build"};
-inline constexpr Option crs{.key = "crs", .kind = OptionKind::Text, .flag = "crs", .argument = "CRS",
-    .help = "city inputs: the projected CRS to work in (EPSG:NNNN, WKT or PROJ)", .commands = "render export build"};
-inline constexpr Option heightAttr{.key = "height_attr", .kind = OptionKind::Text, .flag = "height-attr", .argument = "NAME",
-    .help = "building footprints: the attribute that holds each building's height", .commands = "render export build"};
-inline constexpr Option baseAttr{.key = "base_attr", .kind = OptionKind::Text, .flag = "base-attr", .argument = "NAME",
-    .help = "building footprints: the attribute that holds each building's base height", .commands = "render export build"};
 inline constexpr Option dem{.key = "dem", .kind = OptionKind::Text, .flag = "dem", .argument = "RASTER",
-    .help = "city inputs: a DEM raster added as terrain", .commands = "render export build"};
+    .defaultText = "none", .help = "city inputs: a DEM raster (GeoTIFF or any GDAL raster, any CRS) added as terrain",
+    .commands = "render export build"};
+inline constexpr Option texture{.key = "texture", .kind = OptionKind::Text, .flag = "texture", .argument = "RASTER",
+    .defaultText = "none, colours per object type",
+    .help = "city inputs: a colour raster (orthophoto, map; any GDAL raster, any CRS) draped on the terrain",
+    .commands = "render export build"};
+inline constexpr Option heightAttr{.key = "height_attr", .kind = OptionKind::Text, .flag = "height-attr", .argument = "NAME",
+    .defaultText = "the first of height, HEIGHT, hauteur, HAUTEUR, measuredHeight",
+    .help = "footprint inputs: the attribute holding each building's height", .commands = "render export build"};
+inline constexpr Option baseAttr{.key = "base_attr", .kind = OptionKind::Text, .flag = "base-attr", .argument = "NAME",
+    .defaultText = "the lowest `dem` height under it, else 0",
+    .help = "footprint inputs: the attribute holding each building's ground height", .commands = "render export build"};
+inline constexpr Option crs{.key = "crs", .kind = OptionKind::Text, .flag = "crs", .argument = "CRS",
+    .defaultText = "the input's own when projected, else the UTM zone of its centre",
+    .help = "city inputs: projected coordinate reference system to bring everything into, e.g. EPSG:28992",
+    .commands = "render export build"};
 inline constexpr Option cut{.key = "cut", .kind = OptionKind::Text, .flag = "cut", .argument = "SOLID", .session = "surface.cut",
     .label = "Cut-away", .help = "cut a solid away", .commands = "render export build"};
 
 // Rendering.
 inline constexpr Option renderer{.key = "renderer", .kind = OptionKind::Text, .flag = "renderer", .argument = "NAME",
-    .session = "renderers.main", .label = "Renderer", .defaultText = "full", .help = "renderer", .commands = "render"};
+    .session = "renderers.main", .label = "Renderer", .defaultText = "full",
+    .help = "renderer; samet and beam (paper B) draw sphere scenes and voxel octrees alike", .commands = "render"};
 inline constexpr Option fov{.key = "fov", .kind = OptionKind::Number, .flag = "fov", .argument = "DEG",
     .session = "camera.fov", .label = "Field of view", .defaultValue = 30, .min = 0, .max = 180, .minOpen = true,
     .maxOpen = true, .unit = "degrees", .help = "vertical field of view", .commands = "render"};
@@ -142,11 +160,11 @@ inline constexpr Option projection{.key = "projection", .kind = OptionKind::Choi
 inline constexpr Option lod{.key = "lod", .kind = OptionKind::Number, .flag = "lod", .argument = "PIXELS",
     .defaultText = "0 = exact", .min = 0, .max = 1e6, .unit = "pixels",
     .help = "multi-resolution: stop at octree nodes whose projected size is below PIXELS and draw them whole",
-    .commands = "render", .renderers = &Renderer::multiResolution, .renderersSaid = "the multi-resolution renderers"};
+    .commands = "render", .renderers = &Renderer::multiResolution};
 inline constexpr Option level{.key = "level", .kind = OptionKind::Integer, .flag = "level", .argument = "L",
     .defaultText = "the voxels", .min = 1, .max = Octree::kMaxDepth,
     .help = "draw the octree at level L (at most `depth`) at the finest, for previews", .commands = "render export",
-    .renderers = &Renderer::multiResolution, .renderersSaid = "the multi-resolution renderers"};
+    .renderers = &Renderer::multiResolution};
 inline constexpr Option colourCoherence{.key = "colour_coherence", .kind = OptionKind::Flag, .flag = "colour-coherence",
     .help = "colour coherence on the discrete ray casters: a pixel between two neighbours of nearly the same colour gets "
             "their average untraced (on in area+colour)",
