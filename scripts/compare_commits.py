@@ -6,13 +6,14 @@
 
 For a change that must not change what octrace draws (a refactor): each commit is exported
 with `git archive` into WORK/src-SHA and its `octrace` executable built in WORK/build-SHA
-(Release, no tests, no studio; kept, so a second comparison against the same commit does not
-build it again). Then every scene of Paper A's Table 1 (bench/scenes/*.json with "table1": the
+(Release, no tests, no studio; kept, so that a second comparison against the same commit does
+not build it again). Then every scene of Paper A's Table 1 (bench/scenes/*.json with "table1": the
 ocean T, V and S isosurfaces, CT bone and skin, the two city scenes, the molecule) at its
 shallowest depth, with the scene's own camera at --size, plus a CT (the LIDC chest at iso 100)
 and a city (Delft) framed by default, are rendered by both executables with each renderer to
-PNG and to EXR, and the files are compared byte for byte. The CT scenes of Table 1 are read from
-their NRRD file here (Table 1 writes them as a DICOM series first; the pixels are the same).
+PNG and to EXR, and the files are compared byte for byte. The CT scenes of Table 1 are written as
+a DICOM series first, as bench/table1.py does (by the AFTER commit's octrace_write_dicom), and the
+molecule is voxelized (--octree voxel) so that every renderer draws it.
 
 Prints one line per image and a summary; with --json writes every comparison. Exit 0 when every
 pair is byte-identical, 1 when any differs or failed, 2 for a usage error.
@@ -38,24 +39,36 @@ def build(sha, work):
     src = os.path.join(work, "src-" + sha[:12])
     out = os.path.join(work, "build-" + sha[:12])
     exe = os.path.join(out, "app", "octrace")
-    if os.path.exists(exe):
-        print("compare: %s already built (%s)" % (sha[:12], exe), flush=True)
-        return exe
     if not os.path.isdir(src):
         os.makedirs(src)
         archive = subprocess.Popen(["git", "-C", ROOT, "archive", sha], stdout=subprocess.PIPE)
         subprocess.run(["tar", "-x", "-C", src], stdin=archive.stdout, check=True)
         if archive.wait() != 0:
             raise SystemExit("compare: git archive %s failed" % sha)
-    print("compare: building %s in %s" % (sha[:12], out), flush=True)
-    subprocess.run(["cmake", "-S", src, "-B", out, "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release",
-                    "-DOCTRACE_BUILD_TESTS=OFF", "-DOCTRACE_BUILD_STUDIO=OFF", "-DOCTRACE_BUILD_BENCH=OFF"],
-                   check=True, stdout=subprocess.DEVNULL)
-    subprocess.run(["ninja", "-C", out, "octrace"], check=True)
+    print("compare: building %s in %s (nothing to do when it was built before)" % (sha[:12], out), flush=True)
+    if not os.path.exists(os.path.join(out, "build.ninja")):
+        subprocess.run(["cmake", "-S", src, "-B", out, "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release",
+                        "-DOCTRACE_BUILD_TESTS=OFF", "-DOCTRACE_BUILD_STUDIO=OFF", "-DOCTRACE_BUILD_BENCH=OFF"],
+                       check=True, stdout=subprocess.DEVNULL)
+    subprocess.run(["ninja", "-C", out, "octrace", "octrace_write_dicom"], check=True)
     return exe
 
 
-def scenes(data, size):
+def scene_input(data, scene, writer, work):
+    """The scene's input; a scene with "write_dicom" (Table 1's CT rows) is written as a DICOM
+    series first by the project's writer, as bench/table1.py does, so that its values are HU."""
+    source = os.path.join(data, scene["input"])
+    w = scene.get("write_dicom")
+    if not w:
+        return source
+    folder = os.path.join(work, "dicom_%s_%s" % (os.path.basename(scene["input"]), w.get("rescale", "1,0").replace(",", "_")))
+    if not os.path.isdir(folder):
+        subprocess.run([writer, source, folder, "--modality", w.get("modality", "CT"), "--rescale", w.get("rescale", "1,0")],
+                       check=True, stdout=subprocess.DEVNULL)
+    return folder
+
+
+def scenes(data, size, writer, work):
     """(name, octrace render arguments without -o and --renderer)."""
     out = []
     for path in sorted(glob.glob(os.path.join(ROOT, "bench", "scenes", "*.json"))):
@@ -64,7 +77,9 @@ def scenes(data, size):
         if not s.get("table1"):
             continue
         depth = min(s["depths"])
-        args = [os.path.join(data, s["input"])]
+        args = [scene_input(data, s, writer, work)]
+        if s["input"].endswith((".pdb", ".cif")):
+            args += ["--octree", "voxel"]  # Table 1 draws the molecule voxelized, with every renderer
         for key in ("var", "iso", "region"):
             if key in s:
                 args += ["--" + key, str(s[key])]
@@ -98,7 +113,8 @@ def main():
     images = os.path.join(args.work, "images-%s-%s" % (before[:12], after[:12]))
     os.makedirs(images, exist_ok=True)
     results = []
-    for name, scene_args in scenes(args.data, args.size):
+    writer = os.path.join(os.path.dirname(os.path.dirname(exes[after])), "octrace_write_dicom")
+    for name, scene_args in scenes(args.data, args.size, writer, args.work):
         for renderer in args.renderers.split(","):
             for ext in ("png", "exr"):
                 files, failed = {}, None
@@ -108,7 +124,7 @@ def main():
                                                                 "--quiet", "-o", out]
                     r = subprocess.run(cmd, capture_output=True, text=True)
                     if r.returncode != 0:
-                        failed = "%s exit %d: %s" % (sha[:12], r.returncode, r.stderr.strip().splitlines()[-1:] or "")
+                        failed = "%s exit %d: %s" % (sha[:12], r.returncode, (r.stderr.strip().splitlines() or [""])[0])
                         break
                     files[sha] = out
                 same = failed is None and filecmp.cmp(files[before], files[after], shallow=False)

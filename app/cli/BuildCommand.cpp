@@ -1,7 +1,7 @@
 // octrace build: read a field, build the octree of an isosurface (shell) or of the solid it
 // bounds (volume), and write it to an octree file (.oct) that every command reads as INPUT.
 #include "Commands.h"
-#include "Input.h"
+#include "octrace/model/Input.h"
 #include "Options.h"
 #include "OctreeOutput.h"
 #include "StatsJson.h"

@@ -2,11 +2,11 @@
 // field (its volume octree is built), a volume octree file, a primitive solid or the ground
 // under a relief raster (laid into the world of the other operand, a geographic field).
 #include "Commands.h"
-#include "Input.h"
+#include "octrace/model/Input.h"
 #include "OctreeOutput.h"
 #include "Options.h"
 #include "StatsJson.h"
-#include "SolidSpec.h"
+#include "octrace/model/SolidSpec.h"
 #include "SurfaceOptions.h"
 
 #include "octrace/build/Volume.h"

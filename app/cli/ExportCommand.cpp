@@ -69,7 +69,7 @@ std::vector<std::string> provenance(const ExportArgs& a, const Surface& s, int l
         "position: box centre in world units; radius: half the box diagonal",
         "colour: 8-bit sRGB albedo without lighting, " +
             (s.window.valid() ? "grey by the display window centre " + windowNumber(s.window.centre) + " width " +
-                                    windowNumber(s.window.width) + " (" + s.windowSource + ")" +
+                                    windowNumber(s.window.width) + " (" + model::sayForCli(s.windowSource) + ")" +
                                     (s.invertedGrey ? ", inverted (MONOCHROME1)" : "") + " of the value under the surface"
              : a.colormap.empty() ? "uniform"
                                   : "colour map " + a.colormap + " by height"),

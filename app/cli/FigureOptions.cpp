@@ -121,7 +121,7 @@ void addFigureOptions(OptionParser& p, FigureArgs& f, const std::string& shows) 
            [&](const std::string&) { f.scaleBar = true; }});
 }
 
-bool figureHasColourBar(const SurfaceArgs& a) { return !a.colourBy.empty() || !a.colormap.empty(); }
+bool figureHasColourBar(const model::SurfaceSpec& a) { return !a.colourBy.empty() || !a.colormap.empty(); }
 
 FigureSubject figureSubject(const Surface& s, const std::string& input) {
     FigureSubject out;

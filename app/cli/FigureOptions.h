@@ -60,7 +60,7 @@ dvec2 parsePrintSize(const std::string& option, const std::string& text);
 io::FigureLayout figureLayout(const FigureArgs& f, int width, int height, bool colourBar);
 
 /// Whether the figure of a surface coloured by `a` has a colour bar (a colour map or --colour-by).
-bool figureHasColourBar(const SurfaceArgs& a);
+bool figureHasColourBar(const model::SurfaceSpec& a);
 
 /// What a figure says about the data besides its octree: the field's name, its geographic
 /// mapping, the bounds of the grid read (empty for an octree file or a city: the surface's

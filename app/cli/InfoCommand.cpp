@@ -1,5 +1,5 @@
 #include "Commands.h"
-#include "Input.h"
+#include "octrace/model/Input.h"
 #include "Options.h"
 #include "SurfaceOptions.h"
 

@@ -1,7 +1,7 @@
 // octrace render: read a field, build the shell octree of an isosurface, render, write the
 // image (and optionally stats JSON), optionally verify against the reference traversal.
 #include "Commands.h"
-#include "Input.h"
+#include "octrace/model/Input.h"
 #include "Options.h"
 #include "StatsJson.h"
 #include "SurfaceOptions.h"

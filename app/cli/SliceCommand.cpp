@@ -2,7 +2,7 @@
 // window (CT, MR) or coloured by a colour map, as a radiology workstation or a map shows it.
 #include "Commands.h"
 #include "FigureOptions.h"
-#include "Input.h"
+#include "octrace/model/Input.h"
 #include "Options.h"
 #include "StatsJson.h"
 #include "SurfaceOptions.h"

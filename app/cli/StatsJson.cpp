@@ -1,5 +1,7 @@
 #include "StatsJson.h"
 
+#include "octrace/model/OptionTable.h"
+
 #include <cmath>
 #include <cstdio>
 
@@ -35,7 +37,8 @@ void StatsJson::put(const std::string& key, std::string json) {
         }
     items_.emplace_back(key, std::move(json));
 }
-void StatsJson::set(const std::string& key, const std::string& value) { put(key, quote(value)); }
+// Texts of core, io and the pipeline name settings by key (util/Parameter.h): said as flags here.
+void StatsJson::set(const std::string& key, const std::string& value) { put(key, quote(model::sayForCli(value))); }
 void StatsJson::set(const std::string& key, double value) {
     if (!std::isfinite(value)) {
         put(key, "null");

@@ -1,7 +1,7 @@
 #include "SurfaceOptions.h"
 
-#include "Input.h"
-#include "SolidSpec.h"
+#include "octrace/model/Input.h"
+#include "octrace/model/SolidSpec.h"
 
 #include "octrace/build/Layers.h"
 #include "octrace/build/CityVoxelizer.h"
@@ -30,168 +30,17 @@ std::string huText(double hu) {
     return s.str();
 }
 
-/// --window's value: a preset (its window), "none" (invalid window) or "C,W".
-ValueWindow parseWindow(const std::string& v) {
-    if (v == "none") return {};
-    if (auto w = ctWindowPreset(v)) return *w;
-    const std::size_t comma = v.find(',');
-    if (comma == std::string::npos || v.find(',', comma + 1) != std::string::npos) {
-        std::string names;
-        for (const auto& w : ctWindowPresets()) names += std::string(w.name) + ", ";
-        throw UsageError("--window: give a preset (" + names + "none) or CENTRE,WIDTH, got '" + v + "'");
-    }
-    ValueWindow w{parseNumber("window", v.substr(0, comma)), parseNumber("window", v.substr(comma + 1))};
-    if (!(w.width > 0.0)) throw UsageError("--window: the width must be positive, got '" + v + "'");
-    return w;
-}
-
-}  // namespace
-
-void requireHounsfield(const ScalarField& f, const std::string& input, const std::string& option) {
-    if (f.units == "HU") return;
-    throw InputError(input + ": " + option + " is a CT preset in Hounsfield units, but the values of '" + f.name + "' are " +
-                     (f.units.empty() ? std::string("not in HU (no units: not a CT series)") : "in " + f.units) +
-                     "; give a number instead");
-}
-
-namespace {
-
-/// The surface's display window (see buildSurface).
-void chooseWindow(const SurfaceArgs& a, Surface& s) {
-    if (!a.colours) return;  // octrace build: no colours, no voxel values
-    if (!a.windowName.empty()) {
-        if (ctWindowPreset(a.windowName)) requireHounsfield(s.field, a.input, "--window " + a.windowName);
-        s.window = a.window;
-        s.windowSource = "--window " + a.windowName;
-    } else if (!a.colourGiven && a.colormap.empty() && a.colourBy.empty() && s.field.window.valid()) {
-        s.window = s.field.window;
-        s.windowSource = "the file's display window";
-        std::ostringstream m;
-        m << "colouring by the file's display window, centre " << s.window.centre << " width " << s.window.width
-          << " (--window none for a uniform colour)";
-        log::info(m.str());
-    }
-    s.invertedGrey = s.window.valid() && s.field.invertedGrey;
-}
-
-float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
-
 /// Progress on stderr while building, only when stderr is a terminal.
 std::function<void(double)> progressPrinter(bool quiet) {
     if (quiet || !isatty(2)) return {};
-    return [](double f) { std::fprintf(stderr, "\roctrace: building octree %3d%%", int(f * 100.0 + 0.5)); };
-}
-
-/// buildSurface for an octree file: the octree as it is, the field empty but for its name.
-void loadOctreeSurface(const SurfaceArgs& a, std::uint64_t budget, Surface& s) {
-    const char* given = a.iso || !a.isoPreset.empty() ? "--iso"
-                        : !a.windowName.empty()         ? "--window"
-                        : a.depthGiven                  ? "--depth"
-                        : a.formGiven                   ? "--form/--inside"
-                        : !a.colourBy.empty()           ? "--colour-by"
-                        : a.floor                       ? "--floor"
-                        : a.extendDown                  ? "--extend-down"
-                                                        : fieldOptionGiven(a.request);
-    if (given)
-        throw UsageError(std::string(given) + " does not apply to the octree file " + a.input +
-                         " (its field, iso value and depth were fixed when it was built: see octrace info)");
-    Timer t;
-    s.tree = loadOctree(a.input, budget);
-    s.loadMs = t.ms();
-    if (!a.cuts.empty() && s.tree.form != OctreeForm::Volume)
-        throw InputError(a.input + ": a shell octree cannot be cut (--cut needs the volume form: octrace build --form volume)");
-    s.iso = s.tree.iso;
-    s.field.name = s.tree.fieldName;
-    s.field.units = s.tree.fieldUnits;
-    s.field.source = a.input;
-}
-
-/// The cuts (--cut, --clip), then the shell unless the command keeps the volume.
-void finishSurface(const SurfaceArgs& a, Surface& s) {
-    if (!a.cuts.empty()) {
-        Timer t;
-        for (const SolidArgument& arg : a.cuts) {
-            const Solid cut = resolveSolid(arg, s.field.geographic, a.input, memoryBudget(a));
-            s.tree = csg(CsgOperand::of(s.tree), a.clip ? CsgOp::Intersection : CsgOp::Difference, CsgOperand::of(cut));
-        }
-        // The cut faces were inside: their values (a display window's grey) are the field's there.
-        if (!s.tree.voxelValues.empty() && !s.field.values.empty()) fillVoxelValues(s.tree, s.field, a.threads);
-        log::debug("cuts applied in " + std::to_string(t.ms()) + " ms");
-        s.report.buildMs += t.ms();
-    }
-    if (!a.keepVolume) s.tree = extractShell(s.tree);
-    // render --bake --lighting dynamic: the light would be baked into an octree that is
-    // neither shaded by it nor saved.
-    const bool bakeUnused = a.bake && a.lighting == SurfaceArgs::Lighting::Dynamic;
-    if (bakeUnused)
-        log::warning("--bake with --lighting dynamic: nothing baked (dynamic shading does not use baked light; "
-                     "leave out --lighting dynamic to render with it)");
-    if ((a.bake && !bakeUnused) || (a.lighting == SurfaceArgs::Lighting::Baked && s.tree.baked.empty())) {
-        if (s.tree.form != OctreeForm::Shell) throw UsageError("--bake applies to the shell form (not with --form volume)");
-        BakeOptions o = a.bakeOptions;
-        o.threads = a.threads;
-        if (a.ambient) {
-            o.ambient = *a.ambient;
-            o.diffuse = 1.0f - *a.ambient;
-        }
-        bakeLighting(s.tree, o, &s.bake);
-        log::debug("lighting baked in " + std::to_string(s.bake.bakeMs) + " ms (" + std::to_string(s.bake.rays) + " rays)");
-    }
-    s.report.boundaryVoxels = countVoxels(s.tree).boundary;
-    s.report.nodes = s.tree.nodes.size();
-}
-
-/// buildSurface for a city input: the model read and voxelized; the field empty but for its name.
-void buildCitySurface(const SurfaceArgs& a, Surface& s) {
-    const char* given = a.iso ? "--iso" : a.formGiven ? "--form/--inside" : !a.cuts.empty() ? "--cut" : a.extendDown ? "--extend-down" : !a.isoPreset.empty() ? "--iso"
-                        : a.window.valid() ? "--window" : fieldOptionGiven(a.request);
-    if (given)
-        throw UsageError(std::string(given) + " does not apply to the city input " + a.input +
-                         " (its buildings and terrain are voxelized as surfaces)");
-    if (a.terrainDepth > a.depth)
-        throw UsageError("--terrain-depth " + std::to_string(a.terrainDepth) + " is deeper than --depth " + std::to_string(a.depth) +
-                         " (the terrain goes to the shallower depth, the buildings to --depth)");
-    Timer t;
-    io::CityRequest request = a.city;
-    // The octree resolves the terrain no finer than its depth.
-    request.maxSamples = (1 << std::min(a.terrainDepth > 0 ? a.terrainDepth : a.depth, 12)) + 1;
-    const CityModel model = io::readCityModel(a.input, request);
-    s.loadMs = t.ms();
-    for (const auto& n : model.notes) log::warning(n);
-    CityBuildOptions o;
-    o.depth = a.depth;
-    o.threads = a.threads;
-    o.terrainDepth = a.terrainDepth;
-    s.tree = voxelizeCity(model, o, &s.report);
-    s.field.name = s.tree.fieldName;
-    s.field.source = a.input;
-    s.tree.source = a.input + " (" + std::to_string(model.objects.size()) + " objects, " + std::to_string(model.triangles.size()) +
-                    " triangles, CRS " + (model.crs.empty() ? std::string("none") : model.crs) + ")";
-}
-
-/// What an octree was made from, for its file's header: input, variable, the reader's notes.
-std::string sourceDescription(const std::string& input, const ScalarField& f) {
-    std::string s = input + ", variable " + f.name;
-    for (const auto& n : f.notes) s += "; " + n;
-    return s;
-}
-
-/// --colour-by: the second variable, read with the same request (region, depth range, time)
-/// and checked to lie on the field's grid.
-ScalarField loadColourBy(const SurfaceArgs& a, const io::FieldRequest& request, const ScalarField& field) {
-    io::FieldRequest second = request;
-    second.variable = a.colourBy;
-    ScalarField by = loadField(a.input, second, a.depth);
-    if (by.dims != field.dims || by.origin != field.origin || by.spacing != field.spacing || by.coords != field.coords ||
-        by.direction != field.direction)
-        throw InputError(a.input + ": --colour-by " + a.colourBy + " is not on the grid of '" + field.name +
-                         "' (both variables must share their coordinates)");
-    return by;
+    // The line ends once the build reports it is complete (the builder's last call is 1.0).
+    return [](double f) {
+        std::fprintf(stderr, "\roctrace: building octree %3d%%", int(f * 100.0 + 0.5));
+        if (f >= 1.0) std::fputs("\n", stderr);
+    };
 }
 
 }  // namespace
-
-ValueWindow displayWindow(const std::string& text) { return parseWindow(text); }
 
 std::string joinNames(const std::vector<std::string>& names) {
     std::string s;
@@ -199,7 +48,13 @@ std::string joinNames(const std::vector<std::string>& names) {
     return s;
 }
 
-vec4 displayToLinear(vec4 c) { return vec4(srgbToLinear(c.r), srgbToLinear(c.g), srgbToLinear(c.b), c.a); }
+Surface buildSurface(const SurfaceArgs& a) {
+    if (a.quiet) log::setLevel(log::Level::Error);
+    if (a.verbose) log::setLevel(log::Level::Debug);
+    model::BuildHooks terminal;
+    terminal.progress = progressPrinter(a.quiet);
+    return model::buildSurface(a, terminal);
+}
 
 void addVariableOption(OptionParser& p, io::FieldRequest& request) {
     p.add(tableOption(model::opt::variable, [&](const std::string& v) {
@@ -294,7 +149,7 @@ void addWindowOption(OptionParser& p, SurfaceArgs& a, const std::string& what, c
                    huText(w.window.width);
     p.add({"window", "NAME|C,W|none", "grey " + what + ": a CT preset (centre/width in HU: " + windows +
            "), a centre and width, or none (default: " + byDefault + ")",
-           [&](const std::string& v) { a.windowName = v, a.window = parseWindow(v); }});
+           [&](const std::string& v) { a.windowName = v, a.window = displayWindow(v); }});
 }
 
 void addColourMapOptions(OptionParser& p, SurfaceArgs& a, const std::string& colormapHelp, const std::string& rangeHelp,
@@ -427,152 +282,6 @@ bool parseCommandLine(const OptionParser& p, const std::vector<std::string>& arg
     if (output.empty()) throw UsageError(p.command() + " needs " + missingOutput);
     a.input = positional[0];
     return true;
-}
-
-const char* fieldOptionGiven(const io::FieldRequest& request) {
-    const io::FieldRequest none;
-    return !request.variable.empty()                    ? "--var"
-           : request.hasRegion                          ? "--region"
-           : request.hasDepthRange                      ? "--depth-range"
-           : !request.time.empty()                      ? "--time"
-           : !request.series.empty()                    ? "--series"
-           : request.verticalScale != none.verticalScale ? "--vertical-scale"
-                                                         : nullptr;
-}
-
-std::uint64_t memoryBudget(const SurfaceArgs& a) { return a.maxMemory ? a.maxMemory : defaultMemoryBudget(); }
-
-Surface buildSurface(const SurfaceArgs& a) {
-    if (a.quiet) log::setLevel(log::Level::Error);
-    if (a.verbose) log::setLevel(log::Level::Debug);
-    if (a.insideBelow && a.form != OctreeForm::Volume && a.cuts.empty())
-        throw UsageError("--inside applies to --form volume (or --cut)");
-    if (a.clip && a.cuts.empty()) throw UsageError("--clip needs a --cut solid");
-    const std::uint64_t budget = memoryBudget(a);
-    if (a.window.valid() && (a.colourGiven || !a.colormap.empty()))
-        throw UsageError("--window " + a.windowName + " and " + (a.colourGiven ? "--colour" : "--colormap") +
-                         " both colour the surface: give one");
-    Surface s;
-    if (isOctreeInput(a.input)) {
-        if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem, --texture, --height-attr, --base-attr and --terrain-depth apply to city inputs, not to the octree file " + a.input);
-        loadOctreeSurface(a, budget, s);
-        finishSurface(a, s);
-        return s;
-    }
-    if (io::isCityInput(a.input)) {
-        buildCitySurface(a, s);
-        return s;
-    }
-    if (a.cityGiven) throw UsageError("--lod-select, --crs, --dem, --texture, --height-attr, --base-attr and --terrain-depth apply to city inputs (CityJSON, CityGML, footprints, DEM rasters), not to " + a.input);
-    readSurfaceField(a, s);
-    BuildHooks terminal;
-    terminal.progress = progressPrinter(a.quiet);
-    terminal.endLine = true;
-    buildFromField(a, s, terminal);
-    return s;
-}
-
-void readSurfaceField(const SurfaceArgs& a, Surface& s) {
-    io::FieldRequest request = a.request;
-    request.memoryBudget = memoryBudget(a);
-    Timer t;
-    s.field = loadField(a.input, request, a.depth, &s.spheres);
-    s.loadMs = t.ms();
-}
-
-void buildFromField(const SurfaceArgs& a, Surface& s, const BuildHooks& hooks) {
-    io::FieldRequest request = a.request;
-    request.memoryBudget = memoryBudget(a);
-    if (a.extendDown) {
-        if (!s.field.geographic.valid)
-            throw InputError(a.input + ": --extend-down applies to geographic fields (longitude, latitude, depth)");
-        log::info("--extend-down: " + std::to_string(extendColumnsDown(s.field)) + " masked samples under the water filled");
-    }
-    auto [vmin, vmax] = s.field.validRange();
-    if (!a.isoPreset.empty()) requireHounsfield(s.field, a.input, "--iso " + a.isoPreset);
-    // A sphere input's field is the signed distance to its spheres: their surface is at 0.
-    const bool sphereDistance = isSphereInput(a.input);
-    s.iso = !a.isoPreset.empty() ? *ctIsoPreset(a.isoPreset)
-            : a.iso                ? *a.iso
-            : sphereDistance       ? 0.0
-                                   : 0.5 * (double(vmin) + double(vmax));
-    if (!a.iso && a.isoPreset.empty() && !sphereDistance) {
-        std::ostringstream m;
-        m << "no --iso given: using " << s.iso << ", the middle of the range [" << vmin << ", " << vmax << "] of '"
-          << s.field.name << "'";
-        log::info(m.str());
-    }
-    for (const auto& n : s.field.notes) log::debug(n);
-    if (!a.colourBy.empty() && !a.windowName.empty())
-        throw UsageError("--window and --colour-by both colour the surface: give one of them");
-    std::optional<ScalarField> colourBy;
-    if (!a.colourBy.empty()) {
-        colourBy = loadColourBy(a, request, s.field);
-        if (a.extendDown) extendColumnsDown(*colourBy);
-    }
-
-    BuildOptions bo;
-    bo.depth = a.depth;
-    bo.iso = s.iso;
-    bo.threads = a.threads;
-    bo.progress = hooks.progress;
-    bo.cancelled = hooks.cancelled;
-    bo.memoryBudget = request.memoryBudget;
-    bo.form = a.cuts.empty() ? a.form : OctreeForm::Volume;
-    bo.insideBelow = a.insideBelow;
-    chooseWindow(a, s);
-    bo.voxelValues = s.window.valid();
-    s.tree = buildOctree(s.field, bo, &s.report);
-    s.tree.source = sourceDescription(a.input, s.field);
-    if (hooks.progress && hooks.endLine) std::fputs("\n", stderr);
-    finishSurface(a, s);
-    // A molecule's voxels keep their atoms' colours, as a city's keep their buildings'.
-    if (s.spheres) {
-        Timer t;
-        s.tree.colours = sphereColoursAtVoxels(s.tree, *s.spheres, a.threads);
-        log::debug("voxels coloured by their nearest spheres in " + std::to_string(t.ms()) + " ms");
-    }
-    if (colourBy) {
-        s.tree.voxelValues = sampleAtVoxels(s.tree, *colourBy, a.threads);
-        s.tree.valueName = colourBy->name;
-        s.tree.valueUnits = colourBy->units;
-        s.tree.valueStandardName = colourBy->standardName;
-    }
-    if (a.floor) {
-        BuildOptions fo = bo;
-        fo.iso = 0.5;
-        fo.progress = {};
-        fo.form = OctreeForm::Shell;
-        fo.voxelValues = false;
-        Octree floor = buildShellOctree(solidFromMask(s.field), fo);
-        setMaterial(floor, VoxelMaterial::Floor);
-        s.tree = mergeShells(s.tree, floor);
-        s.report.boundaryVoxels = s.tree.voxels.size();
-        s.report.nodes = s.tree.nodes.size();
-    }
-}
-
-void applyColour(const SurfaceArgs& a, const Surface& s, RenderSettings& settings) {
-    settings.colour = vec3(displayToLinear(vec4(a.colour, 1.0f)));
-    settings.colormap = a.colormap;
-    settings.voxelColours = !a.colourGiven;
-    settings.window = s.window;
-    settings.invertedGrey = s.invertedGrey;
-    if (settings.colormap.empty() && !s.tree.voxelValues.empty() && !s.window.valid())
-        settings.colormap = defaultColormap(s.tree.valueStandardName, s.tree.valueName);
-    settings.colourMin = a.colourMin;
-    settings.colourMax = a.colourMax;
-    settings.maskedColour = vec3(displayToLinear(vec4(a.maskedColour, 1.0f)));
-    settings.floorColour = vec3(displayToLinear(vec4(a.floorColour, 1.0f)));
-}
-
-void applyLighting(const SurfaceArgs& a, RenderSettings& settings) {
-    settings.baked = a.lighting != SurfaceArgs::Lighting::Dynamic;
-    settings.shadows = a.shadows;
-    if (a.ambient) {
-        settings.ambient = *a.ambient;
-        settings.diffuse = 1.0f - *a.ambient;
-    }
 }
 
 }  // namespace octrace::cli

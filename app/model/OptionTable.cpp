@@ -21,7 +21,9 @@ constexpr std::array kOptions{
     &opt::height,          &opt::octree,      &opt::leafObjects,      &opt::samples,     &opt::bounces,
     &opt::ambient,         &opt::lighting,    &opt::shadows,          &opt::bakeAo,      &opt::bakeAoDistance,
     &opt::bakeShadows,     &opt::dpi,         &opt::index,            &opt::compression, &opt::sampleCount,
-    &opt::seed,
+    &opt::seed,            &opt::clip,        &opt::extendDown,       &opt::region,      &opt::depthRange,
+    &opt::lodSelect,       &opt::bake,        &opt::colour,           &opt::colormap,    &opt::window,
+    &opt::colourBy,        &opt::floor,       &opt::size,
 };
 
 std::string numberText(double v) {
@@ -200,7 +202,7 @@ std::string sayForCli(std::string_view text) {
     return sayParameters(text, [](std::string_view key) -> std::optional<std::string> {
         const Option* o = findOption(key);
         if (o && *o->flag) return "--" + std::string(o->flag);
-        if (key == "width" || key == "height") return "--size";
+        if (key == opt::width.key || key == opt::height.key) return "--" + std::string(opt::size.flag);
         return spaced(key);
     });
 }

@@ -2,7 +2,7 @@
 
 #include "octrace/model/OptionTable.h"
 
-#include "Input.h"
+#include "octrace/model/Input.h"
 #include "SurfaceOptions.h"
 
 #include "octrace/build/OctreeBuilder.h"
@@ -80,7 +80,7 @@ void Engine::cancel() {
 namespace {
 /// Inputs whose surface is not built from a field here: an octree file (fixed iso and depth)
 /// and a city model (voxelized whole).
-bool fixedSurface(const std::string& input) { return cli::isOctreeInput(input) || io::isCityInput(input); }
+bool fixedSurface(const std::string& input) { return model::isOctreeInput(input) || io::isCityInput(input); }
 }  // namespace
 
 void Engine::open(const StudioState& state) {
@@ -91,12 +91,12 @@ void Engine::open(const StudioState& state) {
         runBuildJob(gen, [&] {
             InputInfo info;
             info.input = QString::fromStdString(state.input);
-            cli::SurfaceArgs a = surfaceArgs(state);
+            model::SurfaceSpec a = surfaceArgs(state);
             if (fixedSurface(state.input)) {
                 // As `octrace render` reads them (no field options, no iso value).
                 a.request = {};
                 a.iso.reset();
-                auto surface = std::make_shared<cli::Surface>(cli::buildSurface(a));
+                auto surface = std::make_shared<model::Surface>(model::buildSurface(a));
                 surface->tree.computeSummaries();
                 info.octreeFile = true;
                 info.variable = QString::fromStdString(surface->tree.fieldName);
@@ -125,8 +125,8 @@ void Engine::open(const StudioState& state) {
                                        .arg(s.rows)
                                        .arg(s.slices);
             }
-            auto base = std::make_shared<cli::Surface>();
-            cli::readSurfaceField(a, *base);
+            auto base = std::make_shared<model::Surface>();
+            model::readSurfaceField(a, *base);
             if (stop) throw CancelledError("cancelled");
             auto [lo, hi] = base->field.validRange();
             info.variable = QString::fromStdString(base->field.name);
@@ -174,7 +174,7 @@ void Engine::rebuild(const StudioState& state) {
     startBuild(state);
 }
 
-void Engine::setSurface(std::shared_ptr<const Octree> tree, const cli::Surface& look, cli::FigureSubject subject, int depth) {
+void Engine::setSurface(std::shared_ptr<const Octree> tree, const model::Surface& look, cli::FigureSubject subject, int depth) {
     tree_ = std::move(tree);
     window_ = look.window;
     invertedGrey_ = look.invertedGrey;
@@ -190,16 +190,16 @@ void Engine::startBuild(const StudioState& state) {
     emit progress(tr("Building the octree"), 0.0);
     buildWorker_.post([this, base = base_, state, gen](const std::atomic<bool>& stop) {
         // The field is lent to this build (jobs run one at a time) and given back whatever happens.
-        auto surface = std::make_shared<cli::Surface>();
+        auto surface = std::make_shared<model::Surface>();
         surface->field = std::move(base->field);
         surface->spheres = base->spheres;
         struct GiveBack {
-            cli::Surface& from;
-            cli::Surface& to;
+            model::Surface& from;
+            model::Surface& to;
             ~GiveBack() { to.field = std::move(from.field); }
         } giveBack{*surface, *base};
         runBuildJob(gen, [&] {
-            cli::BuildHooks hooks;
+            model::BuildHooks hooks;
             int shown = -1;  // percent last sent: one queued signal per percent at most
             hooks.progress = [this, &shown, gen](double f) {
                 const int pc = int(f * 100.0);
@@ -208,7 +208,7 @@ void Engine::startBuild(const StudioState& state) {
                 handBack(gen, [this, f] { emit progress(tr("Building the octree"), f); });
             };
             hooks.cancelled = [&stop] { return stop.load(); };
-            cli::buildFromField(surfaceArgs(state), *surface, hooks);
+            model::buildFromField(surfaceArgs(state), *surface, hooks);
             surface->tree.computeSummaries();
             // The subject now: the field goes back to `base` when this job ends.
             cli::FigureSubject subject = cli::figureSubject(*surface, state.input);

@@ -86,7 +86,7 @@ public:
     double iso() const { return iso_; }
     int depth() const { return depth_; }
     bool hasField() const { return bool(base_); }
-    /// The display window the build chose (cli::Surface::window), and its inversion.
+    /// The display window the build chose (model::Surface::window), and its inversion.
     const ValueWindow& window() const { return window_; }
     bool invertedGrey() const { return invertedGrey_; }
     /// The render settings of `state` for the current surface.
@@ -106,7 +106,7 @@ signals:
 
 private:
     void startBuild(const StudioState& state);
-    void setSurface(std::shared_ptr<const Octree> tree, const cli::Surface& look, cli::FigureSubject subject, int depth);
+    void setSurface(std::shared_ptr<const Octree> tree, const model::Surface& look, cli::FigureSubject subject, int depth);
     /// Runs `work` (a build job's body, on the worker) and hands a cancellation or an error
     /// back to the GUI thread (cancelled / failed) while `gen` is still the current build.
     void runBuildJob(unsigned gen, const std::function<void()>& work);
@@ -114,7 +114,7 @@ private:
     void handBack(unsigned gen, std::function<void()> then);
 
     InputInfo info_;
-    std::shared_ptr<cli::Surface> base_;  // holds the field read (lent to one build at a time)
+    std::shared_ptr<model::Surface> base_;  // holds the field read (lent to one build at a time)
     ValueWindow window_;
     bool invertedGrey_ = false;
     std::shared_ptr<const Octree> tree_;

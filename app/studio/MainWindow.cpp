@@ -9,7 +9,7 @@
 #include "SurfelView.h"
 #include "ViewInput.h"
 
-#include "SolidSpec.h"
+#include "octrace/model/SolidSpec.h"
 #include "octrace/csg/Solid.h"
 #include "octrace/util/Error.h"
 
@@ -579,7 +579,7 @@ void MainWindow::colouringChanged() {
     if (updating_) return;
     // The display window is chosen while building (the octree then keeps voxel values): a change
     // of the colouring that changes the window needs a build; otherwise a frame is enough.
-    const cli::SurfaceArgs a = surfaceArgs(state_);
+    const model::SurfaceSpec a = surfaceArgs(state_);
     const ValueWindow& file = engine_.info().fileWindow;
     const ValueWindow wanted = !state_.window.empty() ? a.window : (!a.colourGiven && a.colormap.empty()) ? file : ValueWindow{};
     const ValueWindow& now = engine_.window();
@@ -659,7 +659,7 @@ QString MainWindow::defaultCut(const QString& kind, const Box3& b) {
 void MainWindow::setCut(const QString& spec) {
     if (!spec.isEmpty()) {
         try {
-            cli::checkSolidArgument(spec.toStdString());
+            model::checkSolidArgument(spec.toStdString());
         } catch (const std::exception& e) {
             showMessage(QString::fromStdString(model::sayForStudio(e.what())), true);
             cutEdit_->setText(QString::fromStdString(state_.cut));

@@ -1,6 +1,6 @@
 #include "Session.h"
 
-#include "SolidSpec.h"
+#include "octrace/model/SolidSpec.h"
 #include "SurfaceOptions.h"
 #include "octrace/csg/Solid.h"
 #include "octrace/model/OptionTable.h"
@@ -199,7 +199,7 @@ StudioState parseSession(const QByteArray& json, const QString& baseFolder) {
     surface.text("cut", s.cut);
     if (!s.cut.empty()) {
         try {
-            cli::checkSolidArgument(s.cut);  // a primitive or relief:FILE, as --cut takes
+            model::checkSolidArgument(s.cut);  // a primitive or relief:FILE, as --cut takes
         } catch (const UsageError& e) {
             surface.fail("cut", QString::fromStdString(e.what()));
         }
@@ -251,7 +251,7 @@ StudioState parseSession(const QByteArray& json, const QString& baseFolder) {
     shading.text("window", s.window);
     if (!s.window.empty()) {
         try {
-            cli::displayWindow(s.window);
+            model::displayWindow(s.window);
         } catch (const UsageError& e) {
             shading.fail("window", QString::fromStdString(e.what()));
         }

@@ -1,6 +1,6 @@
 #include "StudioState.h"
 
-#include "Input.h"
+#include "octrace/model/Input.h"
 #include "SurfaceOptions.h"
 
 #include "octrace/io/CityReader.h"
@@ -34,8 +34,8 @@ Camera cameraFor(const StudioState& state, const Box3& surfaceBounds, int width,
     return cam;
 }
 
-cli::SurfaceArgs surfaceArgs(const StudioState& state) {
-    cli::SurfaceArgs a;
+model::SurfaceSpec surfaceArgs(const StudioState& state) {
+    model::SurfaceSpec a;
     a.colours = true;  // the studio colours its surface (window, colour map), as render does
     a.input = state.input;
     a.request.variable = state.variable;
@@ -48,16 +48,16 @@ cli::SurfaceArgs surfaceArgs(const StudioState& state) {
     a.colormap = state.colormap;
     if (!state.window.empty()) {
         a.windowName = state.window;
-        a.window = cli::displayWindow(state.window);
+        a.window = model::displayWindow(state.window);
     }
     if (state.ambient != StudioState().ambient) a.ambient = float(state.ambient);
-    a.lighting = state.lighting == "baked"     ? cli::SurfaceArgs::Lighting::Baked
-                 : state.lighting == "dynamic" ? cli::SurfaceArgs::Lighting::Dynamic
-                                               : cli::SurfaceArgs::Lighting::Auto;
+    a.lighting = state.lighting == "baked"     ? model::SurfaceSpec::Lighting::Baked
+                 : state.lighting == "dynamic" ? model::SurfaceSpec::Lighting::Dynamic
+                                               : model::SurfaceSpec::Lighting::Auto;
     a.bakeOptions.aoRays = state.bakeAo;
     a.bakeOptions.shadows = state.bakeShadows;
     if (state.shadows && state.lighting != "baked") a.shadows = true;
-    if (!state.cut.empty()) a.cuts.push_back(cli::SolidArgument(state.cut));  // relief:FILE read with the field
+    if (!state.cut.empty()) a.cuts.push_back(model::SolidArgument(state.cut));  // relief:FILE read with the field
     a.clip = state.clip && !state.cut.empty();
     return a;
 }
@@ -85,13 +85,13 @@ RenderSettings renderSettingsFor(const StudioState& state, bool transparent, con
     RenderSettings rs;
     vec4 bg = state.background;
     if (transparent) bg.a = 0.0f;
-    rs.background = cli::displayToLinear(bg);
-    cli::Surface look;
+    rs.background = model::displayToLinear(bg);
+    model::Surface look;
     look.window = window;
     look.invertedGrey = invertedGrey;
-    const cli::SurfaceArgs a = surfaceArgs(state);
-    cli::applyColour(a, look, rs);
-    cli::applyLighting(a, rs);
+    const model::SurfaceSpec a = surfaceArgs(state);
+    model::applyColour(a, look, rs);
+    model::applyLighting(a, rs);
     rs.lightCamera = state.light;
     rs.colourTolerance = state.colourTolerance;
     rs.branchUp = state.branchUp;
@@ -106,8 +106,8 @@ std::vector<std::string> renderArguments(const StudioState& state, const Camera&
     if (!state.time.empty()) args.insert(args.end(), {"--time", state.time});
     if (!state.series.empty()) args.insert(args.end(), {"--series", state.series});
     // An octree file fixes the iso value and the depth; a city model has no iso value.
-    if (!cli::isOctreeInput(state.input) && !io::isCityInput(state.input)) args.insert(args.end(), {"--iso", number(iso)});
-    if (!cli::isOctreeInput(state.input)) args.insert(args.end(), {"--depth", std::to_string(state.depth)});
+    if (!model::isOctreeInput(state.input) && !io::isCityInput(state.input)) args.insert(args.end(), {"--iso", number(iso)});
+    if (!model::isOctreeInput(state.input)) args.insert(args.end(), {"--depth", std::to_string(state.depth)});
     if (!state.cut.empty()) args.insert(args.end(), {"--cut", state.cut});
     if (state.clip && !state.cut.empty()) args.push_back("--clip");
     if (!state.lighting.empty()) args.insert(args.end(), {"--lighting", state.lighting});

@@ -86,10 +86,10 @@ Camera cameraFor(const StudioState& state, const Box3& surfaceBounds, int width,
 
 /// The CLI's surface options for `state` (input, variable, time, series, iso, depth, colour,
 /// colour map, display window).
-cli::SurfaceArgs surfaceArgs(const StudioState& state);
+model::SurfaceSpec surfaceArgs(const StudioState& state);
 
 /// The render settings of `state` (the CLI's conversion of the same options) for a surface
-/// whose display window the build chose (`window`, `invertedGrey`: cli::Surface's);
+/// whose display window the build chose (`window`, `invertedGrey`: model::Surface's);
 /// `transparent` makes the background's alpha 0.
 RenderSettings renderSettingsFor(const StudioState& state, bool transparent, const ValueWindow& window = {},
                                  bool invertedGrey = false);

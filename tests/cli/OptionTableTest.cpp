@@ -118,13 +118,13 @@ TEST(OptionTable, KeysAndFlagsAreUniqueAndEveryHelpStatesItsDefault) {
     }
 }
 
-TEST(OptionTable, CoreAndIoNameParametersNeverCliFlags) {
-    // A string literal of core/ or io/ that names a flag ("--depth") would show the studio's
+TEST(OptionTable, CoreIoAndThePipelineNameParametersNeverCliFlags) {
+    // A string literal of core/, io/ or app/model (the pipeline library) that names a flag ("--depth") would show the studio's
     // and Python's users a flag they do not have: messages name `depth` instead (Parameter.h).
     const std::filesystem::path root = std::filesystem::path(OCTRACE_SAMPLES).parent_path();
     const std::regex literal(R"("(?:[^"\\\n]|\\.)*")"), flag("--[a-z]");
     int files = 0;
-    for (const char* dir : {"core", "io"}) {
+    for (const char* dir : {"core", "io", "app/model"}) {
         for (const auto& e : std::filesystem::recursive_directory_iterator(root / dir)) {
             const std::string ext = e.path().extension().string();
             if (ext != ".cpp" && ext != ".h" && ext != ".inc") continue;

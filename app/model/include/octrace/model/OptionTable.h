@@ -142,7 +142,42 @@ inline constexpr Option crs{.key = "crs", .kind = OptionKind::Text, .flag = "crs
     .help = "city inputs: projected coordinate reference system to bring everything into, e.g. EPSG:28992",
     .commands = "render export build"};
 inline constexpr Option cut{.key = "cut", .kind = OptionKind::Text, .flag = "cut", .argument = "SOLID", .session = "surface.cut",
-    .label = "Cut-away", .help = "cut a solid away", .commands = "render export build"};
+    .label = "Solid", .help = "cut a solid away", .commands = "render export build"};
+
+inline constexpr Option clip{.key = "clip", .kind = OptionKind::Flag, .flag = "clip", .session = "surface.clip",
+    .help = "keep only what lies inside the `cut` solids instead of cutting them away", .commands = "render export build"};
+inline constexpr Option extendDown{.key = "extend_down", .kind = OptionKind::Flag, .flag = "extend-down",
+    .help = "geographic fields: extend each water column's deepest valid value down through the masked samples under it, "
+            "so that a finer sea floor (`cut` relief:FILE) bounds the water instead of the grid's own",
+    .commands = "render export build csg"};
+inline constexpr Option region{.key = "region", .kind = OptionKind::Text, .flag = "region", .argument = "LON0,LON1,LAT0,LAT1",
+    .defaultText = "the whole grid", .help = "geographic subregion in degrees, NetCDF only",
+    .commands = "render export build csg slice info"};
+inline constexpr Option depthRange{.key = "depth_range", .kind = OptionKind::Text, .flag = "depth-range", .argument = "Z0,Z1",
+    .defaultText = "every level", .help = "depth levels from Z0 to Z1 metres (positive down), NetCDF only",
+    .commands = "render export build slice info"};
+inline constexpr Option lodSelect{.key = "lod_select", .kind = OptionKind::Text, .flag = "lod-select", .argument = "LOD",
+    .defaultText = "each object's highest",
+    .help = "city inputs: level of detail to voxelize, e.g. 1, 2 or 2.2 (a prefix takes its sublevels)",
+    .commands = "render export build"};
+inline constexpr Option bake{.key = "bake", .kind = OptionKind::Flag, .flag = "bake",
+    .help = "bake diffuse lighting, shadows and ambient occlusion into the shell", .commands = "render export build"};
+
+// Colour.
+inline constexpr Option colour{.key = "colour", .kind = OptionKind::Text, .flag = "colour", .argument = "R,G,B",
+    .session = "shading.colour", .defaultText = "0.85,0.62,0.35; city inputs: per object and texture",
+    .help = "surface colour, sRGB components in [0,1], also over a city's own colours", .commands = "render export"};
+inline constexpr Option colormap{.key = "colormap", .kind = OptionKind::Text, .flag = "colormap", .argument = "NAME",
+    .session = "shading.colormap", .label = "Colour map", .defaultText = "uniform colour",
+    .help = "colour the surface by a colour map of the height (or of `colour_by`'s values)", .commands = "render export slice"};
+inline constexpr Option window{.key = "window", .kind = OptionKind::Text, .flag = "window", .argument = "NAME|C,W|none",
+    .session = "shading.window", .label = "CT window", .defaultText = "the window stored in a DICOM file",
+    .help = "grey the surface by a display window (a CT preset, a centre and width, or none)", .commands = "render export slice"};
+inline constexpr Option colourBy{.key = "colour_by", .kind = OptionKind::Text, .flag = "colour-by", .argument = "VAR",
+    .defaultText = "none", .help = "colour the isosurface by a second variable of the same file, sampled at each voxel",
+    .commands = "render export"};
+inline constexpr Option floor{.key = "floor", .kind = OptionKind::Flag, .flag = "floor",
+    .help = "also draw the sea floor and land where the variable is masked, under the isosurface", .commands = "render export"};
 
 // Rendering.
 inline constexpr Option renderer{.key = "renderer", .kind = OptionKind::Text, .flag = "renderer", .argument = "NAME",
@@ -196,10 +231,12 @@ inline constexpr Option missCoherence{.key = "miss_coherence", .kind = OptionKin
 inline constexpr Option repeat{.key = "repeat", .kind = OptionKind::Integer, .flag = "repeat", .argument = "N",
     .defaultValue = 1, .min = 1, .max = 1000,
     .help = "render N times and report the fastest as render_ms (benchmarks on a noisy machine)", .commands = "render"};
+inline constexpr Option size{.key = "size", .kind = OptionKind::Text, .flag = "size", .argument = "WxH",
+    .defaultText = "1600x1200", .help = "image size in pixels, `width` x `height`", .commands = "render slice"};
 inline constexpr Option width{.key = "width", .kind = OptionKind::Integer, .session = "export.width", .label = "Width",
-    .defaultValue = 1600, .min = 1, .max = 16384, .unit = "pixels", .help = "image width (--size WxH)", .commands = "render"};
+    .defaultValue = 1600, .min = 1, .max = 16384, .unit = "pixels", .help = "image width, the W of `size`", .commands = "render"};
 inline constexpr Option height{.key = "height", .kind = OptionKind::Integer, .session = "export.height", .label = "Height",
-    .defaultValue = 1200, .min = 1, .max = 16384, .unit = "pixels", .help = "image height (--size WxH)", .commands = "render"};
+    .defaultValue = 1200, .min = 1, .max = 16384, .unit = "pixels", .help = "image height, the H of `size`", .commands = "render"};
 
 // Sphere scenes in the object octree.
 inline constexpr Option octree{.key = "octree", .kind = OptionKind::Choice, .flag = "octree", .argument = "object|voxel",

@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-namespace octrace::cli {
+namespace octrace::model {
 
 /// A solid as a command names it: already made (a primitive; implicit, so a parsed Solid can
 /// be given where one is expected), or a spec still to resolve (relief:FILE needs the field).
@@ -34,4 +34,4 @@ Solid resolveSolid(const std::string& spec, const ScalarField::Geographic& world
 Solid resolveSolid(const SolidArgument& arg, const ScalarField::Geographic& world, const std::string& worldName,
                    std::uint64_t memoryBudget);
 
-}  // namespace octrace::cli
+}  // namespace octrace::model

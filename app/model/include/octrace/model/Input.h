@@ -9,7 +9,7 @@
 #include <memory>
 #include <string>
 
-namespace octrace::cli {
+namespace octrace::model {
 /// Reads INPUT: a file through io::readField, or "analytic:NAME[:SAMPLES]" (default 65 samples),
 /// or a sphere scene (isSphereInput) as its signed distance field (sphereDistanceField) with
 /// 2^depth + 5 samples along its longest side (`depth`: the octree depth it is built at).
@@ -34,4 +34,4 @@ Octree loadOctree(const std::string& input, std::uint64_t memoryBudget);
 /// than `req.memoryBudget` bytes, 0 = no limit, are left out or refused: io::describeInput);
 /// a city input in the CRS and LoD `city` asks for (io::describeCityInput).
 std::string describe(const std::string& input, const io::FieldRequest& req = {}, const io::CityRequest& city = {});
-}  // namespace octrace::cli
+}  // namespace octrace::model

@@ -1,4 +1,4 @@
-#include "SolidSpec.h"
+#include "octrace/model/SolidSpec.h"
 
 #include "octrace/csg/Relief.h"
 #include "octrace/io/ReliefReader.h"
@@ -7,7 +7,7 @@
 
 #include <sstream>
 
-namespace octrace::cli {
+namespace octrace::model {
 
 bool isSolidArgument(const std::string& spec) { return isSolidSpec(spec) || isReliefSpec(spec); }
 
@@ -38,4 +38,4 @@ Solid resolveSolid(const SolidArgument& arg, const ScalarField::Geographic& worl
     return arg.solid ? *arg.solid : resolveSolid(arg.spec, world, worldName, memoryBudget);
 }
 
-}  // namespace octrace::cli
+}  // namespace octrace::model

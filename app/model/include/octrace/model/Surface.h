@@ -1,0 +1,145 @@
+#pragma once
+/// @file Surface.h
+/// The pipeline's first steps, for every front end: a typed spec of what to read and how to
+/// build it (SurfaceSpec, filled by the CLI from argv, by the studio from its state, later by
+/// Python from keyword arguments, with the limits of the options table), and the steps that
+/// turn it into a field and a shell octree (read -> build -> cut -> bake -> colour), with
+/// progress and cancellation. No argv, no Qt; messages name settings by their keys
+/// (util/Parameter.h), which each front end says in its own words.
+#include "octrace/model/OptionTable.h"
+#include "octrace/model/SolidSpec.h"
+
+#include "octrace/build/CtPresets.h"
+#include "octrace/build/OctreeBuilder.h"
+#include "octrace/build/ScalarField.h"
+#include "octrace/csg/Solid.h"
+#include "octrace/io/CityReader.h"
+#include "octrace/io/FieldRequest.h"
+#include "octrace/lighting/Bake.h"
+#include "octrace/octree/Octree.h"
+#include "octrace/render/RenderSettings.h"
+#include "octrace/scene/Spheres.h"
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace octrace::model {
+
+/// What to read and how to build its surface. Defaults are the options table's.
+struct SurfaceSpec {
+    std::string input;
+    io::FieldRequest request;
+    std::optional<double> iso;
+    std::string isoPreset;  ///< --iso NAME (CtPresets.h): resolved once the field is read
+    /// --window: "" (not given: the file's window, if any, unless --colour or --colormap),
+    /// "none", a preset name (CtPresets.h), or the centre and width given as numbers.
+    std::string windowName;
+    ValueWindow window;
+    bool colourGiven = false;  ///< --colour / --color given
+    bool colours = false;      ///< the command colours the surface (has the colour options)
+    int depth = int(opt::depth.defaultValue), threads = int(opt::threads.defaultValue);
+    bool depthGiven = false;  // --depth given (an octree file input fixes the depth)
+    vec3 colour{0.85f, 0.62f, 0.35f};  // sRGB display values, as the user gives them
+    std::string colormap;              // empty: uniform colour, or the colour-by variable's default
+    std::string colourBy;              // --colour-by: second variable sampled at the voxels
+    float colourMin = std::numeric_limits<float>::quiet_NaN(), colourMax = std::numeric_limits<float>::quiet_NaN();
+    vec3 maskedColour{0.6f, 0.6f, 0.6f};      // sRGB
+    vec3 floorColour{0.55f, 0.5f, 0.45f};     // sRGB
+    bool floor = false;                // --floor: sea floor / land from the validity mask
+    std::uint64_t maxMemory = 0;  // --max-memory; 0: defaultMemoryBudget()
+    io::CityRequest city;         // --lod-select, --crs, --dem, --texture (city inputs)
+    int terrainDepth = 0;         // --terrain-depth (city inputs); 0: --depth
+    bool cityGiven = false;       // one of them (or --terrain-depth) was given
+    OctreeForm form = OctreeForm::Shell;  // --form
+    bool insideBelow = false;             // --inside below
+    bool formGiven = false;               // --form or --inside given
+    bool keepVolume = false;  // set by the command: buildSurface keeps a volume octree as it is (build, csg)
+    std::vector<SolidArgument> cuts;  // --cut, in order (SolidSpec.h: relief:FILE is read once the field is)
+    bool clip = false;        // --clip: keep the inside of the cuts instead
+    bool extendDown = false;  // --extend-down: water columns extended to the grid's bottom (extendColumnsDown)
+    bool bake = false;        // --bake: bake lighting into the shell
+    BakeOptions bakeOptions;  // --bake-light, --bake-ao, --bake-ao-distance, --bake-shadows
+    bool bakeLightGiven = false;
+    enum class Lighting { Auto, Baked, Dynamic } lighting = Lighting::Auto;  // --lighting (render)
+    std::optional<float> ambient;  // --ambient (render): diffuse is 1 - ambient, dynamic and baked
+    std::optional<bool> shadows;   // --shadows (render); unset: the scene's default (RenderSettings::shadows)
+};
+
+/// The window `text` names: a CT preset, "C,W", or "none" (an invalid window, which stops the
+/// file's own). Throws UsageError naming `window`.
+ValueWindow displayWindow(const std::string& text);
+/// sRGB display colour (as a user picks it) -> linear, alpha unchanged.
+vec4 displayToLinear(vec4 c);
+/// Refuses (InputError) a CT preset (`what`, e.g. "`iso` bone") for a field whose values are not
+/// Hounsfield units.
+void requireHounsfield(const ScalarField& f, const std::string& input, const std::string& what);
+/// The memory budget in bytes: spec.maxMemory, or the default share of physical memory.
+std::uint64_t memoryBudget(const SurfaceSpec& a);
+/// The first setting of `request` that chooses part of a field, as a message names it
+/// ("`var`", "`region`", ...), or null.
+const char* fieldOptionGiven(const io::FieldRequest& request);
+
+/// A field and the shell octree of its isosurface (with --colour-by its voxels' values, with
+/// --floor the sea floor / land merged in as VoxelMaterial::Floor).
+struct Surface {
+    ScalarField field;
+    double iso = 0.0;
+    Octree tree;
+    BuildReport report;
+    double loadMs = 0.0;
+    /// The display window that colours the surface (invalid: --colour / --colormap), and
+    /// whether its grey is inverted (MONOCHROME1); the octree then has voxel values.
+    ValueWindow window;
+    bool invertedGrey = false;
+    std::string windowSource;  ///< where the window comes from, for messages and stats
+    BakeReport bake;           ///< when lighting was baked here
+    /// A sphere input's spheres (the field is their distance field): the voxels take their
+    /// colours (sphereColoursAtVoxels). Shared, so that a rebuild from the same field keeps them.
+    std::shared_ptr<const SphereSet> spheres;
+};
+
+/// What an interactive caller gives a build: progress (0..1, from the builder's threads) and
+/// cancellation (BuildOptions::cancelled: CancelledError).
+struct BuildHooks {
+    std::function<void(double)> progress;
+    std::function<bool()> cancelled;
+};
+
+/// A city input (CityJSON, CityGML, footprints, DEM) is read into one projected CRS and
+/// voxelized (CityVoxelizer.h) with its per-voxel colours; `iso` and `var` are refused.
+/// An octree file (.oct) is read as it is (settings that choose the field or the depth are
+/// refused: UsageError). Otherwise reads a.input, chooses the iso value when none was given
+/// (the middle of the valid range, said in the log) or resolves a preset (`iso` skin:
+/// InputError unless the field is in HU), chooses the display window (`window`, else the file's
+/// own unless a colour was given; presets need HU too) and builds the octree in a.form (with
+/// voxel values when a window colours it), within memoryBudget(a): a read or build that would
+/// need more is refused (LimitError). With cuts the volume form is built (an octree file must
+/// hold one: InputError otherwise) and each solid is subtracted from it (clip: intersected
+/// with it). A volume octree becomes its shell (extractShell) unless a.keepVolume. With bake,
+/// or baked lighting on an octree without baked light, the shell's lighting is baked
+/// (lighting/Bake.h; UsageError for a kept volume). Then `colour_by`'s variable, read with the
+/// same request (InputError for one on another grid; UsageError beside a window), is sampled
+/// at the voxels, and `floor` merges in the sea floor and land. Throws as loadField(),
+/// buildOctree(), csg() and bakeLighting().
+Surface buildSurface(const SurfaceSpec& a, const BuildHooks& hooks = {});
+
+/// buildSurface's two steps for a field input (not an octree file or a city), for callers that
+/// build again and again from one read: readSurfaceField reads a.input into s.field (s.loadMs);
+/// buildFromField does the rest from s.field with `hooks`. Throw as buildSurface.
+void readSurfaceField(const SurfaceSpec& a, Surface& s);
+void buildFromField(const SurfaceSpec& a, Surface& s, const BuildHooks& hooks = {});
+
+/// The colour settings as RenderSettings (linear RGB): colour, colour map (by default, with
+/// voxel values of a second variable, the one for that variable: defaultColormap in
+/// Shading.h), its range, the masked and floor colours, and the surface's display window.
+void applyColour(const SurfaceSpec& a, const Surface& s, RenderSettings& settings);
+/// The lighting settings as RenderSettings: baked light unless dynamic, the ambient share and
+/// the diffuse (1 - ambient), shadows as given.
+void applyLighting(const SurfaceSpec& a, RenderSettings& settings);
+
+}  // namespace octrace::model
