@@ -764,7 +764,6 @@ void MainWindow::showState() {
     lightingCombo_->setCurrentIndex(std::max(0, lightingCombo_->findData(QString::fromStdString(state_.lighting))));
     bakeAoSpin_->setValue(state_.bakeAo);
     bakeShadowsCheck_->setChecked(state_.bakeShadows);
-    configure(bakeShadowsCheck_, model::opt::bakeShadows);
     shadowsCheck_->setChecked(state_.shadows);
     colourToleranceSpin_->setValue(state_.colourTolerance);
     branchUpSpin_->setValue(state_.branchUp);
