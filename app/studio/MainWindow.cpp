@@ -416,6 +416,17 @@ QWidget* MainWindow::buildControls() {
     renderForm->addRow(tr("Right pane"), secondCombo_);
     // Coherence (render --colour-tolerance, --branch-up, --miss-coherence): enabled for the
     // renderers that have it.
+    colourCoherenceCheck_ = new QCheckBox(tr("average pixels between two alike"), renderBox);
+    colourCoherenceCheck_->setObjectName(QStringLiteral("colourCoherenceCheck"));
+    colourCoherenceCheck_->setChecked(state_.colourCoherence);
+    configure(colourCoherenceCheck_, model::opt::colourCoherence);
+    connect(colourCoherenceCheck_, &QCheckBox::toggled, this, [this](bool on) {
+        if (updating_) return;
+        state_.colourCoherence = on;
+        showCoherence();
+        requestRender(false);
+    });
+    renderForm->addRow(tr(model::opt::colourCoherence.label), colourCoherenceCheck_);
     colourToleranceSpin_ = new QDoubleSpinBox(renderBox);
     colourToleranceSpin_->setObjectName(QStringLiteral("colourToleranceSpin"));
     configure(colourToleranceSpin_, model::opt::colourTolerance, 1);
@@ -596,7 +607,8 @@ void MainWindow::showCoherence() {
     const auto any = [&panes](bool (Renderer::*has)() const) {
         return std::any_of(panes.begin(), panes.end(), [has](const auto& r) { return ((*r).*has)(); });
     };
-    colourToleranceSpin_->setEnabled(any(&Renderer::fillsByColour));
+    colourCoherenceCheck_->setEnabled(any(&Renderer::colourCoherence));
+    colourToleranceSpin_->setEnabled(any(&Renderer::fillsByColour) || (state_.colourCoherence && any(&Renderer::colourCoherence)));
     branchUpSpin_->setEnabled(any(&Renderer::trajectoryCoherence));
     missCoherenceCheck_->setEnabled(any(&Renderer::missCoherence));
 }
@@ -765,6 +777,7 @@ void MainWindow::showState() {
     bakeAoSpin_->setValue(state_.bakeAo);
     bakeShadowsCheck_->setChecked(state_.bakeShadows);
     shadowsCheck_->setChecked(state_.shadows);
+    colourCoherenceCheck_->setChecked(state_.colourCoherence);
     colourToleranceSpin_->setValue(state_.colourTolerance);
     branchUpSpin_->setValue(state_.branchUp);
     missCoherenceCheck_->setChecked(state_.missCoherence);

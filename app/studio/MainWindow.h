@@ -135,7 +135,8 @@ private:
               *colormapCombo_ = nullptr, *windowCombo_ = nullptr, *isoPresetCombo_ = nullptr, *lightingCombo_ = nullptr,
               *cutCombo_ = nullptr;
     QLineEdit* cutEdit_ = nullptr;
-    QCheckBox *clipCheck_ = nullptr, *bakeShadowsCheck_ = nullptr, *shadowsCheck_ = nullptr, *missCoherenceCheck_ = nullptr;
+    QCheckBox *clipCheck_ = nullptr, *bakeShadowsCheck_ = nullptr, *shadowsCheck_ = nullptr, *missCoherenceCheck_ = nullptr,
+              *colourCoherenceCheck_ = nullptr;
     QDoubleSpinBox *ambientSpin_ = nullptr, *colourToleranceSpin_ = nullptr;
     QSpinBox *bakeAoSpin_ = nullptr, *branchUpSpin_ = nullptr;
     QLineEdit* timeEdit_ = nullptr;

@@ -139,6 +139,7 @@ QByteArray sessionJson(const StudioState& s) {
     QJsonObject renderers{{"main", QString::fromStdString(s.renderer)},
                           {"second", QString::fromStdString(s.secondRenderer)},
                           {"split", s.split},
+                          {member(model::opt::colourCoherence), s.colourCoherence},
                           {member(model::opt::colourTolerance), double(s.colourTolerance)},
                           {member(model::opt::branchUp), s.branchUp},
                           {member(model::opt::missCoherence), s.missCoherence}};
@@ -212,6 +213,7 @@ StudioState parseSession(const QByteArray& json, const QString& baseFolder) {
     renderers.text("second", s.secondRenderer);
     if (s.secondRenderer != kOpenGlPane) checkRenderer(renderers, "second", s.secondRenderer);
     renderers.flag("split", s.split);
+    renderers.onOff(model::opt::colourCoherence, s.colourCoherence);
     renderers.setting(model::opt::colourTolerance, s.colourTolerance);
     renderers.setting(model::opt::branchUp, s.branchUp);
     renderers.onOff(model::opt::missCoherence, s.missCoherence);

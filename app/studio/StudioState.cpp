@@ -93,6 +93,7 @@ RenderSettings renderSettingsFor(const StudioState& state, bool transparent, con
     model::applyColour(a, look, rs);
     model::applyLighting(a, rs);
     rs.lightCamera = state.light;
+    rs.colourCoherence = state.colourCoherence;
     rs.colourTolerance = state.colourTolerance;
     rs.branchUp = state.branchUp;
     rs.missCoherence = state.missCoherence;
@@ -128,7 +129,9 @@ std::vector<std::string> renderArguments(const StudioState& state, const Camera&
     // The coherence options, where they differ from the defaults and the renderer has them.
     const StudioState defaults;
     const std::unique_ptr<Renderer> renderer = makeRenderer(state.renderer);
-    if (renderer->fillsByColour() && state.colourTolerance != defaults.colourTolerance)
+    const bool colourCoherence = state.colourCoherence && renderer->colourCoherence() && !renderer->fillsByColour();
+    if (colourCoherence) args.emplace_back("--colour-coherence");
+    if ((renderer->fillsByColour() || colourCoherence) && state.colourTolerance != defaults.colourTolerance)
         args.insert(args.end(), {"--colour-tolerance", number(state.colourTolerance)});
     if (renderer->trajectoryCoherence() && state.branchUp != defaults.branchUp)
         args.insert(args.end(), {"--branch-up", std::to_string(state.branchUp)});

@@ -32,6 +32,7 @@ struct StudioState {
     bool split = false;
     // Coherence of the renderers that have it (the CLI's --colour-tolerance, --branch-up,
     // --miss-coherence; Renderer::fillsByColour, trajectoryCoherence, missCoherence).
+    bool colourCoherence = false;  ///< on full, linear, area and their exact variants (the +colour ones have it)
     float colourTolerance = float(model::opt::colourTolerance.defaultValue);  ///< 8-bit sRGB units
     int branchUp = int(model::opt::branchUp.defaultValue);
     bool missCoherence = model::opt::missCoherence.defaultChoice() == "on";

@@ -498,6 +498,35 @@ private slots:
         QVERIFY(!window_->commandLine(QStringLiteral("x.png"), 10, 10).join(QLatin1Char(' ')).contains(QStringLiteral("coherence")));
     }
 
+    void colourCoherenceOnFullMatchesTheCli() {
+        // The CLI's --colour-coherence on a renderer without +colour: the check box, its session
+        // member and the command line the studio gives.
+        auto* combo = window_->findChild<QComboBox*>(QStringLiteral("rendererCombo"));
+        auto* check = window_->findChild<QCheckBox*>(QStringLiteral("colourCoherenceCheck"));
+        auto* tolerance = window_->findChild<QDoubleSpinBox*>(QStringLiteral("colourToleranceSpin"));
+        QVERIFY(combo && check && tolerance);
+        combo->setCurrentText(QStringLiteral("direct"));
+        QVERIFY(!check->isEnabled());
+        combo->setCurrentText(QStringLiteral("full"));
+        QVERIFY(check->isEnabled() && !tolerance->isEnabled());
+        waitFrame();
+        const QImage before = window_->view(0)->image();
+        check->setChecked(true);
+        QVERIFY(tolerance->isEnabled());
+        tolerance->setValue(40.0);
+        waitFrame();
+        QVERIFY(window_->state().colourCoherence);
+        QVERIFY(window_->view(0)->image() != before);
+        const QString line = window_->commandLine(QStringLiteral("x.png"), 10, 10).join(QLatin1Char(' '));
+        QVERIFY2(line.contains(QStringLiteral("--colour-coherence --colour-tolerance 40")), qPrintable(line));
+        exportEqualsCli(QStringLiteral("colour-coherence"), 220, 160, false);
+        QVERIFY(octrace::studio::parseSession(octrace::studio::sessionJson(window_->state())).colourCoherence);
+        check->setChecked(false);
+        tolerance->setValue(3.0);
+        waitFrame();
+        QVERIFY(!window_->commandLine(QStringLiteral("x.png"), 10, 10).join(QLatin1Char(' ')).contains(QStringLiteral("coherence")));
+    }
+
     void cutAwayMatchesTheCli() {
         auto* cut = window_->findChild<QComboBox*>(QStringLiteral("cutCombo"));
         auto* edit = window_->findChild<QLineEdit*>(QStringLiteral("cutEdit"));

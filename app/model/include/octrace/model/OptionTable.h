@@ -201,7 +201,7 @@ inline constexpr Option level{.key = "level", .kind = OptionKind::Integer, .flag
     .help = "draw the octree at level L (at most `depth`) at the finest, for previews", .commands = "render export",
     .renderers = &Renderer::multiResolution};
 inline constexpr Option colourCoherence{.key = "colour_coherence", .kind = OptionKind::Flag, .flag = "colour-coherence",
-    .help = "colour coherence on the discrete ray casters: a pixel between two neighbours of nearly the same colour gets "
+    .session = "renderers.colour_coherence", .label = "Colour coherence", .help = "colour coherence on the discrete ray casters: a pixel between two neighbours of nearly the same colour gets "
             "their average untraced (on in area+colour)",
     .commands = "render", .renderers = &Renderer::colourCoherence, .renderersSaid = "the discrete ray casters"};
 inline constexpr Option colourFillBackground{.key = "colour_fill_background", .kind = OptionKind::Flag,
