@@ -20,6 +20,7 @@
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDialog>
+#include <QDockWidget>
 #include <QGroupBox>
 #include <QTimer>
 #include <QDoubleSpinBox>
@@ -616,6 +617,28 @@ private slots:
         QCOMPARE(window_->engine().tree(), tree);
         QCOMPARE(octrace::studio::sessionJson(window_->state()), before);  // still the torus, as shown
         QVERIFY(window_->findChild<QWidget*>(QStringLiteral("errorBox")));
+        for (auto* box : window_->findChildren<QWidget*>(QStringLiteral("errorBox"))) box->close();
+    }
+
+    void messagesNameTheStudiosControlsNotTheCliFlags() {
+        // Core, io and the pipeline name settings by key; the studio says its controls' labels.
+        // A log message of the build (the iso value chosen for the sample opened first) ...
+        auto* messages = window_->findChild<QDockWidget*>(QStringLiteral("messagesDock"))->findChild<QPlainTextEdit*>();
+        QVERIFY(messages);
+        QVERIFY2(messages->toPlainText().contains(QStringLiteral("no 'Iso value' given")), qPrintable(messages->toPlainText()));
+        QVERIFY(!messages->toPlainText().contains(QStringLiteral("--iso")));
+        // ... and an error of the reader: a time step asked of a NRRD volume.
+        auto* time = window_->findChild<QLineEdit*>(QStringLiteral("timeEdit"));
+        QVERIFY(time);
+        QSignalSpy failed(&window_->engine(), &Engine::failed);
+        time->setText(QStringLiteral("3"));
+        emit time->editingFinished();
+        QVERIFY(failed.wait(kWaitMs));
+        const QString error = failed.takeFirst().at(0).toString();
+        QVERIFY2(error.contains(QStringLiteral("'Time' chooses a NetCDF time step")), qPrintable(error));
+        QVERIFY2(!error.contains(QStringLiteral("--time")) && !error.contains(QLatin1Char('`')), qPrintable(error));
+        time->setText(QString());
+        emit time->editingFinished();
         for (auto* box : window_->findChildren<QWidget*>(QStringLiteral("errorBox"))) box->close();
     }
 

@@ -49,7 +49,7 @@ struct Option {
     double min = -kUnbounded, max = kUnbounded;
     bool minOpen = false, maxOpen = false;  ///< the end itself is outside
     const char* choices = "";   ///< Choice: the words, separated by '|'
-    const char* unit = "";      ///< Integer, Number: "degrees", "pixels" ("" none)
+    const char* unit = "";      ///< Integer, Number: "degrees", "pixels"; Text: what defaultValue counts ("" none)
     const char* help = "";      ///< one line, without the range and the default
     const char* commands = "";  ///< the CLI commands that take it, separated by spaces
     RendererCapability renderers = nullptr;  ///< non-null: only renderers with it read the option
