@@ -37,7 +37,11 @@ public:
                                   return hit;
                               });
     }
-    bool drawsSpheres() const override { return quantized_; }
+    RendererTraits traits() const override {
+        RendererTraits t;
+        t.drawsSpheres = quantized_;  // the quantized reference also traces the object octree
+        return t;
+    }
     /// Sphere scenes: the recursive parametric traversal of the object octree.
     RenderStats renderSpheres(const ObjectOctree& tree, const Camera& camera, const RenderSettings& settings,
                               Frame& frame) const override {

@@ -16,36 +16,51 @@
 
 namespace octrace {
 
+/// What a renderer draws and which parts of RenderSettings beyond the shared ones (camera,
+/// colours, light, background, threads) it reads. Each renderer declares it once, in traits();
+/// the CLI's warnings and help, the studio's enabled controls and the options table's
+/// `renderers` field read it through the accessors of Renderer.
+struct RendererTraits {
+    /// Rays per pixel; false for the direct (object-order) renderers: RenderStats::rays is 0
+    /// and us-per-ray figures do not apply.
+    bool tracesRays = true;
+    bool drawsVoxels = true;   ///< render() draws the voxel octree
+    bool drawsSpheres = false; ///< renderSpheres() draws sphere scenes (samples, bounces, shadows)
+    /// RenderSettings::lodPixels and level (Lod.h); the others throw UsageError when asked for a cut.
+    bool levelOfDetail = true;
+    /// RenderSettings::colourCoherence, colourTolerance, colourFillsBackground (the discrete ray
+    /// casters); the CLI refuses --colour-coherence for the others.
+    bool colourCoherence = false;
+    /// Colour coherence whatever RenderSettings::colourCoherence says (the +colour variants), so
+    /// that colourTolerance applies without it.
+    bool colourAlways = false;
+    /// RenderSettings::branchUp (trajectory coherence: linear and area and their variants).
+    bool trajectoryCoherence = false;
+    /// RenderSettings::missCoherence (the approximate linear and area and their +colour variants).
+    bool missCoherence = false;
+};
+
 class Renderer {
 public:
     virtual ~Renderer() = default;
     virtual std::string name() const = 0;
-    /// False for the direct (object-order) renderers: they trace no rays, RenderStats::rays is
-    /// 0 and us-per-ray figures do not apply.
-    virtual bool tracesRays() const { return true; }
-    /// Whether RenderSettings::lodPixels / level are honoured (Lod.h); the others throw
-    /// UsageError when asked for a cut.
-    virtual bool multiResolution() const { return true; }
-    /// Whether RenderSettings::colourCoherence is honoured (the discrete ray casters); the CLI
-    /// refuses the option for the others.
-    virtual bool colourCoherence() const { return false; }
-    /// Whether it always fills pixels by colour coherence (the +colour variants), so that
-    /// RenderSettings::colourTolerance applies without RenderSettings::colourCoherence.
-    virtual bool fillsByColour() const { return false; }
-    /// Whether RenderSettings::branchUp is honoured (trajectory coherence: linear and area and
-    /// their exact and +colour variants).
-    virtual bool trajectoryCoherence() const { return false; }
-    /// Whether RenderSettings::missCoherence is honoured (the approximate linear and area and
-    /// their +colour variants; never the exact ones).
-    virtual bool missCoherence() const { return false; }
+    /// What it draws and reads (the defaults: a ray caster of voxels with multi-resolution).
+    virtual RendererTraits traits() const { return {}; }
+    // The traits one by one, for code that names a capability (e.g. voxelRenderersThat).
+    bool tracesRays() const { return traits().tracesRays; }
+    bool multiResolution() const { return traits().levelOfDetail; }
+    bool colourCoherence() const { return traits().colourCoherence; }
+    bool fillsByColour() const { return traits().colourAlways; }
+    bool trajectoryCoherence() const { return traits().trajectoryCoherence; }
+    bool missCoherence() const { return traits().missCoherence; }
     /// Renders into `frame` (resized to the camera's size). Deterministic: the result does not
     /// depend on settings.threads. Thread-safe for distinct frames.
     virtual RenderStats render(const Octree& octree, const Camera& camera, const RenderSettings& settings,
                                Frame& frame) const = 0;
     /// Whether renderSpheres draws sphere scenes (reference, samet, beam).
-    virtual bool drawsSpheres() const { return false; }
+    bool drawsSpheres() const { return traits().drawsSpheres; }
     /// Whether render() draws the voxel octree (every renderer but the brute-force sphere oracle).
-    virtual bool drawsVoxels() const { return true; }
+    bool drawsVoxels() const { return traits().drawsVoxels; }
     /// Renders a sphere scene through its object octree: hitId is the sphere index of the
     /// pixel's first sample, depth that sample's distance, rgba the average of the samples
     /// (RenderSettings::samples), shaded with Whitted's rays (bounces, shadows). Deterministic

@@ -8,7 +8,11 @@ class DirectRenderer final : public Renderer {
 public:
     explicit DirectRenderer(bool frontToBack) : frontToBack_(frontToBack) {}
     std::string name() const override;
-    bool tracesRays() const override { return false; }
+    RendererTraits traits() const override {
+        RendererTraits t;
+        t.tracesRays = false;
+        return t;
+    }
     RenderStats render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
                        Frame& frame) const override;
 

@@ -624,14 +624,18 @@ class SphereRenderer final : public Renderer {
 public:
     SphereRenderer(SphereTracer t, std::string name) : tracer_(t), name_(std::move(name)) {}
     std::string name() const override { return name_; }
-    bool multiResolution() const override { return false; }
-    bool drawsSpheres() const override { return true; }
+    RendererTraits traits() const override {
+        RendererTraits t;
+        t.levelOfDetail = false;
+        t.drawsSpheres = true;
+        t.drawsVoxels = tracer_ != SphereTracer::BruteForce;  // the brute-force oracle: spheres only
+        return t;
+    }
     RenderStats render(const Octree& tree, const Camera& camera, const RenderSettings& settings, Frame& frame) const override {
         if (tracer_ == SphereTracer::BruteForce)
             throw UsageError("renderer " + name_ + " draws sphere scenes (object octree) only: give a .pdb, .cif, sphereflake:L or random:N input");
         return renderVoxelTracer(tracer_ == SphereTracer::Beam ? VoxelTracer::Beam : VoxelTracer::Samet, name_, tree, camera, settings, frame);
     }
-    bool drawsVoxels() const override { return tracer_ != SphereTracer::BruteForce; }
     RenderStats renderSpheres(const ObjectOctree& tree, const Camera& camera, const RenderSettings& settings,
                               Frame& frame) const override {
         return renderSphereScene(tracer_, name_, tree, camera, settings, frame);

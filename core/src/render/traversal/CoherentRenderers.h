@@ -9,11 +9,15 @@ public:
     enum class Pattern { Full, Linear, Area };
     DiscreteRenderer(Pattern pattern, bool exact, bool colour) : pattern_(pattern), exact_(exact), colour_(colour) {}
     std::string name() const override;
-    bool multiResolution() const override { return pattern_ == Pattern::Full; }
-    bool colourCoherence() const override { return true; }
-    bool fillsByColour() const override { return colour_; }
-    bool trajectoryCoherence() const override { return pattern_ != Pattern::Full; }
-    bool missCoherence() const override { return pattern_ != Pattern::Full && !exact_; }
+    RendererTraits traits() const override {
+        RendererTraits t;
+        t.levelOfDetail = pattern_ == Pattern::Full;
+        t.colourCoherence = true;
+        t.colourAlways = colour_;
+        t.trajectoryCoherence = pattern_ != Pattern::Full;
+        t.missCoherence = pattern_ != Pattern::Full && !exact_;  // never the exact variants
+        return t;
+    }
     RenderStats render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
                        Frame& frame) const override;
 
