@@ -75,11 +75,11 @@ OptionSpec tableOption(const model::Option& o, std::function<void(const std::str
 }
 
 void warnUnused(const OptionParser& p, const Renderer& renderer, const std::string& rendererName,
-                const std::function<bool(const model::Option&)>& skip) {
+                const std::function<bool(std::string_view key)>& isOn) {
     for (const std::string& name : p.given()) {
         const model::Option* o = model::findFlag(p.command(), name);
-        if (!o || (skip && skip(*o))) continue;
-        if (auto w = model::unusedWarning(*o, renderer, rendererName)) log::warning(*w);
+        if (!o) continue;
+        if (auto w = model::unusedWarning(*o, renderer, rendererName, isOn)) log::warning(*w);
     }
 }
 

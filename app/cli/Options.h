@@ -45,10 +45,10 @@ inline double tableNumber(const model::Option& o, const std::string& text) { ret
 inline int tableInt(const model::Option& o, const std::string& text) { return model::parseInteger(o, text); }
 inline bool tableOnOff(const model::Option& o, const std::string& text) { return model::parseChoice(o, text) == "on"; }
 
-/// Warns (log) for each option given in `p`'s last parse that `renderer` does not read
-/// (model::unusedWarning), skipping those for which `skip` returns true.
+/// Warns (log) for each option given in `p`'s last parse that `renderer` does not read, or
+/// whose `needs` option is off (model::unusedWarning; isOn(key) says which Flag options are on).
 void warnUnused(const OptionParser& p, const Renderer& renderer, const std::string& rendererName,
-                const std::function<bool(const model::Option&)>& skip = {});
+                const std::function<bool(std::string_view key)>& isOn = {});
 
 // Strict value parsers; they throw UsageError naming the option and the text.
 double parseNumber(const std::string& option, const std::string& text);

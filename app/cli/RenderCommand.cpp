@@ -38,7 +38,8 @@ std::string vecText(const dvec3& v) {
 
 struct RenderArgs : SurfaceArgs {
     FigureArgs figure;
-    std::string output, statsPath, rendererName = model::opt::renderer.defaultText;
+    std::string output, statsPath, rendererName = model::opt::renderer.defaultText;  // as given, for messages
+    RendererName renderer = resolveRendererName(model::opt::renderer.defaultText);
     int width = int(model::opt::width.defaultValue), height = int(model::opt::height.defaultValue);
     std::optional<dvec3> cameraPos, lookAt, up;
     double fov = model::opt::fov.defaultValue;
@@ -55,7 +56,8 @@ struct RenderArgs : SurfaceArgs {
     int branchUp = int(model::opt::branchUp.defaultValue);
     bool missCoherence = model::opt::missCoherence.defaultChoice() == "on";
     int repeat = int(model::opt::repeat.defaultValue);
-    std::string baseline;
+    std::string baseline;  // as given; empty: none
+    RendererName baselineRenderer;
     // Sphere scenes.
     std::string octreeKind;  // "object", "voxel" or empty: by the renderer
     int leafObjects = int(model::opt::leafObjects.defaultValue);
@@ -72,9 +74,10 @@ OptionParser makeParser(RenderArgs& a) {
     addLightingOption(p, a);
     addBakeOptions(p, a);
     p.add(tableOption(model::opt::renderer, [&](const std::string& v) {
-        makeRenderer(v);  // validates the name
+        a.renderer = resolveRendererName(v);
         a.rendererName = v;
-    }, "one of " + joinNames(rendererNames())));
+    }, "one of " + joinNames(rendererNames()) + "; " + voxelRenderersThat(&Renderer::colourCoherence) +
+           " take the suffix +colour, which turns --colour-coherence on (area+colour is paper A's)"));
     p.add({"size", "WxH", "image size in pixels, each side " + model::opt::width.rangeText() + " (default " +
            model::opt::width.defaultSaid() + "x" + model::opt::height.defaultSaid() + ")",
            [&](const std::string& v) { parseSize("size", v, a.width, a.height); }});
@@ -119,7 +122,7 @@ OptionParser makeParser(RenderArgs& a) {
     p.add(tableOption(model::opt::repeat, [&](const std::string& v) { a.repeat = tableInt(model::opt::repeat, v); }));
     p.add({"baseline", "NAME", "also render with renderer NAME, alternating with the main one --repeat times, and report baseline_render_ms, speedup_over_baseline and baseline_differing_pixels (pixels whose colour differs) (default: none)",
            [&](const std::string& v) {
-               makeRenderer(v);
+               a.baselineRenderer = resolveRendererName(v);
                a.baseline = v;
            }});
     p.add(tableOption(model::opt::octree, [&](const std::string& v) { a.octreeKind = model::parseChoice(model::opt::octree, v); }));
@@ -195,20 +198,21 @@ struct RepeatedRender {
     std::uint64_t baselineDiffering = 0;  // pixels whose colour differs from the baseline's
 };
 
-RepeatedRender renderRepeated(const RenderArgs& a, Frame& frame, const std::function<RenderStats(const Renderer&, Frame&)>& draw) {
+RepeatedRender renderRepeated(const RenderArgs& a, Frame& frame,
+                              const std::function<RenderStats(const Renderer&, const RendererName&, Frame&)>& draw) {
     RepeatedRender r;
-    r.renderer = makeRenderer(a.rendererName);
+    r.renderer = makeRenderer(a.renderer.renderer);
     const Renderer& renderer = *r.renderer;
-    std::unique_ptr<Renderer> base = a.baseline.empty() ? nullptr : makeRenderer(a.baseline);
+    std::unique_ptr<Renderer> base = a.baseline.empty() ? nullptr : makeRenderer(a.baselineRenderer.renderer);
     const Renderer* baseline = base.get();
     Frame baseFrame;
-    r.stats = draw(renderer, frame);
+    r.stats = draw(renderer, a.renderer, frame);
     r.times.push_back(r.stats.renderMs);
-    if (baseline) r.baselineMs = draw(*baseline, baseFrame).renderMs;
+    if (baseline) r.baselineMs = draw(*baseline, a.baselineRenderer, baseFrame).renderMs;
     for (int i = 1; i < a.repeat; ++i) {
-        r.times.push_back(draw(renderer, frame).renderMs);
+        r.times.push_back(draw(renderer, a.renderer, frame).renderMs);
         r.stats.renderMs = std::min(r.stats.renderMs, r.times.back());
-        if (baseline) r.baselineMs = std::min(r.baselineMs, draw(*baseline, baseFrame).renderMs);
+        if (baseline) r.baselineMs = std::min(r.baselineMs, draw(*baseline, a.baselineRenderer, baseFrame).renderMs);
     }
     std::sort(r.times.begin(), r.times.end());
     if (baseline) r.baselineDiffering = compareImages(frame, baseFrame).differingPixels;
@@ -278,15 +282,15 @@ int renderObjectOctree(const RenderArgs& a) {
     rs.threads = a.threads;
     rs.background = displayToLinear(a.background);
     if (a.light) rs.lightCamera = *a.light;
-    rs.samples = a.samples;
-    rs.bounces = a.bounces;
+    rs.spheres.samples = a.samples;
+    rs.spheres.bounces = a.bounces;
     rs.shadows = a.shadows;  // unset: on (SphereRenderers.cpp)
 
-    for (const std::string& name : {a.rendererName, a.baseline})
-        if (!name.empty() && !makeRenderer(name)->drawsSpheres())
+    for (const auto& [name, resolved] : {std::pair{a.rendererName, a.renderer}, std::pair{a.baseline, a.baselineRenderer}})
+        if (!name.empty() && !makeRenderer(resolved.renderer)->drawsSpheres())
             throw UsageError("renderer " + name + " draws voxel octrees only; the object octree takes reference, samet or beam (or give --octree voxel)");
     Frame frame;
-    const RepeatedRender rep = renderRepeated(a, frame, [&](const Renderer& r, Frame& f) {
+    const RepeatedRender rep = renderRepeated(a, frame, [&](const Renderer& r, const RendererName&, Frame& f) {
         return r.renderSpheres(tree, cam, rs, f);
     });
     const RenderStats& st = rep.stats;
@@ -368,7 +372,7 @@ int runRender(const std::vector<std::string>& args) {
     if (a.orthoHeight && !a.ortho) throw UsageError("--ortho-height needs --projection ortho");
     checkFigureOptions(a.figure, a.output);
     if (isSphereInput(a.input)) {
-        const bool object = a.octreeKind.empty() ? makeRenderer(a.rendererName)->drawsSpheres() : a.octreeKind == "object";
+        const bool object = a.octreeKind.empty() ? makeRenderer(a.renderer.renderer)->drawsSpheres() : a.octreeKind == "object";
         if (object) return renderObjectOctree(a);
     } else if (!a.octreeKind.empty()) {
         throw UsageError("--octree applies to sphere inputs (.pdb, .cif, sphereflake:L, random:N), not to " + a.input);
@@ -377,19 +381,19 @@ int runRender(const std::vector<std::string>& args) {
         throw UsageError(a.sphereOptions.front() + " applies to sphere scenes in the object octree (renderers reference, samet, beam)");
     if (a.level > a.depth) throw UsageError("--level " + std::to_string(a.level) + " is deeper than --depth " + std::to_string(a.depth));
     const bool multires = a.lod > 0.0 || (a.level >= 0 && a.level < a.depth);
-    const std::unique_ptr<Renderer> chosen = makeRenderer(a.rendererName);
+    const std::unique_ptr<Renderer> chosen = makeRenderer(a.renderer.renderer);
     if (a.colourCoherence && !chosen->colourCoherence())
         throw UsageError("--colour-coherence: renderer " + a.rendererName + " does not fill pixels by colour (use " +
                          voxelRenderersThat(&Renderer::colourCoherence) + ")");
     // Options the renderer does not read are accepted (a script may set them always), but told.
-    // --colour-coherence makes any discrete caster read the colour coherence settings.
-    warnUnused(parser, *chosen, a.rendererName, [&](const model::Option& o) {
-        return a.colourCoherence && o.renderers == &Renderer::fillsByColour;
+    // A +colour name turns colour coherence on as --colour-coherence does.
+    warnUnused(parser, *chosen, a.rendererName, [&](std::string_view key) {
+        return key == model::opt::colourCoherence.key && (a.colourCoherence || a.renderer.colourCoherence);
     });
     if (multires) {
-        for (const std::string& r : {a.rendererName, a.baseline})
-            if (!r.empty() && !makeRenderer(r)->multiResolution())
-                throw UsageError("--lod/--level: renderer " + r + " has no multi-resolution mode (use " + voxelRenderersThat(&Renderer::multiResolution) + ")");
+        for (const auto& [name, resolved] : {std::pair{a.rendererName, a.renderer}, std::pair{a.baseline, a.baselineRenderer}})
+            if (!name.empty() && !makeRenderer(resolved.renderer)->multiResolution())
+                throw UsageError("--lod/--level: renderer " + name + " has no multi-resolution mode (use " + voxelRenderersThat(&Renderer::multiResolution) + ")");
     }
     const int threads = a.threads == 0 ? hardwareThreads() : a.threads;
 
@@ -426,20 +430,22 @@ int runRender(const std::vector<std::string>& args) {
     applyColour(a, surface, rs);
     if (a.light) rs.lightCamera = *a.light;
     applyLighting(a, rs);
-    rs.colourCoherence = a.colourCoherence;
-    rs.colourTolerance = a.colourTolerance;
-    rs.colourFillsBackground = a.colourFillsBackground;
-    rs.branchUp = a.branchUp;
-    rs.missCoherence = a.missCoherence;
-    rs.lodPixels = a.lod;
-    rs.level = a.level;
+    rs.coherence.colour = a.colourCoherence;
+    rs.coherence.colourTolerance = a.colourTolerance;
+    rs.coherence.colourFillsBackground = a.colourFillsBackground;
+    rs.coherence.branchUp = a.branchUp;
+    rs.coherence.miss = a.missCoherence;
+    rs.detail.lodPixels = a.lod;
+    rs.detail.level = a.level;
     if (a.shadows.value_or(false) && !Shader(tree, cam, rs).shadows())
         log::warning("--shadows on: the octree is shaded by its baked light, which has its own shadows "
                      "(--bake-shadows); give --lighting dynamic for shadow rays towards --light");
 
     Frame frame;
-    const RepeatedRender rep = renderRepeated(a, frame, [&](const Renderer& r, Frame& f) {
-        return r.render(tree, cam, rs, f);
+    const RepeatedRender rep = renderRepeated(a, frame, [&](const Renderer& r, const RendererName& name, Frame& f) {
+        RenderSettings s = rs;
+        name.applyTo(s);
+        return r.render(tree, cam, s, f);
     });
     const RenderStats& st = rep.stats;
     const Renderer* renderer = rep.renderer.get();
@@ -492,9 +498,9 @@ int runRender(const std::vector<std::string>& args) {
     js.set("states_deferred", st.statesDeferred);
     js.set("colour_filled", st.colourFilled);
     js.set("miss_filled", st.missFilled);
-    if (rs.colourCoherence) js.set("colour_tolerance", double(rs.colourTolerance));
-    js.set("branch_up", rs.branchUp);
-    js.set("miss_coherence", std::string(rs.missCoherence ? "on" : "off"));
+    if (rs.coherence.colour || a.renderer.colourCoherence) js.set("colour_tolerance", double(rs.coherence.colourTolerance));
+    js.set("branch_up", rs.coherence.branchUp);
+    js.set("miss_coherence", std::string(rs.coherence.miss ? "on" : "off"));
     js.set("nodes_visited", st.nodesVisited);
     js.set("nodes_per_ray", st.rays ? double(st.nodesVisited) / double(st.rays) : 0.0);
     js.set("beams", st.beams);

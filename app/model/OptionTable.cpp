@@ -102,6 +102,7 @@ std::string Option::helpLine(const std::string& detail) const {
     if (!detail.empty()) line += "; " + detail;
     if (kind == OptionKind::Integer || kind == OptionKind::Number) line += ", " + rangeText();
     if (renderers) line += "; renderers " + voxelRenderersThat(renderers);
+    if (*needs) line += ", with " + param(needs);
     return line + " (default " + defaultSaid() + ")";
 }
 
@@ -110,6 +111,7 @@ std::string Option::docLine() const {
     if (kind == OptionKind::Integer || kind == OptionKind::Number) line += "; " + rangeText();
     if (kind == OptionKind::Choice) line += "; one of " + std::string(choices);
     if (renderers) line += "; read by " + (*renderersSaid ? sayForCli(renderersSaid) : voxelRenderersThat(renderers));
+    if (*needs) line += " with " + sayForCli(param(needs));
     if (*session) line += "; session member `" + std::string(session) + "`";
     if (*label) line += "; studio control \"" + std::string(label) + "\"";
     std::string also;
@@ -193,9 +195,12 @@ std::string parseChoice(const Option& o, const std::string& text) {
     refuse(o, "choose " + said + ", got '" + text + "'");
 }
 
-std::optional<std::string> unusedWarning(const Option& o, const Renderer& renderer, const std::string& rendererName) {
-    if (!o.renderers || (renderer.*o.renderers)()) return std::nullopt;
-    return param(o.key) + " has no effect on renderer " + rendererName + (*o.renderersSaid ? std::string(" (only on ") + o.renderersSaid + ")" : "");
+std::optional<std::string> unusedWarning(const Option& o, const Renderer& renderer, const std::string& rendererName,
+                                         const std::function<bool(std::string_view key)>& isOn) {
+    if (o.renderers && !(renderer.*o.renderers)())
+        return param(o.key) + " has no effect on renderer " + rendererName + (*o.renderersSaid ? std::string(" (only on ") + o.renderersSaid + ")" : "");
+    if (*o.needs && !(isOn && isOn(o.needs))) return param(o.key) + " has no effect without " + param(o.needs);
+    return std::nullopt;
 }
 
 std::string sayForCli(std::string_view text) {

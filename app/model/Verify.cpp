@@ -37,10 +37,10 @@ Verification verifyFrame(const Octree& tree, const Camera& camera, const RenderS
     v.hitAgreement = either ? double(both) / double(either) : 1.0;
     v.depthMaxErrorDiagonals = depthErr / (tree.voxelSize() * std::sqrt(3.0));
 
-    if (settings.lodPixels > 0.0 || (settings.level >= 0 && settings.level < tree.depth)) {
+    if (settings.detail.active(tree.depth)) {
         RenderSettings exactSettings = settings;
-        exactSettings.lodPixels = 0.0;
-        exactSettings.level = -1;
+        exactSettings.detail.lodPixels = 0.0;
+        exactSettings.detail.level = -1;
         Frame exact;
         renderer.render(tree, camera, exactSettings, exact);
         v.levelOfDetail = compareImages(frame, exact);

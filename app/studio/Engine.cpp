@@ -239,9 +239,11 @@ void Engine::requestFrame(const FrameRequest& request) {
             }
             for (const auto& name : request.renderers) {
                 if (stop) return;
-                auto r = makeRenderer(name);
+                const RendererName resolved = resolveRendererName(name);
+                auto r = makeRenderer(resolved.renderer);
                 RenderSettings s = rs;
-                if (request.preview && r->multiResolution()) s.level = out.level;
+                resolved.applyTo(s);
+                if (request.preview && r->multiResolution()) s.detail.level = out.level;
                 PaneFrame p;
                 p.stats = r->render(*tree, cam, s, p.frame);
                 p.tracesRays = r->tracesRays();
@@ -305,8 +307,10 @@ void Engine::exportFigure(const StudioState& state, const QString& path, int wid
             Camera cam = exportCamera(state, tree->occupiedBounds(), width, height);
             cam.validate();
             Frame frame;
-            const RenderSettings rs = renderSettingsFor(state, state.transparent, window, inverted);
-            const RenderStats st = makeRenderer(state.renderer)->render(*tree, cam, rs, frame);
+            RenderSettings rs = renderSettingsFor(state, state.transparent, window, inverted);
+            const RendererName resolved = resolveRendererName(state.renderer);
+            resolved.applyTo(rs);
+            const RenderStats st = makeRenderer(resolved.renderer)->render(*tree, cam, rs, frame);
             if (layout) cli::writeFigure(frame, figureArgs(state), *layout, subject, *tree, cam, rs, path.toStdString());
             else writeFigure(frame, path.toStdString(), state.transparent);
             const QString summary = tr("%1: %2x%3, %4, %5 ms")

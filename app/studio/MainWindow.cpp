@@ -392,8 +392,8 @@ QWidget* MainWindow::buildControls() {
     rendererCombo_->setObjectName(QStringLiteral("rendererCombo"));
     secondCombo_ = new QComboBox(renderBox);
     secondCombo_->setObjectName(QStringLiteral("secondRendererCombo"));
-    for (const auto& n : rendererNames()) {
-        if (!makeRenderer(n)->drawsVoxels()) continue;
+    for (const auto& n : rendererMenuNames()) {
+        if (!makeRenderer(resolveRendererName(n).renderer)->drawsVoxels()) continue;
         rendererCombo_->addItem(QString::fromStdString(n));
         secondCombo_->addItem(QString::fromStdString(n));
     }
@@ -601,14 +601,17 @@ void MainWindow::colouringChanged() {
 }
 
 void MainWindow::showCoherence() {
+    std::vector<RendererName> names{resolveRendererName(state_.renderer)};
+    if (state_.split && state_.secondRenderer != kOpenGlPane) names.push_back(resolveRendererName(state_.secondRenderer));
     std::vector<std::unique_ptr<Renderer>> panes;
-    panes.push_back(makeRenderer(state_.renderer));
-    if (state_.split && state_.secondRenderer != kOpenGlPane) panes.push_back(makeRenderer(state_.secondRenderer));
+    for (const RendererName& n : names) panes.push_back(makeRenderer(n.renderer));
     const auto any = [&panes](bool (Renderer::*has)() const) {
         return std::any_of(panes.begin(), panes.end(), [has](const auto& r) { return ((*r).*has)(); });
     };
+    // A pane named X+colour has colour coherence on whatever the check box says.
+    const bool named = std::any_of(names.begin(), names.end(), [](const RendererName& n) { return n.colourCoherence; });
     colourCoherenceCheck_->setEnabled(any(&Renderer::colourCoherence));
-    colourToleranceSpin_->setEnabled(any(&Renderer::fillsByColour) || (state_.colourCoherence && any(&Renderer::colourCoherence)));
+    colourToleranceSpin_->setEnabled(named || (state_.colourCoherence && any(&Renderer::colourCoherence)));
     branchUpSpin_->setEnabled(any(&Renderer::trajectoryCoherence));
     missCoherenceCheck_->setEnabled(any(&Renderer::missCoherence));
 }

@@ -119,9 +119,13 @@ private:
 };
 
 void checkRenderer(const Reader& r, const char* key, const std::string& name) {
-    const auto names = rendererNames();
-    if (std::find(names.begin(), names.end(), name) == names.end() || !makeRenderer(name)->drawsVoxels())
-        r.fail(key, QStringLiteral("unknown renderer '%1'").arg(QString::fromStdString(name)));
+    // A name or an alias (area+colour), as on the command line.
+    bool known = false;
+    try {
+        known = makeRenderer(resolveRendererName(name).renderer)->drawsVoxels();
+    } catch (const UsageError&) {
+    }
+    if (!known) r.fail(key, QStringLiteral("unknown renderer '%1'").arg(QString::fromStdString(name)));
 }
 
 }  // namespace

@@ -93,10 +93,10 @@ RenderSettings renderSettingsFor(const StudioState& state, bool transparent, con
     model::applyColour(a, look, rs);
     model::applyLighting(a, rs);
     rs.lightCamera = state.light;
-    rs.colourCoherence = state.colourCoherence;
-    rs.colourTolerance = state.colourTolerance;
-    rs.branchUp = state.branchUp;
-    rs.missCoherence = state.missCoherence;
+    rs.coherence.colour = state.colourCoherence;
+    rs.coherence.colourTolerance = state.colourTolerance;
+    rs.coherence.branchUp = state.branchUp;
+    rs.coherence.miss = state.missCoherence;
     return rs;
 }
 
@@ -128,10 +128,11 @@ std::vector<std::string> renderArguments(const StudioState& state, const Camera&
                              "--light", triple(state.light.x, state.light.y, state.light.z)});
     // The coherence options, where they differ from the defaults and the renderer has them.
     const StudioState defaults;
-    const std::unique_ptr<Renderer> renderer = makeRenderer(state.renderer);
-    const bool colourCoherence = state.colourCoherence && renderer->colourCoherence() && !renderer->fillsByColour();
+    const RendererName chosen = resolveRendererName(state.renderer);
+    const std::unique_ptr<Renderer> renderer = makeRenderer(chosen.renderer);
+    const bool colourCoherence = state.colourCoherence && renderer->colourCoherence() && !chosen.colourCoherence;
     if (colourCoherence) args.emplace_back("--colour-coherence");
-    if ((renderer->fillsByColour() || colourCoherence) && state.colourTolerance != defaults.colourTolerance)
+    if ((chosen.colourCoherence || colourCoherence) && state.colourTolerance != defaults.colourTolerance)
         args.insert(args.end(), {"--colour-tolerance", number(state.colourTolerance)});
     if (renderer->trajectoryCoherence() && state.branchUp != defaults.branchUp)
         args.insert(args.end(), {"--branch-up", std::to_string(state.branchUp)});

@@ -31,8 +31,8 @@ struct StudioState {
     std::string secondRenderer = "direct";  ///< a renderer's name, or kOpenGlPane
     bool split = false;
     // Coherence of the renderers that have it (the CLI's --colour-tolerance, --branch-up,
-    // --miss-coherence; Renderer::fillsByColour, trajectoryCoherence, missCoherence).
-    bool colourCoherence = false;  ///< on full, linear, area and their exact variants (the +colour ones have it)
+    // --miss-coherence; Renderer::colourCoherence, trajectoryCoherence, missCoherence).
+    bool colourCoherence = false;  ///< on full, linear, area and their exact variants (a pane named X+colour has it anyway)
     float colourTolerance = float(model::opt::colourTolerance.defaultValue);  ///< 8-bit sRGB units
     int branchUp = int(model::opt::branchUp.defaultValue);
     bool missCoherence = model::opt::missCoherence.defaultChoice() == "on";

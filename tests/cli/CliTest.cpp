@@ -224,7 +224,7 @@ TEST(Cli, RefusalsNameTheRenderersThatHonourTheOption) {
     Scratch s;
     Result r = run({"render", "analytic:sphere", "-o", s.path("x.png"), "--renderer", "samet", "--colour-coherence"});
     EXPECT_EQ(r.code, 2);
-    EXPECT_NE(r.err.find("(use full, linear, area, area+colour, linear-exact or area-exact)"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("(use full, linear, area, linear-exact or area-exact)"), std::string::npos) << r.err;
     r = run({"render", "analytic:sphere", "-o", s.path("x.png"), "--renderer", "beam", "--level", "3"});
     EXPECT_EQ(r.code, 2);
     EXPECT_NE(r.err.find("(use full, reference, reference-unquantized, direct or direct-f2b)"), std::string::npos) << r.err;
@@ -237,12 +237,27 @@ TEST(Cli, ColourOptionsWithoutColourCoherenceAreToldToChangeNothing) {
     Result r = run({"render", "analytic:sphere", "--iso", "0", "--depth", "5", "--size", "64x48", "--colour-tolerance", "5",
                     "--colour-fill-background", "-o", s.path("a.png")});
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.err.find("--colour-tolerance has no effect on renderer full (only on the +colour renderers, or with --colour-coherence)"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("--colour-fill-background has no effect on renderer full (only on the +colour renderers, or with --colour-coherence)"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--colour-tolerance has no effect without --colour-coherence"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--colour-fill-background has no effect without --colour-coherence"), std::string::npos) << r.err;
+    r = run({"render", "analytic:sphere", "--iso", "0", "--depth", "5", "--size", "64x48", "--renderer", "samet",
+             "--colour-tolerance", "5", "-o", s.path("c.png")});
+    EXPECT_NE(r.err.find("--colour-tolerance has no effect on renderer samet (only on the discrete ray casters)"), std::string::npos) << r.err;
+    // A +colour name turns colour coherence on as --colour-coherence does: the same image and
+    // stats (renderer area+colour, the tolerance recorded) both ways.
     r = run({"render", "analytic:sphere", "--iso", "0", "--depth", "5", "--size", "64x48", "--renderer", "area+colour",
-             "--colour-tolerance", "5", "-o", s.path("b.png")});
+             "--colour-tolerance", "5", "-o", s.path("b.png"), "--stats", s.path("b.json")});
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_EQ(r.err.find("no effect"), std::string::npos) << r.err;
+    r = run({"render", "analytic:sphere", "--iso", "0", "--depth", "5", "--size", "64x48", "--renderer", "area",
+             "--colour-coherence", "--colour-tolerance", "5", "-o", s.path("d.png"), "--stats", s.path("d.json")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.err.find("no effect"), std::string::npos) << r.err;
+    EXPECT_EQ(slurp(s.path("b.png")), slurp(s.path("d.png")));
+    for (const char* json : {"b.json", "d.json"}) {
+        const std::string stats = slurp(s.path(json));
+        EXPECT_NE(stats.find("\"renderer\": \"area+colour\""), std::string::npos) << stats;
+        EXPECT_NE(stats.find("\"colour_tolerance\": 5"), std::string::npos) << stats;
+    }
 }
 
 TEST(Cli, BranchUpIsRecordedWarnedAboutWhereUselessAndRangeChecked) {

@@ -6,12 +6,15 @@
 #include "octrace/render/DiscreteTraversal.h"
 #include "octrace/render/ImageCompare.h"
 #include "octrace/render/Renderer.h"
+#include "octrace/util/Error.h"
+#include "RenderTestUtil.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 using namespace octrace;
+using namespace octrace::test;
 
 namespace {
 
@@ -39,9 +42,9 @@ RenderStats draw(const std::string& name, const Octree& t, const Camera& c, Fram
                  bool missCoherence = true) {
     RenderSettings s;
     s.threads = 2;
-    s.branchUp = branchUp;
-    s.missCoherence = missCoherence;
-    return makeRenderer(name)->render(t, c, s, f);
+    s.coherence.branchUp = branchUp;
+    s.coherence.miss = missCoherence;
+    return render(name, t, c, f, s);
 }
 
 /// A thin rod along y at z = 0.5 that, seen from the camera, covers about pixel column 102,
@@ -102,9 +105,45 @@ TEST(CoherentRenderers, SayWhichCoherenceSettingsTheyHonour) {
         const bool trajectory = name.rfind("linear", 0) == 0 || name.rfind("area", 0) == 0;
         EXPECT_EQ(r->trajectoryCoherence(), trajectory);
         EXPECT_EQ(r->missCoherence(), trajectory && name.find("-exact") == std::string::npos);
-        EXPECT_EQ(r->fillsByColour(), name.find("+colour") != std::string::npos);
-        if (r->fillsByColour()) EXPECT_TRUE(r->colourCoherence());
+        EXPECT_EQ(r->colourCoherence(), trajectory || name == "full");
     }
+}
+
+TEST(CoherentRenderers, APlusColourNameIsTheRendererWithColourCoherenceOn) {
+    // The +colour names are aliases: the setting selects the behaviour, the name only says it.
+    const Octree& t = tree(0);
+    const Camera cam = cameras(t)[1];
+    for (const char* base : {"full", "linear", "area", "linear-exact", "area-exact"}) {
+        SCOPED_TRACE(base);
+        for (const char* suffix : {"+colour", "+color"}) {
+            const RendererName n = resolveRendererName(std::string(base) + suffix);
+            EXPECT_EQ(n.renderer, base);
+            EXPECT_TRUE(n.colourCoherence);
+        }
+        EXPECT_FALSE(resolveRendererName(base).colourCoherence);
+        RenderSettings on;
+        on.coherence.colour = true;
+        Frame a, b;
+        const RenderStats sa = render(std::string(base) + "+colour", t, cam, a);
+        const RenderStats sb = makeRenderer(base)->render(t, cam, on, b);
+        EXPECT_TRUE(diffFrames(a, b).identical());
+        EXPECT_EQ(sa.colourFilled, sb.colourFilled);
+        EXPECT_EQ(sa.renderer, std::string(base) + "+colour");  // the stats name the settings
+        EXPECT_EQ(sb.renderer, std::string(base) + "+colour");
+        EXPECT_EQ(makeRenderer(base)->render(t, cam, RenderSettings{}, b).renderer, base);
+    }
+    // Not a renderer of the list, and not an alias that would drop its setting.
+    const std::vector<std::string> names = rendererNames(), menu = rendererMenuNames();
+    EXPECT_EQ(std::find(names.begin(), names.end(), "area+colour"), names.end());
+    EXPECT_NE(std::find(menu.begin(), menu.end(), "area+colour"), menu.end());
+    try {
+        makeRenderer("area+colour");
+        ADD_FAILURE() << "an alias made a renderer without its setting";
+    } catch (const UsageError& e) {
+        EXPECT_NE(std::string(e.what()).find("area with colour coherence"), std::string::npos) << e.what();
+    }
+    for (const char* bad : {"reference+colour", "direct+colour", "samet+colour", "area+colour+colour", "+colour", "nope"})
+        EXPECT_THROW(resolveRendererName(bad), UsageError) << bad;
 }
 
 TEST(CoherentRenderers, ExactVariantsGiveTheFullTraversalsImageBitForBit) {
@@ -257,8 +296,8 @@ TEST(CoherentRenderers, ColourCoherenceFillsOnlyBetweenTracedSurfacePixelsWithin
     Frame full, f;
     draw("full", t, cam, full);
     RenderSettings s;
-    s.colourTolerance = 2.0f;
-    RenderStats st = makeRenderer("area+colour")->render(t, cam, s, f);
+    s.coherence.colourTolerance = 2.0f;
+    RenderStats st = render("area+colour", t, cam, f, s);
     EXPECT_GT(st.colourFilled, 0u);
     for (std::size_t i = 0; i < f.flags.size(); ++i)
         if (f.flags[i] & Frame::kColourFilled) {
@@ -268,11 +307,11 @@ TEST(CoherentRenderers, ColourCoherenceFillsOnlyBetweenTracedSurfacePixelsWithin
     const ImageDifference d = compareImages(f, full);
     EXPECT_GE(d.psnrDb, 40.0) << d.differingPixels << " pixels differ, max " << d.maxChannelError;
     // Tolerance 0 fills only identical neighbours; a full renderer with the option fills too.
-    s.colourTolerance = 0.0f;
-    RenderStats st0 = makeRenderer("area+colour")->render(t, cam, s, f);
+    s.coherence.colourTolerance = 0.0f;
+    RenderStats st0 = render("area+colour", t, cam, f, s);
     EXPECT_LE(st0.colourFilled, st.colourFilled);
-    s.colourCoherence = true;
-    s.colourTolerance = 3.0f;
+    s.coherence.colour = true;
+    s.coherence.colourTolerance = 3.0f;
     EXPECT_GT(makeRenderer("full")->render(t, cam, s, f).colourFilled, 0u);
 }
 
@@ -286,8 +325,8 @@ TEST(CoherentRenderers, ColourCoherenceFillsABandPixelFromAFilledBaseRowPixelWit
     Frame full, f;
     draw("full", t, cam, full);
     RenderSettings s;
-    s.colourTolerance = 255.0f;  // every pair of surface pixels fills
-    makeRenderer("area+colour")->render(t, cam, s, f);
+    s.coherence.colourTolerance = 255.0f;  // every pair of surface pixels fills
+    render("area+colour", t, cam, f, s);
     std::size_t fromFilled = 0;
     for (int y = 1; y + 1 < f.height; y += 4)
         for (int x = 1; x + 1 < f.width; x += 2) {
@@ -302,7 +341,7 @@ TEST(CoherentRenderers, ColourCoherenceFillsABandPixelFromAFilledBaseRowPixelWit
     const ImageDifference d = compareImages(f, full);
     EXPECT_GE(d.psnrDb, 30.0) << "even at the loosest tolerance the image stays close";
     // At the default tolerance the filled pixel's colour is compared (it must have one).
-    makeRenderer("area+colour")->render(t, cam, RenderSettings{}, f);
+    render("area+colour", t, cam, f);
     std::size_t filledFromFilled = 0;
     for (int y = 1; y + 1 < f.height; y += 4)
         for (int x = 1; x + 1 < f.width; x += 2)
@@ -316,9 +355,9 @@ TEST(CoherentRenderers, ColourCoherenceBetweenBackgroundPixelsFillsBackgroundAnd
     Frame full, surfaceOnly, withBackground;
     const RenderStats sf = draw("full", t, cam, full);
     RenderSettings s;
-    const RenderStats a = makeRenderer("area+colour")->render(t, cam, s, surfaceOnly);
-    s.colourFillsBackground = true;
-    const RenderStats b = makeRenderer("area+colour")->render(t, cam, s, withBackground);
+    const RenderStats a = render("area+colour", t, cam, surfaceOnly, s);
+    s.coherence.colourFillsBackground = true;
+    const RenderStats b = render("area+colour", t, cam, withBackground, s);
     EXPECT_GT(b.colourFilled, a.colourFilled);
     EXPECT_EQ(b.rays, sf.rays);  // filled background pixels still count when their ray meets the cube
     std::size_t filledBackground = 0;

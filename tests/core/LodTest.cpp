@@ -25,8 +25,8 @@ const Octree& summarized() {
 
 RenderSettings lodSettings(double pixels, int level) {
     RenderSettings s;
-    s.lodPixels = pixels;
-    s.level = level;
+    s.detail.lodPixels = pixels;
+    s.detail.level = level;
     return s;
 }
 
@@ -181,7 +181,7 @@ TEST(Lod, RenderersWithoutAMultiResolutionModeAndTreesWithoutSummariesRefuse) {
     const Camera cam = Camera::framing(cubeOf(t), 40, 30);
     Frame f;
     for (const char* name : {"linear", "area", "area+colour", "area-exact"})
-        EXPECT_THROW(makeRenderer(name)->render(t, cam, lodSettings(2.0, -1), f), UsageError) << name;
+        EXPECT_THROW(render(name, t, cam, f, lodSettings(2.0, -1)), UsageError) << name;
     EXPECT_THROW(makeRenderer("full")->render(noiseTree(), cam, lodSettings(2.0, -1), f), UsageError);
 }
 

@@ -72,9 +72,13 @@ inline std::vector<NamedCamera> allTestCameras(const Octree& t) {
     return a;
 }
 
+/// Renders with a renderer's name or alias (area+colour: area with colour coherence), as the
+/// front ends do.
 inline RenderStats render(const std::string& renderer, const Octree& t, const Camera& c, Frame& f,
-                   const RenderSettings& settings = RenderSettings{}) {
-    return makeRenderer(renderer)->render(t, c, settings, f);
+                   RenderSettings settings = RenderSettings{}) {
+    const RendererName name = resolveRendererName(renderer);
+    name.applyTo(settings);
+    return makeRenderer(name.renderer)->render(t, c, settings, f);
 }
 
 inline bool tracesRays(const std::string& name) { return makeRenderer(name)->tracesRays(); }

@@ -179,8 +179,8 @@ namespace {
 void expectBeamAndSametGiveTheReference(const ObjectOctree& t, const Camera& cam, int samples, const std::string& what) {
     RenderSettings rs;
     rs.threads = 2;
-    rs.bounces = 0;
-    rs.samples = samples;
+    rs.spheres.bounces = 0;
+    rs.spheres.samples = samples;
     Frame ref, samet, beam;
     const RenderStats rst = makeRenderer("reference")->renderSpheres(t, cam, rs, ref);
     const RenderStats sst = makeRenderer("samet")->renderSpheres(t, cam, rs, samet);
@@ -233,8 +233,8 @@ TEST(SphereRenderers, RaysCountsEverySampleWhoseRayMeetsTheSceneCube) {
     for (std::size_t k = 0; k < cams.size(); ++k)
         for (int samples : {1, 4}) {
             RenderSettings rs;
-            rs.bounces = 0;
-            rs.samples = samples;
+            rs.spheres.bounces = 0;
+            rs.spheres.samples = samples;
             Frame f;
             const RenderStats st = makeRenderer("beam")->renderSpheres(t, cams[k], rs, f);
             Camera fine = cams[k];
@@ -272,8 +272,8 @@ TEST(SphereRenderers, TheLightShowsWhereRaysBesideTheSceneCubePointAtIt) {
     cam.basis(right, up, back);
     for (int samples : {1, 4}) {
         RenderSettings rs;
-        rs.bounces = 0;
-        rs.samples = samples;
+        rs.spheres.bounces = 0;
+        rs.spheres.samples = samples;
         rs.background = vec4(0.0f, 0.0f, 0.0f, 1.0f);
         rs.lightCamera = dvec3(0.12, 0.05, -1.0);
         const dvec3 l = glm::normalize(rs.lightCamera);
@@ -386,9 +386,9 @@ TEST(SphereRenderers, SupersamplingTracesTheRaysOfTheFinerGrid) {
     ObjectOctree t = ObjectOctree::build(makeSphereFlake(2));
     Camera cam = cameraFor(t, 40, 30), fine = cameraFor(t, 80, 60);
     RenderSettings rs, four;
-    rs.bounces = 0;
+    rs.spheres.bounces = 0;
     four = rs;
-    four.samples = 4;
+    four.spheres.samples = 4;
     Frame a, b, f;
     const RenderStats sa = makeRenderer("beam")->renderSpheres(t, cam, four, a);
     makeRenderer("samet")->renderSpheres(t, cam, four, b);
@@ -399,7 +399,7 @@ TEST(SphereRenderers, SupersamplingTracesTheRaysOfTheFinerGrid) {
     EXPECT_EQ(sa.rays, sf.rays);
     for (int y = 0; y < 30; ++y)
         for (int x = 0; x < 40; ++x) EXPECT_EQ(a.hitId[a.pixel(x, y)], f.hitId[f.pixel(2 * x, 2 * y)]);
-    four.samples = 3;
+    four.spheres.samples = 3;
     EXPECT_THROW(makeRenderer("beam")->renderSpheres(t, cam, four, a), UsageError);
 }
 
@@ -407,7 +407,7 @@ TEST(SphereRenderers, WhittedRaysChangeTheMirrorsAndShadowsDarken) {
     ObjectOctree t = ObjectOctree::build(makeSphereFlake(2));
     Camera cam = cameraFor(t, 64, 48);
     RenderSettings flat, whitted;
-    flat.bounces = 0;
+    flat.spheres.bounces = 0;
     flat.shadows = false;
     Frame a, b;
     makeRenderer("samet")->renderSpheres(t, cam, flat, a);

@@ -176,11 +176,11 @@ TEST(VoxelTracers, RefuseAMultiResolutionCut) {
     for (const char* name : {"samet", "beam"}) {
         EXPECT_FALSE(makeRenderer(name)->multiResolution());
         RenderSettings s;
-        s.lodPixels = 2.0;
+        s.detail.lodPixels = 2.0;
         Frame f;
         EXPECT_THROW(render(name, t, cam, f, s), UsageError) << name;
-        s.lodPixels = 0.0;
-        s.level = 3;
+        s.detail.lodPixels = 0.0;
+        s.detail.level = 3;
         EXPECT_THROW(render(name, t, cam, f, s), UsageError) << name;
     }
 }

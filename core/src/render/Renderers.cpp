@@ -23,7 +23,7 @@ public:
     std::string name() const override { return quantized_ ? "reference" : "reference-unquantized"; }
     RenderStats render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
                        Frame& frame) const override {
-        const LodCut cut(tree, camera, settings.lodPixels, settings.level);
+        const LodCut cut(tree, camera, settings.detail.lodPixels, settings.detail.level);
         return detail::renderPerPixel(name(), tree, camera, settings, frame,
                               [&](const detail::PixelRays& rays, int x, int y, const dvec3& d, TraversalCounters& c, bool& meets) {
                                   QuantizedRay q = rays.quantized(x, y, d);
@@ -63,21 +63,50 @@ int renderProgressive(const Renderer& renderer, const Octree& tree, const Camera
     if (renderer.multiResolution()) {
         for (double pixels : lodPasses) {
             if (!(pixels > 0.0)) continue;
-            s.lodPixels = pixels;
+            s.detail.lodPixels = pixels;
             renderer.render(tree, camera, s, frame);
             ++delivered;
             if (!onFrame(frame, pixels)) return delivered;
         }
     }
-    s.lodPixels = 0.0;
-    s.level = -1;
+    s.detail.lodPixels = 0.0;
+    s.detail.level = -1;
     renderer.render(tree, camera, s, frame);
     onFrame(frame, 0.0);
     return delivered + 1;
 }
 
 std::vector<std::string> rendererNames() {
-    return {"full", "linear", "area", "area+colour", "linear-exact", "area-exact", "reference", "reference-unquantized", "direct", "direct-f2b", "samet", "beam"};
+    return {"full", "linear", "area", "linear-exact", "area-exact", "reference", "reference-unquantized", "direct", "direct-f2b", "samet", "beam"};
+}
+
+std::vector<std::string> rendererMenuNames() {
+    std::vector<std::string> names = rendererNames();
+    names.insert(std::find(names.begin(), names.end(), "area") + 1, "area+colour");
+    return names;
+}
+
+void RendererName::applyTo(RenderSettings& settings) const {
+    if (colourCoherence) settings.coherence.colour = true;
+}
+
+RendererName resolveRendererName(const std::string& nameIn) {
+    RendererName r{nameIn, false};
+    for (const char* suffix : {"+colour", "+color"}) {
+        const std::string sfx(suffix);
+        if (r.renderer.size() > sfx.size() && r.renderer.compare(r.renderer.size() - sfx.size(), sfx.size(), sfx) == 0) {
+            r.renderer.erase(r.renderer.size() - sfx.size());
+            r.colourCoherence = true;
+            break;
+        }
+    }
+    const std::vector<std::string> names = rendererNames();
+    const bool known = std::find(names.begin(), names.end(), r.renderer) != names.end();
+    if (known && (!r.colourCoherence || makeRenderer(r.renderer)->colourCoherence())) return r;
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    throw UsageError("unknown renderer '" + nameIn + "' (choose one of: " + list + "; " +
+                     voxelRenderersThat(&Renderer::colourCoherence) + " take the suffix +colour for colour coherence)");
 }
 
 std::string voxelRenderersThat(bool (Renderer::*honours)() const) {
@@ -92,32 +121,22 @@ std::string voxelRenderersThat(bool (Renderer::*honours)() const) {
     return list;
 }
 
-std::unique_ptr<Renderer> makeRenderer(const std::string& nameIn) {
+std::unique_ptr<Renderer> makeRenderer(const std::string& name) {
     using detail::DiscreteRenderer;
-    std::string name = nameIn;
-    bool colour = false;
-    for (const char* suffix : {"+colour", "+color"}) {
-        const std::string sfx(suffix);
-        if (name.size() > sfx.size() && name.compare(name.size() - sfx.size(), sfx.size(), sfx) == 0) {
-            colour = true;
-            name.erase(name.size() - sfx.size());
-        }
-    }
-    if (name == "full") return std::make_unique<DiscreteRenderer>(DiscreteRenderer::Pattern::Full, false, colour);
-    if (name == "linear") return std::make_unique<DiscreteRenderer>(DiscreteRenderer::Pattern::Linear, false, colour);
-    if (name == "area") return std::make_unique<DiscreteRenderer>(DiscreteRenderer::Pattern::Area, false, colour);
-    if (name == "linear-exact") return std::make_unique<DiscreteRenderer>(DiscreteRenderer::Pattern::Linear, true, colour);
-    if (name == "area-exact") return std::make_unique<DiscreteRenderer>(DiscreteRenderer::Pattern::Area, true, colour);
-    if (!colour && name == "reference") return std::make_unique<ReferenceRenderer>(true);
-    if (!colour && name == "reference-unquantized") return std::make_unique<ReferenceRenderer>(false);
-    if (!colour && name == "direct") return std::make_unique<detail::DirectRenderer>(false);
-    if (!colour && name == "direct-f2b") return std::make_unique<detail::DirectRenderer>(true);
-    if (!colour)
-        if (auto r = detail::makeSphereRenderer(name)) return r;
-    std::string list;
-    for (const auto& n : rendererNames()) list += (list.empty() ? "" : ", ") + n;
-    throw UsageError("unknown renderer '" + nameIn + "' (choose one of: " + list +
-                     "; a discrete renderer takes the suffix +colour for colour coherence)");
+    if (name == "full") return std::make_unique<DiscreteRenderer>(DiscreteRenderer::Pattern::Full, false);
+    if (name == "linear") return std::make_unique<DiscreteRenderer>(DiscreteRenderer::Pattern::Linear, false);
+    if (name == "area") return std::make_unique<DiscreteRenderer>(DiscreteRenderer::Pattern::Area, false);
+    if (name == "linear-exact") return std::make_unique<DiscreteRenderer>(DiscreteRenderer::Pattern::Linear, true);
+    if (name == "area-exact") return std::make_unique<DiscreteRenderer>(DiscreteRenderer::Pattern::Area, true);
+    if (name == "reference") return std::make_unique<ReferenceRenderer>(true);
+    if (name == "reference-unquantized") return std::make_unique<ReferenceRenderer>(false);
+    if (name == "direct") return std::make_unique<detail::DirectRenderer>(false);
+    if (name == "direct-f2b") return std::make_unique<detail::DirectRenderer>(true);
+    if (auto r = detail::makeSphereRenderer(name)) return r;
+    // An alias (area+colour) is a renderer and a setting: resolveRendererName splits it, so
+    // that the setting is not lost here.
+    const RendererName alias = resolveRendererName(name);
+    throw UsageError("renderer '" + name + "' is " + alias.renderer + " with colour coherence: resolve it with resolveRendererName");
 }
 
 }  // namespace octrace

@@ -9,6 +9,53 @@
 
 namespace octrace {
 
+/// The coherence of the discrete ray casters (paper A, 5.3; CoherentRenderers.cpp).
+struct CoherenceSettings {
+    /// Colour coherence: a pixel between two traced neighbours whose 8-bit sRGB colours differ
+    /// by at most colourTolerance in every channel gets their average without being traced.
+    /// Approximate by design. The renderer names with +colour (area+colour, ...) are the
+    /// renderer with this on (resolveRendererName, Renderer.h).
+    bool colour = false;
+    float colourTolerance = 3.0f;  ///< in 8-bit sRGB units (0..255)
+    /// Colour coherence also between two background pixels (the middle one is then taken as
+    /// background untraced); off: only between two surface pixels.
+    bool colourFillsBackground = false;
+    /// Trajectory coherence (linear, area and their exact variants): a common-path ray starts
+    /// this many levels above the branch node of its two partners (0 = paper A: at the branch
+    /// node; at the octree's depth or more: from the root). Each level up makes the approximate
+    /// variants differ from full traversal on fewer pixels and costs speed; the exact variants
+    /// stay exact at any value.
+    int branchUp = 0;
+    /// Miss coherence (the approximate linear and area variants): a common-path pixel whose two
+    /// partners both found nothing is taken as background without being traced, as paper A's
+    /// colour coherence does between two background pixels. Approximate in the same way as the
+    /// start at the branch node: what lies between two missing rays and neither of them meets
+    /// is not seen. The exact variants ignore it; off: such a pixel is traced from the root.
+    bool miss = true;
+};
+
+/// Multi-resolution (Lod.h; needs Octree::computeSummaries): stop descending at a node whose
+/// projected size is below lodPixels pixels (0 = exact), and at level `level` at the latest
+/// (< 0 = down to the voxels). Read by full, reference and the direct renderers.
+struct DetailSettings {
+    double lodPixels = 0.0;
+    int level = -1;
+    /// Whether a cut is asked of an octree of this depth.
+    bool active(int depth) const { return lodPixels > 0.0 || (level >= 0 && level < depth); }
+};
+
+/// Sphere scenes (object octree, SphereRenderers.cpp).
+struct SphereShading {
+    /// Rays per pixel on a regular sqrt(samples) x sqrt(samples) grid (1, 4, 9, 16, ...: a
+    /// square), averaged.
+    int samples = 1;
+    /// Whitted depth: reflected / transmitted rays spawned after a primary hit, at most this
+    /// many deep (0 = local shading only).
+    int bounces = 2;
+};
+
+/// The settings of one frame. The shared part (threads, colours, light, background, shadows)
+/// is read by every renderer; each group after it by the renderers whose traits say so.
 struct RenderSettings {
     int threads = 0;                       ///< 0 = all cores; 1 = serial
     vec4 background{1.0f, 1.0f, 1.0f, 1.0f};  ///< linear RGBA of pixels that miss
@@ -37,37 +84,14 @@ struct RenderSettings {
     /// `invertedGrey`: low values bright (DICOM MONOCHROME1).
     ValueWindow window;
     bool invertedGrey = false;
-    /// Colour coherence (paper A, 5.3) on any renderer: a pixel between two traced neighbours
-    /// whose 8-bit sRGB colours differ by at most colourTolerance in every channel gets their
-    /// average without being traced. Approximate by design.
-    bool colourCoherence = false;
-    float colourTolerance = 3.0f;          ///< in 8-bit sRGB units (0..255)
-    /// Colour coherence also between two background pixels (the middle one is then taken as
-    /// background untraced); off: only between two surface pixels.
-    bool colourFillsBackground = false;
-    /// Trajectory coherence (linear, area and their exact variants): a common-path ray starts
-    /// this many levels above the branch node of its two partners (0 = paper A: at the branch
-    /// node; at the octree's depth or more: from the root). Each level up makes the approximate
-    /// variants differ from full traversal on fewer pixels and costs speed; the exact variants
-    /// stay exact at any value.
-    int branchUp = 0;
-    /// Miss coherence (the approximate linear and area variants): a common-path pixel whose two
-    /// partners both found nothing is taken as background without being traced, as paper A's
-    /// colour coherence does between two background pixels. Approximate in the same way as the
-    /// start at the branch node: what lies between two missing rays and neither of them meets
-    /// is not seen. The exact variants ignore it; off: such a pixel is traced from the root.
-    bool missCoherence = true;
-    /// Multi-resolution (Lod.h; needs Octree::computeSummaries): stop descending at a node
-    /// whose projected size is below lodPixels pixels (0 = exact), and at level `level` at the
-    /// latest (< 0 = down to the voxels). Supported by full, reference and the direct renderers.
-    double lodPixels = 0.0;
-    int level = -1;
-    /// Sphere scenes (object octree, SphereRenderers.cpp): rays per pixel on a regular
-    /// sqrt(samples) x sqrt(samples) grid (1, 4, 9, 16, ...: a square), averaged.
-    int samples = 1;
-    /// Whitted depth: reflected / transmitted rays spawned after a primary hit, at most this
-    /// many deep (0 = local shading only).
-    int bounces = 2;
+    /// What the discrete ray casters read (RendererTraits::colourCoherence, trajectoryCoherence,
+    /// missCoherence); the other renderers ignore it.
+    CoherenceSettings coherence;
+    /// What the multi-resolution renderers read (RendererTraits::levelOfDetail); the others
+    /// throw UsageError when asked for a cut.
+    DetailSettings detail;
+    /// What the sphere tracers read (RendererTraits::drawsSpheres: Renderer::renderSpheres).
+    SphereShading spheres;
     /// Shadow rays towards the (directional) light. Unset: the scene's default, on for sphere
     /// scenes (Whitted shading, SphereRenderers.cpp) and off for voxel octrees, where each
     /// shaded pixel would cost one more traversal and baked light (lighting/Bake.h) already has

@@ -25,18 +25,15 @@ struct RendererTraits {
     /// and us-per-ray figures do not apply.
     bool tracesRays = true;
     bool drawsVoxels = true;   ///< render() draws the voxel octree
-    bool drawsSpheres = false; ///< renderSpheres() draws sphere scenes (samples, bounces, shadows)
-    /// RenderSettings::lodPixels and level (Lod.h); the others throw UsageError when asked for a cut.
+    bool drawsSpheres = false; ///< renderSpheres() draws sphere scenes (RenderSettings::spheres, shadows)
+    /// RenderSettings::detail (Lod.h); the others throw UsageError when asked for a cut.
     bool levelOfDetail = true;
-    /// RenderSettings::colourCoherence, colourTolerance, colourFillsBackground (the discrete ray
-    /// casters); the CLI refuses --colour-coherence for the others.
+    /// CoherenceSettings::colour, colourTolerance, colourFillsBackground (the discrete ray
+    /// casters); the CLI refuses `colour_coherence` for the others.
     bool colourCoherence = false;
-    /// Colour coherence whatever RenderSettings::colourCoherence says (the +colour variants), so
-    /// that colourTolerance applies without it.
-    bool colourAlways = false;
-    /// RenderSettings::branchUp (trajectory coherence: linear and area and their variants).
+    /// CoherenceSettings::branchUp (trajectory coherence: linear and area and their variants).
     bool trajectoryCoherence = false;
-    /// RenderSettings::missCoherence (the approximate linear and area and their +colour variants).
+    /// CoherenceSettings::miss (the approximate linear and area).
     bool missCoherence = false;
 };
 
@@ -50,7 +47,6 @@ public:
     bool tracesRays() const { return traits().tracesRays; }
     bool multiResolution() const { return traits().levelOfDetail; }
     bool colourCoherence() const { return traits().colourCoherence; }
-    bool fillsByColour() const { return traits().colourAlways; }
     bool trajectoryCoherence() const { return traits().trajectoryCoherence; }
     bool missCoherence() const { return traits().missCoherence; }
     /// Renders into `frame` (resized to the camera's size). Deterministic: the result does not
@@ -85,10 +81,30 @@ std::unique_ptr<Renderer> makeBruteForceSphereRenderer();
 
 /// Names accepted by makeRenderer, in the order the help text lists them.
 std::vector<std::string> rendererNames();
+/// The renderer names as menus list them: rendererNames() with area+colour (paper A's area
+/// with colour coherence, an alias: resolveRendererName) after area.
+std::vector<std::string> rendererMenuNames();
+
+/// A renderer's name as the front ends take it (CLI --renderer and --baseline, sessions, the
+/// studio's menus, benchmark scripts): a name of rendererNames(), or an alias that is a
+/// renderer and a setting. `X+colour` (and `X+color`) for a discrete ray caster X is X with
+/// CoherenceSettings::colour on, so paper A's area+colour is `area` with colour coherence.
+/// The setting, not the name, selects the behaviour; the renderer reports the alias back in
+/// RenderStats::renderer when the setting is on.
+struct RendererName {
+    std::string renderer;          ///< a name of rendererNames(), for makeRenderer
+    bool colourCoherence = false;  ///< the name had +colour
+    /// Turns on what the name says in `settings` (leaves it as it is otherwise).
+    void applyTo(RenderSettings& settings) const;
+};
+/// Splits a name or alias; throws UsageError for an unknown name (or +colour after a renderer
+/// without colour coherence).
+RendererName resolveRendererName(const std::string& name);
 /// The renderers that draw voxels and pass `honours` (e.g. &Renderer::multiResolution), as
 /// "a, b or c": for help texts and errors.
 std::string voxelRenderersThat(bool (Renderer::*honours)() const);
-/// Throws UsageError for an unknown name.
+/// The renderer of a name of rendererNames(). Throws UsageError for an unknown name and for an
+/// alias (resolveRendererName first, so that its setting is not lost).
 std::unique_ptr<Renderer> makeRenderer(const std::string& name);
 
 }  // namespace octrace

@@ -265,7 +265,7 @@ RenderStats DirectRenderer::render(const Octree& tree, const Camera& camera, con
     frame.resize(camera.width, camera.height);
     std::fill(frame.rgba.begin(), frame.rgba.end(), settings.background);
     const Shader shader(tree, camera, settings);
-    const LodCut cut(tree, camera, settings.lodPixels, settings.level);
+    const LodCut cut(tree, camera, settings.detail.lodPixels, settings.detail.level);
     const int tilesX = (camera.width + kTile - 1) / kTile, tilesY = (camera.height + kTile - 1) / kTile;
     std::vector<RenderStats> tileStats(std::size_t(tilesX) * std::size_t(tilesY));
     parallelFor(tileStats.size(), settings.threads, [&](std::size_t t) {

@@ -61,7 +61,7 @@ public:
         }
         const vec3 local = sp.colour * float(s_.ambient + s_.diffuse * lambert);
         const Material& m = tree_.scene.materials[sp.material];
-        if (depth >= s_.bounces || (m.reflect <= 0.0f && m.transmit <= 0.0f)) return local;
+        if (depth >= s_.spheres.bounces || (m.reflect <= 0.0f && m.transmit <= 0.0f)) return local;
         vec3 out = local * (1.0f - m.reflect - m.transmit);
         const dvec3 r = d - 2.0 * glm::dot(d, n) * n;
         if (m.reflect > 0.0f) out += m.reflect * follow(p, r, depth, c, secondary);
@@ -532,8 +532,8 @@ private:
 RenderStats renderSphereScene(SphereTracer tracer, const std::string& name, const ObjectOctree& tree, const Camera& camera,
                               const RenderSettings& settings, Frame& frame) {
     camera.validate();
-    if (settings.bounces < 0) throw UsageError("`bounces` must be >= 0");
-    const int s = samplesPerSide(settings.samples);
+    if (settings.spheres.bounces < 0) throw UsageError("`bounces` must be >= 0");
+    const int s = samplesPerSide(settings.spheres.samples);
     Timer timer;
     frame.resize(camera.width, camera.height);
     // The rays: the pixel grid of a camera s times finer (sample (x*s+a, y*s+b) of pixel (x, y)).

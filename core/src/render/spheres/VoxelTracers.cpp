@@ -446,7 +446,7 @@ RenderStats renderBeams(const std::string& name, const Octree& tree, const Camer
 
 RenderStats renderVoxelTracer(VoxelTracer tracer, const std::string& name, const Octree& tree, const Camera& camera,
                               const RenderSettings& settings, Frame& frame) {
-    if (settings.lodPixels > 0.0 || (settings.level >= 0 && settings.level < tree.depth))
+    if (settings.detail.active(tree.depth))
         throw UsageError("renderer " + name + " has no multi-resolution mode (`lod`, `level`): use " + voxelRenderersThat(&Renderer::multiResolution));
     if (tracer == VoxelTracer::Beam) return renderBeams(name, tree, camera, settings, frame);
     return renderPerPixel(name, tree, camera, settings, frame,

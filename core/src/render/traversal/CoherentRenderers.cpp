@@ -67,7 +67,7 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
     // counted in `rays`, and not even that well inside the cube's outline. Miss coherence: the
     // same for a pixel whose partners both missed, taken as a miss (not certain: not traced).
     const bool cannotHit = !c.rays.mayHitSurface(x, y);
-    const bool missFill = !cannotHit && partners && mode == Start::Branch && c.settings.missCoherence &&
+    const bool missFill = !cannotHit && partners && mode == Start::Branch && c.settings.coherence.miss &&
                           f.hitId[partners[0]] == kNoHit && f.hitId[partners[1]] == kNoHit;
     if (cannotHit || missFill) {
         if (c.rays.meetsCube(x, y)) ++st.rays;
@@ -82,7 +82,7 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
     const bool usePartners = partners && mode != Start::Root && f.hitId[partners[0]] != kNoHit &&
                              f.hitId[partners[1]] != kNoHit && q.meetsCube;
     if (usePartners) {
-        const BranchNode bn = branchNode(c.tree, c.cells[partners[0]], c.cells[partners[1]], c.settings.branchUp);
+        const BranchNode bn = branchNode(c.tree, c.cells[partners[0]], c.cells[partners[1]], c.settings.coherence.branchUp);
         ++st.raysCommonPath;
         flags |= Frame::kCommonPath;
         if (mode == Start::Branch) {
@@ -176,10 +176,10 @@ bool tryFill(const Context& c, int x, int y, const std::size_t* partners, Render
     if (!(f.flags[a] & known) || !(f.flags[b] & known)) return false;
     const bool hitA = f.hitId[a] != kNoHit, hitB = f.hitId[b] != kNoHit;
     if (hitA != hitB) return false;
-    if (!hitA && !c.settings.colourFillsBackground) return false;
+    if (!hitA && !c.settings.coherence.colourFillsBackground) return false;
     for (int ch = 0; ch < 4; ++ch) {
         const int da = int((c.srgb[a] >> (8 * ch)) & 0xFF), db = int((c.srgb[b] >> (8 * ch)) & 0xFF);
-        if (float(std::abs(da - db)) > c.settings.colourTolerance) return false;
+        if (float(std::abs(da - db)) > c.settings.coherence.colourTolerance) return false;
     }
     const std::size_t p = f.pixel(x, y);
     f.flags[p] = Frame::kColourFilled;
@@ -208,30 +208,27 @@ bool tryFill(const Context& c, int x, int y, const std::size_t* partners, Render
 std::string DiscreteRenderer::name() const {
     std::string n = pattern_ == Pattern::Full ? "full" : pattern_ == Pattern::Linear ? "linear" : "area";
     if (exact_) n += "-exact";
-    if (colour_) n += "+colour";
     return n;
 }
 
-RenderStats DiscreteRenderer::render(const Octree& tree, const Camera& camera, const RenderSettings& settingsIn,
+RenderStats DiscreteRenderer::render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
                                      Frame& frame) const {
     camera.validate();
     Timer timer;
-    RenderSettings settings = settingsIn;
-    settings.colourCoherence = settingsIn.colourCoherence || colour_;
     frame.reshape(camera.width, camera.height);  // every pixel is written below
     const Shader shader(tree, camera, settings);
-    const LodCut cut(tree, camera, settings.lodPixels, settings.level);
+    const LodCut cut(tree, camera, settings.detail.lodPixels, settings.detail.level);
     const PixelRays rays(tree, camera, cut.coarsestLevel());
     // Written at every hit before any pattern reads it there: left uninitialised.
     std::unique_ptr<ivec3[]> cells(pattern_ == Pattern::Full ? nullptr : new ivec3[frame.hitId.size()]);
     // Written at every traced or filled pixel before a partner reads it: left uninitialised.
-    std::unique_ptr<std::uint32_t[]> srgb(settings.colourCoherence ? new std::uint32_t[frame.hitId.size()] : nullptr);
+    std::unique_ptr<std::uint32_t[]> srgb(settings.coherence.colour ? new std::uint32_t[frame.hitId.size()] : nullptr);
     if (cut.active() && pattern_ != Pattern::Full)
         throw UsageError("renderer " + name() + " has no multi-resolution mode (`lod`, `level`): use " + voxelRenderersThat(&Renderer::multiResolution));
     const Context ctx{tree, settings, frame, shader, rays, cells.get(), srgb.get(), cut, packSrgb8(settings.background)};
     const int W = camera.width, H = camera.height;
     const Start mode = pattern_ == Pattern::Full ? Start::Root : exact_ ? Start::Guided : Start::Branch;
-    const bool colour = settings.colourCoherence;
+    const bool colour = settings.coherence.colour;
 
     std::vector<RenderStats> rowStats(static_cast<std::size_t>(H));
     std::vector<std::uint64_t> rowNodes(static_cast<std::size_t>(H), 0), rowDeferred(static_cast<std::size_t>(H), 0);
@@ -241,7 +238,7 @@ RenderStats DiscreteRenderer::render(const Octree& tree, const Camera& camera, c
     // Pixels whose rays cannot hit the surface are background whatever the pattern, except
     // that paper A's colour fill of background pairs marks some of them filled: written in
     // one pass per row first, unless that fill is on.
-    const bool fillFirst = !(colour && settings.colourFillsBackground);
+    const bool fillFirst = !(colour && settings.coherence.colourFillsBackground);
     auto patternSpan = [&](int y, RenderStats& st) {
         return fillFirst ? fillOutsideSurface(ctx, y, st) : std::pair<int, int>{0, W - 1};
     };
@@ -332,7 +329,7 @@ RenderStats DiscreteRenderer::render(const Octree& tree, const Camera& camera, c
         });
     }
     RenderStats total;
-    total.renderer = name();
+    total.renderer = name() + (colour ? "+colour" : "");  // the alias that names these settings
     for (std::size_t y = 0; y < rowStats.size(); ++y) {
         rowStats[y].nodesVisited = rowNodes[y];
         rowStats[y].statesDeferred = rowDeferred[y];

@@ -7,13 +7,12 @@ namespace octrace::detail {
 class DiscreteRenderer final : public Renderer {
 public:
     enum class Pattern { Full, Linear, Area };
-    DiscreteRenderer(Pattern pattern, bool exact, bool colour) : pattern_(pattern), exact_(exact), colour_(colour) {}
+    DiscreteRenderer(Pattern pattern, bool exact) : pattern_(pattern), exact_(exact) {}
     std::string name() const override;
     RendererTraits traits() const override {
         RendererTraits t;
         t.levelOfDetail = pattern_ == Pattern::Full;
         t.colourCoherence = true;
-        t.colourAlways = colour_;
         t.trajectoryCoherence = pattern_ != Pattern::Full;
         t.missCoherence = pattern_ != Pattern::Full && !exact_;  // never the exact variants
         return t;
@@ -23,7 +22,7 @@ public:
 
 private:
     Pattern pattern_;
-    bool exact_, colour_;
+    bool exact_;
 };
 
 }  // namespace octrace::detail

@@ -14,6 +14,7 @@
 #include "octrace/util/Memory.h"
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <span>
@@ -54,6 +55,9 @@ struct Option {
     const char* commands = "";  ///< the CLI commands that take it, separated by spaces
     RendererCapability renderers = nullptr;  ///< non-null: only renderers with it read the option
     const char* renderersSaid = "";          ///< who reads it, for unusedWarning ("linear and area")
+    /// Key of a Flag option that must be on for this one to be read ("" none): the colour
+    /// tolerance means nothing without colour coherence.
+    const char* needs = "";
 
     /// The choices as words.
     std::vector<std::string> choiceList() const;
@@ -202,19 +206,19 @@ inline constexpr Option level{.key = "level", .kind = OptionKind::Integer, .flag
     .renderers = &Renderer::multiResolution};
 inline constexpr Option colourCoherence{.key = "colour_coherence", .kind = OptionKind::Flag, .flag = "colour-coherence",
     .session = "renderers.colour_coherence", .label = "Colour coherence", .help = "colour coherence on the discrete ray casters: a pixel between two neighbours of nearly the same colour gets "
-            "their average untraced (on in area+colour)",
+            "their average untraced (a renderer name with +colour, as area+colour, turns it on too)",
     .commands = "render", .renderers = &Renderer::colourCoherence, .renderersSaid = "the discrete ray casters"};
 inline constexpr Option colourFillBackground{.key = "colour_fill_background", .kind = OptionKind::Flag,
     .flag = "colour-fill-background",
     .help = "colour coherence also between two background pixels, as paper A does: the pixel between is taken as "
             "background untraced (off: only between surface pixels)",
-    .commands = "render", .renderers = &Renderer::fillsByColour,
-    .renderersSaid = "the +colour renderers, or with `colour_coherence`"};
+    .commands = "render", .renderers = &Renderer::colourCoherence, .renderersSaid = "the discrete ray casters",
+    .needs = "colour_coherence"};
 inline constexpr Option colourTolerance{.key = "colour_tolerance", .kind = OptionKind::Number, .flag = "colour-tolerance",
     .argument = "T", .session = "renderers.colour_tolerance", .label = "Colour tolerance", .defaultValue = 3, .min = 0,
     .max = 255, .unit = "per 8-bit sRGB channel",
     .help = "largest colour difference of two neighbours for colour coherence", .commands = "render",
-    .renderers = &Renderer::fillsByColour, .renderersSaid = "the +colour renderers, or with `colour_coherence`"};
+    .renderers = &Renderer::colourCoherence, .renderersSaid = "the discrete ray casters", .needs = "colour_coherence"};
 inline constexpr Option branchUp{.key = "branch_up", .kind = OptionKind::Integer, .flag = "branch-up", .argument = "N",
     .session = "renderers.branch_up", .label = "Branch up", .defaultValue = 0, .defaultText = "0: paper A, at the branch node",
     .min = 0, .max = Octree::kMaxDepth,
@@ -227,7 +231,7 @@ inline constexpr Option missCoherence{.key = "miss_coherence", .kind = OptionKin
     .choices = "on|off",
     .help = "a common-path pixel whose two partners both missed is taken as background untraced (off: traced from the root)",
     .commands = "render", .renderers = &Renderer::missCoherence,
-    .renderersSaid = "the approximate linear and area and their +colour variants"};
+    .renderersSaid = "the approximate linear and area"};
 inline constexpr Option repeat{.key = "repeat", .kind = OptionKind::Integer, .flag = "repeat", .argument = "N",
     .defaultValue = 1, .min = 1, .max = 1000,
     .help = "render N times and report the fastest as render_ms (benchmarks on a noisy machine)", .commands = "render"};
@@ -324,8 +328,11 @@ int parseInteger(const Option& o, const std::string& text);
 std::string parseChoice(const Option& o, const std::string& text);
 
 /// The warning for an option given although `rendererName` does not read it, e.g. "`branch_up`
-/// has no effect on renderer full (only on linear and area and their variants)", or nothing.
-std::optional<std::string> unusedWarning(const Option& o, const Renderer& renderer, const std::string& rendererName);
+/// has no effect on renderer full (only on linear and area and their variants)", or although
+/// the option it `needs` is off (isOn(key) says which Flag options are on): "`colour_tolerance`
+/// has no effect without `colour_coherence`"; or nothing.
+std::optional<std::string> unusedWarning(const Option& o, const Renderer& renderer, const std::string& rendererName,
+                                         const std::function<bool(std::string_view key)>& isOn = {});
 
 /// Each front end's words for the parameters that core and io messages name (Parameter.h):
 /// the CLI's flag ("--max-memory"), a session file's member ("renderers.branch_up"), the

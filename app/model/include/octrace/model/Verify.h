@@ -27,7 +27,7 @@ struct Verification {
     /// renderers that do not trace the reference's rays: direct), and the largest depth
     /// difference where both hit, in voxel diagonals.
     double hitAgreement = 1.0, depthMaxErrorDiagonals = 0.0;
-    /// With a multi-resolution cut (settings.lodPixels or level): the frame against the same
+    /// With a multi-resolution cut (settings.detail.lodPixels or level): the frame against the same
     /// renderer down to the voxels.
     std::optional<ImageDifference> levelOfDetail;
 };
