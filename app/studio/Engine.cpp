@@ -3,7 +3,7 @@
 #include "octrace/model/OptionTable.h"
 
 #include "octrace/model/Input.h"
-#include "SurfaceOptions.h"
+#include "octrace/model/Surface.h"
 
 #include "octrace/build/OctreeBuilder.h"
 #include "octrace/io/CityReader.h"
@@ -103,7 +103,7 @@ void Engine::open(const StudioState& state) {
                 info.units = QString::fromStdString(surface->tree.fieldUnits);
                 info.minimum = info.maximum = surface->iso;
                 auto tree = std::make_shared<const Octree>(std::move(surface->tree));
-                handBack(gen, [this, info, tree, surface, subject = cli::figureSubject(*surface, state.input)] {
+                handBack(gen, [this, info, tree, surface, subject = model::figureSubject(*surface, state.input)] {
                     info_ = info;
                     base_.reset();
                     setSurface(tree, *surface, subject, tree->depth);
@@ -174,7 +174,7 @@ void Engine::rebuild(const StudioState& state) {
     startBuild(state);
 }
 
-void Engine::setSurface(std::shared_ptr<const Octree> tree, const model::Surface& look, cli::FigureSubject subject, int depth) {
+void Engine::setSurface(std::shared_ptr<const Octree> tree, const model::Surface& look, model::FigureSubject subject, int depth) {
     tree_ = std::move(tree);
     window_ = look.window;
     invertedGrey_ = look.invertedGrey;
@@ -211,7 +211,7 @@ void Engine::startBuild(const StudioState& state) {
             model::buildFromField(surfaceArgs(state), *surface, hooks);
             surface->tree.computeSummaries();
             // The subject now: the field goes back to `base` when this job ends.
-            cli::FigureSubject subject = cli::figureSubject(*surface, state.input);
+            model::FigureSubject subject = model::figureSubject(*surface, state.input);
             auto tree = std::make_shared<const Octree>(std::move(surface->tree));
             handBack(gen, [this, tree, surface, subject = std::move(subject), depth = state.depth] {
                 setSurface(tree, *surface, subject, depth);
@@ -298,7 +298,7 @@ void Engine::exportFigure(const StudioState& state, const QString& path, int wid
             if (width < 1 || height < 1 || width > kMaxExportSide || height > kMaxExportSide)
                 throw UsageError("export size " + std::to_string(width) + "x" + std::to_string(height) +
                                  ": each side must be 1.." + std::to_string(kMaxExportSide) + " pixels");
-            if (state.figure) cli::checkFigureFormat(path.toStdString());
+            if (state.figure) model::checkFigureFormat(path.toStdString());
             // The figure's layout first: the plot is the part of the image that is rendered.
             const std::optional<io::FigureLayout> layout = figureLayoutFor(state, width, height);
             const std::uint64_t bytes = Frame::bytesFor(width, height) * (layout ? 2 : 1) + std::uint64_t(width) * std::uint64_t(height) * 24;
@@ -311,7 +311,7 @@ void Engine::exportFigure(const StudioState& state, const QString& path, int wid
             const RendererName resolved = resolveRendererName(state.renderer);
             resolved.applyTo(rs);
             const RenderStats st = makeRenderer(resolved.renderer)->render(*tree, cam, rs, frame);
-            if (layout) cli::writeFigure(frame, figureArgs(state), *layout, subject, *tree, cam, rs, path.toStdString());
+            if (layout) model::writeFigure(frame, figureArgs(state), *layout, subject, *tree, cam, rs, path.toStdString());
             else writeFigure(frame, path.toStdString(), state.transparent);
             const QString summary = tr("%1: %2x%3, %4, %5 ms")
                                         .arg(path)

@@ -3,8 +3,8 @@
 // progress and Cancel), rendering the views' frames (newest request first), and exporting
 // figures. Results come back as queued signals on the GUI thread; the window never waits.
 #include "StudioState.h"
-#include "FigureOptions.h"
-#include "SurfaceOptions.h"
+#include "octrace/model/Figure.h"
+#include "octrace/model/Surface.h"
 #include "Worker.h"
 
 #include "octrace/build/ScalarField.h"
@@ -78,7 +78,7 @@ public:
     void requestFrame(const FrameRequest& request);
     /// Renders `state` at width x height off screen with its renderer and writes `path`
     /// (format by extension: PNG, EXR, TIFF); with state.figure the PNG figure around the plot
-    /// (cli::writeFigure, as render --figure).
+    /// (model::writeFigure, as render --figure).
     void exportFigure(const StudioState& state, const QString& path, int width, int height);
 
     const InputInfo& info() const { return info_; }
@@ -106,7 +106,7 @@ signals:
 
 private:
     void startBuild(const StudioState& state);
-    void setSurface(std::shared_ptr<const Octree> tree, const model::Surface& look, cli::FigureSubject subject, int depth);
+    void setSurface(std::shared_ptr<const Octree> tree, const model::Surface& look, model::FigureSubject subject, int depth);
     /// Runs `work` (a build job's body, on the worker) and hands a cancellation or an error
     /// back to the GUI thread (cancelled / failed) while `gen` is still the current build.
     void runBuildJob(unsigned gen, const std::function<void()>& work);
@@ -120,7 +120,7 @@ private:
     std::shared_ptr<const Octree> tree_;
     double iso_ = 0.0;
     int depth_ = 0;
-    cli::FigureSubject subject_;  // what an exported figure says about the data
+    model::FigureSubject subject_;  // what an exported figure says about the data
     bool building_ = false;
     unsigned generation_ = 0;  // the open/build whose results still count
     // Last members: destroyed (joined) first, before what their jobs use.

@@ -1,7 +1,7 @@
 #include "Session.h"
 
 #include "octrace/model/SolidSpec.h"
-#include "SurfaceOptions.h"
+#include "octrace/model/Surface.h"
 #include "octrace/csg/Solid.h"
 #include "octrace/model/OptionTable.h"
 #include "octrace/io/AtomicFile.h"
@@ -76,7 +76,7 @@ public:
         if (auto problem = model::valueProblem(o, v.toDouble())) fail(key, QString::fromStdString(*problem));
         out = T(v.toDouble());
     }
-    /// An on|off setting of the options table, stored as true or false.
+    /// An on|off or Flag setting of the options table, stored as true or false.
     void onOff(const model::Option& o, bool& out) const { flag(model::sessionMember(o).c_str(), out); }
     void integer(const char* key, int& out, int lo, int hi) const {
         if (!has(key)) return;
@@ -166,10 +166,10 @@ QByteArray sessionJson(const StudioState& s) {
     QJsonObject exportSettings{{member(model::opt::width), s.exportWidth},
                                {member(model::opt::height), s.exportHeight},
                                {"transparent", s.transparent},
-                               {"figure", s.figure},
-                               {"title", QString::fromStdString(s.title)},
+                               {member(model::opt::figure), s.figure},
+                               {member(model::opt::title), QString::fromStdString(s.title)},
                                {member(model::opt::dpi), s.dpi},
-                               {"scale_bar", s.scaleBar}};
+                               {member(model::opt::scaleBar), s.scaleBar}};
     QJsonObject root{{kFormatKey, kFormatVersion}, {"input", input},     {"surface", surface}, {"renderers", renderers},
                      {"camera", camera},           {"shading", shading}, {"export", exportSettings}};
     return QJsonDocument(root).toJson(QJsonDocument::Indented);
@@ -277,10 +277,10 @@ StudioState parseSession(const QByteArray& json, const QString& baseFolder) {
     exportSettings.setting(model::opt::width, s.exportWidth);
     exportSettings.setting(model::opt::height, s.exportHeight);
     exportSettings.flag("transparent", s.transparent);
-    exportSettings.flag("figure", s.figure);
-    exportSettings.text("title", s.title);
+    exportSettings.onOff(model::opt::figure, s.figure);
+    exportSettings.text(model::sessionMember(model::opt::title).c_str(), s.title);
     exportSettings.setting(model::opt::dpi, s.dpi);
-    exportSettings.flag("scale_bar", s.scaleBar);
+    exportSettings.onOff(model::opt::scaleBar, s.scaleBar);
     return s;
 }
 

@@ -1,7 +1,7 @@
 #include "StudioState.h"
 
 #include "octrace/model/Input.h"
-#include "SurfaceOptions.h"
+#include "octrace/model/Surface.h"
 
 #include "octrace/io/CityReader.h"
 #include "octrace/render/Renderer.h"
@@ -62,8 +62,8 @@ model::SurfaceSpec surfaceArgs(const StudioState& state) {
     return a;
 }
 
-cli::FigureArgs figureArgs(const StudioState& state) {
-    cli::FigureArgs f;
+model::FigureSettings figureArgs(const StudioState& state) {
+    model::FigureSettings f;
     f.enabled = state.figure;
     f.title = state.title;
     f.dpi = state.dpi;
@@ -73,7 +73,7 @@ cli::FigureArgs figureArgs(const StudioState& state) {
 
 std::optional<io::FigureLayout> figureLayoutFor(const StudioState& state, int width, int height) {
     if (!state.figure) return std::nullopt;
-    return cli::figureLayout(figureArgs(state), width, height, cli::figureHasColourBar(surfaceArgs(state)));
+    return model::figureLayout(figureArgs(state), width, height, model::figureHasColourBar(surfaceArgs(state)));
 }
 
 Camera exportCamera(const StudioState& state, const Box3& surfaceBounds, int width, int height) {

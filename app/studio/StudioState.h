@@ -3,8 +3,8 @@
 // renderers, the camera, the shading and the export. A session file is this state as JSON
 // (Session.h); renderArguments() is the same state as the `octrace render` command line that
 // draws the same image, so that the studio and the CLI can be checked against each other.
-#include "FigureOptions.h"
-#include "SurfaceOptions.h"
+#include "octrace/model/Figure.h"
+#include "octrace/model/Surface.h"
 
 #include "octrace/model/OptionTable.h"
 #include "octrace/render/Camera.h"
@@ -67,7 +67,7 @@ struct StudioState {
     // the colour bar comes with a colour map.
     bool figure = false;
     std::string title;
-    int dpi = cli::kDefaultDpi;
+    int dpi = model::kDefaultDpi;
     bool scaleBar = false;
 };
 
@@ -96,9 +96,9 @@ RenderSettings renderSettingsFor(const StudioState& state, bool transparent, con
                                  bool invertedGrey = false);
 
 /// The figure options of `state` (render --figure, --title, --dpi, --scale-bar).
-cli::FigureArgs figureArgs(const StudioState& state);
+model::FigureSettings figureArgs(const StudioState& state);
 /// The figure's layout for an export of width x height (state.figure), else nothing; throws
-/// UsageError as cli::figureLayout when the size leaves no room for the plot.
+/// UsageError as model::figureLayout when the size leaves no room for the plot.
 std::optional<io::FigureLayout> figureLayoutFor(const StudioState& state, int width, int height);
 /// The camera of an export of width x height: cameraFor at the size of the image rendered (the
 /// figure's plot, or the whole).

@@ -290,6 +290,20 @@ inline constexpr Option dpi{.key = "dpi", .kind = OptionKind::Integer, .flag = "
     .label = "Resolution", .defaultValue = 150, .defaultText = "150 for a figure, none recorded for a plain image",
     .min = 36, .max = 1200, .unit = "dots per inch",
     .help = "resolution recorded in the PNG or TIFF; a figure's fonts are 9 and 11 pt at it", .commands = "render slice"};
+inline constexpr Option figure{.key = "figure", .kind = OptionKind::Flag, .flag = "figure", .session = "export.figure",
+    .label = "Figure", .defaultText = "off: the plain image",
+    .help = "write a publication figure (PNG or TIFF, by the output's extension): the image with a title", .commands = "render slice"};
+inline constexpr Option title{.key = "title", .kind = OptionKind::Text, .flag = "title", .argument = "TEXT",
+    .session = "export.title", .label = "Title", .defaultText = "none", .help = "title of the figure", .commands = "render slice"};
+inline constexpr Option printSize{.key = "print_size", .kind = OptionKind::Text, .flag = "print-size",
+    .argument = "WxH(mm|cm|in)", .defaultText = "the figure is `size`",
+    .help = "figure size on paper, e.g. 180x120mm, each side at most 100 inches; its pixels are this times `dpi`",
+    .commands = "render slice"};
+inline constexpr Option scaleBar{.key = "scale_bar", .kind = OptionKind::Flag, .flag = "scale-bar", .session = "export.scale_bar",
+    .label = "Scale bar",
+    .help = "draw a scale bar in the plot's lower left corner, a round length in km (geographic grids), m (cities) or "
+            "world units, true at the distance of the look-at point",
+    .commands = "render slice"};
 inline constexpr Option index{.key = "index", .kind = OptionKind::Integer, .flag = "index", .argument = "N",
     .defaultText = "the middle one, n/2", .min = 0, .max = 1 << 30,
     .help = "where the plane lies: sample N (0-based) of the grid axis across the plane", .commands = "slice"};

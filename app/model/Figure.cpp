@@ -1,0 +1,191 @@
+#include "octrace/model/Figure.h"
+
+#include "octrace/io/CityReader.h"
+#include "octrace/io/ImageWriter.h"
+#include "octrace/render/Shading.h"
+#include "octrace/util/Error.h"
+#include "octrace/util/Parameter.h"
+
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <sstream>
+
+namespace octrace::model {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::string number(double v, int precision = 6) {
+    std::ostringstream s;
+    s.precision(precision);
+    s << (v == 0.0 ? 0.0 : v);
+    return s.str();
+}
+
+/// Projects world points into the plot; false behind a perspective camera.
+struct Projector {
+    explicit Projector(const Camera& c) : rays(c) {}
+    bool operator()(const dvec3& p, dvec2& out) const {
+        const dvec3 d = p - rays.eye();
+        const double cz = glm::dot(d, rays.back());
+        if (!rays.orthographic() && !(cz < 0.0)) return false;
+        rays.toPixel(glm::dot(d, rays.right()), glm::dot(d, rays.up()), cz, out.x, out.y);
+        return std::isfinite(out.x) && std::isfinite(out.y);
+    }
+    RayGenerator rays;
+};
+
+}  // namespace
+
+std::string longitudeText(double lon) {
+    lon = std::fmod(lon, 360.0);
+    if (lon > 180.0) lon -= 360.0;
+    if (lon <= -180.0) lon += 360.0;
+    const long r = std::lround(lon);
+    if (r == 0 || r == 180 || r == -180) return std::to_string(std::labs(r)) + "\u00b0";
+    return std::to_string(std::labs(r)) + (r > 0 ? "\u00b0E" : "\u00b0W");
+}
+
+std::string latitudeText(double lat) {
+    const long r = std::lround(lat);
+    if (r == 0) return "0\u00b0";
+    return std::to_string(std::labs(r)) + (r > 0 ? "\u00b0N" : "\u00b0S");
+}
+
+double GeoAxes::lon(double x) const { return g.lon0 + x / (ScalarField::Geographic::kEarthRadiusKm * std::cos(g.lat0 * kPi / 180.0)) * 180.0 / kPi; }
+double GeoAxes::lat(double y) const { return g.lat0 + y / ScalarField::Geographic::kEarthRadiusKm * 180.0 / kPi; }
+double GeoAxes::depthM(double z) const { return -z / g.verticalScale * 1000.0; }
+double GeoAxes::x(double lonDeg) const { return ScalarField::Geographic::kEarthRadiusKm * std::cos(g.lat0 * kPi / 180.0) * (lonDeg - g.lon0) * kPi / 180.0; }
+double GeoAxes::y(double latDeg) const { return ScalarField::Geographic::kEarthRadiusKm * (latDeg - g.lat0) * kPi / 180.0; }
+double GeoAxes::z(double depthM) const { return -depthM / 1000.0 * g.verticalScale; }
+
+std::string lowerExtension(const std::string& path) {
+    const std::size_t dot = path.find_last_of('.');
+    std::string ext = path.substr(dot == std::string::npos ? path.size() : dot);
+    for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+void checkFigureFormat(const std::string& output) {
+    const std::string ext = lowerExtension(output);
+    if (ext != ".png" && ext != ".tif" && ext != ".tiff")
+        throw UsageError("a figure is written as PNG or TIFF: " + output + " must end in .png, .tif or .tiff");
+}
+
+bool figureHasColourBar(const model::SurfaceSpec& a) { return !a.colourBy.empty() || !a.colormap.empty(); }
+
+FigureSubject figureSubject(const Surface& s, const std::string& input) {
+    FigureSubject out;
+    out.name = s.field.name;
+    out.geographic = s.field.geographic;
+    if (!s.field.values.empty()) out.gridBounds = s.field.worldBounds();
+    out.iso = s.iso;
+    out.lengthUnit = s.field.geographic.valid ? "km" : io::isCityInput(input) ? "m" : "";
+    return out;
+}
+
+void writeFigure(const Frame& plot, const FigureSettings& f, const io::FigureLayout& layout, const FigureSubject& subject,
+                 const Octree& tree, const Camera& camera, const RenderSettings& rs, const std::string& path) {
+    const io::FigureSpec spec = figureSpec(f, subject, tree, camera, rs);
+    io::ImageWriteOptions options;
+    options.dpi = layout.dpi;
+    io::writeImage(io::composeFigure(plot, spec, layout), path, options);
+}
+
+io::FigureLayout figureLayout(const FigureSettings& f, int width, int height, bool colourBar) {
+    const int dpi = f.dpi ? f.dpi : kDefaultDpi;
+    if (f.printInches) {
+        width = int(std::lround(f.printInches->x * dpi));
+        height = int(std::lround(f.printInches->y * dpi));
+        if (std::uint64_t(width) * std::uint64_t(height) > (std::uint64_t(1) << 28))
+            throw UsageError(param("print_size") + " at " + std::to_string(dpi) + " dpi makes a figure of " + std::to_string(width) +
+                             "x" + std::to_string(height) + " pixels; at most 2^28 pixels");
+    }
+    return io::layoutFigure(width, height, dpi, colourBar);
+}
+
+io::FigureSpec figureSpec(const FigureSettings& f, const FigureSubject& subject, const Octree& tree, const Camera& camera,
+                          const RenderSettings& rs) {
+    io::FigureSpec spec;
+    spec.title = f.title;
+    const ScalarField::Geographic& geographic = subject.geographic;
+    std::string sub = (tree.fieldName.empty() ? subject.name : tree.fieldName) + " = " + number(subject.iso) +
+                      (tree.fieldUnits.empty() ? "" : " " + tree.fieldUnits);
+    const Albedo albedo(tree, rs);
+    if (albedo.byValue()) {
+        sub += ", coloured by " + tree.valueName;
+        spec.colormap = albedo.colormapName();
+        spec.low = albedo.low();
+        spec.high = albedo.high();
+        spec.barLabel = tree.valueName + (tree.valueUnits.empty() ? "" : " (" + tree.valueUnits + ")");
+    } else if (albedo.byHeight()) {
+        // Coloured by height: the bar spans the surface's cell layers, in metres above the sea
+        // surface for a geographic field (negative below it), else in world z.
+        const double z0 = tree.cubeOrigin.z + double(albedo.zLow()) * tree.voxelSize();
+        const double z1 = tree.cubeOrigin.z + double(albedo.zHigh() + 1) * tree.voxelSize();
+        spec.colormap = albedo.colormapName();
+        if (geographic.valid) {
+            const GeoAxes g{geographic};
+            spec.low = -g.depthM(z0);
+            spec.high = -g.depthM(z1);
+            spec.barLabel = "height (m)";
+        } else {
+            spec.low = z0;
+            spec.high = z1;
+            spec.barLabel = "height (world z)";
+        }
+    }
+    if (!tree.voxelMaterials.empty()) sub += ", sea floor and land";
+
+    // The bounding box: the field's grid (the region read), or the octree's surface.
+    const Box3 box = subject.gridBounds ? *subject.gridBounds : tree.occupiedBounds();
+    const Projector project(camera);
+    std::array<dvec3, 8> corner;
+    for (int c = 0; c < 8; ++c)
+        corner[std::size_t(c)] = dvec3((c & 4) ? box.hi.x : box.lo.x, (c & 2) ? box.hi.y : box.lo.y, (c & 1) ? box.hi.z : box.lo.z);
+    for (int a = 0; a < 8; ++a)
+        for (int bit : {1, 2, 4}) {
+            if (a & bit) continue;
+            dvec2 pa, pb;
+            if (project(corner[std::size_t(a)], pa) && project(corner[std::size_t(a | bit)], pb)) spec.lines.push_back({pa, pb});
+        }
+
+    // Ticks on three edges that meet at the south-east corner of the top: along x at y = lo,
+    // along y at x = hi, along z at (hi, lo).
+    auto tick = [&](const dvec3& p, const std::string& text, double dx, double dy) {
+        dvec2 at;
+        if (project(p, at)) spec.labels.push_back({at, text, dx, dy});
+    };
+    if (geographic.valid) {
+        const GeoAxes g{geographic};
+        const double lon0 = g.lon(box.lo.x), lon1 = g.lon(box.hi.x), lat0 = g.lat(box.lo.y), lat1 = g.lat(box.hi.y);
+        const double d0 = g.depthM(box.hi.z), d1 = g.depthM(box.lo.z);
+        for (double lon : io::niceTicks(lon0, lon1, 6)) tick({g.x(lon), box.lo.y, box.hi.z}, longitudeText(lon), 0.0, 1.4);
+        for (double lat : io::niceTicks(lat0, lat1, 5)) tick({box.hi.x, g.y(lat), box.hi.z}, latitudeText(lat), 2.2, 0.0);
+        for (double d : io::niceTicks(d0, d1, 4)) tick({box.hi.x, box.lo.y, g.z(d)}, number(d) + " m", 2.6, 0.0);
+        sub += "; " + longitudeText(lon0) + "\u2013" + longitudeText(lon1) + ", " + latitudeText(lat0) + "\u2013" +
+               latitudeText(lat1) + ", " + number(std::round(d0)) + "\u2013" + number(std::round(d1)) + " m";
+    } else {
+        for (double x : io::niceTicks(box.lo.x, box.hi.x, 5)) tick({x, box.lo.y, box.hi.z}, "x " + number(x, 4), 0.0, 1.4);
+        for (double y : io::niceTicks(box.lo.y, box.hi.y, 5)) tick({box.hi.x, y, box.hi.z}, "y " + number(y, 4), 2.2, 0.0);
+        for (double z : io::niceTicks(box.lo.z, box.hi.z, 4)) tick({box.hi.x, box.lo.y, z}, "z " + number(z, 4), 2.6, 0.0);
+    }
+    spec.subtitle = sub;
+
+    if (f.scaleBar) {
+        // World units per plot pixel across the view at the look-at point.
+        const double height = camera.orthographic()
+                                  ? camera.orthoHeight
+                                  : 2.0 * glm::length(camera.position - camera.lookAt) * std::tan(camera.fovYDegrees * kPi / 360.0);
+        const double perPixel = height / double(std::max(1, camera.height));
+        const double length = io::scaleBarLength(perPixel, camera.width);
+        if (length > 0.0) {
+            spec.scaleBarPx = length / perPixel;
+            spec.scaleBarLabel = number(length) + (subject.lengthUnit.empty() ? "" : " " + subject.lengthUnit);
+        }
+    }
+    return spec;
+}
+
+}  // namespace octrace::model

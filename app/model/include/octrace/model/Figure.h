@@ -1,0 +1,88 @@
+#pragma once
+/// @file Figure.h
+/// A publication figure: the rendered image (the plot) with a title, a colour bar, the labelled
+/// bounding box and a scale bar, from the surface, its colours and the camera. What `octrace
+/// render --figure`, `octrace slice --figure` and the studio's export share.
+#include "octrace/model/OptionTable.h"
+#include "octrace/model/Surface.h"
+
+#include "octrace/io/Figure.h"
+#include "octrace/render/Camera.h"
+#include "octrace/render/Frame.h"
+#include "octrace/render/RenderSettings.h"
+
+#include <optional>
+#include <string>
+
+namespace octrace::model {
+
+/// The figure settings (options table: `figure`, `title`, `dpi`, `print_size`, `scale_bar`).
+struct FigureSettings {
+    bool enabled = false;     ///< `figure`
+    std::string title;        ///< `title`
+    int dpi = 0;              ///< `dpi`; 0: kDefaultDpi for a figure, none recorded for a plain image
+    std::optional<dvec2> printInches;  ///< `print_size`, in inches
+    bool scaleBar = false;    ///< `scale_bar`
+};
+
+inline constexpr int kDefaultDpi = int(opt::dpi.defaultValue);
+
+/// World <-> longitude, latitude (degrees) and depth (metres, positive down) on a geographic
+/// grid, by the contract's mapping (ScalarField::Geographic).
+struct GeoAxes {
+    const ScalarField::Geographic& g;
+    double lon(double x) const;
+    double lat(double y) const;
+    double depthM(double z) const;
+    double x(double lonDeg) const;
+    double y(double latDeg) const;
+    double z(double depthM) const;
+};
+
+/// "150°E", "30°W", "0°", rounded to whole degrees.
+std::string longitudeText(double lon);
+/// "35°N", "10°S", "0°".
+std::string latitudeText(double lat);
+
+
+/// The extension of `path`, lower case, with its dot ("" when none).
+std::string lowerExtension(const std::string& path);
+/// A figure is written as PNG or TIFF (.png, .tif, .tiff, any case); EXR holds linear data, no
+/// annotations. UsageError naming `output` otherwise.
+void checkFigureFormat(const std::string& output);
+
+
+/// The figure's layout: print size x dpi pixels, else `width` x `height` (`size`) for the
+/// whole figure. Throws UsageError when that leaves no room for the plot.
+io::FigureLayout figureLayout(const FigureSettings& f, int width, int height, bool colourBar);
+
+/// Whether the figure of a surface coloured by `a` has a colour bar (a colour map or `colour_by`).
+bool figureHasColourBar(const model::SurfaceSpec& a);
+
+/// What a figure says about the data besides its octree: the field's name, its geographic
+/// mapping, the bounds of the grid read (empty for an octree file or a city: the surface's
+/// are boxed), the iso value and the world's length unit for the scale bar. A small copy, so
+/// that a caller that builds again from the field (the studio) need not keep it still.
+struct FigureSubject {
+    std::string name;
+    ScalarField::Geographic geographic;
+    std::optional<Box3> gridBounds;
+    double iso = 0.0;
+    std::string lengthUnit;  ///< "km" on geographic grids, "m" for cities, else "" (world units)
+};
+FigureSubject figureSubject(const Surface& s, const std::string& input);
+
+/// Title, subtitle (variable, iso value, colour variable, region), colour bar, the labelled
+/// bounding box (longitude, latitude and depth on geographic grids, world x, y, z otherwise)
+/// as seen by `camera` (whose image is the plot) and, with `scale_bar`, a scale bar measured
+/// at the look-at point's distance (exact for an orthographic camera).
+io::FigureSpec figureSpec(const FigureSettings& f, const FigureSubject& subject, const Octree& tree, const Camera& camera,
+                          const RenderSettings& rs);
+
+/// The figure around `plot` (rendered with `camera` at the layout's plot size), written as a
+/// PNG at the layout's dpi to `path` (atomically). What render --figure and the studio's
+/// export share. Throws as io::composeFigure and io::writeImage.
+void writeFigure(const Frame& plot, const FigureSettings& f, const io::FigureLayout& layout, const FigureSubject& subject,
+                 const Octree& tree, const Camera& camera, const RenderSettings& rs, const std::string& path);
+
+}  // namespace octrace::model
