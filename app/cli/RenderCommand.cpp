@@ -8,6 +8,7 @@
 #include "FigureOptions.h"
 
 #include "octrace/io/AtomicFile.h"
+#include "octrace/model/Render.h"
 #include "octrace/model/Verify.h"
 #include "octrace/io/ImageWriter.h"
 #include "octrace/render/ImageCompare.h"
@@ -36,32 +37,19 @@ std::string vecText(const dvec3& v) {
     return o.str();
 }
 
-struct RenderArgs : SurfaceArgs {
+/// The surface (SurfaceArgs), how it is drawn (model::RenderSpec), and what only the command
+/// line has: files, --verify, --repeat, --baseline, the object octree of sphere scenes.
+struct RenderArgs : SurfaceArgs, model::RenderSpec {
     FigureArgs figure;
-    std::string output, statsPath, rendererName = model::opt::renderer.defaultText;  // as given, for messages
-    RendererName renderer = resolveRendererName(model::opt::renderer.defaultText);
-    int width = int(model::opt::width.defaultValue), height = int(model::opt::height.defaultValue);
-    std::optional<dvec3> cameraPos, lookAt, up;
-    double fov = model::opt::fov.defaultValue;
-    bool ortho = false;
-    double lod = 0.0;
-    int level = -1;
-    std::optional<double> orthoHeight;
+    std::string output, statsPath;
+    RendererName resolved = resolveRendererName(renderer);  // RenderSpec::renderer, split
     bool verify = false;
-    vec4 background{1.0f, 1.0f, 1.0f, 1.0f};
-    std::optional<dvec3> light;
-    bool colourCoherence = false;
-    float colourTolerance = float(model::opt::colourTolerance.defaultValue);
-    bool colourFillsBackground = false;
-    int branchUp = int(model::opt::branchUp.defaultValue);
-    bool missCoherence = model::opt::missCoherence.defaultChoice() == "on";
     int repeat = int(model::opt::repeat.defaultValue);
     std::string baseline;  // as given; empty: none
     RendererName baselineRenderer;
     // Sphere scenes.
     std::string octreeKind;  // "object", "voxel" or empty: by the renderer
     int leafObjects = int(model::opt::leafObjects.defaultValue);
-    int samples = int(model::opt::samples.defaultValue), bounces = int(model::opt::bounces.defaultValue);
     std::vector<std::string> sphereOptions;  // given, for the check that they apply
 };
 
@@ -74,8 +62,8 @@ OptionParser makeParser(RenderArgs& a) {
     addLightingOption(p, a);
     addBakeOptions(p, a);
     p.add(tableOption(model::opt::renderer, [&](const std::string& v) {
-        a.renderer = resolveRendererName(v);
-        a.rendererName = v;
+        a.resolved = resolveRendererName(v);
+        a.renderer = v;
     }, "one of " + joinNames(rendererNames()) + "; " + voxelRenderersThat(&Renderer::colourCoherence) +
            " take the suffix +colour, which turns --colour-coherence on (area+colour is paper A's)"));
     p.add({"size", "WxH", "image size in pixels, each side " + model::opt::width.rangeText() + " (default " +
@@ -92,8 +80,8 @@ OptionParser makeParser(RenderArgs& a) {
     }));
     p.add(tableOption(model::opt::orthoHeight,
                       [&](const std::string& v) { a.orthoHeight = tableNumber(model::opt::orthoHeight, v); }));
-    p.add(tableOption(model::opt::lod, [&](const std::string& v) { a.lod = tableNumber(model::opt::lod, v); }));
-    p.add(tableOption(model::opt::level, [&](const std::string& v) { a.level = tableInt(model::opt::level, v); }));
+    p.add(tableOption(model::opt::lod, [&](const std::string& v) { a.detail.lodPixels = tableNumber(model::opt::lod, v); }));
+    p.add(tableOption(model::opt::level, [&](const std::string& v) { a.detail.level = tableInt(model::opt::level, v); }));
     addThreadsOption(p, a, "the image");
     p.add({"stats", "FILE.json", "write timings and counters as JSON (keys: docs/user/cli.md)",
            [&](const std::string& v) { a.statsPath = v; }});
@@ -108,14 +96,14 @@ OptionParser makeParser(RenderArgs& a) {
            }});
     addColourOptions(p, a);
     addLayerOptions(p, a);
-    p.add(tableOption(model::opt::colourCoherence, [&](const std::string&) { a.colourCoherence = true; }));
-    p.add(tableOption(model::opt::colourFillBackground, [&](const std::string&) { a.colourFillsBackground = true; }));
+    p.add(tableOption(model::opt::colourCoherence, [&](const std::string&) { a.coherence.colour = true; }));
+    p.add(tableOption(model::opt::colourFillBackground, [&](const std::string&) { a.coherence.colourFillsBackground = true; }));
     p.add(tableOption(model::opt::colourTolerance, [&](const std::string& v) {
-        a.colourTolerance = float(tableNumber(model::opt::colourTolerance, v));
+        a.coherence.colourTolerance = float(tableNumber(model::opt::colourTolerance, v));
     }));
-    p.add(tableOption(model::opt::branchUp, [&](const std::string& v) { a.branchUp = tableInt(model::opt::branchUp, v); }));
+    p.add(tableOption(model::opt::branchUp, [&](const std::string& v) { a.coherence.branchUp = tableInt(model::opt::branchUp, v); }));
     p.add(tableOption(model::opt::missCoherence,
-                      [&](const std::string& v) { a.missCoherence = tableOnOff(model::opt::missCoherence, v); }));
+                      [&](const std::string& v) { a.coherence.miss = tableOnOff(model::opt::missCoherence, v); }));
     addGeographicOptions(p, a.request);
     addCityOptions(p, a);
     addSeriesOption(p, a.request);
@@ -135,12 +123,12 @@ OptionParser makeParser(RenderArgs& a) {
     };
     sphereInt(model::opt::leafObjects, a.leafObjects);
     p.add(tableOption(model::opt::samples, [&](const std::string& v) {
-        a.samples = tableInt(model::opt::samples, v);
-        const int side = int(std::lround(std::sqrt(double(a.samples))));
-        if (side * side != a.samples) throw UsageError("--samples: must be a square number (1, 4, 9, 16, ...), got " + v);
+        a.spheres.samples = tableInt(model::opt::samples, v);
+        const int side = int(std::lround(std::sqrt(double(a.spheres.samples))));
+        if (side * side != a.spheres.samples) throw UsageError("--samples: must be a square number (1, 4, 9, 16, ...), got " + v);
         a.sphereOptions.push_back("--samples");
     }));
-    sphereInt(model::opt::bounces, a.bounces);
+    sphereInt(model::opt::bounces, a.spheres.bounces);
     addFigureOptions(p, a.figure);
     addMessageOptions(p, a);
     return p;
@@ -150,23 +138,6 @@ OptionParser makeParser(RenderArgs& a) {
 /// encoded file (at most 24 bytes a pixel): checked first alone, after the build with the rest.
 std::uint64_t outputFrameBytes(const RenderArgs& a) {
     return Frame::bytesFor(a.width, a.height) * (1 + !a.baseline.empty() + 2 * a.verify) + std::uint64_t(a.width) * std::uint64_t(a.height) * 24;
-}
-
-/// The camera of the options, framing `bounds` unless told otherwise.
-Camera makeCamera(const RenderArgs& a, const Box3& bounds) {
-    Camera cam = Camera::framing(bounds, a.width, a.height, a.fov);
-    if (a.lookAt) cam.lookAt = *a.lookAt;
-    if (a.up) cam.up = *a.up;
-    if (a.cameraPos) cam.position = *a.cameraPos;
-    else if (a.lookAt) cam.position = cam.lookAt + (Camera::framing(bounds, a.width, a.height, a.fov).position - bounds.centre());
-    if (a.ortho) {
-        cam.validate();
-        cam.frameOrthographic(bounds);
-        if (a.cameraPos) cam.position = *a.cameraPos;  // the user's view plane, even if it cuts the surface
-        if (a.orthoHeight) cam.orthoHeight = *a.orthoHeight;
-    }
-    cam.validate();
-    return cam;
 }
 
 /// What the voxel and the sphere paths write alike: the view.
@@ -201,16 +172,16 @@ struct RepeatedRender {
 RepeatedRender renderRepeated(const RenderArgs& a, Frame& frame,
                               const std::function<RenderStats(const Renderer&, const RendererName&, Frame&)>& draw) {
     RepeatedRender r;
-    r.renderer = makeRenderer(a.renderer.renderer);
+    r.renderer = makeRenderer(a.resolved.renderer);
     const Renderer& renderer = *r.renderer;
     std::unique_ptr<Renderer> base = a.baseline.empty() ? nullptr : makeRenderer(a.baselineRenderer.renderer);
     const Renderer* baseline = base.get();
     Frame baseFrame;
-    r.stats = draw(renderer, a.renderer, frame);
+    r.stats = draw(renderer, a.resolved, frame);
     r.times.push_back(r.stats.renderMs);
     if (baseline) r.baselineMs = draw(*baseline, a.baselineRenderer, baseFrame).renderMs;
     for (int i = 1; i < a.repeat; ++i) {
-        r.times.push_back(draw(renderer, a.renderer, frame).renderMs);
+        r.times.push_back(draw(renderer, a.resolved, frame).renderMs);
         r.stats.renderMs = std::min(r.stats.renderMs, r.times.back());
         if (baseline) r.baselineMs = std::min(r.baselineMs, draw(*baseline, a.baselineRenderer, baseFrame).renderMs);
     }
@@ -252,9 +223,9 @@ int renderObjectOctree(const RenderArgs& a) {
     if (voxelOption)
         throw UsageError(std::string(voxelOption) + " applies to voxel octrees; the object octree of " + a.input +
                          " traces the spheres themselves (--octree voxel voxelizes them)");
-    if (a.lod > 0.0 || a.level >= 0) throw UsageError("--lod/--level: the object octree has no multi-resolution mode");
+    if (a.detail.lodPixels > 0.0 || a.detail.level >= 0) throw UsageError("--lod/--level: the object octree has no multi-resolution mode");
     if (a.figure.enabled) throw UsageError("--figure applies to voxel surfaces, not to the object octree of " + a.input);
-    if (a.colourCoherence)
+    if (a.coherence.colour)
         throw UsageError("--colour-coherence applies to the voxel ray casters " + voxelRenderersThat(&Renderer::colourCoherence));
     const int threads = a.threads == 0 ? hardwareThreads() : a.threads;
     const std::uint64_t budget = memoryBudget(a);
@@ -277,16 +248,16 @@ int renderObjectOctree(const RenderArgs& a) {
     checkMemoryBudget(a.input + ": " + rendering + " beside the object octree", frameBytes + tree.bytes(), budget);
 
     const Box3 bounds = tree.scene.bounds();
-    const Camera cam = makeCamera(a, bounds);
+    const Camera cam = model::frameCamera(a, bounds);
     RenderSettings rs;
     rs.threads = a.threads;
     rs.background = displayToLinear(a.background);
     if (a.light) rs.lightCamera = *a.light;
-    rs.spheres.samples = a.samples;
-    rs.spheres.bounces = a.bounces;
+    rs.spheres.samples = a.spheres.samples;
+    rs.spheres.bounces = a.spheres.bounces;
     rs.shadows = a.shadows;  // unset: on (SphereRenderers.cpp)
 
-    for (const auto& [name, resolved] : {std::pair{a.rendererName, a.renderer}, std::pair{a.baseline, a.baselineRenderer}})
+    for (const auto& [name, resolved] : {std::pair{a.renderer, a.resolved}, std::pair{a.baseline, a.baselineRenderer}})
         if (!name.empty() && !makeRenderer(resolved.renderer)->drawsSpheres())
             throw UsageError("renderer " + name + " draws voxel octrees only; the object octree takes reference, samet or beam (or give --octree voxel)");
     Frame frame;
@@ -303,8 +274,8 @@ int renderObjectOctree(const RenderArgs& a) {
     js.set("width", cam.width);
     js.set("height", cam.height);
     js.set("threads", threads);
-    js.set("samples", a.samples);
-    js.set("bounces", a.bounces);
+    js.set("samples", a.spheres.samples);
+    js.set("bounces", a.spheres.bounces);
     js.set("shadows", std::string(a.shadows.value_or(true) ? "on" : "off"));
     js.set("pixels", st.pixels);
     js.set("rays", st.rays);
@@ -333,7 +304,7 @@ int renderObjectOctree(const RenderArgs& a) {
     std::ostringstream summary;
     summary.precision(4);
     summary << a.output << ": " << cam.width << "x" << cam.height << ", " << st.renderer << ", " << st.renderMs << " ms ("
-            << (st.rays ? st.renderMs * 1000.0 / double(st.rays) : 0.0) << " us/ray over " << st.rays << " rays, " << a.samples
+            << (st.rays ? st.renderMs * 1000.0 / double(st.rays) : 0.0) << " us/ray over " << st.rays << " rays, " << a.spheres.samples
             << " per pixel), " << tree.scene.spheres.size() << " spheres in " << tree.nodes.size() << " nodes built in " << buildMs << " ms";
     if (a.verify) {
         // The reference (recursive parametric traversal of the same octree) and the brute force
@@ -372,26 +343,26 @@ int runRender(const std::vector<std::string>& args) {
     if (a.orthoHeight && !a.ortho) throw UsageError("--ortho-height needs --projection ortho");
     checkFigureOptions(a.figure, a.output);
     if (isSphereInput(a.input)) {
-        const bool object = a.octreeKind.empty() ? makeRenderer(a.renderer.renderer)->drawsSpheres() : a.octreeKind == "object";
+        const bool object = a.octreeKind.empty() ? makeRenderer(a.resolved.renderer)->drawsSpheres() : a.octreeKind == "object";
         if (object) return renderObjectOctree(a);
     } else if (!a.octreeKind.empty()) {
         throw UsageError("--octree applies to sphere inputs (.pdb, .cif, sphereflake:L, random:N), not to " + a.input);
     }
     if (!a.sphereOptions.empty())
         throw UsageError(a.sphereOptions.front() + " applies to sphere scenes in the object octree (renderers reference, samet, beam)");
-    if (a.level > a.depth) throw UsageError("--level " + std::to_string(a.level) + " is deeper than --depth " + std::to_string(a.depth));
-    const bool multires = a.lod > 0.0 || (a.level >= 0 && a.level < a.depth);
-    const std::unique_ptr<Renderer> chosen = makeRenderer(a.renderer.renderer);
-    if (a.colourCoherence && !chosen->colourCoherence())
-        throw UsageError("--colour-coherence: renderer " + a.rendererName + " does not fill pixels by colour (use " +
+    if (a.detail.level > a.depth) throw UsageError("--level " + std::to_string(a.detail.level) + " is deeper than --depth " + std::to_string(a.depth));
+    const bool multires = a.detail.lodPixels > 0.0 || (a.detail.level >= 0 && a.detail.level < a.depth);
+    const std::unique_ptr<Renderer> chosen = makeRenderer(a.resolved.renderer);
+    if (a.coherence.colour && !chosen->colourCoherence())
+        throw UsageError("--colour-coherence: renderer " + a.renderer + " does not fill pixels by colour (use " +
                          voxelRenderersThat(&Renderer::colourCoherence) + ")");
     // Options the renderer does not read are accepted (a script may set them always), but told.
     // A +colour name turns colour coherence on as --colour-coherence does.
-    warnUnused(parser, *chosen, a.rendererName, [&](std::string_view key) {
-        return key == model::opt::colourCoherence.key && (a.colourCoherence || a.renderer.colourCoherence);
+    warnUnused(parser, *chosen, a.renderer, [&](std::string_view key) {
+        return key == model::opt::colourCoherence.key && (a.coherence.colour || a.resolved.colourCoherence);
     });
     if (multires) {
-        for (const auto& [name, resolved] : {std::pair{a.rendererName, a.renderer}, std::pair{a.baseline, a.baselineRenderer}})
+        for (const auto& [name, resolved] : {std::pair{a.renderer, a.resolved}, std::pair{a.baseline, a.baselineRenderer}})
             if (!name.empty() && !makeRenderer(resolved.renderer)->multiResolution())
                 throw UsageError("--lod/--level: renderer " + name + " has no multi-resolution mode (use " + voxelRenderersThat(&Renderer::multiResolution) + ")");
     }
@@ -422,21 +393,9 @@ int runRender(const std::vector<std::string>& args) {
 
     // Camera: framing the surface (not the whole grid) unless told otherwise.
     const Box3 bounds = tree.occupiedBounds();
-    const Camera cam = makeCamera(a, bounds);
+    const Camera cam = model::frameCamera(a, bounds);
 
-    RenderSettings rs;
-    rs.threads = a.threads;
-    rs.background = displayToLinear(a.background);
-    applyColour(a, surface, rs);
-    if (a.light) rs.lightCamera = *a.light;
-    applyLighting(a, rs);
-    rs.coherence.colour = a.colourCoherence;
-    rs.coherence.colourTolerance = a.colourTolerance;
-    rs.coherence.colourFillsBackground = a.colourFillsBackground;
-    rs.coherence.branchUp = a.branchUp;
-    rs.coherence.miss = a.missCoherence;
-    rs.detail.lodPixels = a.lod;
-    rs.detail.level = a.level;
+    const RenderSettings rs = model::renderSettings(a, surface, a);
     if (a.shadows.value_or(false) && !Shader(tree, cam, rs).shadows())
         log::warning("--shadows on: the octree is shaded by its baked light, which has its own shadows "
                      "(--bake-shadows); give --lighting dynamic for shadow rays towards --light");
@@ -498,7 +457,7 @@ int runRender(const std::vector<std::string>& args) {
     js.set("states_deferred", st.statesDeferred);
     js.set("colour_filled", st.colourFilled);
     js.set("miss_filled", st.missFilled);
-    if (rs.coherence.colour || a.renderer.colourCoherence) js.set("colour_tolerance", double(rs.coherence.colourTolerance));
+    if (rs.coherence.colour || a.resolved.colourCoherence) js.set("colour_tolerance", double(rs.coherence.colourTolerance));
     js.set("branch_up", rs.coherence.branchUp);
     js.set("miss_coherence", std::string(rs.coherence.miss ? "on" : "off"));
     js.set("nodes_visited", st.nodesVisited);
@@ -523,8 +482,8 @@ int runRender(const std::vector<std::string>& args) {
     js.set("peak_rss_bytes_after_build", std::uint64_t(rssAfterBuild));
     setCameraStats(js, cam, bounds);
     if (multires) {
-        js.set("lod", a.lod);
-        js.set("level", std::uint64_t(a.level < 0 ? tree.depth : a.level));
+        js.set("lod", a.detail.lodPixels);
+        js.set("level", std::uint64_t(a.detail.level < 0 ? tree.depth : a.detail.level));
     }
     js.set("cube_origin", vecText(tree.cubeOrigin));
     js.set("cube_side", tree.cubeSide);

@@ -307,10 +307,8 @@ void Engine::exportFigure(const StudioState& state, const QString& path, int wid
             Camera cam = exportCamera(state, tree->occupiedBounds(), width, height);
             cam.validate();
             Frame frame;
-            RenderSettings rs = renderSettingsFor(state, state.transparent, window, inverted);
-            const RendererName resolved = resolveRendererName(state.renderer);
-            resolved.applyTo(rs);
-            const RenderStats st = makeRenderer(resolved.renderer)->render(*tree, cam, rs, frame);
+            const RenderSettings rs = renderSettingsFor(state, state.transparent, window, inverted);
+            const RenderStats st = model::renderFrame(*tree, cam, rs, state.renderer, frame);
             if (layout) model::writeFigure(frame, figureArgs(state), *layout, subject, *tree, cam, rs, path.toStdString());
             else writeFigure(frame, path.toStdString(), state.transparent);
             const QString summary = tr("%1: %2x%3, %4, %5 ms")

@@ -23,15 +23,28 @@ std::string triple(double a, double b, double c) { return number(a) + "," + numb
 
 bool colourGiven(const StudioState& state) { return state.colour != StudioState().colour; }
 
-Camera cameraFor(const StudioState& state, const Box3& surfaceBounds, int width, int height) {
-    // As `octrace render`: the framing first, then the camera options over it.
-    Camera cam = Camera::framing(surfaceBounds, width, height, state.fov);
+model::RenderSpec renderSpec(const StudioState& state, int width, int height) {
+    model::RenderSpec r;
+    r.renderer = state.renderer;
+    r.width = width;
+    r.height = height;
+    r.fov = state.fov;
     if (state.cameraSet) {
-        cam.position = state.position;
-        cam.lookAt = state.lookAt;
-        cam.up = state.up;
+        r.cameraPos = state.position;
+        r.lookAt = state.lookAt;
+        r.up = state.up;
     }
-    return cam;
+    r.background = state.background;
+    r.light = state.light;
+    r.coherence.colour = state.colourCoherence;
+    r.coherence.colourTolerance = state.colourTolerance;
+    r.coherence.branchUp = state.branchUp;
+    r.coherence.miss = state.missCoherence;
+    return r;
+}
+
+Camera cameraFor(const StudioState& state, const Box3& surfaceBounds, int width, int height) {
+    return model::frameCamera(renderSpec(state, width, height), surfaceBounds);
 }
 
 model::SurfaceSpec surfaceArgs(const StudioState& state) {
@@ -82,22 +95,12 @@ Camera exportCamera(const StudioState& state, const Box3& surfaceBounds, int wid
 }
 
 RenderSettings renderSettingsFor(const StudioState& state, bool transparent, const ValueWindow& window, bool invertedGrey) {
-    RenderSettings rs;
-    vec4 bg = state.background;
-    if (transparent) bg.a = 0.0f;
-    rs.background = model::displayToLinear(bg);
-    model::Surface look;
+    model::Surface look;  // what the settings read of the surface built: its display window
     look.window = window;
     look.invertedGrey = invertedGrey;
-    const model::SurfaceSpec a = surfaceArgs(state);
-    model::applyColour(a, look, rs);
-    model::applyLighting(a, rs);
-    rs.lightCamera = state.light;
-    rs.coherence.colour = state.colourCoherence;
-    rs.coherence.colourTolerance = state.colourTolerance;
-    rs.coherence.branchUp = state.branchUp;
-    rs.coherence.miss = state.missCoherence;
-    return rs;
+    model::RenderSpec spec = renderSpec(state, 1, 1);
+    if (transparent) spec.background.a = 0.0f;
+    return model::renderSettings(surfaceArgs(state), look, spec);
 }
 
 std::vector<std::string> renderArguments(const StudioState& state, const Camera& camera, double iso,

@@ -4,6 +4,7 @@
 // (Session.h); renderArguments() is the same state as the `octrace render` command line that
 // draws the same image, so that the studio and the CLI can be checked against each other.
 #include "octrace/model/Figure.h"
+#include "octrace/model/Render.h"
 #include "octrace/model/Surface.h"
 
 #include "octrace/model/OptionTable.h"
@@ -81,8 +82,12 @@ inline constexpr int kMaxExportSide = int(model::opt::width.max);
 /// then replaces an input's own voxel colours).
 bool colourGiven(const StudioState& state);
 
+/// The pipeline's render spec of `state` at width x height (renderer, camera when set, field of
+/// view, background, light, coherence).
+model::RenderSpec renderSpec(const StudioState& state, int width, int height);
+
 /// The camera of `state` at width x height: its own when set, else the CLI's default framing of
-/// `surfaceBounds`.
+/// `surfaceBounds` (model::frameCamera).
 Camera cameraFor(const StudioState& state, const Box3& surfaceBounds, int width, int height);
 
 /// The CLI's surface options for `state` (input, variable, time, series, iso, depth, colour,

@@ -6,6 +6,7 @@
 #include "CliRunner.h"
 
 #include "octrace/model/OptionTable.h"
+#include "octrace/model/Render.h"
 #include "octrace/util/Parameter.h"
 
 #include <cmath>
@@ -116,6 +117,25 @@ TEST(OptionTable, KeysAndFlagsAreUniqueAndEveryHelpStatesItsDefault) {
                 EXPECT_FALSE(p != o && *o->flag && std::string(p->flag) == o->flag && p->takenBy(c))
                     << o->key << " and " << p->key << " are both --" << o->flag << " of " << c;
     }
+}
+
+TEST(OptionTable, TheLibrariesDefaultsAreTheTables) {
+    // Core keeps its own defaults (it does not know the table); they must be the table's, so
+    // that a renderer called without a front end draws what the front ends draw by default.
+    const octrace::RenderSettings core;
+    const model::RenderSpec spec;
+    EXPECT_EQ(double(core.coherence.colourTolerance), model::opt::colourTolerance.defaultValue);
+    EXPECT_EQ(core.coherence.branchUp, int(model::opt::branchUp.defaultValue));
+    EXPECT_EQ(core.coherence.miss, model::opt::missCoherence.defaultChoice() == "on");
+    EXPECT_EQ(core.spheres.samples, int(model::opt::samples.defaultValue));
+    EXPECT_EQ(core.spheres.bounces, int(model::opt::bounces.defaultValue));
+    EXPECT_EQ(core.ambient, float(model::opt::ambient.defaultValue));
+    EXPECT_EQ(spec.coherence.colourTolerance, core.coherence.colourTolerance);
+    EXPECT_EQ(spec.coherence.miss, core.coherence.miss);
+    EXPECT_EQ(spec.spheres.samples, core.spheres.samples);
+    EXPECT_EQ(spec.renderer, model::opt::renderer.defaultText);
+    EXPECT_EQ(spec.fov, model::opt::fov.defaultValue);
+    EXPECT_EQ(spec.width, int(model::opt::width.defaultValue));
 }
 
 TEST(OptionTable, CoreIoAndThePipelineNameParametersNeverCliFlags) {
