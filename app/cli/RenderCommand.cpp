@@ -69,11 +69,9 @@ OptionParser makeParser(RenderArgs& a) {
     p.add({"size", "WxH", "image size in pixels, each side " + model::opt::width.rangeText() + " (default " +
            model::opt::width.defaultSaid() + "x" + model::opt::height.defaultSaid() + ")",
            [&](const std::string& v) { parseSize("size", v, a.width, a.height); }});
-    p.add({"camera-pos", "X,Y,Z", "camera position, world units (default: framing the surface from south-east, above)",
-           [&](const std::string& v) { a.cameraPos = parseVec3("camera-pos", v); }});
-    p.add({"look-at", "X,Y,Z", "point the camera looks at (default: centre of the surface's bounding box)",
-           [&](const std::string& v) { a.lookAt = parseVec3("look-at", v); }});
-    p.add({"up", "X,Y,Z", "camera up direction (default 0,0,1)", [&](const std::string& v) { a.up = parseVec3("up", v); }});
+    p.add(tableOption(model::opt::cameraPos, [&](const std::string& v) { a.cameraPos = parseVec3("camera-pos", v); }));
+    p.add(tableOption(model::opt::lookAt, [&](const std::string& v) { a.lookAt = parseVec3("look-at", v); }));
+    p.add(tableOption(model::opt::up, [&](const std::string& v) { a.up = parseVec3("up", v); }));
     p.add(tableOption(model::opt::fov, [&](const std::string& v) { a.fov = tableNumber(model::opt::fov, v); }));
     p.add(tableOption(model::opt::projection, [&](const std::string& v) {
         a.ortho = v == "orthographic" || model::parseChoice(model::opt::projection, v) == "ortho";
@@ -85,15 +83,12 @@ OptionParser makeParser(RenderArgs& a) {
     addThreadsOption(p, a, "the image");
     p.add({"stats", "FILE.json", "write timings and counters as JSON (keys: docs/user/cli.md)",
            [&](const std::string& v) { a.statsPath = v; }});
-    p.add({"verify", "", "also trace every pixel with the reference traversal and report the differences",
-           [&](const std::string&) { a.verify = true; }});
-    p.add({"background", "R,G,B[,A]", "background colour, sRGB components in [0,1] (default 1,1,1,1)",
-           [&](const std::string& v) { a.background = parseColour("background", v, true); }});
-    p.add({"light", "X,Y,Z", "direction towards the light in camera space, x right, y up, z to the viewer (default 0.4,0.6,1)",
-           [&](const std::string& v) {
-               a.light = parseVec3("light", v);
-               if (!(glm::length(*a.light) > 0.0)) throw UsageError("--light: direction must not be zero");
-           }});
+    p.add(tableOption(model::opt::verify, [&](const std::string&) { a.verify = true; }));
+    p.add(tableOption(model::opt::background, [&](const std::string& v) { a.background = parseColour("background", v, true); }));
+    p.add(tableOption(model::opt::light, [&](const std::string& v) {
+        a.light = parseVec3("light", v);
+        if (!(glm::length(*a.light) > 0.0)) throw UsageError("--light: direction must not be zero");
+    }));
     addColourOptions(p, a);
     addLayerOptions(p, a);
     p.add(tableOption(model::opt::colourCoherence, [&](const std::string&) { a.coherence.colour = true; }));
@@ -108,11 +103,10 @@ OptionParser makeParser(RenderArgs& a) {
     addCityOptions(p, a);
     addSeriesOption(p, a.request);
     p.add(tableOption(model::opt::repeat, [&](const std::string& v) { a.repeat = tableInt(model::opt::repeat, v); }));
-    p.add({"baseline", "NAME", "also render with renderer NAME, alternating with the main one --repeat times, and report baseline_render_ms, speedup_over_baseline and baseline_differing_pixels (pixels whose colour differs) (default: none)",
-           [&](const std::string& v) {
-               a.baselineRenderer = resolveRendererName(v);
-               a.baseline = v;
-           }});
+    p.add(tableOption(model::opt::baseline, [&](const std::string& v) {
+        a.baselineRenderer = resolveRendererName(v);
+        a.baseline = v;
+    }));
     p.add(tableOption(model::opt::octree, [&](const std::string& v) { a.octreeKind = model::parseChoice(model::opt::octree, v); }));
     // An integer option of the object octree, noted as given (it applies to sphere scenes only).
     auto sphereInt = [&](const model::Option& o, int& target) {

@@ -64,12 +64,12 @@ OptionParser makeParser(SliceArgs& a) {
     p.add({"size", "WxH", "image size in pixels, the slice fitted and centred, its aspect kept (default: one pixel per sample of "
            "the finer in-plane spacing, so anisotropic voxels keep their shape; with --figure the whole figure, 1200x1000)",
            [&](const std::string& v) { parseSize("size", v, a.width, a.height); }});
-    addWindowOption(p, a, "the slice by a display window",
+    addWindowOption(p, a, "here the slice",
                     "the window stored in a DICOM file; else for a patient volume its whole value range in grey; else the colour map");
     addColourMapOptions(p, a,
-                        "colours the slice when no window greys it (default: the variable's map from its standard_name or name, "
-                        "thermal/haline/speed/viridis)",
-                        "values mapped onto the colour map's ends (default: the slice's range of values)",
+                        "here the slice's, when no window greys it; by default the variable's map from its standard_name or name, "
+                        "thermal/haline/speed/viridis",
+                        "here the slice's values, by default their range",
                         "masked samples (land, missing values, outside a resampled gantry-tilted stack)");
     p.add({"background", "R,G,B[,A]", "colour outside the grid, sRGB components in [0,1] (default 0,0,0,1; with --figure 0,0,0,0: the paper)",
            [&](const std::string& v) { a.background = parseColour("background", v, true); }});

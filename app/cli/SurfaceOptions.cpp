@@ -87,9 +87,7 @@ void addInsideOption(OptionParser& p, SurfaceArgs& a, const std::string& applies
 }
 
 void addExtendDownOption(OptionParser& p, SurfaceArgs& a) {
-    p.add({"extend-down", "", "geographic fields: extend each water column's deepest valid value down through the masked samples "
-           "under it, so that a finer sea floor (--cut relief:FILE) bounds the water instead of the grid's own (default off)",
-           [&](const std::string&) { a.extendDown = true; }});
+    p.add(tableOption(model::opt::extendDown, [&](const std::string&) { a.extendDown = true; }));
 }
 
 void addFormOptions(OptionParser& p, SurfaceArgs& a) {
@@ -98,28 +96,21 @@ void addFormOptions(OptionParser& p, SurfaceArgs& a) {
         a.formGiven = true;
     }));
     addInsideOption(p, a, "volume form");
-    p.add({"cut", "SOLID", "cut a solid away: box:X0,Y0,Z0,X1,Y1,Z1, sphere:X,Y,Z,R, cylinder:X0,Y0,Z0,X1,Y1,Z1,R or "
-           "halfspace:X,Y,Z,NX,NY,NZ in world units, or relief:FILE, the ground under a relief raster (e.g. ETOPO; geographic "
-           "fields only, laid out in their world); repeatable; builds the volume form (default: none)",
-           [&](const std::string& v) {
-               checkSolidArgument(v);
-               a.cuts.emplace_back(v);
-           }});
-    p.add({"clip", "", "keep only what lies inside the --cut solids instead of cutting them away (default off)",
-           [&](const std::string&) { a.clip = true; }});
+    p.add(tableOption(model::opt::cut, [&](const std::string& v) {
+        checkSolidArgument(v);
+        a.cuts.emplace_back(v);
+    }));
+    p.add(tableOption(model::opt::clip, [&](const std::string&) { a.clip = true; }));
     addExtendDownOption(p, a);
 }
 
 void addBakeOptions(OptionParser& p, SurfaceArgs& a) {
-    p.add({"bake", "", "bake diffuse lighting, shadows and ambient occlusion into the shell (default off)",
-           [&](const std::string&) { a.bake = true; }});
-    p.add({"bake-light", "dir:X,Y,Z[,I]|point:X,Y,Z[,I]", "a light to bake, world direction towards it or position, "
-           "intensity I (default 1); repeatable (default one dir:0.3,-0.5,1)",
-           [&](const std::string& v) {
-               if (!a.bakeLightGiven) a.bakeOptions.lights.clear();
-               a.bakeLightGiven = true;
-               a.bakeOptions.lights.push_back(parseBakeLight(v));
-           }});
+    p.add(tableOption(model::opt::bake, [&](const std::string&) { a.bake = true; }));
+    p.add(tableOption(model::opt::bakeLight, [&](const std::string& v) {
+        if (!a.bakeLightGiven) a.bakeOptions.lights.clear();
+        a.bakeLightGiven = true;
+        a.bakeOptions.lights.push_back(parseBakeLight(v));
+    }));
     p.add(tableOption(model::opt::bakeAo, [&](const std::string& v) { a.bakeOptions.aoRays = tableInt(model::opt::bakeAo, v); }));
     p.add(tableOption(model::opt::bakeAoDistance, [&](const std::string& v) {
         a.bakeOptions.aoDistance = tableNumber(model::opt::bakeAoDistance, v);
@@ -147,20 +138,17 @@ void addWindowOption(OptionParser& p, SurfaceArgs& a, const std::string& what, c
     for (const auto& w : ctWindowPresets())
         windows += std::string(windows.empty() ? "" : ", ") + w.name + " " + huText(w.window.centre) + "/" +
                    huText(w.window.width);
-    p.add({"window", "NAME|C,W|none", "grey " + what + ": a CT preset (centre/width in HU: " + windows +
-           "), a centre and width, or none (default: " + byDefault + ")",
-           [&](const std::string& v) { a.windowName = v, a.window = displayWindow(v); }});
+    p.add(tableOption(model::opt::window, [&](const std::string& v) { a.windowName = v, a.window = displayWindow(v); },
+                      what + "; the CT presets (centre/width in HU): " + windows + "; without it: " + byDefault));
 }
 
 void addColourMapOptions(OptionParser& p, SurfaceArgs& a, const std::string& colormapHelp, const std::string& rangeHelp,
                          const std::string& maskedWhat) {
-    p.add({"colormap", "NAME", "colour map: " + joinNames(colormapNames()) + "; " + colormapHelp,
-           [&](const std::string& v) {
-               colormap(v, 0.0f);
-               a.colormap = v;
-           }});
-    p.add({"colour-range", "MIN,MAX", rangeHelp,
-           [&](const std::string& v) {
+    p.add(tableOption(model::opt::colormap, [&](const std::string& v) {
+        colormap(v, 0.0f);
+        a.colormap = v;
+    }, joinNames(colormapNames()) + "; " + colormapHelp));
+    p.add(tableOption(model::opt::colourRange, [&](const std::string& v) {
                const std::size_t comma = v.find(',');
                if (comma == std::string::npos || v.find(',', comma + 1) != std::string::npos)
                    throw UsageError("--colour-range: expected MIN,MAX, got '" + v + "'");
@@ -169,57 +157,51 @@ void addColourMapOptions(OptionParser& p, SurfaceArgs& a, const std::string& col
                    throw UsageError("--colour-range: MIN must be below MAX, both finite, got '" + v + "'");
                a.colourMin = float(lo);
                a.colourMax = float(hi);
-           }});
-    p.add({"masked-colour", "R,G,B", "colour of " + maskedWhat + ", sRGB in [0,1] (default 0.6,0.6,0.6)",
-           [&](const std::string& v) { a.maskedColour = vec3(parseColour("masked-colour", v, false)); }});
+           }, rangeHelp));
+    p.add(tableOption(model::opt::maskedColour, [&](const std::string& v) { a.maskedColour = vec3(parseColour("masked-colour", v, false)); },
+                      "here " + maskedWhat));
 }
 
 void addColourOptions(OptionParser& p, SurfaceArgs& a) {
     a.colours = true;
-    p.add({"colour", "R,G,B", "surface colour, sRGB components in [0,1], also over a city's own colours (default 0.85,0.62,0.35; city inputs: per object and texture)",
-           [&](const std::string& v) {
-               a.colour = vec3(parseColour("colour", v, false));
-               a.colourGiven = true;
-           }});
+    p.add(tableOption(model::opt::colour, [&](const std::string& v) {
+        a.colour = vec3(parseColour("colour", v, false));
+        a.colourGiven = true;
+    }));
     p.add({"color", "R,G,B", "same as --colour (default 0.85,0.62,0.35)", [&](const std::string& v) {
                a.colour = vec3(parseColour("color", v, false));
                a.colourGiven = true;
            }});
-    addWindowOption(p, a, "the surface by a display window applied to the value just under it",
+    addWindowOption(p, a, "here the surface, by the value just under it",
                     "the window stored in a DICOM file, unless --colour, --colormap or --colour-by is given");
     addColourMapOptions(p, a,
-                        "colours by --colour-by's variable, else by height (default: with --colour-by the variable's map from its "
-                        "standard_name or name, thermal/haline/speed/viridis; else none, --colour)",
-                        "values of --colour-by mapped onto the colour map's ends (default: the surface voxels' range)",
+                        "here the surface's height, or --colour-by's values; with --colour-by, by default the variable's map "
+                        "from its standard_name or name, thermal/haline/speed/viridis",
+                        "here --colour-by's values, by default the surface voxels' range",
                         "surface voxels where --colour-by's variable is masked");
-    p.add({"floor-colour", "R,G,B", "colour of the sea floor and land (--floor), sRGB in [0,1] (default 0.55,0.5,0.45)",
-           [&](const std::string& v) { a.floorColour = vec3(parseColour("floor-colour", v, false)); }});
+    p.add(tableOption(model::opt::floorColour, [&](const std::string& v) { a.floorColour = vec3(parseColour("floor-colour", v, false)); }));
 }
 
 void addLayerOptions(OptionParser& p, SurfaceArgs& a) {
-    p.add({"colour-by", "VAR", "colour the isosurface by a second variable of the same file, sampled at each voxel (default: none)",
-           [&](const std::string& v) {
-               if (v.empty()) throw UsageError("--colour-by: empty variable name");
-               a.colourBy = v;
-           }});
-    p.add({"floor", "", "also draw the sea floor and land where the variable is masked, under the isosurface (default off)",
-           [&](const std::string&) { a.floor = true; }});
+    p.add(tableOption(model::opt::colourBy, [&](const std::string& v) {
+        if (v.empty()) throw UsageError("--colour-by: empty variable name");
+        a.colourBy = v;
+    }));
+    p.add(tableOption(model::opt::floor, [&](const std::string&) { a.floor = true; }));
 }
 
 void addGeographicOptions(OptionParser& p, io::FieldRequest& request) {
-    p.add({"region", "LON0,LON1,LAT0,LAT1", "geographic subregion in degrees, NetCDF only (default: the whole grid)",
-           [&](const std::string& v) {
-               auto r = io::parseRegion(v);
-               request.hasRegion = true;
-               for (int i = 0; i < 4; ++i) request.region[i] = r[std::size_t(i)];
-           }});
-    p.add({"depth-range", "Z0,Z1", "depth levels from Z0 to Z1 metres (positive down), NetCDF only (default: every level)",
-           [&](const std::string& v) {
-               auto r = io::parseDepthRange(v);
-               request.hasDepthRange = true;
-               request.depthRange[0] = r[0];
-               request.depthRange[1] = r[1];
-           }});
+    p.add(tableOption(model::opt::region, [&](const std::string& v) {
+        auto r = io::parseRegion(v);
+        request.hasRegion = true;
+        for (int i = 0; i < 4; ++i) request.region[i] = r[std::size_t(i)];
+    }));
+    p.add(tableOption(model::opt::depthRange, [&](const std::string& v) {
+        auto r = io::parseDepthRange(v);
+        request.hasDepthRange = true;
+        request.depthRange[0] = r[0];
+        request.depthRange[1] = r[1];
+    }));
     p.add(tableOption(model::opt::time, [&](const std::string& v) {
         io::checkTimeText(v);
         request.time = v;
@@ -229,13 +211,12 @@ void addGeographicOptions(OptionParser& p, io::FieldRequest& request) {
 }
 
 void addCityOptions(OptionParser& p, SurfaceArgs& a) {
-    p.add({"lod-select", "LOD", "city inputs: level of detail to voxelize, e.g. 1, 2 or 2.2 (a prefix takes its sublevels; default: each object's highest)",
-           [&](const std::string& v) {
-               if (v.empty() || v.find_first_not_of("0123456789.") != std::string::npos)
-                   throw UsageError("--lod-select: expected a level of detail such as 1, 2 or 2.2, got '" + v + "'");
-               a.city.lod = v;
-               a.cityGiven = true;
-           }});
+    p.add(tableOption(model::opt::lodSelect, [&](const std::string& v) {
+        if (v.empty() || v.find_first_not_of("0123456789.") != std::string::npos)
+            throw UsageError("--lod-select: expected a level of detail such as 1, 2 or 2.2, got '" + v + "'");
+        a.city.lod = v;
+        a.cityGiven = true;
+    }));
     // A text option of CityRequest: not empty (`what` says what to give), marks a city option given.
     auto text = [&](const model::Option& o, std::string io::CityRequest::*field, const char* what) {
         const char* name = o.flag;

@@ -78,10 +78,11 @@ void addLightingOption(OptionParser& p, SurfaceArgs& a);
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result);
 /// --colour, --color, --colormap, --window, --colour-range, --masked-colour, --floor-colour.
 void addColourOptions(OptionParser& p, SurfaceArgs& a);
-/// --window; its help: "grey " + `what` + the presets, and the default `byDefault`.
+/// --window (the options table's), its help followed by `what` (what it greys here), the presets,
+/// and what is drawn without it (`byDefault`).
 void addWindowOption(OptionParser& p, SurfaceArgs& a, const std::string& what, const std::string& byDefault);
-/// --colormap, --colour-range, --masked-colour, with the help of the first two (after the list
-/// of maps) and what the masked colour colours.
+/// --colormap, --colour-range, --masked-colour (the options table's), with what the first two mean
+/// for the command (after the list of maps) and what the masked colour colours.
 void addColourMapOptions(OptionParser& p, SurfaceArgs& a, const std::string& colormapHelp, const std::string& rangeHelp,
                          const std::string& maskedWhat);
 /// --colour-by, --floor: what is drawn besides the isosurface.

@@ -146,7 +146,11 @@ inline constexpr Option crs{.key = "crs", .kind = OptionKind::Text, .flag = "crs
     .help = "city inputs: projected coordinate reference system to bring everything into, e.g. EPSG:28992",
     .commands = "render export build"};
 inline constexpr Option cut{.key = "cut", .kind = OptionKind::Text, .flag = "cut", .argument = "SOLID", .session = "surface.cut",
-    .label = "Solid", .help = "cut a solid away", .commands = "render export build"};
+    .label = "Solid", .defaultText = "none",
+    .help = "cut a solid away: box:X0,Y0,Z0,X1,Y1,Z1, sphere:X,Y,Z,R, cylinder:X0,Y0,Z0,X1,Y1,Z1,R or halfspace:X,Y,Z,NX,NY,NZ "
+            "in world units, or relief:FILE, the ground under a relief raster (e.g. ETOPO; geographic fields only, laid out "
+            "in their world); repeatable; builds the volume form",
+    .commands = "render export build csg"};
 
 inline constexpr Option clip{.key = "clip", .kind = OptionKind::Flag, .flag = "clip", .session = "surface.clip",
     .help = "keep only what lies inside the `cut` solids instead of cutting them away", .commands = "render export build"};
@@ -166,6 +170,10 @@ inline constexpr Option lodSelect{.key = "lod_select", .kind = OptionKind::Text,
     .commands = "render export build"};
 inline constexpr Option bake{.key = "bake", .kind = OptionKind::Flag, .flag = "bake",
     .help = "bake diffuse lighting, shadows and ambient occlusion into the shell", .commands = "render export build"};
+inline constexpr Option bakeLight{.key = "bake_light", .kind = OptionKind::Text, .flag = "bake-light",
+    .argument = "dir:X,Y,Z[,I]|point:X,Y,Z[,I]", .defaultText = "one dir:0.3,-0.5,1",
+    .help = "a light to bake, world direction towards it or position, intensity I (default 1); repeatable",
+    .commands = "render export build"};
 
 // Colour.
 inline constexpr Option colour{.key = "colour", .kind = OptionKind::Text, .flag = "colour", .argument = "R,G,B",
@@ -173,13 +181,28 @@ inline constexpr Option colour{.key = "colour", .kind = OptionKind::Text, .flag 
     .help = "surface colour, sRGB components in [0,1], also over a city's own colours", .commands = "render export"};
 inline constexpr Option colormap{.key = "colormap", .kind = OptionKind::Text, .flag = "colormap", .argument = "NAME",
     .session = "shading.colormap", .label = "Colour map", .defaultText = "uniform colour",
-    .help = "colour the surface by a colour map of the height (or of `colour_by`'s values)", .commands = "render export slice"};
+    .help = "colour by a colour map", .commands = "render export slice"};
 inline constexpr Option window{.key = "window", .kind = OptionKind::Text, .flag = "window", .argument = "NAME|C,W|none",
     .session = "shading.window", .label = "CT window", .defaultText = "the window stored in a DICOM file",
-    .help = "grey the surface by a display window (a CT preset, a centre and width, or none)", .commands = "render export slice"};
+    .help = "grey by a display window (a CT preset, a centre and width, or none)", .commands = "render export slice"};
 inline constexpr Option colourBy{.key = "colour_by", .kind = OptionKind::Text, .flag = "colour-by", .argument = "VAR",
     .defaultText = "none", .help = "colour the isosurface by a second variable of the same file, sampled at each voxel",
     .commands = "render export"};
+inline constexpr Option colourRange{.key = "colour_range", .kind = OptionKind::Text, .flag = "colour-range",
+    .argument = "MIN,MAX", .defaultText = "the range of what is coloured",
+    .help = "the values mapped onto the colour map's ends", .commands = "render export slice"};
+inline constexpr Option maskedColour{.key = "masked_colour", .kind = OptionKind::Text, .flag = "masked-colour",
+    .argument = "R,G,B", .defaultText = "0.6,0.6,0.6", .help = "colour of what is masked, sRGB in [0,1]",
+    .commands = "render export slice"};
+inline constexpr Option floorColour{.key = "floor_colour", .kind = OptionKind::Text, .flag = "floor-colour",
+    .argument = "R,G,B", .defaultText = "0.55,0.5,0.45", .help = "colour of the sea floor and land (`floor`), sRGB in [0,1]",
+    .commands = "render export"};
+inline constexpr Option background{.key = "background", .kind = OptionKind::Text, .flag = "background",
+    .argument = "R,G,B[,A]", .session = "shading.background", .defaultText = "1,1,1,1",
+    .help = "background colour, sRGB components in [0,1]", .commands = "render"};
+inline constexpr Option light{.key = "light", .kind = OptionKind::Text, .flag = "light", .argument = "X,Y,Z",
+    .session = "shading.light", .defaultText = "0.4,0.6,1",
+    .help = "direction towards the light in camera space, x right, y up, z to the viewer", .commands = "render"};
 inline constexpr Option floor{.key = "floor", .kind = OptionKind::Flag, .flag = "floor",
     .help = "also draw the sea floor and land where the variable is masked, under the isosurface", .commands = "render export"};
 
@@ -187,6 +210,14 @@ inline constexpr Option floor{.key = "floor", .kind = OptionKind::Flag, .flag = 
 inline constexpr Option renderer{.key = "renderer", .kind = OptionKind::Text, .flag = "renderer", .argument = "NAME",
     .session = "renderers.main", .label = "Renderer", .defaultText = "full",
     .help = "renderer; samet and beam (paper B) draw sphere scenes and voxel octrees alike", .commands = "render"};
+inline constexpr Option cameraPos{.key = "camera_pos", .kind = OptionKind::Text, .flag = "camera-pos", .argument = "X,Y,Z",
+    .session = "camera.position", .defaultText = "framing the surface from south-east, above",
+    .help = "camera position, world units", .commands = "render"};
+inline constexpr Option lookAt{.key = "look_at", .kind = OptionKind::Text, .flag = "look-at", .argument = "X,Y,Z",
+    .session = "camera.look_at", .defaultText = "centre of the surface's bounding box",
+    .help = "point the camera looks at", .commands = "render"};
+inline constexpr Option up{.key = "up", .kind = OptionKind::Text, .flag = "up", .argument = "X,Y,Z", .session = "camera.up",
+    .defaultText = "0,0,1", .help = "camera up direction", .commands = "render"};
 inline constexpr Option fov{.key = "fov", .kind = OptionKind::Number, .flag = "fov", .argument = "DEG",
     .session = "camera.fov", .label = "Field of view", .defaultValue = 30, .min = 0, .max = 180, .minOpen = true,
     .maxOpen = true, .unit = "degrees", .help = "vertical field of view", .commands = "render"};
@@ -232,6 +263,13 @@ inline constexpr Option missCoherence{.key = "miss_coherence", .kind = OptionKin
     .help = "a common-path pixel whose two partners both missed is taken as background untraced (off: traced from the root)",
     .commands = "render", .renderers = &Renderer::missCoherence,
     .renderersSaid = "the approximate linear and area"};
+inline constexpr Option verify{.key = "verify", .kind = OptionKind::Flag, .flag = "verify",
+    .help = "also trace every pixel with the reference traversal and report the differences", .commands = "render"};
+inline constexpr Option baseline{.key = "baseline", .kind = OptionKind::Text, .flag = "baseline", .argument = "NAME",
+    .defaultText = "none",
+    .help = "also render with renderer NAME, alternating with the main one `repeat` times, and report baseline_render_ms, "
+            "speedup_over_baseline and baseline_differing_pixels (pixels whose colour differs)",
+    .commands = "render"};
 inline constexpr Option repeat{.key = "repeat", .kind = OptionKind::Integer, .flag = "repeat", .argument = "N",
     .defaultValue = 1, .min = 1, .max = 1000,
     .help = "render N times and report the fastest as render_ms (benchmarks on a noisy machine)", .commands = "render"};
