@@ -59,6 +59,8 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 namespace octrace::studio {
@@ -414,51 +416,9 @@ QWidget* MainWindow::buildControls() {
     });
     renderForm->addRow(tr("Renderer"), rendererCombo_);
     renderForm->addRow(tr("Right pane"), secondCombo_);
-    // Coherence (render --colour-tolerance, --branch-up, --miss-coherence): enabled for the
-    // renderers that have it.
-    colourCoherenceCheck_ = new QCheckBox(tr("average pixels between two alike"), renderBox);
-    colourCoherenceCheck_->setObjectName(QStringLiteral("colourCoherenceCheck"));
-    colourCoherenceCheck_->setChecked(state_.colourCoherence);
-    configure(colourCoherenceCheck_, model::opt::colourCoherence);
-    connect(colourCoherenceCheck_, &QCheckBox::toggled, this, [this](bool on) {
-        if (updating_) return;
-        state_.colourCoherence = on;
-        showCoherence();
-        requestRender(false);
-    });
-    renderForm->addRow(tr(model::opt::colourCoherence.label), colourCoherenceCheck_);
-    colourToleranceSpin_ = new QDoubleSpinBox(renderBox);
-    colourToleranceSpin_->setObjectName(QStringLiteral("colourToleranceSpin"));
-    configure(colourToleranceSpin_, model::opt::colourTolerance, 1);
-    colourToleranceSpin_->setValue(state_.colourTolerance);
-    colourToleranceSpin_->setKeyboardTracking(false);
-    connect(colourToleranceSpin_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
-        if (updating_) return;
-        state_.colourTolerance = float(v);
-        requestRender(false);
-    });
-    renderForm->addRow(tr(model::opt::colourTolerance.label), colourToleranceSpin_);
-    branchUpSpin_ = new QSpinBox(renderBox);
-    branchUpSpin_->setObjectName(QStringLiteral("branchUpSpin"));
-    configure(branchUpSpin_, model::opt::branchUp);
-    branchUpSpin_->setValue(state_.branchUp);
-    branchUpSpin_->setKeyboardTracking(false);
-    connect(branchUpSpin_, &QSpinBox::valueChanged, this, [this](int n) {
-        if (updating_) return;
-        state_.branchUp = n;
-        requestRender(false);
-    });
-    renderForm->addRow(tr(model::opt::branchUp.label), branchUpSpin_);
-    missCoherenceCheck_ = new QCheckBox(tr("pixels between two misses are background"), renderBox);
-    missCoherenceCheck_->setObjectName(QStringLiteral("missCoherenceCheck"));
-    missCoherenceCheck_->setChecked(state_.missCoherence);
-    configure(missCoherenceCheck_, model::opt::missCoherence);
-    connect(missCoherenceCheck_, &QCheckBox::toggled, this, [this](bool on) {
-        if (updating_) return;
-        state_.missCoherence = on;
-        requestRender(false);
-    });
-    renderForm->addRow(tr(model::opt::missCoherence.label), missCoherenceCheck_);
+    // The bound settings of the Rendering panel (coherence), made from the options table and
+    // enabled for the renderers that read them.
+    addBoundControls(renderForm, renderBox);
     showCoherence();
     fovSpin_ = new QDoubleSpinBox(renderBox);
     fovSpin_->setObjectName(QStringLiteral("fovSpin"));
@@ -600,6 +560,69 @@ void MainWindow::colouringChanged() {
         requestRender(false);
 }
 
+void MainWindow::addBoundControls(QFormLayout* form, QWidget* parent) {
+    for (const Binding& b : bindings()) {
+        if (!b.renderingControl) continue;
+        const Binding* bound = &b;
+        QWidget* widget = nullptr;
+        std::visit(
+            [&](auto m) {
+                using Member = decltype(m);
+                if constexpr (std::is_same_v<Member, bool StudioState::*>) {
+                    auto* check = new QCheckBox(parent);
+                    check->setChecked(state_.*m);
+                    configure(check, *b.option);
+                    connect(check, &QCheckBox::toggled, this, [this, m, bound](bool on) {
+                        if (updating_) return;
+                        state_.*m = on;
+                        boundSettingChanged(*bound);
+                    });
+                    widget = check;
+                } else if constexpr (std::is_same_v<Member, int StudioState::*>) {
+                    auto* spin = new QSpinBox(parent);
+                    configure(spin, *b.option);
+                    spin->setValue(state_.*m);
+                    spin->setKeyboardTracking(false);
+                    connect(spin, &QSpinBox::valueChanged, this, [this, m, bound](int v) {
+                        if (updating_) return;
+                        state_.*m = v;
+                        boundSettingChanged(*bound);
+                    });
+                    widget = spin;
+                } else {
+                    auto* spin = new QDoubleSpinBox(parent);
+                    configure(spin, *b.option, 1);
+                    spin->setValue(double(state_.*m));
+                    spin->setKeyboardTracking(false);
+                    connect(spin, &QDoubleSpinBox::valueChanged, this, [this, m, bound](double v) {
+                        if (updating_) return;
+                        state_.*m = static_cast<std::remove_reference_t<decltype(state_.*m)>>(v);
+                        boundSettingChanged(*bound);
+                    });
+                    widget = spin;
+                }
+            },
+            b.member);
+        widget->setObjectName(QString::fromLatin1(b.option->key));
+        form->addRow(tr(b.option->label), widget);
+        boundControls_.emplace_back(bound, widget);
+    }
+    showCoherence();
+}
+
+void MainWindow::boundSettingChanged(const Binding& b) {
+    showCoherence();
+    if (b.effect == Binding::Effect::Rebuild) scheduleBuild();
+    else requestRender(false);
+}
+
+bool MainWindow::flagOn(std::string_view key) const {
+    for (const Binding& b : bindings())
+        if (key == b.option->key)
+            if (const auto* m = std::get_if<bool StudioState::*>(&b.member)) return state_.**m;
+    return false;
+}
+
 void MainWindow::showCoherence() {
     std::vector<RendererName> names{resolveRendererName(state_.renderer)};
     if (state_.split && state_.secondRenderer != kOpenGlPane) names.push_back(resolveRendererName(state_.secondRenderer));
@@ -610,10 +633,14 @@ void MainWindow::showCoherence() {
     };
     // A pane named X+colour has colour coherence on whatever the check box says.
     const bool named = std::any_of(names.begin(), names.end(), [](const RendererName& n) { return n.colourCoherence; });
-    colourCoherenceCheck_->setEnabled(any(&Renderer::colourCoherence));
-    colourToleranceSpin_->setEnabled(named || (state_.colourCoherence && any(&Renderer::colourCoherence)));
-    branchUpSpin_->setEnabled(any(&Renderer::trajectoryCoherence));
-    missCoherenceCheck_->setEnabled(any(&Renderer::missCoherence));
+    // A bound control is enabled when a pane's renderer reads its setting and the setting it
+    // needs (the table's `needs`) is on; a +colour name turns colour coherence on.
+    for (const auto& [b, widget] : boundControls_) {
+        const model::Option& o = *b->option;
+        bool on = !o.renderers || any(o.renderers);
+        if (*o.needs) on = on && (flagOn(o.needs) || (named && std::string_view(o.needs) == model::opt::colourCoherence.key));
+        widget->setEnabled(on);
+    }
 }
 
 void MainWindow::lightingChanged(bool rebuild) {
@@ -780,10 +807,16 @@ void MainWindow::showState() {
     bakeAoSpin_->setValue(state_.bakeAo);
     bakeShadowsCheck_->setChecked(state_.bakeShadows);
     shadowsCheck_->setChecked(state_.shadows);
-    colourCoherenceCheck_->setChecked(state_.colourCoherence);
-    colourToleranceSpin_->setValue(state_.colourTolerance);
-    branchUpSpin_->setValue(state_.branchUp);
-    missCoherenceCheck_->setChecked(state_.missCoherence);
+    for (const auto& [b, widget] : boundControls_) {
+        QWidget* w = widget;
+        std::visit(
+            [&](auto m) {
+                if constexpr (std::is_same_v<decltype(m), bool StudioState::*>) static_cast<QCheckBox*>(w)->setChecked(state_.*m);
+                else if constexpr (std::is_same_v<decltype(m), int StudioState::*>) static_cast<QSpinBox*>(w)->setValue(state_.*m);
+                else static_cast<QDoubleSpinBox*>(w)->setValue(double(state_.*m));
+            },
+            b->member);
+    }
     showCoherence();
     clipCheck_->setChecked(state_.clip);
     showCut();

@@ -10,10 +10,15 @@
 #include <QMainWindow>
 #include <QTimer>
 
+#include <string_view>
+#include <utility>
+#include <vector>
+
 class QAction;
 class QCheckBox;
 class QComboBox;
 class QDoubleSpinBox;
+class QFormLayout;
 class QLabel;
 class QLineEdit;
 class QMenu;
@@ -103,6 +108,13 @@ private:
     /// Enables the coherence controls that the main pane's renderer, or the split view's
     /// second one, honours.
     void showCoherence();
+    /// The controls of the bound settings marked renderingControl (StudioState.h: bindings()),
+    /// each from its option's kind, label, range and tooltip, added to `form`.
+    void addBoundControls(QFormLayout* form, QWidget* parent);
+    /// What a bound control's change asks for (a frame or a build).
+    void boundSettingChanged(const Binding& b);
+    /// Whether the bound on/off setting `key` is on in the state.
+    bool flagOn(std::string_view key) const;
     QWidget* buildCutControls(QWidget* parent);
     /// A solid of `kind` (box, sphere, halfspace) that cuts the part of `bounds` facing the default view.
     static QString defaultCut(const QString& kind, const Box3& bounds);
@@ -135,10 +147,11 @@ private:
               *colormapCombo_ = nullptr, *windowCombo_ = nullptr, *isoPresetCombo_ = nullptr, *lightingCombo_ = nullptr,
               *cutCombo_ = nullptr;
     QLineEdit* cutEdit_ = nullptr;
-    QCheckBox *clipCheck_ = nullptr, *bakeShadowsCheck_ = nullptr, *shadowsCheck_ = nullptr, *missCoherenceCheck_ = nullptr,
-              *colourCoherenceCheck_ = nullptr;
-    QDoubleSpinBox *ambientSpin_ = nullptr, *colourToleranceSpin_ = nullptr;
-    QSpinBox *bakeAoSpin_ = nullptr, *branchUpSpin_ = nullptr;
+    QCheckBox *clipCheck_ = nullptr, *bakeShadowsCheck_ = nullptr, *shadowsCheck_ = nullptr;
+    QDoubleSpinBox* ambientSpin_ = nullptr;
+    QSpinBox* bakeAoSpin_ = nullptr;
+    // The controls made from bindings() (addBoundControls), named by the option's key.
+    std::vector<std::pair<const Binding*, QWidget*>> boundControls_;
     QLineEdit* timeEdit_ = nullptr;
     QSlider* isoSlider_ = nullptr;
     QDoubleSpinBox *isoSpin_ = nullptr, *fovSpin_ = nullptr, *lightSpin_[3] = {nullptr, nullptr, nullptr};

@@ -17,6 +17,9 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 
+#include <map>
+#include <type_traits>
+
 #include <algorithm>
 #include <cmath>
 
@@ -137,17 +140,12 @@ QByteArray sessionJson(const StudioState& s) {
                       {"series", QString::fromStdString(s.series)}};
     const auto member = [](const model::Option& o) { return QString::fromStdString(model::sessionMember(o)); };
     QJsonObject surface{{"iso", s.iso ? QJsonValue(*s.iso) : QJsonValue()},
-                        {member(model::opt::depth), s.depth},
                         {"cut", QString::fromStdString(s.cut)},
                         {"clip", s.clip}};
     QJsonObject renderers{{"main", QString::fromStdString(s.renderer)},
                           {"second", QString::fromStdString(s.secondRenderer)},
-                          {"split", s.split},
-                          {member(model::opt::colourCoherence), s.colourCoherence},
-                          {member(model::opt::colourTolerance), double(s.colourTolerance)},
-                          {member(model::opt::branchUp), s.branchUp},
-                          {member(model::opt::missCoherence), s.missCoherence}};
-    QJsonObject camera{{member(model::opt::fov), s.fov}};
+                          {"split", s.split}};
+    QJsonObject camera;
     if (s.cameraSet) {
         camera.insert("position", array(s.position));
         camera.insert("look_at", array(s.lookAt));
@@ -158,18 +156,18 @@ QByteArray sessionJson(const StudioState& s) {
                         {"colormap", QString::fromStdString(s.colormap)},
                         {"window", QString::fromStdString(s.window)},
                         {"background", array(s.background)},
-                        {member(model::opt::ambient), s.ambient},
-                        {member(model::opt::lighting), QString::fromStdString(s.lighting)},
-                        {member(model::opt::bakeAo), s.bakeAo},
-                        {member(model::opt::bakeShadows), s.bakeShadows},
-                        {member(model::opt::shadows), s.shadows}};
-    QJsonObject exportSettings{{member(model::opt::width), s.exportWidth},
-                               {member(model::opt::height), s.exportHeight},
-                               {"transparent", s.transparent},
-                               {member(model::opt::figure), s.figure},
-                               {member(model::opt::title), QString::fromStdString(s.title)},
-                               {member(model::opt::dpi), s.dpi},
-                               {member(model::opt::scaleBar), s.scaleBar}};
+                        {member(model::opt::lighting), QString::fromStdString(s.lighting)}};
+    QJsonObject exportSettings{{"transparent", s.transparent},
+                               {member(model::opt::title), QString::fromStdString(s.title)}};
+    // The bound settings (StudioState.h), each under its group and member of the table.
+    const std::map<QString, QJsonObject*> groups{{"surface", &surface}, {"renderers", &renderers}, {"camera", &camera},
+                                                 {"shading", &shading}, {"export", &exportSettings}};
+    for (const Binding& b : bindings()) {
+        const QString path = QString::fromLatin1(b.option->session);
+        const qsizetype dot = path.indexOf(QLatin1Char('.'));
+        QJsonObject* group = groups.at(path.left(dot));
+        std::visit([&](auto m) { group->insert(path.mid(dot + 1), QJsonValue(s.*m)); }, b.member);
+    }
     QJsonObject root{{kFormatKey, kFormatVersion}, {"input", input},     {"surface", surface}, {"renderers", renderers},
                      {"camera", camera},           {"shading", shading}, {"export", exportSettings}};
     return QJsonDocument(root).toJson(QJsonDocument::Indented);
@@ -198,9 +196,20 @@ StudioState parseSession(const QByteArray& json, const QString& baseFolder) {
     input.text("time", s.time);
     input.text("series", s.series);
 
+    // The bound settings (StudioState.h): each group's members of the table, with their ranges.
+    for (const Binding& b : bindings()) {
+        const std::string path = b.option->session;
+        const Reader group = root.object(path.substr(0, path.find('.')).c_str());
+        std::visit(
+            [&](auto m) {
+                if constexpr (std::is_same_v<decltype(m), bool StudioState::*>) group.onOff(*b.option, s.*m);
+                else group.setting(*b.option, s.*m);
+            },
+            b.member);
+    }
+
     const Reader surface = root.object("surface");
     if (surface.has("iso")) s.iso = surface.number("iso", -1e300, 1e300);
-    surface.setting(model::opt::depth, s.depth);
     surface.text("cut", s.cut);
     if (!s.cut.empty()) {
         try {
@@ -217,13 +226,8 @@ StudioState parseSession(const QByteArray& json, const QString& baseFolder) {
     renderers.text("second", s.secondRenderer);
     if (s.secondRenderer != kOpenGlPane) checkRenderer(renderers, "second", s.secondRenderer);
     renderers.flag("split", s.split);
-    renderers.onOff(model::opt::colourCoherence, s.colourCoherence);
-    renderers.setting(model::opt::colourTolerance, s.colourTolerance);
-    renderers.setting(model::opt::branchUp, s.branchUp);
-    renderers.onOff(model::opt::missCoherence, s.missCoherence);
 
     const Reader camera = root.object("camera");
-    camera.setting(model::opt::fov, s.fov);
     const int given = int(camera.has("position")) + int(camera.has("look_at")) + int(camera.has("up"));
     if (given != 0 && given != 3) camera.fail("position", QStringLiteral("position, look_at and up go together"));
     if (given == 3) {
@@ -265,22 +269,13 @@ StudioState parseSession(const QByteArray& json, const QString& baseFolder) {
             shading.fail("window", QStringLiteral("a display window and a colour map both colour the surface: give one"));
     }
     shading.colour("background", s.background);
-    shading.setting(model::opt::ambient, s.ambient);
     shading.text("lighting", s.lighting);
     if (!s.lighting.empty() && s.lighting != "baked" && s.lighting != "dynamic")
         shading.fail("lighting", QStringLiteral("expected \"\", \"baked\" or \"dynamic\", got '%1'").arg(QString::fromStdString(s.lighting)));
-    shading.setting(model::opt::bakeAo, s.bakeAo);
-    shading.onOff(model::opt::bakeShadows, s.bakeShadows);
-    shading.onOff(model::opt::shadows, s.shadows);
 
     const Reader exportSettings = root.object("export");
-    exportSettings.setting(model::opt::width, s.exportWidth);
-    exportSettings.setting(model::opt::height, s.exportHeight);
     exportSettings.flag("transparent", s.transparent);
-    exportSettings.onOff(model::opt::figure, s.figure);
     exportSettings.text(model::sessionMember(model::opt::title).c_str(), s.title);
-    exportSettings.setting(model::opt::dpi, s.dpi);
-    exportSettings.onOff(model::opt::scaleBar, s.scaleBar);
     return s;
 }
 

@@ -21,6 +21,28 @@ std::string triple(double a, double b, double c) { return number(a) + "," + numb
 
 }  // namespace
 
+std::span<const Binding> bindings() {
+    using E = Binding::Effect;
+    static const Binding table[] = {
+        {&model::opt::depth, &StudioState::depth, E::Rebuild},
+        {&model::opt::colourCoherence, &StudioState::colourCoherence, E::Render, true},
+        {&model::opt::colourTolerance, &StudioState::colourTolerance, E::Render, true},
+        {&model::opt::branchUp, &StudioState::branchUp, E::Render, true},
+        {&model::opt::missCoherence, &StudioState::missCoherence, E::Render, true},
+        {&model::opt::fov, &StudioState::fov, E::Render},
+        {&model::opt::ambient, &StudioState::ambient, E::Render},
+        {&model::opt::bakeAo, &StudioState::bakeAo, E::Rebuild},
+        {&model::opt::bakeShadows, &StudioState::bakeShadows, E::Rebuild},
+        {&model::opt::shadows, &StudioState::shadows, E::Render},
+        {&model::opt::width, &StudioState::exportWidth, E::Render},
+        {&model::opt::height, &StudioState::exportHeight, E::Render},
+        {&model::opt::figure, &StudioState::figure, E::Render},
+        {&model::opt::dpi, &StudioState::dpi, E::Render},
+        {&model::opt::scaleBar, &StudioState::scaleBar, E::Render},
+    };
+    return table;
+}
+
 bool colourGiven(const StudioState& state) { return state.colour != StudioState().colour; }
 
 model::RenderSpec renderSpec(const StudioState& state, int width, int height) {

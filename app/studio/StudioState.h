@@ -13,6 +13,8 @@
 #include "octrace/util/Math.h"
 
 #include <optional>
+#include <span>
+#include <variant>
 #include <string>
 #include <vector>
 
@@ -71,6 +73,23 @@ struct StudioState {
     int dpi = model::kDefaultDpi;
     bool scaleBar = false;
 };
+
+/// A setting of the options table held in a plain member of StudioState: sessions read and
+/// write it under the table's member (with its range), and the studio's bound controls
+/// (MainWindow::addBoundControls) show it with the table's label, range and tooltip. A new
+/// setting of this kind is a table entry, a member and a line of bindings().
+struct Binding {
+    /// What a change of the value asks for: a new frame, or a new surface (built again).
+    enum class Effect { Render, Rebuild };
+    const model::Option* option;
+    std::variant<bool StudioState::*, int StudioState::*, float StudioState::*, double StudioState::*> member;
+    Effect effect;
+    /// Made by addBoundControls in the Rendering panel (false: the control is made by hand
+    /// where it is laid out, and only the session is generic).
+    bool renderingControl = false;
+};
+/// Every bound setting, in the order the Rendering panel shows its controls.
+std::span<const Binding> bindings();
 
 /// The split view's right pane as the OpenGL surfel view instead of a CPU renderer.
 inline constexpr const char* kOpenGlPane = "opengl";

@@ -458,9 +458,9 @@ private slots:
 
     void coherenceControlsMatchTheCli() {
         auto* combo = window_->findChild<QComboBox*>(QStringLiteral("rendererCombo"));
-        auto* tolerance = window_->findChild<QDoubleSpinBox*>(QStringLiteral("colourToleranceSpin"));
-        auto* branchUp = window_->findChild<QSpinBox*>(QStringLiteral("branchUpSpin"));
-        auto* miss = window_->findChild<QCheckBox*>(QStringLiteral("missCoherenceCheck"));
+        auto* tolerance = window_->findChild<QDoubleSpinBox*>(QStringLiteral("colour_tolerance"));
+        auto* branchUp = window_->findChild<QSpinBox*>(QStringLiteral("branch_up"));
+        auto* miss = window_->findChild<QCheckBox*>(QStringLiteral("miss_coherence"));
         QVERIFY(combo && tolerance && branchUp && miss);
         // Enabled where a shown pane's renderer has them.
         QVERIFY(!window_->state().split);
@@ -503,8 +503,8 @@ private slots:
         // The CLI's --colour-coherence on a renderer without +colour: the check box, its session
         // member and the command line the studio gives.
         auto* combo = window_->findChild<QComboBox*>(QStringLiteral("rendererCombo"));
-        auto* check = window_->findChild<QCheckBox*>(QStringLiteral("colourCoherenceCheck"));
-        auto* tolerance = window_->findChild<QDoubleSpinBox*>(QStringLiteral("colourToleranceSpin"));
+        auto* check = window_->findChild<QCheckBox*>(QStringLiteral("colour_coherence"));
+        auto* tolerance = window_->findChild<QDoubleSpinBox*>(QStringLiteral("colour_tolerance"));
         QVERIFY(combo && check && tolerance);
         combo->setCurrentText(QStringLiteral("direct"));
         QVERIFY(!check->isEnabled());
