@@ -27,6 +27,7 @@ std::span<const Binding> bindings() {
         {&model::opt::depth, &StudioState::depth, E::Rebuild},
         {&model::opt::colourCoherence, &StudioState::colourCoherence, E::Render, true},
         {&model::opt::colourTolerance, &StudioState::colourTolerance, E::Render, true},
+        {&model::opt::colourFillBackground, &StudioState::colourFillsBackground, E::Render, true},
         {&model::opt::branchUp, &StudioState::branchUp, E::Render, true},
         {&model::opt::missCoherence, &StudioState::missCoherence, E::Render, true},
         {&model::opt::fov, &StudioState::fov, E::Render},
@@ -60,6 +61,7 @@ model::RenderSpec renderSpec(const StudioState& state, int width, int height) {
     r.light = state.light;
     r.coherence.colour = state.colourCoherence;
     r.coherence.colourTolerance = state.colourTolerance;
+    r.coherence.colourFillsBackground = state.colourFillsBackground;
     r.coherence.branchUp = state.branchUp;
     r.coherence.miss = state.missCoherence;
     return r;
@@ -159,6 +161,7 @@ std::vector<std::string> renderArguments(const StudioState& state, const Camera&
     if (colourCoherence) args.emplace_back("--colour-coherence");
     if ((chosen.colourCoherence || colourCoherence) && state.colourTolerance != defaults.colourTolerance)
         args.insert(args.end(), {"--colour-tolerance", number(state.colourTolerance)});
+    if ((chosen.colourCoherence || colourCoherence) && state.colourFillsBackground) args.emplace_back("--colour-fill-background");
     if (renderer->trajectoryCoherence() && state.branchUp != defaults.branchUp)
         args.insert(args.end(), {"--branch-up", std::to_string(state.branchUp)});
     if (renderer->missCoherence() && state.missCoherence != defaults.missCoherence)

@@ -37,6 +37,7 @@ struct StudioState {
     // --miss-coherence; Renderer::colourCoherence, trajectoryCoherence, missCoherence).
     bool colourCoherence = false;  ///< on full, linear, area and their exact variants (a pane named X+colour has it anyway)
     float colourTolerance = float(model::opt::colourTolerance.defaultValue);  ///< 8-bit sRGB units
+    bool colourFillsBackground = false;  ///< colour coherence between background pixels too
     int branchUp = int(model::opt::branchUp.defaultValue);
     bool missCoherence = model::opt::missCoherence.defaultChoice() == "on";
     // Camera; unset: framing the surface as `octrace render` does without camera options.

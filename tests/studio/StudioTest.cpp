@@ -528,6 +528,38 @@ private slots:
         QVERIFY(!window_->commandLine(QStringLiteral("x.png"), 10, 10).join(QLatin1Char(' ')).contains(QStringLiteral("coherence")));
     }
 
+    void colourFillBackgroundMatchesTheCli() {
+        // A setting bound to the options table (StudioState.h bindings()): its control, its
+        // session member and the command line the studio gives come from the table and one line.
+        auto* combo = window_->findChild<QComboBox*>(QStringLiteral("rendererCombo"));
+        auto* fill = window_->findChild<QCheckBox*>(QString::fromLatin1(octrace::model::opt::colourFillBackground.key));
+        QVERIFY(combo && fill);
+        QCOMPARE(fill->property("octraceOption").toString(), QString::fromLatin1(octrace::model::opt::colourFillBackground.key));
+        combo->setCurrentText(QStringLiteral("full"));
+        QVERIFY(!fill->isEnabled());  // colour coherence is off: it would change nothing
+        QSignalSpy frames(&window_->engine(), &Engine::frameReady);
+        combo->setCurrentText(QStringLiteral("area+colour"));
+        QVERIFY(fill->isEnabled());
+        QVERIFY(frames.wait(kWaitMs));
+        const std::uint64_t before = frames.takeLast().at(0).value<FrameResult>().panes.at(0).stats.colourFilled;
+        fill->setChecked(true);
+        QVERIFY(window_->state().colourFillsBackground);
+        QVERIFY(frames.wait(kWaitMs));
+        const std::uint64_t after = frames.takeLast().at(0).value<FrameResult>().panes.at(0).stats.colourFilled;
+        QVERIFY2(after > before, qPrintable(QStringLiteral("%1 -> %2 pixels filled by colour").arg(before).arg(after)));
+        const QString line = window_->commandLine(QStringLiteral("x.png"), 10, 10).join(QLatin1Char(' '));
+        QVERIFY2(line.contains(QStringLiteral("--renderer area+colour")) && line.contains(QStringLiteral("--colour-fill-background")),
+                 qPrintable(line));
+        exportEqualsCli(QStringLiteral("colour-fill-background"), 220, 160, false);
+        const QByteArray json = octrace::studio::sessionJson(window_->state());
+        QVERIFY2(json.contains("\"colour_fill_background\": true"), json.constData());
+        QVERIFY(octrace::studio::parseSession(json).colourFillsBackground);
+        fill->setChecked(false);
+        combo->setCurrentText(QStringLiteral("full"));
+        waitFrame();
+        QVERIFY(!window_->commandLine(QStringLiteral("x.png"), 10, 10).join(QLatin1Char(' ')).contains(QStringLiteral("fill")));
+    }
+
     void cutAwayMatchesTheCli() {
         auto* cut = window_->findChild<QComboBox*>(QStringLiteral("cutCombo"));
         auto* edit = window_->findChild<QLineEdit*>(QStringLiteral("cutEdit"));

@@ -240,7 +240,7 @@ inline constexpr Option colourCoherence{.key = "colour_coherence", .kind = Optio
             "their average untraced (a renderer name with +colour, as area+colour, turns it on too)",
     .commands = "render", .renderers = &Renderer::colourCoherence, .renderersSaid = "the discrete ray casters"};
 inline constexpr Option colourFillBackground{.key = "colour_fill_background", .kind = OptionKind::Flag,
-    .flag = "colour-fill-background",
+    .flag = "colour-fill-background", .session = "renderers.colour_fill_background", .label = "Fill background",
     .help = "colour coherence also between two background pixels, as paper A does: the pixel between is taken as "
             "background untraced (off: only between surface pixels)",
     .commands = "render", .renderers = &Renderer::colourCoherence, .renderersSaid = "the discrete ray casters",
