@@ -33,26 +33,26 @@ OctreeOutput writeOctreeOutput(const Octree& tree, const std::string& path, int 
     std::ostringstream m;
     m.precision(4);
     m << path << ": " << (tree.form == OctreeForm::Volume ? "volume" : "shell") << " octree, depth " << tree.depth << ", "
-      << tree.voxels.size() << " voxels, " << tree.nodes.size() << " nodes; " << formatBytes(tree.bytes()) << " in memory, "
-      << formatBytes(bytes.size()) << " on disk (" << double(bytes.size()) / double(tree.voxels.size()) << " bytes per voxel)";
+      << tree.voxels().size() << " voxels, " << tree.nodes().size() << " nodes; " << formatBytes(tree.bytes()) << " in memory, "
+      << formatBytes(bytes.size()) << " on disk (" << double(bytes.size()) / double(tree.voxels().size()) << " bytes per voxel)";
     log::info(m.str());
     return out;
 }
 
 void setOctreeStats(StatsJson& js, const Octree& tree, const OctreeOutput& out, int level) {
     js.set("form", std::string(tree.form == OctreeForm::Volume ? "volume" : "shell"));
-    js.set("variable", tree.fieldName);
+    js.set("variable", tree.fieldName());
     js.set("iso", tree.iso);
     js.set("depth", tree.depth);
     js.set("encode_ms", out.encodeMs);
     js.set("write_ms", out.writeMs);
-    js.set("voxels", std::uint64_t(tree.voxels.size()));
+    js.set("voxels", std::uint64_t(tree.voxels().size()));
     js.set("boundary_voxels", std::uint64_t(countVoxels(tree).boundary));
-    js.set("octree_nodes", std::uint64_t(tree.nodes.size()));
+    js.set("octree_nodes", std::uint64_t(tree.nodes().size()));
     js.set("octree_bytes", std::uint64_t(tree.bytes()));
     js.set("bytes_per_voxel", tree.bytesPerVoxel());
     js.set("file_bytes", out.fileBytes);
-    js.set("file_bytes_per_voxel", double(out.fileBytes) / double(tree.voxels.size()));
+    js.set("file_bytes_per_voxel", double(out.fileBytes) / double(tree.voxels().size()));
     js.set("compression", level);
 }
 

@@ -434,7 +434,7 @@ int runRender(const std::vector<std::string>& args) {
     js.set("hits", st.hits);
     js.set("load_ms", loadMs);
     js.set("build_ms", report.buildMs);
-    js.set("lighting", std::string(rs.baked && !tree.baked.empty() ? "baked" : "dynamic"));
+    js.set("lighting", std::string(rs.baked && !tree.baked().empty() ? "baked" : "dynamic"));
     js.set("shadows", std::string(Shader(tree, cam, rs).shadows() ? "on" : "off"));
     js.set("shadow_rays", st.secondaryRays);
     js.set("bake_ms", surface.bake.bakeMs);
@@ -459,18 +459,18 @@ int runRender(const std::vector<std::string>& args) {
     js.set("beams", st.beams);
     js.set("intersections", st.intersections);
     js.set("boundary_voxels", std::uint64_t(tree.boundaryVoxels()));
-    if (!tree.voxelMaterials.empty())
-        js.set("floor_voxels", std::uint64_t(std::count(tree.voxelMaterials.begin(), tree.voxelMaterials.end(),
+    if (!tree.voxelMaterials().empty())
+        js.set("floor_voxels", std::uint64_t(std::count(tree.voxelMaterials().begin(), tree.voxelMaterials().end(),
                                                         std::uint8_t(VoxelMaterial::Floor))));
     if (!rs.colormap.empty()) js.set("colormap", rs.colormap);
-    if (!tree.voxelValues.empty()) {
+    if (!tree.voxelValues().empty()) {
         const Albedo albedo(tree, rs);
-        js.set("colour_by", tree.valueName);
-        js.set("colour_units", tree.valueUnits);
+        js.set("colour_by", tree.valueName());
+        js.set("colour_units", tree.valueUnits());
         js.set("colour_min", double(albedo.low()));
         js.set("colour_max", double(albedo.high()));
     }
-    js.set("octree_nodes", std::uint64_t(tree.nodes.size()));
+    js.set("octree_nodes", std::uint64_t(tree.nodes().size()));
     js.set("octree_bytes", std::uint64_t(tree.bytes()));
     js.set("bytes_per_voxel", tree.bytesPerVoxel());
     js.set("peak_rss_bytes_after_build", std::uint64_t(rssAfterBuild));

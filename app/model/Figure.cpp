@@ -110,15 +110,15 @@ io::FigureSpec figureSpec(const FigureSettings& f, const FigureSubject& subject,
     io::FigureSpec spec;
     spec.title = f.title;
     const ScalarField::Geographic& geographic = subject.geographic;
-    std::string sub = (tree.fieldName.empty() ? subject.name : tree.fieldName) + " = " + number(subject.iso) +
-                      (tree.fieldUnits.empty() ? "" : " " + tree.fieldUnits);
+    std::string sub = (tree.fieldName().empty() ? subject.name : tree.fieldName()) + " = " + number(subject.iso) +
+                      (tree.fieldUnits().empty() ? "" : " " + tree.fieldUnits());
     const Albedo albedo(tree, rs);
     if (albedo.byValue()) {
-        sub += ", coloured by " + tree.valueName;
+        sub += ", coloured by " + tree.valueName();
         spec.colormap = albedo.colormapName();
         spec.low = albedo.low();
         spec.high = albedo.high();
-        spec.barLabel = tree.valueName + (tree.valueUnits.empty() ? "" : " (" + tree.valueUnits + ")");
+        spec.barLabel = tree.valueName() + (tree.valueUnits().empty() ? "" : " (" + tree.valueUnits() + ")");
     } else if (albedo.byHeight()) {
         // Coloured by height: the bar spans the surface's cell layers, in metres above the sea
         // surface for a geographic field (negative below it), else in world z.
@@ -136,7 +136,7 @@ io::FigureSpec figureSpec(const FigureSettings& f, const FigureSubject& subject,
             spec.barLabel = "height (world z)";
         }
     }
-    if (!tree.voxelMaterials.empty()) sub += ", sea floor and land";
+    if (!tree.voxelMaterials().empty()) sub += ", sea floor and land";
 
     // The bounding box: the field's grid (the region read), or the octree's surface.
     const Box3 box = subject.gridBounds ? *subject.gridBounds : tree.occupiedBounds();

@@ -90,8 +90,8 @@ void loadOctreeSurface(const SurfaceSpec& a, std::uint64_t budget, Surface& s) {
     if (!a.cuts.empty() && s.tree.form != OctreeForm::Volume)
         throw InputError(a.input + ": a shell octree cannot be cut (`cut` needs the volume form: build it with `form` volume)");
     s.iso = s.tree.iso;
-    s.field.name = s.tree.fieldName;
-    s.field.units = s.tree.fieldUnits;
+    s.field.name = s.tree.fieldName();
+    s.field.units = s.tree.fieldUnits();
     s.field.source = a.input;
 }
 
@@ -104,7 +104,7 @@ void finishSurface(const SurfaceSpec& a, Surface& s) {
             s.tree = csg(CsgOperand::of(s.tree), a.clip ? CsgOp::Intersection : CsgOp::Difference, CsgOperand::of(cut));
         }
         // The cut faces were inside: their values (a display window's grey) are the field's there.
-        if (!s.tree.voxelValues.empty() && !s.field.values.empty()) fillVoxelValues(s.tree, s.field, a.threads);
+        if (!s.tree.voxelValues().empty() && !s.field.values.empty()) fillVoxelValues(s.tree, s.field, a.threads);
         log::debug("cuts applied in " + std::to_string(t.ms()) + " ms");
         s.report.buildMs += t.ms();
     }
@@ -115,7 +115,7 @@ void finishSurface(const SurfaceSpec& a, Surface& s) {
     if (bakeUnused)
         log::warning("`bake` with `lighting` dynamic: nothing baked (dynamic shading does not use baked light; "
                      "leave out `lighting` dynamic to render with it)");
-    if ((a.bake && !bakeUnused) || (a.lighting == SurfaceSpec::Lighting::Baked && s.tree.baked.empty())) {
+    if ((a.bake && !bakeUnused) || (a.lighting == SurfaceSpec::Lighting::Baked && s.tree.baked().empty())) {
         if (s.tree.form != OctreeForm::Shell) throw UsageError("`bake` applies to the shell form (not with `form` volume)");
         BakeOptions o = a.bakeOptions;
         o.threads = a.threads;
@@ -127,7 +127,7 @@ void finishSurface(const SurfaceSpec& a, Surface& s) {
         log::debug("lighting baked in " + std::to_string(s.bake.bakeMs) + " ms (" + std::to_string(s.bake.rays) + " rays)");
     }
     s.report.boundaryVoxels = countVoxels(s.tree).boundary;
-    s.report.nodes = s.tree.nodes.size();
+    s.report.nodes = s.tree.nodes().size();
 }
 
 /// buildSurface for a city input: the model read and voxelized; the field empty but for its name.
@@ -152,10 +152,11 @@ void buildCitySurface(const SurfaceSpec& a, Surface& s) {
     o.threads = a.threads;
     o.terrainDepth = a.terrainDepth;
     s.tree = voxelizeCity(model, o, &s.report);
-    s.field.name = s.tree.fieldName;
+    s.field.name = s.tree.fieldName();
     s.field.source = a.input;
-    s.tree.source = a.input + " (" + std::to_string(model.objects.size()) + " objects, " + std::to_string(model.triangles.size()) +
-                    " triangles, CRS " + (model.crs.empty() ? std::string("none") : model.crs) + ")";
+    s.tree.setMetadata(octree_key::kSource, a.input + " (" + std::to_string(model.objects.size()) + " objects, " +
+                                                std::to_string(model.triangles.size()) + " triangles, CRS " +
+                                                (model.crs.empty() ? std::string("none") : model.crs) + ")");
 }
 
 /// What an octree was made from, for its file's header: input, variable, the reader's notes.
@@ -274,19 +275,19 @@ void buildFromField(const SurfaceSpec& a, Surface& s, const BuildHooks& hooks) {
     chooseWindow(a, s);
     bo.voxelValues = s.window.valid();
     s.tree = buildOctree(s.field, bo, &s.report);
-    s.tree.source = sourceDescription(a.input, s.field);
+    s.tree.setMetadata(octree_key::kSource, sourceDescription(a.input, s.field));
     finishSurface(a, s);
     // A molecule's voxels keep their atoms' colours, as a city's keep their buildings'.
     if (s.spheres) {
         Timer t;
-        s.tree.colours = sphereColoursAtVoxels(s.tree, *s.spheres, a.threads);
+        s.tree.setColours(sphereColoursAtVoxels(s.tree, *s.spheres, a.threads));
         log::debug("voxels coloured by their nearest spheres in " + std::to_string(t.ms()) + " ms");
     }
     if (colourBy) {
-        s.tree.voxelValues = sampleAtVoxels(s.tree, *colourBy, a.threads);
-        s.tree.valueName = colourBy->name;
-        s.tree.valueUnits = colourBy->units;
-        s.tree.valueStandardName = colourBy->standardName;
+        s.tree.setVoxelValues(sampleAtVoxels(s.tree, *colourBy, a.threads));
+        s.tree.setMetadata(octree_key::kValueName, colourBy->name);
+        s.tree.setMetadata(octree_key::kValueUnits, colourBy->units);
+        s.tree.setMetadata(octree_key::kValueStandardName, colourBy->standardName);
     }
     if (a.floor) {
         BuildOptions fo = bo;
@@ -297,8 +298,8 @@ void buildFromField(const SurfaceSpec& a, Surface& s, const BuildHooks& hooks) {
         Octree floor = buildShellOctree(solidFromMask(s.field), fo);
         setMaterial(floor, VoxelMaterial::Floor);
         s.tree = mergeShells(s.tree, floor);
-        s.report.boundaryVoxels = s.tree.voxels.size();
-        s.report.nodes = s.tree.nodes.size();
+        s.report.boundaryVoxels = s.tree.voxels().size();
+        s.report.nodes = s.tree.nodes().size();
     }
 }
 
@@ -308,8 +309,8 @@ void applyColour(const SurfaceSpec& a, const Surface& s, RenderSettings& setting
     settings.voxelColours = !a.colourGiven;
     settings.window = s.window;
     settings.invertedGrey = s.invertedGrey;
-    if (settings.colormap.empty() && !s.tree.voxelValues.empty() && !s.window.valid())
-        settings.colormap = defaultColormap(s.tree.valueStandardName, s.tree.valueName);
+    if (settings.colormap.empty() && !s.tree.voxelValues().empty() && !s.window.valid())
+        settings.colormap = defaultColormap(s.tree.valueStandardName(), s.tree.valueName());
     settings.colourMin = a.colourMin;
     settings.colourMax = a.colourMax;
     settings.maskedColour = vec3(displayToLinear(vec4(a.maskedColour, 1.0f)));

@@ -99,8 +99,8 @@ void Engine::open(const StudioState& state) {
                 auto surface = std::make_shared<model::Surface>(model::buildSurface(a));
                 surface->tree.computeSummaries();
                 info.octreeFile = true;
-                info.variable = QString::fromStdString(surface->tree.fieldName);
-                info.units = QString::fromStdString(surface->tree.fieldUnits);
+                info.variable = QString::fromStdString(surface->tree.fieldName());
+                info.units = QString::fromStdString(surface->tree.fieldUnits());
                 info.minimum = info.maximum = surface->iso;
                 auto tree = std::make_shared<const Octree>(std::move(surface->tree));
                 handBack(gen, [this, info, tree, surface, subject = model::figureSubject(*surface, state.input)] {

@@ -22,7 +22,7 @@ int bakedAt(const Octree& t, const dvec3& d) {
             for (int y = -r; y <= r; ++y)
                 for (int z = -r; z <= r; ++z) {
                     const std::uint32_t v = t.findVoxel(cell + ivec3(x, y, z));
-                    if (v != 0xFFFFFFFFu) return t.baked[v];
+                    if (v != 0xFFFFFFFFu) return t.baked()[v];
                 }
     ADD_FAILURE() << "no voxel near " << p.x << "," << p.y << "," << p.z;
     return -1;
@@ -36,8 +36,8 @@ TEST(Bake, LightsTheSideFacingTheLightAndShadowsTheOther) {
     o.aoRays = 0;
     BakeReport rep;
     bakeLighting(t, o, &rep);
-    ASSERT_EQ(t.baked.size(), t.voxels.size());
-    EXPECT_GT(rep.rays, t.voxels.size() / 2);
+    ASSERT_EQ(t.baked().size(), t.voxels().size());
+    EXPECT_GT(rep.rays, t.voxels().size() / 2);
     EXPECT_GE(bakedAt(t, {0, 0, 1}), 250);                  // ambient + diffuse, facing the light
     EXPECT_LE(bakedAt(t, {0, 0, -1}), 39);                  // two-sided |n.l| = 1, but in the sphere's shadow
     EXPECT_NEAR(bakedAt(t, {1, 0, 1}), 255 * (0.15 + 0.85 * std::sqrt(0.5)), 12);
@@ -60,7 +60,7 @@ TEST(Bake, AmbientOcclusionDarkensTheTorusHoleAndOnlyShellsAreBaked) {
     int open = 0, inner = 0;
     auto at = [&](dvec3 p) {
         const std::uint32_t v = t.findVoxel(ivec3(glm::floor((p - t.cubeOrigin) / t.voxelSize())));
-        return v == 0xFFFFFFFFu ? -1 : int(t.baked[v]);
+        return v == 0xFFFFFFFFu ? -1 : int(t.baked()[v]);
     };
     for (double d = 0.22; d <= 0.28 && (open <= 0 || inner <= 0); d += 0.005) {
         open = std::max(open, at({0.6 + d, 0.0, 0.0}));
@@ -83,7 +83,7 @@ TEST(Bake, DoesNotDependOnTheThreadsAndShadesRenderersByIt) {
     bakeLighting(a, o);
     o.threads = 0;
     bakeLighting(b, o);
-    EXPECT_EQ(a.baked, b.baked);
+    EXPECT_EQ(a.baked(), b.baked());
     // The shader uses the baked value when told to, the normal otherwise.
     Camera cam = Camera::framing(a.occupiedBounds(), 64, 48, 30.0);
     RenderSettings rs;
@@ -93,7 +93,7 @@ TEST(Bake, DoesNotDependOnTheThreadsAndShadesRenderersByIt) {
     int differ = 0;
     a.forEachVoxel([&](const ivec3& c, std::uint32_t v) {
         const vec4 x = baked.shade(v, c);
-        EXPECT_NEAR(x.r, rs.colour.r * a.baked[v] / 255.0f, 1e-6f);
+        EXPECT_NEAR(x.r, rs.colour.r * a.baked()[v] / 255.0f, 1e-6f);
         differ += x != dynamic.shade(v, c);
     });
     EXPECT_GT(differ, 0);

@@ -81,7 +81,7 @@ TEST(CityVoxelizer, ABoxGivesExactlyTheOuterLayerOfCells) {
     });
     EXPECT_EQ(count, std::size_t(n * n * n - (n - 2) * (n - 2) * (n - 2)));
     ASSERT_TRUE(t.hasColours());
-    for (auto c : t.colours) EXPECT_EQ(c, packColour(vec3(1, 0, 0)));
+    for (auto c : t.colours()) EXPECT_EQ(c, packColour(vec3(1, 0, 0)));
 }
 
 TEST(CityVoxelizer, TheResultDoesNotDependOnTheThreads) {
@@ -95,12 +95,12 @@ TEST(CityVoxelizer, TheResultDoesNotDependOnTheThreads) {
     o.threads = 4;
     const Octree b = voxelizeCity(m, o);
     a.validate();
-    ASSERT_EQ(a.nodes.size(), b.nodes.size());
-    ASSERT_EQ(a.voxels.size(), b.voxels.size());
-    for (std::size_t i = 0; i < a.nodes.size(); ++i) EXPECT_EQ(a.nodes[i].firstChild, b.nodes[i].firstChild);
-    for (std::size_t i = 0; i < a.voxels.size(); ++i) EXPECT_EQ(a.voxels[i].normal, b.voxels[i].normal);
-    EXPECT_EQ(a.colours, b.colours);
-    EXPECT_EQ(std::set<std::uint32_t>(a.colours.begin(), a.colours.end()).size(), 2u);
+    ASSERT_EQ(a.nodes().size(), b.nodes().size());
+    ASSERT_EQ(a.voxels().size(), b.voxels().size());
+    for (std::size_t i = 0; i < a.nodes().size(); ++i) EXPECT_EQ(a.nodes()[i].firstChild, b.nodes()[i].firstChild);
+    for (std::size_t i = 0; i < a.voxels().size(); ++i) EXPECT_EQ(a.voxels()[i].normal, b.voxels()[i].normal);
+    EXPECT_EQ(a.colours(), b.colours());
+    EXPECT_EQ(std::set<std::uint32_t>(a.colours().begin(), a.colours().end()).size(), 2u);
 }
 
 TEST(CityVoxelizer, TerrainTakesTheTextureWhereItHasData) {
@@ -120,7 +120,7 @@ TEST(CityVoxelizer, TerrainTakesTheTextureWhereItHasData) {
     std::size_t red = 0, green = 0;
     t.forEachVoxel([&](const ivec3& c, std::uint32_t i) {
         const bool left = t.voxelBox(c).centre().x < 4.0;
-        EXPECT_EQ(t.colours[i], packColour(left ? vec3(1, 0, 0) : vec3(0, 1, 0)));
+        EXPECT_EQ(t.colours()[i], packColour(left ? vec3(1, 0, 0) : vec3(0, 1, 0)));
         (left ? red : green)++;
     });
     EXPECT_GT(red, 0u);
@@ -157,7 +157,7 @@ TEST(CityVoxelizer, TerrainStopsAtTheTerrainDepthAndBuildingsGoToTheDepth) {
     mixed.validate();
     ASSERT_TRUE(mixed.hasCoarseLeaves());
     ASSERT_TRUE(mixed.hasColours());
-    EXPECT_LT(mixed.voxels.size(), uniform.voxels.size() / 2);
+    EXPECT_LT(mixed.voxels().size(), uniform.voxels().size() / 2);
     // Every leaf of the building's shell is a voxel; coarse leaves are cubes of level 3 (side 8)
     // or, in level-3 nodes shared with the house, deeper, that only the ground crosses: green.
     std::set<std::array<int, 3>> fine;
@@ -173,23 +173,23 @@ TEST(CityVoxelizer, TerrainStopsAtTheTerrainDepthAndBuildingsGoToTheDepth) {
         EXPECT_EQ(c.z, 0);  // the ground's level
         const bool meetsHouse = c.x <= 24 && c.x + side >= 8 && c.y <= 24 && c.y + side >= 8;  // closed boxes
         EXPECT_FALSE(meetsHouse) << c.x << "," << c.y << " side " << side;
-        EXPECT_EQ(mixed.colours[v], packColour(vec3(0, 1, 0)));
+        EXPECT_EQ(mixed.colours()[v], packColour(vec3(0, 1, 0)));
         EXPECT_EQ(mixed.findVoxel(c + ivec3(side - 1)), v);
     });
     EXPECT_EQ(level3, 64u - 16u);  // 8 x 8 ground cubes less the 4 x 4 the house's closed box touches
     uniform.forEachVoxel([&](const ivec3& c, std::uint32_t v) {
-        if (uniform.colours[v] == packColour(vec3(1, 0, 0))) EXPECT_TRUE(fine.count({c.x, c.y, c.z})) << c.x << "," << c.y << "," << c.z;
+        if (uniform.colours()[v] == packColour(vec3(1, 0, 0))) EXPECT_TRUE(fine.count({c.x, c.y, c.z})) << c.x << "," << c.y << "," << c.z;
     });
     // The summaries count each coarse leaf once; the bounds cover the coarse leaves whole.
     mixed.computeSummaries();
-    EXPECT_EQ(mixed.summaries[0].voxelCount, mixed.voxels.size());
+    EXPECT_EQ(mixed.summaries()[0].voxelCount, mixed.voxels().size());
     ivec3 lo, hi;
     mixed.occupiedCells(lo, hi);
     EXPECT_EQ(lo, ivec3(0));
     EXPECT_EQ(hi, ivec3(63));
     // The same at terrain depth = depth: uniform.
     o.terrainDepth = 6;
-    EXPECT_EQ(voxelizeCity(m, o).voxels.size(), uniform.voxels.size());
+    EXPECT_EQ(voxelizeCity(m, o).voxels().size(), uniform.voxels().size());
     o.terrainDepth = -1;
     EXPECT_THROW(voxelizeCity(m, o), UsageError);
 }

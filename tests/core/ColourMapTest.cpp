@@ -26,11 +26,12 @@ void expectColour(vec3 got, double r, double g, double b, const std::string& wha
 /// The sphere's voxels with the value x + 2y at their centres, NaN on the top cap (z > 0.5).
 Octree sphereWithValues() {
     Octree t = buildShellOctree(makeAnalyticField("sphere", 33), {7, 0.0, 0});
-    t.voxelValues.resize(t.voxels.size());
+    std::vector<float> values(t.voxels().size());
     t.forEachVoxel([&](const ivec3& c, std::uint32_t v) {
         const dvec3 p = t.cubeOrigin + (dvec3(c) + 0.5) * t.voxelSize();
-        t.voxelValues[v] = p.z > 0.5 ? NAN : float(p.x + 2.0 * p.y);
+        values[v] = p.z > 0.5 ? NAN : float(p.x + 2.0 * p.y);
     });
+    t.setVoxelValues(std::move(values));
     return t;
 }
 }  // namespace
@@ -94,7 +95,7 @@ TEST(ColourByValue, GivesEachVoxelTheMapsColourForItsValueAndMaskedVoxelsTheMask
         render("full", t, nc.camera, f, s);
         for (std::size_t p = 0; p < f.hitId.size(); ++p) {
             if (f.hitId[p] == kNoHit) continue;
-            const float v = t.voxelValues[f.hitId[p]];
+            const float v = t.voxelValues()[f.hitId[p]];
             const vec3 want = std::isnan(v) ? s.maskedColour : colormap("haline", (v - albedo.low()) / (albedo.high() - albedo.low()));
             ASSERT_EQ(vec3(f.rgba[p]), want) << nc.name << " pixel " << p;
             (std::isnan(v) ? masked : coloured) += 1;
@@ -108,7 +109,7 @@ TEST(ColourByValue, GivesEachVoxelTheMapsColourForItsValueAndMaskedVoxelsTheMask
     const Albedo narrow(t, s);
     std::size_t ends = 0;
     t.forEachVoxel([&](const ivec3& c, std::uint32_t v) {
-        const float value = t.voxelValues[v];
+        const float value = t.voxelValues()[v];
         if (std::isnan(value) || (value > 0.0f && value < 0.1f)) return;
         EXPECT_EQ(narrow.at(v, float(c.z)), colormap("haline", value <= 0.0f ? 0.0f : 1.0f));
         ++ends;

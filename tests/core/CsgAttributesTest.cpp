@@ -47,14 +47,14 @@ TEST(CsgAttributes, CutFacesOfAFieldShowItsWindowGreyThere) {
     const ScalarField f = ctLike();
     const Octree ct = volumeWithValues(f, 7);
     Octree cut = csg(CsgOperand::of(ct), CsgOp::Difference, CsgOperand::of(kWedge));
-    ASSERT_EQ(cut.voxelValues.size(), cut.voxels.size());
+    ASSERT_EQ(cut.voxelValues().size(), cut.voxels().size());
     // Voxels the operation left as they were keep their values exactly.
     std::size_t same = 0;
     cut.forEachVoxel([&](const ivec3& c, std::uint32_t v) {
         std::uint32_t w;
         if (cellState(cut, c) != CellState::Boundary || cellState(ct, c, &w) != CellState::Boundary) return;
-        if (decodeNormal(cut.voxels[v].normal) != decodeNormal(ct.voxels[w].normal)) return;
-        EXPECT_EQ(cut.voxelValues[v], ct.voxelValues[w]);
+        if (decodeNormal(cut.voxels()[v].normal) != decodeNormal(ct.voxels()[w].normal)) return;
+        EXPECT_EQ(cut.voxelValues()[v], ct.voxelValues()[w]);
         ++same;
     });
     EXPECT_GT(same, 10000u);
@@ -68,14 +68,14 @@ TEST(CsgAttributes, CutFacesOfAFieldShowItsWindowGreyThere) {
     double worstGrey = 0.0;
     cut.forEachVoxel([&](const ivec3& c, std::uint32_t v) {
         const dvec3 centre = cut.cubeOrigin + (dvec3(c) + 0.5) * h;
-        const dvec3 n(decodeNormal(cut.voxels[v].normal));
+        const dvec3 n(decodeNormal(cut.voxels()[v].normal));
         // Cut-face voxels: on the wedge's faces, well inside the head, facing into the wedge;
         // not near the centre, where the field's cone tip makes trilinear sampling differ
         // from hu() by several HU.
         const double r = glm::length(centre);
         if (cellState(cut, c) != CellState::Boundary || r < 0.2 || r > 0.5 || std::max({n.x, n.y, n.z}) < 0.999) return;
         const double expected = hu(centre - n * h);  // one voxel in from the face, as the build samples
-        EXPECT_NEAR(cut.voxelValues[v], expected, 1.0) << c.x << "," << c.y << "," << c.z;
+        EXPECT_NEAR(cut.voxelValues()[v], expected, 1.0) << c.x << "," << c.y << "," << c.z;
         const float grey = settings.window.grey(float(expected), false);
         const vec3 shown = albedo.at(v, float(c.z) + 0.5f);
         const float linear = grey <= 0.04045f ? grey / 12.92f : std::pow((grey + 0.055f) / 1.055f, 2.4f);
@@ -88,30 +88,31 @@ TEST(CsgAttributes, CutFacesOfAFieldShowItsWindowGreyThere) {
     RecordProperty("worst_grey_error", std::to_string(worstGrey));
     // The shell keeps them.
     const Octree shell = extractShell(cut);
-    EXPECT_EQ(shell.voxelValues.size(), shell.voxels.size());
+    EXPECT_EQ(shell.voxelValues().size(), shell.voxels().size());
 }
 
 TEST(CsgAttributes, ColoursSurviveOperationsAndCutFacesTakeTheNearestOnes) {
     const ScalarField f = ctLike();
     Octree ct = volumeWithValues(f, 6);
-    ct.voxelValues.clear();
+    ct.setVoxelValues({});
     // A colour per voxel slot from its position: red by x, green by y, blue by z.
-    ct.colours.resize(ct.voxels.size());
-    ct.forEachVoxel([&](const ivec3& c, std::uint32_t v) { ct.colours[v] = packColour(vec3(c) / 63.0f); });
-    const std::set<std::uint32_t> palette(ct.colours.begin(), ct.colours.end());
+    std::vector<std::uint32_t> colours(ct.voxels().size());
+    ct.forEachVoxel([&](const ivec3& c, std::uint32_t v) { colours[v] = packColour(vec3(c) / 63.0f); });
+    ct.setColours(std::move(colours));
+    const std::set<std::uint32_t> palette(ct.colours().begin(), ct.colours().end());
     for (CsgOp op : {CsgOp::Difference, CsgOp::Intersection, CsgOp::Union}) {
         const Octree r = csg(CsgOperand::of(ct), op, CsgOperand::of(kWedge));
         ASSERT_TRUE(r.hasColours()) << csgOpName(op);
-        EXPECT_TRUE(r.voxelValues.empty());
+        EXPECT_TRUE(r.voxelValues().empty());
         std::size_t kept = 0;
         r.forEachVoxel([&](const ivec3& c, std::uint32_t v) {
             std::uint32_t w;
             if (cellState(r, c) == CellState::Boundary && cellState(ct, c, &w) == CellState::Boundary) {
-                EXPECT_EQ(r.colours[v], ct.colours[w]);
+                EXPECT_EQ(r.colours()[v], ct.colours()[w]);
                 ++kept;
             }
             // A voxel of the solid alone (union) has no colour to take but its neighbours'.
-            EXPECT_TRUE(palette.count(r.colours[v])) << csgOpName(op) << " " << c.x << "," << c.y << "," << c.z;
+            EXPECT_TRUE(palette.count(r.colours()[v])) << csgOpName(op) << " " << c.x << "," << c.y << "," << c.z;
         });
         EXPECT_GT(kept, 500u) << csgOpName(op);
         EXPECT_TRUE(extractShell(r).hasColours());

@@ -126,14 +126,14 @@ TEST(Csg, CutFacesTakeTheirNormalsFromTheCuttingSolid) {
     // The box's face x = kLo runs through cells 134: the cut face, facing +x (into the box).
     std::uint32_t v = 0;
     ASSERT_EQ(cellState(d, {134, 150, 150}, &v), CellState::Boundary);
-    EXPECT_GT(decodeNormal(d.voxels[v].normal).x, 0.999f);
+    EXPECT_GT(decodeNormal(d.voxels()[v].normal).x, 0.999f);
     EXPECT_EQ(cellState(d, {136, 150, 150}), CellState::Empty);
     EXPECT_EQ(cellState(d, {132, 150, 150}), CellState::Interior);
     // Kept below the plane z = 0 (cells 127 and down; cell 128 has corners on both sides):
     // the cut face points +z, out of the half-space.
     const Octree h = csg(CsgOperand::of(sphere8()), CsgOp::Intersection, CsgOperand::of(parseSolid("halfspace:0,0,0,0,0,1")));
     ASSERT_EQ(cellState(h, {128, 128, 128}, &v), CellState::Boundary);
-    EXPECT_GT(decodeNormal(h.voxels[v].normal).z, 0.999f);
+    EXPECT_GT(decodeNormal(h.voxels()[v].normal).z, 0.999f);
     EXPECT_EQ(cellState(h, {128, 128, 127}), CellState::Interior);
     EXPECT_EQ(cellState(h, {128, 128, 129}), CellState::Empty);
     // The shell of the result is closed and drawable.
@@ -146,7 +146,7 @@ TEST(Csg, ResultsAreClosedAndSolidsTouchingTheCubeGetCaps) {
     expectClosed(u);
     std::uint32_t v = 0;
     ASSERT_EQ(cellState(u, {16, 16, 31}, &v), CellState::Boundary);  // the cylinder leaves the cube at +z: a cap
-    EXPECT_GT(decodeNormal(u.voxels[v].normal).z, 0.99f);
+    EXPECT_GT(decodeNormal(u.voxels()[v].normal).z, 0.99f);
     expectClosed(csg(CsgOperand::of(s), CsgOp::Difference, CsgOperand::of(parseSolid("sphere:0.5,0.5,0.5,0.5"))));
     expectClosed(csg(CsgOperand::of(s), CsgOp::Intersection, CsgOperand::of(parseSolid("box:-2,-2,-2,0.3,2,2"))));
 }

@@ -118,7 +118,7 @@ TEST(DirectRenderers, DrawAVoxelOnlyOnPixelsWhoseRayMeetsItsBoxAndAtWhereTheRayE
         Frame f;
         render("direct", tree, nc.camera, f);
         const RayGenerator rays(nc.camera);
-        std::vector<ivec3> cellOf(tree.voxels.size());
+        std::vector<ivec3> cellOf(tree.voxels().size());
         tree.forEachVoxel([&](const ivec3& cell, std::uint32_t v) { cellOf[v] = cell; });
         std::size_t checked = 0;
         for (int y = 0; y < f.height; ++y)

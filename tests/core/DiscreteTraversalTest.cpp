@@ -210,9 +210,9 @@ TEST(DiscreteTraversal, MatchesReferenceOnAxisParallelAndDiagonalRays) {
 // come from the tree they are built from: every ray aims at a voxel of the current tree.
 TEST(DiscreteTraversal, RaysAimedAtVoxelsAimAtTheTreeInHandAfterAnotherOneAtTheSameAddress) {
     Octree t = buildShellOctree(makeAnalyticField("sphere", 17), {4, 0.0, 0});
-    const std::size_t small = t.voxels.size();
+    const std::size_t small = t.voxels().size();
     t = buildShellOctree(makeAnalyticField("noise", 65, 7), {7, 0.0, 0});
-    ASSERT_GT(t.voxels.size(), 4 * small);
+    ASSERT_GT(t.voxels().size(), 4 * small);
     const VoxelCells cells(t);
     std::mt19937_64 rng(5);
     long outside = 0, hits = 0;

@@ -61,20 +61,20 @@ TEST(CtPresets, NameTheDocumentedHounsfieldValues) {
 TEST(OctreeBuilder, RecordsTheValueOneVoxelInsideTheSurfaceWhenAsked) {
     const ScalarField f = rampX();
     BuildOptions o{4, 0.3, 1};
-    EXPECT_TRUE(buildShellOctree(f, o).voxelValues.empty());
+    EXPECT_TRUE(buildShellOctree(f, o).voxelValues().empty());
     o.voxelValues = true;
     const Octree t = buildShellOctree(f, o);
-    ASSERT_EQ(t.voxelValues.size(), t.voxels.size());
-    ASSERT_GT(t.voxels.size(), 0u);
+    ASSERT_EQ(t.voxelValues().size(), t.voxels().size());
+    ASSERT_GT(t.voxels().size(), 0u);
     const double h = t.voxelSize();
     t.forEachVoxel([&](const ivec3& c, std::uint32_t i) {
         const double centreX = t.cubeOrigin.x + (c.x + 0.5) * h;
-        EXPECT_NEAR(t.voxelValues[i], centreX + h, 1e-6) << c.x << "," << c.y << "," << c.z;
+        EXPECT_NEAR(t.voxelValues()[i], centreX + h, 1e-6) << c.x << "," << c.y << "," << c.z;
     });
     EXPECT_NO_THROW(t.validate());
     // The same values whatever the threads.
     o.threads = 3;
-    EXPECT_TRUE(buildShellOctree(f, o).voxelValues == t.voxelValues);
+    EXPECT_TRUE(buildShellOctree(f, o).voxelValues() == t.voxelValues());
 }
 
 TEST(Albedo, GreysEachVoxelByTheWindowOfItsValueAndFallsBackWithoutValues) {
@@ -87,8 +87,8 @@ TEST(Albedo, GreysEachVoxelByTheWindowOfItsValueAndFallsBackWithoutValues) {
     const Albedo grey(t, rs);
     rs.invertedGrey = true;
     const Albedo inverted(t, rs);
-    for (std::uint32_t i = 0; i < t.voxels.size(); ++i) {
-        const float g = rs.window.grey(t.voxelValues[i], false);
+    for (std::uint32_t i = 0; i < t.voxels().size(); ++i) {
+        const float g = rs.window.grey(t.voxelValues()[i], false);
         EXPECT_EQ(grey.at(i, 0.0f), vec3(srgbToLinear(g)));
         EXPECT_EQ(inverted.at(i, 0.0f), vec3(srgbToLinear(1.0f - g)));
     }
@@ -97,7 +97,7 @@ TEST(Albedo, GreysEachVoxelByTheWindowOfItsValueAndFallsBackWithoutValues) {
     rs.window = {};
     EXPECT_EQ(Albedo(t, rs).at(0, 0.0f), rs.colour);
     rs.window = {0.3, 0.4};
-    t.voxelValues.clear();
+    t.setVoxelValues({});
     EXPECT_EQ(Albedo(t, rs).at(0, 0.0f), rs.colour);
 }
 

@@ -56,7 +56,7 @@ TEST(SampleAtVoxels, GivesALinearFieldsValueAtEveryVoxelCentre) {
     const Octree& t = sphereTree();
     const ScalarField f = linearField(17, false);
     const std::vector<float> v = sampleAtVoxels(t, f, 1);
-    ASSERT_EQ(v.size(), t.voxels.size());
+    ASSERT_EQ(v.size(), t.voxels().size());
     const double h = t.voxelSize();
     std::size_t checked = 0;
     t.forEachVoxel([&](const ivec3& c, std::uint32_t i) {
@@ -102,7 +102,7 @@ TEST(SolidFromMask, IsOneAtMaskedSamplesAndZeroElsewhereWithTheSameGrid) {
 TEST(MergeShells, KeepsEveryVoxelOfBothWithItsMaterialAndTheTopOnesWhereTheyMeet) {
     // A sphere over a torus that cuts through it, on the same grid: they share voxels.
     Octree top = buildShellOctree(makeAnalyticField("sphere", 33), {6, 0.0, 0});
-    top.voxelValues = sampleAtVoxels(top, linearField(17, false));
+    top.setVoxelValues(sampleAtVoxels(top, linearField(17, false)));
     Octree floor = buildShellOctree(makeAnalyticField("torus", 33), {6, 0.0, 0});
     setMaterial(floor, VoxelMaterial::Floor);
     const Octree m = mergeShells(top, floor);
@@ -116,14 +116,14 @@ TEST(MergeShells, KeepsEveryVoxelOfBothWithItsMaterialAndTheTopOnesWhereTheyMeet
         const auto ia = a.find(cell);
         if (ia != a.end()) {
             EXPECT_EQ(m.material(v), VoxelMaterial::Surface);
-            EXPECT_EQ(m.voxels[v].normal, top.voxels[ia->second].normal);
-            EXPECT_EQ(m.voxelValues[v], top.voxelValues[ia->second]);
+            EXPECT_EQ(m.voxels()[v].normal, top.voxels()[ia->second].normal);
+            EXPECT_EQ(m.voxelValues()[v], top.voxelValues()[ia->second]);
         } else {
             const auto ib = b.find(cell);
             ASSERT_NE(ib, b.end());
             EXPECT_EQ(m.material(v), VoxelMaterial::Floor);
-            EXPECT_EQ(m.voxels[v].normal, floor.voxels[ib->second].normal);
-            EXPECT_TRUE(std::isnan(m.voxelValues[v]));
+            EXPECT_EQ(m.voxels()[v].normal, floor.voxels()[ib->second].normal);
+            EXPECT_TRUE(std::isnan(m.voxelValues()[v]));
         }
         EXPECT_EQ(m.findVoxel(ivec3(std::get<0>(cell), std::get<1>(cell), std::get<2>(cell))), v);
     }
@@ -146,7 +146,7 @@ TEST(MergeShells, WithTheSolidUnderAMaskDrawsTheFloorUnderTheSurface) {
         EXPECT_GT(z, -0.5);
         EXPECT_LT(z, -0.4375);
     });
-    EXPECT_EQ(floorVoxels, floor.voxels.size());
+    EXPECT_EQ(floorVoxels, floor.voxels().size());
     // Seen from below, the floor hides the sphere: floor colour only.
     RenderSettings s;
     s.ambient = 1.0f;
@@ -163,9 +163,9 @@ TEST(MergeShells, WithTheSolidUnderAMaskDrawsTheFloorUnderTheSurface) {
 TEST(MergeShells, OfAnOctreeWithAnEmptyOneDrawsTheSameImageAsTheOctree) {
     const Octree& t = sphereTree();
     Octree empty = t.emptyCopy();
-    empty.nodes.resize(1);
+    empty.setTopology(std::vector<OctreeNode>(1), {});
     const Octree m = mergeShells(t, empty);
-    EXPECT_EQ(m.voxels.size(), t.voxels.size());
+    EXPECT_EQ(m.voxels().size(), t.voxels().size());
     const Camera cam = Camera::framing(cubeOf(t), 64, 48);
     Frame a, b;
     render("full", t, cam, a);

@@ -35,19 +35,19 @@ RenderSettings lodSettings(double pixels, int level) {
 TEST(Lod, SummariesCountAverageAndPointIntoTheirSubtrees) {
     const Octree& t = summarized();
     ASSERT_TRUE(t.hasSummaries());
-    EXPECT_EQ(t.summaries[0].voxelCount, t.voxels.size());
+    EXPECT_EQ(t.summaries()[0].voxelCount, t.voxels().size());
     // Every node's count is the sum of its children's; its first voxel lies inside it; its
     // mean height lies inside its z range.
     struct Item { std::uint32_t node; int level; ivec3 cell; };
     std::vector<Item> stack{{0u, 0, ivec3(0)}};
-    std::vector<ivec3> cellOf(t.voxels.size());
+    std::vector<ivec3> cellOf(t.voxels().size());
     t.forEachVoxel([&](const ivec3& c, std::uint32_t v) { cellOf[v] = c; });
     std::size_t checked = 0;
     while (!stack.empty()) {
         const Item it = stack.back();
         stack.pop_back();
-        const OctreeNode& n = t.nodes[it.node];
-        const NodeSummary& s = t.summaries[it.node];
+        const OctreeNode& n = t.nodes()[it.node];
+        const NodeSummary& s = t.summaries()[it.node];
         std::uint64_t sum = 0;
         std::uint32_t slot = n.firstChild;
         for (int c = 0; c < 8; ++c) {
@@ -56,7 +56,7 @@ TEST(Lod, SummariesCountAverageAndPointIntoTheirSubtrees) {
             if (it.level == t.depth - 1) {
                 ++sum;
             } else {
-                sum += t.summaries[slot].voxelCount;
+                sum += t.summaries()[slot].voxelCount;
                 stack.push_back({slot, it.level + 1, cc});
             }
             ++slot;
@@ -74,7 +74,7 @@ TEST(Lod, SummariesCountAverageAndPointIntoTheirSubtrees) {
         EXPECT_LE(t.occupancy(it.node, it.level), 1.0);
         ++checked;
     }
-    EXPECT_EQ(checked, t.nodes.size());
+    EXPECT_EQ(checked, t.nodes().size());
 }
 
 TEST(Lod, AverageNormalOfAFlatPatchIsItsNormal) {
@@ -85,9 +85,9 @@ TEST(Lod, AverageNormalOfAFlatPatchIsItsNormal) {
     Octree t = buildShellOctree(f, {6, 0.0, 1});
     t.computeSummaries();
     const vec3 expected = glm::normalize(vec3(-0.1f, 0.0f, 1.0f));
-    const vec3 voxelNormal = decodeNormal(t.voxels[0].normal);
+    const vec3 voxelNormal = decodeNormal(t.voxels()[0].normal);
     EXPECT_GT(std::abs(glm::dot(voxelNormal, expected)), 0.999f);
-    for (const NodeSummary& s : t.summaries) EXPECT_GT(glm::dot(decodeNormal(s.normal), voxelNormal), 0.999f);
+    for (const NodeSummary& s : t.summaries()) EXPECT_GT(glm::dot(decodeNormal(s.normal), voxelNormal), 0.999f);
 }
 
 TEST(Lod, FullAndReferenceDrawTheSameCutTreeBitForBit) {

@@ -139,10 +139,10 @@ TEST(BuildMemory, RefusesADepthOverTheBudgetNamingTheLargestDepthThatFits) {
     const Octree withBudget = buildShellOctree(f, o);
     o.memoryBudget = 0;
     const Octree without = buildShellOctree(f, o);
-    EXPECT_EQ(withBudget.nodes.size(), without.nodes.size());
-    ASSERT_EQ(withBudget.voxels.size(), without.voxels.size());
-    EXPECT_EQ(0, std::memcmp(withBudget.nodes.data(), without.nodes.data(), without.nodes.size() * sizeof(OctreeNode)));
-    EXPECT_EQ(0, std::memcmp(withBudget.voxels.data(), without.voxels.data(), without.voxels.size() * sizeof(Voxel)));
+    EXPECT_EQ(withBudget.nodes().size(), without.nodes().size());
+    ASSERT_EQ(withBudget.voxels().size(), without.voxels().size());
+    EXPECT_EQ(0, std::memcmp(withBudget.nodes().data(), without.nodes().data(), without.nodes().size() * sizeof(OctreeNode)));
+    EXPECT_EQ(0, std::memcmp(withBudget.voxels().data(), without.voxels().data(), without.voxels().size() * sizeof(Voxel)));
 }
 
 TEST(BuildMemory, RefusesEveryDepthWhenTheFieldAndItsSamplerAloneDoNotFit) {

@@ -226,8 +226,8 @@ void expectBoundaryMatchesDenseReference(const ScalarField& f, int depth, double
     Octree t = buildShellOctree(f, o, &report);
     ASSERT_NO_THROW(t.validate());
     expectCubeAroundField(f, t);
-    EXPECT_EQ(report.boundaryVoxels, t.voxels.size());
-    EXPECT_EQ(report.nodes, t.nodes.size());
+    EXPECT_EQ(report.boundaryVoxels, t.voxels().size());
+    EXPECT_EQ(report.nodes, t.nodes().size());
 
     DenseReference ref = classifyDensely(f, t.cubeOrigin, t.cubeSide, depth, iso);
     const int n = 1 << depth;
@@ -262,12 +262,12 @@ void expectBoundaryMatchesDenseReference(const ScalarField& f, int depth, double
     EXPECT_GT(ref.boundary, 500u);
     EXPECT_LE(double(ref.ambiguous), 0.01 * double(ref.boundary)) << ref.ambiguous << " ambiguous cells";
     std::cout << "[          ] " << what << ": " << ref.boundary << " boundary, " << ref.ambiguous
-              << " undecidable by rounding, builder " << t.voxels.size() << "\n";
+              << " undecidable by rounding, builder " << t.voxels().size() << "\n";
 }
 
 /// The cells of all boundary voxels, indexed by voxel.
 std::vector<ivec3> voxelCells(const Octree& t) {
-    std::vector<ivec3> cells(t.voxels.size());
+    std::vector<ivec3> cells(t.voxels().size());
     t.forEachVoxel([&](const ivec3& c, std::uint32_t i) { cells[i] = c; });
     return cells;
 }
@@ -285,9 +285,9 @@ double angleDegrees(dvec3 a, dvec3 b) {
 
 bool sameBytes(const Octree& a, const Octree& b) {
     return a.depth == b.depth && a.cubeOrigin == b.cubeOrigin && a.cubeSide == b.cubeSide &&
-           a.nodes.size() == b.nodes.size() && a.voxels.size() == b.voxels.size() &&
-           std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(OctreeNode)) == 0 &&
-           std::memcmp(a.voxels.data(), b.voxels.data(), a.voxels.size() * sizeof(Voxel)) == 0;
+           a.nodes().size() == b.nodes().size() && a.voxels().size() == b.voxels().size() &&
+           std::memcmp(a.nodes().data(), b.nodes().data(), a.nodes().size() * sizeof(OctreeNode)) == 0 &&
+           std::memcmp(a.voxels().data(), b.voxels().data(), a.voxels().size() * sizeof(Voxel)) == 0;
 }
 
 }  // namespace
@@ -411,7 +411,7 @@ TEST(OctreeBuilder, GivesTheSameBytesForOneTwoAndSevenThreads) {
         Octree seven = buildShellOctree(c.field, {c.depth, 0.0, 7});
         EXPECT_TRUE(sameBytes(one, two));
         EXPECT_TRUE(sameBytes(one, seven));
-        EXPECT_GT(one.voxels.size(), 0u);
+        EXPECT_GT(one.voxels().size(), 0u);
     }
 }
 
@@ -423,8 +423,8 @@ TEST(OctreeBuilder, BuildsValidOctreesOfEveryDepthFromOneToEight) {
         Octree t = buildShellOctree(f, {depth, 0.0, 0});
         EXPECT_NO_THROW(t.validate());
         EXPECT_EQ(t.depth, depth);
-        EXPECT_GE(t.voxels.size(), previous);
-        previous = t.voxels.size();
+        EXPECT_GE(t.voxels().size(), previous);
+        previous = t.voxels().size();
     }
 }
 
@@ -432,8 +432,8 @@ TEST(OctreeBuilder, StoresADepthEightSphereInAtMostSixteenBytesPerVoxel) {
     Octree t = buildShellOctree(makeAnalyticField("sphere", 65), {8, 0.0, 0});
     EXPECT_NO_THROW(t.validate());
     EXPECT_LE(t.bytesPerVoxel(), 16.0);
-    EXPECT_EQ(t.bytes(), t.nodes.capacity() * sizeof(OctreeNode) + t.voxels.capacity() * sizeof(Voxel));
-    std::cout << "[          ] depth-8 sphere: " << t.voxels.size() << " voxels, " << t.bytesPerVoxel()
+    EXPECT_EQ(t.bytes(), t.nodes().capacity() * sizeof(OctreeNode) + t.voxels().capacity() * sizeof(Voxel));
+    std::cout << "[          ] depth-8 sphere: " << t.voxels().size() << " voxels, " << t.bytesPerVoxel()
               << " bytes per voxel\n";
 }
 
@@ -451,7 +451,7 @@ TEST(OctreeBuilder, FindsAsManyBoundaryVoxelsAsASphericalShellHas) {
     Octree t7 = buildShellOctree(f, {7, 0.0, 0});
     const double r = 0.7, h7 = 2.0 / 128;
     const double expected7 = 1.5 * 4.0 * M_PI * r * r / (h7 * h7);
-    const double n6 = double(t6.voxels.size()), n7 = double(t7.voxels.size());
+    const double n6 = double(t6.voxels().size()), n7 = double(t7.voxels().size());
     std::cout << "[          ] sphere shell: depth 7 " << n7 << " voxels, expected " << expected7 << " (ratio "
               << n7 / expected7 << "); depth 6 " << n6 << ", ratio 7/6 = " << n7 / n6 << "\n";
     EXPECT_NEAR(n7 / expected7, 1.0, 0.03);
@@ -469,7 +469,7 @@ TEST(OctreeBuilder, StoresOutwardRadialNormalsOnTheSphere) {
     double worst = 0.0, sum = 0.0;
     for (std::size_t i = 0; i < cells.size(); ++i) {
         const dvec3 centre = t.voxelBox(cells[i]).centre();
-        const double a = angleDegrees(dvec3(decodeNormal(t.voxels[i].normal)), centre);
+        const double a = angleDegrees(dvec3(decodeNormal(t.voxels()[i].normal)), centre);
         worst = std::max(worst, a);
         sum += a;
     }
@@ -489,7 +489,7 @@ TEST(OctreeBuilder, StoresRadialWorldNormalsWhenTheSpacingIsAnisotropic) {
     double worst = 0.0, sum = 0.0;
     for (std::size_t i = 0; i < cells.size(); ++i) {
         const dvec3 centre = t.voxelBox(cells[i]).centre();
-        const double a = angleDegrees(dvec3(decodeNormal(t.voxels[i].normal)), centre);
+        const double a = angleDegrees(dvec3(decodeNormal(t.voxels()[i].normal)), centre);
         worst = std::max(worst, a);
         sum += a;
     }
@@ -506,7 +506,7 @@ TEST(OctreeBuilder, StoresRadialWorldNormalsWhenTheSpacingIsAnisotropic) {
     const std::vector<ivec3> cellsR = voxelCells(r);
     double worstR = 0.0;
     for (std::size_t i = 0; i < cellsR.size(); ++i)
-        worstR = std::max(worstR, angleDegrees(dvec3(decodeNormal(r.voxels[i].normal)), r.voxelBox(cellsR[i]).centre() - centreR));
+        worstR = std::max(worstR, angleDegrees(dvec3(decodeNormal(r.voxels()[i].normal)), r.voxelBox(cellsR[i]).centre() - centreR));
     EXPECT_LT(worstR, 4.0);
 
     // And on uneven (rectilinear) z levels.
@@ -518,7 +518,7 @@ TEST(OctreeBuilder, StoresRadialWorldNormalsWhenTheSpacingIsAnisotropic) {
     const std::vector<ivec3> cellsZ = voxelCells(zt);
     double worstZ = 0.0;
     for (std::size_t i = 0; i < cellsZ.size(); ++i)
-        worstZ = std::max(worstZ, angleDegrees(dvec3(decodeNormal(zt.voxels[i].normal)), zt.voxelBox(cellsZ[i]).centre()));
+        worstZ = std::max(worstZ, angleDegrees(dvec3(decodeNormal(zt.voxels()[i].normal)), zt.voxelBox(cellsZ[i]).centre()));
     std::cout << "[          ] rotated grid normals: max " << worstR << " deg; rectilinear z: max " << worstZ << " deg\n";
     EXPECT_LT(worstZ, 4.0);
 }
@@ -632,8 +632,8 @@ TEST(OctreeBuilder, StopsWithCancelledErrorSoonAfterTheCallerAsksAndBuildsAsBefo
     hooked.cancelled = [&] { return ++polls < 0; };
     const Octree a = buildShellOctree(f, plain), b = buildShellOctree(f, hooked);
     EXPECT_GT(polls, 64);
-    EXPECT_EQ(a.voxels.size(), b.voxels.size());
-    EXPECT_EQ(a.nodes.size(), b.nodes.size());
+    EXPECT_EQ(a.voxels().size(), b.voxels().size());
+    EXPECT_EQ(a.nodes().size(), b.nodes().size());
 }
 
 TEST(OctreeBuilder, ReportsAnEmptyResultForAnAllMaskedFieldAndForAnIsoNoCellStraddles) {

@@ -9,6 +9,7 @@
 
 #include <bit>
 #include <cmath>
+#include <functional>
 #include <random>
 #include <set>
 #include <tuple>
@@ -30,6 +31,28 @@ double roundTripError(dvec3 n) {
 
 Octree copyOf(const Octree& t) { return t.copy(); }
 
+/// A copy of `t` with every per-voxel attribute filled (one value each) and the summaries.
+Octree withEveryBuffer(const Octree& t) {
+    Octree o = t.copy();
+    const std::size_t n = o.voxels().size();
+    o.setColours(std::vector<std::uint32_t>(n, 0x11223344u));
+    o.setVoxelValues(std::vector<float>(n, 2.5f));
+    o.setBaked(std::vector<std::uint8_t>(n, 200));
+    o.setVoxelMaterials(std::vector<std::uint8_t>(n, std::uint8_t(VoxelMaterial::Floor)));
+    o.computeSummaries();
+    return o;
+}
+
+/// Calls edit(nodes, voxels) on copies of the tree's topology and hands them back: the way a
+/// test damages an octree, since the octree keeps its own private.
+template <class F>
+void editTopology(Octree& t, F&& edit) {
+    std::vector<OctreeNode> nodes = t.nodes();
+    std::vector<Voxel> voxels = t.voxels();
+    edit(nodes, voxels);
+    t.setTopology(std::move(nodes), std::move(voxels));
+}
+
 const Octree& noiseTree() {
     static const Octree t = buildShellOctree(makeAnalyticField("noise", 33, 5), {5, 0.0, 1});
     return t;
@@ -38,7 +61,7 @@ const Octree& noiseTree() {
 /// Index of some node at the level just above the voxels, and of some node at level 1.
 std::uint32_t nodeAtLevel(const Octree& t, int wanted) {
     std::uint32_t node = 0;
-    for (int level = 0; level < wanted; ++level) node = t.nodes[node].firstChild;  // first child, always a node
+    for (int level = 0; level < wanted; ++level) node = t.nodes()[node].firstChild;  // first child, always a node
     return node;
 }
 
@@ -49,7 +72,7 @@ std::vector<std::pair<std::uint32_t, int>> allNodes(const Octree& t) {
         auto item = stack.back();
         stack.pop_back();
         out.push_back(item);
-        const OctreeNode& nd = t.nodes[item.first];
+        const OctreeNode& nd = t.nodes()[item.first];
         if (item.second == t.depth - 1) continue;
         for (int i = 0; i < std::popcount(unsigned(nd.childMask)); ++i)
             stack.push_back({nd.firstChild + std::uint32_t(i), item.second + 1});
@@ -144,8 +167,8 @@ TEST(Octree, FindVoxelAgreesWithForEachVoxelOnEveryCell) {
         cells.insert({c.x, c.y, c.z});
         EXPECT_EQ(t.findVoxel(c), i) << c.x << "," << c.y << "," << c.z;
     });
-    EXPECT_EQ(visits, t.voxels.size());
-    EXPECT_EQ(cells.size(), t.voxels.size());  // every voxel once, at distinct cells
+    EXPECT_EQ(visits, t.voxels().size());
+    EXPECT_EQ(cells.size(), t.voxels().size());  // every voxel once, at distinct cells
     std::size_t found = 0;
     for (int z = 0; z < n; ++z)
         for (int y = 0; y < n; ++y)
@@ -155,10 +178,10 @@ TEST(Octree, FindVoxelAgreesWithForEachVoxelOnEveryCell) {
                     EXPECT_EQ(cells.count({x, y, z}), 0u);
                 } else {
                     ++found;
-                    EXPECT_LT(i, t.voxels.size());
+                    EXPECT_LT(i, t.voxels().size());
                 }
             }
-    EXPECT_EQ(found, t.voxels.size());
+    EXPECT_EQ(found, t.voxels().size());
     for (ivec3 c : {ivec3(-1, 0, 0), ivec3(0, n, 0), ivec3(0, 0, n + 5), ivec3(-7)}) EXPECT_EQ(t.findVoxel(c), 0xFFFFFFFFu);
 }
 
@@ -184,14 +207,14 @@ TEST(Octree, HandlesInteriorTermsInTheVolumeForm) {
     Octree t;
     t.depth = 2;
     t.form = OctreeForm::Volume;
-    t.nodes.resize(3);
-    t.nodes[0].childMask = 0b10000001;
-    t.nodes[0].termMask = 0b10000000;
-    t.nodes[0].firstChild = 1;
-    t.nodes[1].childMask = 0b10000001;
-    t.nodes[1].firstChild = 0;
+    std::vector<OctreeNode> nodes(3);
+    nodes[0].childMask = 0b10000001;
+    nodes[0].termMask = 0b10000000;
+    nodes[0].firstChild = 1;
+    nodes[1].childMask = 0b10000001;
+    nodes[1].firstChild = 0;
     // nodes[2]: the term, childMask 0.
-    t.voxels.resize(2);
+    t.setTopology(std::move(nodes), std::vector<Voxel>(2));
     EXPECT_NO_THROW(t.validate());
     EXPECT_EQ(t.findVoxel(ivec3(0, 0, 0)), 0u);
     EXPECT_EQ(t.findVoxel(ivec3(1, 1, 1)), 1u);
@@ -214,14 +237,16 @@ TEST(Octree, ValidatePassesOnBuiltOctrees) {
 TEST(Octree, ValidateRejectsIndicesOutOfRange) {
     {
         Octree t = copyOf(noiseTree());
-        t.nodes[0].firstChild = std::uint32_t(t.nodes.size());
+        editTopology(t, [](auto& nodes, auto&) { nodes[0].firstChild = std::uint32_t(nodes.size()); });
         expectInvalid(t, "node index out of range");
     }
     {
         Octree t = copyOf(noiseTree());
         const std::uint32_t leafParent = nodeAtLevel(t, t.depth - 1);
-        t.nodes[leafParent].firstChild = std::uint32_t(t.voxels.size()) - 1;
-        t.nodes[leafParent].childMask = 0xFF;
+        editTopology(t, [&](auto& nodes, auto& voxels) {
+            nodes[leafParent].firstChild = std::uint32_t(voxels.size()) - 1;
+            nodes[leafParent].childMask = 0xFF;
+        });
         expectInvalid(t, "voxel index out of range");
     }
 }
@@ -229,19 +254,19 @@ TEST(Octree, ValidateRejectsIndicesOutOfRange) {
 TEST(Octree, ValidateRejectsUnreachableAndSharedNodesAndVoxels) {
     {
         Octree t = copyOf(noiseTree());
-        t.nodes.push_back(t.nodes[1]);
+        editTopology(t, [](auto& nodes, auto&) { nodes.push_back(nodes[1]); });
         expectInvalid(t, "unreachable node");
     }
     {
         Octree t = copyOf(noiseTree());
-        t.voxels.push_back(Voxel{});
+        editTopology(t, [](auto&, auto& voxels) { voxels.push_back(Voxel{}); });
         expectInvalid(t, "unreachable voxel");
     }
     {
         // A node pointing back at the root: a cycle.
         Octree t = copyOf(noiseTree());
         const std::uint32_t n1 = nodeAtLevel(t, 1);
-        t.nodes[n1].firstChild = 0;
+        editTopology(t, [&](auto& nodes, auto&) { nodes[n1].firstChild = 0; });
         EXPECT_THROW(t.validate(), Error);
     }
     {
@@ -251,14 +276,17 @@ TEST(Octree, ValidateRejectsUnreachableAndSharedNodesAndVoxels) {
         for (auto [n, level] : allNodes(t))
             if (level == t.depth - 1) leafParents.push_back(n);
         ASSERT_GE(leafParents.size(), 2u);
-        t.nodes[leafParents[1]].firstChild = t.nodes[leafParents[0]].firstChild;
-        t.nodes[leafParents[1]].childMask = t.nodes[leafParents[0]].childMask;
+        editTopology(t, [&](auto& nodes, auto&) {
+            nodes[leafParents[1]].firstChild = nodes[leafParents[0]].firstChild;
+            nodes[leafParents[1]].childMask = nodes[leafParents[0]].childMask;
+        });
         expectInvalid(t, "voxel referenced twice");
     }
     {
         // An inner node whose only child is an empty inner node.
         Octree t = copyOf(noiseTree());
-        t.nodes[nodeAtLevel(t, 1)].childMask = 0;
+        const std::uint32_t n1 = nodeAtLevel(t, 1);
+        editTopology(t, [&](auto& nodes, auto&) { nodes[n1].childMask = 0; });
         EXPECT_THROW(t.validate(), Error);
     }
 }
@@ -269,15 +297,17 @@ TEST(Octree, ValidateRejectsBadMasksAndGeometry) {
         Octree t = copyOf(noiseTree());
         std::uint32_t node = 0xFFFFFFFFu;
         for (auto [n, level] : allNodes(t))
-            if (level < t.depth - 1 && t.nodes[n].childMask != 0xFF) node = n;
+            if (level < t.depth - 1 && t.nodes()[n].childMask != 0xFF) node = n;
         ASSERT_NE(node, 0xFFFFFFFFu);
-        t.nodes[node].termMask = std::uint8_t(~t.nodes[node].childMask);
+        editTopology(t, [&](auto& nodes, auto&) { nodes[node].termMask = std::uint8_t(~nodes[node].childMask); });
         expectInvalid(t, "term bit without child bit");
     }
     {
         Octree t = copyOf(noiseTree());
         const std::uint32_t leafParent = nodeAtLevel(t, t.depth - 1);
-        t.nodes[leafParent].termMask = t.nodes[leafParent].childMask & std::uint8_t(-t.nodes[leafParent].childMask);
+        editTopology(t, [&](auto& nodes, auto&) {
+            nodes[leafParent].termMask = nodes[leafParent].childMask & std::uint8_t(-nodes[leafParent].childMask);
+        });
         expectInvalid(t, "interior voxel in a shell octree");  // allowed in the volume form only
     }
     for (int depth : {0, Octree::kMaxDepth + 1}) {
@@ -299,31 +329,29 @@ TEST(Octree, ValidateRejectsBadMasksAndGeometry) {
 
 TEST(Octree, CopyKeepsEveryBufferAndAllProvenanceAndEmptyCopyOnlyTheProvenance) {
     // The one copy of an octree: a build (csg, extractShell, the tests) that starts from it must
-    // lose nothing. Every per-voxel buffer filled, every provenance member set.
-    Octree t = copyOf(noiseTree());
-    const std::size_t n = t.voxels.size();
-    t.colours.assign(n, 0x11223344u);
-    t.voxelValues.assign(n, 2.5f);
-    t.baked.assign(n, 200);
-    t.voxelMaterials.assign(n, std::uint8_t(VoxelMaterial::Floor));
-    t.computeSummaries();
-    t.fieldName = "temp";
-    t.fieldUnits = "degC";
+    // lose nothing. Every per-voxel buffer filled, every well-known metadata key set and one
+    // that is not well known.
+    Octree t = withEveryBuffer(noiseTree());
+    const std::size_t n = t.voxels().size();
+    t.setMetadata(octree_key::kFieldName, "temp");
+    t.setMetadata(octree_key::kFieldUnits, "degC");
     t.iso = 10.0;
     t.insideBelow = true;
-    t.source = "a.nc";
-    t.crs = "EPSG:7415";
-    t.valueName = "salt";
-    t.valueUnits = "psu";
-    t.valueStandardName = "sea_water_salinity";
+    t.setMetadata(octree_key::kSource, "a.nc");
+    t.setMetadata(octree_key::kCrs, "EPSG:7415");
+    t.setMetadata(octree_key::kValueName, "salt");
+    t.setMetadata(octree_key::kValueUnits, "psu");
+    t.setMetadata(octree_key::kValueStandardName, "sea_water_salinity");
+    t.setMetadata("operator", "someone");
+    ASSERT_EQ(t.metadata().size(), 8u);
     const Octree c = t.copy();
-    EXPECT_EQ(c.nodes.size(), t.nodes.size());
-    EXPECT_EQ(c.voxels.size(), n);
-    EXPECT_EQ(c.colours, t.colours);
-    EXPECT_EQ(c.voxelValues, t.voxelValues);
-    EXPECT_EQ(c.baked, t.baked);
-    EXPECT_EQ(c.voxelMaterials, t.voxelMaterials);
-    EXPECT_EQ(c.summaries.size(), t.summaries.size());
+    EXPECT_EQ(c.nodes().size(), t.nodes().size());
+    EXPECT_EQ(c.voxels().size(), n);
+    EXPECT_EQ(c.colours(), t.colours());
+    EXPECT_EQ(c.voxelValues(), t.voxelValues());
+    EXPECT_EQ(c.baked(), t.baked());
+    EXPECT_EQ(c.voxelMaterials(), t.voxelMaterials());
+    EXPECT_EQ(c.summaries().size(), t.summaries().size());
     EXPECT_EQ(c.bytes(), t.bytes());
     const Octree e = t.emptyCopy();
     for (const Octree* o : {&c, &e}) {
@@ -331,16 +359,122 @@ TEST(Octree, CopyKeepsEveryBufferAndAllProvenanceAndEmptyCopyOnlyTheProvenance) 
         EXPECT_EQ(o->cubeOrigin, t.cubeOrigin);
         EXPECT_EQ(o->cubeSide, t.cubeSide);
         EXPECT_EQ(o->form, t.form);
-        EXPECT_EQ(o->fieldName, t.fieldName);
-        EXPECT_EQ(o->fieldUnits, t.fieldUnits);
         EXPECT_EQ(o->iso, t.iso);
         EXPECT_EQ(o->insideBelow, t.insideBelow);
-        EXPECT_EQ(o->source, t.source);
-        EXPECT_EQ(o->crs, t.crs);
-        EXPECT_EQ(o->valueName, t.valueName);
-        EXPECT_EQ(o->valueUnits, t.valueUnits);
-        EXPECT_EQ(o->valueStandardName, t.valueStandardName);
+        EXPECT_EQ(o->metadata(), t.metadata());  // every key, the unknown one too
+        EXPECT_EQ(o->fieldName(), "temp");
+        EXPECT_EQ(o->fieldUnits(), "degC");
+        EXPECT_EQ(o->source(), "a.nc");
+        EXPECT_EQ(o->crs(), "EPSG:7415");
+        EXPECT_EQ(o->valueName(), "salt");
+        EXPECT_EQ(o->valueUnits(), "psu");
+        EXPECT_EQ(o->valueStandardName(), "sea_water_salinity");
+        EXPECT_EQ(o->metadata("operator"), "someone");
     }
-    EXPECT_TRUE(e.nodes.empty() && e.voxels.empty() && e.colours.empty() && e.voxelValues.empty() && e.baked.empty() &&
-                e.voxelMaterials.empty() && e.summaries.empty());
+    EXPECT_TRUE(e.nodes().empty() && e.voxels().empty() && e.colours().empty() && e.voxelValues().empty() &&
+                e.baked().empty() && e.voxelMaterials().empty() && e.summaries().empty());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Invariants: attribute lengths, setTopology, metadata
+
+namespace {
+/// The message of the Error that f throws; fails the test when it throws none.
+template <class F>
+std::string errorOf(F&& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "no Error thrown";
+    return {};
+}
+}  // namespace
+
+TEST(Octree, AttributeSettersRefuseAWrongLengthNamingTheAttributeAndBothLengths) {
+    Octree t = copyOf(noiseTree());
+    const std::size_t n = t.voxels().size();
+    const std::string wrong = std::to_string(n + 1) + " entries", right = "one per voxel (" + std::to_string(n) + ")";
+    for (const auto& [name, set] : std::vector<std::pair<std::string, std::function<void()>>>{
+             {"'colours'", [&] { t.setColours(std::vector<std::uint32_t>(n + 1)); }},
+             {"'voxel values'", [&] { t.setVoxelValues(std::vector<float>(n + 1)); }},
+             {"'baked light'", [&] { t.setBaked(std::vector<std::uint8_t>(n + 1)); }},
+             {"'voxel materials'", [&] { t.setVoxelMaterials(std::vector<std::uint8_t>(n + 1)); }}}) {
+        const std::string message = errorOf(set);
+        EXPECT_NE(message.find(name), std::string::npos) << message;
+        EXPECT_NE(message.find(wrong), std::string::npos) << message;
+        EXPECT_NE(message.find(right), std::string::npos) << message;
+    }
+    // Refused: nothing was set. Empty or one per voxel: accepted.
+    EXPECT_TRUE(t.colours().empty() && t.voxelValues().empty() && t.baked().empty() && t.voxelMaterials().empty());
+    t.setVoxelValues(std::vector<float>(n, 1.0f));
+    EXPECT_EQ(t.voxelValues().size(), n);
+    EXPECT_NO_THROW(t.validate());
+    t.setVoxelValues({});
+    EXPECT_TRUE(t.voxelValues().empty());
+    // setAttributes checks all four and sets none of them when one is wrong.
+    VoxelAttributes a;
+    a.colours.assign(n, 7u);
+    a.baked.assign(n - 1, 1);
+    EXPECT_NE(errorOf([&] { t.setAttributes(a); }).find("'baked light' has " + std::to_string(n - 1)), std::string::npos);
+    EXPECT_TRUE(t.colours().empty());
+    a.baked.assign(n, 1);
+    t.setAttributes(a);
+    EXPECT_EQ(t.colours(), a.colours);
+    EXPECT_EQ(t.baked(), a.baked);
+    // takeAttributes hands them over and leaves none.
+    const VoxelAttributes taken = t.takeAttributes();
+    EXPECT_EQ(taken.colours, a.colours);
+    EXPECT_TRUE(t.colours().empty() && t.baked().empty());
+}
+
+TEST(Octree, SetTopologyKeepsAttributesOfTheNewVoxelCountAndDropsTheOthersAndTheSummaries) {
+    Octree t = withEveryBuffer(noiseTree());
+    const std::size_t n = t.voxels().size();
+    ASSERT_TRUE(t.hasSummaries());
+    // The same voxel count (here: new normals): every attribute kept, the summaries dropped.
+    std::vector<Voxel> voxels = t.voxels();
+    for (Voxel& v : voxels) v.normal = encodeNormal(vec3(1, 0, 0));
+    t.setTopology(std::vector<OctreeNode>(t.nodes()), std::move(voxels));
+    EXPECT_EQ(t.colours().size(), n);
+    EXPECT_EQ(t.voxelValues().size(), n);
+    EXPECT_EQ(t.baked().size(), n);
+    EXPECT_EQ(t.voxelMaterials().size(), n);
+    EXPECT_EQ(t.material(0), VoxelMaterial::Floor);
+    EXPECT_TRUE(t.summaries().empty());
+    EXPECT_FALSE(t.hasSummaries());
+    EXPECT_NO_THROW(t.validate());
+    // Another voxel count: every attribute dropped.
+    editTopology(t, [](auto&, auto& voxels) { voxels.push_back(Voxel{}); });
+    EXPECT_EQ(t.voxels().size(), n + 1);
+    EXPECT_TRUE(t.colours().empty() && t.voxelValues().empty() && t.baked().empty() && t.voxelMaterials().empty());
+    EXPECT_FALSE(t.hasColours());
+    EXPECT_EQ(t.material(0), VoxelMaterial::Surface);
+    // setVoxelNormal changes one normal in place, nothing else.
+    t.setVoxelNormal(3, 12345u);
+    EXPECT_EQ(t.voxels()[3].normal, 12345u);
+    EXPECT_EQ(t.voxels().size(), n + 1);
+}
+
+TEST(Octree, MetadataHoldsNoEmptyValueAndReadsAbsentKeysAsEmpty) {
+    Octree t;
+    EXPECT_TRUE(t.metadata().empty());
+    EXPECT_EQ(t.crs(), "");
+    EXPECT_EQ(t.metadata("anything"), "");
+    t.setMetadata(octree_key::kCrs, "EPSG:7415");
+    t.setMetadata(octree_key::kSource, "a.nc");
+    EXPECT_EQ(t.crs(), "EPSG:7415");
+    EXPECT_EQ(t.metadata(octree_key::kCrs), "EPSG:7415");
+    t.setMetadata(octree_key::kCrs, "EPSG:28992");  // replaces
+    EXPECT_EQ(t.crs(), "EPSG:28992");
+    t.setMetadata(octree_key::kCrs, "");  // removes: absent and empty are one
+    EXPECT_EQ(t.crs(), "");
+    EXPECT_EQ(t.metadata().count(std::string(octree_key::kCrs)), 0u);
+    // Ordered by key, so that listings are stable.
+    t.setMetadata("b", "2");
+    t.setMetadata("a", "1");
+    std::vector<std::string> keys;
+    for (const auto& [k, v] : t.metadata()) keys.push_back(k);
+    EXPECT_EQ(keys, (std::vector<std::string>{"a", "b", "source"}));
 }

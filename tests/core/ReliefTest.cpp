@@ -99,7 +99,7 @@ TEST(Relief, CutFacesTakeTheHeightfieldsNormals) {
         t->forEachVoxel([&](const ivec3& c, std::uint32_t v) {
             const dvec3 p = t->cubeOrigin + (dvec3(c) + 0.5) * t->voxelSize();
             if (cellState(*t, c) != CellState::Boundary || glm::length(p) > kR - 0.1) return;
-            const double cosAngle = glm::dot(dvec3(decodeNormal(t->voxels[v].normal)), sign * upNormal(p.x, p.y));
+            const double cosAngle = glm::dot(dvec3(decodeNormal(t->voxels()[v].normal)), sign * upNormal(p.x, p.y));
             worst = std::max(worst, std::acos(std::min(1.0, cosAngle)) * 180.0 / M_PI);
             ++checked;
         });

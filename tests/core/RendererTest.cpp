@@ -101,7 +101,7 @@ TEST(Renderer, FullAndReferenceAgreeAtDepthOneAndAtTheMaximumDepth) {
     // Depth 1: eight voxels; the root's children are voxels.
     {
         Octree t = buildShellOctree(makeAnalyticField("sphere", 9), {1, 0.0, 1});
-        ASSERT_GT(t.voxels.size(), 0u);
+        ASSERT_GT(t.voxels().size(), 0u);
         for (const NamedCamera& nc : allTestCameras(t)) {
             Frame a, b;
             render("full", t, nc.camera, a);
@@ -118,7 +118,7 @@ TEST(Renderer, FullAndReferenceAgreeAtDepthOneAndAtTheMaximumDepth) {
                                        [](const dvec3& p) { return float(std::abs(p.x - 512.3) - 0.5); });
         Octree t = buildShellOctree(f, {Octree::kMaxDepth, 0.0, 0});
         ASSERT_NO_THROW(t.validate());
-        EXPECT_EQ(t.voxels.size(), 2u * 16u * 16u);
+        EXPECT_EQ(t.voxels().size(), 2u * 16u * 16u);
         const dvec3 target(512.3, 0.5, 0.5);
         const Camera cams[] = {
             makeCamera(target + dvec3(-3.0, 1.7, 2.2), target, {0, 0, 1}, 30, 64, 48),
@@ -247,7 +247,7 @@ TEST(Renderer, ReportsTheDistanceWhereTheRayEntersTheHitVoxel) {
             SCOPED_TRACE(nc.name);
             Frame f;
             render("full", *tree, nc.camera, f);
-            std::vector<ivec3> cells(tree->voxels.size());
+            std::vector<ivec3> cells(tree->voxels().size());
             tree->forEachVoxel([&](const ivec3& c, std::uint32_t i) { cells[i] = c; });
             const double eps = 1e-3 * tree->voxelSize();
             std::size_t bad = 0;
@@ -294,7 +294,7 @@ TEST(Renderer, ShadesEveryHitAsTwoSidedLambertWithTheLightInCameraSpace) {
     for (std::size_t p = 0; p < f.hitId.size(); ++p) {
         if (f.hitId[p] == kNoHit) continue;
         ++hits;
-        const dvec3 n(decodeNormal(t.voxels[f.hitId[p]].normal));
+        const dvec3 n(decodeNormal(t.voxels()[f.hitId[p]].normal));
         const double intensity = s.ambient + s.diffuse * std::abs(glm::dot(n, light));
         for (int c = 0; c < 3; ++c)
             if (std::abs(f.rgba[p][c] - s.colour[c] * intensity) > 1e-5) ++bad;

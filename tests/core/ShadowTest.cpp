@@ -56,7 +56,7 @@ RenderSettings lightFromAbove(const Camera& c, bool shadows) {
 }
 
 std::vector<ivec3> cellsByVoxel(const Octree& t) {
-    std::vector<ivec3> cells(t.voxels.size());
+    std::vector<ivec3> cells(t.voxels().size());
     t.forEachVoxel([&](const ivec3& c, std::uint32_t v) { cells[v] = c; });
     return cells;
 }
@@ -159,7 +159,7 @@ TEST(Shadows, AreOffByDefaultOnVoxelOctreesAndNeverDarkenBakedLight) {
     EXPECT_FALSE(Shader(t, cam, s).shadows());
     s.shadows = true;
     EXPECT_TRUE(Shader(t, cam, s).shadows());
-    t.baked.assign(t.voxels.size(), 200);
+    t.setBaked(std::vector<std::uint8_t>(t.voxels().size(), 200));
     s.baked = true;
     EXPECT_FALSE(Shader(t, cam, s).shadows());
     Frame f;

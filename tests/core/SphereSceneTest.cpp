@@ -449,7 +449,7 @@ TEST(SphereVoxels, KeepTheColourOfTheSphereWhoseSurfaceIsNearest) {
     set.name = set.source = "three spheres";
     const Octree t = buildShellOctree(sphereDistanceField(set, (1 << 6) + 5), {6, 0.0, 0});
     const std::vector<std::uint32_t> colours = sphereColoursAtVoxels(t, set, 1);
-    ASSERT_EQ(colours.size(), t.voxels.size());
+    ASSERT_EQ(colours.size(), t.voxels().size());
     EXPECT_EQ(sphereColoursAtVoxels(t, set, 3), colours);
     const std::uint32_t red = packColour({1, 0, 0}), blue = packColour({0, 0, 1}), green = packColour({0, 1, 0});
     std::size_t n[3] = {0, 0, 0};

@@ -46,7 +46,7 @@ TEST(Surfels, OnePerBoundaryVoxelAtItsCentreWithItsUnitNormalInForEachVoxelOrder
         const Surfel& s = surfels[i++];
         const dvec3 centre = tree.voxelBox(cell).centre();
         for (int a = 0; a < 3; ++a) EXPECT_FLOAT_EQ(s.position[a], float(centre[a])) << "surfel " << i - 1;
-        EXPECT_EQ(s.normal, decodeNormal(tree.voxels[voxel].normal));
+        EXPECT_EQ(s.normal, decodeNormal(tree.voxels()[voxel].normal));
         EXPECT_NEAR(glm::length(s.normal), 1.0f, 1e-6f);
         EXPECT_FLOAT_EQ(s.radius, radius);
         EXPECT_EQ(s.rgba[3], 255);
@@ -108,10 +108,10 @@ TEST(Surfels, AtACoarserLevelOnePerNonEmptyNodeAtItsCentreWithTheSummary) {
             const Surfel& s = surfels.at(i++);
             const dvec3 centre = tree.cubeOrigin + (dvec3(cell) + 0.5) * side;
             for (int a = 0; a < 3; ++a) EXPECT_FLOAT_EQ(s.position[a], float(centre[a]));
-            EXPECT_EQ(s.normal, decodeNormal(tree.summaries[node].normal));
+            EXPECT_EQ(s.normal, decodeNormal(tree.summaries()[node].normal));
             EXPECT_NEAR(glm::length(s.normal), 1.0f, 1e-6f);
             EXPECT_FLOAT_EQ(s.radius, surfelRadius(side));
-            voxels += tree.summaries[node].voxelCount;
+            voxels += tree.summaries()[node].voxelCount;
         });
         EXPECT_EQ(i, surfels.size()) << "level " << level;
         EXPECT_EQ(voxels, tree.boundaryVoxels()) << "level " << level;  // every voxel under one surfel

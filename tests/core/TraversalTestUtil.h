@@ -23,7 +23,7 @@ constexpr double kL = double(1 << Octree::kIntBits);
 /// local octree after the previous test's), and indexed past its end.
 class VoxelCells {
 public:
-    explicit VoxelCells(const Octree& t) : depth_(t.depth), cells_(t.voxels.size()) {
+    explicit VoxelCells(const Octree& t) : depth_(t.depth), cells_(t.voxels().size()) {
         t.forEachVoxel([&](const ivec3& c, std::uint32_t i) { cells_[i] = c; });
     }
     /// A random boundary voxel's cell (the tree must have one).

@@ -25,7 +25,7 @@ Octree volumeOf(const ScalarField& f, int depth, double iso, bool below = false,
 std::map<std::uint64_t, std::uint32_t> cellsAndNormals(const Octree& t) {
     std::map<std::uint64_t, std::uint32_t> m;
     t.forEachVoxel([&](const ivec3& c, std::uint32_t v) {
-        m[(std::uint64_t(c.x) << 40) | (std::uint64_t(c.y) << 20) | std::uint64_t(c.z)] = t.voxels[v].normal;
+        m[(std::uint64_t(c.x) << 40) | (std::uint64_t(c.y) << 20) | std::uint64_t(c.z)] = t.voxels()[v].normal;
     });
     return m;
 }
@@ -42,7 +42,7 @@ TEST(VolumeOctree, ItsShellIsTheShellOctreeWhenTheSolidIsInsideTheGrid) {
     EXPECT_EQ(extracted.form, OctreeForm::Shell);
     EXPECT_NO_THROW(extracted.validate());
     EXPECT_EQ(cellsAndNormals(extracted), cellsAndNormals(shell));
-    EXPECT_EQ(countVoxels(vol).boundary, shell.voxels.size());
+    EXPECT_EQ(countVoxels(vol).boundary, shell.voxels().size());
     expectClosed(vol);
 }
 
@@ -55,7 +55,7 @@ TEST(VolumeOctree, KeepsTheInteriorAsTermsAndCountsTheSphereVolume) {
     const double h = 2.0 / 256.0, exact = 4.0 / 3.0 * M_PI * std::pow(0.7, 3) / (h * h * h);
     EXPECT_NEAR(n.volume() / exact, 1.0, 0.01);
     // Terms above the voxel level hold most of the interior: far fewer slots than voxels.
-    EXPECT_LT(double(vol.voxels.size()), 0.25 * double(n.interior + n.boundary));
+    EXPECT_LT(double(vol.voxels().size()), 0.25 * double(n.interior + n.boundary));
     bool termAbove = false;
     vol.forEachAtLevel(depth - 3, [&](const ivec3& c, std::uint32_t) {
         termAbove = termAbove || cellState(vol, c * 8 + 3) == CellState::Interior;
@@ -86,7 +86,7 @@ TEST(VolumeOctree, InsideBelowIsTheComplement) {
     // The outside of the sphere reaches the cube's faces: caps there, normals pointing out.
     std::uint32_t v = 0;
     ASSERT_EQ(cellState(below, {0, 16, 16}, &v), CellState::Boundary);
-    EXPECT_LT(decodeNormal(below.voxels[v].normal).x, -0.99f);
+    EXPECT_LT(decodeNormal(below.voxels()[v].normal).x, -0.99f);
 }
 
 TEST(VolumeOctree, CapsWhereTheSolidMeetsTheGridAndTheMask) {
@@ -102,7 +102,7 @@ TEST(VolumeOctree, CapsWhereTheSolidMeetsTheGridAndTheMask) {
     auto normalAt = [&](ivec3 c) {
         std::uint32_t v = 0;
         EXPECT_EQ(cellState(vol, c, &v), CellState::Boundary) << c.x << "," << c.y << "," << c.z;
-        return v == 0xFFFFFFFFu ? vec3(0.0f) : decodeNormal(vol.voxels[v].normal);
+        return v == 0xFFFFFFFFu ? vec3(0.0f) : decodeNormal(vol.voxels()[v].normal);
     };
     EXPECT_GT(normalAt({16, 31, 16}).y, 0.99f);   // the cube's +y face
     EXPECT_LT(normalAt({16, 10, 8}).z, -0.99f);   // the grid's lowest z cells

@@ -28,16 +28,16 @@ inline void expectSameOctree(const Octree& a, const Octree& b) {
     EXPECT_EQ(a.depth, b.depth);
     EXPECT_EQ(a.cubeOrigin, b.cubeOrigin);
     EXPECT_EQ(a.cubeSide, b.cubeSide);
-    ASSERT_EQ(a.nodes.size(), b.nodes.size());
-    ASSERT_EQ(a.voxels.size(), b.voxels.size());
-    for (std::size_t i = 0; i < a.nodes.size(); ++i) {
-        ASSERT_EQ(a.nodes[i].childMask, b.nodes[i].childMask) << i;
-        ASSERT_EQ(a.nodes[i].termMask, b.nodes[i].termMask) << i;
-        if (a.nodes[i].childMask) {
-            ASSERT_EQ(a.nodes[i].firstChild, b.nodes[i].firstChild) << i;
+    ASSERT_EQ(a.nodes().size(), b.nodes().size());
+    ASSERT_EQ(a.voxels().size(), b.voxels().size());
+    for (std::size_t i = 0; i < a.nodes().size(); ++i) {
+        ASSERT_EQ(a.nodes()[i].childMask, b.nodes()[i].childMask) << i;
+        ASSERT_EQ(a.nodes()[i].termMask, b.nodes()[i].termMask) << i;
+        if (a.nodes()[i].childMask) {
+            ASSERT_EQ(a.nodes()[i].firstChild, b.nodes()[i].firstChild) << i;
         }
     }
-    for (std::size_t i = 0; i < a.voxels.size(); ++i) ASSERT_EQ(a.voxels[i].normal, b.voxels[i].normal) << i;
+    for (std::size_t i = 0; i < a.voxels().size(); ++i) ASSERT_EQ(a.voxels()[i].normal, b.voxels()[i].normal) << i;
 }
 
 }  // namespace octrace

@@ -19,7 +19,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         // What a reader of the file does next: every voxel, summaries for --lod.
         std::size_t n = 0;
         t.forEachVoxel([&](const octrace::ivec3&, std::uint32_t) { ++n; });
-        if (n > t.voxels.size()) __builtin_trap();
+        if (n > t.voxels().size()) __builtin_trap();
         t.computeSummaries();
     } catch (const octrace::Error&) {
         // A clean refusal.

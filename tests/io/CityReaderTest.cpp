@@ -163,8 +163,8 @@ TEST(CityReader, DrapesATextureInAnotherCrsOnTheTerrain) {
     // Longitude 6.1 is the texture's middle: in UTM 32N (central meridian 9 E), east of x ~ 290 km.
     t.forEachVoxel([&](const ivec3& c, std::uint32_t i) {
         const double x = t.voxelBox(c).centre().x;
-        if (t.colours[i] == kRed) red += x < 300000.0;
-        else if (t.colours[i] == kBlue) blue += x > 280000.0;
+        if (t.colours()[i] == kRed) red += x < 300000.0;
+        else if (t.colours()[i] == kBlue) blue += x > 280000.0;
         else ++other;
     });
     EXPECT_GT(red, 100u);
@@ -432,7 +432,7 @@ TEST(CityScene, CombinesSourcesWithTheirDepthColourAndRole) {
     t.validate();
     ASSERT_TRUE(t.hasCoarseLeaves());
     t.forEachLeaf([&](const ivec3&, int shift, std::uint32_t v) {
-        if (shift > 0) EXPECT_EQ(t.colours[v], packColour(vec3(0, 0, 1)));
+        if (shift > 0) EXPECT_EQ(t.colours()[v], packColour(vec3(0, 0, 1)));
     });
     o.depth = 2;
     EXPECT_THROW(voxelizeCity(m, o), UsageError);  // a source deeper than the octree

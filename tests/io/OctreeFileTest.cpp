@@ -25,7 +25,7 @@ Octree smallTree(const std::string& name = "torus", int samples = 17, int depth 
     o.depth = depth;
     o.iso = 0.0;
     Octree t = buildShellOctree(f, o);
-    t.source = "analytic:" + name;
+    t.setMetadata(octree_key::kSource, "analytic:" + name);
     return t;
 }
 
@@ -34,8 +34,8 @@ std::map<std::tuple<int, int, int, int>, std::uint32_t> contents(const Octree& t
     std::map<std::tuple<int, int, int, int>, std::uint32_t> m;
     for (int level = 1; level <= t.depth; ++level)
         t.forEachAtLevel(level, [&](const ivec3& c, std::uint32_t i) {
-            if (level == t.depth) m[{level, c.x, c.y, c.z}] = t.voxels[i].normal ^ (t.baked.empty() ? 0u : std::uint32_t(t.baked[i]) << 24 | 0x5A5A5Au);
-            else if (t.nodes[i].childMask == 0) m[{level, c.x, c.y, c.z}] = 0xFFFFFFFFu;  // a term
+            if (level == t.depth) m[{level, c.x, c.y, c.z}] = t.voxels()[i].normal ^ (t.baked().empty() ? 0u : std::uint32_t(t.baked()[i]) << 24 | 0x5A5A5Au);
+            else if (t.nodes()[i].childMask == 0) m[{level, c.x, c.y, c.z}] = 0xFFFFFFFFu;  // a term
         });
     return m;
 }
@@ -47,11 +47,12 @@ void expectSame(const Octree& a, const Octree& b) {
     EXPECT_EQ(a.cubeSide, b.cubeSide);
     EXPECT_EQ(a.iso, b.iso);
     EXPECT_EQ(a.insideBelow, b.insideBelow);
-    EXPECT_EQ(a.fieldName, b.fieldName);
-    EXPECT_EQ(a.fieldUnits, b.fieldUnits);
-    EXPECT_EQ(a.source, b.source);
-    EXPECT_EQ(a.nodes.size(), b.nodes.size());
-    EXPECT_EQ(a.voxels.size(), b.voxels.size());
+    EXPECT_EQ(a.fieldName(), b.fieldName());
+    EXPECT_EQ(a.fieldUnits(), b.fieldUnits());
+    EXPECT_EQ(a.source(), b.source());
+    EXPECT_EQ(a.crs(), b.crs());
+    EXPECT_EQ(a.nodes().size(), b.nodes().size());
+    EXPECT_EQ(a.voxels().size(), b.voxels().size());
     EXPECT_EQ(contents(a), contents(b));
 }
 
@@ -76,7 +77,7 @@ TEST(OctreeFile, RoundTripsExactly) {
         SCOPED_TRACE(name);
         expectSame(t, back);
         EXPECT_EQ(info.version, 1u);  // no baked light: readable by version 1 readers
-        EXPECT_EQ(info.voxels, t.voxels.size());
+        EXPECT_EQ(info.voxels, t.voxels().size());
         EXPECT_EQ(info.fileBytes, bytes.size());
         // Written again, the same bytes.
         EXPECT_EQ(io::encodeOctreeFile(back), bytes);
@@ -90,17 +91,52 @@ TEST(OctreeFile, RoundTripsTheVolumeFormWithTerms) {
     t.form = OctreeForm::Volume;
     t.insideBelow = true;
     t.cubeSide = 2.5;
-    t.nodes.resize(3);
-    t.nodes[0].childMask = 0b10000001;
-    t.nodes[0].termMask = 0b10000000;
-    t.nodes[0].firstChild = 1;
-    t.nodes[1].childMask = 0b10000001;
-    t.nodes[1].termMask = 0b00000001;
-    t.voxels.resize(2);
-    t.voxels[1].normal = 12345;
+    std::vector<OctreeNode> nodes(3);
+    nodes[0].childMask = 0b10000001;
+    nodes[0].termMask = 0b10000000;
+    nodes[0].firstChild = 1;
+    nodes[1].childMask = 0b10000001;
+    nodes[1].termMask = 0b00000001;
+    std::vector<Voxel> voxels(2);
+    voxels[1].normal = 12345;
+    t.setTopology(std::move(nodes), std::move(voxels));
     t.validate();
     const auto bytes = io::encodeOctreeFile(t);
     expectSame(t, io::decodeOctreeFile(bytes, "v.oct"));
+}
+
+TEST(OctreeFile, KeepsTheMetadataTheFormatStoresAndOnlyThat) {
+    // The header's variable, units and source and the 'CRS ' chunk carry four well-known keys;
+    // the colour-by value's name and units (like the values themselves) and other keys are not
+    // stored (docs/dev/octree-files.md, "In memory").
+    Octree t = smallTree();
+    t.setMetadata(octree_key::kFieldName, "thetao");
+    t.setMetadata(octree_key::kFieldUnits, "degC");
+    t.setMetadata(octree_key::kCrs, "EPSG:7415");
+    const OctreeMetadata stored = t.metadata();
+    ASSERT_EQ(stored.size(), 4u);
+    t.setMetadata(octree_key::kValueName, "so");
+    t.setMetadata(octree_key::kValueUnits, "psu");
+    t.setMetadata("operator", "someone");
+    const auto bytes = io::encodeOctreeFile(t);
+    io::OctreeFileInfo info;
+    const Octree back = io::decodeOctreeFile(bytes, "meta.oct", 0, &info);
+    EXPECT_EQ(back.metadata(), stored);
+    EXPECT_EQ(back.crs(), "EPSG:7415");
+    EXPECT_EQ(info.fieldName, "thetao");
+    EXPECT_EQ(info.fieldUnits, "degC");
+    EXPECT_EQ(info.source, "analytic:torus");
+    // The layout is the one older readers know: a version 1 file, no chunk beyond 'CRS '.
+    EXPECT_EQ(info.version, 1u);
+    std::vector<std::string> tags;
+    for (const auto& c : info.chunks) tags.push_back(c.tag);
+    EXPECT_EQ(tags, (std::vector<std::string>{"TREE", "NORM", "CRS "}));
+    // Keys that are not stored do not change the bytes.
+    Octree plain = t.copy();
+    plain.setMetadata(octree_key::kValueName, "");
+    plain.setMetadata(octree_key::kValueUnits, "");
+    plain.setMetadata("operator", "");
+    EXPECT_EQ(io::encodeOctreeFile(plain), bytes);
 }
 
 Octree bakedTree() {
@@ -113,7 +149,7 @@ Octree bakedTree() {
 
 TEST(OctreeFile, RoundTripsBakedLightInVersion2) {
     const Octree t = bakedTree();
-    ASSERT_EQ(t.baked.size(), t.voxels.size());
+    ASSERT_EQ(t.baked().size(), t.voxels().size());
     const auto bytes = io::encodeOctreeFile(t);
     io::OctreeFileInfo info;
     const Octree back = io::decodeOctreeFile(bytes, "lit.oct", 0, &info);

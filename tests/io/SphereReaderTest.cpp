@@ -179,7 +179,7 @@ TEST(SphereReader, HaemoglobinVoxelsKeepTheirAtomsElementColours) {
     const SphereSet s = io::readMolecule(path);
     const Octree t = buildShellOctree(sphereDistanceField(s, (1 << 6) + 5), {6, 0.0, 0});
     const std::vector<std::uint32_t> colours = sphereColoursAtVoxels(t, s);
-    ASSERT_EQ(colours.size(), t.voxels.size());
+    ASSERT_EQ(colours.size(), t.voxels().size());
     // Against every atom in turn (no buckets): the atom whose surface is nearest the voxel's
     // centre gives its CPK colour; count the voxels of oxygen, nitrogen, carbon and sulphur.
     const std::uint32_t oxygen = packColour({1.0f, 13 / 255.0f, 13 / 255.0f});  // Jmol CPK O: 255,13,13

@@ -442,7 +442,7 @@ private slots:
         // Precomputed lighting: a build that bakes light, shadows and ambient occlusion.
         lighting->setCurrentIndex(lighting->findData(QStringLiteral("baked")));
         QVERIFY(built.wait(kWaitMs));
-        QVERIFY(!window_->engine().tree()->baked.empty());
+        QVERIFY(!window_->engine().tree()->baked().empty());
         QVERIFY(ao->isEnabled());
         ao->setValue(4);
         QVERIFY(built.wait(kWaitMs));
@@ -451,7 +451,7 @@ private slots:
         // Back to the defaults: the octree loses its baked light again.
         lighting->setCurrentIndex(0);
         QVERIFY(built.wait(kWaitMs));
-        QVERIFY(window_->engine().tree()->baked.empty());
+        QVERIFY(window_->engine().tree()->baked().empty());
         ambient->setValue(0.15);
         waitFrame();
     }

@@ -198,9 +198,9 @@ Octree voxelizeCity(const CityModel& model, const CityBuildOptions& options, Bui
     const Box3 b = model.bounds();
     Octree tree;
     tree.depth = options.depth;
-    tree.crs = model.crs;
-    tree.fieldName = "city";
-    tree.source = model.source;
+    tree.setMetadata(octree_key::kCrs, model.crs);
+    tree.setMetadata(octree_key::kFieldName, "city");
+    tree.setMetadata(octree_key::kSource, model.source);
     const dvec3 ext = b.size();
     tree.cubeSide = std::max({ext.x, ext.y, ext.z});
     if (!(tree.cubeSide > 0.0) || !std::isfinite(tree.cubeSide))
@@ -258,13 +258,12 @@ Octree voxelizeCity(const CityModel& model, const CityBuildOptions& options, Bui
         }
     }
     joined.nodes[0] = root;
-    tree.nodes = std::move(joined.nodes);
-    tree.voxels = std::move(joined.voxels);
-    tree.colours = std::move(joined.colours);
-    tree.nodes.shrink_to_fit();
-    tree.voxels.shrink_to_fit();
-    tree.colours.shrink_to_fit();
-    if (report) *report = BuildReport{timer.ms(), tree.voxels.size(), tree.nodes.size()};
+    joined.nodes.shrink_to_fit();
+    joined.voxels.shrink_to_fit();
+    joined.colours.shrink_to_fit();
+    tree.setTopology(std::move(joined.nodes), std::move(joined.voxels));
+    tree.setColours(std::move(joined.colours));  // one per voxel: every leaf appends its colour
+    if (report) *report = BuildReport{timer.ms(), tree.voxels().size(), tree.nodes().size()};
     return tree;
 }
 

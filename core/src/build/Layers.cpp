@@ -27,7 +27,7 @@ struct Entry {
 void collect(const Octree& t, std::vector<Entry>& out) {
     const float nan = std::numeric_limits<float>::quiet_NaN();
     t.forEachVoxel([&](const ivec3& c, std::uint32_t v) {
-        out.push_back({mortonCode(c, t.depth), t.voxels[v], t.voxelValues.empty() ? nan : t.voxelValues[v],
+        out.push_back({mortonCode(c, t.depth), t.voxels()[v], t.voxelValues().empty() ? nan : t.voxelValues()[v],
                        std::uint8_t(t.material(v))});
     });
 }
@@ -80,7 +80,9 @@ std::size_t extendColumnsDown(ScalarField& field) {
     return filled;
 }
 
-void setMaterial(Octree& tree, VoxelMaterial material) { tree.voxelMaterials.assign(tree.voxels.size(), std::uint8_t(material)); }
+void setMaterial(Octree& tree, VoxelMaterial material) {
+    tree.setVoxelMaterials(std::vector<std::uint8_t>(tree.voxels().size(), std::uint8_t(material)));
+}
 
 Octree mergeShells(const Octree& top, const Octree& under) {
     if (top.form != OctreeForm::Shell || under.form != OctreeForm::Shell)
@@ -88,7 +90,7 @@ Octree mergeShells(const Octree& top, const Octree& under) {
     if (top.depth != under.depth || top.cubeOrigin != under.cubeOrigin || top.cubeSide != under.cubeSide)
         throw UsageError("merging surfaces: the octrees differ in depth or cube (build them over the same grid and depth)");
     std::vector<Entry> all;
-    all.reserve(top.voxels.size() + under.voxels.size());
+    all.reserve(top.voxels().size() + under.voxels().size());
     collect(top, all);
     collect(under, all);
     // Stable: of two entries with one code, top's (collected first) comes first and is kept.
@@ -110,26 +112,32 @@ Octree mergeShells(const Octree& top, const Octree& under) {
     if (all.empty()) levels[0].assign(1, 0);  // an empty octree keeps its root
     std::vector<std::size_t> base(std::size_t(depth) + 1, 0);
     for (int l = 1; l < depth; ++l) base[std::size_t(l)] = base[std::size_t(l) - 1] + levels[std::size_t(l) - 1].size();
-    out.nodes.resize(depth > 0 ? base[std::size_t(depth) - 1] + levels[std::size_t(depth) - 1].size() : 0);
+    std::vector<OctreeNode> nodes(depth > 0 ? base[std::size_t(depth) - 1] + levels[std::size_t(depth) - 1].size() : 0);
     for (int l = 0; l < depth; ++l) {
         const auto& parents = levels[std::size_t(l)];
         const auto& children = levels[std::size_t(l) + 1];
         const std::size_t childBase = l + 1 == depth ? 0 : base[std::size_t(l) + 1];
         std::size_t k = 0;
         for (std::size_t p = 0; p < parents.size(); ++p) {
-            OctreeNode& n = out.nodes[base[std::size_t(l)] + p];
+            OctreeNode& n = nodes[base[std::size_t(l)] + p];
             n.firstChild = std::uint32_t(childBase + k);
             while (k < children.size() && (children[k] >> 3) == parents[p]) n.childMask |= std::uint8_t(1u << (children[k++] & 7u));
         }
     }
-    out.voxels.reserve(all.size());
-    const bool values = !top.voxelValues.empty() || !under.voxelValues.empty();
-    const bool materials = !top.voxelMaterials.empty() || !under.voxelMaterials.empty();
+    std::vector<Voxel> voxels;
+    std::vector<float> voxelValues;
+    std::vector<std::uint8_t> voxelMaterials;
+    voxels.reserve(all.size());
+    const bool values = !top.voxelValues().empty() || !under.voxelValues().empty();
+    const bool materials = !top.voxelMaterials().empty() || !under.voxelMaterials().empty();
     for (const Entry& e : all) {
-        out.voxels.push_back(e.voxel);
-        if (values) out.voxelValues.push_back(e.value);
-        if (materials) out.voxelMaterials.push_back(e.material);
+        voxels.push_back(e.voxel);
+        if (values) voxelValues.push_back(e.value);
+        if (materials) voxelMaterials.push_back(e.material);
     }
+    out.setTopology(std::move(nodes), std::move(voxels));
+    out.setVoxelValues(std::move(voxelValues));
+    out.setVoxelMaterials(std::move(voxelMaterials));
     out.validate();
     return out;
 }

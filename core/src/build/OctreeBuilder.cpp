@@ -571,8 +571,8 @@ Octree emptyTree(const ScalarField& field, int depth, double iso) {
     Octree tree;
     tree.depth = depth;
     tree.iso = iso;
-    tree.fieldName = field.name;
-    tree.fieldUnits = field.units;
+    tree.setMetadata(octree_key::kFieldName, field.name);
+    tree.setMetadata(octree_key::kFieldUnits, field.units);
     Box3 b = field.worldBounds();
     dvec3 ext = b.size();
     tree.cubeSide = std::max(ext.x, std::max(ext.y, ext.z));
@@ -663,10 +663,7 @@ void buildInto(Octree& tree, const ScalarField& field, const SampleGrid& grid, f
         throw EmptyResultError(s.str());
     }
     all.nodes[0] = root;
-    tree.nodes = std::move(all.nodes);
-    tree.voxels = std::move(all.voxels);
-    tree.nodes.shrink_to_fit();  // no-ops: reserved exactly
-    tree.voxels.shrink_to_fit();
+    tree.setTopology(std::move(all.nodes), std::move(all.voxels));  // reserved exactly: no slack to shrink
 }
 
 // Memory estimates (see estimateBuildMemory in the header).
@@ -709,8 +706,8 @@ std::vector<BuildMemoryEstimate> estimateWithGrid(const ScalarField& field, cons
         } catch (const EmptyResultError&) {
             continue;  // nothing at this depth: the surface is finer than its voxels
         }
-        voxels[std::size_t(d)] = double(t.voxels.size());
-        nodes[std::size_t(d)] = double(t.nodes.size());
+        voxels[std::size_t(d)] = double(t.voxels().size());
+        nodes[std::size_t(d)] = double(t.nodes().size());
     }
     const double vp = std::max(1.0, voxels[std::size_t(probe)]);
     const double before = probe > 1 ? voxels[std::size_t(probe) - 1] : 0.0;
@@ -773,7 +770,7 @@ void refuseOverBudget(const ScalarField& field, const std::vector<BuildMemoryEst
 
 /// BuildOptions::voxelValues.
 void sampleVoxelValues(Octree& tree, const ScalarField& field, const SampleGrid& grid, float isoF, int threads) {
-    std::vector<ivec3> cells(tree.voxels.size());
+    std::vector<ivec3> cells(tree.voxels().size());
     tree.forEachVoxel([&](const ivec3& c, std::uint32_t i) { cells[i] = c; });
     const FieldSampler sampler(field, grid.samples, tree.cubeOrigin, tree.voxelSize(), tree.depth);
     const double h = tree.voxelSize();
@@ -782,19 +779,20 @@ void sampleVoxelValues(Octree& tree, const ScalarField& field, const SampleGrid&
         sampler.locateWorld(p, s);
         return sampler.trilinear(s[0], s[1], s[2]);
     };
-    tree.voxelValues.assign(cells.size(), isoF);
+    std::vector<float> values(cells.size(), isoF);
     constexpr std::size_t kChunk = 4096;
     parallelFor((cells.size() + kChunk - 1) / kChunk, threads, [&](std::size_t chunk) {
         const std::size_t end = std::min(cells.size(), (chunk + 1) * kChunk);
         for (std::size_t i = chunk * kChunk; i < end; ++i) {
             const dvec3 centre = tree.cubeOrigin + (dvec3(cells[i]) + 0.5) * h;
             // The normal points towards lower values: inside (>= iso) is against it.
-            const dvec3 inside = centre - dvec3(decodeNormal(tree.voxels[i].normal)) * h;
+            const dvec3 inside = centre - dvec3(decodeNormal(tree.voxels()[i].normal)) * h;
             float v = valueAt(inside);
             if (std::isnan(v)) v = valueAt(centre);
-            if (!std::isnan(v)) tree.voxelValues[i] = v;
+            if (!std::isnan(v)) values[i] = v;
         }
     });
+    tree.setVoxelValues(std::move(values));
 }
 
 }  // namespace
@@ -838,8 +836,8 @@ Octree buildOctree(const ScalarField& field, const BuildOptions& options, BuildR
     if (options.voxelValues) sampleVoxelValues(tree, field, grid, isoF, options.threads);
     if (report) {
         report->buildMs = timer.ms();
-        report->boundaryVoxels = tree.form == OctreeForm::Volume ? countVoxels(tree).boundary : tree.voxels.size();
-        report->nodes = tree.nodes.size();
+        report->boundaryVoxels = tree.form == OctreeForm::Volume ? countVoxels(tree).boundary : tree.voxels().size();
+        report->nodes = tree.nodes().size();
     }
     return tree;
 }
@@ -853,12 +851,12 @@ void fillVoxelValues(Octree& tree, const ScalarField& field, int threads) {
 std::vector<float> sampleAtVoxels(const Octree& tree, const ScalarField& field, int threads) {
     field.validate();
     std::vector<std::pair<ivec3, std::uint32_t>> cells;
-    cells.reserve(tree.voxels.size());
+    cells.reserve(tree.voxels().size());
     tree.forEachVoxel([&](const ivec3& c, std::uint32_t v) { cells.push_back({c, v}); });
     const std::vector<float> samples = SampleGrid::maskedSamples(field);
     const double h = tree.voxelSize();
     const FieldSampler sampler(field, samples, tree.cubeOrigin, h, 0);
-    std::vector<float> out(tree.voxels.size(), kNaN);
+    std::vector<float> out(tree.voxels().size(), kNaN);
     constexpr std::size_t kChunk = 4096;
     parallelFor((cells.size() + kChunk - 1) / kChunk, threads, [&](std::size_t chunk) {
         const std::size_t end = std::min(cells.size(), (chunk + 1) * kChunk);

@@ -23,8 +23,8 @@ inline void childMasks(const Octant kinds[8], unsigned& mask, unsigned& terms) {
 struct TreeAssembly {
     std::vector<OctreeNode> nodes{OctreeNode{}};  // slot 0: the root, filled by finish()
     std::vector<Voxel> voxels;
-    std::vector<float> values;           // Octree::voxelValues, when the leaves give them
-    std::vector<std::uint32_t> colours;  // Octree::colours, when the leaves give them
+    std::vector<float> values;           // Octree::voxelValues(), when the leaves give them
+    std::vector<std::uint32_t> colours;  // Octree::colours(), when the leaves give them
 
     /// The node whose children are `kids` of kinds `kinds`: Empty when all are, Term when all
     /// are terms (eight terms make one), else its children are appended and `out` set.
@@ -43,8 +43,8 @@ struct TreeAssembly {
     }
 
     /// The node at level depth-1 with voxels `mask`, of which `interior` are interior voxels
-    /// (all eight interior: a term); `vals` and `cols` (may be null) their Octree::voxelValues
-    /// and Octree::colours.
+    /// (all eight interior: a term); `vals` and `cols` (may be null) their Octree::voxelValues()
+    /// and Octree::colours().
     Octant leaf(unsigned mask, unsigned interior, const Voxel vox[8], OctreeNode& out, const float* vals = nullptr,
                 const std::uint32_t* cols = nullptr) {
         if (!mask) return Octant::Empty;
@@ -71,10 +71,11 @@ struct TreeAssembly {
         voxels.shrink_to_fit();
         values.shrink_to_fit();
         colours.shrink_to_fit();
-        tree.nodes = std::move(nodes);
-        tree.voxels = std::move(voxels);
-        tree.voxelValues = values.size() == tree.voxels.size() ? std::move(values) : std::vector<float>{};
-        tree.colours = colours.size() == tree.voxels.size() ? std::move(colours) : std::vector<std::uint32_t>{};
+        // Values and colours are given by every leaf or by none: either way one per voxel or none.
+        const std::size_t n = voxels.size();
+        tree.setTopology(std::move(nodes), std::move(voxels));
+        tree.setVoxelValues(values.size() == n ? std::move(values) : std::vector<float>{});
+        tree.setColours(colours.size() == n ? std::move(colours) : std::vector<std::uint32_t>{});
         return true;
     }
 };

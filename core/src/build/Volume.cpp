@@ -9,13 +9,13 @@ namespace octrace {
 
 VoxelCount countVoxels(const Octree& tree) {
     VoxelCount n;
-    if (tree.nodes.empty()) return n;
+    if (tree.nodes().empty()) return n;
     struct Item { std::uint32_t node; int level; };
     std::vector<Item> stack{{0u, 0}};
     while (!stack.empty()) {
         const Item it = stack.back();
         stack.pop_back();
-        const OctreeNode& nd = tree.nodes[it.node];
+        const OctreeNode& nd = tree.nodes()[it.node];
         const unsigned terms = nd.termMask, kids = nd.childMask & ~nd.termMask;
         if (it.level == tree.depth - 1) {
             n.interior += unsigned(std::popcount(terms));
@@ -37,13 +37,13 @@ VoxelCount countVoxels(const Octree& tree) {
 CellState cellSlot(const Octree& tree, const ivec3& cell, std::uint32_t& slot) {
     slot = 0xFFFFFFFFu;
     const int n = 1 << tree.depth;
-    if (tree.nodes.empty() || cell.x < 0 || cell.y < 0 || cell.z < 0 || cell.x >= n || cell.y >= n || cell.z >= n)
+    if (tree.nodes().empty() || cell.x < 0 || cell.y < 0 || cell.z < 0 || cell.x >= n || cell.y >= n || cell.z >= n)
         return CellState::Empty;
     std::uint32_t node = 0;
     for (int level = 0; level < tree.depth; ++level) {
         const int shift = tree.depth - 1 - level;
         const unsigned c = unsigned((((cell.x >> shift) & 1) << 2) | (((cell.y >> shift) & 1) << 1) | ((cell.z >> shift) & 1));
-        const OctreeNode& nd = tree.nodes[node];
+        const OctreeNode& nd = tree.nodes()[node];
         if (!(nd.childMask & (1u << c))) return CellState::Empty;
         const bool term = nd.termMask & (1u << c);
         const std::uint32_t child = nd.firstChild + childRank(nd.childMask, c);
@@ -70,9 +70,9 @@ Octree extractShell(const Octree& volume) {
     out.form = OctreeForm::Shell;
     detail::TreeAssembly pool;
     using detail::Octant;
-    const bool values = !volume.voxelValues.empty(), colours = volume.hasColours();
+    const bool values = !volume.voxelValues().empty(), colours = volume.hasColours();
     auto copy = [&](auto&& self, std::uint32_t node, int level, OctreeNode& dst) -> Octant {
-        const OctreeNode& nd = volume.nodes[node];
+        const OctreeNode& nd = volume.nodes()[node];
         std::uint32_t slot = nd.firstChild;
         if (level == volume.depth - 1) {
             unsigned mask = 0;
@@ -82,9 +82,9 @@ Octree extractShell(const Octree& volume) {
             for (int c = 0; c < 8; ++c) {
                 if (!(nd.childMask & (1u << c))) continue;
                 if (!(nd.termMask & (1u << c))) {
-                    vox[c] = volume.voxels[slot];
-                    if (values) val[c] = volume.voxelValues[slot];
-                    if (colours) col[c] = volume.colours[slot];
+                    vox[c] = volume.voxels()[slot];
+                    if (values) val[c] = volume.voxelValues()[slot];
+                    if (colours) col[c] = volume.colours()[slot];
                     mask |= 1u << c;
                 }
                 ++slot;
@@ -101,8 +101,8 @@ Octree extractShell(const Octree& volume) {
         return pool.node(kinds, kids, dst);
     };
     OctreeNode root;
-    if (volume.nodes.empty() || !pool.finish(copy(copy, 0u, 0, root), root, out))
-        throw EmptyResultError(std::string(volume.source).append(": the solid has no boundary voxel"));
+    if (volume.nodes().empty() || !pool.finish(copy(copy, 0u, 0, root), root, out))
+        throw EmptyResultError(std::string(volume.source()).append(": the solid has no boundary voxel"));
     return out;
 }
 

@@ -21,7 +21,7 @@ enum class Cover : std::uint8_t { Empty, Full, Mixed };
 constexpr float kNoValue = std::numeric_limits<float>::quiet_NaN();
 
 /// A voxel of an operand or of the result: its state, (boundary) outward normal and the
-/// attributes of its slot in a tree operand (Octree::voxelValues, Octree::colours).
+/// attributes of its slot in a tree operand (Octree::voxelValues(), Octree::colours()).
 struct VoxelState {
     CellState state = CellState::Empty;
     vec3 normal{0.0f};
@@ -45,7 +45,8 @@ constexpr std::uint32_t kNoSlot = 0xFFFFFFFFu;
 /// nearest known slot, by a breadth-first flood across face neighbours (voxels cut out of an
 /// operand's interior term, which had no slot to inherit from).
 void fillAttributes(Octree& t, std::vector<std::uint8_t>& known) {
-    std::vector<ivec3> cells(t.voxels.size());
+    VoxelAttributes attributes = t.takeAttributes();  // edited in place, handed back below
+    std::vector<ivec3> cells(t.voxels().size());
     t.forEachVoxel([&](const ivec3& c, std::uint32_t slot) { cells[slot] = c; });
     std::vector<std::uint32_t> queue;
     for (std::uint32_t i = 0; i < known.size(); ++i)
@@ -59,11 +60,12 @@ void fillAttributes(Octree& t, std::vector<std::uint8_t>& known) {
                 std::uint32_t slot;
                 if (cellSlot(t, nb, slot) == CellState::Empty || slot == kNoSlot || known[slot]) continue;
                 known[slot] = 1;
-                if (!t.voxelValues.empty()) t.voxelValues[slot] = t.voxelValues[from];
-                if (!t.colours.empty()) t.colours[slot] = t.colours[from];
+                if (!attributes.voxelValues.empty()) attributes.voxelValues[slot] = attributes.voxelValues[from];
+                if (!attributes.colours.empty()) attributes.colours[slot] = attributes.colours[from];
                 queue.push_back(slot);
             }
     }
+    t.setAttributes(std::move(attributes));
 }
 
 class Source {
@@ -107,7 +109,7 @@ private:
 class TreeSource final : public Source {
 public:
     TreeSource(const Octree& t, const Grid& g)
-        : t_(t), g_(g), n_(1 << t.depth), values_(t.voxelValues.size() == t.voxels.size() && !t.voxels.empty()),
+        : t_(t), g_(g), n_(1 << t.depth), values_(!t.voxelValues().empty()),
           colours_(t.hasColours()) {
         scale_ = double(n_) / t.cubeSide;
         same_ = t.depth == g.depth && t.cubeOrigin == g.origin && t.cubeSide == g.side;
@@ -124,11 +126,11 @@ public:
         if (cell.x < 0 || cell.y < 0 || cell.z < 0 || cell.x >= n || cell.y >= n || cell.z >= n) return v;
         std::uint32_t slot = 0;
         v.state = cellSlot(t_, same_ ? cell : opCell(cell), slot);
-        if (v.state == CellState::Boundary) v.normal = decodeNormal(t_.voxels[slot].normal);
+        if (v.state == CellState::Boundary) v.normal = decodeNormal(t_.voxels()[slot].normal);
         if (slot != kNoSlot && (values_ || colours_)) {
             v.attributes = true;
-            if (values_) v.value = t_.voxelValues[slot];
-            if (colours_) v.colour = t_.colours[slot];
+            if (values_) v.value = t_.voxelValues()[slot];
+            if (colours_) v.colour = t_.colours()[slot];
         }
         return v;
     }
@@ -154,7 +156,7 @@ private:
     /// Notes what the octants of node (level, cell) overlapping [lo, hi] hold; stops once it
     /// has seen both empty and full (a boundary voxel counts as both).
     void walk(std::uint32_t node, int level, const ivec3& cell, const ivec3& lo, const ivec3& hi, bool& empty, bool& full) const {
-        const OctreeNode& nd = t_.nodes[node];
+        const OctreeNode& nd = t_.nodes()[node];
         const int shift = t_.depth - level - 1;
         std::uint32_t slot = nd.firstChild;
         for (int c = 0; c < 8 && !(empty && full); ++c) {
@@ -322,7 +324,7 @@ Grid commonGrid(const Octree* a, const Octree* b) {
     if (!a && !b) throw UsageError("csg: at least one operand must be an octree or a field (a solid alone has no voxels)");
     for (const Octree* t : {a, b})
         if (t && t->form != OctreeForm::Volume)
-            throw UsageError("csg: " + (t->source.empty() ? std::string("an operand") : t->source) +
+            throw UsageError("csg: " + (t->source().empty() ? std::string("an operand") : t->source()) +
                              " is a shell octree; CSG needs the volume form (build it with `form` volume)");
     if (!a || !b) {
         const Octree* t = a ? a : b;
@@ -346,7 +348,7 @@ std::unique_ptr<Source> sourceOf(const CsgOperand& o, const Grid& g) {
     return std::make_unique<SolidSource>(o.solid, g);
 }
 
-std::string describe(const CsgOperand& o) { return o.tree ? o.tree->source : o.solid.describe(); }
+std::string describe(const CsgOperand& o) { return o.tree ? o.tree->source() : o.solid.describe(); }
 
 }  // namespace
 
@@ -369,22 +371,23 @@ Octree csg(const CsgOperand& a, CsgOp op, const CsgOperand& b) {
     out.cubeSide = g.side;
     out.depth = g.depth;
     out.form = OctreeForm::Volume;
-    out.source = std::string(1, '(');  // (a plain "(" + string trips GCC 12's -Wrestrict)
-    out.source += describe(a);
-    out.source += ") ";
-    out.source += csgOpName(op);
-    out.source += " (";
-    out.source += describe(b);
-    out.source += ")";
+    std::string source(1, '(');  // (a plain "(" + string trips GCC 12's -Wrestrict)
+    source += describe(a);
+    source += ") ";
+    source += csgOpName(op);
+    source += " (";
+    source += describe(b);
+    source += ")";
+    out.setMetadata(octree_key::kSource, std::move(source));
     Combiner c(*sa, op, *sb, g);
     for (const CsgOperand* o : {&a, &b})
         if (o->tree && !(op == CsgOp::Difference && o == &b)) {
-            c.values_ |= o->tree->voxelValues.size() == o->tree->voxels.size() && !o->tree->voxels.empty();
+            c.values_ |= !o->tree->voxelValues().empty();
             c.colours_ |= o->tree->hasColours();
         }
     OctreeNode root;
     const Octant kind = c.build(0, ivec3(0), root);
-    if (!c.pool_.finish(kind, root, out)) throw EmptyResultError(out.source + ": the result is empty");
+    if (!c.pool_.finish(kind, root, out)) throw EmptyResultError(out.source() + ": the result is empty");
     if (c.values_ || c.colours_) fillAttributes(out, c.known_);
     return out;
 }

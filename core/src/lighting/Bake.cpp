@@ -71,9 +71,9 @@ void bakeLighting(Octree& tree, const BakeOptions& o, BakeReport* report) {
     const double aoDistance = o.aoDistance > 0.0 ? o.aoDistance : tree.cubeSide / 8.0;
     const std::vector<dvec3> dirs = hemisphere(std::max(o.aoRays, 0));
     // Cells by voxel index, so that voxels can be baked in parallel slices.
-    std::vector<ivec3> cells(tree.voxels.size());
+    std::vector<ivec3> cells(tree.voxels().size());
     tree.forEachVoxel([&](const ivec3& c, std::uint32_t v) { cells[v] = c; });
-    tree.baked.assign(tree.voxels.size(), 0);
+    std::vector<std::uint8_t> baked(tree.voxels().size(), 0);
     const detail::ShadowTracer tracer(tree);
     std::atomic<std::uint64_t> rays{0};
     const std::size_t n = cells.size(), chunk = 1024;
@@ -82,7 +82,7 @@ void bakeLighting(Octree& tree, const BakeOptions& o, BakeReport* report) {
         for (std::size_t v = k * chunk; v < std::min(n, (k + 1) * chunk); ++v) {
             const ivec3 cell = cells[v];
             const dvec3 centre = tree.cubeOrigin + (dvec3(cell) + 0.5) * h;
-            const dvec3 nrm = dvec3(decodeNormal(tree.voxels[v].normal));
+            const dvec3 nrm = dvec3(decodeNormal(tree.voxels()[v].normal));
             double light = 0.0;
             for (const BakeLight& l : o.lights) {
                 dvec3 dir = l.point ? l.v - centre : l.v;
@@ -109,10 +109,11 @@ void bakeLighting(Octree& tree, const BakeOptions& o, BakeReport* report) {
                 }
             }
             const double total = std::clamp(double(o.ambient) * ao + double(o.diffuse) * light, 0.0, 1.0);
-            tree.baked[v] = std::uint8_t(std::lround(total * 255.0));
+            baked[v] = std::uint8_t(std::lround(total * 255.0));
         }
         rays += local;
     });
+    tree.setBaked(std::move(baked));
     if (report) {
         report->bakeMs = timer.ms();
         report->rays = rays.load();

@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 namespace octrace {
 
@@ -51,10 +52,88 @@ vec3 decodeNormal(std::uint32_t code) {
     return glm::normalize(vec3(x, y, z));
 }
 
+namespace {
+/// Throws unless `attribute` is empty or one entry per voxel.
+void checkLength(const char* what, std::size_t length, std::size_t voxels) {
+    if (length != 0 && length != voxels)
+        throw Error(std::string("octree attribute '") + what + "' has " + std::to_string(length) +
+                    " entries; it must be empty or one per voxel (" + std::to_string(voxels) + ")");
+}
+
+void checkAttributes(const VoxelAttributes& a, std::size_t voxels) {
+    checkLength("colours", a.colours.size(), voxels);
+    checkLength("voxel values", a.voxelValues.size(), voxels);
+    checkLength("baked light", a.baked.size(), voxels);
+    checkLength("voxel materials", a.voxelMaterials.size(), voxels);
+}
+
+template <class T>
+void keepIfLength(std::vector<T>& v, std::size_t n) {
+    if (v.size() != n) v = std::vector<T>{};  // release the buffer, not only clear it
+}
+}  // namespace
+
 std::size_t Octree::bytes() const {
-    return nodes.capacity() * sizeof(OctreeNode) + voxels.capacity() * sizeof(Voxel) +
-           summaries.capacity() * sizeof(NodeSummary) + colours.capacity() * sizeof(std::uint32_t) +
-           voxelValues.capacity() * sizeof(float) + baked.capacity() + voxelMaterials.capacity();
+    const VoxelAttributes& a = attributes_;
+    return nodes_.capacity() * sizeof(OctreeNode) + voxels_.capacity() * sizeof(Voxel) +
+           summaries_.capacity() * sizeof(NodeSummary) + a.colours.capacity() * sizeof(std::uint32_t) +
+           a.voxelValues.capacity() * sizeof(float) + a.baked.capacity() + a.voxelMaterials.capacity();
+}
+
+void Octree::setTopology(std::vector<OctreeNode> nodes, std::vector<Voxel> voxels) {
+    nodes_ = std::move(nodes);
+    voxels_ = std::move(voxels);
+    // An attribute of the old length may still be meant for the new voxels (the caller knows);
+    // one of another length cannot be.
+    const std::size_t n = voxels_.size();
+    keepIfLength(attributes_.colours, n);
+    keepIfLength(attributes_.voxelValues, n);
+    keepIfLength(attributes_.baked, n);
+    keepIfLength(attributes_.voxelMaterials, n);
+    summaries_ = std::vector<NodeSummary>{};
+}
+
+void Octree::setColours(std::vector<std::uint32_t> colours) {
+    checkLength("colours", colours.size(), voxels_.size());
+    attributes_.colours = std::move(colours);
+}
+
+void Octree::setVoxelValues(std::vector<float> values) {
+    checkLength("voxel values", values.size(), voxels_.size());
+    attributes_.voxelValues = std::move(values);
+}
+
+void Octree::setBaked(std::vector<std::uint8_t> baked) {
+    checkLength("baked light", baked.size(), voxels_.size());
+    attributes_.baked = std::move(baked);
+}
+
+void Octree::setVoxelMaterials(std::vector<std::uint8_t> materials) {
+    checkLength("voxel materials", materials.size(), voxels_.size());
+    attributes_.voxelMaterials = std::move(materials);
+}
+
+void Octree::setAttributes(VoxelAttributes attributes) {
+    checkAttributes(attributes, voxels_.size());
+    attributes_ = std::move(attributes);
+}
+
+VoxelAttributes Octree::takeAttributes() { return std::exchange(attributes_, VoxelAttributes{}); }
+
+const std::string& Octree::metadata(std::string_view key) const {
+    static const std::string none;
+    const auto it = metadata_.find(key);
+    return it == metadata_.end() ? none : it->second;
+}
+
+void Octree::setMetadata(std::string_view key, std::string value) {
+    if (value.empty()) {
+        if (const auto it = metadata_.find(key); it != metadata_.end()) metadata_.erase(it);
+        return;
+    }
+    const auto it = metadata_.find(key);
+    if (it != metadata_.end()) it->second = std::move(value);
+    else metadata_.emplace(std::string(key), std::move(value));
 }
 
 Octree Octree::emptyCopy() const {
@@ -63,33 +142,24 @@ Octree Octree::emptyCopy() const {
     o.cubeOrigin = cubeOrigin;
     o.cubeSide = cubeSide;
     o.form = form;
-    o.fieldName = fieldName;
-    o.fieldUnits = fieldUnits;
     o.iso = iso;
     o.insideBelow = insideBelow;
-    o.source = source;
-    o.crs = crs;
-    o.valueName = valueName;
-    o.valueUnits = valueUnits;
-    o.valueStandardName = valueStandardName;
+    o.metadata_ = metadata_;
     return o;
 }
 
 Octree Octree::copy() const {
     Octree o = emptyCopy();
-    o.nodes = nodes;
-    o.voxels = voxels;
-    o.summaries = summaries;
-    o.colours = colours;
-    o.voxelValues = voxelValues;
-    o.baked = baked;
-    o.voxelMaterials = voxelMaterials;
+    o.nodes_ = nodes_;
+    o.voxels_ = voxels_;
+    o.summaries_ = summaries_;
+    o.attributes_ = attributes_;
     return o;
 }
 
 void Octree::computeSummaries() {
-    summaries.assign(nodes.size(), NodeSummary{});
-    if (nodes.empty()) return;
+    summaries_.assign(nodes_.size(), NodeSummary{});
+    if (nodes_.empty()) return;
     struct Sum {
         dvec3 normal{0.0};
         double z = 0.0;
@@ -98,7 +168,7 @@ void Octree::computeSummaries() {
     };
     // Post-order over the tree (depth <= kMaxDepth: plain recursion).
     auto visit = [&](auto&& self, std::uint32_t node, int level, const ivec3& cell) -> Sum {
-        const OctreeNode& n = nodes[node];
+        const OctreeNode& n = nodes_[node];
         Sum s;
         std::uint32_t slot = n.firstChild;
         for (int c = 0; c < 8; ++c) {
@@ -106,7 +176,7 @@ void Octree::computeSummaries() {
             const ivec3 cc = cell * 2 + ivec3((c >> 2) & 1, (c >> 1) & 1, c & 1);
             Sum k;
             if (level == depth - 1) {
-                k.normal = dvec3(decodeNormal(voxels[slot].normal));
+                k.normal = dvec3(decodeNormal(voxels_[slot].normal));
                 k.z = double(cc.z) + 0.5;
                 k.count = 1;
                 k.first = slot;
@@ -115,12 +185,12 @@ void Octree::computeSummaries() {
                 k.z *= double(k.count);
             } else if (form == OctreeForm::Shell) {
                 // A coarse leaf: one leaf, its own summary too (a cut may stop at it).
-                const std::uint32_t v = nodes[slot].firstChild;
-                k.normal = dvec3(decodeNormal(voxels[v].normal));
+                const std::uint32_t v = nodes_[slot].firstChild;
+                k.normal = dvec3(decodeNormal(voxels_[v].normal));
                 k.z = (double(cc.z) + 0.5) * std::ldexp(1.0, depth - level - 1);
                 k.count = 1;
                 k.first = v;
-                summaries[slot] = NodeSummary{voxels[v].normal, 1, v, float(k.z)};
+                summaries_[slot] = NodeSummary{voxels_[v].normal, 1, v, float(k.z)};
             }
             if (k.count && !s.count) s.first = k.first;
             s.normal += k.normal;
@@ -128,7 +198,7 @@ void Octree::computeSummaries() {
             s.count += k.count;
             ++slot;
         }
-        NodeSummary& out = summaries[node];
+        NodeSummary& out = summaries_[node];
         const double len = glm::length(s.normal);
         out.normal = encodeNormal(len > 1e-12 ? vec3(s.normal / len) : vec3(0, 0, 1));
         out.voxelCount = std::uint32_t(std::min<std::uint64_t>(s.count, 0xFFFFFFFFu));
@@ -150,25 +220,25 @@ Box3 Octree::voxelBox(const ivec3& cell) const {
 
 bool Octree::hasCoarseLeaves() const {
     if (form != OctreeForm::Shell) return false;
-    for (const OctreeNode& n : nodes)
+    for (const OctreeNode& n : nodes_)
         if (n.termMask) return true;
     return false;
 }
 
 std::uint32_t Octree::findVoxel(const ivec3& cell) const {
     const int n = 1 << depth;
-    if (nodes.empty() || cell.x < 0 || cell.y < 0 || cell.z < 0 || cell.x >= n || cell.y >= n || cell.z >= n)
+    if (nodes_.empty() || cell.x < 0 || cell.y < 0 || cell.z < 0 || cell.x >= n || cell.y >= n || cell.z >= n)
         return 0xFFFFFFFFu;
     std::uint32_t node = 0;
     for (int level = 0; level < depth; ++level) {
         int shift = depth - 1 - level;
         int c = (((cell.x >> shift) & 1) << 2) | (((cell.y >> shift) & 1) << 1) | ((cell.z >> shift) & 1);
-        const OctreeNode& nd = nodes[node];
+        const OctreeNode& nd = nodes_[node];
         if (!(nd.childMask & (1u << c))) return 0xFFFFFFFFu;
         std::uint32_t slot = nd.firstChild + childRank(nd.childMask, unsigned(c));
         if (level == depth - 1) return slot;
         if (nd.termMask & (1u << c))  // interior term: not a boundary voxel; coarse leaf: its voxel
-            return form == OctreeForm::Shell ? nodes[slot].firstChild : 0xFFFFFFFFu;
+            return form == OctreeForm::Shell ? nodes_[slot].firstChild : 0xFFFFFFFFu;
         node = slot;
     }
     return 0xFFFFFFFFu;
@@ -177,42 +247,49 @@ std::uint32_t Octree::findVoxel(const ivec3& cell) const {
 void Octree::validate() const {
     auto fail = [](const std::string& w) { throw Error("invalid octree: " + w); };
     if (depth < 1 || depth > kMaxDepth) fail("depth out of range");
-    if (nodes.empty()) fail("no root node");
+    if (nodes_.empty()) fail("no root node");
     if (!(cubeSide > 0.0)) fail("cube side not positive");
-    if (!voxelValues.empty() && voxelValues.size() != voxels.size()) fail("voxel values do not match the voxels");
-    if (!voxelMaterials.empty() && voxelMaterials.size() != voxels.size()) fail("voxel materials do not match the voxels");
-    if (!baked.empty() && baked.size() != voxels.size()) fail("baked light does not match the voxels");
-    std::vector<std::uint8_t> seenNode(nodes.size(), 0), seenVoxel(voxels.size(), 0);
+    // The setters keep these; checked here too, as validate() is the one place that vouches
+    // for a whole octree.
+    try {
+        checkAttributes(attributes_, voxels_.size());
+    } catch (const Error& e) {
+        fail(e.what());
+    }
+    if (!summaries_.empty() && summaries_.size() != nodes_.size())
+        fail("node summaries (" + std::to_string(summaries_.size()) + ") do not match the nodes (" +
+             std::to_string(nodes_.size()) + ")");
+    std::vector<std::uint8_t> seenNode(nodes_.size(), 0), seenVoxel(voxels_.size(), 0);
     struct Item { std::uint32_t node; int level; };
     std::vector<Item> stack{{0u, 0}};
     seenNode[0] = 1;
     while (!stack.empty()) {
         Item it = stack.back();
         stack.pop_back();
-        const OctreeNode& n = nodes[it.node];
+        const OctreeNode& n = nodes_[it.node];
         if (n.termMask & ~n.childMask) fail("term bit without child bit");
         int count = std::popcount(unsigned(n.childMask));
         if (it.level == depth - 1) {
             if (n.termMask && form != OctreeForm::Volume) fail("interior voxel in a shell octree");
-            if (std::size_t(n.firstChild) + count > voxels.size()) fail("voxel index out of range");
+            if (std::size_t(n.firstChild) + count > voxels_.size()) fail("voxel index out of range");
             for (int i = 0; i < count; ++i) {
                 if (seenVoxel[n.firstChild + i]++) fail("voxel referenced twice");
             }
             continue;
         }
-        if (std::size_t(n.firstChild) + count > nodes.size()) fail("node index out of range");
+        if (std::size_t(n.firstChild) + count > nodes_.size()) fail("node index out of range");
         std::uint32_t slot = n.firstChild;
         for (int c = 0; c < 8; ++c) {
             if (!(n.childMask & (1u << c))) continue;
             if (seenNode[slot]++) fail("node referenced twice");
             if (!(n.termMask & (1u << c))) {
-                if (nodes[slot].childMask == 0) fail("inner node without children");
+                if (nodes_[slot].childMask == 0) fail("inner node without children");
                 stack.push_back({slot, it.level + 1});
-            } else if (nodes[slot].childMask != 0 || nodes[slot].termMask != 0) {
+            } else if (nodes_[slot].childMask != 0 || nodes_[slot].termMask != 0) {
                 fail(form == OctreeForm::Volume ? "interior term with children" : "coarse leaf with children");
             } else if (form == OctreeForm::Shell) {
-                const std::uint32_t v = nodes[slot].firstChild;
-                if (v >= voxels.size()) fail("coarse leaf's voxel index out of range");
+                const std::uint32_t v = nodes_[slot].firstChild;
+                if (v >= voxels_.size()) fail("coarse leaf's voxel index out of range");
                 if (seenVoxel[v]++) fail("voxel referenced twice");
             }
             ++slot;
@@ -222,7 +299,6 @@ void Octree::validate() const {
         if (!seenNode[i]) fail("unreachable node");
     for (std::size_t i = 0; i < seenVoxel.size(); ++i)
         if (!seenVoxel[i]) fail("unreachable voxel");
-    if (!colours.empty() && colours.size() != voxels.size()) fail("colours do not match the voxels one to one");
 }
 
 }  // namespace octrace

@@ -73,13 +73,13 @@ Albedo::Albedo(const Octree& tree, const RenderSettings& settings)
     : tree_(tree), colour_(settings.colour), masked_(settings.maskedColour), floor_(settings.floorColour),
       window_(settings.window), inverted_(settings.invertedGrey), colormap_(settings.colormap) {
     for (int i = 0; i < 256; ++i) linear_[i] = srgbToLinear(float(i) / 255.0f);
-    const bool hasValues = !tree.voxelValues.empty() && tree.voxelValues.size() == tree.voxels.size();
+    const bool hasValues = !tree.voxelValues().empty();  // then one per voxel (Octree.h)
     if (hasValues && window_.valid()) {
-        values_ = &tree.voxelValues;
+        values_ = &tree.voxelValues();
         return;
     }
     if (hasValues && !colormap_.empty()) {
-        values_ = &tree.voxelValues;
+        values_ = &tree.voxelValues();
         float lo = std::numeric_limits<float>::infinity(), hi = -lo;
         for (std::size_t i = 0; i < values_->size(); ++i) {
             const float v = (*values_)[i];
@@ -93,7 +93,7 @@ Albedo::Albedo(const Octree& tree, const RenderSettings& settings)
         hi_ = std::isnan(settings.colourMax) ? hi : settings.colourMax;
     }
     if (colormap_.empty()) {
-        if (tree.hasColours() && settings.voxelColours) colours_ = &tree.colours;
+        if (tree.hasColours() && settings.voxelColours) colours_ = &tree.colours();
         return;
     }
     colormap(colormap_, 0.0f);  // validate the name once
@@ -104,7 +104,7 @@ Albedo::Albedo(const Octree& tree, const RenderSettings& settings)
 }
 
 vec3 Albedo::at(std::uint32_t voxel, float zCells) const {
-    if (!tree_.voxelMaterials.empty() && tree_.material(voxel) == VoxelMaterial::Floor) return floor_;
+    if (!tree_.voxelMaterials().empty() && tree_.material(voxel) == VoxelMaterial::Floor) return floor_;
     if (values_) {
         const float v = (*values_)[voxel];
         if (window_.valid()) return vec3(srgbToLinear(window_.grey(v, inverted_)));
@@ -129,13 +129,13 @@ Shader::Shader(const Octree& tree, const Camera& camera, const RenderSettings& s
     if (!(glm::length(l) > 0.0)) l = dvec3(0.4, 0.6, 1.0);
     l = glm::normalize(l);
     light_ = vec3(glm::normalize(l.x * right + l.y * up + l.z * back));
-    if (settings.baked && !tree.baked.empty() && tree.baked.size() == tree.voxels.size()) baked_ = &tree.baked;
+    if (settings.baked && !tree.baked().empty()) baked_ = &tree.baked();
     shadows_ = settings.shadows.value_or(false) && !baked_ && tree.form == OctreeForm::Shell;
 }
 
 vec4 Shader::shade(std::uint32_t voxel, const ivec3& cell, int leafShift, std::uint64_t* shadowRays) const {
     if (baked_) return vec4(albedo_.at(voxel, float(cell.z) + 0.5f) * (float((*baked_)[voxel]) * (1.0f / 255.0f)), 1.0f);
-    const vec3 n = decodeNormal(tree_.voxels[voxel].normal);
+    const vec3 n = decodeNormal(tree_.voxels()[voxel].normal);
     float lambert = std::abs(glm::dot(n, light_));
     if (shadows_ && lambert > 0.0f) {
         std::uint64_t rays = 0;
@@ -146,7 +146,7 @@ vec4 Shader::shade(std::uint32_t voxel, const ivec3& cell, int leafShift, std::u
 }
 
 vec4 Shader::shadeNode(std::uint32_t node) const {
-    const NodeSummary& s = tree_.summaries[node];
+    const NodeSummary& s = tree_.summaries()[node];
     return shadeLambert(s.firstVoxel, s.meanZ, std::abs(glm::dot(decodeNormal(s.normal), light_)));
 }
 

@@ -30,12 +30,12 @@ std::vector<Surfel> extractSurfels(const Octree& tree, const RenderSettings& set
         int shift;  // at the voxel level: the leaf's side is 2^shift voxels (coarse leaves, Octree.h)
     };
     std::vector<Item> items;
-    items.reserve(voxels ? tree.voxels.size() : 0);
+    items.reserve(voxels ? tree.voxels().size() : 0);
     if (voxels)
         tree.forEachLeaf([&](const ivec3& cell, int shift, std::uint32_t index) { items.push_back({cell, index, shift}); });
     else
         tree.forEachAtLevel(level, [&](const ivec3& cell, std::uint32_t index) {
-            if (tree.summaries[index].voxelCount > 0) items.push_back({cell, index, 0});
+            if (tree.summaries()[index].voxelCount > 0) items.push_back({cell, index, 0});
         });
 
     const double side = tree.cubeSide / std::ldexp(1.0, level);
@@ -52,10 +52,10 @@ std::vector<Surfel> extractSurfels(const Octree& tree, const RenderSettings& set
             float zCells;
             std::uint32_t voxel = it.index;
             if (voxels) {
-                s.normal = decodeNormal(tree.voxels[it.index].normal);
+                s.normal = decodeNormal(tree.voxels()[it.index].normal);
                 zCells = float(it.cell.z) + 0.5f;
             } else {
-                const NodeSummary& summary = tree.summaries[it.index];
+                const NodeSummary& summary = tree.summaries()[it.index];
                 s.normal = decodeNormal(summary.normal);
                 zCells = summary.meanZ;
                 voxel = summary.firstVoxel;

@@ -225,12 +225,12 @@ private:
 std::vector<std::uint32_t> sphereColoursAtVoxels(const Octree& tree, const SphereSet& set, int threads) {
     set.validate();
     const SphereBuckets buckets(set);
-    std::vector<dvec3> centres(tree.voxels.size());
+    std::vector<dvec3> centres(tree.voxels().size());
     const double h = tree.voxelSize();
     tree.forEachLeaf([&](const ivec3& cell, int shift, std::uint32_t v) {
         centres[v] = tree.cubeOrigin + (dvec3(cell) + 0.5 * double(1 << shift)) * h;
     });
-    std::vector<std::uint32_t> colours(tree.voxels.size());
+    std::vector<std::uint32_t> colours(tree.voxels().size());
     const std::size_t chunk = 4096;
     parallelFor((colours.size() + chunk - 1) / chunk, threads, [&](std::size_t k) {
         for (std::size_t v = k * chunk; v < std::min(colours.size(), (k + 1) * chunk); ++v) {

@@ -119,21 +119,21 @@ std::string hex32(std::uint32_t v) {
 struct Flattened {
     std::vector<std::uint8_t> masks, terms;
     std::vector<std::uint32_t> normals;
-    std::vector<std::uint8_t> baked;  // Octree::baked in the same order, when it has some
+    std::vector<std::uint8_t> baked;  // Octree::baked() in the same order, when it has some
     std::vector<std::uint8_t> colours;  // per voxel, in the order of `normals`: 4 bytes (packColour, little endian)
     bool anyTerm = false;
 };
 
 Flattened flatten(const Octree& tree) {
     Flattened f;
-    f.masks.reserve(tree.nodes.size());
-    f.terms.reserve(tree.nodes.size());
-    f.normals.reserve(tree.voxels.size());
+    f.masks.reserve(tree.nodes().size());
+    f.terms.reserve(tree.nodes().size());
+    f.normals.reserve(tree.voxels().size());
     std::vector<std::uint32_t> level{0}, next;
     for (int l = 0; l < tree.depth; ++l) {
         next.clear();
         for (std::uint32_t n : level) {
-            const OctreeNode& nd = tree.nodes[n];
+            const OctreeNode& nd = tree.nodes()[n];
             f.masks.push_back(nd.childMask);
             f.terms.push_back(nd.termMask);
             f.anyTerm = f.anyTerm || nd.termMask;
@@ -141,10 +141,10 @@ Flattened flatten(const Octree& tree) {
             for (int c = 0; c < 8; ++c) {
                 if (!(nd.childMask & (1u << c))) continue;
                 if (l == tree.depth - 1) {
-                    f.normals.push_back(tree.voxels[slot].normal);
-                    if (!tree.baked.empty()) f.baked.push_back(tree.baked[slot]);
+                    f.normals.push_back(tree.voxels()[slot].normal);
+                    if (!tree.baked().empty()) f.baked.push_back(tree.baked()[slot]);
                     if (tree.hasColours())
-                        for (int b = 0; b < 4; ++b) f.colours.push_back(std::uint8_t(tree.colours[slot] >> (8 * b)));
+                        for (int b = 0; b < 4; ++b) f.colours.push_back(std::uint8_t(tree.colours()[slot] >> (8 * b)));
                 } else {
                     next.push_back(slot);
                 }
@@ -166,13 +166,13 @@ std::uint64_t morton(const ivec3& c) {
 
 /// Cells of the voxels in breadth-first order (which, at the voxel level, is Morton order).
 std::vector<std::uint64_t> voxelMortonCodes(const Octree& tree) {
-    std::vector<std::uint64_t> codes(tree.voxels.size());
+    std::vector<std::uint64_t> codes(tree.voxels().size());
     std::vector<std::pair<std::uint32_t, ivec3>> level{{0u, ivec3(0)}}, next;
     for (int l = 0; l < tree.depth; ++l) {
         next.clear();
         std::size_t v = 0;
         for (auto [n, cell] : level) {
-            const OctreeNode& nd = tree.nodes[n];
+            const OctreeNode& nd = tree.nodes()[n];
             std::uint32_t slot = nd.firstChild;
             for (int c = 0; c < 8; ++c) {
                 if (!(nd.childMask & (1u << c))) continue;
@@ -427,10 +427,10 @@ std::vector<std::uint8_t> readAll(const std::string& path) {
 }  // namespace
 
 std::vector<std::uint8_t> encodeOctreeFile(const Octree& tree, int zstdLevel) {
-    if (tree.nodes.empty() || tree.voxels.empty()) throw Error("cannot write an empty octree");
+    if (tree.nodes().empty() || tree.voxels().empty()) throw Error("cannot write an empty octree");
     const Flattened f = flatten(tree);
     if (f.anyTerm && tree.form != OctreeForm::Volume) throw Error("a mixed-depth octree (coarse leaves, e.g. from `terrain_depth`) cannot be written to an octree file yet");
-    if (!tree.baked.empty() && tree.form != OctreeForm::Shell) throw Error("baked light is kept in the shell form only");
+    if (!tree.baked().empty() && tree.form != OctreeForm::Shell) throw Error("baked light is kept in the shell form only");
     Writer w;
     w.raw(kMagic, sizeof kMagic);
     w.u32(f.baked.empty() ? 1 : 2);  // version 1 readers know no 'LITE' chunk
@@ -440,15 +440,15 @@ std::vector<std::uint8_t> encodeOctreeFile(const Octree& tree, int zstdLevel) {
     w.u8(std::uint8_t(tree.form));
     w.u8(std::uint8_t(tree.depth));
     w.u16(tree.insideBelow ? 1 : 0);
-    w.u32(2 + (withTerms ? 1 : 0) + (f.colours.empty() ? 0 : 1) + (tree.crs.empty() ? 0 : 1) + (f.baked.empty() ? 0 : 1));
-    w.u64(tree.nodes.size());
-    w.u64(tree.voxels.size());
+    w.u32(2 + (withTerms ? 1 : 0) + (f.colours.empty() ? 0 : 1) + (tree.crs().empty() ? 0 : 1) + (f.baked.empty() ? 0 : 1));
+    w.u64(tree.nodes().size());
+    w.u64(tree.voxels().size());
     for (int a = 0; a < 3; ++a) w.f64(tree.cubeOrigin[a]);
     w.f64(tree.cubeSide);
     w.f64(tree.iso);
-    w.str(tree.fieldName);
-    w.str(tree.fieldUnits);
-    w.str(tree.source);
+    w.str(tree.fieldName());
+    w.str(tree.fieldUnits());
+    w.str(tree.source());
     const auto headerBytes = std::uint32_t(w.bytes.size() - headerStart);
     for (int i = 0; i < 4; ++i) w.bytes[12 + std::size_t(i)] = std::uint8_t(headerBytes >> (8 * i));
     w.crcFrom(0);
@@ -457,7 +457,7 @@ std::vector<std::uint8_t> encodeOctreeFile(const Octree& tree, int zstdLevel) {
     putChunk(w, "NORM", encodeNormals(f.normals, voxelMortonCodes(tree)), zstdLevel);
     // Optional: per-voxel colours (city models) and the CRS of world space.
     if (!f.colours.empty()) putChunk(w, "COLR", f.colours, zstdLevel);
-    if (!tree.crs.empty()) putChunk(w, "CRS ", std::vector<std::uint8_t>(tree.crs.begin(), tree.crs.end()), zstdLevel);
+    if (!tree.crs().empty()) putChunk(w, "CRS ", std::vector<std::uint8_t>(tree.crs().begin(), tree.crs().end()), zstdLevel);
     if (!f.baked.empty()) putChunk(w, "LITE", f.baked, zstdLevel);
     return std::move(w.bytes);
 }
@@ -513,11 +513,10 @@ Octree decodeOctreeFile(std::span<const std::uint8_t> bytes, const std::string& 
     tree.cubeSide = info.cubeSide;
     tree.iso = info.iso;
     tree.insideBelow = info.insideBelow;
-    tree.fieldName = info.fieldName;
-    tree.fieldUnits = info.fieldUnits;
-    tree.source = info.source;
-    tree.nodes.resize(std::size_t(info.nodes));
-    tree.voxels.resize(std::size_t(info.voxels));
+    tree.setMetadata(octree_key::kFieldName, info.fieldName);
+    tree.setMetadata(octree_key::kFieldUnits, info.fieldUnits);
+    tree.setMetadata(octree_key::kSource, info.source);
+    std::vector<OctreeNode> nodes(std::size_t(info.nodes));
     // Breadth-first, as written: each node's children follow those of the nodes before it.
     std::uint64_t levelStart = 0, levelCount = 1, nextNode = 1, nextVoxel = 0;
     auto broken = [&](const std::string& why) { return FileError(name + ": damaged tree structure: " + why); };
@@ -525,7 +524,7 @@ Octree decodeOctreeFile(std::span<const std::uint8_t> bytes, const std::string& 
         if (levelStart + levelCount > info.nodes) throw broken("more nodes than the header's " + std::to_string(info.nodes));
         for (std::uint64_t k = 0; k < levelCount; ++k) {
             const std::size_t i = std::size_t(levelStart + k);
-            OctreeNode& n = tree.nodes[i];
+            OctreeNode& n = nodes[i];
             n.childMask = masks[i];
             n.termMask = terms[i];
             const unsigned count = unsigned(std::popcount(unsigned(n.childMask)));
@@ -540,25 +539,28 @@ Octree decodeOctreeFile(std::span<const std::uint8_t> bytes, const std::string& 
     if (nextNode != info.nodes || nextVoxel != info.voxels)
         throw broken("the masks describe " + std::to_string(nextNode) + " nodes and " + std::to_string(nextVoxel) +
                      " voxels, the header " + std::to_string(info.nodes) + " and " + std::to_string(info.voxels));
+    // The normals follow: their decoding needs the voxels' order, which the topology gives.
+    tree.setTopology(std::move(nodes), std::vector<Voxel>(std::size_t(info.voxels)));
     try {
         tree.validate();
     } catch (const Error& e) {
         throw broken(e.what());
     }
     const std::vector<std::uint32_t> normals = decodeNormals(normalPlanes, voxelMortonCodes(tree));
-    for (std::size_t i = 0; i < normals.size(); ++i) tree.voxels[i].normal = normals[i];
-    tree.baked = std::move(baked);
+    for (std::size_t i = 0; i < normals.size(); ++i) tree.setVoxelNormal(std::uint32_t(i), normals[i]);
+    tree.setBaked(std::move(baked));  // its length was checked against the header's above
     if (colrChunk) {
         // Written in breadth-first order, which is the order of the decoded voxels.
         const std::vector<std::uint8_t> c = inflate(*colrChunk, name);
-        tree.colours.resize(tree.voxels.size());
-        for (std::size_t i = 0; i < tree.colours.size(); ++i)
-            tree.colours[i] = std::uint32_t(c[4 * i]) | std::uint32_t(c[4 * i + 1]) << 8 | std::uint32_t(c[4 * i + 2]) << 16 |
-                              std::uint32_t(c[4 * i + 3]) << 24;
+        std::vector<std::uint32_t> colours(tree.voxels().size());
+        for (std::size_t i = 0; i < colours.size(); ++i)
+            colours[i] = std::uint32_t(c[4 * i]) | std::uint32_t(c[4 * i + 1]) << 8 | std::uint32_t(c[4 * i + 2]) << 16 |
+                         std::uint32_t(c[4 * i + 3]) << 24;
+        tree.setColours(std::move(colours));
     }
     if (crsChunk) {
         const std::vector<std::uint8_t> c = inflate(*crsChunk, name);
-        tree.crs.assign(c.begin(), c.end());
+        tree.setMetadata(octree_key::kCrs, std::string(c.begin(), c.end()));
     }
     if (infoOut) *infoOut = std::move(info);
     return tree;

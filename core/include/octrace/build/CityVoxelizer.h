@@ -7,7 +7,7 @@
 /// A voxel is a boundary voxel when a triangle meets its closed box. Its normal is that of the
 /// triangle whose plane passes nearest its centre (ties: the first triangle); its colour is the
 /// texture's at the voxel's centre for terrain where the texture has data, else that
-/// triangle's object's colour (Octree::colours). The cube is centred on the model's bounding
+/// triangle's object's colour (Octree::colours()). The cube is centred on the model's bounding
 /// box, with the box's largest extent as its side. With a terrain depth, terrain-only nodes
 /// at that level are coarse leaves, given a normal and colour the same way from their centre.
 #include "octrace/build/CityModel.h"

@@ -1,6 +1,6 @@
 #pragma once
 /// @file Layers.h
-/// Several surfaces in one shell octree, told apart by their material (Octree::voxelMaterials):
+/// Several surfaces in one shell octree, told apart by their material (Octree::voxelMaterials()):
 /// an isosurface with the sea floor and land under it. Each layer is built on its own over the
 /// same cube and depth (buildShellOctree of fields with the same grid), then merged, so that
 /// every renderer draws them together like any other octree.

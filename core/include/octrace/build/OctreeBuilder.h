@@ -36,7 +36,7 @@ struct BuildOptions {
     /// buffer it allocates and stops as soon as they would go over (both throw LimitError),
     /// so an estimate that was too low still ends with a message instead of the OOM killer.
     std::uint64_t memoryBudget = 0;
-    /// Also fill Octree::voxelValues: per boundary voxel the trilinear field one voxel edge
+    /// Also fill Octree::voxelValues(): per boundary voxel the trilinear field one voxel edge
     /// inside the surface (from the voxel's centre against its normal, towards values >= iso),
     /// or at the centre where that point is masked or outside the grid. What a display window
     /// colours by: the tissue under the surface rather than the iso value itself.
@@ -84,7 +84,7 @@ struct BuildReport {
 Octree buildShellOctree(const ScalarField& field, const BuildOptions& options, BuildReport* report = nullptr);
 
 /// The trilinear value of `field` at the world centre of every boundary voxel of `tree`, by
-/// voxel index (for Octree::voxelValues: colour a surface by a second variable). NaN where the
+/// voxel index (for Octree::voxelValues(): colour a surface by a second variable). NaN where the
 /// interpolation uses a masked sample or the centre lies outside the field's grid. The field
 /// must pass validate() (else FileError). Thread-safe; `threads` as BuildOptions::threads.
 std::vector<float> sampleAtVoxels(const Octree& tree, const ScalarField& field, int threads = 0);

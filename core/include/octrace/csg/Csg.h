@@ -14,7 +14,7 @@
 ///   intersection: interior if both are; boundary where one is boundary and the other holds it;
 ///   difference A - B: A intersected with the complement of B, whose boundary voxels have B's
 ///          normals reversed: the cut faces get the normals of the cutting solid.
-/// Values and colours (Octree::voxelValues, Octree::colours, when an operand that is not
+/// Values and colours (Octree::voxelValues(), Octree::colours(), when an operand that is not
 /// subtracted has them) come from the first operand holding the voxel; a voxel cut out of an
 /// operand's interior term takes those of the nearest voxel that has them (resample values from
 /// the field with fillVoxelValues, OctreeBuilder.h, where it is known). Baked light is never

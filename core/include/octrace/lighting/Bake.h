@@ -3,7 +3,7 @@
 /// Precomputed diffuse lighting (paper A's first shading mode): per boundary voxel of a shell
 /// octree, the light it receives from fixed lights, with hard shadows and ambient occlusion
 /// found by shadow rays through the octree itself (the discrete traversal), stored in 8 bits
-/// (Octree::baked). Renderers then shade a voxel by albedo x baked / 255 instead of from its
+/// (Octree::baked()). Renderers then shade a voxel by albedo x baked / 255 instead of from its
 /// normal and the view's light (RenderSettings::baked).
 ///
 /// For voxel v with unit normal n at centre c, and for each light i (unit direction l_i

@@ -50,7 +50,7 @@ struct QuantizedRay {
 QuantizedRay quantizeRay(const dvec3& originOS, const dvec3& directionOS);
 
 struct TraversalHit {
-    std::uint32_t voxel = kNoHit;  ///< index into Octree::voxels (for a node hit: its summary's firstVoxel)
+    std::uint32_t voxel = kNoHit;  ///< index into Octree::voxels() (for a node hit: its summary's firstVoxel)
     ivec3 cell{0};                 ///< voxel coordinates in cell space (for a node hit: at its level;
                                    ///< for a coarse leaf: its lowest voxel cell)
     int leafShift = 0;             ///< voxel hits: the leaf's side is 2^leafShift voxels (> 0: a coarse leaf, Octree.h)

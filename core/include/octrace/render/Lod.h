@@ -1,7 +1,7 @@
 #pragma once
 /// @file Lod.h
 /// Multi-resolution rendering: where a traversal stops above the voxels and draws an inner
-/// node as a solid box with its subtree's average (Octree::summaries).
+/// node as a solid box with its subtree's average (Octree::summaries()).
 ///
 /// The cut depends only on a node's level and cell and on the camera, and is evaluated in the
 /// same double arithmetic by every renderer, so all renderers draw the same cut tree: `full`

@@ -63,12 +63,12 @@ struct RenderSettings {
     dvec3 lightCamera{0.4, 0.6, 1.0};      ///< direction towards the light, camera space (normalised on use)
     float ambient = 0.15f;
     float diffuse = 0.85f;
-    /// Shade voxels by their baked light (Octree::baked, lighting/Bake.h) when the octree has
+    /// Shade voxels by their baked light (Octree::baked(), lighting/Bake.h) when the octree has
     /// it: albedo x baked / 255, no normal decoded; else (and for inner nodes drawn whole by
     /// multi-resolution) two-sided Lambert from the normal and lightCamera.
     bool baked = true;
     /// Colour map (Shading.h colormapNames); empty: the uniform `colour`. With
-    /// Octree::voxelValues and no `window` it colours by the values, else by height.
+    /// Octree::voxelValues() and no `window` it colours by the values, else by height.
     std::string colormap;
     /// The voxel values mapped onto the colour map's ends; NaN: the lowest / highest value of
     /// the surface's voxels.
@@ -76,10 +76,10 @@ struct RenderSettings {
     float colourMax = std::numeric_limits<float>::quiet_NaN();
     vec3 maskedColour{0.319f, 0.319f, 0.319f};  ///< linear RGB (sRGB 0.6 grey) of voxels whose value is NaN (masked)
     vec3 floorColour{0.263f, 0.214f, 0.171f};  ///< linear RGB (sRGB 0.55,0.5,0.45) of VoxelMaterial::Floor voxels
-    /// Use the octree's per-voxel colours (Octree::colours) when it has them and no colour
+    /// Use the octree's per-voxel colours (Octree::colours()) when it has them and no colour
     /// map is set; false: the uniform colour.
     bool voxelColours = true;
-    /// When valid, and the octree has voxel values (Octree::voxelValues), each voxel is grey
+    /// When valid, and the octree has voxel values (Octree::voxelValues()), each voxel is grey
     /// by the window applied to its value (instead of `colour` or the colour map);
     /// `invertedGrey`: low values bright (DICOM MONOCHROME1).
     ValueWindow window;

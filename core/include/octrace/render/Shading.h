@@ -25,14 +25,14 @@ std::string defaultColormap(const std::string& standardName, const std::string& 
 
 /// The surface's colour before lighting, linear RGB, per voxel:
 ///  - VoxelMaterial::Floor voxels: RenderSettings::floorColour;
-///  - with Octree::voxelValues and a display window (RenderSettings::window): the window's
+///  - with Octree::voxelValues() and a display window (RenderSettings::window): the window's
 ///    grey of the voxel's value;
-///  - with Octree::voxelValues, no window and a colour map: the map's colour for the voxel's
+///  - with Octree::voxelValues(), no window and a colour map: the map's colour for the voxel's
 ///    value over [colourMin, colourMax] (NaN ends: the surface voxels' own range), maskedColour
 ///    for NaN;
 ///  - else with a colour map the map's colour for the height, from the lowest to the highest
 ///    boundary voxel;
-///  - else the voxel's own colour when the octree has per-voxel colours (Octree::colours) and
+///  - else the voxel's own colour when the octree has per-voxel colours (Octree::colours()) and
 ///    RenderSettings::voxelColours is set; else RenderSettings::colour.
 /// Shared by Shader and the surfel export (Surfels.h), so that both colour a voxel alike.
 /// Thread-safe once constructed.

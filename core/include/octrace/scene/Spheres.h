@@ -73,7 +73,7 @@ SphereSet makeRandomSpheres(std::size_t count, std::uint64_t seed, double radius
 /// Throws LimitError when the samples need more than `memoryBudget` bytes (0 = no limit).
 ScalarField sphereDistanceField(const SphereSet& set, int samples, std::uint64_t memoryBudget = 0);
 
-/// Per-voxel colours (Octree::colours, packColour of the 8-bit sRGB value) for an octree of
+/// Per-voxel colours (Octree::colours(), packColour of the 8-bit sRGB value) for an octree of
 /// the set's distance field: each boundary leaf takes the colour of the sphere whose surface
 /// is nearest its centre (smallest |p - centre| - radius; the first such sphere on a tie),
 /// found in a uniform grid of buckets. A molecule's voxels thus keep their atoms' CPK colours

@@ -78,7 +78,7 @@ public:
     }
 
     void run(RenderStats& st) {
-        if (tree_.nodes.empty() || tree_.depth < 1) return;
+        if (tree_.nodes().empty() || tree_.depth < 1) return;
         visit(0, 0, ivec3(0), st);
     }
 
@@ -146,7 +146,7 @@ private:
 
     void visit(std::uint32_t nodeIndex, int level, const ivec3& cell, RenderStats& st) {
         ++st.nodesVisited;
-        const OctreeNode& node = tree_.nodes[nodeIndex];
+        const OctreeNode& node = tree_.nodes()[nodeIndex];
         const double childSide = levelSide_[std::size_t(level + 1)];
         const dvec3 lo = tree_.cubeOrigin + dvec3(cell) * levelSide_[std::size_t(level)];
         int near = orthoNear_;
@@ -171,10 +171,10 @@ private:
                 // A coarse leaf (shell form) is drawn as a solid cube of its level; an interior
                 // term (volume form) is not drawn.
                 if (tree_.form == OctreeForm::Shell)
-                    splat(tree_.nodes[slot].firstChild, kNoHit, childCell << (tree_.depth - level - 1), tree_.depth - level - 1,
+                    splat(tree_.nodes()[slot].firstChild, kNoHit, childCell << (tree_.depth - level - 1), tree_.depth - level - 1,
                           childLo, childSide, r, st);
             }
-            else if (cut_.stops(level + 1, childCell)) splat(tree_.summaries[slot].firstVoxel, slot, childCell, 0, childLo, childSide, r, st);
+            else if (cut_.stops(level + 1, childCell)) splat(tree_.summaries()[slot].firstVoxel, slot, childCell, 0, childLo, childSide, r, st);
             else visit(slot, level + 1, childCell, st);
         }
     }

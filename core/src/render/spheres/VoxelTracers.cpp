@@ -102,7 +102,7 @@ private:
     /// What child `c` of inner node path_[l] is, with cell_ its cell at level l + 1; when it is
     /// an inner node, path_[l + 1] is set and Leaf::OutOfCube stands for "not a leaf".
     Leaf child(int l, unsigned c) {
-        const OctreeNode& nd = tree_.nodes[path_[l]];
+        const OctreeNode& nd = tree_.nodes()[path_[l]];
         level_ = l + 1;
         if (!(nd.childMask & (1u << c))) return Leaf::Empty;
         const std::uint32_t slot = nd.firstChild + childRank(nd.childMask, c);
@@ -114,7 +114,7 @@ private:
         }
         if (nd.termMask & (1u << c)) {
             if (tree_.form != OctreeForm::Shell) return Leaf::Empty;  // an interior term: not drawn
-            hit_.voxel = tree_.nodes[slot].firstChild;                 // a coarse leaf
+            hit_.voxel = tree_.nodes()[slot].firstChild;                 // a coarse leaf
             hit_.leafShift = tree_.depth - level_;
             hit_.cell = cell_ * (1 << hit_.leafShift);
             return Leaf::Hit;
@@ -241,7 +241,7 @@ public:
     }
 
     void run() {
-        if (remaining_ > 0 && !tree_.nodes.empty() && tree_.depth >= 1) visit(0, 0, ivec3(0), Rect{0, w_, 0, h_}, 0, 0);
+        if (remaining_ > 0 && !tree_.nodes().empty() && tree_.depth >= 1) visit(0, 0, ivec3(0), Rect{0, w_, 0, h_}, 0, 0);
     }
 
 private:
@@ -275,7 +275,7 @@ private:
                 if (eye_[a] > mid) flip |= b;
             }
         }
-        const OctreeNode& nd = tree_.nodes[node];
+        const OctreeNode& nd = tree_.nodes()[node];
         for (unsigned k = 0; k < 8 && remaining_ > 0; ++k) {
             const unsigned c = k ^ flip;
             if (!(nd.childMask & (1u << c))) continue;  // empty: the beam only moves on
@@ -284,7 +284,7 @@ private:
             if (level + 1 == tree_.depth) {
                 intersect(level + 1, cc, slot, r, fMask, fSign);
             } else if (nd.termMask & (1u << c)) {
-                if (tree_.form == OctreeForm::Shell) intersect(level + 1, cc, tree_.nodes[slot].firstChild, r, fMask, fSign);
+                if (tree_.form == OctreeForm::Shell) intersect(level + 1, cc, tree_.nodes()[slot].firstChild, r, fMask, fSign);
             } else {
                 visit(slot, level + 1, cc, r, fMask, fSign);
             }
@@ -463,7 +463,7 @@ RenderStats renderVoxelTracer(VoxelTracer tracer, const std::string& name, const
 namespace octrace {
 
 TraversalHit traverseSamet(const Octree& tree, const QuantizedRay& ray, TraversalCounters& counters) {
-    if (!ray.meetsCube || tree.nodes.empty() || tree.depth < 1) return TraversalHit{};
+    if (!ray.meetsCube || tree.nodes().empty() || tree.depth < 1) return TraversalHit{};
     return detail::SametWalker(tree, ray, counters).run();
 }
 

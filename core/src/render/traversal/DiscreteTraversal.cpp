@@ -235,7 +235,7 @@ public:
                 }
                 c = unsigned(OrderTable::child(n.order, n.pos++));
             }
-            const OctreeNode& nd = tree_.nodes[n.node];
+            const OctreeNode& nd = tree_.nodes()[n.node];
             const std::uint32_t slot = nd.firstChild + childRank(nd.childMask, c);
             const unsigned ci = k_.toCanonical[c];
             const unsigned hm = ci >> 2, hu = (ci >> 1) & 1, hv = ci & 1;
@@ -252,7 +252,7 @@ public:
                     i64 o = (r_.sign & axisBit(a)) ? L - (mirrored[a] + h) : mirrored[a];
                     result.cell[a] = int(o >> (N - tree_.depth));
                 }
-                result.voxel = coarseLeaf ? tree_.nodes[slot].firstChild : slot;
+                result.voxel = coarseLeaf ? tree_.nodes()[slot].firstChild : slot;
                 result.leafShift = tree_.depth - n.level - 1;
                 return result;
             }
@@ -270,7 +270,7 @@ public:
                     cell[a] = int(o >> (N - level));
                 }
                 if (cut_->stops(level, cell)) {
-                    result.voxel = tree_.summaries[slot].firstVoxel;
+                    result.voxel = tree_.summaries()[slot].firstVoxel;
                     result.cell = cell;
                     result.node = slot;
                     result.level = level;
@@ -295,7 +295,7 @@ public:
             ch.pathChild = 0;
             if (guide_ && ch.level < guide_->level && slot == guide_->path[ch.level]) {
                 const unsigned z = guide_->childIndex[ch.level];
-                const unsigned childMask = tree_.nodes[slot].childMask;
+                const unsigned childMask = tree_.nodes()[slot].childMask;
                 if ((childMask & predecessors().mask[r_.sign][z]) == 0) {
                     ch.lazy = true;
                     ch.pathChild = z;
@@ -313,10 +313,10 @@ public:
 
     /// The root, lazily when guided and possible; returns false when the ray misses the cube.
     bool startAtRoot() {
-        if (!r_.meetsCube || tree_.nodes.empty()) return false;
+        if (!r_.meetsCube || tree_.nodes().empty()) return false;
         if (guide_ && guide_->level > 0) {
             const unsigned z = guide_->childIndex[0];
-            if ((tree_.nodes[0].childMask & predecessors().mask[r_.sign][z]) == 0) {
+            if ((tree_.nodes()[0].childMask & predecessors().mask[r_.sign][z]) == 0) {
                 setFrame(0, 0, 0, 0, 0);
                 NodeState& f = stack_[0];
                 f.lazy = true;
@@ -337,7 +337,7 @@ private:
         ++counters_.nodes;
         const unsigned orig = k_.toOriginal[byte];
         if constexpr (kObserve) (*observe_)(r_.sign, orig);
-        f.order = order_.entry(r_.sign, orig & tree_.nodes[f.node].childMask);
+        f.order = order_.entry(r_.sign, orig & tree_.nodes()[f.node].childMask);
         f.pos = 0;
         return OrderTable::count(f.order) > 0;
     }
@@ -358,7 +358,7 @@ private:
 template <bool kObserve>
 TraversalHit traverse(const Octree& tree, const QuantizedRay& r, TraversalCounters& counters,
                       const std::function<void(unsigned, unsigned)>* observe, const LodCut* cut = nullptr) {
-    if (!r.meetsCube || tree.nodes.empty()) return TraversalHit{};  // before setting up the engine
+    if (!r.meetsCube || tree.nodes().empty()) return TraversalHit{};  // before setting up the engine
     Engine<kObserve> e(tree, r, counters, observe);
     e.setCut(cut);
     if (!e.startAtRoot()) return TraversalHit{};
@@ -480,13 +480,13 @@ BranchNode branchNode(const Octree& tree, const ivec3& a, const ivec3& b, int up
     const int width = diff ? 32 - std::countl_zero(diff) : 0;
     int level = std::min(depth - width, depth - 1);
     if (up > 0 && level >= 0) level = std::max(level - up, 0);
-    if (level < 0 || tree.nodes.empty()) return bn;
+    if (level < 0 || tree.nodes().empty()) return bn;
     std::uint32_t node = 0;
     bn.path[0] = 0;
     for (int l = 0; l < level; ++l) {
         const int shift = depth - 1 - l;
         const unsigned c = unsigned(((a.x >> shift) & 1) << 2 | ((a.y >> shift) & 1) << 1 | ((a.z >> shift) & 1));
-        const OctreeNode& nd = tree.nodes[node];
+        const OctreeNode& nd = tree.nodes()[node];
         if (!(nd.childMask & (1u << c))) return BranchNode{};  // not a voxel's path
         if (nd.termMask & (1u << c)) {
             if (tree.form != OctreeForm::Shell) return BranchNode{};  // an interior term: not a voxel's path
@@ -529,7 +529,7 @@ TraversalHit traverseGuided(const Octree& tree, const QuantizedRay& ray, const B
     // path node allows it, the guided traversal is the full one (skip the set-up).
     bool anyDeferrable = false;
     for (int l = 0; l < branch.level && !anyDeferrable; ++l)
-        anyDeferrable = (tree.nodes[branch.path[l]].childMask & predecessors().mask[ray.sign][branch.childIndex[l]]) == 0;
+        anyDeferrable = (tree.nodes()[branch.path[l]].childMask & predecessors().mask[ray.sign][branch.childIndex[l]]) == 0;
     if (!anyDeferrable) return traverseDiscrete(tree, ray, counters);
     // The path frames may be taken on trust only if the ray crosses the branch node (and so
     // every node above it on the path).

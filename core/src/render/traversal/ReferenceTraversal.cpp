@@ -60,7 +60,7 @@ struct Walker {
 
     bool visit(std::uint32_t node, int level, const long double lo[3], TraversalHit& hit) {
         ++counters.nodes;
-        const OctreeNode& nd = tree.nodes[node];
+        const OctreeNode& nd = tree.nodes()[node];
         const long double half = std::ldexp(1.0L, N - level - 1);
         struct Cand {
             Param start;
@@ -92,7 +92,7 @@ struct Walker {
             if (nd.termMask & (1u << k.child)) {
                 if (tree.form != OctreeForm::Shell) continue;  // interior term: not drawn
                 // A coarse leaf: drawn as a solid cube of its level.
-                hit.voxel = tree.nodes[k.slot].firstChild;
+                hit.voxel = tree.nodes()[k.slot].firstChild;
                 for (int a = 0; a < 3; ++a) hit.cell[a] = int(std::lround(k.lo[a] / voxelSize));
                 hit.leafShift = tree.depth - level - 1;
                 return true;
@@ -101,7 +101,7 @@ struct Walker {
                 ivec3 cell;
                 for (int a = 0; a < 3; ++a) cell[a] = int(std::lround(k.lo[a] / half));
                 if (cut->stops(level + 1, cell)) {
-                    hit.voxel = tree.summaries[k.slot].firstVoxel;
+                    hit.voxel = tree.summaries()[k.slot].firstVoxel;
                     hit.cell = cell;
                     hit.node = k.slot;
                     hit.level = level + 1;
@@ -155,7 +155,7 @@ ReferenceRay referenceRayUnquantized(const dvec3& o, const dvec3& d) {
 TraversalHit traverseReference(const Octree& tree, const ReferenceRay& ray, TraversalCounters& counters,
                                const LodCut* cut) {
     TraversalHit hit;
-    if (!ray.valid || tree.nodes.empty()) return hit;
+    if (!ray.valid || tree.nodes().empty()) return hit;
     const long double lo[3] = {0, 0, 0};
     Param start;
     if (!boxInterval(ray, lo, kL, start)) return hit;
