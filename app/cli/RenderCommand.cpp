@@ -30,13 +30,6 @@
 namespace octrace::cli {
 namespace {
 
-std::string vecText(const dvec3& v) {
-    std::ostringstream o;
-    o.precision(10);
-    o << v.x << "," << v.y << "," << v.z;
-    return o.str();
-}
-
 /// The surface (SurfaceArgs), how it is drawn (model::RenderSpec), and what only the command
 /// line has: files, --verify, --repeat, --baseline, the object octree of sphere scenes.
 struct RenderArgs : SurfaceArgs, model::RenderSpec {
@@ -134,17 +127,6 @@ std::uint64_t outputFrameBytes(const RenderArgs& a) {
     return Frame::bytesFor(a.width, a.height) * (1 + !a.baseline.empty() + 2 * a.verify) + std::uint64_t(a.width) * std::uint64_t(a.height) * 24;
 }
 
-/// What the voxel and the sphere paths write alike: the view.
-void setCameraStats(StatsJson& js, const Camera& cam, const Box3& bounds) {
-    js.set("camera_pos", vecText(cam.position));
-    js.set("look_at", vecText(cam.lookAt));
-    js.set("up", vecText(cam.up));
-    js.set("projection", std::string(cam.orthographic() ? "ortho" : "perspective"));
-    if (cam.orthographic()) js.set("ortho_height", cam.orthoHeight);
-    else js.set("fov", cam.fovYDegrees);
-    js.set("surface_bounds_min", vecText(bounds.lo));
-    js.set("surface_bounds_max", vecText(bounds.hi));
-}
 
 /// Pixels whose hit (the sphere of the first sample, or a miss) differs.
 std::uint64_t mismatchedHits(const Frame& a, const Frame& b) {
@@ -191,17 +173,12 @@ RepeatedRender renderRepeated(const RenderArgs& a, Frame& frame,
 }
 
 /// The stats keys of --repeat and --baseline.
-void setRepeatStats(StatsJson& js, const RenderArgs& a, const RepeatedRender& r) {
-    if (a.repeat > 1) {
-        js.set("repeat", a.repeat);
-        js.set("render_ms_median", r.times[r.times.size() / 2]);
-    }
-    if (!a.baseline.empty()) {
-        js.set("baseline", a.baseline);
-        js.set("baseline_render_ms", r.baselineMs);
-        js.set("speedup_over_baseline", r.stats.renderMs > 0 ? r.baselineMs / r.stats.renderMs : 0.0);
-        js.set("baseline_differing_pixels", r.baselineDiffering);
-    }
+void recordRepeats(model::FrameRecord& record, const RenderArgs& a, const RepeatedRender& r) {
+    record.repeat = a.repeat;
+    record.renderMsMedian = r.times[r.times.size() / 2];
+    record.baseline = a.baseline;
+    record.baselineMs = r.baselineMs;
+    record.baselineDifferingPixels = r.baselineDiffering;
 }
 
 /// octrace render on a sphere scene traced in its object octree (paper B).
@@ -277,7 +254,10 @@ int renderObjectOctree(const RenderArgs& a) {
     js.set("load_ms", loadMs);
     js.set("build_ms", buildMs);
     js.set("render_ms", st.renderMs);
-    setRepeatStats(js, a, rep);
+    model::FrameRecord repeats;
+    repeats.stats = &st;
+    recordRepeats(repeats, a, rep);
+    model::addRepeatStats(js, repeats);
     js.set("us_per_ray", st.rays ? st.renderMs * 1000.0 / double(st.rays) : 0.0);
     js.set("nodes_visited", st.nodesVisited);
     js.set("nodes_per_ray", st.rays ? double(st.nodesVisited) / double(st.rays) : 0.0);
@@ -291,8 +271,8 @@ int renderObjectOctree(const RenderArgs& a) {
     js.set("octree_leaves", std::uint64_t(tree.leaves()));
     js.set("occupied_leaves", std::uint64_t(tree.occupiedLeaves()));
     js.set("octree_bytes", std::uint64_t(tree.bytes()));
-    setCameraStats(js, cam, bounds);
-    js.set("cube_origin", vecText(tree.cubeOrigin));
+    model::addCameraStats(js, cam, bounds);
+    js.set("cube_origin", model::vectorText(tree.cubeOrigin));
     js.set("cube_side", tree.cubeSide);
 
     std::ostringstream summary;
@@ -404,86 +384,22 @@ int runRender(const std::vector<std::string>& args) {
     const Renderer* renderer = rep.renderer.get();
     if (figureLayoutUsed) writeFigure(frame, a.figure, *figureLayoutUsed, figureSubject(surface, a.input), tree, cam, rs, a.output);
 
+    model::FrameRecord record;
+    record.input = a.input;
+    record.surface = &surface;
+    record.camera = &cam;
+    record.settings = &rs;
+    record.stats = &st;
+    record.tracesRays = renderer->tracesRays();
+    record.colourCoherence = rs.coherence.colour || a.resolved.colourCoherence;
+    record.threads = threads;
+    record.bounds = bounds;
+    record.figure = figureLayoutUsed;
+    recordRepeats(record, a, rep);
+    record.peakRssAfterBuild = rssAfterBuild;
+    record.multiResolution = multires;
     StatsJson js;
-    js.set("renderer", st.renderer);
-    js.set("input", a.input);
-    js.set("variable", field.name);
-    js.set("units", field.units);
-    js.set("iso", iso);
-    if (surface.window.valid()) {
-        js.set("window_centre", surface.window.centre);
-        js.set("window_width", surface.window.width);
-        js.set("window_source", surface.windowSource);
-        js.set("window_inverted", surface.invertedGrey);
-    }
-    js.set("depth", tree.depth);
-    js.set("width", cam.width);
-    js.set("height", cam.height);
-    if (figureLayoutUsed) {
-        const io::FigureLayout& l = *figureLayoutUsed;
-        js.set("figure_width", l.width);
-        js.set("figure_height", l.height);
-        js.set("figure_dpi", l.dpi);
-        js.set("figure_plot", std::to_string(l.plotX) + "," + std::to_string(l.plotY) + "," + std::to_string(l.plotW) + "," + std::to_string(l.plotH));
-        if (l.barW > 0)
-            js.set("figure_colour_bar", std::to_string(l.barX) + "," + std::to_string(l.barY) + "," + std::to_string(l.barW) + "," + std::to_string(l.barH));
-    }
-    js.set("threads", threads);
-    js.set("pixels", st.pixels);
-    js.set("rays", st.rays);
-    js.set("hits", st.hits);
-    js.set("load_ms", loadMs);
-    js.set("build_ms", report.buildMs);
-    js.set("lighting", std::string(rs.baked && !tree.baked().empty() ? "baked" : "dynamic"));
-    js.set("shadows", std::string(Shader(tree, cam, rs).shadows() ? "on" : "off"));
-    js.set("shadow_rays", st.secondaryRays);
-    js.set("bake_ms", surface.bake.bakeMs);
-    js.set("render_ms", st.renderMs);
-    setRepeatStats(js, a, rep);
-    // A direct renderer traces no rays: no figure per ray (null), its footprints instead.
-    js.set("us_per_ray", renderer->tracesRays() ? (st.rays ? st.renderMs * 1000.0 / double(st.rays) : 0.0)
-                                                : std::numeric_limits<double>::quiet_NaN());
-    js.set("voxels_splatted", st.voxelsSplatted);
-    js.set("rays_full", st.raysFull);
-    js.set("rays_common_path", st.raysCommonPath);
-    js.set("fallbacks", st.fallbacks);
-    js.set("rays_certified", st.raysCertified);
-    js.set("states_deferred", st.statesDeferred);
-    js.set("colour_filled", st.colourFilled);
-    js.set("miss_filled", st.missFilled);
-    if (rs.coherence.colour || a.resolved.colourCoherence) js.set("colour_tolerance", double(rs.coherence.colourTolerance));
-    js.set("branch_up", rs.coherence.branchUp);
-    js.set("miss_coherence", std::string(rs.coherence.miss ? "on" : "off"));
-    js.set("nodes_visited", st.nodesVisited);
-    js.set("nodes_per_ray", st.rays ? double(st.nodesVisited) / double(st.rays) : 0.0);
-    js.set("beams", st.beams);
-    js.set("intersections", st.intersections);
-    js.set("boundary_voxels", std::uint64_t(tree.boundaryVoxels()));
-    if (!tree.voxelMaterials().empty())
-        js.set("floor_voxels", std::uint64_t(std::count(tree.voxelMaterials().begin(), tree.voxelMaterials().end(),
-                                                        std::uint8_t(VoxelMaterial::Floor))));
-    if (!rs.colormap.empty()) js.set("colormap", rs.colormap);
-    if (!tree.voxelValues().empty()) {
-        const Albedo albedo(tree, rs);
-        js.set("colour_by", tree.valueName());
-        js.set("colour_units", tree.valueUnits());
-        js.set("colour_min", double(albedo.low()));
-        js.set("colour_max", double(albedo.high()));
-    }
-    js.set("octree_nodes", std::uint64_t(tree.nodes().size()));
-    js.set("octree_bytes", std::uint64_t(tree.bytes()));
-    js.set("bytes_per_voxel", tree.bytesPerVoxel());
-    js.set("peak_rss_bytes_after_build", std::uint64_t(rssAfterBuild));
-    setCameraStats(js, cam, bounds);
-    if (multires) {
-        js.set("lod", a.detail.lodPixels);
-        js.set("level", std::uint64_t(a.detail.level < 0 ? tree.depth : a.detail.level));
-    }
-    js.set("cube_origin", vecText(tree.cubeOrigin));
-    js.set("cube_side", tree.cubeSide);
-    for (const auto& n : field.notes) {
-        if (n.rfind("vertical scale", 0) == 0 || n.find("vertical scale") != std::string::npos) js.set("geographic", n);
-    }
+    static_cast<model::Stats&>(js) = model::frameStats(record);
 
     std::ostringstream summary;
     summary.precision(4);

@@ -1,7 +1,12 @@
 #include "octrace/model/Render.h"
 
 #include "octrace/render/Renderer.h"
+#include "octrace/render/Shading.h"
 #include "octrace/util/Error.h"
+
+#include <algorithm>
+#include <limits>
+#include <sstream>
 
 namespace octrace::model {
 
@@ -57,6 +62,127 @@ RenderStats renderFrame(const Octree& tree, const Camera& camera, const RenderSe
     RenderSettings s = settings;
     name.applyTo(s);
     return r->render(tree, camera, s, frame);
+}
+
+std::string vectorText(const dvec3& v) {
+    std::ostringstream o;
+    o.precision(10);
+    o << v.x << "," << v.y << "," << v.z;
+    return o.str();
+}
+
+void addCameraStats(Stats& js, const Camera& cam, const Box3& bounds) {
+    js.set("camera_pos", vectorText(cam.position));
+    js.set("look_at", vectorText(cam.lookAt));
+    js.set("up", vectorText(cam.up));
+    js.set("projection", std::string(cam.orthographic() ? "ortho" : "perspective"));
+    if (cam.orthographic()) js.set("ortho_height", cam.orthoHeight);
+    else js.set("fov", cam.fovYDegrees);
+    js.set("surface_bounds_min", vectorText(bounds.lo));
+    js.set("surface_bounds_max", vectorText(bounds.hi));
+}
+
+void addRepeatStats(Stats& js, const FrameRecord& r) {
+    if (r.repeat > 1) {
+        js.set("repeat", r.repeat);
+        js.set("render_ms_median", r.renderMsMedian);
+    }
+    if (!r.baseline.empty()) {
+        js.set("baseline", r.baseline);
+        js.set("baseline_render_ms", r.baselineMs);
+        js.set("speedup_over_baseline", r.stats->renderMs > 0 ? r.baselineMs / r.stats->renderMs : 0.0);
+        js.set("baseline_differing_pixels", r.baselineDifferingPixels);
+    }
+}
+
+Stats frameStats(const FrameRecord& r) {
+    const Surface& surface = *r.surface;
+    const ScalarField& field = surface.field;
+    const Octree& tree = surface.tree;
+    const Camera& cam = *r.camera;
+    const RenderSettings& rs = *r.settings;
+    const RenderStats& st = *r.stats;
+    Stats js;
+    js.set("renderer", st.renderer);
+    js.set("input", r.input);
+    js.set("variable", field.name);
+    js.set("units", field.units);
+    js.set("iso", surface.iso);
+    if (surface.window.valid()) {
+        js.set("window_centre", surface.window.centre);
+        js.set("window_width", surface.window.width);
+        js.set("window_source", surface.windowSource);
+        js.set("window_inverted", surface.invertedGrey);
+    }
+    js.set("depth", tree.depth);
+    js.set("width", cam.width);
+    js.set("height", cam.height);
+    if (r.figure) {
+        const io::FigureLayout& l = *r.figure;
+        js.set("figure_width", l.width);
+        js.set("figure_height", l.height);
+        js.set("figure_dpi", l.dpi);
+        js.set("figure_plot", std::to_string(l.plotX) + "," + std::to_string(l.plotY) + "," + std::to_string(l.plotW) + "," + std::to_string(l.plotH));
+        if (l.barW > 0)
+            js.set("figure_colour_bar", std::to_string(l.barX) + "," + std::to_string(l.barY) + "," + std::to_string(l.barW) + "," + std::to_string(l.barH));
+    }
+    js.set("threads", r.threads);
+    js.set("pixels", st.pixels);
+    js.set("rays", st.rays);
+    js.set("hits", st.hits);
+    js.set("load_ms", surface.loadMs);
+    js.set("build_ms", surface.report.buildMs);
+    js.set("lighting", std::string(rs.baked && !tree.baked().empty() ? "baked" : "dynamic"));
+    js.set("shadows", std::string(Shader(tree, cam, rs).shadows() ? "on" : "off"));
+    js.set("shadow_rays", st.secondaryRays);
+    js.set("bake_ms", surface.bake.bakeMs);
+    js.set("render_ms", st.renderMs);
+    addRepeatStats(js, r);
+    // A direct renderer traces no rays: no figure per ray (null), its footprints instead.
+    js.set("us_per_ray", r.tracesRays ? (st.rays ? st.renderMs * 1000.0 / double(st.rays) : 0.0)
+                                      : std::numeric_limits<double>::quiet_NaN());
+    js.set("voxels_splatted", st.voxelsSplatted);
+    js.set("rays_full", st.raysFull);
+    js.set("rays_common_path", st.raysCommonPath);
+    js.set("fallbacks", st.fallbacks);
+    js.set("rays_certified", st.raysCertified);
+    js.set("states_deferred", st.statesDeferred);
+    js.set("colour_filled", st.colourFilled);
+    js.set("miss_filled", st.missFilled);
+    if (r.colourCoherence) js.set("colour_tolerance", double(rs.coherence.colourTolerance));
+    js.set("branch_up", rs.coherence.branchUp);
+    js.set("miss_coherence", std::string(rs.coherence.miss ? "on" : "off"));
+    js.set("nodes_visited", st.nodesVisited);
+    js.set("nodes_per_ray", st.rays ? double(st.nodesVisited) / double(st.rays) : 0.0);
+    js.set("beams", st.beams);
+    js.set("intersections", st.intersections);
+    js.set("boundary_voxels", std::uint64_t(tree.boundaryVoxels()));
+    if (!tree.voxelMaterials().empty())
+        js.set("floor_voxels", std::uint64_t(std::count(tree.voxelMaterials().begin(), tree.voxelMaterials().end(),
+                                                        std::uint8_t(VoxelMaterial::Floor))));
+    if (!rs.colormap.empty()) js.set("colormap", rs.colormap);
+    if (!tree.voxelValues().empty()) {
+        const Albedo albedo(tree, rs);
+        js.set("colour_by", tree.valueName());
+        js.set("colour_units", tree.valueUnits());
+        js.set("colour_min", double(albedo.low()));
+        js.set("colour_max", double(albedo.high()));
+    }
+    js.set("octree_nodes", std::uint64_t(tree.nodes().size()));
+    js.set("octree_bytes", std::uint64_t(tree.bytes()));
+    js.set("bytes_per_voxel", tree.bytesPerVoxel());
+    js.set("peak_rss_bytes_after_build", r.peakRssAfterBuild);
+    addCameraStats(js, cam, r.bounds);
+    if (r.multiResolution) {
+        js.set("lod", rs.detail.lodPixels);
+        js.set("level", std::uint64_t(rs.detail.level < 0 ? tree.depth : rs.detail.level));
+    }
+    js.set("cube_origin", vectorText(tree.cubeOrigin));
+    js.set("cube_side", tree.cubeSide);
+    for (const auto& n : field.notes) {
+        if (n.rfind("vertical scale", 0) == 0 || n.find("vertical scale") != std::string::npos) js.set("geographic", n);
+    }
+    return js;
 }
 
 }  // namespace octrace::model

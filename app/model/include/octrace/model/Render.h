@@ -4,8 +4,10 @@
 /// (Surface.h). What `octrace render`, the studio and (next) Python share, so that each front
 /// end only fills a RenderSpec from its own words (argv, widgets, keyword arguments).
 #include "octrace/model/OptionTable.h"
+#include "octrace/model/Stats.h"
 #include "octrace/model/Surface.h"
 
+#include "octrace/io/Figure.h"
 #include "octrace/octree/Octree.h"
 #include "octrace/render/Camera.h"
 #include "octrace/render/Frame.h"
@@ -61,5 +63,39 @@ RenderSettings renderSettings(const SurfaceSpec& surfaceSpec, const Surface& sur
 /// draw voxel octrees.
 RenderStats renderFrame(const Octree& tree, const Camera& camera, const RenderSettings& settings,
                         const std::string& renderer, Frame& frame);
+
+/// A frame's figures beyond RenderStats, for frameStats.
+struct FrameRecord {
+    std::string input;              ///< as given
+    const Surface* surface = nullptr;  ///< its field, iso, window, build and bake reports, octree
+    const Camera* camera = nullptr;
+    const RenderSettings* settings = nullptr;  ///< as given to the renderer, before its alias
+    const RenderStats* stats = nullptr;        ///< the frame's (the fastest of repeated ones)
+    bool tracesRays = true;         ///< the renderer's trait: us_per_ray is null when it does not
+    bool colourCoherence = false;   ///< on for this frame (a setting or a +colour name)
+    int threads = 1;                ///< threads used (0 resolved)
+    Box3 bounds;                    ///< what the camera frames: the surface's box
+    std::optional<io::FigureLayout> figure;
+    /// Repeated renders (`repeat`) and a `baseline` renderer alternating with it.
+    int repeat = 1;
+    double renderMsMedian = 0.0;
+    std::string baseline;           ///< as given; empty: none
+    double baselineMs = 0.0;
+    std::uint64_t baselineDifferingPixels = 0;
+    std::uint64_t peakRssAfterBuild = 0;
+    bool multiResolution = false;   ///< a cut was asked for (`lod`, `level`): say it
+};
+
+/// The stats of a voxel frame, in the order and with the keys of docs/user/cli.md (`octrace
+/// render --stats`): what was drawn, the timings, the renderer's counters, the octree, the
+/// view, the multi-resolution cut.
+Stats frameStats(const FrameRecord& r);
+/// The view's keys (camera_pos, look_at, up, projection, fov or ortho_height, the surface's
+/// bounds), shared by voxel and sphere frames.
+void addCameraStats(Stats& s, const Camera& camera, const Box3& bounds);
+/// The `repeat` and `baseline` keys, shared by voxel and sphere frames.
+void addRepeatStats(Stats& s, const FrameRecord& r);
+/// "x,y,z" at 10 significant digits, as the stats give a vector.
+std::string vectorText(const dvec3& v);
 
 }  // namespace octrace::model
