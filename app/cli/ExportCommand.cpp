@@ -28,15 +28,10 @@ OptionParser makeParser(ExportArgs& a) {
            [&](const std::string& v) { a.output = v; }});
     addSurfaceOptions(p, a);
     addFormOptions(p, a);
-    p.add({"level", "L", "one surfel per non-empty octree node at level L (1..depth), for previews (default: one per boundary voxel)",
-           [&](const std::string& v) { a.level = tableInt(model::opt::level, v); }});
-    p.add({"format", "NAME", "output format: ply (default: from the extension of -o)",
-           [&](const std::string& v) {
-               if (v != "ply") throw UsageError("--format: unknown format '" + v + "' (formats: ply)");
-               a.format = v;
-           }});
-    p.add({"ascii", "", "write the PLY body as ASCII text (default: binary little-endian)",
-           [&](const std::string&) { a.ascii = true; }});
+    p.add(tableOption(model::opt::level, [&](const std::string& v) { a.level = tableInt(model::opt::level, v); },
+                      "here one surfel per non-empty octree node at level L"));
+    p.add(tableOption(model::opt::format, [&](const std::string& v) { a.format = model::parseChoice(model::opt::format, v); }));
+    p.add(tableOption(model::opt::ascii, [&](const std::string&) { a.ascii = true; }));
     addThreadsOption(p, a, "the output");
     addColourOptions(p, a);
     addLayerOptions(p, a);

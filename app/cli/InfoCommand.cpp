@@ -19,9 +19,8 @@ int runInfo(const std::vector<std::string>& args) {
     addSeriesOption(p, request);
     SurfaceArgs city;
     addCityOptions(p, city);
-    p.add({"max-memory", "SIZE", "memory budget for reading each input: bytes, K, M, G, T (powers of 1024) or N% of the "
-           "physical memory (default " + std::to_string(kDefaultMemoryBudgetPercent) + "%)",
-           [&](const std::string& v) { request.memoryBudget = parseByteSize("max-memory", v); }});
+    p.add(tableOption(model::opt::maxMemory, [&](const std::string& v) { request.memoryBudget = parseByteSize("max-memory", v); },
+                      "here for reading each input"));
     p.add({"help", "", "show this help and exit", [&](const std::string&) { help = true; }});
     auto inputs = p.parse(args);
     if (help) {

@@ -48,18 +48,12 @@ OptionParser makeParser(SliceArgs& a) {
     p.add({"o", "FILE", "output image; format from the extension: " + joinNames(io::imageExtensions()) + " (required)",
            [&](const std::string& v) { a.output = v; }});
     addVariableOption(p, a.request);
-    p.add({"plane", "NAME", "slice plane: axial, coronal, sagittal (patient volumes: DICOM, NIfTI, NRRD in LPS space), or x, y, z "
-           "(normal to a world axis; on a geographic grid z is a horizontal slice at a depth, x one at a longitude, y at a latitude) "
-           "(default: axial for patient volumes, else z)",
-           [&](const std::string& v) {
-               for (SlicePlane pl : {SlicePlane::Axial, SlicePlane::Coronal, SlicePlane::Sagittal, SlicePlane::X, SlicePlane::Y, SlicePlane::Z})
-                   if (v == slicePlaneName(pl)) return void(a.plane = pl);
-               throw UsageError("--plane: choose axial, coronal, sagittal, x, y or z, got '" + v + "'");
-           }});
-    p.add({"at", "POSITION", "where the plane lies along its normal: world units (mm for patient volumes: LPS x for sagittal, y for "
-           "coronal, z for axial); on a geographic grid the depth in metres (positive down) for z, the longitude or latitude in "
-           "degrees for x or y (default: the middle sample)",
-           [&](const std::string& v) { a.at = parseNumber("at", v); }});
+    p.add(tableOption(model::opt::plane, [&](const std::string& v) {
+        for (SlicePlane pl : {SlicePlane::Axial, SlicePlane::Coronal, SlicePlane::Sagittal, SlicePlane::X, SlicePlane::Y, SlicePlane::Z})
+            if (v == slicePlaneName(pl)) return void(a.plane = pl);
+        throw UsageError("--plane: choose axial, coronal, sagittal, x, y or z, got '" + v + "'");
+    }));
+    p.add(tableOption(model::opt::at, [&](const std::string& v) { a.at = tableNumber(model::opt::at, v); }));
     p.add(tableOption(model::opt::index, [&](const std::string& v) { a.index = tableInt(model::opt::index, v); }));
     p.add({"size", "WxH", "image size in pixels, the slice fitted and centred, its aspect kept (default: one pixel per sample of "
            "the finer in-plane spacing, so anisotropic voxels keep their shape; with --figure the whole figure, 1200x1000)",

@@ -342,6 +342,22 @@ inline constexpr Option scaleBar{.key = "scale_bar", .kind = OptionKind::Flag, .
     .help = "draw a scale bar in the plot's lower left corner, a round length in km (geographic grids), m (cities) or "
             "world units, true at the distance of the look-at point",
     .commands = "render slice"};
+inline constexpr Option plane{.key = "plane", .kind = OptionKind::Choice, .flag = "plane", .argument = "NAME",
+    .defaultText = "axial for patient volumes, else z", .choices = "axial|coronal|sagittal|x|y|z",
+    .help = "slice plane: axial, coronal, sagittal (patient volumes: DICOM, NIfTI, NRRD in LPS space), or x, y, z (normal to "
+            "a world axis; on a geographic grid z is a horizontal slice at a depth, x one at a longitude, y at a latitude)",
+    .commands = "slice"};
+inline constexpr Option at{.key = "at", .kind = OptionKind::Number, .flag = "at", .argument = "POSITION",
+    .defaultText = "the middle sample",
+    .help = "where the plane lies along its normal: world units (mm for patient volumes: LPS x for sagittal, y for coronal, "
+            "z for axial); on a geographic grid the depth in metres (positive down) for z, the longitude or latitude in "
+            "degrees for x or y",
+    .commands = "slice"};
+inline constexpr Option format{.key = "format", .kind = OptionKind::Choice, .flag = "format", .argument = "NAME",
+    .defaultText = "from the output's extension", .choices = "ply", .help = "output format of the point cloud",
+    .commands = "export"};
+inline constexpr Option ascii{.key = "ascii", .kind = OptionKind::Flag, .flag = "ascii",
+    .defaultText = "off: binary little-endian", .help = "write the PLY body as ASCII text", .commands = "export"};
 inline constexpr Option index{.key = "index", .kind = OptionKind::Integer, .flag = "index", .argument = "N",
     .defaultText = "the middle one, n/2", .min = 0, .max = 1 << 30,
     .help = "where the plane lies: sample N (0-based) of the grid axis across the plane", .commands = "slice"};
