@@ -33,7 +33,4 @@ void checkImageOutput(const std::string& output);
 /// Refuses --title, --print-size or --scale-bar without --figure, and a figure not written as a PNG.
 void checkFigureOptions(const FigureArgs& f, const std::string& output);
 
-/// "WxH" with a unit mm, cm or in (e.g. "180x120mm", "7x5in"), in inches. Throws UsageError.
-dvec2 parsePrintSize(const std::string& option, const std::string& text);
-
 }  // namespace octrace::cli

@@ -19,7 +19,7 @@ int runInfo(const std::vector<std::string>& args) {
     addSeriesOption(p, request);
     SurfaceArgs city;
     addCityOptions(p, city);
-    p.add(tableOption(model::opt::maxMemory, [&](const std::string& v) { request.memoryBudget = parseByteSize("max-memory", v); },
+    p.add(settingOption(model::opt::maxMemory, {.request = &request},
                       "here for reading each input"));
     p.add({"help", "", "show this help and exit", [&](const std::string&) { help = true; }});
     auto inputs = p.parse(args);

@@ -2,6 +2,7 @@
 // GNU-style long option parsing for the octrace CLI: "--name value" or "--name=value",
 // flags without a value, positional arguments. Every option states its default in --help.
 #include "octrace/model/OptionTable.h"
+#include "octrace/model/Settings.h"
 #include "octrace/util/Math.h"
 
 #include <cstdint>
@@ -39,6 +40,9 @@ private:
 /// An option of the table (model/OptionTable.h): its flag, argument and help line come from there.
 /// `detail` is what only the running program knows (model::Option::helpLine).
 OptionSpec tableOption(const model::Option& o, std::function<void(const std::string&)> apply, const std::string& detail = "");
+/// An option of the table whose value lands in the pipeline's specs at `targets`
+/// (model::applySetting: the same parsing and checks as the sessions' and Python's).
+OptionSpec settingOption(const model::Option& o, const model::SettingTargets& targets, const std::string& detail = "");
 /// The table's checks of a numeric or choice option, for the apply function of tableOption;
 /// they throw UsageError naming the option (`key`: the CLI says its flag).
 inline double tableNumber(const model::Option& o, const std::string& text) { return model::parseNumber(o, text); }
@@ -49,16 +53,5 @@ inline bool tableOnOff(const model::Option& o, const std::string& text) { return
 /// whose `needs` option is off (model::unusedWarning; isOn(key) says which Flag options are on).
 void warnUnused(const OptionParser& p, const Renderer& renderer, const std::string& rendererName,
                 const std::function<bool(std::string_view key)>& isOn = {});
-
-// Strict value parsers; they throw UsageError naming the option and the text.
-double parseNumber(const std::string& option, const std::string& text);
-int parseInt(const std::string& option, const std::string& text, int lo, int hi);
-dvec3 parseVec3(const std::string& option, const std::string& text);
-/// "R,G,B" or "R,G,B,A", each in [0,1] (sRGB display values, as a user picks a colour).
-vec4 parseColour(const std::string& option, const std::string& text, bool allowAlpha);
-void parseSize(const std::string& option, const std::string& text, int& w, int& h);
-/// A memory size: a positive number of bytes with an optional suffix K, M, G, T or KiB, MiB,
-/// GiB, TiB (all powers of 1024, any case; "1.5G" is allowed), or N% of the physical memory.
-std::uint64_t parseByteSize(const std::string& option, const std::string& text);
 
 }  // namespace octrace::cli

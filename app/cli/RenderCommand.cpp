@@ -35,15 +35,14 @@ namespace {
 struct RenderArgs : SurfaceArgs, model::RenderSpec {
     FigureArgs figure;
     std::string output, statsPath;
-    RendererName resolved = resolveRendererName(renderer);  // RenderSpec::renderer, split
+    RendererName resolved;  // RenderSpec::renderer, split (after the parse)
     bool verify = false;
     int repeat = int(model::opt::repeat.defaultValue);
     std::string baseline;  // as given; empty: none
-    RendererName baselineRenderer;
+    RendererName baselineRenderer;  // `baseline`, split
     // Sphere scenes.
     std::string octreeKind;  // "object", "voxel" or empty: by the renderer
     int leafObjects = int(model::opt::leafObjects.defaultValue);
-    std::vector<std::string> sphereOptions;  // given, for the check that they apply
 };
 
 OptionParser makeParser(RenderArgs& a) {
@@ -54,68 +53,39 @@ OptionParser makeParser(RenderArgs& a) {
     addFormOptions(p, a);
     addLightingOption(p, a);
     addBakeOptions(p, a);
-    p.add(tableOption(model::opt::renderer, [&](const std::string& v) {
-        a.resolved = resolveRendererName(v);
-        a.renderer = v;
-    }, "one of " + joinNames(rendererNames()) + "; " + voxelRenderersThat(&Renderer::colourCoherence) +
-           " take the suffix +colour, which turns --colour-coherence on (area+colour is paper A's)"));
+    const model::SettingTargets into{.surface = &a, .render = &a, .figure = &a.figure};
+    p.add(settingOption(model::opt::renderer, into,
+                        "one of " + joinNames(rendererNames()) + "; " + voxelRenderersThat(&Renderer::colourCoherence) +
+                            " take the suffix +colour, which turns --colour-coherence on (area+colour is paper A's)"));
     p.add({"size", "WxH", "image size in pixels, each side " + model::opt::width.rangeText() + " (default " +
            model::opt::width.defaultSaid() + "x" + model::opt::height.defaultSaid() + ")",
-           [&](const std::string& v) { parseSize("size", v, a.width, a.height); }});
-    p.add(tableOption(model::opt::cameraPos, [&](const std::string& v) { a.cameraPos = parseVec3("camera-pos", v); }));
-    p.add(tableOption(model::opt::lookAt, [&](const std::string& v) { a.lookAt = parseVec3("look-at", v); }));
-    p.add(tableOption(model::opt::up, [&](const std::string& v) { a.up = parseVec3("up", v); }));
-    p.add(tableOption(model::opt::fov, [&](const std::string& v) { a.fov = tableNumber(model::opt::fov, v); }));
-    p.add(tableOption(model::opt::projection, [&](const std::string& v) {
-        a.ortho = v == "orthographic" || model::parseChoice(model::opt::projection, v) == "ortho";
-    }));
-    p.add(tableOption(model::opt::orthoHeight,
-                      [&](const std::string& v) { a.orthoHeight = tableNumber(model::opt::orthoHeight, v); }));
-    p.add(tableOption(model::opt::lod, [&](const std::string& v) { a.detail.lodPixels = tableNumber(model::opt::lod, v); }));
-    p.add(tableOption(model::opt::level, [&](const std::string& v) { a.detail.level = tableInt(model::opt::level, v); }));
+           [into](const std::string& v) { model::applySetting(model::opt::size, v, into); }});
+    for (const model::Option* o : {&model::opt::cameraPos, &model::opt::lookAt, &model::opt::up, &model::opt::fov,
+                                   &model::opt::projection, &model::opt::orthoHeight, &model::opt::lod, &model::opt::level})
+        p.add(settingOption(*o, into));
     addThreadsOption(p, a, "the image");
     p.add({"stats", "FILE.json", "write timings and counters as JSON (keys: docs/user/cli.md)",
            [&](const std::string& v) { a.statsPath = v; }});
     p.add(tableOption(model::opt::verify, [&](const std::string&) { a.verify = true; }));
-    p.add(tableOption(model::opt::background, [&](const std::string& v) { a.background = parseColour("background", v, true); }));
-    p.add(tableOption(model::opt::light, [&](const std::string& v) {
-        a.light = parseVec3("light", v);
-        if (!(glm::length(*a.light) > 0.0)) throw UsageError("--light: direction must not be zero");
-    }));
+    p.add(settingOption(model::opt::background, into));
+    p.add(settingOption(model::opt::light, into));
     addColourOptions(p, a);
     addLayerOptions(p, a);
-    p.add(tableOption(model::opt::colourCoherence, [&](const std::string&) { a.coherence.colour = true; }));
-    p.add(tableOption(model::opt::colourFillBackground, [&](const std::string&) { a.coherence.colourFillsBackground = true; }));
-    p.add(tableOption(model::opt::colourTolerance, [&](const std::string& v) {
-        a.coherence.colourTolerance = float(tableNumber(model::opt::colourTolerance, v));
-    }));
-    p.add(tableOption(model::opt::branchUp, [&](const std::string& v) { a.coherence.branchUp = tableInt(model::opt::branchUp, v); }));
-    p.add(tableOption(model::opt::missCoherence,
-                      [&](const std::string& v) { a.coherence.miss = tableOnOff(model::opt::missCoherence, v); }));
+    for (const model::Option* o : {&model::opt::colourCoherence, &model::opt::colourFillBackground, &model::opt::colourTolerance,
+                                   &model::opt::branchUp, &model::opt::missCoherence})
+        p.add(settingOption(*o, into));
     addGeographicOptions(p, a.request);
     addCityOptions(p, a);
     addSeriesOption(p, a.request);
     p.add(tableOption(model::opt::repeat, [&](const std::string& v) { a.repeat = tableInt(model::opt::repeat, v); }));
     p.add(tableOption(model::opt::baseline, [&](const std::string& v) {
-        a.baselineRenderer = resolveRendererName(v);
+        (void)resolveRendererName(v);
         a.baseline = v;
     }));
     p.add(tableOption(model::opt::octree, [&](const std::string& v) { a.octreeKind = model::parseChoice(model::opt::octree, v); }));
-    // An integer option of the object octree, noted as given (it applies to sphere scenes only).
-    auto sphereInt = [&](const model::Option& o, int& target) {
-        p.add(tableOption(o, [&a, &target, &o](const std::string& v) {
-            target = tableInt(o, v);
-            a.sphereOptions.push_back(std::string("--") + o.flag);
-        }));
-    };
-    sphereInt(model::opt::leafObjects, a.leafObjects);
-    p.add(tableOption(model::opt::samples, [&](const std::string& v) {
-        a.spheres.samples = tableInt(model::opt::samples, v);
-        const int side = int(std::lround(std::sqrt(double(a.spheres.samples))));
-        if (side * side != a.spheres.samples) throw UsageError("--samples: must be a square number (1, 4, 9, 16, ...), got " + v);
-        a.sphereOptions.push_back("--samples");
-    }));
-    sphereInt(model::opt::bounces, a.spheres.bounces);
+    p.add(tableOption(model::opt::leafObjects, [&](const std::string& v) { a.leafObjects = tableInt(model::opt::leafObjects, v); }));
+    p.add(settingOption(model::opt::samples, into));
+    p.add(settingOption(model::opt::bounces, into));
     addFigureOptions(p, a.figure);
     addMessageOptions(p, a);
     return p;
@@ -313,6 +283,8 @@ int runRender(const std::vector<std::string>& args) {
     RenderArgs a;
     const OptionParser parser = makeParser(a);
     if (!parseCommandLine(parser, args, a, a.output, "an output image: -o OUT.png, -o OUT.exr or -o OUT.tif")) return 0;
+    a.resolved = resolveRendererName(a.renderer);
+    if (!a.baseline.empty()) a.baselineRenderer = resolveRendererName(a.baseline);
     checkImageOutput(a.output);
     if (a.orthoHeight && !a.ortho) throw UsageError("--ortho-height needs --projection ortho");
     checkFigureOptions(a.figure, a.output);
@@ -322,25 +294,18 @@ int runRender(const std::vector<std::string>& args) {
     } else if (!a.octreeKind.empty()) {
         throw UsageError("--octree applies to sphere inputs (.pdb, .cif, sphereflake:L, random:N), not to " + a.input);
     }
-    if (!a.sphereOptions.empty())
-        throw UsageError(a.sphereOptions.front() + " applies to sphere scenes in the object octree (renderers reference, samet, beam)");
-    if (a.detail.level > a.depth) throw UsageError("--level " + std::to_string(a.detail.level) + " is deeper than --depth " + std::to_string(a.depth));
-    const bool multires = a.detail.lodPixels > 0.0 || (a.detail.level >= 0 && a.detail.level < a.depth);
+    // The object octree's options, given for a voxel scene.
+    for (const std::string& flag : parser.given())
+        for (const model::Option* o : {&model::opt::leafObjects, &model::opt::samples, &model::opt::bounces})
+            if (flag == o->flag)
+                throw UsageError("--" + flag + " applies to sphere scenes in the object octree (renderers reference, samet, beam)");
+    const bool multires = model::checkRenderSpec(a, a, a.baseline);
     const std::unique_ptr<Renderer> chosen = makeRenderer(a.resolved.renderer);
-    if (a.coherence.colour && !chosen->colourCoherence())
-        throw UsageError("--colour-coherence: renderer " + a.renderer + " does not fill pixels by colour (use " +
-                         voxelRenderersThat(&Renderer::colourCoherence) + ")");
     // Options the renderer does not read are accepted (a script may set them always), but told.
     // A +colour name turns colour coherence on as --colour-coherence does.
     warnUnused(parser, *chosen, a.renderer, [&](std::string_view key) {
         return key == model::opt::colourCoherence.key && (a.coherence.colour || a.resolved.colourCoherence);
     });
-    if (multires) {
-        for (const auto& [name, resolved] : {std::pair{a.renderer, a.resolved}, std::pair{a.baseline, a.baselineRenderer}})
-            if (!name.empty() && !makeRenderer(resolved.renderer)->multiResolution())
-                throw UsageError("--lod/--level: renderer " + name + " has no multi-resolution mode (use " + voxelRenderersThat(&Renderer::multiResolution) + ")");
-    }
-    const int threads = a.threads == 0 ? hardwareThreads() : a.threads;
 
     // A figure: the plot is the image area its layout leaves (--size or --print-size is the whole).
     std::optional<io::FigureLayout> figureLayoutUsed;
@@ -384,16 +349,7 @@ int runRender(const std::vector<std::string>& args) {
     const Renderer* renderer = rep.renderer.get();
     if (figureLayoutUsed) writeFigure(frame, a.figure, *figureLayoutUsed, figureSubject(surface, a.input), tree, cam, rs, a.output);
 
-    model::FrameRecord record;
-    record.input = a.input;
-    record.surface = &surface;
-    record.camera = &cam;
-    record.settings = &rs;
-    record.stats = &st;
-    record.tracesRays = renderer->tracesRays();
-    record.colourCoherence = rs.coherence.colour || a.resolved.colourCoherence;
-    record.threads = threads;
-    record.bounds = bounds;
+    model::FrameRecord record = model::frameRecord(a.input, surface, cam, rs, st, a.renderer, bounds);
     record.figure = figureLayoutUsed;
     recordRepeats(record, a, rep);
     record.peakRssAfterBuild = rssAfterBuild;

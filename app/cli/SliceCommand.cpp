@@ -57,7 +57,7 @@ OptionParser makeParser(SliceArgs& a) {
     p.add(tableOption(model::opt::index, [&](const std::string& v) { a.index = tableInt(model::opt::index, v); }));
     p.add({"size", "WxH", "image size in pixels, the slice fitted and centred, its aspect kept (default: one pixel per sample of "
            "the finer in-plane spacing, so anisotropic voxels keep their shape; with --figure the whole figure, 1200x1000)",
-           [&](const std::string& v) { parseSize("size", v, a.width, a.height); }});
+           [&](const std::string& v) { model::parseSize(model::opt::size, v, a.width, a.height); }});
     addWindowOption(p, a, "here the slice",
                     "the window stored in a DICOM file; else for a patient volume its whole value range in grey; else the colour map");
     addColourMapOptions(p, a,
@@ -66,7 +66,7 @@ OptionParser makeParser(SliceArgs& a) {
                         "here the slice's values, by default their range",
                         "masked samples (land, missing values, outside a resampled gantry-tilted stack)");
     p.add({"background", "R,G,B[,A]", "colour outside the grid, sRGB components in [0,1] (default 0,0,0,1; with --figure 0,0,0,0: the paper)",
-           [&](const std::string& v) { a.background = parseColour("background", v, true); }});
+           [&](const std::string& v) { a.background = model::parseColour(model::opt::background, v, true); }});
     addGeographicOptions(p, a.request);
     addSeriesOption(p, a.request);
     p.add({"stats", "FILE.json", "write the slice's geometry and colouring as JSON (keys: docs/user/cli.md)",

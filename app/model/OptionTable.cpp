@@ -167,15 +167,17 @@ double checkNumber(const Option& o, double value) {
 
 int checkInteger(const Option& o, double value) { return int(checkNumber(o, value)); }
 
-double parseNumber(const Option& o, const std::string& text) {
+double parseFinite(const Option& o, const std::string& text) {
     const char* b = text.c_str();
     char* end = nullptr;
     errno = 0;
     const double v = std::strtod(b, &end);
     if (text.empty() || end != b + text.size() || errno == ERANGE || !std::isfinite(v))
         refuse(o, "'" + text + "' is not a finite number");
-    return checkNumber(o, v);
+    return v;
 }
+
+double parseNumber(const Option& o, const std::string& text) { return checkNumber(o, parseFinite(o, text)); }
 
 int parseInteger(const Option& o, const std::string& text) {
     const char* b = text.c_str();
@@ -224,6 +226,14 @@ std::string sayForStudio(std::string_view text) {
     return sayParameters(text, [](std::string_view key) -> std::optional<std::string> {
         const Option* o = findOption(key);
         if (o && *o->label) return "'" + std::string(o->label) + "'";
+        return spaced(key);
+    });
+}
+
+std::string sayForPython(std::string_view text) {
+    return sayParameters(text, [](std::string_view key) -> std::optional<std::string> {
+        if (key == opt::width.key || key == opt::height.key) return "'" + std::string(opt::size.key) + "'";
+        if (findOption(key)) return "'" + std::string(key) + "'";
         return spaced(key);
     });
 }

@@ -3,6 +3,8 @@
 #include "octrace/render/Renderer.h"
 #include "octrace/render/Shading.h"
 #include "octrace/util/Error.h"
+#include "octrace/util/Parallel.h"
+#include "octrace/util/Parameter.h"
 
 #include <algorithm>
 #include <limits>
@@ -23,6 +25,24 @@ SphereShading tableSphereShading() {
     s.samples = int(opt::samples.defaultValue);
     s.bounces = int(opt::bounces.defaultValue);
     return s;
+}
+
+bool checkRenderSpec(const SurfaceSpec& surface, const RenderSpec& spec, const std::string& baseline) {
+    if (spec.orthoHeight && !spec.ortho) throw UsageError(param(opt::orthoHeight.key) + " needs " + param(opt::projection.key) + " ortho");
+    if (spec.detail.level > surface.depth)
+        throw UsageError(param(opt::level.key) + " " + std::to_string(spec.detail.level) + " is deeper than " + param(opt::depth.key) +
+                         " " + std::to_string(surface.depth));
+    const bool multires = spec.detail.lodPixels > 0.0 || (spec.detail.level >= 0 && spec.detail.level < surface.depth);
+    const RendererName chosen = resolveRendererName(spec.renderer);
+    if (spec.coherence.colour && !makeRenderer(chosen.renderer)->colourCoherence())
+        throw UsageError(param(opt::colourCoherence.key) + ": renderer " + spec.renderer + " does not fill pixels by colour (use " +
+                         voxelRenderersThat(&Renderer::colourCoherence) + ")");
+    if (multires)
+        for (const std::string& name : {spec.renderer, baseline})
+            if (!name.empty() && !makeRenderer(resolveRendererName(name).renderer)->multiResolution())
+                throw UsageError(param(opt::lod.key) + "/" + param(opt::level.key) + ": renderer " + name +
+                                 " has no multi-resolution mode (use " + voxelRenderersThat(&Renderer::multiResolution) + ")");
+    return multires;
 }
 
 Camera frameCamera(const RenderSpec& spec, const Box3& bounds) {
@@ -93,6 +113,22 @@ void addRepeatStats(Stats& js, const FrameRecord& r) {
         js.set("speedup_over_baseline", r.stats->renderMs > 0 ? r.baselineMs / r.stats->renderMs : 0.0);
         js.set("baseline_differing_pixels", r.baselineDifferingPixels);
     }
+}
+
+FrameRecord frameRecord(const std::string& input, const Surface& surface, const Camera& camera, const RenderSettings& settings,
+                        const RenderStats& stats, const std::string& renderer, const Box3& bounds) {
+    const RendererName resolved = resolveRendererName(renderer);
+    FrameRecord r;
+    r.input = input;
+    r.surface = &surface;
+    r.camera = &camera;
+    r.settings = &settings;
+    r.stats = &stats;
+    r.tracesRays = makeRenderer(resolved.renderer)->tracesRays();
+    r.colourCoherence = settings.coherence.colour || resolved.colourCoherence;
+    r.threads = settings.threads == 0 ? hardwareThreads() : settings.threads;
+    r.bounds = bounds;
+    return r;
 }
 
 Stats frameStats(const FrameRecord& r) {

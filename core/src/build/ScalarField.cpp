@@ -13,6 +13,16 @@ double ValueWindow::greyValue(double v, bool inverted) const {
     return inverted ? 1.0 - g : g;
 }
 
+ScalarField ScalarField::copy() const {
+    ScalarField f;
+    f.name = name, f.units = units, f.standardName = standardName, f.source = source;
+    f.dims = dims, f.origin = origin, f.spacing = spacing, f.direction = direction, f.coords = coords;
+    f.values = values, f.valid = valid;
+    f.window = window, f.invertedGrey = invertedGrey, f.patientLps = patientLps, f.geographic = geographic;
+    f.notes = notes;
+    return f;
+}
+
 dvec3 ScalarField::worldFromGrid(int i, int j, int k) const {
     dvec3 local(axisPosition(0, i), axisPosition(1, j), axisPosition(2, k));
     return origin + direction * local;

@@ -34,6 +34,9 @@ public:
     ScalarField& operator=(ScalarField&&) noexcept = default;
     ScalarField(const ScalarField&) = delete;             // big buffers: move-only
     ScalarField& operator=(const ScalarField&) = delete;
+    /// The one deep copy (samples, mask, geometry, provenance), for a caller that keeps a
+    /// field and builds from copies of it (e.g. Python's Volume, shared by its surfaces).
+    ScalarField copy() const;
 
     std::string name;    ///< variable name ("TEMP", "density", ...)
     std::string units;   ///< units of the values ("deg C", "HU", ...); may be empty

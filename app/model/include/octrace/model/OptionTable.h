@@ -96,15 +96,15 @@ inline constexpr Option variable{.key = "var", .kind = OptionKind::Text, .flag =
     .session = "input.variable", .label = "Variable", .defaultText = "the file's only 3-D variable",
     .help = "variable to draw, by name or CF standard_name; sound_speed is derived from temperature and salinity when "
             "the file has none",
-    .commands = "render export build csg slice"};
+    .commands = "render export build csg slice info"};
 inline constexpr Option time{.key = "time", .kind = OptionKind::Text, .flag = "time", .argument = "INDEX|DATE",
     .session = "input.time", .label = "Time", .defaultText = "the first",
     .help = "time step, NetCDF only: a 0-based index or a date YYYY-MM-DD[THH:MM[:SS]] in the file's calendar, nearest step",
-    .commands = "render export build slice"};
+    .commands = "render export build slice info"};
 inline constexpr Option series{.key = "series", .kind = OptionKind::Text, .flag = "series", .argument = "UID|INDEX|DESCRIPTION",
     .session = "input.series", .label = "Series", .defaultText = "the largest",
     .help = "DICOM series to read: its UID, its number in `octrace info`'s list or its description",
-    .commands = "render export build slice"};
+    .commands = "render export build slice info"};
 inline constexpr Option form{.key = "form", .kind = OptionKind::Choice, .flag = "form", .argument = "shell|volume",
     .choices = "shell|volume",
     .help = "octree form: the isosurface's boundary voxels (shell), or the solid it bounds with its interior and caps where "
@@ -122,29 +122,29 @@ inline constexpr Option maxMemory{.key = "max_memory", .kind = OptionKind::Text,
     .commands = "render export build csg slice info"};
 inline constexpr Option verticalScale{.key = "vertical_scale", .kind = OptionKind::Number, .flag = "vertical-scale",
     .argument = "S", .defaultText = "depth extent = 1/4 of the larger horizontal extent", .min = 0, .minOpen = true,
-    .help = "vertical exaggeration of depth, NetCDF only", .commands = "render export build slice"};
+    .help = "vertical exaggeration of depth, NetCDF only", .commands = "render export build slice info"};
 inline constexpr Option terrainDepth{.key = "terrain_depth", .kind = OptionKind::Integer, .flag = "terrain-depth",
     .argument = "N", .defaultText = "`depth`", .min = 1, .max = Octree::kMaxDepth,
     .help = "city inputs: per-region depth, terrain to depth N and buildings to `depth` in one octree (nodes that only "
             "terrain crosses stop at level N as coarse leaves; at most `depth`)",
-    .commands = "render export build"};
+    .commands = "render export build info"};
 inline constexpr Option dem{.key = "dem", .kind = OptionKind::Text, .flag = "dem", .argument = "RASTER",
     .defaultText = "none", .help = "city inputs: a DEM raster (GeoTIFF or any GDAL raster, any CRS) added as terrain",
-    .commands = "render export build"};
+    .commands = "render export build info"};
 inline constexpr Option texture{.key = "texture", .kind = OptionKind::Text, .flag = "texture", .argument = "RASTER",
     .defaultText = "none, colours per object type",
     .help = "city inputs: a colour raster (orthophoto, map; any GDAL raster, any CRS) draped on the terrain",
-    .commands = "render export build"};
+    .commands = "render export build info"};
 inline constexpr Option heightAttr{.key = "height_attr", .kind = OptionKind::Text, .flag = "height-attr", .argument = "NAME",
     .defaultText = "the first of height, HEIGHT, hauteur, HAUTEUR, measuredHeight",
-    .help = "footprint inputs: the attribute holding each building's height", .commands = "render export build"};
+    .help = "footprint inputs: the attribute holding each building's height", .commands = "render export build info"};
 inline constexpr Option baseAttr{.key = "base_attr", .kind = OptionKind::Text, .flag = "base-attr", .argument = "NAME",
     .defaultText = "the lowest `dem` height under it, else 0",
-    .help = "footprint inputs: the attribute holding each building's ground height", .commands = "render export build"};
+    .help = "footprint inputs: the attribute holding each building's ground height", .commands = "render export build info"};
 inline constexpr Option crs{.key = "crs", .kind = OptionKind::Text, .flag = "crs", .argument = "CRS",
     .defaultText = "the input's own when projected, else the UTM zone of its centre",
     .help = "city inputs: projected coordinate reference system to bring everything into, e.g. EPSG:28992",
-    .commands = "render export build"};
+    .commands = "render export build info"};
 inline constexpr Option cut{.key = "cut", .kind = OptionKind::Text, .flag = "cut", .argument = "SOLID", .session = "surface.cut",
     .label = "Solid", .defaultText = "none",
     .help = "cut a solid away: box:X0,Y0,Z0,X1,Y1,Z1, sphere:X,Y,Z,R, cylinder:X0,Y0,Z0,X1,Y1,Z1,R or halfspace:X,Y,Z,NX,NY,NZ "
@@ -167,7 +167,7 @@ inline constexpr Option depthRange{.key = "depth_range", .kind = OptionKind::Tex
 inline constexpr Option lodSelect{.key = "lod_select", .kind = OptionKind::Text, .flag = "lod-select", .argument = "LOD",
     .defaultText = "each object's highest",
     .help = "city inputs: level of detail to voxelize, e.g. 1, 2 or 2.2 (a prefix takes its sublevels)",
-    .commands = "render export build"};
+    .commands = "render export build info"};
 inline constexpr Option bake{.key = "bake", .kind = OptionKind::Flag, .flag = "bake",
     .help = "bake diffuse lighting, shadows and ambient occlusion into the shell", .commands = "render export build"};
 inline constexpr Option bakeLight{.key = "bake_light", .kind = OptionKind::Text, .flag = "bake-light",
@@ -388,6 +388,9 @@ std::string sessionMember(const Option& o);
 /// "`fov`: 180 is outside (0, 180) degrees".
 double checkNumber(const Option& o, double value);
 int checkInteger(const Option& o, double value);
+/// Parses `text` as a finite number (strtod rules, the whole text) without the option's range:
+/// a part of a value with several parts. @throws UsageError "`key`: 'x' is not a finite number".
+double parseFinite(const Option& o, const std::string& text);
 /// Parses `text` as the option's number (strtod/strtol rules, the whole text) and checks it.
 /// @throws UsageError "`key`: 'x' is not a number" and as checkNumber.
 double parseNumber(const Option& o, const std::string& text);
@@ -404,9 +407,11 @@ std::optional<std::string> unusedWarning(const Option& o, const Renderer& render
 
 /// Each front end's words for the parameters that core and io messages name (Parameter.h):
 /// the CLI's flag ("--max-memory"), a session file's member ("renderers.branch_up"), the
-/// studio control's label ("'Depth'"). A key without such a word is left as it is.
+/// studio control's label ("'Depth'"), Python's keyword. A key without such a word is left as it is.
 std::string sayForCli(std::string_view text);
 std::string sayForSession(std::string_view text);
 std::string sayForStudio(std::string_view text);
+/// Python's keyword in quotes ("'max_memory'"; `width` and `height` are 'size').
+std::string sayForPython(std::string_view text);
 
 }  // namespace octrace::model

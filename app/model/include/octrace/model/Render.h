@@ -46,6 +46,13 @@ struct RenderSpec {
     SphereShading spheres = tableSphereShading();
 };
 
+/// The checks of a voxel render before any work, for every front end: `ortho_height` without
+/// an orthographic projection, `level` deeper than the surface's `depth`, colour coherence for
+/// a renderer that does not fill by colour, `lod` or `level` for `spec.renderer` or `baseline`
+/// (a second renderer, "" none) without a multi-resolution mode. @returns whether the frame
+/// is multi-resolution. @throws UsageError naming the settings by their keys.
+bool checkRenderSpec(const SurfaceSpec& surface, const RenderSpec& spec, const std::string& baseline = "");
+
 /// The camera of `spec`: Camera::framing of `bounds` (the surface's box) at the spec's size and
 /// field of view, then the spec's look-at point, up vector and position over it (a look-at
 /// point alone keeps the framing's offset from the box's centre); an orthographic view is
@@ -85,6 +92,13 @@ struct FrameRecord {
     std::uint64_t peakRssAfterBuild = 0;
     bool multiResolution = false;   ///< a cut was asked for (`lod`, `level`): say it
 };
+
+/// The record of a frame of `surface` that `renderer` (a name or an alias) drew with
+/// `settings` from `camera`: the pointers, the renderer's traits (rays traced, colour coherence
+/// by a setting or an alias), the threads used (settings.threads, 0 resolved), what the camera
+/// frames. The caller adds the figure, repeats and multi-resolution.
+FrameRecord frameRecord(const std::string& input, const Surface& surface, const Camera& camera, const RenderSettings& settings,
+                        const RenderStats& stats, const std::string& renderer, const Box3& bounds);
 
 /// The stats of a voxel frame, in the order and with the keys of docs/user/cli.md (`octrace
 /// render --stats`): what was drawn, the timings, the renderer's counters, the octree, the
