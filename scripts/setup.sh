@@ -7,7 +7,7 @@ set -euo pipefail
 # xvfb, xauth and Mesa's llvmpipe (libgl1-mesa-dri) run its tests without a display.
 # libgdcm-tools: Debian's GDCM CMake package (libgdcm-dev) imports its tools and fails without them.
 PACKAGES=(
-  cmake ninja-build g++ pkg-config
+  cmake ninja-build g++ pkg-config python3-dev python3-venv
   libgdal-dev libgdcm-dev libgdcm-tools libvtk9-dev libopenexr-dev libglm-dev libtbb-dev
   libgtest-dev libbenchmark-dev libpng-dev libtiff-dev libzstd-dev zlib1g-dev nlohmann-json3-dev libfreetype-dev fonts-dejavu-core
   qt6-base-dev libqt6opengl6-dev libgl-dev libxkbcommon-dev xvfb xauth libgl1-mesa-dri

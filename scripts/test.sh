@@ -9,7 +9,7 @@
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bash "$ROOT/scripts/setup.sh" --fuzz
-bash "$ROOT/scripts/build.sh"
+OCTRACE_PYTHON=1 bash "$ROOT/scripts/build.sh"
 LOG="$(mktemp)"
 trap 'rm -f "$LOG"' EXIT
 (cd "$ROOT/build" && ctest --output-on-failure -j 2 --timeout 1500) | tee "$LOG"
