@@ -190,7 +190,7 @@ void addLayerOptions(OptionParser& p, SurfaceArgs& a) {
     p.add(tableOption(model::opt::floor, [&](const std::string&) { a.floor = true; }));
 }
 
-void addGeographicOptions(OptionParser& p, io::FieldRequest& request) {
+void addGeographicOptions(OptionParser& p, io::FieldRequest& request, bool timeStep) {
     p.add(tableOption(model::opt::region, [&](const std::string& v) {
         auto r = io::parseRegion(v);
         request.hasRegion = true;
@@ -202,10 +202,11 @@ void addGeographicOptions(OptionParser& p, io::FieldRequest& request) {
         request.depthRange[0] = r[0];
         request.depthRange[1] = r[1];
     }));
-    p.add(tableOption(model::opt::time, [&](const std::string& v) {
-        io::checkTimeText(v);
-        request.time = v;
-    }));
+    if (timeStep)
+        p.add(tableOption(model::opt::time, [&](const std::string& v) {
+            io::checkTimeText(v);
+            request.time = v;
+        }));
     p.add(tableOption(model::opt::verticalScale,
                       [&](const std::string& v) { request.verticalScale = tableNumber(model::opt::verticalScale, v); }));
 }
