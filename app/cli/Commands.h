@@ -13,4 +13,5 @@ int runExport(const std::vector<std::string>& args);
 int runBuild(const std::vector<std::string>& args);
 int runCsg(const std::vector<std::string>& args);
 int runSlice(const std::vector<std::string>& args);
+int runAnimate(const std::vector<std::string>& args);
 }  // namespace octrace::cli

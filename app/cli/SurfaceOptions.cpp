@@ -137,9 +137,9 @@ void addLayerOptions(OptionParser& p, SurfaceArgs& a) {
     p.add(settingOption(model::opt::floor, into(a)));
 }
 
-void addGeographicOptions(OptionParser& p, io::FieldRequest& request) {
+void addGeographicOptions(OptionParser& p, io::FieldRequest& request, bool timeStep) {
     for (const model::Option* o : {&model::opt::region, &model::opt::depthRange, &model::opt::time, &model::opt::verticalScale})
-        p.add(settingOption(*o, into(request)));
+        if (timeStep || o != &model::opt::time) p.add(settingOption(*o, into(request)));
 }
 
 void addCityOptions(OptionParser& p, SurfaceArgs& a) {

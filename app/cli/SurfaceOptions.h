@@ -87,8 +87,8 @@ void addColourMapOptions(OptionParser& p, SurfaceArgs& a, const std::string& col
                          const std::string& maskedWhat);
 /// --colour-by, --floor: what is drawn besides the isosurface.
 void addLayerOptions(OptionParser& p, SurfaceArgs& a);
-/// --region, --depth-range, --time, --vertical-scale.
-void addGeographicOptions(OptionParser& p, io::FieldRequest& request);
+/// --region, --depth-range, --time (unless `timeStep` is false: animate's --time is its `times`), --vertical-scale.
+void addGeographicOptions(OptionParser& p, io::FieldRequest& request, bool timeStep = true);
 /// --lod-select, --crs, --dem, --texture, --height-attr, --base-attr, --terrain-depth (city inputs).
 void addCityOptions(OptionParser& p, SurfaceArgs& a);
 /// --series (DICOM).

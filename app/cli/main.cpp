@@ -25,6 +25,7 @@ const char* kTopHelp =
     "  build INPUT -o OUT    build the octree and write it to an octree file (.oct), an INPUT of every command\n"
     "  csg A OP B -o OUT     union, intersection or difference of fields, volume octree files and solids (.oct)\n"
     "  slice INPUT -o OUT    an axial, coronal, sagittal or x/y/z slice of a field, greyed by a window or coloured (.png, .exr, .tif)\n"
+    "  animate INPUT -o OUT  one surface per time step of a field, rendered as an MP4 video (.mp4)\n"
     "  info INPUT...         describe inputs: format, variables, units, value ranges, grid, bounds\n"
     "  sample NAME -o OUT    write an analytic sample field (sphere, torus, gyroid, noise) as NRRD\n"
     "  options               every setting: flag, range, default, session member, studio control\n"
@@ -64,10 +65,11 @@ int main(int argc, char** argv) {
         if (cmd == "build") return octrace::cli::runBuild(rest);
         if (cmd == "csg") return octrace::cli::runCsg(rest);
         if (cmd == "slice") return octrace::cli::runSlice(rest);
-        throw octrace::UsageError("unknown command '" + cmd + "' (commands: render, export, build, csg, slice, info, sample, options)");
+        if (cmd == "animate") return octrace::cli::runAnimate(rest);
+        throw octrace::UsageError("unknown command '" + cmd + "' (commands: render, export, build, csg, slice, animate, info, sample, options)");
     } catch (const octrace::UsageError& e) {
         std::fprintf(stderr, "octrace: %s\nTry 'octrace %s --help'.\n", octrace::model::sayForCli(e.what()).c_str(),
-                     (cmd == "render" || cmd == "export" || cmd == "build" || cmd == "csg" || cmd == "slice" || cmd == "info" || cmd == "sample" || cmd == "options") ? cmd.c_str() : "");
+                     (cmd == "render" || cmd == "export" || cmd == "build" || cmd == "csg" || cmd == "slice" || cmd == "animate" || cmd == "info" || cmd == "sample" || cmd == "options") ? cmd.c_str() : "");
         return 2;
     } catch (const octrace::Error& e) {
         std::fprintf(stderr, "octrace: error: %s\n", octrace::model::sayForCli(e.what()).c_str());

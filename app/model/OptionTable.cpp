@@ -23,7 +23,8 @@ constexpr std::array kOptions{
     &opt::bakeShadows,     &opt::dpi, &opt::bakeLight, &opt::colourRange, &opt::maskedColour, &opt::floorColour, &opt::background, &opt::light, &opt::cameraPos, &opt::lookAt, &opt::up, &opt::verify, &opt::baseline, &opt::figure, &opt::title, &opt::printSize, &opt::scaleBar,         &opt::plane, &opt::at, &opt::format, &opt::ascii, &opt::index,            &opt::compression, &opt::sampleCount,
     &opt::seed,            &opt::clip,        &opt::extendDown,       &opt::region,      &opt::depthRange,
     &opt::lodSelect,       &opt::bake,        &opt::colour,           &opt::colormap,    &opt::window,
-    &opt::colourBy,        &opt::floor,       &opt::size,
+    &opt::colourBy,        &opt::floor,       &opt::size,        &opt::times,       &opt::fps,
+    &opt::orbit,           &opt::frames,
 };
 
 std::string numberText(double v) {

@@ -45,7 +45,10 @@ std::vector<std::string> probe(const model::Option& o, const std::string& v) {
     } else {
         args.push_back(missing);
     }
-    const std::string output = command == "build" || command == "csg" ? "x.oct" : command == "sample" ? "x.nrrd" : "x.png";
+    const std::string output = command == "build" || command == "csg" ? "x.oct"
+                               : command == "sample"                  ? "x.nrrd"
+                               : command == "animate"                 ? "x.mp4"
+                                                                      : "x.png";
     args.insert(args.end(), {"-o", "/nonexistent-octrace-output/" + output});
     // Options whose check reads another one.
     if (o.key == std::string("level") || o.key == std::string("terrain_depth"))

@@ -5,6 +5,7 @@
 #include "octrace/io/DicomReader.h"
 #include "octrace/io/NetcdfReader.h"
 #include "octrace/io/NrrdReader.h"
+#include "octrace/io/TimeAxis.h"
 #include "octrace/io/VolumeReader.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
@@ -77,6 +78,13 @@ InputChoices listInputChoices(const std::string& path) {
     if (kind == FileKind::NetCdf) c.variables = NetcdfReader::volumeVariables(path);
     if (kind == FileKind::Dicom) c.series = DicomReader::listSeries(path);
     return c;
+}
+
+TimeAxis readTimeAxis(const std::string& path, const FieldRequest& req) {
+    if (kindOf(path) == FileKind::NetCdf) return NetcdfReader::timeAxis(path, req);
+    TimeAxis none;
+    none.path = path;
+    return none;
 }
 
 ScalarField readField(const std::string& path, const FieldRequest& req) {

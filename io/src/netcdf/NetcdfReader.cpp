@@ -303,6 +303,49 @@ std::string NetcdfReader::describe(const std::string& path, const FieldRequest& 
     return describeNetcdf(path, checkNetcdfOnDisk(path), req);
 }
 
+TimeAxis NetcdfReader::timeAxis(const std::string& path, const FieldRequest& req) {
+    checkNetcdfOnDisk(path);
+    NetcdfFile file(path);
+    const VariableInfo* var = chooseVariable(path, file, req.variable);
+    if (!var) {  // sound speed, derived: its steps are the temperature's
+        const SoundSpeedSources src = soundSpeedSources(file);
+        if (!src.problem.empty()) throw InputError(path + ": " + src.problem);
+        var = src.temperature;
+    }
+    TimeAxis t;
+    t.path = path;
+    for (std::size_t d = 0; d < var->dimNames.size(); ++d) {
+        AxisInfo a = file.axis(*var, d);
+        if (classifyAxis(a).role != AxisRole::Time) continue;
+        t.name = a.name;
+        t.size = a.size;
+        t.units = a.units;
+        t.values = a.values;
+        if (isTimeUnits(a.units) && a.values.size() == a.size) {
+            try {
+                const TimeUnits u = parseTimeUnits(a.units, a.calendar, path + ": time axis '" + a.name + "'");
+                t.calendar = u.calendarName;
+                for (double v : a.values) t.dates.push_back(formatDate(decodeTime(u, v)));
+            } catch (const Error& e) {
+                log::warning(std::string(e.what()) + ": its steps are not dated");
+                t.calendar.clear();
+                t.dates.clear();
+            }
+        }
+        if (t.dates.empty()) t.dates.assign(t.size, std::string());
+        break;
+    }
+    return t;
+}
+
+double TimeAxis::valueOf(const std::string& isoDate) const {
+    const std::string what = path + ": time axis '" + name + "'";
+    const DateTime date = parseIsoDate(isoDate, "date " + isoDate);
+    if (!dated()) throw InputError(what + ": units '" + units + "' are not 'UNIT since DATE': give steps as indices");
+    const TimeUnits u = parseTimeUnits(units, calendar, what);
+    return encodeTime(u, date, "date " + isoDate);
+}
+
 std::vector<std::string> NetcdfReader::volumeVariables(const std::string& path) {
     checkNetcdfOnDisk(path);
     NetcdfFile file(path);

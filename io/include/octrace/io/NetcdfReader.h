@@ -4,6 +4,7 @@
 /// GDAL's multidimensional API, mapping geographic grids to world kilometres.
 #include "octrace/build/ScalarField.h"
 #include "octrace/io/FieldRequest.h"
+#include "octrace/io/TimeAxis.h"
 
 #include <cstdint>
 #include <string>
@@ -53,6 +54,12 @@ public:
     /// variables with at least 3 dimensions longer than 1, in the file's order (for a variable
     /// chooser, e.g. the studio's). Throws as read() for a file that cannot be opened.
     static std::vector<std::string> volumeVariables(const std::string& path);
+
+    /// The time dimension of the variable `req` asks for (as read() chooses it; for sound speed
+    /// derived from temperature and salinity, the temperature's), with its coordinate values and
+    /// their dates; empty when the variable has none. Reads no samples but the axis's.
+    /// Throws as read() for a file that cannot be opened or a variable that is not found.
+    static TimeAxis timeAxis(const std::string& path, const FieldRequest& req);
 };
 
 }  // namespace octrace::io

@@ -88,15 +88,15 @@ namespace opt {
 // Surface.
 inline constexpr Option depth{.key = "depth", .kind = OptionKind::Integer, .flag = "depth", .argument = "N",
     .session = "surface.depth", .label = "Depth", .defaultValue = 8, .min = 1, .max = Octree::kMaxDepth,
-    .help = "octree depth, voxels = 2^N per cube edge", .commands = "render export build csg"};
+    .help = "octree depth, voxels = 2^N per cube edge", .commands = "render export build csg animate"};
 inline constexpr Option iso{.key = "iso", .kind = OptionKind::Text, .flag = "iso", .argument = "VALUE|NAME",
     .session = "surface.iso", .label = "Iso value", .defaultText = "the middle of the variable's valid range",
-    .help = "iso value of the surface, or a CT preset in Hounsfield units", .commands = "render export build csg"};
+    .help = "iso value of the surface, or a CT preset in Hounsfield units", .commands = "render export build csg animate"};
 inline constexpr Option variable{.key = "var", .kind = OptionKind::Text, .flag = "var", .argument = "NAME",
     .session = "input.variable", .label = "Variable", .defaultText = "the file's only 3-D variable",
     .help = "variable to draw, by name or CF standard_name; sound_speed is derived from temperature and salinity when "
             "the file has none",
-    .commands = "render export build csg slice info"};
+    .commands = "render export build csg slice info animate"};
 inline constexpr Option time{.key = "time", .kind = OptionKind::Text, .flag = "time", .argument = "INDEX|DATE",
     .session = "input.time", .label = "Time", .defaultText = "the first",
     .help = "time step, NetCDF only: a 0-based index or a date YYYY-MM-DD[THH:MM[:SS]] in the file's calendar, nearest step",
@@ -109,20 +109,20 @@ inline constexpr Option form{.key = "form", .kind = OptionKind::Choice, .flag = 
     .choices = "shell|volume",
     .help = "octree form: the isosurface's boundary voxels (shell), or the solid it bounds with its interior and caps where "
             "the grid ends (volume)",
-    .commands = "render export build"};
+    .commands = "render export build animate"};
 inline constexpr Option inside{.key = "inside", .kind = OptionKind::Choice, .flag = "inside", .argument = "above|below",
     .choices = "above|below", .help = "volume form: the solid is where the value is >= iso (above) or < iso (below)",
-    .commands = "render export build csg"};
+    .commands = "render export build csg animate"};
 inline constexpr Option threads{.key = "threads", .kind = OptionKind::Integer, .flag = "threads", .argument = "N",
     .defaultValue = 0, .min = 0, .max = 1024, .help = "worker threads, 0 = all cores; the result does not depend on it",
-    .commands = "render export build csg"};
+    .commands = "render export build csg animate"};
 inline constexpr Option maxMemory{.key = "max_memory", .kind = OptionKind::Text, .flag = "max-memory", .argument = "SIZE",
     .defaultValue = kDefaultMemoryBudgetPercent, .unit = "% of the physical memory", .help = "memory budget for reading the field, building the octree and the output: bytes, K, M, G, T (powers of 1024) "
             "or N% of the physical memory; a larger job is refused up front",
-    .commands = "render export build csg slice info"};
+    .commands = "render export build csg slice info animate"};
 inline constexpr Option verticalScale{.key = "vertical_scale", .kind = OptionKind::Number, .flag = "vertical-scale",
     .argument = "S", .defaultText = "depth extent = 1/4 of the larger horizontal extent", .min = 0, .minOpen = true,
-    .help = "vertical exaggeration of depth, NetCDF only", .commands = "render export build slice info"};
+    .help = "vertical exaggeration of depth, NetCDF only", .commands = "render export build slice info animate"};
 inline constexpr Option terrainDepth{.key = "terrain_depth", .kind = OptionKind::Integer, .flag = "terrain-depth",
     .argument = "N", .defaultText = "`depth`", .min = 1, .max = Octree::kMaxDepth,
     .help = "city inputs: per-region depth, terrain to depth N and buildings to `depth` in one octree (nodes that only "
@@ -150,77 +150,77 @@ inline constexpr Option cut{.key = "cut", .kind = OptionKind::Text, .flag = "cut
     .help = "cut a solid away: box:X0,Y0,Z0,X1,Y1,Z1, sphere:X,Y,Z,R, cylinder:X0,Y0,Z0,X1,Y1,Z1,R or halfspace:X,Y,Z,NX,NY,NZ "
             "in world units, or relief:FILE, the ground under a relief raster (e.g. ETOPO; geographic fields only, laid out "
             "in their world); repeatable; builds the volume form",
-    .commands = "render export build csg"};
+    .commands = "render export build csg animate"};
 
 inline constexpr Option clip{.key = "clip", .kind = OptionKind::Flag, .flag = "clip", .session = "surface.clip",
-    .help = "keep only what lies inside the `cut` solids instead of cutting them away", .commands = "render export build"};
+    .help = "keep only what lies inside the `cut` solids instead of cutting them away", .commands = "render export build animate"};
 inline constexpr Option extendDown{.key = "extend_down", .kind = OptionKind::Flag, .flag = "extend-down",
     .help = "geographic fields: extend each water column's deepest valid value down through the masked samples under it, "
             "so that a finer sea floor (`cut` relief:FILE) bounds the water instead of the grid's own",
-    .commands = "render export build csg"};
+    .commands = "render export build csg animate"};
 inline constexpr Option region{.key = "region", .kind = OptionKind::Text, .flag = "region", .argument = "LON0,LON1,LAT0,LAT1",
     .defaultText = "the whole grid", .help = "geographic subregion in degrees, NetCDF only",
-    .commands = "render export build csg slice info"};
+    .commands = "render export build csg slice info animate"};
 inline constexpr Option depthRange{.key = "depth_range", .kind = OptionKind::Text, .flag = "depth-range", .argument = "Z0,Z1",
     .defaultText = "every level", .help = "depth levels from Z0 to Z1 metres (positive down), NetCDF only",
-    .commands = "render export build slice info"};
+    .commands = "render export build slice info animate"};
 inline constexpr Option lodSelect{.key = "lod_select", .kind = OptionKind::Text, .flag = "lod-select", .argument = "LOD",
     .defaultText = "each object's highest",
     .help = "city inputs: level of detail to voxelize, e.g. 1, 2 or 2.2 (a prefix takes its sublevels)",
     .commands = "render export build info"};
 inline constexpr Option bake{.key = "bake", .kind = OptionKind::Flag, .flag = "bake",
-    .help = "bake diffuse lighting, shadows and ambient occlusion into the shell", .commands = "render export build"};
+    .help = "bake diffuse lighting, shadows and ambient occlusion into the shell", .commands = "render export build animate"};
 inline constexpr Option bakeLight{.key = "bake_light", .kind = OptionKind::Text, .flag = "bake-light",
     .argument = "dir:X,Y,Z[,I]|point:X,Y,Z[,I]", .defaultText = "one dir:0.3,-0.5,1",
     .help = "a light to bake, world direction towards it or position, intensity I (default 1); repeatable",
-    .commands = "render export build"};
+    .commands = "render export build animate"};
 
 // Colour.
 inline constexpr Option colour{.key = "colour", .kind = OptionKind::Text, .flag = "colour", .argument = "R,G,B",
     .session = "shading.colour", .defaultText = "0.85,0.62,0.35; city inputs: per object and texture",
-    .help = "surface colour, sRGB components in [0,1], also over a city's own colours", .commands = "render export"};
+    .help = "surface colour, sRGB components in [0,1], also over a city's own colours", .commands = "render export animate"};
 inline constexpr Option colormap{.key = "colormap", .kind = OptionKind::Text, .flag = "colormap", .argument = "NAME",
     .session = "shading.colormap", .label = "Colour map", .defaultText = "uniform colour",
-    .help = "colour by a colour map", .commands = "render export slice"};
+    .help = "colour by a colour map", .commands = "render export slice animate"};
 inline constexpr Option window{.key = "window", .kind = OptionKind::Text, .flag = "window", .argument = "NAME|C,W|none",
     .session = "shading.window", .label = "CT window", .defaultText = "the window stored in a DICOM file",
-    .help = "grey by a display window (a CT preset, a centre and width, or none)", .commands = "render export slice"};
+    .help = "grey by a display window (a CT preset, a centre and width, or none)", .commands = "render export slice animate"};
 inline constexpr Option colourBy{.key = "colour_by", .kind = OptionKind::Text, .flag = "colour-by", .argument = "VAR",
     .defaultText = "none", .help = "colour the isosurface by a second variable of the same file, sampled at each voxel",
-    .commands = "render export"};
+    .commands = "render export animate"};
 inline constexpr Option colourRange{.key = "colour_range", .kind = OptionKind::Text, .flag = "colour-range",
     .argument = "MIN,MAX", .defaultText = "the range of what is coloured",
-    .help = "the values mapped onto the colour map's ends", .commands = "render export slice"};
+    .help = "the values mapped onto the colour map's ends", .commands = "render export slice animate"};
 inline constexpr Option maskedColour{.key = "masked_colour", .kind = OptionKind::Text, .flag = "masked-colour",
     .argument = "R,G,B", .defaultText = "0.6,0.6,0.6", .help = "colour of what is masked, sRGB in [0,1]",
-    .commands = "render export slice"};
+    .commands = "render export slice animate"};
 inline constexpr Option floorColour{.key = "floor_colour", .kind = OptionKind::Text, .flag = "floor-colour",
     .argument = "R,G,B", .defaultText = "0.55,0.5,0.45", .help = "colour of the sea floor and land (`floor`), sRGB in [0,1]",
-    .commands = "render export"};
+    .commands = "render export animate"};
 inline constexpr Option background{.key = "background", .kind = OptionKind::Text, .flag = "background",
     .argument = "R,G,B[,A]", .session = "shading.background", .defaultText = "1,1,1,1",
-    .help = "background colour, sRGB components in [0,1]", .commands = "render"};
+    .help = "background colour, sRGB components in [0,1]", .commands = "render animate"};
 inline constexpr Option light{.key = "light", .kind = OptionKind::Text, .flag = "light", .argument = "X,Y,Z",
     .session = "shading.light", .defaultText = "0.4,0.6,1",
-    .help = "direction towards the light in camera space, x right, y up, z to the viewer", .commands = "render"};
+    .help = "direction towards the light in camera space, x right, y up, z to the viewer", .commands = "render animate"};
 inline constexpr Option floor{.key = "floor", .kind = OptionKind::Flag, .flag = "floor",
-    .help = "also draw the sea floor and land where the variable is masked, under the isosurface", .commands = "render export"};
+    .help = "also draw the sea floor and land where the variable is masked, under the isosurface", .commands = "render export animate"};
 
 // Rendering.
 inline constexpr Option renderer{.key = "renderer", .kind = OptionKind::Text, .flag = "renderer", .argument = "NAME",
     .session = "renderers.main", .label = "Renderer", .defaultText = "full",
-    .help = "renderer; samet and beam (paper B) draw sphere scenes and voxel octrees alike", .commands = "render"};
+    .help = "renderer; samet and beam (paper B) draw sphere scenes and voxel octrees alike", .commands = "render animate"};
 inline constexpr Option cameraPos{.key = "camera_pos", .kind = OptionKind::Text, .flag = "camera-pos", .argument = "X,Y,Z",
     .session = "camera.position", .defaultText = "framing the surface from south-east, above",
-    .help = "camera position, world units", .commands = "render"};
+    .help = "camera position, world units", .commands = "render animate"};
 inline constexpr Option lookAt{.key = "look_at", .kind = OptionKind::Text, .flag = "look-at", .argument = "X,Y,Z",
     .session = "camera.look_at", .defaultText = "centre of the surface's bounding box",
-    .help = "point the camera looks at", .commands = "render"};
+    .help = "point the camera looks at", .commands = "render animate"};
 inline constexpr Option up{.key = "up", .kind = OptionKind::Text, .flag = "up", .argument = "X,Y,Z", .session = "camera.up",
-    .defaultText = "0,0,1", .help = "camera up direction", .commands = "render"};
+    .defaultText = "0,0,1", .help = "camera up direction", .commands = "render animate"};
 inline constexpr Option fov{.key = "fov", .kind = OptionKind::Number, .flag = "fov", .argument = "DEG",
     .session = "camera.fov", .label = "Field of view", .defaultValue = 30, .min = 0, .max = 180, .minOpen = true,
-    .maxOpen = true, .unit = "degrees", .help = "vertical field of view", .commands = "render"};
+    .maxOpen = true, .unit = "degrees", .help = "vertical field of view", .commands = "render animate"};
 inline constexpr Option orthoHeight{.key = "ortho_height", .kind = OptionKind::Number, .flag = "ortho-height", .argument = "H",
     .defaultText = "framing the surface", .min = 0, .minOpen = true,
     .help = "height of the orthographic view window in world units", .commands = "render"};
@@ -301,47 +301,63 @@ inline constexpr Option ambient{.key = "ambient", .kind = OptionKind::Number, .f
     .session = "shading.ambient", .label = "Ambient", .defaultValue = 0.15, .min = 0, .max = 1,
     .help = "share of the light every voxel gets whatever its normal; the light's own share is 1 - A (dynamic shading "
             "and baking)",
-    .commands = "render"};
+    .commands = "render animate"};
 inline constexpr Option lighting{.key = "lighting", .kind = OptionKind::Choice, .flag = "lighting", .argument = "baked|dynamic",
     .session = "shading.lighting", .label = "Lighting", .defaultText = "baked when the octree has it, else dynamic",
     .choices = "baked|dynamic",
     .help = "shade by the octree's baked light (baking it first when it has none) or by the normals and the light direction",
-    .commands = "render"};
+    .commands = "render animate"};
 inline constexpr Option shadows{.key = "shadows", .kind = OptionKind::Choice, .flag = "shadows", .argument = "on|off",
     .session = "shading.shadows", .label = "Shadow rays",
     .defaultText = "on for sphere scenes in the object octree; off for voxel octrees", .choices = "on|off",
     .help = "shadow rays towards the light: sphere scenes in the object octree and the dynamic shading of voxel octrees "
             "(one more ray per shaded pixel; baked light has its own shadows)",
-    .commands = "render"};
+    .commands = "render animate"};
 inline constexpr Option bakeAo{.key = "bake_ao", .kind = OptionKind::Integer, .flag = "bake-ao", .argument = "N",
     .session = "shading.bake_ao", .label = "AO rays", .defaultValue = 8, .min = 0, .max = 1024,
-    .help = "ambient-occlusion rays per side of the surface when baking, 0 = none", .commands = "render export build"};
+    .help = "ambient-occlusion rays per side of the surface when baking, 0 = none", .commands = "render export build animate"};
 inline constexpr Option bakeAoDistance{.key = "bake_ao_distance", .kind = OptionKind::Number, .flag = "bake-ao-distance",
     .argument = "D", .defaultText = "1/8 of the octree's cube", .min = 0, .minOpen = true,
-    .help = "how far an occluder darkens when baking, world units", .commands = "render export build"};
+    .help = "how far an occluder darkens when baking, world units", .commands = "render export build animate"};
 inline constexpr Option bakeShadows{.key = "bake_shadows", .kind = OptionKind::Choice, .flag = "bake-shadows",
     .argument = "on|off", .session = "shading.bake_shadows", .label = "Baked shadows", .defaultValue = 0,
-    .choices = "on|off", .help = "hard shadows from the baked lights", .commands = "render export build"};
+    .choices = "on|off", .help = "hard shadows from the baked lights", .commands = "render export build animate"};
 
 // Figures and slices.
 inline constexpr Option dpi{.key = "dpi", .kind = OptionKind::Integer, .flag = "dpi", .argument = "N", .session = "export.dpi",
     .label = "Resolution", .defaultValue = 150, .defaultText = "150 for a figure, none recorded for a plain image",
     .min = 36, .max = 1200, .unit = "dots per inch",
-    .help = "resolution recorded in the PNG or TIFF; a figure's fonts are 9 and 11 pt at it", .commands = "render slice"};
+    .help = "resolution recorded in the PNG or TIFF; a figure's fonts are 9 and 11 pt at it", .commands = "render slice animate"};
 inline constexpr Option figure{.key = "figure", .kind = OptionKind::Flag, .flag = "figure", .session = "export.figure",
     .label = "Figure", .defaultText = "off: the plain image",
-    .help = "write a publication figure (PNG or TIFF, by the output's extension): the image with a title", .commands = "render slice"};
+    .help = "write a publication figure (PNG or TIFF, by the output's extension): the image with a title", .commands = "render slice animate"};
 inline constexpr Option title{.key = "title", .kind = OptionKind::Text, .flag = "title", .argument = "TEXT",
-    .session = "export.title", .label = "Title", .defaultText = "none", .help = "title of the figure", .commands = "render slice"};
+    .session = "export.title", .label = "Title", .defaultText = "none", .help = "title of the figure", .commands = "render slice animate"};
 inline constexpr Option printSize{.key = "print_size", .kind = OptionKind::Text, .flag = "print-size",
     .argument = "WxH(mm|cm|in)", .defaultText = "the figure is `size`",
     .help = "figure size on paper, e.g. 180x120mm, each side at most 100 inches; its pixels are this times `dpi`",
-    .commands = "render slice"};
+    .commands = "render slice animate"};
 inline constexpr Option scaleBar{.key = "scale_bar", .kind = OptionKind::Flag, .flag = "scale-bar", .session = "export.scale_bar",
     .label = "Scale bar",
     .help = "draw a scale bar in the plot's lower left corner, a round length in km (geographic grids), m (cities) or "
             "world units, true at the distance of the look-at point",
-    .commands = "render slice"};
+    .commands = "render slice animate"};
+// Animations (`octrace animate`, model/Animation.h).
+inline constexpr Option times{.key = "times", .kind = OptionKind::Text, .flag = "time", .argument = "all|I:J|DATE:DATE",
+    .defaultText = "all",
+    .help = "time steps to animate, NetCDF only: all, 0-based indices I to J (both included, as `time` INDEX) or the steps "
+            "dated between two dates YYYY-MM-DD[THH:MM[:SS]] (both included) in the file's calendar",
+    .commands = "animate"};
+inline constexpr Option fps{.key = "fps", .kind = OptionKind::Integer, .flag = "fps", .argument = "N", .defaultValue = 12,
+    .min = 1, .max = 240, .unit = "frames a second", .help = "frame rate of the video", .commands = "animate"};
+inline constexpr Option orbit{.key = "orbit", .kind = OptionKind::Number, .flag = "orbit", .argument = "DEG",
+    .defaultValue = 0, .min = -3600, .max = 3600, .unit = "degrees",
+    .help = "turn the camera this many degrees about the vertical axis through the look-at point over the whole animation "
+            "(frame i of n at i/n of it; 0: a fixed camera)",
+    .commands = "animate"};
+inline constexpr Option frames{.key = "frames", .kind = OptionKind::Text, .flag = "frames", .argument = "DIR",
+    .defaultText = "none",
+    .help = "also write each frame as DIR/frame_NNNN.png (the folder is made if missing)", .commands = "animate"};
 inline constexpr Option plane{.key = "plane", .kind = OptionKind::Choice, .flag = "plane", .argument = "NAME",
     .defaultText = "axial for patient volumes, else z", .choices = "axial|coronal|sagittal|x|y|z",
     .help = "slice plane: axial, coronal, sagittal (patient volumes: DICOM, NIfTI, NRRD in LPS space), or x, y, z (normal to "

@@ -1,0 +1,209 @@
+#include "octrace/model/Animation.h"
+
+#include "octrace/model/Input.h"
+
+#include "octrace/render/ImageCompare.h"
+#include "octrace/util/Error.h"
+#include "octrace/util/Parameter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <regex>
+#include <sstream>
+
+namespace octrace::model {
+namespace {
+
+bool isIndex(const std::string& s) { return !s.empty() && s.find_first_not_of("0123456789") == std::string::npos; }
+
+std::size_t indexOf(const std::string& s, const std::string& text) {
+    if (!isIndex(s) || s.size() > 12)
+        throw UsageError(param("times") + ": expected all, I:J or DATE:DATE, got '" + text + "'");
+    return std::size_t(std::stoull(s));
+}
+
+std::string stepsText(std::size_t n) { return std::to_string(n) + (n == 1 ? " step" : " steps"); }
+
+}  // namespace
+
+TimeSelection parseTimeSelection(const std::string& text) {
+    TimeSelection s;
+    if (text == "all") return s;
+    static const std::regex dates(R"((\d{4}-\d{2}-\d{2}(?:[T ]\d{2}:\d{2}(?::\d{2}(?:\.\d+)?)?)?):(\d{4}-\d{2}-\d{2}.*))");
+    std::smatch m;
+    if (std::regex_match(text, m, dates)) {
+        s.kind = TimeSelection::Kind::Dates;
+        s.from = m[1];
+        s.to = m[2];
+        for (const std::string& d : {s.from, s.to}) {
+            try {
+                io::checkTimeText(d);
+            } catch (const UsageError& e) {
+                throw UsageError(param("times") + ": '" + d + "' is not a date YYYY-MM-DD[THH:MM[:SS]] (" + e.what() + ")");
+            }
+        }
+        if (s.to.size() == s.from.size() && s.to < s.from)  // ISO texts of one width compare as their dates
+            throw UsageError(param("times") + ": the range " + text + " ends before it starts");
+        return s;
+    }
+    s.kind = TimeSelection::Kind::Indices;
+    const std::size_t colon = text.find(':');
+    s.first = indexOf(text.substr(0, colon), text);
+    s.last = colon == std::string::npos ? s.first : indexOf(text.substr(colon + 1), text);
+    if (s.last < s.first) throw UsageError(param("times") + ": the range " + text + " ends before it starts (I:J needs I <= J)");
+    return s;
+}
+
+std::vector<std::size_t> selectSteps(const TimeSelection& selection, const io::TimeAxis& axis) {
+    if (axis.empty())
+        throw InputError(axis.path + ": the field has no time axis: an animation draws one frame per time step (octrace "
+                                     "render draws a single surface)");
+    std::vector<std::size_t> steps;
+    switch (selection.kind) {
+        case TimeSelection::Kind::All:
+            for (std::size_t i = 0; i < axis.size; ++i) steps.push_back(i);
+            break;
+        case TimeSelection::Kind::Indices:
+            if (selection.last >= axis.size)
+                throw InputError(axis.path + ": time axis '" + axis.name + "' has " + stepsText(axis.size) + ", indices 0.." +
+                                 std::to_string(axis.size - 1) + "; " + param("times") + " " + std::to_string(selection.first) +
+                                 ":" + std::to_string(selection.last) + " goes beyond them");
+            for (std::size_t i = selection.first; i <= selection.last; ++i) steps.push_back(i);
+            break;
+        case TimeSelection::Kind::Dates: {
+            const double lo = axis.valueOf(selection.from), hi = axis.valueOf(selection.to);
+            if (hi < lo) throw UsageError(param("times") + ": the range " + selection.from + ":" + selection.to + " ends before it starts");
+            for (std::size_t i = 0; i < axis.values.size(); ++i)
+                if (axis.values[i] >= lo && axis.values[i] <= hi) steps.push_back(i);
+            if (steps.empty())
+                throw InputError(axis.path + ": no step of time axis '" + axis.name + "' (" + axis.dates.front() + " .. " +
+                                 axis.dates.back() + ", calendar " + axis.calendar + ") lies between " + selection.from +
+                                 " and " + selection.to);
+            break;
+        }
+    }
+    return steps;
+}
+
+AnimationPlan planAnimation(const AnimationSpec& spec, const AnimationHooks& hooks) {
+    AnimationPlan plan;
+    plan.spec = spec;
+    SurfaceSpec& surface = plan.spec.surface;
+    if (!surface.request.time.empty())
+        throw UsageError(param("time") + " chooses one step; an animation's steps are chosen by " + param("times"));
+    const TimeSelection selection = parseTimeSelection(spec.times);
+    if (isOctreeInput(surface.input) || isSphereInput(surface.input) || surface.input.rfind("analytic:", 0) == 0)
+        throw InputError(surface.input + ": the field has no time axis: an animation draws one frame per time step");
+    io::FieldRequest request = surface.request;
+    request.memoryBudget = memoryBudget(surface);
+    const io::TimeAxis axis = io::readTimeAxis(surface.input, request);
+    const std::vector<std::size_t> steps = selectSteps(selection, axis);
+    plan.timeAxis = axis.name;
+    plan.calendar = axis.calendar;
+
+    const double n = double(steps.size());
+    for (std::size_t k = 0; k < steps.size(); ++k) {
+        AnimationFrame f;
+        f.step = steps[k];
+        f.time = std::to_string(f.step);
+        f.date = axis.dates[f.step];
+        f.caption = f.date.empty() ? "step " + f.time : f.date;
+        f.orbitDegrees = spec.orbitDegrees * double(k) / n;
+        plan.frames.push_back(f);
+    }
+
+    // Every step shares the grid: its bounds, read at the first step, frame the camera.
+    const double parts = 1.0 + ((!surface.colourBy.empty() && std::isnan(surface.colourMin)) ? n : 0.0);
+    auto progress = [&](double done) {
+        if (hooks.progress) hooks.progress(std::min(1.0, done / parts));
+        if (hooks.cancelled && hooks.cancelled()) throw CancelledError("animation planning cancelled");
+    };
+    progress(0.0);
+    request.time = plan.frames.front().time;
+    plan.bounds = loadField(surface.input, request, surface.depth).worldBounds();
+    progress(1.0);
+
+    // The colour range: given, or the union of colour_by's valid ranges over the steps.
+    if (!std::isnan(surface.colourMin)) {
+        plan.colourMin = surface.colourMin;
+        plan.colourMax = surface.colourMax;
+        plan.colourRangeSource = param("colour_range");
+    } else if (!surface.colourBy.empty()) {
+        float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+        io::FieldRequest colour = request;
+        colour.variable = surface.colourBy;
+        for (std::size_t k = 0; k < plan.frames.size(); ++k) {
+            colour.time = plan.frames[k].time;
+            const auto [vlo, vhi] = loadField(surface.input, colour, surface.depth).validRange();
+            lo = std::min(lo, vlo);
+            hi = std::max(hi, vhi);
+            progress(2.0 + double(k));
+        }
+        if (lo == hi) hi = lo + 1.0f;
+        plan.colourMin = surface.colourMin = lo;
+        plan.colourMax = surface.colourMax = hi;
+        std::ostringstream s;
+        s << param("colour_by") << " " << surface.colourBy << " over the " << stepsText(steps.size()) << ": [" << lo << ", " << hi << "]";
+        plan.colourRangeSource = s.str();
+        plan.notes.push_back("colour range " + plan.colourRangeSource + ", the same in every frame (the variable's values on "
+                             "the grid read; " + param("colour_range") + " sets it)");
+    } else if (!surface.colormap.empty() && surface.windowName.empty()) {
+        plan.notes.push_back("coloured by height: each frame maps its own surface's height range onto " + param("colormap"));
+    }
+
+    const RenderSpec& r = plan.spec.render;
+    plan.width = r.width;
+    plan.height = r.height;
+    if (spec.figure.enabled) {
+        plan.figureLayout = figureLayout(spec.figure, r.width, r.height, figureHasColourBar(surface));
+        plan.spec.render.width = plan.figureLayout->plotW;
+        plan.spec.render.height = plan.figureLayout->plotH;
+        plan.width = plan.figureLayout->width;
+        plan.height = plan.figureLayout->height;
+    }
+    animationCamera(plan, 0);  // refuses a camera the spec cannot place before any frame is drawn
+    return plan;
+}
+
+Camera animationCamera(const AnimationPlan& plan, std::size_t i) {
+    if (i >= plan.frames.size())
+        throw UsageError("animation frame " + std::to_string(i) + " of " + std::to_string(plan.frames.size()));
+    Camera cam = frameCamera(plan.spec.render, plan.bounds);
+    const double angle = glm::radians(plan.frames[i].orbitDegrees);
+    if (angle != 0.0) {
+        const dvec3 axis = glm::normalize(cam.up);
+        const dvec3 offset = cam.position - cam.lookAt;
+        // Rodrigues' rotation of the eye's offset about the up axis through the look-at point.
+        const dvec3 turned = offset * std::cos(angle) + glm::cross(axis, offset) * std::sin(angle) +
+                             axis * glm::dot(axis, offset) * (1.0 - std::cos(angle));
+        cam.position = cam.lookAt + turned;
+        cam.validate();
+    }
+    return cam;
+}
+
+std::vector<std::uint8_t> AnimationImage::rgba8() const { return quantizeSrgb8(image, 4); }
+
+AnimationImage renderAnimationFrame(const AnimationPlan& plan, std::size_t i, const BuildHooks& hooks) {
+    const Camera cam = animationCamera(plan, i);
+    const AnimationFrame& f = plan.frames[i];
+    SurfaceSpec spec = plan.spec.surface;
+    spec.request.time = f.time;
+    spec.colourMin = plan.colourMin;
+    spec.colourMax = plan.colourMax;
+    const Surface surface = buildSurface(spec, hooks);
+    const RenderSettings rs = renderSettings(spec, surface, plan.spec.render);
+    AnimationImage out;
+    Frame plot;
+    out.stats = renderFrame(surface.tree, cam, rs, plan.spec.render.renderer, plot);
+    if (!plan.figureLayout) {
+        out.image = std::move(plot);
+        return out;
+    }
+    io::FigureSpec figure = figureSpec(plan.spec.figure, figureSubject(surface, spec.input), surface.tree, cam, rs);
+    figure.subtitle = f.caption + (figure.subtitle.empty() ? "" : "; " + figure.subtitle);  // first: a long subtitle is cut at the right
+    out.image = io::composeFigure(plot, figure, *plan.figureLayout);
+    return out;
+}
+
+}  // namespace octrace::model

@@ -1,0 +1,40 @@
+#pragma once
+/// @file TimeAxis.h
+/// The time axis of an input's field, read without its samples: what an animation needs to
+/// choose its frames (app/model/Animation.h) and to caption them. Plain data, no GDAL types.
+#include "octrace/io/FieldRequest.h"
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace octrace::io {
+
+struct TimeAxis {
+    std::string path;      ///< the input, for messages
+    std::string name;      ///< the time dimension's name; empty: the field has no time axis
+    std::size_t size = 0;  ///< steps along it (0 without a time axis)
+    std::string units;     ///< the coordinate's units as the file gives them ("days since 2000-01-01")
+    std::string calendar;  ///< the CF calendar's name when `units` are CF time units, else ""
+    std::vector<double> values;  ///< coordinate values; empty when the dimension has no coordinate variable
+    /// Per step, the date as `octrace info` and `time`'s notes say it ("1990-01-15", or with
+    /// the time of day when it is not midnight); "" when the axis has no CF time units.
+    std::vector<std::string> dates;
+
+    bool empty() const { return size == 0; }
+    /// Whether the steps have dates (CF "UNIT since DATE" units that decode).
+    bool dated() const { return !dates.empty() && !dates.front().empty(); }
+    /// The coordinate value of `isoDate` (YYYY-MM-DD[THH:MM[:SS]]) in the axis's calendar.
+    /// @throws UsageError (malformed date), InputError (the axis has no dates, or the date does
+    ///         not exist in its calendar, e.g. 2001-02-29, or 2000-02-30 outside 360_day).
+    double valueOf(const std::string& isoDate) const;
+};
+
+/// The time axis of the field `req` asks for (its variable, or the file's only 3-D variable),
+/// without reading samples. NetCDF: the variable's time dimension (by CF rules, as read() picks
+/// it), of size 1 too; none (empty) when it has no time dimension. Other formats have none
+/// (a DICOM series' time points are a later change: they would be a FieldRequest setting).
+/// @throws as readField() when the input cannot be opened or the variable is not found.
+TimeAxis readTimeAxis(const std::string& path, const FieldRequest& req = {});
+
+}  // namespace octrace::io

@@ -1,0 +1,266 @@
+// octrace animate and the pipeline library's animation (model/Animation.h): the time selection,
+// the plan (time axis, captions, the fixed colour range), frames as a pure function of (plan, i),
+// and the MP4 that the CLI writes (counted and decoded with ffprobe / ffmpeg).
+#include "../io/CfFileWriter.h"
+#include "../io/ImageTestSupport.h"
+#include "CliRunner.h"
+
+#include "octrace/io/TimeAxis.h"
+#include "octrace/model/Animation.h"
+#include "octrace/util/Error.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <future>
+#include <string>
+#include <vector>
+
+using namespace octrace::testcli;
+using octrace::test::DecodedPng;
+using octrace::test::decodePng;
+using octrace::test::readBytes;
+namespace model = octrace::model;
+namespace io = octrace::io;
+
+namespace {
+
+/// Three monthly steps (2000-01-01, 2000-02-01, 2000-03-01; days since 2000-01-01) of TEMP on a
+/// 16 x 16 degree, 8-level geographic grid: the distance from the grid's centre, scaled so that
+/// the surface `iso` 0.8 is a ball that shrinks step after step; SAL is 30 + step everywhere.
+void writeTimeSeries(const std::string& path, int steps = 3) {
+    octrace::test::CfFileWriter w(path);
+    std::vector<double> lon, lat, depth, time;
+    for (int i = 0; i < 16; ++i) lon.push_back(i), lat.push_back(i);
+    for (int k = 0; k < 8; ++k) depth.push_back(100.0 * k);
+    const double days[] = {0.0, 31.0, 60.0, 91.0};
+    for (int t = 0; t < steps; ++t) time.push_back(days[t]);
+    w.coordinate("time", time, {{"units", "days since 2000-01-01"}, {"calendar", "standard"}, {"axis", "T"}});
+    w.coordinate("depth", depth, {{"units", "m"}, {"positive", "down"}});
+    w.coordinate("lat", lat, {{"units", "degrees_north"}});
+    w.coordinate("lon", lon, {{"units", "degrees_east"}});
+    std::vector<double> temp, sal;
+    for (int t = 0; t < steps; ++t)
+        for (int k = 0; k < 8; ++k)
+            for (int j = 0; j < 16; ++j)
+                for (int i = 0; i < 16; ++i) {
+                    const double x = (i - 7.5) / 7.5, y = (j - 7.5) / 7.5, z = (k - 3.5) / 3.5;
+                    temp.push_back(std::sqrt(x * x + y * y + z * z) * (1.0 + 0.35 * t));
+                    sal.push_back(30.0 + t);
+                }
+    w.variable("TEMP", {"time", "depth", "lat", "lon"}, GDT_Float32, temp, {{"units", "degC"}});
+    w.variable("SAL", {"time", "depth", "lat", "lon"}, GDT_Float32, sal, {{"units", "psu"}});
+    w.close();
+}
+
+io::TimeAxis monthlyAxis() {
+    io::TimeAxis a;
+    a.path = "monthly.nc";
+    a.name = "time";
+    a.size = 3;
+    a.units = "days since 2000-01-01";
+    a.calendar = "standard";
+    a.values = {0.0, 31.0, 60.0};
+    a.dates = {"2000-01-01", "2000-02-01", "2000-03-01"};
+    return a;
+}
+
+model::AnimationSpec specOf(const std::string& input) {
+    model::AnimationSpec s;
+    s.surface.input = input;
+    s.surface.request.variable = "TEMP";
+    s.surface.iso = 0.8;
+    s.surface.depth = 5;
+    s.surface.threads = 1;
+    s.render.width = 64;
+    s.render.height = 48;
+    return s;
+}
+
+/// Pixels that are not the white background.
+std::size_t drawn(const DecodedPng& p) {
+    std::size_t n = 0;
+    for (int y = 0; y < p.height; ++y)
+        for (int x = 0; x < p.width; ++x) n += p.at(x, y, 0) < 250 || p.at(x, y, 1) < 250 || p.at(x, y, 2) < 250;
+    return n;
+}
+
+/// A command's standard output (popen), or "" when it cannot run.
+std::string capture(const std::string& command) {
+    std::string out;
+    if (FILE* f = popen(command.c_str(), "r")) {
+        char buf[65536];
+        for (std::size_t n; (n = fread(buf, 1, sizeof buf, f)) > 0;) out.append(buf, n);
+        pclose(f);
+    }
+    return out;
+}
+
+bool haveFfmpeg() { return std::system("ffprobe -version > /dev/null 2>&1 && ffmpeg -version > /dev/null 2>&1") == 0; }
+
+}  // namespace
+
+TEST(AnimationTimes, ParsesAllIndexRangesAndDateRanges) {
+    EXPECT_EQ(model::parseTimeSelection("all").kind, model::TimeSelection::Kind::All);
+    const auto r = model::parseTimeSelection("1:2");
+    EXPECT_EQ(r.kind, model::TimeSelection::Kind::Indices);
+    EXPECT_EQ(r.first, 1u);
+    EXPECT_EQ(r.last, 2u);
+    const auto one = model::parseTimeSelection("2");
+    EXPECT_EQ(one.first, 2u);
+    EXPECT_EQ(one.last, 2u);
+    const auto d = model::parseTimeSelection("2000-01-15:2000-03-01T12:00");
+    EXPECT_EQ(d.kind, model::TimeSelection::Kind::Dates);
+    EXPECT_EQ(d.from, "2000-01-15");
+    EXPECT_EQ(d.to, "2000-03-01T12:00");
+    const auto t = model::parseTimeSelection("2000-01-15T06:30:2000-03-01");
+    EXPECT_EQ(t.from, "2000-01-15T06:30");
+    EXPECT_EQ(t.to, "2000-03-01");
+    for (const char* bad : {"", "x", "1:", ":2", "2:1", "-1:2", "1:2:3", "2000-01-01:soon", "2000-03-01:2000-01-01", "1.5:2"})
+        EXPECT_THROW(model::parseTimeSelection(bad), octrace::UsageError) << "'" << bad << "'";
+}
+
+TEST(AnimationTimes, SelectsStepsOfTheAxisOrSaysWhyNot) {
+    const io::TimeAxis axis = monthlyAxis();
+    EXPECT_EQ(model::selectSteps(model::parseTimeSelection("all"), axis), (std::vector<std::size_t>{0, 1, 2}));
+    EXPECT_EQ(model::selectSteps(model::parseTimeSelection("1:2"), axis), (std::vector<std::size_t>{1, 2}));
+    EXPECT_EQ(model::selectSteps(model::parseTimeSelection("2000-01-15:2000-03-01"), axis), (std::vector<std::size_t>{1, 2}));
+    EXPECT_EQ(model::selectSteps(model::parseTimeSelection("2000-01-01:2000-01-01"), axis), (std::vector<std::size_t>{0}));
+    EXPECT_THROW(model::selectSteps(model::parseTimeSelection("1:3"), axis), octrace::InputError);
+    EXPECT_THROW(model::selectSteps(model::parseTimeSelection("2001-01-01:2001-02-01"), axis), octrace::InputError);
+    EXPECT_THROW(model::selectSteps(model::parseTimeSelection("2001-02-29:2001-03-01"), axis), octrace::InputError);  // not a date
+    io::TimeAxis none;
+    none.path = "flat.nc";
+    EXPECT_THROW(model::selectSteps(model::parseTimeSelection("all"), none), octrace::InputError);
+    io::TimeAxis undated = axis;
+    undated.units = "months";
+    undated.calendar.clear();
+    undated.dates.assign(3, "");
+    EXPECT_THROW(model::selectSteps(model::parseTimeSelection("2000-01-01:2000-02-01"), undated), octrace::InputError);
+    EXPECT_EQ(model::selectSteps(model::parseTimeSelection("0:1"), undated).size(), 2u);
+}
+
+TEST(AnimationPlan, ReadsTheTimeAxisCaptionsTheDatesAndFixesTheColourRange) {
+    Scratch s;
+    const std::string nc = s.path("monthly.nc");
+    writeTimeSeries(nc);
+    io::FieldRequest temp;
+    temp.variable = "TEMP";
+    const io::TimeAxis axis = io::readTimeAxis(nc, temp);
+    EXPECT_EQ(axis.name, "time");
+    ASSERT_EQ(axis.size, 3u);
+    EXPECT_EQ(axis.dates, (std::vector<std::string>{"2000-01-01", "2000-02-01", "2000-03-01"}));
+
+    model::AnimationSpec spec = specOf(nc);
+    spec.orbitDegrees = 90.0;
+    spec.surface.colourBy = "SAL";
+    const model::AnimationPlan plan = model::planAnimation(spec);
+    ASSERT_EQ(plan.frames.size(), 3u);
+    EXPECT_EQ(plan.frames[1].time, "1");
+    EXPECT_EQ(plan.frames[2].caption, "2000-03-01");
+    EXPECT_DOUBLE_EQ(plan.frames[2].orbitDegrees, 60.0);
+    EXPECT_FLOAT_EQ(plan.colourMin, 30.0f);  // the union of SAL's ranges over the three steps
+    EXPECT_FLOAT_EQ(plan.colourMax, 32.0f);
+
+    spec.surface.colourMin = 0.0f;
+    spec.surface.colourMax = 100.0f;
+    spec.times = "2000-02-01:2000-03-01";
+    const model::AnimationPlan given = model::planAnimation(spec);
+    ASSERT_EQ(given.frames.size(), 2u);
+    EXPECT_EQ(given.frames[0].step, 1u);
+    EXPECT_FLOAT_EQ(given.colourMax, 100.0f);
+}
+
+TEST(AnimationPlan, AFrameIsAPureFunctionOfThePlanAndItsIndex) {
+    Scratch s;
+    const std::string nc = s.path("monthly.nc");
+    writeTimeSeries(nc);
+    model::AnimationSpec spec = specOf(nc);
+    spec.orbitDegrees = 120.0;
+    spec.surface.colourBy = "SAL";
+    spec.figure.enabled = true;
+    spec.render.width = 320;
+    spec.render.height = 240;
+    const model::AnimationPlan plan = model::planAnimation(spec);
+    const auto first2 = model::renderAnimationFrame(plan, 2).rgba8();
+    const auto first0 = model::renderAnimationFrame(plan, 0).rgba8();
+    // Again, the other way round and on two threads at once, from a copy of the plan.
+    const model::AnimationPlan copy = plan;
+    auto again0 = std::async(std::launch::async, [&] { return model::renderAnimationFrame(copy, 0).rgba8(); });
+    auto again2 = std::async(std::launch::async, [&] { return model::renderAnimationFrame(plan, 2).rgba8(); });
+    EXPECT_EQ(again2.get(), first2);
+    EXPECT_EQ(again0.get(), first0);
+    EXPECT_NE(first0, first2);
+    EXPECT_THROW(model::renderAnimationFrame(plan, 3), octrace::UsageError);
+}
+
+TEST(AnimateCli, WritesOneVideoFramePerStepInOrderWithTheDateInTheCaption) {
+    if (!haveFfmpeg()) GTEST_SKIP() << "ffprobe/ffmpeg absent (Debian package ffmpeg, scripts/setup.sh)";
+    Scratch s;
+    const std::string nc = s.path("monthly.nc"), mp4 = s.path("out.mp4"), dir = s.path("frames");
+    writeTimeSeries(nc);
+    if (const char* keep = std::getenv("OCTRACE_KEEP_ANIMATION")) std::filesystem::copy_file(nc, keep, std::filesystem::copy_options::overwrite_existing);
+    const Result r = run({"animate", nc, "--var", "TEMP", "--iso", "0.8", "--depth", "5", "--time", "all", "--size", "401x301",
+                          "--figure", "--title", "shrinking", "--frames", dir, "-o", mp4});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("3 frames"), std::string::npos) << r.err;
+    EXPECT_EQ(capture("ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames,codec_name,width,height "
+                      "-of csv=p=0 " + quoteArg(mp4)),
+              "h264,402,302,3\n");  // odd sides padded to even
+
+    // The PNG frames: the ball shrinks step after step; the subtitle (above the plot) differs by its date.
+    std::vector<DecodedPng> frames;
+    for (int i = 0; i < 3; ++i) frames.push_back(decodePng(readBytes(dir + "/frame_000" + std::to_string(i) + ".png")));
+    ASSERT_EQ(frames[0].width, 401);
+    EXPECT_GT(drawn(frames[0]), drawn(frames[1]) + 200);
+    EXPECT_GT(drawn(frames[1]), drawn(frames[2]) + 200);
+    auto topRows = [](const DecodedPng& p) {
+        return std::vector<std::uint8_t>(p.pixels.begin(), p.pixels.begin() + std::ptrdiff_t(60 * p.width * p.channels));
+    };
+    EXPECT_NE(topRows(frames[0]), topRows(frames[1]));
+
+    // The video's frames, decoded, in the same order: fewer drawn pixels each step.
+    const std::string raw = capture("ffmpeg -v error -i " + quoteArg(mp4) + " -f rawvideo -pix_fmt rgb24 -");
+    const std::size_t frameBytes = 402u * 302u * 3u;
+    ASSERT_EQ(raw.size(), 3 * frameBytes);
+    std::vector<std::size_t> dark(3, 0);
+    for (std::size_t i = 0; i < 3; ++i)
+        for (std::size_t p = 0; p < frameBytes; p += 3)
+            dark[i] += std::uint8_t(raw[i * frameBytes + p]) < 235 || std::uint8_t(raw[i * frameBytes + p + 2]) < 235;
+    EXPECT_GT(dark[0], dark[1]);
+    EXPECT_GT(dark[1], dark[2]);
+}
+
+TEST(AnimateCli, RefusesWhatItCannotAnimateClearly) {
+    Scratch s;
+    const std::string nc = s.path("monthly.nc");
+    writeTimeSeries(nc);
+    Result r = run({"animate", "analytic:sphere", "-o", s.path("a.mp4")});
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("has no time axis"), std::string::npos) << r.err;
+    r = run({"animate", nc, "--var", "TEMP", "--time", "1:5", "-o", s.path("b.mp4")});
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("has 3 steps, indices 0..2; --time 1:5 goes beyond them"), std::string::npos) << r.err;
+    r = run({"animate", nc, "--var", "TEMP", "--time", "3:1", "-o", s.path("c.mp4")});
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("--time: the range 3:1 ends before it starts"), std::string::npos) << r.err;
+    r = run({"animate", nc, "--var", "TEMP", "-o", s.path("d.avi")});
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("animate writes an MP4 video (.mp4)"), std::string::npos) << r.err;
+    r = run({"animate", nc, "--var", "TEMP", "-o", "/nonexistent-octrace-output/e.mp4"});
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("/nonexistent-octrace-output/e.mp4"), std::string::npos) << r.err;
+    // A folder that cannot be written: refused after the work, and nothing is left in it.
+    const std::string locked = s.path("locked");
+    std::filesystem::create_directories(locked);
+    std::filesystem::permissions(locked, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+    if (::access(locked.c_str(), W_OK) != 0) {  // root writes anyway
+        r = run({"animate", nc, "--var", "TEMP", "--iso", "0.8", "--depth", "4", "--size", "32x24", "-o", locked + "/f.mp4"});
+        EXPECT_EQ(r.code, 1);
+        EXPECT_NE(r.err.find(locked + "/f.mp4"), std::string::npos) << r.err;
+        EXPECT_TRUE(std::filesystem::is_empty(locked));
+    }
+    std::filesystem::permissions(locked, std::filesystem::perms::owner_all);
+}
