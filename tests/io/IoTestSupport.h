@@ -1,5 +1,6 @@
 #pragma once
-// Helpers shared by the io tests: data locations and exception checks.
+// Helpers shared by the io tests: data locations, requests and exception checks.
+#include "octrace/io/FieldRequest.h"
 #include "octrace/util/Log.h"
 
 #include <gtest/gtest.h>
@@ -21,6 +22,19 @@ inline std::string sharedData(const std::string& relative) {
 /// Path of a file in tests/data.
 inline std::string testData(const std::string& relative) {
     return (std::filesystem::path(OCTRACE_TEST_DATA) / relative).string();
+}
+
+/// A request for `variable` (empty: the default one) inside LON0,LON1,LAT0,LAT1 (degrees).
+inline io::FieldRequest regionRequest(const std::string& variable, double lon0, double lon1, double lat0,
+                                      double lat1) {
+    io::FieldRequest r;
+    r.variable = variable;
+    r.hasRegion = true;
+    r.region[0] = lon0;
+    r.region[1] = lon1;
+    r.region[2] = lat0;
+    r.region[3] = lat1;
+    return r;
 }
 
 /// A fresh empty folder for files a test writes; removed by the destructor.

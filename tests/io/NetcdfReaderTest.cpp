@@ -20,14 +20,7 @@ void expectCorpusRefusal(const std::string& file, const std::string& message) {
 constexpr double kKmPerDegree = 6371.0 * std::numbers::pi / 180.0;
 
 io::FieldRequest request(const std::string& var, double lon0, double lon1, double lat0, double lat1) {
-    io::FieldRequest r;
-    r.variable = var;
-    r.hasRegion = true;
-    r.region[0] = lon0;
-    r.region[1] = lon1;
-    r.region[2] = lat0;
-    r.region[3] = lat1;
-    return r;
+    return test::regionRequest(var, lon0, lon1, lat0, lat1);
 }
 
 bool hasNote(const ScalarField& f, const std::string& text) {

@@ -66,29 +66,6 @@ void collect(const std::shared_ptr<GDALGroup>& group, std::vector<VariableInfo>&
         if (auto sub = group->OpenGroup(name)) collect(sub, out, arrays);
 }
 
-// CF auxiliary variables: those another variable names as its coordinates or bounds.
-void markAuxiliary(std::vector<VariableInfo>& vars) {
-    for (const auto& v : vars) {
-        auto names = words(v.coordinates);
-        if (!v.bounds.empty()) names.push_back(v.bounds);
-        for (const auto& n : names)
-            for (auto& w : vars)
-                if (w.shortName == n && &w != &v) w.auxiliary = true;
-    }
-}
-
-// NetCDF's default fill values (netcdf.h NC_FILL_*), which mark unwritten samples when a
-// variable has no _FillValue. Bytes have none by the NetCDF User's Guide's convention.
-bool defaultFill(const std::string& type, double& fill) {
-    if (type == "Int16") fill = -32767.0;
-    else if (type == "UInt16") fill = 65535.0;
-    else if (type == "Int32") fill = -2147483647.0;
-    else if (type == "UInt32") fill = 4294967295.0;
-    else if (type == "Float32" || type == "Float64") fill = 9.9692099683868690e+36;
-    else return false;
-    return true;
-}
-
 // Whether the file (on disk or a GDAL virtual file) starts with the HDF5 signature, i.e. is
 // NetCDF-4. Only HDF5-based files are opened in a child first: classic files are walked by
 // octrace's own header reader before GDAL sees them.
@@ -172,25 +149,6 @@ Opened openAndCollect(const std::string& path) {
 
 }  // namespace
 
-int VariableInfo::extent() const {
-    int n = 0;
-    for (auto s : dimSizes) n += s > 1 ? 1 : 0;
-    return n;
-}
-
-std::string VariableInfo::signature() const {
-    std::string s = shortName + "(";
-    for (std::size_t d = 0; d < dimNames.size(); ++d) s += (d ? ", " : "") + dimNames[d];
-    return s + ")";
-}
-
-bool SampleRules::isValid(double raw) const {
-    if (!std::isfinite(raw)) return false;
-    for (double m : missing)
-        if (raw == m || (m != 0.0 && std::abs(raw - m) <= 1e-6 * std::abs(m))) return false;
-    return raw >= validMin && raw <= validMax;
-}
-
 struct NetcdfFile::Impl {
     std::string path;
     GDALDatasetUniquePtr dataset;
@@ -226,20 +184,14 @@ AxisInfo NetcdfFile::axis(const VariableInfo& variable, std::size_t dim) const {
     auto d = impl_->array(variable)->GetDimensions().at(dim);
     AxisInfo a;
     a.name = d->GetName();
-    if (d->GetSize() > kMaxAxisPoints)
-        throw FileError(impl_->path + ": dimension '" + d->GetName() + "' has " + std::to_string(d->GetSize()) +
-                        " points, more than the " + std::to_string(kMaxAxisPoints) + " (2^24) octrace reads along one axis");
+    checkAxisLength(impl_->path, a.name, d->GetSize());
     a.size = std::size_t(d->GetSize());
     a.gdalType = d->GetType();
     a.gdalDirection = d->GetDirection();
     auto iv = d->GetIndexingVariable();
     if (!iv || iv->GetDimensionCount() != 1 || iv->GetDataType().GetClass() != GEDTC_NUMERIC) {
         iv.reset();
-        for (const auto& n : words(variable.coordinates))
-            for (std::size_t i = 0; i < impl_->variables.size() && !iv; ++i) {
-                const VariableInfo& c = impl_->variables[i];
-                if (c.shortName == n && c.numeric && c.dimNames.size() == 1 && c.dimNames[0] == a.name) iv = impl_->arrays[i];
-            }
+        if (const VariableInfo* c = auxiliaryCoordinate(impl_->variables, variable, a.name)) iv = impl_->array(*c);
     }
     if (!iv) return a;
     a.coordinateVariable = iv->GetName();
@@ -262,26 +214,20 @@ AxisInfo NetcdfFile::axis(const VariableInfo& variable, std::size_t dim) const {
 SampleRules NetcdfFile::rules(const VariableInfo& variable) const {
     GdalMessages messages;
     const auto& a = *impl_->array(variable);
-    SampleRules r;
-    for (const char* name : {"missing_value", "_FillValue"})
-        for (double v : numberAttribute(a, name)) r.missing.push_back(v);
-    bool hasNoData = false;
-    double noData = a.GetNoDataValueAsDouble(&hasNoData);
-    if (hasNoData) r.missing.push_back(noData);
-    double fill = 0.0;
-    if (!hasNoData && numberAttribute(a, "_FillValue").empty() && defaultFill(variable.dataType, fill)) r.missing.push_back(fill);
-    auto range = numberAttribute(a, "valid_range");
-    auto vmin = numberAttribute(a, "valid_min");
-    auto vmax = numberAttribute(a, "valid_max");
-    if (range.size() == 2) { r.validMin = range[0]; r.validMax = range[1]; }
-    if (!vmin.empty()) r.validMin = vmin[0];
-    if (!vmax.empty()) r.validMax = vmax[0];
+    SampleAttributes s;
+    s.missingValue = numberAttribute(a, "missing_value");
+    s.fillValue = numberAttribute(a, "_FillValue");
     bool has = false;
+    double noData = a.GetNoDataValueAsDouble(&has);
+    if (has) s.noData = noData;
+    s.validRange = numberAttribute(a, "valid_range");
+    s.validMin = numberAttribute(a, "valid_min");
+    s.validMax = numberAttribute(a, "valid_max");
     double scale = a.GetScale(&has);
-    if (has) r.scale = scale;
+    if (has) s.scale = scale;
     double offset = a.GetOffset(&has);
-    if (has) r.offset = offset;
-    return r;
+    if (has) s.offset = offset;
+    return sampleRules(s, variable.dataType);
 }
 
 std::string NetcdfFile::attributeText(const VariableInfo& variable, const char* name) const {
@@ -301,12 +247,7 @@ std::string NetcdfFile::attributeText(const VariableInfo& variable, const char* 
 std::vector<double> NetcdfFile::read(const VariableInfo& variable, const std::vector<std::uint64_t>& start,
                                      const std::vector<std::size_t>& count) const {
     GdalMessages messages;
-    std::uint64_t n = 1;
-    for (auto c : count) n = saturatingMultiply(n, c);
-    if (n > std::uint64_t(std::numeric_limits<std::ptrdiff_t>::max()) / sizeof(double))
-        throw FileError(impl_->path + ": variable '" + variable.shortName + "' is too large to read (" + std::to_string(n) +
-                        " samples)");
-    std::vector<double> buffer(n);
+    std::vector<double> buffer(hyperslabSamples(impl_->path, variable, count));
     std::vector<GUInt64> gstart(start.begin(), start.end());
     if (!impl_->array(variable)->Read(gstart.data(), count.data(), nullptr, nullptr,
                                       GDALExtendedDataType::Create(GDT_Float64), buffer.data()))

@@ -84,7 +84,7 @@ bool hasAllDims(const VariableInfo& var, const VariableInfo& c) {
 
 }  // namespace
 
-std::vector<const VariableInfo*> curvilinearCoordinates(const NetcdfFile& file, const VariableInfo& var) {
+std::vector<const VariableInfo*> curvilinearCoordinates(const CfSource& file, const VariableInfo& var) {
     std::vector<const VariableInfo*> out;
     if (var.auxiliary || isLonLat(var)) return out;  // a coordinate itself
     const auto named = words(var.coordinates);
@@ -96,7 +96,7 @@ std::vector<const VariableInfo*> curvilinearCoordinates(const NetcdfFile& file, 
     return out;
 }
 
-Layout layoutFor(const std::string& path, const NetcdfFile& file, const VariableInfo& var, const FieldRequest& req) {
+Layout layoutFor(const std::string& path, const CfSource& file, const VariableInfo& var, const FieldRequest& req) {
     std::vector<std::size_t> spread;  // dimensions with more than one sample
     for (std::size_t d = 0; d < var.dimSizes.size(); ++d)
         if (var.dimSizes[d] > 1) spread.push_back(d);
@@ -243,7 +243,7 @@ ScalarField shapeField(const std::string& path, const VariableInfo& var, const L
 
 // Reads one hyperslab per run of consecutive stored x indices (a region across the file's
 // longitude seam is two runs).
-void readSamples(const NetcdfFile& file, const VariableInfo& var, const Layout& L, const SampleRules& rules,
+void readSamples(const CfSource& file, const VariableInfo& var, const Layout& L, const SampleRules& rules,
                  ScalarField& f) {
     const std::size_t nd = var.dimSizes.size();
     std::vector<std::uint64_t> start = L.fixedIndex;

@@ -4,7 +4,7 @@
 // and the reading of those samples with CF masking and unpacking. NetcdfReader reads one
 // variable through it; SoundSpeedField reads two on the same layout.
 #include "netcdf/GeoGrid.h"
-#include "netcdf/NetcdfFile.h"
+#include "netcdf/CfSource.h"
 
 #include "octrace/build/ScalarField.h"
 #include "octrace/io/FieldRequest.h"
@@ -39,7 +39,7 @@ struct Layout {
 /// @throws InputError (curvilinear grid, no 3 spatial axes, --time without a time axis or out
 ///         of range, a region or depth range on a non-geographic grid), FileError, UsageError,
 ///         EmptyResultError as NetcdfReader::read.
-Layout layoutFor(const std::string& path, const NetcdfFile& file, const VariableInfo& var, const FieldRequest& req);
+Layout layoutFor(const std::string& path, const CfSource& file, const VariableInfo& var, const FieldRequest& req);
 
 /// A field shaped by `L` (dims, origin, spacing or rectilinear coordinates), without samples,
 /// named after `var`; checks the sample count and that `bytesPerSample` of reading fit
@@ -50,7 +50,7 @@ ScalarField shapeField(const std::string& path, const VariableInfo& var, const L
 /// Reads the samples of `var` selected by `L` into `f` (shaped by shapeField). A raw sample
 /// equal to a missing value, outside the valid range or not finite is invalid (masked before
 /// unpacking, CF 2.5.1); the others become raw * scale + offset.
-void readSamples(const NetcdfFile& file, const VariableInfo& var, const Layout& L, const SampleRules& rules,
+void readSamples(const CfSource& file, const VariableInfo& var, const Layout& L, const SampleRules& rules,
                  ScalarField& f);
 
 /// Bytes per sample that reading one variable needs: its float, its mask byte and the double
@@ -60,6 +60,6 @@ constexpr std::uint64_t kReadBytesPerSample = sizeof(float) + 1 + sizeof(double)
 /// Variables with the 2-D longitude/latitude coordinates of `var` (a curvilinear grid), by its
 /// `coordinates` attribute or, without one, by 2-D variables over its dimensions whose units or
 /// standard_name say longitude or latitude. Empty for a grid with 1-D axes.
-std::vector<const VariableInfo*> curvilinearCoordinates(const NetcdfFile& file, const VariableInfo& var);
+std::vector<const VariableInfo*> curvilinearCoordinates(const CfSource& file, const VariableInfo& var);
 
 }  // namespace octrace::io::detail

@@ -45,7 +45,7 @@ std::string listOf(const std::vector<const VariableInfo*>& vars) {
     return s.empty() ? std::string("none") : s;
 }
 
-std::vector<const VariableInfo*> dataVariables(const NetcdfFile& file) {
+std::vector<const VariableInfo*> dataVariables(const CfSource& file) {
     std::vector<const VariableInfo*> out;
     for (const auto& v : file.variables())
         if (v.numeric && !v.coordinate) out.push_back(&v);
@@ -53,7 +53,7 @@ std::vector<const VariableInfo*> dataVariables(const NetcdfFile& file) {
 }
 
 // Variables with at least 3 dimensions longer than 1 (a 4-D one is read at its first time step).
-std::vector<const VariableInfo*> volumes(const NetcdfFile& file) {
+std::vector<const VariableInfo*> volumes(const CfSource& file) {
     std::vector<const VariableInfo*> out;
     for (const auto* v : dataVariables(file))
         if (v->extent() >= 3) out.push_back(v);
@@ -62,7 +62,7 @@ std::vector<const VariableInfo*> volumes(const NetcdfFile& file) {
 
 // The variable `wanted` names: its name, its full name or, failing those, its CF standard_name.
 // Null when `wanted` asks for sound speed and the file has none (it is then derived).
-const VariableInfo* chooseVariable(const std::string& path, const NetcdfFile& file, const std::string& wanted) {
+const VariableInfo* chooseVariable(const std::string& path, const CfSource& file, const std::string& wanted) {
     auto data = dataVariables(file);
     if (wanted.empty()) {
         auto vols = volumes(file);
@@ -108,7 +108,7 @@ ScalarField finish(const std::string& path, ScalarField f, const FieldRequest& r
     return f;
 }
 
-ScalarField readVariable(const std::string& path, const NetcdfFile& file, const VariableInfo& var,
+ScalarField readVariable(const std::string& path, const CfSource& file, const VariableInfo& var,
                          const FieldRequest& req) {
     Layout L = layoutFor(path, file, var, req);
     ScalarField f = shapeField(path, var, L, req, kReadBytesPerSample);
@@ -119,7 +119,7 @@ ScalarField readVariable(const std::string& path, const NetcdfFile& file, const 
 }
 
 // The field `req` asks for: a variable of the file, or sound speed derived from T and S.
-ScalarField readRequested(const std::string& path, const NetcdfFile& file, const FieldRequest& req) {
+ScalarField readRequested(const std::string& path, const CfSource& file, const FieldRequest& req) {
     if (const VariableInfo* var = chooseVariable(path, file, req.variable)) return readVariable(path, file, *var, req);
     return finish(path, deriveSoundSpeed(path, file, req), req);
 }
@@ -137,7 +137,7 @@ void describeTimeRange(std::ostringstream& s, const AxisInfo& a) {
     }
 }
 
-void describeAxes(std::ostringstream& s, const NetcdfFile& file) {
+void describeAxes(std::ostringstream& s, const CfSource& file) {
     s << "dimensions:\n";
     std::vector<std::string> seen;
     for (const auto& v : file.variables())
@@ -162,7 +162,7 @@ void describeAxes(std::ostringstream& s, const NetcdfFile& file) {
         }
 }
 
-void describeVariable(std::ostringstream& s, const NetcdfFile& file, const VariableInfo& v, std::uint64_t budget) {
+void describeVariable(std::ostringstream& s, const CfSource& file, const VariableInfo& v, std::uint64_t budget) {
     s << "  " << v.signature() << " " << v.dataType << " [";
     for (std::size_t d = 0; d < v.dimSizes.size(); ++d) s << (d ? " x " : "") << v.dimSizes[d];
     s << "]";
@@ -203,7 +203,7 @@ void describeVariable(std::ostringstream& s, const NetcdfFile& file, const Varia
 
 // The geometry of the field `req` asks for (default: the only, or first, 3-D variable). Without
 // a choice in `req`, what keeps it from being read is said in the text; with one, it is thrown.
-void describeGrid(std::ostringstream& s, const std::string& path, const NetcdfFile& file, FieldRequest req) {
+void describeGrid(std::ostringstream& s, const std::string& path, const CfSource& file, FieldRequest req) {
     const bool chosen = !req.variable.empty() || req.hasRegion || req.hasDepthRange || !req.time.empty();
     auto vols = volumes(file);
     if (vols.empty() && req.variable.empty()) {
@@ -258,31 +258,50 @@ void describeGrid(std::ostringstream& s, const std::string& path, const NetcdfFi
 
 namespace detail {
 
-ScalarField interpretNetcdf(const std::string& path, const FieldRequest& req) {
-    if (req.hasRegion) checkRegion(req.region, path);
+void checkFieldRequest(const std::string& source, const FieldRequest& req) {
+    if (req.hasRegion) checkRegion(req.region, source);
     if (!(req.verticalScale >= 0.0) || !std::isfinite(req.verticalScale))
-        throw UsageError(path + ": vertical scale must be positive (0 = default), got " + num(req.verticalScale));
+        throw UsageError(source + ": vertical scale must be positive (0 = default), got " + num(req.verticalScale));
+}
+
+ScalarField interpretCf(const std::string& source, const CfSource& data, const FieldRequest& req) {
+    return readRequested(source, data, req);
+}
+
+std::string describeCf(const std::string& source, const std::string& formatLine, const CfSource& data,
+                       const FieldRequest& req) {
+    std::ostringstream s;
+    s << source << "\n" << formatLine << "\n";
+    describeAxes(s, data);
+    s << "variables:\n";
+    bool hasSoundSpeed = false;
+    for (const auto* v : dataVariables(data)) {
+        describeVariable(s, data, *v, req.memoryBudget);
+        hasSoundSpeed = hasSoundSpeed || isSoundSpeedName(v->shortName) || isSoundSpeedName(v->standardName);
+    }
+    SoundSpeedSources src = soundSpeedSources(data);
+    if (!hasSoundSpeed && src.problem.empty())
+        s << "  sound_speed: derived from " << src.temperature->shortName << " and " << src.salinity->shortName
+          << " with `var` sound_speed (UNESCO 1983)\n";
+    describeGrid(s, source, data, req);
+    return s.str();
+}
+
+std::vector<std::string> cfVolumeNames(const CfSource& data) {
+    std::vector<std::string> names;
+    for (const auto* v : volumes(data)) names.push_back(v->shortName);
+    return names;
+}
+
+ScalarField interpretNetcdf(const std::string& path, const FieldRequest& req) {
+    checkFieldRequest(path, req);
     NetcdfFile file(path);
-    return readRequested(path, file, req);
+    return interpretCf(path, file, req);
 }
 
 std::string describeNetcdf(const std::string& path, const std::string& format, const FieldRequest& req) {
     NetcdfFile file(path);
-    std::ostringstream s;
-    s << path << "\nformat: " << format << ", read through GDAL's netCDF driver\n";
-    describeAxes(s, file);
-    s << "variables:\n";
-    bool hasSoundSpeed = false;
-    for (const auto* v : dataVariables(file)) {
-        describeVariable(s, file, *v, req.memoryBudget);
-        hasSoundSpeed = hasSoundSpeed || isSoundSpeedName(v->shortName) || isSoundSpeedName(v->standardName);
-    }
-    SoundSpeedSources src = soundSpeedSources(file);
-    if (!hasSoundSpeed && src.problem.empty())
-        s << "  sound_speed: derived from " << src.temperature->shortName << " and " << src.salinity->shortName
-          << " with `var` sound_speed (UNESCO 1983)\n";
-    describeGrid(s, path, file, req);
-    return s.str();
+    return describeCf(path, "format: " + format + ", read through GDAL's netCDF driver", file, req);
 }
 
 }  // namespace detail
@@ -348,10 +367,7 @@ double TimeAxis::valueOf(const std::string& isoDate) const {
 
 std::vector<std::string> NetcdfReader::volumeVariables(const std::string& path) {
     checkNetcdfOnDisk(path);
-    NetcdfFile file(path);
-    std::vector<std::string> names;
-    for (const auto* v : volumes(file)) names.push_back(v->shortName);
-    return names;
+    return cfVolumeNames(NetcdfFile(path));
 }
 
 }  // namespace octrace::io

@@ -59,7 +59,7 @@ bool isSoundSpeedName(const std::string& name) {
     return oneOf(lower(name), {"sound_speed", "speed_of_sound_in_sea_water"});
 }
 
-SoundSpeedSources soundSpeedSources(const NetcdfFile& file) {
+SoundSpeedSources soundSpeedSources(const CfSource& file) {
     std::vector<const VariableInfo*> temps, sals;
     std::vector<bool> potential;
     std::string unusable;
@@ -87,7 +87,7 @@ SoundSpeedSources soundSpeedSources(const NetcdfFile& file) {
     return s;
 }
 
-ScalarField deriveSoundSpeed(const std::string& path, const NetcdfFile& file, const FieldRequest& req) {
+ScalarField deriveSoundSpeed(const std::string& path, const CfSource& file, const FieldRequest& req) {
     SoundSpeedSources src = soundSpeedSources(file);
     if (!src.problem.empty())
         throw InputError(path + ": no sound-speed variable, and it cannot be derived from temperature and salinity: " +

@@ -1,7 +1,7 @@
 #pragma once
-// Sound speed derived from a NetCDF file's temperature and salinity (internal, no GDAL types):
+// Sound speed derived from a CF dataset's temperature and salinity (internal, no GDAL types):
 // `--var sound_speed` on a file that has T and S but no sound-speed variable.
-#include "netcdf/NetcdfFile.h"
+#include "netcdf/CfSource.h"
 
 #include "octrace/build/ScalarField.h"
 #include "octrace/io/FieldRequest.h"
@@ -26,7 +26,7 @@ struct SoundSpeedSources {
 /// (sea_water_temperature, sea_water_potential_temperature; sea_water_salinity,
 /// sea_water_practical_salinity), else by name (TEMP, temperature, thetao, SALT, salinity, so, ...)
 /// or long_name.
-SoundSpeedSources soundSpeedSources(const NetcdfFile& file);
+SoundSpeedSources soundSpeedSources(const CfSource& file);
 
 /// Sound speed in m/s at every sample where both T and S are valid, on T's layout for `req`:
 /// UNESCO 1983 (Chen and Millero 1977, seawater::soundSpeed) at the pressure of each depth level
@@ -35,6 +35,6 @@ SoundSpeedSources soundSpeedSources(const NetcdfFile& file);
 /// temperature in kelvin is converted to degrees Celsius. Says on the log (info) which
 /// variables were used. @throws InputError when T or S is missing, they lie on different
 /// grids or the grid has no depth axis; otherwise as NetcdfReader::read.
-ScalarField deriveSoundSpeed(const std::string& path, const NetcdfFile& file, const FieldRequest& req);
+ScalarField deriveSoundSpeed(const std::string& path, const CfSource& file, const FieldRequest& req);
 
 }  // namespace octrace::io::detail
