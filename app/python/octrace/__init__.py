@@ -307,6 +307,20 @@ def view(source, **options):
     return _view(source, **options)
 
 
+def _register_xarray():
+    """``DataArray.octrace`` (the accessor of octrace/_xarray.py), when xarray is installed."""
+    try:
+        import xarray  # noqa: F401
+    except ImportError:
+        return
+    from ._xarray import register
+
+    register()
+
+
+_register_xarray()
+
+
 def _triple(name, value):
     try:
         a, b, c = (float(v) for v in value)

@@ -562,5 +562,6 @@ NB_MODULE(_octrace, m) {
             interruptible([&] { io::writeImage(i.frame, path, options); }, cancel);
         }, "path"_a);
     m.def("render", &renderShell, "shell"_a, "surface_settings"_a, "render_settings"_a);
+    bindCfArrays(m);
     m.def("move_camera", &moveCamera, "shell"_a, "render_settings"_a, "move"_a, "a"_a = 0.0, "b"_a = 0.0, "view_height"_a = 1);
 }
