@@ -37,15 +37,21 @@ inline std::unique_ptr<CfArrays> cfDatasetFromGdal(const std::string& path, cons
     auto out = std::make_unique<CfArrays>();
     out->data.description = description;
     auto root = ds->GetRootGroup();
+    if (!root) throw std::runtime_error("GDAL gives no root group for " + path);
     for (const auto& name : root->GetMDArrayNames()) {
         auto a = root->OpenMDArray(name);
+        if (!a) throw std::runtime_error("GDAL cannot open the array " + name + " of " + path);  // a damaged file
         io::CfVariable v;
         v.name = a->GetName();
         std::size_t n = 1;
+        bool tooMany = false;  // the product would overflow: never read
         for (const auto& d : a->GetDimensions()) {
+            if (!d) throw std::runtime_error("GDAL gives a null dimension of " + name);
             v.dims.push_back(d->GetName());
-            v.shape.push_back(std::size_t(d->GetSize()));
-            n *= std::size_t(d->GetSize());
+            const std::size_t size = std::size_t(d->GetSize());
+            v.shape.push_back(size);
+            if (size != 0 && n > std::numeric_limits<std::size_t>::max() / size) tooMany = true;
+            else n *= size;
         }
         // GetAttributes() leaves out those GDAL shows otherwise (units, _FillValue, packing).
         auto attributes = a->GetAttributes();
@@ -55,7 +61,7 @@ inline std::unique_ptr<CfArrays> cfDatasetFromGdal(const std::string& path, cons
             if (attr->GetDataType().GetClass() == GEDTC_STRING) v.attributes[attr->GetName()] = attr->ReadAsString();
             else if (attr->GetDataType().GetClass() == GEDTC_NUMERIC) v.attributes[attr->GetName()] = attr->ReadAsDoubleArray();
         }
-        if (n > maxSamples) continue;
+        if (tooMany || n > maxSamples) continue;
         std::vector<GUInt64> start(v.shape.size(), 0);
         const GDALDataType type = a->GetDataType().GetNumericDataType();
         auto readAs = [&](auto& buffer, GDALDataType as) {
