@@ -200,9 +200,9 @@ AnimationImage renderAnimationFrame(const AnimationPlan& plan, std::size_t i, co
         out.image = std::move(plot);
         return out;
     }
-    io::FigureSpec figure = figureSpec(plan.spec.figure, figureSubject(surface, spec.input), surface.tree, cam, rs);
-    figure.subtitle = f.caption + (figure.subtitle.empty() ? "" : "; " + figure.subtitle);  // first: a long subtitle is cut at the right
-    out.image = io::composeFigure(plot, figure, *plan.figureLayout);
+    FigureSettings settings = plan.spec.figure;
+    settings.caption = f.caption;
+    out.image = io::composeFigure(plot, figureSpec(settings, figureSubject(surface, spec.input), surface.tree, cam, rs), *plan.figureLayout);
     return out;
 }
 

@@ -171,7 +171,8 @@ io::FigureSpec figureSpec(const FigureSettings& f, const FigureSubject& subject,
         for (double y : io::niceTicks(box.lo.y, box.hi.y, 5)) tick({box.hi.x, y, box.hi.z}, "y " + number(y, 4), 2.2, 0.0);
         for (double z : io::niceTicks(box.lo.z, box.hi.z, 4)) tick({box.hi.x, box.lo.y, z}, "z " + number(z, 4), 2.6, 0.0);
     }
-    spec.subtitle = sub;
+    // The caption first: a long subtitle is cut at the right.
+    spec.subtitle = f.caption.empty() ? sub : f.caption + (sub.empty() ? "" : "; " + sub);
 
     if (f.scaleBar) {
         // World units per plot pixel across the view at the look-at point.

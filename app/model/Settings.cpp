@@ -234,6 +234,7 @@ const std::unordered_map<std::string_view, Entry>& setters() {
         // The figure.
         m.emplace(opt::figure.key, figure([](const std::string&, FigureSettings& f) { f.enabled = true; }));
         m.emplace(opt::title.key, figure([](const std::string& v, FigureSettings& f) { f.title = v; }));
+        m.emplace(opt::caption.key, figure([](const std::string& v, FigureSettings& f) { f.caption = v; }));
         m.emplace(opt::dpi.key, figure([](const std::string& v, FigureSettings& f) { f.dpi = parseInteger(opt::dpi, v); }));
         m.emplace(opt::printSize.key, figure([](const std::string& v, FigureSettings& f) { f.printInches = parsePrintSize(opt::printSize, v); }));
         m.emplace(opt::scaleBar.key, figure([](const std::string&, FigureSettings& f) { f.scaleBar = true; }));

@@ -6,6 +6,7 @@
 #include "CliRunner.h"
 
 #include "octrace/io/TimeAxis.h"
+#include "octrace/io/VideoWriter.h"
 #include "octrace/model/Animation.h"
 #include "octrace/util/Error.h"
 
@@ -194,6 +195,21 @@ TEST(AnimationPlan, AFrameIsAPureFunctionOfThePlanAndItsIndex) {
     EXPECT_EQ(again0.get(), first0);
     EXPECT_NE(first0, first2);
     EXPECT_THROW(model::renderAnimationFrame(plan, 3), octrace::UsageError);
+}
+
+TEST(VideoWriter, KeepsEveryFrameWhateverTheCount) {
+    if (!haveFfmpeg()) GTEST_SKIP() << "ffprobe/ffmpeg absent (Debian package ffmpeg, scripts/setup.sh)";
+    Scratch s;
+    for (int n = 1; n <= 9; ++n) {
+        const std::string mp4 = s.path("n" + std::to_string(n) + ".mp4");
+        io::VideoWriter v(mp4, 64, 48, 12);
+        for (int i = 0; i < n; ++i) v.add(std::vector<std::uint8_t>(64 * 48 * 4, std::uint8_t(i * 25)));
+        v.finish();
+        EXPECT_EQ(capture("ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 " +
+                          quoteArg(mp4)),
+                  std::to_string(n) + "\n")
+            << n << " frames";
+    }
 }
 
 TEST(AnimateCli, WritesOneVideoFramePerStepInOrderWithTheDateInTheCaption) {

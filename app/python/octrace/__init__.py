@@ -26,7 +26,7 @@ from ._octrace import FileError, InputError, LimitError, OutputError, UsageError
 from ._settings import OctraceWarning
 
 __all__ = [
-    "open", "load", "surface", "view", "options", "describe", "renderers",
+    "open", "load", "surface", "view", "animate", "options", "describe", "renderers",
     "Volume", "Input", "Surface", "Image",
     "UsageError", "InputError", "FileError", "LimitError", "OutputError", "OctraceWarning",
 ]
@@ -305,6 +305,14 @@ def view(source, **options):
     from ._view import view as _view
 
     return _view(source, **options)
+
+
+def animate(da, dim="time", path=None, **options):
+    """An MP4 (and/or PNG frames) of a DataArray over ``dim``, frames on local threads or a
+    Dask Client: see ``octrace._animate.animate``."""
+    from ._animate import animate as _animate
+
+    return _animate(da, dim, path, **options)
 
 
 def _register_xarray():

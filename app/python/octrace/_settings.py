@@ -31,6 +31,11 @@ def table():
     return [dict(o) for o in _TABLE.values()]
 
 
+def default(key):
+    """The table's default of a numeric setting."""
+    return _TABLE[key]["default_value"]
+
+
 def _scalar(key, value):
     if isinstance(value, bool):
         raise _octrace.UsageError(f"'{key}': expected a value, got {value!r}")

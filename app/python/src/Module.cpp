@@ -18,6 +18,7 @@
 #include "octrace/io/Figure.h"
 #include "octrace/io/ImageWriter.h"
 #include "octrace/io/OctreeFile.h"
+#include "octrace/io/VideoWriter.h"
 #include "octrace/render/ImageCompare.h"
 #include "octrace/render/Renderer.h"
 #include "octrace/util/Error.h"
@@ -46,6 +47,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <span>
 #include <thread>
 #include <vector>
 
@@ -159,6 +161,7 @@ nb::list optionTable() {
         d["help"] = model::sayForPython(o->helpLine());
         d["default"] = model::sayForPython(o->defaultSaid());
         if (o->kind == model::OptionKind::Integer || o->kind == model::OptionKind::Number) {
+            d["default_value"] = o->defaultValue;
             d["min"] = o->min;
             d["max"] = o->max;
             d["min_open"] = o->minOpen;
@@ -368,6 +371,8 @@ Image renderShell(const Shell& sh, const Settings& surfaceSettings, const Settin
     return std::move(*image);
 }
 
+nb::dict cameraSettings(const Camera& c);
+
 /// The camera a frame of `sh` with `renderSettings` has (framing the surface unless the
 /// settings place it), moved by `move` ("" none, "orbit" yaw a and pitch b degrees, "pan" a, b
 /// pixels of a view `viewHeight` high, "dolly" by the factor a): its settings as a dict of
@@ -380,6 +385,10 @@ nb::dict moveCamera(const Shell& sh, const Settings& renderSettings, const std::
     else if (move == "pan") model::pan(c, a, b, viewHeight);
     else if (move == "dolly") model::dolly(c, a);
     else if (!move.empty()) throw UsageError("unknown camera move '" + move + "' (orbit, pan, dolly)");
+    return cameraSettings(c);
+}
+
+nb::dict cameraSettings(const Camera& c) {
     const auto triple = [](const dvec3& v) { return std::make_tuple(v.x, v.y, v.z); };
     nb::dict d;
     d["camera_pos"] = triple(c.position);
@@ -389,6 +398,20 @@ nb::dict moveCamera(const Shell& sh, const Settings& renderSettings, const std::
     d["projection"] = c.orthographic() ? "ortho" : "perspective";
     if (c.orthographic()) d["ortho_height"] = c.orthoHeight;
     return d;
+}
+
+/// The camera that frames `box` ((lo, hi) world corners) with `renderSettings` (size, fov,
+/// projection, or a placed camera), turned `orbitDegrees` about its up axis through the look-at
+/// point: an animation's fixed view of a grid that every frame shares.
+nb::dict boxCamera(std::tuple<std::tuple<double, double, double>, std::tuple<double, double, double>> box, const Settings& renderSettings,
+                   double orbitDegrees) {
+    model::RenderSpec view;
+    applySettings(renderSettings, {.render = &view});
+    const auto& [lo, hi] = box;
+    const Box3 b{dvec3(std::get<0>(lo), std::get<1>(lo), std::get<2>(lo)), dvec3(std::get<0>(hi), std::get<1>(hi), std::get<2>(hi))};
+    Camera c = model::frameCamera(view, b);
+    if (orbitDegrees != 0.0) model::orbit(c, orbitDegrees, 0.0);
+    return cameraSettings(c);
 }
 
 /// A stats value as Python's.
@@ -563,5 +586,25 @@ NB_MODULE(_octrace, m) {
         }, "path"_a);
     m.def("render", &renderShell, "shell"_a, "surface_settings"_a, "render_settings"_a);
     bindCfArrays(m);
+    m.def("box_camera", &boxCamera, "box"_a, "render_settings"_a, "orbit_degrees"_a = 0.0);
+    m.def("parse_number", [](const std::string& key, const std::string& text) {
+        const model::Option* o = model::findOption(key);
+        if (!o) throw UsageError("unknown setting " + param(key));
+        return model::parseNumber(*o, text);
+    }, "key"_a, "text"_a, "The number `text` with the options table's checks of setting `key`.");
+    nb::class_<io::VideoWriter>(m, "VideoWriter", "An MP4 (H.264) written atomically when finished (io/VideoWriter.h).")
+        .def(nb::init<std::string, int, int, int, int>(), "path"_a, "width"_a, "height"_a, "fps"_a, "quality"_a = 18)
+        .def("add", [](io::VideoWriter& v, nb::ndarray<const std::uint8_t, nb::ndim<3>, nb::c_contig, nb::device::cpu> rgba) {
+            if (rgba.shape(2) != 4) throw UsageError("a video frame is (H, W, 4) RGBA");
+            const std::span<const std::uint8_t> pixels(rgba.data(), rgba.size());
+            nb::gil_scoped_release release;
+            v.add(pixels);
+        }, "rgba"_a)
+        .def("finish", [](io::VideoWriter& v) {
+            nb::gil_scoped_release release;
+            v.finish();
+        })
+        .def_prop_ro("codec", &io::VideoWriter::codec)
+        .def_prop_ro("frames", &io::VideoWriter::frames);
     m.def("move_camera", &moveCamera, "shell"_a, "render_settings"_a, "move"_a, "a"_a = 0.0, "b"_a = 0.0, "view_height"_a = 1);
 }

@@ -107,6 +107,9 @@ struct VideoWriter::Impl {
             const int r = avcodec_receive_packet(encoder, packet);
             if (r == AVERROR(EAGAIN) || r == AVERROR_EOF) return;
             check(r, "encoding a frame (" + codec + ")");
+            // Every frame lasts one tick of 1/fps. The encoder leaves the duration 0, and the MP4
+            // muxer then ends its edit list at the last frame's start: players dropped it.
+            if (packet->duration <= 0) packet->duration = 1;
             av_packet_rescale_ts(packet, encoder->time_base, stream->time_base);
             packet->stream_index = stream->index;
             check(av_interleaved_write_frame(format, packet), "writing a frame");

@@ -20,6 +20,7 @@ namespace octrace::model {
 struct FigureSettings {
     bool enabled = false;     ///< `figure`
     std::string title;        ///< `title`
+    std::string caption;      ///< `caption`: first in the subtitle (an animation frame's date)
     int dpi = 0;              ///< `dpi`; 0: kDefaultDpi for a figure, none recorded for a plain image
     std::optional<dvec2> printInches;  ///< `print_size`, in inches
     bool scaleBar = false;    ///< `scale_bar`

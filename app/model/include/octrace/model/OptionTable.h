@@ -333,6 +333,8 @@ inline constexpr Option figure{.key = "figure", .kind = OptionKind::Flag, .flag 
     .help = "write a publication figure (PNG or TIFF, by the output's extension): the image with a title", .commands = "render slice animate"};
 inline constexpr Option title{.key = "title", .kind = OptionKind::Text, .flag = "title", .argument = "TEXT",
     .session = "export.title", .label = "Title", .defaultText = "none", .help = "title of the figure", .commands = "render slice animate"};
+inline constexpr Option caption{.key = "caption", .kind = OptionKind::Text, .defaultText = "none; an animation's frame: its date",
+    .help = "text at the start of the figure's subtitle, e.g. the date of a time step", .commands = ""};
 inline constexpr Option printSize{.key = "print_size", .kind = OptionKind::Text, .flag = "print-size",
     .argument = "WxH(mm|cm|in)", .defaultText = "the figure is `size`",
     .help = "figure size on paper, e.g. 180x120mm, each side at most 100 inches; its pixels are this times `dpi`",

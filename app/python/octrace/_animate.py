@@ -1,0 +1,132 @@
+"""Animations of a DataArray over one of its dimensions: one surface per step, one fixed camera
+(or an orbit), the step's coordinate value in each figure's caption, frames rendered in
+parallel — on local threads (the GIL is released while building and rendering), or one task
+per frame on a Dask distributed Client (a LocalCluster, or dask-jobqueue's SLURM/PBS clusters)
+— and joined into an MP4 by octrace's video writer (FFmpeg's libraries, io/VideoWriter.h).
+The CLI's `octrace animate` does the same for a file's time steps (model/Animation.h)."""
+
+from __future__ import annotations
+
+import concurrent.futures
+import os
+import sys
+
+import numpy as np
+
+from . import _octrace, _settings
+
+
+def _caption(value):
+    """A coordinate value as a caption: a date as YYYY-MM-DD (with the time when it has one)."""
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        value = value[()]
+    if isinstance(value, np.datetime64):
+        text = np.datetime_as_string(value, unit="s")
+        return text[:10] if text.endswith("T00:00:00") else text.replace("T", " ")
+    if hasattr(value, "calendar") and hasattr(value, "isoformat"):  # cftime
+        text = value.isoformat()
+        return text[:10] if text.endswith("T00:00:00") or text.endswith(" 00:00:00") else text
+    if isinstance(value, (float, np.floating)):
+        return f"{value:g}"
+    return str(value)
+
+
+def _frame(da, reader, build, view, camera, caption, png):
+    """One frame (a top-level function, so that Dask can send it to another process): the
+    DataArray's step through the accessor, its surface, the frame from `camera`."""
+    import octrace  # noqa: F401 - registers the accessor in a fresh worker
+
+    shell = da.octrace.surface(**reader, **build)
+    options = dict(view)
+    if options.get("figure"):
+        options["caption"] = caption
+    img = shell.render(camera=camera, **options)
+    if png:
+        img.save(png)
+    return np.array(img)  # a copy: it outlives the frame and crosses processes
+
+
+def _progress(total, enabled):
+    if not enabled:
+        return lambda done: None
+    try:
+        from tqdm.auto import tqdm
+
+        bar = tqdm(total=total, desc="octrace animate", unit="frame")
+        return lambda done: (bar.update(done - bar.n), bar.close() if done >= total else None)
+    except ImportError:
+        def show(done):
+            print(f"\roctrace: animate {done}/{total} frames", end="\n" if done >= total else "", file=sys.stderr, flush=True)
+        return show
+
+
+def animate(da, dim="time", path=None, *, frames=None, fps=None, orbit=0.0, size=(960, 720), client=None, workers=None,
+            progress=True, **options):
+    """Renders one frame per step of ``da`` along ``dim`` and writes them to ``path`` (an MP4,
+    H.264) and/or PNGs in the folder ``frames``. ``options``: the surface's (iso, depth,
+    colormap, colour_range, ...), the reader's (region, depth_range, vertical_scale) and
+    render's (camera, renderer, background, figure=True with title, ...). The camera frames
+    the first step's grid, which every step shares, and turns ``orbit`` degrees over the
+    animation; with ``figure=True`` each frame's subtitle starts with its coordinate value.
+    ``client``: a dask.distributed Client, one task per frame; otherwise ``workers`` local
+    threads (default: one per core). Returns the path of the video (or of the frames' folder)."""
+    if dim not in da.dims:
+        raise _octrace.UsageError(f"{dim!r} is not a dimension of the DataArray (it has {', '.join(map(str, da.dims))})")
+    if path is None and frames is None:
+        raise _octrace.UsageError("give a video 'path' (.mp4) or a 'frames' folder, or both")
+    if path is not None and not os.fspath(path).lower().endswith(".mp4"):
+        raise _octrace.UsageError(f"'{os.fspath(path)}': an animation is written as .mp4")
+    fps = int(_octrace.parse_number("fps", str(fps if fps is not None else int(_settings.default("fps")))))
+    orbit = _octrace.parse_number("orbit", repr(float(orbit)))
+    camera = dict(options.pop("camera", None) or {})
+    reader_keys = _settings.reader_keys() - {"var", "series", "time"}
+    view_keys = _settings.keys(("render", "figure"), shading=True)
+    reader = {k: v for k, v in options.items() if k in reader_keys}
+    view = {k: v for k, v in options.items() if k in view_keys}
+    build = {k: v for k, v in options.items() if k not in reader_keys and k not in view_keys}
+    view["size"] = size
+    # Every keyword checked before any work, as the calls below will take them.
+    _settings.settings(reader, reader_keys, "animate")
+    _settings.settings(build, _settings.keys(("surface",)), "animate")
+    render_settings = _settings.settings({**view, **camera}, view_keys, "animate")
+
+    steps = da.sizes[dim]
+    if steps == 0:
+        raise _octrace.UsageError(f"{dim!r} has no steps")
+    grid = da.isel({dim: 0}).octrace.volume(**reader)
+    view_only = [(k, t) for k, t in render_settings if k in _settings.keys(("render",))]
+    cameras = [_octrace.box_camera(grid.bounds, view_only, orbit * i / steps) for i in range(steps)]
+    values = da[dim].values if dim in da.coords else np.arange(steps)
+    captions = [_caption(values[i]) for i in range(steps)]
+    pngs = [None] * steps
+    if frames is not None:
+        os.makedirs(frames, exist_ok=True)
+        pngs = [os.path.join(os.fspath(frames), f"frame_{i:04d}.png") for i in range(steps)]
+    args = [(da.isel({dim: i}), reader, build, view, cameras[i], captions[i], pngs[i]) for i in range(steps)]
+
+    show = _progress(steps, progress)
+    images = [None] * steps
+    if client is not None:
+        from dask.distributed import as_completed
+
+        futures = [client.submit(_frame, *a, key=f"octrace-frame-{i}-{id(args)}", pure=False) for i, a in enumerate(args)]
+        index = {f.key: i for i, f in enumerate(futures)}
+        for done, future in enumerate(as_completed(futures), start=1):
+            images[index[future.key]] = future.result()
+            show(done)
+    else:
+        with concurrent.futures.ThreadPoolExecutor(max_workers=workers or os.cpu_count() or 1) as pool:
+            futures = {pool.submit(_frame, *a): i for i, a in enumerate(args)}
+            for done, future in enumerate(concurrent.futures.as_completed(futures), start=1):
+                images[futures[future]] = future.result()
+                show(done)
+    _settings.flush_log()
+    if path is None:
+        return os.fspath(frames)
+    height, width = images[0].shape[:2]
+    writer = _octrace.VideoWriter(os.fspath(path), width, height, fps)
+    for image in images:
+        writer.add(image)
+    writer.finish()
+    _settings.flush_log()
+    return os.fspath(path)
