@@ -54,6 +54,27 @@ def test_the_volume_values_are_a_view_of_the_field():
     assert np.array_equal(v1, sphere(16))
 
 
+def test_a_float32_array_is_read_in_place():
+    a = sphere(24)
+    vol = octrace.Volume(a)
+    assert vol.in_place and np.shares_memory(vol.values, a)
+    shell = vol.surface(iso=0.0, depth=5)
+    assert shell._shell.field_in_place  # the surface reads the same memory: no copy anywhere
+    del a
+    import gc
+
+    gc.collect()  # the Volume keeps the array alive
+    assert shell.render(size=(32, 32)).stats["hits"] > 0 and np.array_equal(vol.values, sphere(24))
+
+
+def test_an_array_with_nan_is_copied_and_left_as_it_was():
+    a = sphere(16)
+    a[0, 0, 0] = np.nan
+    vol = octrace.Volume(a)
+    assert not vol.in_place and not np.shares_memory(vol.values, a)
+    assert np.isnan(a[0, 0, 0]) and vol.values[0, 0, 0] == 0.0
+
+
 def test_other_dtypes_are_converted_and_said():
     with pytest.warns(octrace.OctraceWarning, match="float64"):
         vol = octrace.Volume(sphere(16, dtype=np.float64))

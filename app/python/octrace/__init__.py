@@ -60,8 +60,10 @@ class Volume:
     units="")``: ``values`` has axes (z, y, x), as SimpleITK's ``GetArrayFromImage`` and
     NetCDF's (depth, lat, lon) give them; ``spacing`` and ``origin`` are in x, y, z order;
     ``direction`` is a 3x3 matrix whose columns are the grid axes in world space. NaN samples
-    are masked. A C-contiguous float32 array is taken as it is; others are converted to one
-    (an OctraceWarning says so).
+    are masked. A C-contiguous float32 array without NaN is read in place, without a copy:
+    the Volume and the surfaces built from it keep the array alive and read it, so change it
+    only when no build runs (a built surface's octree does not change). Other arrays are
+    converted to one (an OctraceWarning says so), and an array with NaN is copied to mask them.
     """
 
     def __init__(self, values, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0.0, 0.0), direction=None, name="array", units="",
@@ -109,6 +111,8 @@ class Volume:
     bounds = property(lambda self: self._field.bounds, doc="World bounding box ((x0, y0, z0), (x1, y1, z1)).")
     valid_range = property(lambda self: self._field.valid_range, doc="(min, max) of the valid samples.")
     values = property(lambda self: self._field.values, doc="The samples, axes (z, y, x), read-only, without a copy.")
+    in_place = property(lambda self: self._field.in_place,
+                        doc="True when the samples are the NumPy array given, read in place (no copy).")
     mask = property(lambda self: self._field.mask, doc="1 where a sample is valid, axes (z, y, x); None when all are.")
 
     def surface(self, *, progress=None, **options):

@@ -240,10 +240,13 @@ Field arrayField(nb::ndarray<const float, nb::ndim<3>, nb::c_contig, nb::device:
     const std::size_t n = f->sampleCount();
     const std::uint64_t budget = defaultMemoryBudget();
     checkMemoryBudget(f->source + ": " + std::to_string(n) + " samples", n * (sizeof(float) + 1), budget);
-    f->values.assign(values.data(), values.data() + n);
     bool masked = false;
-    for (std::size_t i = 0; i < n && !masked; ++i) masked = !std::isfinite(f->values[i]);
-    if (masked) {
+    for (std::size_t i = 0; i < n && !masked; ++i) masked = !std::isfinite(values.data()[i]);
+    if (!masked) {
+        // Read in place: the field (and every surface built from it) keeps the array alive.
+        f->values = SampleBuffer::borrow(values.data(), n, std::make_shared<decltype(values)>(values));
+    } else {  // the samples are copied, NaN masked and zeroed: the caller's array is not changed
+        f->values.assign(values.data(), values.data() + n);
         f->valid.assign(n, 1);
         for (std::size_t i = 0; i < n; ++i)
             if (!std::isfinite(f->values[i])) f->valid[i] = 0, f->values[i] = 0.0f;
@@ -312,9 +315,48 @@ void saveShell(const Shell& sh, const std::string& path, int level) {
 
 // ---- Frames. ----
 
+/// Frames of images that Python let go, for the next renders of the same size. A frame is
+/// 25 bytes a pixel (48 MB at 1600x1200), and a fresh one costs the kernel's first touch of
+/// every page inside the renderer's timer; taken from here its pages are mapped, as the CLI's
+/// --repeat renders into one frame. Holds at most two frames (a loop `img = shell.render()`
+/// keeps one image alive while the next renders), and none beyond the memory budget's share.
+class FramePool {
+public:
+    static FramePool& instance() {
+        static FramePool pool;
+        return pool;
+    }
+    /// A frame of that size from the pool, or an empty one (the renderer sizes it).
+    Frame take(int width, int height) {
+        const std::lock_guard lock(m_);
+        for (auto it = frames_.begin(); it != frames_.end(); ++it)
+            if (it->width == width && it->height == height) {
+                Frame f = std::move(*it);
+                frames_.erase(it);
+                return f;
+            }
+        return {};
+    }
+    void give(Frame&& f) {
+        if (f.width <= 0 || f.rgba.size() != f.pixel(0, f.height) || Frame::bytesFor(f.width, f.height) > defaultMemoryBudget() / 8) return;
+        const std::lock_guard lock(m_);
+        frames_.push_back(std::move(f));
+        if (frames_.size() > 2) frames_.erase(frames_.begin());
+    }
+
+private:
+    std::mutex m_;
+    std::vector<Frame> frames_;
+};
+
 /// A rendered image: the frame (linear RGBA, depth, hits), its 8-bit sRGB pixels (what a PNG
-/// holds), its stats, and its dpi when it is a figure.
+/// holds), its stats, and its dpi when it is a figure. Its frame goes back to the FramePool.
 struct Image {
+    Image() = default;
+    Image(Image&&) noexcept = default;
+    Image& operator=(Image&&) noexcept = default;
+    ~Image() { FramePool::instance().give(std::move(frame)); }
+
     Frame frame;
     model::Stats stats;
     int dpi = 0;
@@ -354,7 +396,7 @@ Image renderShell(const Shell& sh, const Settings& surfaceSettings, const Settin
             const Box3 bounds = s.tree.occupiedBounds();
             const Camera cam = model::frameCamera(view, bounds);
             const RenderSettings rs = model::renderSettings(spec, s, view);
-            Frame frame;
+            Frame frame = FramePool::instance().take(view.width, view.height);
             const RenderStats st = model::renderFrame(s.tree, cam, rs, view.renderer, frame);
             model::FrameRecord record = model::frameRecord(spec.input, s, cam, rs, st, view.renderer, bounds);
             record.figure = layout;
@@ -363,6 +405,7 @@ Image renderShell(const Shell& sh, const Settings& surfaceSettings, const Settin
             if (layout) {
                 image->frame = io::composeFigure(frame, model::figureSpec(figure, model::figureSubject(s, spec.input), s.tree, cam, rs), *layout);
                 image->dpi = layout->dpi;
+                FramePool::instance().give(std::move(frame));
             } else {
                 image->frame = std::move(frame);
             }
@@ -526,6 +569,8 @@ NB_MODULE(_octrace, m) {
             return std::make_tuple(std::make_tuple(b.lo.x, b.lo.y, b.lo.z), std::make_tuple(b.hi.x, b.hi.y, b.hi.z));
         })
         .def_prop_ro("valid_range", [](const Field& f) { return f.field->validRange(); })
+        .def_prop_ro("in_place", [](const Field& f) { return f.field->values.borrowed(); },
+                     "True when the samples are read in place from the NumPy array given (no copy).")
         .def_prop_ro("values", [](const Field& f) {
             const ScalarField& s = *f.field;
             return nb::ndarray<nb::numpy, const float, nb::ndim<3>>(s.values.data(),
@@ -545,6 +590,8 @@ NB_MODULE(_octrace, m) {
         .def_prop_ro("input", [](const Shell& s) { return s.spec.input; })
         .def_prop_ro("iso", [](const Shell& s) { return s.surface->iso; })
         .def_prop_ro("depth", [](const Shell& s) { return s.surface->tree.depth; })
+        .def_prop_ro("field_in_place", [](const Shell& s) { return s.surface->field.values.borrowed(); },
+                     "True when the surface reads its Volume's NumPy array in place (no copy).")
         .def_prop_ro("boundary_voxels", [](const Shell& s) { return s.surface->tree.boundaryVoxels(); })
         .def_prop_ro("nodes", [](const Shell& s) { return s.surface->tree.nodes().size(); })
         .def_prop_ro("bytes", [](const Shell& s) { return s.surface->tree.bytes(); })

@@ -7,6 +7,7 @@
 /// where axisA(n) = n * spacing[A] for a uniform axis, or coords[A][n] for a rectilinear
 /// axis (e.g. uneven ocean depth levels). Rectilinear coordinates are strictly increasing.
 /// Samples are stored x fastest: index = i + dims.x * (j + dims.y * k).
+#include "octrace/build/SampleBuffer.h"
 #include "octrace/util/Math.h"
 
 #include <array>
@@ -36,6 +37,7 @@ public:
     ScalarField& operator=(const ScalarField&) = delete;
     /// The one deep copy (samples, mask, geometry, provenance), for a caller that keeps a
     /// field and builds from copies of it (e.g. Python's Volume, shared by its surfaces).
+    /// Borrowed samples are shared, not copied (SampleBuffer.h).
     ScalarField copy() const;
 
     std::string name;    ///< variable name ("TEMP", "density", ...)
@@ -49,7 +51,10 @@ public:
     dmat3 direction{1.0};               ///< columns: world direction of the grid axes (orthonormal)
     std::array<std::vector<double>, 3> coords;  ///< rectilinear axis positions (empty: uniform)
 
-    std::vector<float> values;          ///< dims.x*dims.y*dims.z samples
+    /// dims.x*dims.y*dims.z samples, owned or read in place from another owner's memory (a
+    /// NumPy array): SampleBuffer.h. Read a field through a const reference, so that reading
+    /// never copies borrowed samples.
+    SampleBuffer values;
     std::vector<std::uint8_t> valid;    ///< 1 = valid sample; empty means every sample is valid
 
     /// The window the file recommends for display (DICOM WindowCenter/WindowWidth, the first
