@@ -1,384 +1,84 @@
 // octrace slice: a planar slice through a field's samples (no octree), greyed by a display
 // window (CT, MR) or coloured by a colour map, as a radiology workstation or a map shows it.
+// The slice itself is the pipeline library's (octrace/model/Slice.h); this parses, reads and writes.
 #include "Commands.h"
 #include "FigureOptions.h"
-#include "octrace/model/Input.h"
 #include "Options.h"
-#include "StatsJson.h"
 #include "SurfaceOptions.h"
 
+#include "octrace/model/Input.h"
+#include "octrace/model/Slice.h"
+
 #include "octrace/io/AtomicFile.h"
-#include "octrace/io/CityReader.h"
-#include "octrace/io/Figure.h"
 #include "octrace/io/ImageWriter.h"
-#include "octrace/render/Shading.h"
-#include "octrace/render/SliceView.h"
-#include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
-#include "octrace/util/Memory.h"
 #include "octrace/util/Timer.h"
 
-#include <algorithm>
-#include <cmath>
-#include <optional>
-#include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace octrace::cli {
 namespace {
 
-struct SliceArgs : SurfaceArgs {
-    FigureArgs figure;
+/// The slice's spec (model/Slice.h) and what only the command line has.
+struct SliceArgs : model::SliceSpec, MessageArgs {
     std::string output, statsPath;
-    std::optional<SlicePlane> plane;
-    std::optional<double> at;
-    std::optional<int> index;
-    int width = 0, height = 0;  // --size; 0: one pixel per in-plane sample
-    std::optional<vec4> background;
 };
 
-std::string number(double v, int precision = 6) {
-    std::ostringstream s;
-    s.precision(precision);
-    s << (v == 0.0 ? 0.0 : v);
-    return s.str();
-}
-
 OptionParser makeParser(SliceArgs& a) {
+    const model::SettingTargets into{.slice = &a};
     OptionParser p("slice", "octrace slice INPUT -o OUT.(png|exr|tif) [options]");
     p.add({"o", "FILE", "output image; format from the extension: " + joinNames(io::imageExtensions()) + " (required)",
            [&](const std::string& v) { a.output = v; }});
     addVariableOption(p, a.request);
-    p.add(tableOption(model::opt::plane, [&](const std::string& v) {
-        for (SlicePlane pl : {SlicePlane::Axial, SlicePlane::Coronal, SlicePlane::Sagittal, SlicePlane::X, SlicePlane::Y, SlicePlane::Z})
-            if (v == slicePlaneName(pl)) return void(a.plane = pl);
-        throw UsageError("--plane: choose axial, coronal, sagittal, x, y or z, got '" + v + "'");
-    }));
-    p.add(tableOption(model::opt::at, [&](const std::string& v) { a.at = tableNumber(model::opt::at, v); }));
-    p.add(tableOption(model::opt::index, [&](const std::string& v) { a.index = tableInt(model::opt::index, v); }));
+    for (const model::Option* o : {&model::opt::plane, &model::opt::at, &model::opt::index}) p.add(settingOption(*o, into));
     p.add({"size", "WxH", "image size in pixels, the slice fitted and centred, its aspect kept (default: one pixel per sample of "
            "the finer in-plane spacing, so anisotropic voxels keep their shape; with --figure the whole figure, 1200x1000)",
-           [&](const std::string& v) { model::parseSize(model::opt::size, v, a.width, a.height); }});
-    addWindowOption(p, a, "here the slice",
+           [into](const std::string& v) { model::applySetting(model::opt::size, v, into); }});
+    addWindowOption(p, into, "here the slice",
                     "the window stored in a DICOM file; else for a patient volume its whole value range in grey; else the colour map");
-    addColourMapOptions(p, a,
+    addColourMapOptions(p, into,
                         "here the slice's, when no window greys it; by default the variable's map from its standard_name or name, "
                         "thermal/haline/speed/viridis",
                         "here the slice's values, by default their range",
                         "masked samples (land, missing values, outside a resampled gantry-tilted stack)");
     p.add({"background", "R,G,B[,A]", "colour outside the grid, sRGB components in [0,1] (default 0,0,0,1; with --figure 0,0,0,0: the paper)",
-           [&](const std::string& v) { a.background = model::parseColour(model::opt::background, v, true); }});
+           [into](const std::string& v) { model::applySetting(model::opt::background, v, into); }});
     addGeographicOptions(p, a.request);
     addSeriesOption(p, a.request);
     p.add({"stats", "FILE.json", "write the slice's geometry and colouring as JSON (keys: docs/user/cli.md)",
            [&](const std::string& v) { a.statsPath = v; }});
-    addThreadsOption(p, a, "the image");
+    addThreadsOption(p, into, "the image");
     addFigureOptions(p, a.figure, "the grey or colour bar with units, the variable, the plane and window, and the A/P, R/L, "
                      "S/I letters with a scale bar (patient volumes) or labelled longitude/latitude/depth ticks");
-    addMessageOptions(p, a);
+    addMessageOptions(p, a, into);
     return p;
-}
-
-/// --at in world units along the plane's normal axis (geographic grids: depth, longitude, latitude).
-double worldPosition(const ScalarField& f, SlicePlane plane, double at) {
-    if (!f.geographic.valid) return at;
-    const GeoAxes g{f.geographic};
-    const int n = sliceNormalAxis(plane);
-    return n == 2 ? g.z(at) : n == 0 ? g.x(at) : g.y(at);
-}
-
-/// The plane's position as the user reads it: "z = 12.5 mm", "500 m depth", "150°E".
-std::string positionText(const ScalarField& f, const SliceView& v) {
-    const int n = sliceNormalAxis(v.plane);
-    if (f.geographic.valid) {
-        const GeoAxes g{f.geographic};
-        return n == 2 ? number(g.depthM(v.position), 5) + " m depth" : n == 0 ? longitudeText(g.lon(v.position)) : latitudeText(g.lat(v.position));
-    }
-    return std::string(1, char('x' + n)) + " = " + number(v.position, 5) + (f.patientLps ? " mm" : "");
-}
-
-/// How the slice is coloured (SliceView.h), and what it says about it.
-struct Colouring {
-    SliceColouring c;
-    std::string source;  // where the window or the range comes from
-};
-
-Colouring chooseColouring(const SliceArgs& a, const ScalarField& f, const SliceValues& values) {
-    Colouring out;
-    SliceColouring& c = out.c;
-    const bool mapGiven = !a.colormap.empty() || !std::isnan(a.colourMin);
-    if (a.window.valid()) {
-        if (mapGiven) throw UsageError("--window and --colormap/--colour-range both colour the slice: give one of them");
-        if (ctWindowPreset(a.windowName)) requireHounsfield(f, a.input, "--window " + a.windowName);
-        c.window = a.window;
-        out.source = "--window " + a.windowName;
-    } else if (a.windowName.empty() && !mapGiven && f.window.valid()) {
-        c.window = f.window;
-        out.source = "the file's display window";
-    } else if (a.windowName.empty() && !mapGiven && f.patientLps) {
-        const auto [lo, hi] = f.validRange();
-        c.window = {0.5 * (double(lo) + double(hi)), std::max(double(hi) - double(lo), 1e-30)};
-        out.source = "the volume's value range";
-    }
-    c.invertedGrey = c.window.valid() && f.invertedGrey;
-    if (!c.window.valid()) {
-        c.colormap = a.colormap.empty() ? defaultColormap(f.standardName, f.name) : a.colormap;
-        if (!std::isnan(a.colourMin)) {
-            c.low = a.colourMin, c.high = a.colourMax;
-            out.source = "--colour-range";
-        } else {
-            const auto [lo, hi] = values.range();
-            c.low = std::isnan(lo) ? 0.0 : lo;
-            c.high = std::isnan(hi) ? 1.0 : hi;
-            out.source = "the slice's range of values";
-        }
-    }
-    c.masked = displayToLinear(vec4(a.maskedColour, 1.0f));
-    c.outside = displayToLinear(a.background.value_or(a.figure.enabled ? vec4(0.0f) : vec4(0.0f, 0.0f, 0.0f, 1.0f)));
-    return out;
-}
-
-
-/// The letter of a patient direction (LPS world axis vector): L/R, P/A, S/I.
-const char* patientLetter(const dvec3& d) {
-    if (d.x > 0.5) return "L";
-    if (d.x < -0.5) return "R";
-    if (d.y > 0.5) return "P";
-    if (d.y < -0.5) return "A";
-    return d.z > 0.5 ? "S" : "I";
-}
-
-/// The world axis of a screen direction (a signed world axis).
-int worldAxisOf(const dvec3& d) { return std::abs(d.x) > 0.5 ? 0 : std::abs(d.y) > 0.5 ? 1 : 2; }
-
-/// A screen direction as the figure labels it: a patient letter, else "+x", "-y", ...
-std::string directionName(const ScalarField& f, const dvec3& d) {
-    if (f.patientLps) return patientLetter(d);
-    const int a = worldAxisOf(d);
-    return std::string(d[a] > 0.0 ? "+" : "-") + char('x' + a);
-}
-
-/// Rough width of a label in label heights (DejaVu Sans: about 0.6 of the height a character).
-double labelWidth(const std::string& text) {
-    int n = 0;
-    for (unsigned char ch : text) n += (ch & 0xC0) != 0x80;
-    return 0.6 * n;
-}
-
-/// Bands (label heights) between the plot's edges and the slice: left, top, right, bottom.
-struct Bands {
-    double left, top, right, bottom;
-};
-Bands figureBands(const ScalarField& f, bool scaleBar) {
-    if (f.patientLps) return {1.8, 1.8, 1.8, 3.6};
-    return {5.0, 1.0, 1.8, scaleBar ? 5.0 : 2.4};
-}
-
-/// Text of a world coordinate along world axis `a` (longitude, latitude, depth on a geographic
-/// grid, else "x 1.5"), and the tick values (world) on [lo, hi].
-struct AxisTicks {
-    std::vector<double> world;
-    std::vector<std::string> text;
-};
-AxisTicks axisTicks(const ScalarField& f, int a, double lo, double hi, int count) {
-    AxisTicks t;
-    if (!f.geographic.valid) {
-        for (double v : io::niceTicks(lo, hi, count)) t.world.push_back(v), t.text.push_back(number(v, 4));
-        return t;
-    }
-    const GeoAxes g{f.geographic};
-    if (a == 0) {
-        for (double lon : io::niceTicks(g.lon(lo), g.lon(hi), count)) t.world.push_back(g.x(lon)), t.text.push_back(longitudeText(lon));
-    } else if (a == 1) {
-        for (double lat : io::niceTicks(g.lat(lo), g.lat(hi), count)) t.world.push_back(g.y(lat)), t.text.push_back(latitudeText(lat));
-    } else {
-        for (double d : io::niceTicks(g.depthM(hi), g.depthM(lo), count)) t.world.push_back(g.z(d)), t.text.push_back(number(d) + " m");
-    }
-    return t;
-}
-
-
-/// The figure around a slice: the frame of the grid, orientation letters and a scale bar
-/// (patient volumes) or labelled ticks (longitude, latitude, depth; world x, y, z), the grey
-/// or colour bar, and the subtitle. `offset`: where the slice image lies in the plot.
-io::FigureSpec sliceFigureSpec(const SliceArgs& a, const ScalarField& f, const SliceView& v, const SliceColouring& c, dvec2 offset) {
-    io::FigureSpec spec;
-    spec.title = a.figure.title;
-    // The content's edges in the plot (whose pixel x spans [x, x + 1)).
-    const dvec2 lo = offset + v.gridMin + dvec2(0.5 - v.margin), hi = offset + v.gridMax + dvec2(0.5 + v.margin);
-    spec.lines = {{{lo.x, lo.y}, {hi.x, lo.y}}, {{hi.x, lo.y}, {hi.x, hi.y}}, {{hi.x, hi.y}, {lo.x, hi.y}}, {{lo.x, hi.y}, {lo.x, lo.y}}};
-    const dvec3 R = v.screenRight(), U = v.screenUp();
-    const dvec2 mid = 0.5 * (lo + hi);
-    if (f.patientLps) {
-        spec.labels.push_back({{hi.x, mid.y}, patientLetter(R), 0.9, 0.0});
-        spec.labels.push_back({{lo.x, mid.y}, patientLetter(-R), -0.9, 0.0});
-        spec.labels.push_back({{mid.x, lo.y}, patientLetter(U), 0.0, -0.9});
-        spec.labels.push_back({{mid.x, hi.y}, patientLetter(-U), 0.0, 0.9});
-    } else {
-        const int aR = worldAxisOf(R), aU = worldAxisOf(U);
-        const dvec3 tl = v.world(v.gridMin.x, v.gridMin.y), br = v.world(v.gridMax.x, v.gridMax.y);
-        const double r0 = std::min(tl[aR], br[aR]), r1 = std::max(tl[aR], br[aR]);
-        const double u0 = std::min(tl[aU], br[aU]), u1 = std::max(tl[aU], br[aU]);
-        const AxisTicks xt = axisTicks(f, aR, r0, r1, 6), yt = axisTicks(f, aU, u0, u1, 5);
-        for (std::size_t i = 0; i < xt.world.size(); ++i) {
-            const double px = offset.x + v.gridMin.x + 0.5 + (xt.world[i] - tl[aR]) * R[aR] / v.pixelSize;
-            spec.labels.push_back({{px, hi.y}, xt.text[i], 0.0, 1.0});
-        }
-        for (std::size_t i = 0; i < yt.world.size(); ++i) {
-            const double py = offset.y + v.gridMin.y + 0.5 + (tl[aU] - yt.world[i]) * U[aU] / v.pixelSize;
-            spec.labels.push_back({{lo.x, py}, yt.text[i], -(0.5 * labelWidth(yt.text[i]) + 0.6), 0.0});
-        }
-    }
-    // The scale bar (the figure's own, in the plot's lower left corner under the slice):
-    // always for patient volumes, with --scale-bar for other grids.
-    if (f.patientLps || a.figure.scaleBar) {
-        const double length = io::scaleBarLength(v.pixelSize, v.width);
-        if (length > 0.0) {
-            spec.scaleBarPx = length / v.pixelSize;
-            spec.scaleBarLabel = number(length) + (f.patientLps ? " mm" : f.geographic.valid ? " km" : "");
-        }
-    }
-    // The bar and the subtitle.
-    const std::string units = f.units.empty() ? "" : " (" + f.units + ")";
-    spec.barLabel = f.name + units;
-    std::string sub = f.patientLps                  ? f.name + ", " + slicePlaneName(v.plane) + " at " + positionText(f, v)
-                      : !f.geographic.valid          ? f.name + ", " + slicePlaneName(v.plane) + " plane at " + positionText(f, v)
-                      : sliceNormalAxis(v.plane) == 2 ? f.name + " at " + positionText(f, v)
-                                                      : f.name + ", section at " + positionText(f, v);
-    if (c.window.valid()) {
-        spec.greyRamp = true;
-        spec.invertedGrey = c.invertedGrey;
-        spec.low = c.window.centre - 0.5 * c.window.width;
-        spec.high = c.window.centre + 0.5 * c.window.width;
-        sub += ", window " + number(c.window.centre) + "/" + number(c.window.width);
-        if (!a.windowName.empty() && ctWindowPreset(a.windowName)) sub += " (" + a.windowName + ")";
-    } else {
-        spec.colormap = c.colormap;
-        spec.low = c.low;
-        spec.high = c.high;
-    }
-    spec.subtitle = sub;
-    return spec;
 }
 
 }  // namespace
 
 int runSlice(const std::vector<std::string>& args) {
     SliceArgs a;
-    if (!parseCommandLine(makeParser(a), args, a, a.output, "an output image: -o OUT.png, -o OUT.exr or -o OUT.tif")) return 0;
+    if (!parseCommandLine(makeParser(a), args, a, a.input, a.output, "an output image: -o OUT.png, -o OUT.exr or -o OUT.tif")) return 0;
     checkImageOutput(a.output);
     checkFigureOptions(a.figure, a.output);
     if (a.quiet) log::setLevel(log::Level::Error);
     if (a.verbose) log::setLevel(log::Level::Debug);
-    if (a.at && a.index) throw UsageError("--at and --index both place the plane: give one of them");
-    if (isOctreeInput(a.input))
-        throw UsageError("slice samples a field, and the octree file " + a.input + " keeps only its surface: give the field it was built from");
-    if (io::isCityInput(a.input)) throw UsageError("slice samples a field; the city input " + a.input + " is a surface model");
-    const std::uint64_t budget = memoryBudget(a);
+    model::checkSliceSpec(a);
     io::FieldRequest request = a.request;
-    request.memoryBudget = budget;
+    request.memoryBudget = model::memoryBudget(a);
 
     Timer loadTimer;
     const ScalarField field = loadField(a.input, request, 8);
     const double loadMs = loadTimer.ms();
-    const SlicePlane plane = a.plane.value_or(field.patientLps ? SlicePlane::Axial : SlicePlane::Z);
-    if (!field.patientLps && (plane == SlicePlane::Axial || plane == SlicePlane::Coronal || plane == SlicePlane::Sagittal))
-        throw UsageError(std::string("--plane ") + slicePlaneName(plane) + ": " + a.input +
-                         " is not in patient coordinates (DICOM, NIfTI, NRRD in LPS space); use x, y or z");
-
-    double position = 0.0;
-    if (a.at) {
-        position = worldPosition(field, plane, *a.at);
-    } else {
-        position = slicePositionOfIndex(field, plane, a.index.value_or(field.dims[sliceGridAxis(field, plane)] / 2));
-    }
-    // A figure: the slice fills the plot that its layout leaves (--size or --print-size is the
-    // whole figure), less bands around it for the letters, ticks and scale bar.
-    std::optional<io::FigureLayout> layout;
-    int width = a.width, height = a.height;
-    dvec2 offset(0.0);
-    if (a.figure.enabled) {
-        layout = figureLayout(a.figure, a.width ? a.width : 1200, a.height ? a.height : 1000, true);
-        const Bands b = figureBands(field, a.figure.scaleBar);
-        const double lp = layout->labelPx;
-        offset = dvec2(double(std::lround(b.left * lp)), double(std::lround(b.top * lp)));
-        width = layout->plotW - int(offset.x) - int(std::lround(b.right * lp));
-        height = layout->plotH - int(offset.y) - int(std::lround(b.bottom * lp));
-        if (width < 16 || height < 16)
-            throw UsageError("--figure: " + std::to_string(layout->width) + "x" + std::to_string(layout->height) + " pixels at " +
-                             std::to_string(layout->dpi) + " dpi leave no room for the slice (make it larger or lower the dpi)");
-    }
-    const SliceView view = makeSliceView(field, plane, position, width, height);
-    checkMemoryBudget(a.input + ": a slice of " + std::to_string(view.width) + "x" + std::to_string(view.height) + " pixels",
-                      Frame::bytesFor(view.width, view.height) + std::uint64_t(view.width) * std::uint64_t(view.height) * 29, budget);
-    const SliceValues values = sampleSlice(field, view, a.threads);
-    const Colouring colouring = chooseColouring(a, field, values);
-    const Frame image = colourSlice(values, colouring.c);
+    const model::SliceResult r = model::renderSlice(field, a);
     io::ImageWriteOptions options;
-    options.dpi = a.figure.dpi;
-    if (layout) {
-        Frame plot(layout->plotW, layout->plotH);
-        std::fill(plot.rgba.begin(), plot.rgba.end(), vec4(0.0f));  // the paper
-        for (int y = 0; y < image.height; ++y)
-            for (int x = 0; x < image.width; ++x) plot.rgba[plot.pixel(int(offset.x) + x, int(offset.y) + y)] = image.rgba[image.pixel(x, y)];
-        options.dpi = layout->dpi;
-        io::writeImage(io::composeFigure(plot, sliceFigureSpec(a, field, view, colouring.c, offset), *layout), a.output, options);
-    } else {
-        io::writeImage(image, a.output, options);
-    }
-
-    std::uint64_t valid = 0, masked = 0;
-    for (SliceSample s : values.state) valid += s == SliceSample::Valid, masked += s == SliceSample::Masked;
-    const SliceColouring& c = colouring.c;
-    std::ostringstream summary;
-    summary << a.output << ": " << slicePlaneName(plane) << " slice of " << field.name << " at " << positionText(field, view)
-            << " (sample " << number(view.gridIndex, 4) << " of " << field.dims[view.gridAxis] << " along grid axis " << view.gridAxis
-            << "), " << view.width << "x" << view.height << " pixels of " << number(view.pixelSize, 4) << (field.patientLps ? " mm" : "")
-            << ", ";
-    if (c.window.valid())
-        summary << "window centre " << number(c.window.centre) << " width " << number(c.window.width) << " (" << colouring.source
-                << (c.invertedGrey ? ", MONOCHROME1: inverted" : "") << ")";
-    else
-        summary << c.colormap << " over " << number(c.low) << " .. " << number(c.high) << " (" << colouring.source << ")";
-    if (masked) summary << ", " << masked << " masked pixels";
-    log::info(summary.str());
-
-    if (!a.statsPath.empty()) {
-        StatsJson js;
-        js.set("input", a.input);
-        js.set("variable", field.name);
-        js.set("units", field.units);
-        js.set("plane", slicePlaneName(plane));
-        js.set("position", view.position);
-        js.set("grid_axis", view.gridAxis);
-        js.set("grid_index", view.gridIndex);
-        js.set("width", view.width);
-        js.set("height", view.height);
-        js.set("pixel_size", view.pixelSize);
-        js.set("patient_lps", field.patientLps);
-        js.set("screen_right", directionName(field, view.screenRight()));
-        js.set("screen_up", directionName(field, view.screenUp()));
-        if (layout) {
-            js.set("figure_width", layout->width);
-            js.set("figure_height", layout->height);
-            js.set("figure_dpi", layout->dpi);
-            js.set("figure_slice", std::to_string(layout->plotX + int(offset.x)) + "," + std::to_string(layout->plotY + int(offset.y)) +
-                                       "," + std::to_string(view.width) + "," + std::to_string(view.height));
-        }
-        if (c.window.valid()) {
-            js.set("window_centre", c.window.centre);
-            js.set("window_width", c.window.width);
-            js.set("window_inverted", c.invertedGrey);
-        } else {
-            js.set("colormap", c.colormap);
-            js.set("colour_min", c.low);
-            js.set("colour_max", c.high);
-        }
-        js.set("colour_source", colouring.source);
-        js.set("valid_pixels", valid);
-        js.set("masked_pixels", masked);
-        js.set("load_ms", loadMs);
-        io::writeFileAtomically(a.statsPath, std::string_view(js.text()));
-    }
+    options.dpi = r.dpi;
+    io::writeImage(r.image, a.output, options);
+    log::info(model::sliceSummary(field, r, a.output));
+    if (!a.statsPath.empty())
+        io::writeFileAtomically(a.statsPath, std::string_view(model::sliceStats(field, r, a.input, loadMs).json(model::sayForCli)));
     return 0;
 }
 

@@ -96,25 +96,27 @@ void addLightingOption(OptionParser& p, SurfaceArgs& a) {
     for (const model::Option* o : {&model::opt::lighting, &model::opt::ambient, &model::opt::shadows}) p.add(settingOption(*o, into(a)));
 }
 
-void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result) {
+void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result) { addThreadsOption(p, into(a), result); }
+
+void addThreadsOption(OptionParser& p, const model::SettingTargets& targets, const std::string& result) {
     (void)result;
-    p.add(settingOption(model::opt::threads, into(a)));
+    p.add(settingOption(model::opt::threads, targets));
 }
 
-void addWindowOption(OptionParser& p, SurfaceArgs& a, const std::string& what, const std::string& byDefault) {
+void addWindowOption(OptionParser& p, const model::SettingTargets& targets, const std::string& what, const std::string& byDefault) {
     std::string windows;
     for (const auto& w : ctWindowPresets())
         windows += std::string(windows.empty() ? "" : ", ") + w.name + " " + huText(w.window.centre) + "/" +
                    huText(w.window.width);
-    p.add(settingOption(model::opt::window, into(a),
+    p.add(settingOption(model::opt::window, targets,
                         what + "; the CT presets (centre/width in HU): " + windows + "; without it: " + byDefault));
 }
 
-void addColourMapOptions(OptionParser& p, SurfaceArgs& a, const std::string& colormapHelp, const std::string& rangeHelp,
-                         const std::string& maskedWhat) {
-    p.add(settingOption(model::opt::colormap, into(a), joinNames(colormapNames()) + "; " + colormapHelp));
-    p.add(settingOption(model::opt::colourRange, into(a), rangeHelp));
-    p.add(settingOption(model::opt::maskedColour, into(a), "here " + maskedWhat));
+void addColourMapOptions(OptionParser& p, const model::SettingTargets& targets, const std::string& colormapHelp,
+                         const std::string& rangeHelp, const std::string& maskedWhat) {
+    p.add(settingOption(model::opt::colormap, targets, joinNames(colormapNames()) + "; " + colormapHelp));
+    p.add(settingOption(model::opt::colourRange, targets, rangeHelp));
+    p.add(settingOption(model::opt::maskedColour, targets, "here " + maskedWhat));
 }
 
 void addColourOptions(OptionParser& p, SurfaceArgs& a) {
@@ -122,9 +124,9 @@ void addColourOptions(OptionParser& p, SurfaceArgs& a) {
     p.add(settingOption(model::opt::colour, into(a)));
     p.add({"color", "R,G,B", "same as --colour (default 0.85,0.62,0.35)",
            [&](const std::string& v) { model::applySetting(model::opt::colour, v, into(a)); }});
-    addWindowOption(p, a, "here the surface, by the value just under it",
+    addWindowOption(p, into(a), "here the surface, by the value just under it",
                     "the window stored in a DICOM file, unless --colour, --colormap or --colour-by is given");
-    addColourMapOptions(p, a,
+    addColourMapOptions(p, into(a),
                         "here the surface's height, or --colour-by's values; with --colour-by, by default the variable's map "
                         "from its standard_name or name, thermal/haline/speed/viridis",
                         "here --colour-by's values, by default the surface voxels' range",
@@ -150,14 +152,21 @@ void addCityOptions(OptionParser& p, SurfaceArgs& a) {
 
 void addSeriesOption(OptionParser& p, io::FieldRequest& request) { p.add(settingOption(model::opt::series, into(request))); }
 
-void addMessageOptions(OptionParser& p, SurfaceArgs& a) {
-    p.add(settingOption(model::opt::maxMemory, into(a)));
+void addMessageOptions(OptionParser& p, SurfaceArgs& a) { addMessageOptions(p, a, into(a)); }
+
+void addMessageOptions(OptionParser& p, MessageArgs& a, const model::SettingTargets& budget) {
+    p.add(settingOption(model::opt::maxMemory, budget));
     p.add({"quiet", "", "print only errors", [&](const std::string&) { a.quiet = true; }});
     p.add({"verbose", "", "print debugging details", [&](const std::string&) { a.verbose = true; }});
     p.add({"help", "", "show this help and exit", [&](const std::string&) { a.help = true; }});
 }
 
 bool parseCommandLine(const OptionParser& p, const std::vector<std::string>& args, SurfaceArgs& a,
+                      const std::string& output, const std::string& missingOutput) {
+    return parseCommandLine(p, args, a, a.input, output, missingOutput);
+}
+
+bool parseCommandLine(const OptionParser& p, const std::vector<std::string>& args, MessageArgs& a, std::string& input,
                       const std::string& output, const std::string& missingOutput) {
     const std::vector<std::string> positional = p.parse(args);
     if (a.help) {
@@ -167,7 +176,7 @@ bool parseCommandLine(const OptionParser& p, const std::vector<std::string>& arg
     if (positional.size() != 1)
         throw UsageError(p.command() + " needs exactly one INPUT (got " + std::to_string(positional.size()) + ")");
     if (output.empty()) throw UsageError(p.command() + " needs " + missingOutput);
-    a.input = positional[0];
+    input = positional[0];
     return true;
 }
 

@@ -27,11 +27,14 @@
 
 namespace octrace::cli {
 
-/// The surface commands' options: the pipeline's spec (model/Surface.h) and what only the
-/// command line has.
-struct SurfaceArgs : model::SurfaceSpec {
+/// What only the command line has: --help, --quiet, --verbose.
+struct MessageArgs {
     bool help = false, quiet = false, verbose = false;
 };
+
+/// The surface commands' options: the pipeline's spec (model/Surface.h) and what only the
+/// command line has.
+struct SurfaceArgs : model::SurfaceSpec, MessageArgs {};
 
 // The pipeline's names, as the commands use them.
 using model::applyColour;
@@ -76,15 +79,16 @@ void addBakeOptions(OptionParser& p, SurfaceArgs& a);
 void addLightingOption(OptionParser& p, SurfaceArgs& a);
 /// --threads; `result` names what does not depend on it ("the image").
 void addThreadsOption(OptionParser& p, SurfaceArgs& a, const std::string& result);
+void addThreadsOption(OptionParser& p, const model::SettingTargets& into, const std::string& result);
 /// --colour, --color, --colormap, --window, --colour-range, --masked-colour, --floor-colour.
 void addColourOptions(OptionParser& p, SurfaceArgs& a);
 /// --window (the options table's), its help followed by `what` (what it greys here), the presets,
 /// and what is drawn without it (`byDefault`).
-void addWindowOption(OptionParser& p, SurfaceArgs& a, const std::string& what, const std::string& byDefault);
+void addWindowOption(OptionParser& p, const model::SettingTargets& into, const std::string& what, const std::string& byDefault);
 /// --colormap, --colour-range, --masked-colour (the options table's), with what the first two mean
 /// for the command (after the list of maps) and what the masked colour colours.
-void addColourMapOptions(OptionParser& p, SurfaceArgs& a, const std::string& colormapHelp, const std::string& rangeHelp,
-                         const std::string& maskedWhat);
+void addColourMapOptions(OptionParser& p, const model::SettingTargets& into, const std::string& colormapHelp,
+                         const std::string& rangeHelp, const std::string& maskedWhat);
 /// --colour-by, --floor: what is drawn besides the isosurface.
 void addLayerOptions(OptionParser& p, SurfaceArgs& a);
 /// --region, --depth-range, --time (unless `timeStep` is false: animate's --time is its `times`), --vertical-scale.
@@ -93,14 +97,18 @@ void addGeographicOptions(OptionParser& p, io::FieldRequest& request, bool timeS
 void addCityOptions(OptionParser& p, SurfaceArgs& a);
 /// --series (DICOM).
 void addSeriesOption(OptionParser& p, io::FieldRequest& request);
-/// --max-memory, --quiet, --verbose, --help.
+/// --max-memory (landing in `budget`), --quiet, --verbose, --help.
 void addMessageOptions(OptionParser& p, SurfaceArgs& a);
+void addMessageOptions(OptionParser& p, MessageArgs& a, const model::SettingTargets& budget);
 
 /// The start of every surface command: parses `args` with `p` (which writes into `a`). With
 /// --help, prints the help on stdout and returns false. Otherwise checks that there is exactly
 /// one INPUT (stored in a.input) and that `output` (filled by the parse) is not empty, else
 /// throws UsageError "<command> needs " + `missingOutput`; returns true.
 bool parseCommandLine(const OptionParser& p, const std::vector<std::string>& args, SurfaceArgs& a,
+                      const std::string& output, const std::string& missingOutput);
+/// The same for a command whose spec is not a surface's: the INPUT lands in `input`.
+bool parseCommandLine(const OptionParser& p, const std::vector<std::string>& args, MessageArgs& a, std::string& input,
                       const std::string& output, const std::string& missingOutput);
 
 

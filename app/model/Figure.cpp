@@ -16,13 +16,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::string number(double v, int precision = 6) {
-    std::ostringstream s;
-    s.precision(precision);
-    s << (v == 0.0 ? 0.0 : v);
-    return s.str();
-}
-
 /// Projects world points into the plot; false behind a perspective camera.
 struct Projector {
     explicit Projector(const Camera& c) : rays(c) {}
@@ -37,6 +30,13 @@ struct Projector {
 };
 
 }  // namespace
+
+std::string numberText(double v, int precision) {
+    std::ostringstream s;
+    s.precision(precision);
+    s << (v == 0.0 ? 0.0 : v);
+    return s.str();
+}
 
 std::string longitudeText(double lon) {
     lon = std::fmod(lon, 360.0);
@@ -110,7 +110,7 @@ io::FigureSpec figureSpec(const FigureSettings& f, const FigureSubject& subject,
     io::FigureSpec spec;
     spec.title = f.title;
     const ScalarField::Geographic& geographic = subject.geographic;
-    std::string sub = (tree.fieldName().empty() ? subject.name : tree.fieldName()) + " = " + number(subject.iso) +
+    std::string sub = (tree.fieldName().empty() ? subject.name : tree.fieldName()) + " = " + numberText(subject.iso) +
                       (tree.fieldUnits().empty() ? "" : " " + tree.fieldUnits());
     const Albedo albedo(tree, rs);
     if (albedo.byValue()) {
@@ -163,13 +163,13 @@ io::FigureSpec figureSpec(const FigureSettings& f, const FigureSubject& subject,
         const double d0 = g.depthM(box.hi.z), d1 = g.depthM(box.lo.z);
         for (double lon : io::niceTicks(lon0, lon1, 6)) tick({g.x(lon), box.lo.y, box.hi.z}, longitudeText(lon), 0.0, 1.4);
         for (double lat : io::niceTicks(lat0, lat1, 5)) tick({box.hi.x, g.y(lat), box.hi.z}, latitudeText(lat), 2.2, 0.0);
-        for (double d : io::niceTicks(d0, d1, 4)) tick({box.hi.x, box.lo.y, g.z(d)}, number(d) + " m", 2.6, 0.0);
+        for (double d : io::niceTicks(d0, d1, 4)) tick({box.hi.x, box.lo.y, g.z(d)}, numberText(d) + " m", 2.6, 0.0);
         sub += "; " + longitudeText(lon0) + "\u2013" + longitudeText(lon1) + ", " + latitudeText(lat0) + "\u2013" +
-               latitudeText(lat1) + ", " + number(std::round(d0)) + "\u2013" + number(std::round(d1)) + " m";
+               latitudeText(lat1) + ", " + numberText(std::round(d0)) + "\u2013" + numberText(std::round(d1)) + " m";
     } else {
-        for (double x : io::niceTicks(box.lo.x, box.hi.x, 5)) tick({x, box.lo.y, box.hi.z}, "x " + number(x, 4), 0.0, 1.4);
-        for (double y : io::niceTicks(box.lo.y, box.hi.y, 5)) tick({box.hi.x, y, box.hi.z}, "y " + number(y, 4), 2.2, 0.0);
-        for (double z : io::niceTicks(box.lo.z, box.hi.z, 4)) tick({box.hi.x, box.lo.y, z}, "z " + number(z, 4), 2.6, 0.0);
+        for (double x : io::niceTicks(box.lo.x, box.hi.x, 5)) tick({x, box.lo.y, box.hi.z}, "x " + numberText(x, 4), 0.0, 1.4);
+        for (double y : io::niceTicks(box.lo.y, box.hi.y, 5)) tick({box.hi.x, y, box.hi.z}, "y " + numberText(y, 4), 2.2, 0.0);
+        for (double z : io::niceTicks(box.lo.z, box.hi.z, 4)) tick({box.hi.x, box.lo.y, z}, "z " + numberText(z, 4), 2.6, 0.0);
     }
     // The caption first: a long subtitle is cut at the right.
     spec.subtitle = f.caption.empty() ? sub : f.caption + (sub.empty() ? "" : "; " + sub);
@@ -183,7 +183,7 @@ io::FigureSpec figureSpec(const FigureSettings& f, const FigureSubject& subject,
         const double length = io::scaleBarLength(perPixel, camera.width);
         if (length > 0.0) {
             spec.scaleBarPx = length / perPixel;
-            spec.scaleBarLabel = number(length) + (subject.lengthUnit.empty() ? "" : " " + subject.lengthUnit);
+            spec.scaleBarLabel = numberText(length) + (subject.lengthUnit.empty() ? "" : " " + subject.lengthUnit);
         }
     }
     return spec;

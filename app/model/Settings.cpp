@@ -1,5 +1,7 @@
 #include "octrace/model/Settings.h"
 
+#include "octrace/model/Slice.h"
+
 #include "octrace/build/CtPresets.h"
 #include "octrace/render/Shading.h"
 #include "octrace/util/Error.h"
@@ -36,15 +38,21 @@ const std::string& nonEmpty(const Option& o, const std::string& text, const char
 }
 
 using Setter = std::function<void(const std::string& text, const SettingTargets& t)>;
+using SliceSetter = std::function<void(const std::string& text, SliceSpec& s)>;
 
 struct Entry {
     SettingPart part;
     Setter set;
     bool shading = false;  ///< a surface setting that only applyColour or applyLighting reads
+    SliceSetter slice;     ///< where the slice spec holds it (empty: not a setting of slices)
 };
 
-/// The request a setting of what to read lands in: the targets' own, else the surface's.
-io::FieldRequest* requestOf(const SettingTargets& t) { return t.request ? t.request : t.surface ? &t.surface->request : nullptr; }
+/// The request a setting of what to read lands in: the targets' own, else the surface's or the slice's.
+io::FieldRequest* requestOf(const SettingTargets& t) {
+    return t.request ? t.request : t.surface ? &t.surface->request : t.slice ? &t.slice->request : nullptr;
+}
+/// The figure settings' target: the targets' own, else the slice's.
+FigureSettings* figureOf(const SettingTargets& t) { return t.figure ? t.figure : t.slice ? &t.slice->figure : nullptr; }
 
 // Shorthands for the table below: a setter of the request, surface, render or figure part.
 Entry request(std::function<void(const std::string&, io::FieldRequest&)> f) {
@@ -59,7 +67,16 @@ Entry render(std::function<void(const std::string&, RenderSpec&)> f) {
     return {SettingPart::Render, [f](const std::string& v, const SettingTargets& t) { f(v, *t.render); }};
 }
 Entry figure(std::function<void(const std::string&, FigureSettings&)> f) {
-    return {SettingPart::Figure, [f](const std::string& v, const SettingTargets& t) { f(v, *t.figure); }};
+    return {SettingPart::Figure, [f](const std::string& v, const SettingTargets& t) { f(v, *figureOf(t)); }};
+}
+/// A setting of slices only (`plane`, `at`, `index`).
+Entry slice(SliceSetter f) { return {SettingPart::Slice, {}, false, std::move(f)}; }
+/// `e`, a setting that the slice spec holds too, under the same member names: `f` is the one
+/// setter of both (generic over the spec).
+template <class F>
+Entry andSlice(Entry e, F f) {
+    e.slice = f;
+    return e;
 }
 /// A text setting of a city input: not empty, marks a city setting given.
 Entry cityText(const Option& o, std::string io::CityRequest::*field, const char* what) {
@@ -99,9 +116,8 @@ const std::unordered_map<std::string_view, Entry>& setters() {
         m.emplace(opt::verticalScale.key, request([](const std::string& v, io::FieldRequest& q) {
             q.verticalScale = parseNumber(opt::verticalScale, v);
         }));
-        m.emplace(opt::maxMemory.key, surface([](const std::string& v, SurfaceSpec& s) {
-            s.maxMemory = parseByteSize(opt::maxMemory, v);
-        }));
+        const auto maxMemory = [](const std::string& v, auto& s) { s.maxMemory = parseByteSize(opt::maxMemory, v); };
+        m.emplace(opt::maxMemory.key, andSlice(surface(maxMemory), maxMemory));
         // The surface.
         m.emplace(opt::iso.key, surface([](const std::string& v, SurfaceSpec& s) {
             s.isoPreset.clear();
@@ -113,7 +129,8 @@ const std::unordered_map<std::string_view, Entry>& setters() {
             s.depth = parseInteger(opt::depth, v);
             s.depthGiven = true;
         }));
-        m.emplace(opt::threads.key, surface([](const std::string& v, SurfaceSpec& s) { s.threads = parseInteger(opt::threads, v); }));
+        const auto threads = [](const std::string& v, auto& s) { s.threads = parseInteger(opt::threads, v); };
+        m.emplace(opt::threads.key, andSlice(surface(threads), threads));
         m.emplace(opt::form.key, surface([](const std::string& v, SurfaceSpec& s) {
             s.form = parseChoice(opt::form, v) == "volume" ? OctreeForm::Volume : OctreeForm::Shell;
             s.formGiven = true;
@@ -168,25 +185,27 @@ const std::unordered_map<std::string_view, Entry>& setters() {
             s.colour = vec3(parseColour(opt::colour, v, false));
             s.colourGiven = true;
         }));
-        m.emplace(opt::colormap.key, shading([](const std::string& v, SurfaceSpec& s) {
+        const auto colourMap = [](const std::string& v, auto& s) {
             colormap(v, 0.0f);  // throws for an unknown name
             s.colormap = v;
-        }));
-        m.emplace(opt::window.key, surface([](const std::string& v, SurfaceSpec& s) {
+        };
+        m.emplace(opt::colormap.key, andSlice(shading(colourMap), colourMap));
+        const auto window = [](const std::string& v, auto& s) {
             s.window = displayWindow(v);
             s.windowName = v;
-        }));
+        };
+        m.emplace(opt::window.key, andSlice(surface(window), window));
         m.emplace(opt::colourBy.key, surface([](const std::string& v, SurfaceSpec& s) {
             s.colourBy = nonEmpty(opt::colourBy, v, "a variable name");
         }));
-        m.emplace(opt::colourRange.key, shading([](const std::string& v, SurfaceSpec& s) {
+        const auto colourRange = [](const std::string& v, auto& s) {
             const dvec2 r = parseRange(opt::colourRange, v);
             s.colourMin = float(r.x);
             s.colourMax = float(r.y);
-        }));
-        m.emplace(opt::maskedColour.key, shading([](const std::string& v, SurfaceSpec& s) {
-            s.maskedColour = vec3(parseColour(opt::maskedColour, v, false));
-        }));
+        };
+        m.emplace(opt::colourRange.key, andSlice(shading(colourRange), colourRange));
+        const auto maskedColour = [](const std::string& v, auto& s) { s.maskedColour = vec3(parseColour(opt::maskedColour, v, false)); };
+        m.emplace(opt::maskedColour.key, andSlice(shading(maskedColour), maskedColour));
         m.emplace(opt::floorColour.key, shading([](const std::string& v, SurfaceSpec& s) {
             s.floorColour = vec3(parseColour(opt::floorColour, v, false));
         }));
@@ -196,7 +215,8 @@ const std::unordered_map<std::string_view, Entry>& setters() {
             (void)resolveRendererName(v);
             r.renderer = v;
         }));
-        m.emplace(opt::size.key, render([](const std::string& v, RenderSpec& r) { parseSize(opt::size, v, r.width, r.height); }));
+        const auto size = [](const std::string& v, auto& s) { parseSize(opt::size, v, s.width, s.height); };
+        m.emplace(opt::size.key, andSlice(render(size), size));
         m.emplace(opt::width.key, render([](const std::string& v, RenderSpec& r) { r.width = parseInteger(opt::width, v); }));
         m.emplace(opt::height.key, render([](const std::string& v, RenderSpec& r) { r.height = parseInteger(opt::height, v); }));
         m.emplace(opt::cameraPos.key, render([](const std::string& v, RenderSpec& r) { r.cameraPos = parseVec3(opt::cameraPos, v); }));
@@ -207,7 +227,8 @@ const std::unordered_map<std::string_view, Entry>& setters() {
             r.ortho = v == "orthographic" || parseChoice(opt::projection, v) == "ortho";
         }));
         m.emplace(opt::orthoHeight.key, render([](const std::string& v, RenderSpec& r) { r.orthoHeight = parseNumber(opt::orthoHeight, v); }));
-        m.emplace(opt::background.key, render([](const std::string& v, RenderSpec& r) { r.background = parseColour(opt::background, v, true); }));
+        const auto background = [](const std::string& v, auto& s) { s.background = parseColour(opt::background, v, true); };
+        m.emplace(opt::background.key, andSlice(render(background), background));
         m.emplace(opt::light.key, render([](const std::string& v, RenderSpec& r) {
             const dvec3 l = parseVec3(opt::light, v);
             if (!(glm::length(l) > 0.0)) refuse(opt::light, "direction must not be zero");
@@ -238,6 +259,14 @@ const std::unordered_map<std::string_view, Entry>& setters() {
         m.emplace(opt::dpi.key, figure([](const std::string& v, FigureSettings& f) { f.dpi = parseInteger(opt::dpi, v); }));
         m.emplace(opt::printSize.key, figure([](const std::string& v, FigureSettings& f) { f.printInches = parsePrintSize(opt::printSize, v); }));
         m.emplace(opt::scaleBar.key, figure([](const std::string&, FigureSettings& f) { f.scaleBar = true; }));
+        // Slices.
+        m.emplace(opt::plane.key, slice([](const std::string& v, SliceSpec& s) {
+            const std::string name = parseChoice(opt::plane, v);
+            for (SlicePlane p : {SlicePlane::Axial, SlicePlane::Coronal, SlicePlane::Sagittal, SlicePlane::X, SlicePlane::Y, SlicePlane::Z})
+                if (name == slicePlaneName(p)) s.plane = p;
+        }));
+        m.emplace(opt::at.key, slice([](const std::string& v, SliceSpec& s) { s.at = parseNumber(opt::at, v); }));
+        m.emplace(opt::index.key, slice([](const std::string& v, SliceSpec& s) { s.index = parseInteger(opt::index, v); }));
         return m;
     }();
     return table;
@@ -246,23 +275,34 @@ const std::unordered_map<std::string_view, Entry>& setters() {
 }  // namespace
 
 bool applySetting(const Option& o, const std::string& text, const SettingTargets& t) {
+    const auto it = setters().find(o.key);
+    const Entry* e = it == setters().end() ? nullptr : &it->second;
+    if (e && e->slice && t.slice) {
+        e->slice(text, *t.slice);
+        return true;
+    }
     if (o.key == std::string_view(opt::maxMemory.key) && !t.surface && t.request) {  // a command without a surface
         t.request->memoryBudget = parseByteSize(o, text);
         return true;
     }
-    const auto it = setters().find(o.key);
-    if (it == setters().end()) return false;
-    const Entry& e = it->second;
-    if ((e.part == SettingPart::Request && !requestOf(t)) || (e.part == SettingPart::Surface && !t.surface) ||
-        (e.part == SettingPart::Render && !t.render) || (e.part == SettingPart::Figure && !t.figure))
+    if (!e || e->part == SettingPart::Slice) return false;
+    if ((e->part == SettingPart::Request && !requestOf(t)) || (e->part == SettingPart::Surface && !t.surface) ||
+        (e->part == SettingPart::Render && !t.render) || (e->part == SettingPart::Figure && !figureOf(t)))
         return false;
-    e.set(text, t);
+    e->set(text, t);
     return true;
 }
 
 SettingPart settingPart(const Option& o) {
     const auto it = setters().find(o.key);
     return it == setters().end() ? SettingPart::None : it->second.part;
+}
+
+bool sliceSetting(const Option& o) {
+    const auto it = setters().find(o.key);
+    if (it == setters().end()) return false;
+    const Entry& e = it->second;
+    return e.slice || e.part == SettingPart::Request || (e.part == SettingPart::Figure && o.takenBy("slice"));
 }
 
 bool shadingSetting(const Option& o) {

@@ -7,6 +7,7 @@ exact octree ray casters on the CPU (no GL, no display).
     img = shell.render(size=(800, 600))
     img.save("temp10.png")          # the CLI's PNG, byte for byte
     pixels = np.asarray(img)        # (600, 800, 4) uint8, no copy
+    top = temp.slice(plane="z", at=0, figure=True)  # octrace slice: a map at the surface
 
 Keyword arguments are the keys of the options table (``octrace.options()``), the table the
 CLI's flags come from: ``--colour-range 0,20`` is ``colour_range=(0, 20)``, ``--size 800x600``
@@ -26,7 +27,7 @@ from ._octrace import FileError, InputError, LimitError, OutputError, UsageError
 from ._settings import OctraceWarning
 
 __all__ = [
-    "open", "load", "surface", "view", "animate", "options", "describe", "renderers",
+    "open", "load", "surface", "slice", "view", "animate", "options", "describe", "renderers",
     "Volume", "Input", "Surface", "Image",
     "UsageError", "InputError", "FileError", "LimitError", "OutputError", "OctraceWarning",
 ]
@@ -119,6 +120,10 @@ class Volume:
         """The isosurface's octree (``octrace.surface(self, ...)``)."""
         return surface(self, progress=progress, **options)
 
+    def slice(self, plane=None, at=None, index=None, size=None, figure=False, **options):
+        """A planar slice through the samples as an ``Image`` (``octrace.slice(self, ...)``)."""
+        return slice(self, plane=plane, at=at, index=index, size=size, figure=figure, **options)
+
     def __repr__(self):
         z, y, x = self.shape
         units = f" [{self.units}]" if self.units else ""
@@ -172,6 +177,42 @@ def surface(source, *, progress=None, **options):
     finally:
         _settings.flush_log()
     return Surface(shell, settings)
+
+
+def slice(source, plane=None, at=None, index=None, size=None, figure=False, **options):  # noqa: A001 - octrace slice
+    """A planar slice through a field's samples, as ``octrace slice`` draws it, as an ``Image``
+    (its ``stats`` are the CLI's ``--stats``). ``source``: a Volume, a NumPy array (axes z, y,
+    x), an xarray DataArray or a path (then ``var``, ``region``, ``time``, ... choose what to
+    read, as ``octrace.open`` takes them). ``plane``: axial, coronal, sagittal (patient volumes;
+    the default for them) or x, y, z (the default otherwise); ``at``: where along the plane's
+    normal (world units, mm for patient volumes; on a geographic grid the depth in metres for
+    z, the longitude or latitude for x or y), or ``index``: the sample across the plane (by
+    default the middle one); ``size=(W, H)``: the image, unset one pixel per sample;
+    ``figure=True``: the CLI's figure (grey or colour bar, letters or ticks, title). Other
+    ``options``: window, colormap, colour_range, masked_colour, background, title, dpi,
+    print_size, scale_bar, threads (``octrace.options()``)."""
+    if type(source).__name__ == "DataArray" and hasattr(source, "octrace"):
+        return source.octrace.slice(plane=plane, at=at, index=index, size=size, figure=figure, **options)
+    if type(source).__name__ == "ndarray":
+        source = Volume(source)
+    merged = {}
+    for key, value in (("plane", plane), ("at", at), ("index", index), ("size", size), ("figure", figure or None)):
+        if value is not None:
+            merged[key] = value
+    merged.update(options)
+    # A Volume is read already: what chooses the field (var, region, time, ...) has no place.
+    accepted = _settings.slice_keys(request=not isinstance(source, Volume))
+    settings = _settings.settings(merged, accepted, "slice")
+    try:
+        if isinstance(source, Volume):
+            frame = _octrace.slice_field(source._field, settings)
+        elif isinstance(source, Input):
+            frame = _octrace.slice_path(source.path, source._settings + settings)
+        else:
+            frame = _octrace.slice_path(os.fspath(source), settings)
+    finally:
+        _settings.flush_log()
+    return Image(frame)
 
 
 def load(path, **options):
@@ -256,7 +297,7 @@ class Surface:
 
 
 class Image:
-    """A rendered frame. ``np.asarray(img)`` is its (H, W, 4) uint8 sRGB pixels without a copy
+    """A rendered frame or slice. ``np.asarray(img)`` is its (H, W, 4) uint8 sRGB pixels without a copy
     (the bytes a PNG of it holds); ``img.depth`` the distance along each ray (float32, inf for a
     miss); ``img.stats`` the dict of the CLI's ``--stats``; in Jupyter it shows itself."""
 

@@ -86,6 +86,12 @@ def keys(parts, shading=False):
     return {k for k, o in _TABLE.items() if o["part"] in parts or (shading and o["shading"])}
 
 
+def slice_keys(request=True):
+    """The settings of a slice (those ``octrace slice`` takes: plane, at, index, size, window,
+    colour map, figure, ...); with ``request`` also what to read (var, region, time, ...)."""
+    return {k for k, o in _TABLE.items() if o["slice"] and (request or o["part"] != "request")}
+
+
 def reader_keys():
     """The settings that choose what to read from an input (those `octrace info` takes)."""
     return {k for k, o in _TABLE.items() if o["part"] and "info" in o["commands"].split()}

@@ -1,5 +1,5 @@
 """The xarray accessor: ``da.octrace.render(iso=10, ...)``, ``da.octrace.surface(...)``,
-``da.octrace.volume()``, ``da.octrace.describe()``.
+``da.octrace.slice(plane="z", at=500)``, ``da.octrace.volume()``, ``da.octrace.describe()``.
 
 The DataArray's values, coordinates and attributes go as they are to the C++ CF interpretation
 of the NetCDF reader (io/CfDataset.h): the same axis roles, geographic mapping, masking, uneven
@@ -88,7 +88,7 @@ def register():
     """Registers ``DataArray.octrace`` (done on ``import octrace`` when xarray is installed)."""
     import xarray as xr
 
-    from . import Volume, surface
+    from . import Volume, slice, surface  # noqa: A004 - octrace.slice
 
     @xr.register_dataarray_accessor("octrace")
     class OctraceAccessor:
@@ -128,5 +128,11 @@ def register():
             build = {k: v for k, v in options.items() if k not in render_keys}
             shell = self.surface(**build)
             return shell.render(size=size, camera=camera, renderer=renderer, figure=figure, **view)
+
+        def slice(self, plane=None, at=None, index=None, size=None, figure=False, **options):
+            """A planar slice (``octrace.slice``) of the field ``volume()`` reads, the reader's
+            settings (region, depth_range, time, ...) included: ``octrace slice``'s pixels."""
+            reader, rest = _split(options)
+            return slice(self.volume(**reader), plane=plane, at=at, index=index, size=size, figure=figure, **rest)
 
     return OctraceAccessor

@@ -12,6 +12,7 @@
 #include "octrace/model/OptionTable.h"
 #include "octrace/model/Render.h"
 #include "octrace/model/Settings.h"
+#include "octrace/model/Slice.h"
 #include "octrace/model/Stats.h"
 #include "octrace/model/Surface.h"
 
@@ -170,8 +171,9 @@ nb::list optionTable() {
         d["choices"] = o->choiceList();
         d["unit"] = o->unit;
         d["commands"] = o->commands;
-        const char* parts[] = {"", "request", "surface", "render", "figure"};
+        const char* parts[] = {"", "request", "surface", "render", "figure", "slice"};
         d["part"] = parts[int(model::settingPart(*o))];
+        d["slice"] = model::sliceSetting(*o);
         d["shading"] = model::shadingSetting(*o);
         d["separator"] = model::valueSeparator(*o) ? nb::cast(std::string(1, model::valueSeparator(*o))) : nb::none();
         d["renderer_dependent"] = o->renderers != nullptr;
@@ -414,6 +416,43 @@ Image renderShell(const Shell& sh, const Settings& surfaceSettings, const Settin
     return std::move(*image);
 }
 
+// ---- Slices. ----
+
+/// The slice of `field` that `spec` asks for (model::renderSlice) as an Image with the CLI's
+/// stats; on the calling thread (the caller runs it through interruptible).
+Image sliceImage(const ScalarField& field, const model::SliceSpec& spec, double loadMs) {
+    model::SliceResult r = model::renderSlice(field, spec);
+    Image image;
+    image.stats = model::sliceStats(field, r, spec.input, loadMs);
+    image.dpi = r.dpi;
+    image.frame = std::move(r.image);
+    return image;
+}
+
+/// A slice of a field read already (a Volume) with the slice's settings.
+Image sliceField(const Field& field, const Settings& settings) {
+    model::SliceSpec spec;
+    spec.input = field.input.empty() ? field.field->source : field.input;
+    applySettings(settings, {.slice = &spec});
+    return runInterruptible([&] { return sliceImage(*field.field, spec, field.loadMs); });
+}
+
+/// A slice of the file `path`, read as `octrace slice PATH` reads it (its request settings
+/// among `settings`).
+Image slicePath(const std::string& path, const Settings& settings) {
+    model::SliceSpec spec;
+    spec.input = path;
+    applySettings(settings, {.slice = &spec});
+    model::checkSliceSpec(spec);
+    io::FieldRequest request = spec.request;
+    request.memoryBudget = model::memoryBudget(spec);
+    return runInterruptible([&] {
+        Timer t;
+        const ScalarField field = model::loadField(path, request, int(model::opt::depth.defaultValue));
+        return sliceImage(field, spec, t.ms());
+    });
+}
+
 nb::dict cameraSettings(const Camera& c);
 
 /// The camera a frame of `sh` with `renderSettings` has (framing the surface unless the
@@ -632,6 +671,8 @@ NB_MODULE(_octrace, m) {
             interruptible([&] { io::writeImage(i.frame, path, options); }, cancel);
         }, "path"_a);
     m.def("render", &renderShell, "shell"_a, "surface_settings"_a, "render_settings"_a);
+    m.def("slice_field", &sliceField, "field"_a, "settings"_a);
+    m.def("slice_path", &slicePath, "path"_a, "settings"_a);
     bindCfArrays(m);
     m.def("box_camera", &boxCamera, "box"_a, "render_settings"_a, "orbit_degrees"_a = 0.0);
     m.def("parse_number", [](const std::string& key, const std::string& text) {

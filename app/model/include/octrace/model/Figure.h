@@ -40,6 +40,9 @@ struct GeoAxes {
     double z(double depthM) const;
 };
 
+/// `v` at `precision` significant digits, -0 as 0: how figures and summaries print a number.
+std::string numberText(double v, int precision = 6);
+
 /// "150°E", "30°W", "0°", rounded to whole degrees.
 std::string longitudeText(double lon);
 /// "35°N", "10°S", "0°".

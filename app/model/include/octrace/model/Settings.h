@@ -18,6 +18,8 @@
 
 namespace octrace::model {
 
+struct SliceSpec;  // Slice.h
+
 /// Where a job's settings land. A front end points at the parts its command has; a setting
 /// whose part is missing is not the command's (applySetting returns false).
 struct SettingTargets {
@@ -28,13 +30,23 @@ struct SettingTargets {
     /// surface's request. For a command without a surface (info), `max_memory` lands here too
     /// (FieldRequest::memoryBudget); with a surface in SurfaceSpec::maxMemory.
     io::FieldRequest* request = nullptr;
+    /// A slice (Slice.h): its own settings (`plane`, `at`, `index`) and those it shares with
+    /// the surface and the view under the same names (`window`, `colormap`, `size`,
+    /// `background`, ...) land here; what to read and the figure land in its request and
+    /// figure unless `request` or `figure` is given.
+    SliceSpec* slice = nullptr;
 };
 
 /// Which part of a job a setting belongs to: what to read (FieldRequest), the surface
 /// (SurfaceSpec), how it is drawn (RenderSpec), its figure (FigureSettings); None for the
-/// settings a front end keeps (`verify`, `repeat`, a command's own such as `plane`).
-enum class SettingPart { None, Request, Surface, Render, Figure };
+/// settings a front end keeps (`verify`, `repeat`, a command's own such as `format`); Slice for
+/// those only a slice has (`plane`, `at`, `index`).
+enum class SettingPart { None, Request, Surface, Render, Figure, Slice };
 SettingPart settingPart(const Option& o);
+/// Whether a slice takes the setting (applySetting with SettingTargets::slice): its own, those
+/// it shares with the surface and the view, what to read, and the figure's that `octrace slice`
+/// takes.
+bool sliceSetting(const Option& o);
 /// Whether a surface setting is read only when a frame is shaded (applyColour, applyLighting:
 /// colours, colour map and range, lighting), so that changing it needs no rebuild.
 bool shadingSetting(const Option& o);

@@ -1,0 +1,314 @@
+#include "octrace/model/Slice.h"
+
+#include "octrace/model/Input.h"
+#include "octrace/model/Surface.h"
+
+#include "octrace/build/CtPresets.h"
+#include "octrace/io/CityReader.h"
+#include "octrace/render/Shading.h"
+#include "octrace/util/Error.h"
+#include "octrace/util/Memory.h"
+#include "octrace/util/Parameter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+namespace octrace::model {
+namespace {
+
+/// `at` in world units along the plane's normal axis (geographic grids: depth, longitude, latitude).
+double worldPosition(const ScalarField& f, SlicePlane plane, double at) {
+    if (!f.geographic.valid) return at;
+    const GeoAxes g{f.geographic};
+    const int n = sliceNormalAxis(plane);
+    return n == 2 ? g.z(at) : n == 0 ? g.x(at) : g.y(at);
+}
+
+/// The plane's position as the user reads it: "z = 12.5 mm", "500 m depth", "150°E".
+std::string positionText(const ScalarField& f, const SliceView& v) {
+    const int n = sliceNormalAxis(v.plane);
+    if (f.geographic.valid) {
+        const GeoAxes g{f.geographic};
+        return n == 2 ? numberText(g.depthM(v.position), 5) + " m depth"
+               : n == 0 ? longitudeText(g.lon(v.position))
+                        : latitudeText(g.lat(v.position));
+    }
+    return std::string(1, char('x' + n)) + " = " + numberText(v.position, 5) + (f.patientLps ? " mm" : "");
+}
+
+SliceColour chooseColouring(const SliceSpec& a, const ScalarField& f, const SliceValues& values) {
+    SliceColour out;
+    SliceColouring& c = out.colouring;
+    const bool mapGiven = !a.colormap.empty() || !std::isnan(a.colourMin);
+    if (a.window.valid()) {
+        if (mapGiven)
+            throw UsageError(param(opt::window.key) + " and " + param(opt::colormap.key) + "/" + param(opt::colourRange.key) +
+                             " both colour the slice: give one of them");
+        if (ctWindowPreset(a.windowName)) requireHounsfield(f, a.input, param(opt::window.key) + " " + a.windowName);
+        c.window = a.window;
+        out.source = param(opt::window.key) + " " + a.windowName;
+    } else if (a.windowName.empty() && !mapGiven && f.window.valid()) {
+        c.window = f.window;
+        out.source = "the file's display window";
+    } else if (a.windowName.empty() && !mapGiven && f.patientLps) {
+        const auto [lo, hi] = f.validRange();
+        c.window = {0.5 * (double(lo) + double(hi)), std::max(double(hi) - double(lo), 1e-30)};
+        out.source = "the volume's value range";
+    }
+    c.invertedGrey = c.window.valid() && f.invertedGrey;
+    if (!c.window.valid()) {
+        c.colormap = a.colormap.empty() ? defaultColormap(f.standardName, f.name) : a.colormap;
+        if (!std::isnan(a.colourMin)) {
+            c.low = a.colourMin, c.high = a.colourMax;
+            out.source = param(opt::colourRange.key);
+        } else {
+            const auto [lo, hi] = values.range();
+            c.low = std::isnan(lo) ? 0.0 : lo;
+            c.high = std::isnan(hi) ? 1.0 : hi;
+            out.source = "the slice's range of values";
+        }
+    }
+    c.masked = displayToLinear(vec4(a.maskedColour, 1.0f));
+    c.outside = displayToLinear(a.background.value_or(a.figure.enabled ? vec4(0.0f) : vec4(0.0f, 0.0f, 0.0f, 1.0f)));
+    return out;
+}
+
+/// The letter of a patient direction (LPS world axis vector): L/R, P/A, S/I.
+const char* patientLetter(const dvec3& d) {
+    if (d.x > 0.5) return "L";
+    if (d.x < -0.5) return "R";
+    if (d.y > 0.5) return "P";
+    if (d.y < -0.5) return "A";
+    return d.z > 0.5 ? "S" : "I";
+}
+
+/// The world axis of a screen direction (a signed world axis).
+int worldAxisOf(const dvec3& d) { return std::abs(d.x) > 0.5 ? 0 : std::abs(d.y) > 0.5 ? 1 : 2; }
+
+/// A screen direction as the figure labels it: a patient letter, else "+x", "-y", ...
+std::string directionName(const ScalarField& f, const dvec3& d) {
+    if (f.patientLps) return patientLetter(d);
+    const int a = worldAxisOf(d);
+    return std::string(d[a] > 0.0 ? "+" : "-") + char('x' + a);
+}
+
+/// Rough width of a label in label heights (DejaVu Sans: about 0.6 of the height a character).
+double labelWidth(const std::string& text) {
+    int n = 0;
+    for (unsigned char ch : text) n += (ch & 0xC0) != 0x80;
+    return 0.6 * n;
+}
+
+/// Bands (label heights) between the plot's edges and the slice: left, top, right, bottom.
+struct Bands {
+    double left, top, right, bottom;
+};
+Bands figureBands(const ScalarField& f, bool scaleBar) {
+    if (f.patientLps) return {1.8, 1.8, 1.8, 3.6};
+    return {5.0, 1.0, 1.8, scaleBar ? 5.0 : 2.4};
+}
+
+/// Text of a world coordinate along world axis `a` (longitude, latitude, depth on a geographic
+/// grid, else "x 1.5"), and the tick values (world) on [lo, hi].
+struct AxisTicks {
+    std::vector<double> world;
+    std::vector<std::string> text;
+};
+AxisTicks axisTicks(const ScalarField& f, int a, double lo, double hi, int count) {
+    AxisTicks t;
+    if (!f.geographic.valid) {
+        for (double v : io::niceTicks(lo, hi, count)) t.world.push_back(v), t.text.push_back(numberText(v, 4));
+        return t;
+    }
+    const GeoAxes g{f.geographic};
+    if (a == 0) {
+        for (double lon : io::niceTicks(g.lon(lo), g.lon(hi), count)) t.world.push_back(g.x(lon)), t.text.push_back(longitudeText(lon));
+    } else if (a == 1) {
+        for (double lat : io::niceTicks(g.lat(lo), g.lat(hi), count)) t.world.push_back(g.y(lat)), t.text.push_back(latitudeText(lat));
+    } else {
+        for (double d : io::niceTicks(g.depthM(hi), g.depthM(lo), count)) t.world.push_back(g.z(d)), t.text.push_back(numberText(d) + " m");
+    }
+    return t;
+}
+
+/// The figure around a slice: the frame of the grid, orientation letters and a scale bar
+/// (patient volumes) or labelled ticks (longitude, latitude, depth; world x, y, z), the grey
+/// or colour bar, and the subtitle. `offset`: where the slice image lies in the plot.
+io::FigureSpec sliceFigureSpec(const SliceSpec& a, const ScalarField& f, const SliceView& v, const SliceColouring& c, dvec2 offset) {
+    io::FigureSpec spec;
+    spec.title = a.figure.title;
+    // The content's edges in the plot (whose pixel x spans [x, x + 1)).
+    const dvec2 lo = offset + v.gridMin + dvec2(0.5 - v.margin), hi = offset + v.gridMax + dvec2(0.5 + v.margin);
+    spec.lines = {{{lo.x, lo.y}, {hi.x, lo.y}}, {{hi.x, lo.y}, {hi.x, hi.y}}, {{hi.x, hi.y}, {lo.x, hi.y}}, {{lo.x, hi.y}, {lo.x, lo.y}}};
+    const dvec3 R = v.screenRight(), U = v.screenUp();
+    const dvec2 mid = 0.5 * (lo + hi);
+    if (f.patientLps) {
+        spec.labels.push_back({{hi.x, mid.y}, patientLetter(R), 0.9, 0.0});
+        spec.labels.push_back({{lo.x, mid.y}, patientLetter(-R), -0.9, 0.0});
+        spec.labels.push_back({{mid.x, lo.y}, patientLetter(U), 0.0, -0.9});
+        spec.labels.push_back({{mid.x, hi.y}, patientLetter(-U), 0.0, 0.9});
+    } else {
+        const int aR = worldAxisOf(R), aU = worldAxisOf(U);
+        const dvec3 tl = v.world(v.gridMin.x, v.gridMin.y), br = v.world(v.gridMax.x, v.gridMax.y);
+        const double r0 = std::min(tl[aR], br[aR]), r1 = std::max(tl[aR], br[aR]);
+        const double u0 = std::min(tl[aU], br[aU]), u1 = std::max(tl[aU], br[aU]);
+        const AxisTicks xt = axisTicks(f, aR, r0, r1, 6), yt = axisTicks(f, aU, u0, u1, 5);
+        for (std::size_t i = 0; i < xt.world.size(); ++i) {
+            const double px = offset.x + v.gridMin.x + 0.5 + (xt.world[i] - tl[aR]) * R[aR] / v.pixelSize;
+            spec.labels.push_back({{px, hi.y}, xt.text[i], 0.0, 1.0});
+        }
+        for (std::size_t i = 0; i < yt.world.size(); ++i) {
+            const double py = offset.y + v.gridMin.y + 0.5 + (tl[aU] - yt.world[i]) * U[aU] / v.pixelSize;
+            spec.labels.push_back({{lo.x, py}, yt.text[i], -(0.5 * labelWidth(yt.text[i]) + 0.6), 0.0});
+        }
+    }
+    // The scale bar (the figure's own, in the plot's lower left corner under the slice):
+    // always for patient volumes, with `scale_bar` for other grids.
+    if (f.patientLps || a.figure.scaleBar) {
+        const double length = io::scaleBarLength(v.pixelSize, v.width);
+        if (length > 0.0) {
+            spec.scaleBarPx = length / v.pixelSize;
+            spec.scaleBarLabel = numberText(length) + (f.patientLps ? " mm" : f.geographic.valid ? " km" : "");
+        }
+    }
+    // The bar and the subtitle.
+    const std::string units = f.units.empty() ? "" : " (" + f.units + ")";
+    spec.barLabel = f.name + units;
+    std::string sub = f.patientLps                  ? f.name + ", " + slicePlaneName(v.plane) + " at " + positionText(f, v)
+                      : !f.geographic.valid          ? f.name + ", " + slicePlaneName(v.plane) + " plane at " + positionText(f, v)
+                      : sliceNormalAxis(v.plane) == 2 ? f.name + " at " + positionText(f, v)
+                                                      : f.name + ", section at " + positionText(f, v);
+    if (c.window.valid()) {
+        spec.greyRamp = true;
+        spec.invertedGrey = c.invertedGrey;
+        spec.low = c.window.centre - 0.5 * c.window.width;
+        spec.high = c.window.centre + 0.5 * c.window.width;
+        sub += ", window " + numberText(c.window.centre) + "/" + numberText(c.window.width);
+        if (!a.windowName.empty() && ctWindowPreset(a.windowName)) sub += " (" + a.windowName + ")";
+    } else {
+        spec.colormap = c.colormap;
+        spec.low = c.low;
+        spec.high = c.high;
+    }
+    spec.subtitle = sub;
+    return spec;
+}
+
+}  // namespace
+
+std::uint64_t memoryBudget(const SliceSpec& spec) { return spec.maxMemory ? spec.maxMemory : defaultMemoryBudget(); }
+
+void checkSliceSpec(const SliceSpec& a) {
+    if (a.at && a.index) throw UsageError(param(opt::at.key) + " and " + param(opt::index.key) + " both place the plane: give one of them");
+    if (isOctreeInput(a.input))
+        throw UsageError("slice samples a field, and the octree file " + a.input + " keeps only its surface: give the field it was built from");
+    if (io::isCityInput(a.input)) throw UsageError("slice samples a field; the city input " + a.input + " is a surface model");
+}
+
+SliceResult renderSlice(const ScalarField& field, const SliceSpec& a) {
+    checkSliceSpec(a);
+    SliceResult r;
+    const SlicePlane plane = a.plane.value_or(field.patientLps ? SlicePlane::Axial : SlicePlane::Z);
+    if (!field.patientLps && (plane == SlicePlane::Axial || plane == SlicePlane::Coronal || plane == SlicePlane::Sagittal))
+        throw UsageError(param(opt::plane.key) + " " + slicePlaneName(plane) + ": " + a.input +
+                         " is not in patient coordinates (DICOM, NIfTI, NRRD in LPS space); use x, y or z");
+    const double position = a.at ? worldPosition(field, plane, *a.at)
+                                 : slicePositionOfIndex(field, plane, a.index.value_or(field.dims[sliceGridAxis(field, plane)] / 2));
+    // A figure: the slice fills the plot that its layout leaves (`size` or `print_size` is the
+    // whole figure), less bands around it for the letters, ticks and scale bar.
+    int width = a.width, height = a.height;
+    if (a.figure.enabled) {
+        r.layout = figureLayout(a.figure, a.width ? a.width : 1200, a.height ? a.height : 1000, true);
+        const Bands b = figureBands(field, a.figure.scaleBar);
+        const double lp = r.layout->labelPx;
+        r.offset = dvec2(double(std::lround(b.left * lp)), double(std::lround(b.top * lp)));
+        width = r.layout->plotW - int(r.offset.x) - int(std::lround(b.right * lp));
+        height = r.layout->plotH - int(r.offset.y) - int(std::lround(b.bottom * lp));
+        if (width < 16 || height < 16)
+            throw UsageError(param(opt::figure.key) + ": " + std::to_string(r.layout->width) + "x" + std::to_string(r.layout->height) +
+                             " pixels at " + std::to_string(r.layout->dpi) +
+                             " dpi leave no room for the slice (make it larger or lower the dpi)");
+    }
+    r.view = makeSliceView(field, plane, position, width, height);
+    const SliceView& view = r.view;
+    checkMemoryBudget(a.input + ": a slice of " + std::to_string(view.width) + "x" + std::to_string(view.height) + " pixels",
+                      Frame::bytesFor(view.width, view.height) + std::uint64_t(view.width) * std::uint64_t(view.height) * 29,
+                      memoryBudget(a));
+    const SliceValues values = sampleSlice(field, view, a.threads);
+    r.colour = chooseColouring(a, field, values);
+    for (SliceSample s : values.state) r.validPixels += s == SliceSample::Valid, r.maskedPixels += s == SliceSample::Masked;
+    Frame slice = colourSlice(values, r.colour.colouring);
+    r.dpi = a.figure.dpi;
+    if (!r.layout) {
+        r.image = std::move(slice);
+        return r;
+    }
+    Frame plot(r.layout->plotW, r.layout->plotH);
+    std::fill(plot.rgba.begin(), plot.rgba.end(), vec4(0.0f));  // the paper
+    for (int y = 0; y < slice.height; ++y)
+        for (int x = 0; x < slice.width; ++x)
+            plot.rgba[plot.pixel(int(r.offset.x) + x, int(r.offset.y) + y)] = slice.rgba[slice.pixel(x, y)];
+    r.image = io::composeFigure(plot, sliceFigureSpec(a, field, view, r.colour.colouring, r.offset), *r.layout);
+    r.dpi = r.layout->dpi;
+    return r;
+}
+
+std::string sliceSummary(const ScalarField& field, const SliceResult& r, const std::string& output) {
+    const SliceView& view = r.view;
+    const SliceColouring& c = r.colour.colouring;
+    std::ostringstream s;
+    s << output << ": " << slicePlaneName(view.plane) << " slice of " << field.name << " at " << positionText(field, view) << " (sample "
+      << numberText(view.gridIndex, 4) << " of " << field.dims[view.gridAxis] << " along grid axis " << view.gridAxis << "), "
+      << view.width << "x" << view.height << " pixels of " << numberText(view.pixelSize, 4) << (field.patientLps ? " mm" : "") << ", ";
+    if (c.window.valid())
+        s << "window centre " << numberText(c.window.centre) << " width " << numberText(c.window.width) << " (" << r.colour.source
+          << (c.invertedGrey ? ", MONOCHROME1: inverted" : "") << ")";
+    else
+        s << c.colormap << " over " << numberText(c.low) << " .. " << numberText(c.high) << " (" << r.colour.source << ")";
+    if (r.maskedPixels) s << ", " << r.maskedPixels << " masked pixels";
+    return s.str();
+}
+
+Stats sliceStats(const ScalarField& field, const SliceResult& r, const std::string& input, double loadMs) {
+    const SliceView& view = r.view;
+    const SliceColouring& c = r.colour.colouring;
+    Stats js;
+    js.set("input", input);
+    js.set("variable", field.name);
+    js.set("units", field.units);
+    js.set("plane", slicePlaneName(view.plane));
+    js.set("position", view.position);
+    js.set("grid_axis", view.gridAxis);
+    js.set("grid_index", view.gridIndex);
+    js.set("width", view.width);
+    js.set("height", view.height);
+    js.set("pixel_size", view.pixelSize);
+    js.set("patient_lps", field.patientLps);
+    js.set("screen_right", directionName(field, view.screenRight()));
+    js.set("screen_up", directionName(field, view.screenUp()));
+    if (r.layout) {
+        js.set("figure_width", r.layout->width);
+        js.set("figure_height", r.layout->height);
+        js.set("figure_dpi", r.layout->dpi);
+        js.set("figure_slice", std::to_string(r.layout->plotX + int(r.offset.x)) + "," + std::to_string(r.layout->plotY + int(r.offset.y)) +
+                                   "," + std::to_string(view.width) + "," + std::to_string(view.height));
+    }
+    if (c.window.valid()) {
+        js.set("window_centre", c.window.centre);
+        js.set("window_width", c.window.width);
+        js.set("window_inverted", c.invertedGrey);
+    } else {
+        js.set("colormap", c.colormap);
+        js.set("colour_min", c.low);
+        js.set("colour_max", c.high);
+    }
+    js.set("colour_source", r.colour.source);
+    js.set("valid_pixels", r.validPixels);
+    js.set("masked_pixels", r.maskedPixels);
+    js.set("load_ms", loadMs);
+    return js;
+}
+
+}  // namespace octrace::model
