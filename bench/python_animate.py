@@ -24,7 +24,7 @@ import benchcommon
 def main():
     ap = benchcommon.parser(__doc__)
     ap.add_argument("--frames", type=int, default=24)
-    ap.add_argument("--depth", type=int, default=8)
+    ap.add_argument("--depth", type=int, default=9)
     ap.add_argument("--size", default="1280x960")
     a = ap.parse_args()
     import numpy as np

@@ -105,28 +105,64 @@ def animate(da, dim="time", path=None, *, frames=None, fps=None, orbit=0.0, size
     args = [(da.isel({dim: i}), reader, build, view, cameras[i], captions[i], pngs[i]) for i in range(steps)]
 
     show = _progress(steps, progress)
-    images = [None] * steps
+    video = _Video(path, fps)
     if client is not None:
         from dask.distributed import as_completed
 
         futures = [client.submit(_frame, *a, key=f"octrace-frame-{i}-{id(args)}", pure=False) for i, a in enumerate(args)]
         index = {f.key: i for i, f in enumerate(futures)}
-        for done, future in enumerate(as_completed(futures), start=1):
-            images[index[future.key]] = future.result()
-            show(done)
+        try:
+            for done, future in enumerate(as_completed(futures), start=1):
+                video.put(index[future.key], future.result())
+                future.release()
+                show(done)
+        except BaseException:
+            client.cancel(futures)
+            video.abandon()
+            raise
     else:
         with concurrent.futures.ThreadPoolExecutor(max_workers=workers or os.cpu_count() or 1) as pool:
             futures = {pool.submit(_frame, *a): i for i, a in enumerate(args)}
-            for done, future in enumerate(concurrent.futures.as_completed(futures), start=1):
-                images[futures[future]] = future.result()
-                show(done)
+            try:
+                for done, future in enumerate(concurrent.futures.as_completed(futures), start=1):
+                    video.put(futures[future], future.result())
+                    show(done)
+            except BaseException:
+                for future in futures:
+                    future.cancel()
+                video.abandon()
+                raise
+    video.finish()
     _settings.flush_log()
-    if path is None:
-        return os.fspath(frames)
-    height, width = images[0].shape[:2]
-    writer = _octrace.VideoWriter(os.fspath(path), width, height, fps)
-    for image in images:
-        writer.add(image)
-    writer.finish()
-    _settings.flush_log()
-    return os.fspath(path)
+    return os.fspath(path) if path is not None else os.fspath(frames)
+
+
+class _Video:
+    """Frames into the MP4 in order as they arrive (any order): a frame is encoded as soon as
+    every earlier one has been, so that encoding overlaps the rendering and only the frames
+    that arrived early are held."""
+
+    def __init__(self, path, fps):
+        self.path, self.fps = path, fps
+        self.writer = None
+        self.waiting = {}
+        self.next = 0
+
+    def put(self, i, image):
+        if self.path is None:
+            return
+        self.waiting[i] = image
+        while self.next in self.waiting:
+            image = self.waiting.pop(self.next)
+            if self.writer is None:
+                height, width = image.shape[:2]
+                self.writer = _octrace.VideoWriter(os.fspath(self.path), width, height, self.fps)
+            self.writer.add(image)
+            self.next += 1
+
+    def finish(self):
+        if self.writer is not None:
+            self.writer.finish()
+
+    def abandon(self):
+        self.writer = None  # the encoded video is held in memory until finish(): nothing is written
