@@ -46,3 +46,31 @@ def test_the_iso_slider_rebuilds():
     (lo0, hi0), (lo1, hi1) = before.bounds, after.bounds
     assert hi1[0] - lo1[0] > hi0[0] - lo0[0]  # the larger iso surface encloses the smaller
     assert np.array(box.frame.get_frame()).shape == (48, 48, 4)
+
+
+@pytest.mark.filterwarnings("ignore:.*grid indices used as world units")
+def test_the_time_slider_steps_through_a_dataarray():
+    xr = pytest.importorskip("xarray")
+    times = np.array(["2001-01-01", "2001-02-01", "2001-03-01"], dtype="datetime64[ns]")
+    base = sphere(24)
+    # The ellipsoid grows step by step: the surface at iso 0 is larger each month.
+    da = xr.DataArray(np.stack([base - 0.2 * i for i in range(3)]), dims=("time", "z", "y", "x"),
+                      coords={"time": times}, name="v")
+    box = octrace.view(da, size=(48, 40), iso=0.0, depth=5)
+    assert box.step_slider.max == 2 and box.step_label.value == "2001-01-01"
+    first = np.array(box.frame.get_frame())
+    assert np.array_equal(first, np.asarray(octrace.Volume(base).surface(iso=0.0, depth=5).render(size=(48, 40))))
+    box.step_slider.value = 2
+    assert box.step_label.value == "2001-03-01"
+    assert box.frame.camera is not None  # the first step's framing, kept
+    stepped = np.array(box.frame.get_frame())
+    expected = octrace.Volume(base - 0.4).surface(iso=0.0, depth=5).render(size=(48, 40), camera=box.frame.camera)
+    assert np.array_equal(stepped, np.asarray(expected))
+    assert (np.isfinite(expected.depth).sum() > np.isfinite(np.asarray(
+        octrace.Volume(base).surface(iso=0.0, depth=5).render(size=(48, 40), camera=box.frame.camera).depth)).sum())
+    box.slider.value = 0.1  # the iso slider rebuilds the current step
+    assert box.frame.surface.iso == pytest.approx(0.1)
+    with pytest.raises(octrace.UsageError, match="'depth' is not a dimension"):
+        octrace.view(da, dim="depth")
+    with pytest.raises(octrace.UsageError, match="no dimension to step through"):
+        octrace.view(da.isel(time=0))
