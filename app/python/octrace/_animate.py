@@ -90,6 +90,10 @@ def animate(da, dim="time", path=None, *, frames=None, fps=None, orbit=0.0, size
     _settings.settings(build, _settings.keys(("surface",)), "animate")
     render_settings = _settings.settings({**view, **camera}, view_keys, "animate")
 
+    given = {**build, **view}
+    if given.get("colormap") is not None and given.get("colour_range") is None and given.get("window") is None:
+        # The CLI's rule (model/Animation.h): a surface coloured by height keeps its own range.
+        _settings._LOG.info("coloured by height: each frame maps its own surface's height range onto 'colormap'")
     steps = da.sizes[dim]
     if steps == 0:
         raise _octrace.UsageError(f"{dim!r} has no steps")
