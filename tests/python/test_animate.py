@@ -84,3 +84,19 @@ def test_bad_calls(tmp_path, series):
         octrace.animate(series, "time", tmp_path / "x.mp4", iso=10, fps=1000)
     with pytest.raises(TypeError, match="'isoo'"):
         octrace.animate(series, "time", tmp_path / "x.mp4", isoo=10)
+
+
+def test_a_progress_callable_sees_the_frames_and_can_cancel(tmp_path, series):
+    seen = []
+    octrace.animate(series.isel(time=slice(0, 2)), "time", frames=tmp_path / "ok", iso=10, depth=5, size=(64, 48),
+                    workers=1, progress=seen.append)
+    assert seen == [0.5, 1.0]
+
+    def stop(fraction):
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        octrace.animate(series, "time", tmp_path / "x.mp4", iso=10, depth=5, size=(64, 48), workers=1, progress=stop)
+    assert not (tmp_path / "x.mp4").exists()
+    with pytest.raises(octrace.UsageError, match="Dataset holds several variables"):
+        octrace.animate(series.to_dataset(name="TEMP"), "time", tmp_path / "x.mp4", iso=10)

@@ -75,6 +75,21 @@ def test_an_array_with_nan_is_copied_and_left_as_it_was():
     assert np.isnan(a[0, 0, 0]) and vol.values[0, 0, 0] == 0.0
 
 
+def test_a_converted_array_is_not_in_place():
+    a = sphere(16, dtype=np.float64)
+    with pytest.warns(octrace.OctraceWarning, match="float64"):
+        vol = octrace.Volume(a)
+    assert not vol.in_place and not np.shares_memory(vol.values, a)
+    with pytest.raises(ValueError, match="real numbers"):
+        octrace.Volume(sphere(8).astype(np.complex64))
+
+
+def test_a_setting_of_another_call_names_it():
+    shell = octrace.Volume(sphere(16)).surface(iso=0, depth=4)
+    with pytest.raises(TypeError, match=r"'threads' is a setting of octrace.surface\(\)"):
+        shell.render(size=(32, 32), threads=1)
+
+
 def test_other_dtypes_are_converted_and_said():
     with pytest.warns(octrace.OctraceWarning, match="float64"):
         vol = octrace.Volume(sphere(16, dtype=np.float64))

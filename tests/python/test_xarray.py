@@ -99,3 +99,14 @@ def test_bad_arrays_are_refused_with_the_readers_messages():
         bad.octrace.volume()
     with pytest.raises(TypeError, match="'regoin'.*'region'"):
         da.octrace.volume(regoin=(0, 1, 0, 1))
+
+
+def test_the_package_functions_take_a_dataarray(levitus):
+    da = xr.open_dataset(levitus)["TEMP"].sel(XAXLEVITR=slice(120, 180), YAXLEVITR=slice(10, 60))
+    a = octrace.surface(da, iso=10, depth=5).render(size=(96, 72))
+    b = da.octrace.surface(iso=10, depth=5).render(size=(96, 72))
+    assert np.array_equal(np.asarray(a), np.asarray(b))
+    with pytest.raises(octrace.UsageError, match="Dataset holds several variables"):
+        octrace.surface(da.to_dataset(name="TEMP"), iso=10)
+    with pytest.warns(octrace.OctraceWarning, match="da.octrace.volume"):
+        octrace.Volume(da.fillna(0).astype(np.float32))

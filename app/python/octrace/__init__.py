@@ -76,9 +76,14 @@ class Volume:
             raise UsageError(f"a volume needs a 3-D array with axes (z, y, x), got {array.ndim} dimension(s) {array.shape}")
         if array.size == 0:
             raise UsageError(f"the array is empty: shape {array.shape}")
-        if not (np.issubdtype(array.dtype, np.number) or array.dtype == np.bool_):
-            raise UsageError(f"the array's samples must be numbers, got dtype {array.dtype}")
-        if array.dtype != np.float32 or not array.flags.c_contiguous:
+        if not (np.issubdtype(array.dtype, np.number) or array.dtype == np.bool_) or np.iscomplexobj(array):
+            raise UsageError(f"the array's samples must be real numbers, got dtype {array.dtype}")
+        if type(values).__name__ == "DataArray" and hasattr(values, "octrace"):
+            warnings.warn("Volume() takes the DataArray's values alone (unit spacing, no coordinates); "
+                          "da.octrace.volume() reads its coordinates and attributes as the NetCDF reader does",
+                          OctraceWarning, stacklevel=2)
+        self._converted = array.dtype != np.float32 or not array.flags.c_contiguous
+        if self._converted:
             why = f"dtype {array.dtype}" if array.dtype != np.float32 else "a non-contiguous layout"
             warnings.warn(f"the array ({why}) is converted to C-contiguous float32", OctraceWarning, stacklevel=2)
             array = np.ascontiguousarray(array, dtype=np.float32)
@@ -99,6 +104,7 @@ class Volume:
     def _wrap(cls, field):
         v = cls.__new__(cls)
         v._field = field
+        v._converted = False
         return v
 
     shape = property(lambda self: self._field.shape, doc="Samples per axis, (z, y, x).")
@@ -112,7 +118,7 @@ class Volume:
     bounds = property(lambda self: self._field.bounds, doc="World bounding box ((x0, y0, z0), (x1, y1, z1)).")
     valid_range = property(lambda self: self._field.valid_range, doc="(min, max) of the valid samples.")
     values = property(lambda self: self._field.values, doc="The samples, axes (z, y, x), read-only, without a copy.")
-    in_place = property(lambda self: self._field.in_place,
+    in_place = property(lambda self: self._field.in_place and not self._converted,
                         doc="True when the samples are the NumPy array given, read in place (no copy).")
     mask = property(lambda self: self._field.mask, doc="1 where a sample is valid, axes (z, y, x); None when all are.")
 
@@ -159,9 +165,14 @@ def open(path, **reader_options):  # noqa: A001 - the package's reader, as xarra
 
 def surface(source, *, progress=None, **options):
     """Builds the isosurface's shell octree once: ``source`` is a Volume, a NumPy array (axes
-    z, y, x), an ``Input`` or a path. ``options``: iso, depth, colormap, colour_by, floor, window,
-    cut, bake, ... (``octrace.options()``). ``progress(fraction)`` is called as the build goes;
-    Ctrl-C (KeyboardInterrupt) cancels it."""
+    z, y, x), an xarray DataArray (as ``da.octrace.surface``), an ``Input`` or a path.
+    ``options``: iso, depth, colormap, colour_by, floor, window, cut, bake, ...
+    (``octrace.options()``). ``progress(fraction)`` is called as the build goes; Ctrl-C
+    (KeyboardInterrupt) cancels it."""
+    if type(source).__name__ == "DataArray" and hasattr(source, "octrace"):
+        return source.octrace.surface(progress=progress, **options)
+    if type(source).__name__ == "Dataset":
+        raise UsageError("a Dataset holds several variables: choose one, e.g. octrace.surface(ds['TEMP'], ...)")
     if type(source).__name__ == "ndarray":
         source = Volume(source)
     # A Volume is read already: what chooses the field (var, region, time, ...) has no place.
@@ -345,19 +356,8 @@ class Image:
         return f"<octrace.Image {self.width}x{self.height}>"
 
 
-def view(source, **options):
-    """An interactive view in Jupyter without GL (jupyter_rfb): drag to orbit, Shift+drag to pan, the wheel to zoom; given a Volume, an iso slider rebuilds the surface. See ``octrace._view.view``."""
-    from ._view import view as _view
-
-    return _view(source, **options)
-
-
-def animate(da, dim="time", path=None, **options):
-    """An MP4 (and/or PNG frames) of a DataArray over ``dim``, frames on local threads or a
-    Dask Client: see ``octrace._animate.animate``."""
-    from ._animate import animate as _animate
-
-    return _animate(da, dim, path, **options)
+from ._animate import animate  # noqa: E402 - after the classes the two modules use
+from ._view import view  # noqa: E402
 
 
 def _register_xarray():

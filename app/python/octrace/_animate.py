@@ -47,6 +47,8 @@ def _frame(da, reader, build, view, camera, caption, png):
 
 
 def _progress(total, enabled):
+    if callable(enabled):  # the caller's own: called with the fraction done, as surface()'s
+        return lambda done: enabled(done / total)
     if not enabled:
         return lambda done: None
     try:
@@ -69,7 +71,13 @@ def animate(da, dim="time", path=None, *, frames=None, fps=None, orbit=0.0, size
     the first step's grid, which every step shares, and turns ``orbit`` degrees over the
     animation; with ``figure=True`` each frame's subtitle starts with its coordinate value.
     ``client``: a dask.distributed Client, one task per frame; otherwise ``workers`` local
-    threads (default: one per core). Returns the path of the video (or of the frames' folder)."""
+    threads (default: one per core). ``fps``: frames a second (the options table's default).
+    ``progress``: True shows a bar (tqdm when installed, else a line on stderr), False nothing,
+    a callable is called with the fraction of frames done, and an exception it raises (e.g.
+    KeyboardInterrupt) cancels the frames not yet drawn and writes nothing. Returns the path
+    of the video (or of the frames' folder)."""
+    if type(da).__name__ == "Dataset":
+        raise _octrace.UsageError("a Dataset holds several variables: animate one, e.g. octrace.animate(ds['TEMP'], ...)")
     if dim not in da.dims:
         raise _octrace.UsageError(f"{dim!r} is not a dimension of the DataArray (it has {', '.join(map(str, da.dims))})")
     if path is None and frames is None:

@@ -76,7 +76,11 @@ def _unknown(key, accepted, call):
     close = difflib.get_close_matches(key, sorted(accepted), n=3, cutoff=0.6)
     hint = f"; did you mean {', '.join(repr(c) for c in close)}?" if close else ""
     if key in _TABLE and not close:
-        hint = f" ({key!r} is a setting of another call; see octrace.options())"
+        part = _TABLE[key]["part"]
+        where = {"request": "octrace.open() (what to read)", "surface": "octrace.surface() (the build; it also sets the "
+                 "threads and memory of the surface's renders)" if key in ("threads", "max_memory") else "octrace.surface() (the build)",
+                 "render": "Surface.render()", "figure": "Surface.render(figure=True, ...)"}.get(part, "another call")
+        hint = f" ({key!r} is a setting of {where}; see octrace.options())"
     return TypeError(f"{call}() got an unexpected keyword argument {key!r}{hint}")
 
 
