@@ -100,3 +100,16 @@ def test_a_progress_callable_sees_the_frames_and_can_cancel(tmp_path, series):
     assert not (tmp_path / "x.mp4").exists()
     with pytest.raises(octrace.UsageError, match="Dataset holds several variables"):
         octrace.animate(series.to_dataset(name="TEMP"), "time", tmp_path / "x.mp4", iso=10)
+
+
+def test_undecoded_cf_times_are_captioned_with_their_dates():
+    """A year-0 noleap climatology that xarray leaves as numbers (decode_times=False) is dated
+    by the NetCDF reader's calendars; a coordinate without time units keeps its numbers."""
+    from octrace._animate import captions
+
+    da = xr.DataArray(np.zeros((3, 2, 2, 2), np.float32), dims=("time", "z", "y", "x"),
+                      coords={"time": ("time", [15.0, 45.0, 74.0], {"units": "days since 0000-01-01", "calendar": "noleap"})})
+    assert captions(da, "time") == ["0000-01-16", "0000-02-15", "0000-03-16"]
+    plain = da.assign_coords(time=("time", [1.0, 2.0, 3.0]))
+    assert captions(plain, "time") == ["1", "2", "3"]
+    assert captions(da.drop_vars("time"), "time") == ["step 0", "step 1", "step 2"]

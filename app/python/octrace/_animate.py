@@ -31,6 +31,25 @@ def _caption(value):
     return str(value)
 
 
+def captions(da, dim):
+    """The caption of each step of ``da`` along ``dim``: its date (decoded datetimes, cftime
+    dates, or numbers in CF "UNIT since DATE" units that xarray left undecoded, e.g. a year-0
+    climatology opened with decode_times=False, dated by the NetCDF reader's own calendars),
+    else its coordinate value, else "step I"."""
+    if dim not in da.coords:
+        return [f"step {i}" for i in range(da.sizes[dim])]
+    coord = da[dim]
+    values = coord.values
+    units = coord.attrs.get("units", coord.encoding.get("units"))
+    if values.dtype.kind in "iuf" and isinstance(units, str) and " since " in units:
+        calendar = coord.attrs.get("calendar", coord.encoding.get("calendar", "")) or ""
+        try:
+            return list(_octrace.cf_dates([float(v) for v in values], units, str(calendar), f"coordinate {dim!r}"))
+        except _octrace.FileError as e:
+            _settings._LOG.warning(f"{e}: captions give the numbers")
+    return [_caption(v) for v in values]
+
+
 def _frame(da, reader, build, view, camera, caption, png):
     """One frame (a top-level function, so that Dask can send it to another process): the
     DataArray's step through the accessor, its surface, the frame from `camera`."""
@@ -108,13 +127,12 @@ def animate(da, dim="time", path=None, *, frames=None, fps=None, orbit=0.0, size
     grid = da.isel({dim: 0}).octrace.volume(**reader)
     view_only = [(k, t) for k, t in render_settings if k in _settings.keys(("render",))]
     cameras = [_octrace.box_camera(grid.bounds, view_only, orbit * i / steps) for i in range(steps)]
-    values = da[dim].values if dim in da.coords else np.arange(steps)
-    captions = [_caption(values[i]) for i in range(steps)]
+    texts = captions(da, dim)
     pngs = [None] * steps
     if frames is not None:
         os.makedirs(frames, exist_ok=True)
         pngs = [os.path.join(os.fspath(frames), f"frame_{i:04d}.png") for i in range(steps)]
-    args = [(da.isel({dim: i}), reader, build, view, cameras[i], captions[i], pngs[i]) for i in range(steps)]
+    args = [(da.isel({dim: i}), reader, build, view, cameras[i], texts[i], pngs[i]) for i in range(steps)]
 
     show = _progress(steps, progress)
     video = _Video(path, fps)

@@ -150,6 +150,7 @@ class _Steps:
         self.da, self.dim, self.count = da, dim, da.sizes[dim]
         self.reader, self.rest = _split(options)
         self._volumes = {}
+        self._captions = None
 
     def volume(self, i):
         if i not in self._volumes:
@@ -157,8 +158,8 @@ class _Steps:
         return self._volumes[i]
 
     def caption(self, i):
-        from ._animate import _caption
+        if self._captions is None:
+            from ._animate import captions
 
-        if self.dim in self.da.coords:
-            return _caption(self.da[self.dim].values[i])
-        return f"step {i}"
+            self._captions = captions(self.da, self.dim)
+        return self._captions[i]

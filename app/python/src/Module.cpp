@@ -19,6 +19,7 @@
 #include "octrace/io/Figure.h"
 #include "octrace/io/ImageWriter.h"
 #include "octrace/io/OctreeFile.h"
+#include "octrace/io/TimeAxis.h"
 #include "octrace/io/VideoWriter.h"
 #include "octrace/render/ImageCompare.h"
 #include "octrace/render/Renderer.h"
@@ -623,6 +624,8 @@ NB_MODULE(_octrace, m) {
         }, nb::keep_alive<0, 1>(), "1 where a sample is valid, axes (z, y, x); None when all are.");
 
     m.def("read_field", &readField, "path"_a, "settings"_a);
+    m.def("cf_dates", &io::timeDates, "values"_a, "units"_a, "calendar"_a, "what"_a,
+          "The dates of CF time coordinate values (as octrace info and animate captions say them); '' without CF time units.");
     m.def("array_field", &arrayField, "values"_a, "origin"_a, "spacing"_a, "direction"_a, "name"_a, "units"_a, "patient_lps"_a);
 
     nb::class_<Shell>(m, "Shell")

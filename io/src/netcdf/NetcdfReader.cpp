@@ -342,9 +342,9 @@ TimeAxis NetcdfReader::timeAxis(const std::string& path, const FieldRequest& req
         t.values = a.values;
         if (isTimeUnits(a.units) && a.values.size() == a.size) {
             try {
-                const TimeUnits u = parseTimeUnits(a.units, a.calendar, path + ": time axis '" + a.name + "'");
-                t.calendar = u.calendarName;
-                for (double v : a.values) t.dates.push_back(formatDate(decodeTime(u, v)));
+                const std::string what = path + ": time axis '" + a.name + "'";
+                t.calendar = parseTimeUnits(a.units, a.calendar, what).calendarName;
+                t.dates = timeDates(a.values, a.units, a.calendar, what);
             } catch (const Error& e) {
                 log::warning(std::string(e.what()) + ": its steps are not dated");
                 t.calendar.clear();
@@ -355,6 +355,15 @@ TimeAxis NetcdfReader::timeAxis(const std::string& path, const FieldRequest& req
         break;
     }
     return t;
+}
+
+std::vector<std::string> timeDates(const std::vector<double>& values, const std::string& units, const std::string& calendar,
+                                   const std::string& what) {
+    std::vector<std::string> dates(values.size());
+    if (!isTimeUnits(units)) return dates;
+    const TimeUnits u = parseTimeUnits(units, calendar, what);
+    for (std::size_t i = 0; i < values.size(); ++i) dates[i] = formatDate(decodeTime(u, values[i]));
+    return dates;
 }
 
 double TimeAxis::valueOf(const std::string& isoDate) const {

@@ -30,6 +30,13 @@ struct TimeAxis {
     double valueOf(const std::string& isoDate) const;
 };
 
+/// The dates of CF time coordinate `values` in `units` ("UNIT since DATE") and `calendar` (""
+/// = standard), as TimeAxis::dates says them; every one "" when `units` are not CF time units.
+/// For coordinates that come from elsewhere than a file (Python's DataArrays). @throws FileError
+/// naming `what` (units or calendar that do not parse, a value that does not decode).
+std::vector<std::string> timeDates(const std::vector<double>& values, const std::string& units, const std::string& calendar,
+                                   const std::string& what);
+
 /// The time axis of the field `req` asks for (its variable, or the file's only 3-D variable),
 /// without reading samples. NetCDF: the variable's time dimension (by CF rules, as read() picks
 /// it), of size 1 too; none (empty) when it has no time dimension. Other formats have none
