@@ -194,3 +194,8 @@ def test_the_gil_is_released_while_building():
     t.join()
     during = [x for x in ticks if start < x < end]
     assert len(during) >= 5, f"{len(during)} ticks in {end - start:.3f} s of building"
+
+
+def test_an_image_is_made_by_octrace_only():
+    with pytest.raises(TypeError, match="comes from Surface.render"):
+        octrace.Image(np.zeros((4, 4, 4), np.uint8))

@@ -313,6 +313,9 @@ class Image:
     miss); ``img.stats`` the dict of the CLI's ``--stats``; in Jupyter it shows itself."""
 
     def __init__(self, frame):
+        if not isinstance(frame, _octrace.Frame):
+            raise TypeError("an octrace.Image comes from Surface.render() or octrace.slice(); "
+                            f"got {type(frame).__name__} (an image of your own is np.asarray'd as it is)")
         self._frame = frame
 
     width = property(lambda self: self._frame.width)
