@@ -623,6 +623,8 @@ NB_MODULE(_octrace, m) {
         }, nb::keep_alive<0, 1>(), "1 where a sample is valid, axes (z, y, x); None when all are.");
 
     m.def("read_field", &readField, "path"_a, "settings"_a);
+    m.def("height_range", [](const Field& f) { return model::gridHeightRange(*f.field); }, "field"_a,
+          "The heights the field's grid spans, in the units colour_range takes for a surface coloured by height.");
     m.def("array_field", &arrayField, "values"_a, "origin"_a, "spacing"_a, "direction"_a, "name"_a, "units"_a, "patient_lps"_a);
 
     nb::class_<Shell>(m, "Shell")
