@@ -1,5 +1,6 @@
 #include "octrace/model/Animation.h"
 
+#include "octrace/model/Figure.h"
 #include "octrace/model/Input.h"
 
 #include "octrace/render/ImageCompare.h"
@@ -120,7 +121,8 @@ AnimationPlan planAnimation(const AnimationSpec& spec, const AnimationHooks& hoo
     };
     progress(0.0);
     request.time = plan.frames.front().time;
-    plan.bounds = loadField(surface.input, request, surface.depth).worldBounds();
+    const ScalarField grid = loadField(surface.input, request, surface.depth);
+    plan.bounds = grid.worldBounds();
     progress(1.0);
 
     // The colour range: given, or the union of colour_by's valid ranges over the steps.
@@ -148,7 +150,13 @@ AnimationPlan planAnimation(const AnimationSpec& spec, const AnimationHooks& hoo
         plan.notes.push_back("colour range " + plan.colourRangeSource + ", the same in every frame (the variable's values on "
                              "the grid read; " + param("colour_range") + " sets it)");
     } else if (!surface.colormap.empty() && surface.windowName.empty()) {
-        plan.notes.push_back("coloured by height: each frame maps its own surface's height range onto " + param("colormap"));
+        const auto [lo, hi] = gridHeightRange(grid);
+        plan.colourMin = surface.colourMin = float(lo);
+        plan.colourMax = surface.colourMax = float(hi);
+        std::ostringstream s;
+        s << "height over the grid: [" << numberText(lo) << ", " << numberText(hi) << "]" << (grid.geographic.valid ? " m" : " (world z)");
+        plan.colourRangeSource = s.str();
+        plan.notes.push_back("coloured by " + plan.colourRangeSource + ", the same in every frame (" + param("colour_range") + " sets it)");
     }
 
     const RenderSpec& r = plan.spec.render;

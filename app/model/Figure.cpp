@@ -85,6 +85,13 @@ FigureSubject figureSubject(const Surface& s, const std::string& input) {
     return out;
 }
 
+std::pair<double, double> gridHeightRange(const ScalarField& grid) {
+    const Box3 b = grid.worldBounds();
+    if (!grid.geographic.valid) return {b.lo.z, b.hi.z};
+    const GeoAxes g{grid.geographic};
+    return {-g.depthM(b.lo.z), -g.depthM(b.hi.z)};
+}
+
 void writeFigure(const Frame& plot, const FigureSettings& f, const io::FigureLayout& layout, const FigureSubject& subject,
                  const Octree& tree, const Camera& camera, const RenderSettings& rs, const std::string& path) {
     const io::FigureSpec spec = figureSpec(f, subject, tree, camera, rs);
@@ -122,8 +129,9 @@ io::FigureSpec figureSpec(const FigureSettings& f, const FigureSubject& subject,
     } else if (albedo.byHeight()) {
         // Coloured by height: the bar spans the surface's cell layers, in metres above the sea
         // surface for a geographic field (negative below it), else in world z.
-        const double z0 = tree.cubeOrigin.z + double(albedo.zLow()) * tree.voxelSize();
-        const double z1 = tree.cubeOrigin.z + double(albedo.zHigh() + 1) * tree.voxelSize();
+        const bool given = std::isfinite(rs.colourMin) && std::isfinite(rs.colourMax) && rs.colourMin != rs.colourMax;
+        const double z0 = given ? double(rs.colourMin) : tree.cubeOrigin.z + double(albedo.heightLow()) * tree.voxelSize();
+        const double z1 = given ? double(rs.colourMax) : tree.cubeOrigin.z + double(albedo.heightHigh()) * tree.voxelSize();
         spec.colormap = albedo.colormapName();
         if (geographic.valid) {
             const GeoAxes g{geographic};

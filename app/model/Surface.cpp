@@ -1,5 +1,6 @@
 #include "octrace/model/Surface.h"
 
+#include "octrace/model/Figure.h"
 #include "octrace/model/Input.h"
 #include "octrace/model/SolidSpec.h"
 
@@ -313,6 +314,15 @@ void applyColour(const SurfaceSpec& a, const Surface& s, RenderSettings& setting
         settings.colormap = defaultColormap(s.tree.valueStandardName(), s.tree.valueName());
     settings.colourMin = a.colourMin;
     settings.colourMax = a.colourMax;
+    if (!settings.colormap.empty() && s.tree.voxelValues().empty() && !std::isnan(a.colourMin)) {
+        // Coloured by height: `colour_range` is in the figure's units (metres above the sea
+        // surface on a geographic field, else world z); the renderers take world z.
+        const auto worldZ = [&](float height) {
+            return s.field.geographic.valid ? float(GeoAxes{s.field.geographic}.z(-double(height))) : height;
+        };
+        settings.colourMin = worldZ(a.colourMin);
+        settings.colourMax = worldZ(a.colourMax);
+    }
     settings.maskedColour = vec3(displayToLinear(vec4(a.maskedColour, 1.0f)));
     settings.floorColour = vec3(displayToLinear(vec4(a.floorColour, 1.0f)));
 }

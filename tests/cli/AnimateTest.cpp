@@ -8,6 +8,8 @@
 #include "octrace/io/TimeAxis.h"
 #include "octrace/io/VideoWriter.h"
 #include "octrace/model/Animation.h"
+#include "octrace/model/Render.h"
+#include "octrace/render/ImageCompare.h"
 #include "octrace/util/Error.h"
 
 #include <gtest/gtest.h>
@@ -16,6 +18,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <future>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -195,6 +198,38 @@ TEST(AnimationPlan, AFrameIsAPureFunctionOfThePlanAndItsIndex) {
     EXPECT_EQ(again0.get(), first0);
     EXPECT_NE(first0, first2);
     EXPECT_THROW(model::renderAnimationFrame(plan, 3), octrace::UsageError);
+}
+
+TEST(AnimationPlan, ColoursByHeightOverTheGridInEveryFrame) {
+    Scratch s;
+    const std::string nc = s.path("monthly.nc");
+    writeTimeSeries(nc);
+    model::AnimationSpec spec = specOf(nc);
+    spec.surface.colormap = "viridis";
+    const model::AnimationPlan plan = model::planAnimation(spec);
+    // Depths 0 .. 700 m: heights -700 .. 0 m above the sea surface, whatever each frame's surface spans.
+    EXPECT_FLOAT_EQ(plan.colourMin, -700.0f);
+    EXPECT_FLOAT_EQ(plan.colourMax, 0.0f);
+    EXPECT_NE(plan.colourRangeSource.find("height over the grid: [-700, 0] m"), std::string::npos) << plan.colourRangeSource;
+
+    // A frame is the render of its step with that range given as colour_range...
+    model::SurfaceSpec step2 = plan.spec.surface;
+    step2.request.time = "2";
+    step2.colourMin = -700.0f;
+    step2.colourMax = 0.0f;
+    const model::Surface surface = model::buildSurface(step2);
+    const octrace::RenderSettings rs = model::renderSettings(step2, surface, plan.spec.render);
+    octrace::Frame frame;
+    model::renderFrame(surface.tree, model::animationCamera(plan, 2), rs, plan.spec.render.renderer, frame);
+    const model::AnimationImage framed = model::renderAnimationFrame(plan, 2);
+    EXPECT_EQ(octrace::quantizeSrgb8(frame, 4), framed.rgba8());
+    // ...and differs from the surface's own height range (the shrinking ball spans less than the grid).
+    model::SurfaceSpec own = step2;
+    own.colourMin = own.colourMax = std::numeric_limits<float>::quiet_NaN();
+    const octrace::RenderSettings ownRs = model::renderSettings(own, surface, plan.spec.render);
+    octrace::Frame ownFrame;
+    model::renderFrame(surface.tree, model::animationCamera(plan, 2), ownRs, plan.spec.render.renderer, ownFrame);
+    EXPECT_NE(octrace::quantizeSrgb8(ownFrame, 4), framed.rgba8());
 }
 
 TEST(VideoWriter, KeepsEveryFrameWhateverTheCount) {

@@ -60,6 +60,24 @@ def test_local_threads(tmp_path, series):
     assert not np.array_equal(read_png(pngs[0]), read_png(pngs[3]))
 
 
+def test_colours_by_height_over_the_grid_in_every_frame(tmp_path, series):
+    """Coloured by height, every frame maps the grid's heights (0 .. the deepest level, in metres)
+    onto the colour map, as octrace animate does: frame i is the step's render with that range."""
+    octrace.animate(series, "time", frames=tmp_path / "frames", iso=10, depth=6, colormap="viridis", size=(160, 120),
+                    workers=1, progress=False)
+    grid = series.isel(time=0).octrace.volume()
+    low, high = octrace._octrace.height_range(grid._field)
+    assert high == pytest.approx(0.0) and low == pytest.approx(-float(series["ZAXLEVITR"].max()), rel=1e-6)
+    camera = octrace._octrace.box_camera(grid.bounds, [("size", "160x120")], 0.0)
+    for i in (0, 3):
+        step = series.isel(time=i).octrace.surface(iso=10, depth=6)
+        fixed = step.render(size=(160, 120), camera=camera, colormap="viridis", colour_range=(low, high))
+        own = step.render(size=(160, 120), camera=camera, colormap="viridis")
+        frame = read_png(tmp_path / "frames" / f"frame_{i:04d}.png")
+        assert np.array_equal(frame, np.asarray(fixed))
+        assert not np.array_equal(frame, np.asarray(own))
+
+
 def test_dask_local_cluster_with_captions(tmp_path, series):
     distributed = pytest.importorskip("dask.distributed")
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \

@@ -117,14 +117,16 @@ def animate(da, dim="time", path=None, *, frames=None, fps=None, orbit=0.0, size
     _settings.settings(build, _settings.keys(("surface",)), "animate")
     render_settings = _settings.settings({**view, **camera}, view_keys, "animate")
 
-    given = {**build, **view}
-    if given.get("colormap") is not None and given.get("colour_range") is None and given.get("window") is None:
-        # The CLI's rule (model/Animation.h): a surface coloured by height keeps its own range.
-        _settings._LOG.info("coloured by height: each frame maps its own surface's height range onto 'colormap'")
     steps = da.sizes[dim]
     if steps == 0:
         raise _octrace.UsageError(f"{dim!r} has no steps")
     grid = da.isel({dim: 0}).octrace.volume(**reader)
+    given = {**build, **view}
+    if given.get("colormap") is not None and given.get("colour_range") is None and given.get("window") is None:
+        # Coloured by height: over the grid's heights in every frame, as octrace animate does.
+        view["colour_range"] = tuple(_octrace.height_range(grid._field))
+        _settings._LOG.info(f"coloured by height over the grid: [{view['colour_range'][0]:g}, {view['colour_range'][1]:g}]"
+                            " the same in every frame ('colour_range' sets it)")
     view_only = [(k, t) for k, t in render_settings if k in _settings.keys(("render",))]
     cameras = [_octrace.box_camera(grid.bounds, view_only, orbit * i / steps) for i in range(steps)]
     texts = captions(da, dim)

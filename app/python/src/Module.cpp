@@ -626,6 +626,8 @@ NB_MODULE(_octrace, m) {
     m.def("read_field", &readField, "path"_a, "settings"_a);
     m.def("cf_dates", &io::timeDates, "values"_a, "units"_a, "calendar"_a, "what"_a,
           "The dates of CF time coordinate values (as octrace info and animate captions say them); '' without CF time units.");
+    m.def("height_range", [](const Field& f) { return model::gridHeightRange(*f.field); }, "field"_a,
+          "The heights the field's grid spans, in the units colour_range takes for a surface coloured by height.");
     m.def("array_field", &arrayField, "values"_a, "origin"_a, "spacing"_a, "direction"_a, "name"_a, "units"_a, "patient_lps"_a);
 
     nb::class_<Shell>(m, "Shell")

@@ -97,10 +97,15 @@ Albedo::Albedo(const Octree& tree, const RenderSettings& settings)
         return;
     }
     colormap(colormap_, 0.0f);  // validate the name once
+    if (std::isfinite(settings.colourMin) && std::isfinite(settings.colourMax) && settings.colourMin != settings.colourMax) {
+        hLo_ = float((double(settings.colourMin) - tree.cubeOrigin.z) / tree.voxelSize());
+        hHi_ = float((double(settings.colourMax) - tree.cubeOrigin.z) / tree.voxelSize());
+        return;
+    }
     ivec3 lo, hi;
     tree.occupiedCells(lo, hi);
-    zLo_ = lo.z;
-    zHi_ = std::max(hi.z, lo.z);
+    hLo_ = float(lo.z);
+    hHi_ = float(std::max(hi.z, lo.z) + 1);
 }
 
 vec3 Albedo::at(std::uint32_t voxel, float zCells) const {
@@ -116,8 +121,8 @@ vec3 Albedo::at(std::uint32_t voxel, float zCells) const {
         return vec3(linear_[c & 0xFFu], linear_[(c >> 8) & 0xFFu], linear_[(c >> 16) & 0xFFu]);
     }
     if (colormap_.empty()) return colour_;
-    // Colour by height (world z) over the surface's extent.
-    const float t = (zCells - float(zLo_)) / float(zHi_ - zLo_ + 1);
+    // Colour by height (world z) over the surface's extent or the range given.
+    const float t = (zCells - hLo_) / (hHi_ - hLo_);
     return colormap(colormap_, t);
 }
 

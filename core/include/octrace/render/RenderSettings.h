@@ -70,8 +70,10 @@ struct RenderSettings {
     /// Colour map (Shading.h colormapNames); empty: the uniform `colour`. With
     /// Octree::voxelValues() and no `window` it colours by the values, else by height.
     std::string colormap;
-    /// The voxel values mapped onto the colour map's ends; NaN: the lowest / highest value of
-    /// the surface's voxels.
+    /// What is mapped onto the colour map's ends: voxel values when the surface is coloured by
+    /// its values; heights in world z when it is coloured by height (the model turns the
+    /// user's `colour_range`, in the figure's units, into world z). NaN: the lowest / highest
+    /// value of the surface's voxels, or the bottom / top of its occupied cell layers.
     float colourMin = std::numeric_limits<float>::quiet_NaN();
     float colourMax = std::numeric_limits<float>::quiet_NaN();
     vec3 maskedColour{0.319f, 0.319f, 0.319f};  ///< linear RGB (sRGB 0.6 grey) of voxels whose value is NaN (masked)

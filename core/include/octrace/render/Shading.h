@@ -49,11 +49,12 @@ public:
     float low() const { return lo_; }
     float high() const { return hi_; }
     const std::string& colormapName() const { return colormap_; }
-    /// Colouring by height with the colour map: colour 0 at the bottom of cell layer zLow(),
-    /// 1 at the top of layer zHigh() (cell space along z).
+    /// Colouring by height with the colour map: colour 0 at heightLow(), 1 at heightHigh()
+    /// (cell space along z): RenderSettings::colourMin/colourMax (world z) when given, else
+    /// the bottom of the lowest and the top of the highest occupied cell layer.
     bool byHeight() const { return values_ == nullptr && !colormap_.empty(); }
-    int zLow() const { return zLo_; }
-    int zHigh() const { return zHi_; }
+    float heightLow() const { return hLo_; }
+    float heightHigh() const { return hHi_; }
 
 private:
     const Octree& tree_;
@@ -65,7 +66,7 @@ private:
     bool inverted_ = false;
     std::string colormap_;   // empty: uniform colour_
     float lo_ = 0.0f, hi_ = 1.0f;  // value range
-    int zLo_ = 0, zHi_ = 0;  // occupied cell range along z, for the colour map
+    float hLo_ = 0.0f, hHi_ = 1.0f;  // heights at the colour map's ends (cell space along z)
 };
 
 /// Per-frame constants: light in world space, colour settings.

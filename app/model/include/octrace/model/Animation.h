@@ -81,11 +81,11 @@ struct AnimationPlan {
     /// What the camera frames (unless the spec places it): the world bounds of the grid read,
     /// which every step shares, so that the view does not follow each step's surface.
     Box3 bounds;
-    /// The values mapped onto the colour map's ends in every frame (NaN: not coloured by
-    /// values, or one surface's own range: see colourRangeSource).
+    /// The values (or, coloured by height, the heights in a colour bar's units) mapped onto
+    /// the colour map's ends in every frame (NaN: no colour map; see colourRangeSource).
     float colourMin = std::numeric_limits<float>::quiet_NaN(), colourMax = std::numeric_limits<float>::quiet_NaN();
     /// How the range was chosen, for messages and stats: "`colour_range`", "`colour_by` <VAR>
-    /// over the N steps", or "" when the surface is not coloured by values.
+    /// over the N steps", "height over the grid: [LO, HI] m", or "" without a colour map.
     std::string colourRangeSource;
     /// The image's size (the whole figure's with a figure; the plot's otherwise).
     int width = 0, height = 0;
@@ -103,7 +103,8 @@ using AnimationHooks = BuildHooks;
 /// the union of its valid ranges over the grid read. That range holds every frame's surface
 /// values and is the same whatever the iso value; it can be wider than the values on the
 /// surfaces themselves, which would cost building every surface twice. A surface coloured by
-/// height keeps each frame's own height range (a note says so), as a window does its window.
+/// height (a colour map, no values) is coloured over the grid's heights (gridHeightRange,
+/// Figure.h) in every frame, unless `colour_range` gives them; a window keeps its window.
 /// @throws UsageError (bad `times`, a camera the spec cannot frame, a figure that does not
 ///         fit), InputError (no time axis: an animation needs one; steps out of range), and as
 ///         loadField.

@@ -76,6 +76,11 @@ struct FigureSubject {
 };
 FigureSubject figureSubject(const Surface& s, const std::string& input);
 
+/// The heights a grid spans, bottom and top, in the units a colour bar of height uses and
+/// `colour_range` takes for a surface coloured by height: metres above the sea surface on a
+/// geographic field (negative below it), else world z.
+std::pair<double, double> gridHeightRange(const ScalarField& grid);
+
 /// Title, subtitle (variable, iso value, colour variable, region), colour bar, the labelled
 /// bounding box (longitude, latitude and depth on geographic grids, world x, y, z otherwise)
 /// as seen by `camera` (whose image is the plot) and, with `scale_bar`, a scale bar measured

@@ -190,7 +190,8 @@ inline constexpr Option colourBy{.key = "colour_by", .kind = OptionKind::Text, .
     .commands = "render export animate"};
 inline constexpr Option colourRange{.key = "colour_range", .kind = OptionKind::Text, .flag = "colour-range",
     .argument = "MIN,MAX", .defaultText = "the range of what is coloured",
-    .help = "the values mapped onto the colour map's ends", .commands = "render export slice animate"};
+    .help = "the values mapped onto the colour map's ends (a surface coloured by height: heights, in metres above the sea "
+            "surface on a geographic grid)", .commands = "render export slice animate"};
 inline constexpr Option maskedColour{.key = "masked_colour", .kind = OptionKind::Text, .flag = "masked-colour",
     .argument = "R,G,B", .defaultText = "0.6,0.6,0.6", .help = "colour of what is masked, sRGB in [0,1]",
     .commands = "render export slice animate"};
