@@ -25,8 +25,8 @@ import benchcommon
 def main():
     ap = benchcommon.parser(__doc__)
     ap.add_argument("--frames", type=int, default=24)
-    ap.add_argument("--depth", type=int, default=9)
-    ap.add_argument("--size", default="1600x1200")
+    ap.add_argument("--depth", type=int, default=10)
+    ap.add_argument("--size", default="1280x960")
     a = ap.parse_args()
     import numpy as np
     import xarray as xr
@@ -95,9 +95,12 @@ def main():
              f"Speed-up of 2 workers over 1: **{best[1] / best[2]:.2f}x** (target 1.6x).", "",
              "What this machine gives two single-threaded frame streams, in the same run: the same frames (the same "
              "task function, no video) in a pool of 1 and of 2 plain processes: "
-             f"{plain_best[1]:.1f} s and {plain_best[2]:.1f} s, **{plain_best[1] / plain_best[2]:.2f}x**. Two cores "
-             "share the memory bus and caches, so two streams do not run twice as fast; Dask's speed-up is "
-             f"{100 * (best[1] / best[2]) / (plain_best[1] / plain_best[2]):.0f}% of that ceiling."]
+             f"{plain_best[1]:.1f} s and {plain_best[2]:.1f} s, **{plain_best[1] / plain_best[2]:.2f}x**; Dask's "
+             f"speed-up is {100 * (best[1] / best[2]) / (plain_best[1] / plain_best[2]):.0f}% of that. What Dask adds: "
+             "the client's scheduler, each step's samples sent to a worker and its pixels sent back, and the video "
+             "encoded on the client, all on the same two cores.",
+             "", f"Frames: {best[1] / a.frames:.2f} s each on one worker (the 24 frames' time over 24), "
+             f"{frame_s:.2f} s for one frame alone (with the worker's first-frame costs)."]
     with open(os.path.join(benchcommon.ROOT, "docs", "benchmarks", "python-animate.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
 
