@@ -17,6 +17,7 @@ void checkImageOutput(const std::string& output) {
 void checkFigureOptions(const FigureArgs& f, const std::string& output) {
     if (!f.enabled && (!f.title.empty() || f.printInches || f.scaleBar))
         throw UsageError(std::string(f.printInches ? "--print-size" : f.scaleBar ? "--scale-bar" : "--title") + " needs --figure");
+    if (!f.enabled && !f.coastline.empty()) throw UsageError("--coastline needs --figure");
     if (f.enabled) checkFigureFormat(output);
 }
 
@@ -26,7 +27,7 @@ void addFigureOptions(OptionParser& p, FigureArgs& f, const std::string& shows) 
                         shows.empty() ? "a colour bar with units, the variable, the region and labelled longitude/latitude/depth "
                                         "ticks on the bounding box"
                                       : shows));
-    for (const model::Option* o : {&model::opt::title, &model::opt::dpi, &model::opt::printSize, &model::opt::scaleBar})
+    for (const model::Option* o : {&model::opt::title, &model::opt::dpi, &model::opt::printSize, &model::opt::scaleBar, &model::opt::coastline})
         p.add(settingOption(*o, into));
 }
 

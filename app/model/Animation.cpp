@@ -210,7 +210,7 @@ AnimationImage renderAnimationFrame(const AnimationPlan& plan, std::size_t i, co
     }
     FigureSettings settings = plan.spec.figure;
     settings.caption = f.caption;
-    out.image = io::composeFigure(plot, figureSpec(settings, figureSubject(surface, spec.input), surface.tree, cam, rs), *plan.figureLayout);
+    out.image = io::composeFigure(plot, figureSpec(plot, settings, figureSubject(surface, spec.input), surface.tree, cam, rs), *plan.figureLayout);
     return out;
 }
 

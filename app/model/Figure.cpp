@@ -4,11 +4,15 @@
 #include "octrace/io/ImageWriter.h"
 #include "octrace/render/Shading.h"
 #include "octrace/util/Error.h"
+#include "octrace/util/Log.h"
 #include "octrace/util/Parameter.h"
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <limits>
+#include <mutex>
 #include <sstream>
 
 namespace octrace::model {
@@ -28,6 +32,65 @@ struct Projector {
     }
     RayGenerator rays;
 };
+
+/// Liang-Barsky: the part of segment a-b inside [lo, hi] as parameters t0 <= t1; false if none.
+bool clipSegment(dvec2 a, dvec2 b, dvec2 lo, dvec2 hi, double& t0, double& t1) {
+    t0 = 0.0, t1 = 1.0;
+    const dvec2 d = b - a;
+    const double p[4] = {-d.x, d.x, -d.y, d.y}, q[4] = {a.x - lo.x, hi.x - a.x, a.y - lo.y, hi.y - a.y};
+    for (int i = 0; i < 4; ++i) {
+        if (p[i] == 0.0) {
+            if (q[i] < 0.0) return false;
+        } else {
+            const double t = q[i] / p[i];
+            if (p[i] < 0.0) t0 = std::max(t0, t);
+            else t1 = std::min(t1, t);
+        }
+    }
+    return t0 <= t1;
+}
+
+/// The coastlines of a 3-D figure: each line on the horizontal plane z = `z` (world) within the
+/// grid's box, sampled about every pixel and kept where no rendered surface lies in front
+/// (`plot`'s depth, with `tolerance` world units so that a surface at the plane itself does
+/// not hide its own coast).
+void coastlinesIn3d(const io::Coastlines& coast, const GeoAxes& g, const Box3& box, double z, const Frame& plot,
+                    const Projector& project, double tolerance, std::vector<std::vector<dvec2>>& out) {
+    std::vector<std::vector<dvec2>> world;
+    std::vector<dvec2> xy;
+    for (const auto& line : coast.lines) {
+        xy.clear();
+        for (const dvec2& p : line) xy.push_back({g.x(p.x), g.y(p.y)});
+        clipPolyline(xy, dvec2(box.lo), dvec2(box.hi), world);
+    }
+    const RayGenerator& rays = project.rays;
+    auto visible = [&](const dvec3& p, dvec2& px) {
+        if (!project(p, px)) return false;
+        const int ix = int(std::floor(px.x)), iy = int(std::floor(px.y));
+        if (ix < 0 || iy < 0 || ix >= plot.width || iy >= plot.height) return false;
+        const double d = plot.depth.empty() ? std::numeric_limits<double>::infinity() : double(plot.depth[plot.pixel(ix, iy)]);
+        const double dist = rays.orthographic() ? -glm::dot(p - rays.eye(), rays.back()) : glm::length(p - rays.eye());
+        return !(d < dist - tolerance);
+    };
+    for (const auto& line : world) {
+        std::vector<dvec2> piece;
+        auto flush = [&] {
+            if (piece.size() >= 2) out.push_back(std::move(piece));
+            piece.clear();
+        };
+        for (std::size_t i = 1; i < line.size(); ++i) {
+            const dvec3 a(line[i - 1], z), b(line[i], z);
+            dvec2 pa, pb;
+            const int steps = project(a, pa) && project(b, pb) ? std::clamp(int(std::ceil(glm::length(pb - pa))), 1, 4096) : 64;
+            for (int s = (i == 1 ? 0 : 1); s <= steps; ++s) {
+                dvec2 px;
+                if (visible(a + (b - a) * (double(s) / steps), px)) piece.push_back(px);
+                else flush();
+            }
+        }
+        flush();
+    }
+}
 
 }  // namespace
 
@@ -92,9 +155,79 @@ std::pair<double, double> gridHeightRange(const ScalarField& grid) {
     return {-g.depthM(b.lo.z), -g.depthM(b.hi.z)};
 }
 
+std::string parseCoastline(const std::string& text) {
+    if (text.empty()) throw UsageError(param(opt::coastline.key) + ": give auto, none, crude, low, intermediate, high or a file");
+    if (text == "auto") return "";
+    return text;
+}
+
+io::LonLatBox lonLatBox(const ScalarField::Geographic& geographic, const Box3& box) {
+    const GeoAxes g{geographic};
+    return {std::min(g.lon(box.lo.x), g.lon(box.hi.x)), std::max(g.lon(box.lo.x), g.lon(box.hi.x)),
+            std::min(g.lat(box.lo.y), g.lat(box.hi.y)), std::max(g.lat(box.lo.y), g.lat(box.hi.y))};
+}
+
+std::shared_ptr<const io::Coastlines> figureCoastlines(const std::string& coastline, const io::LonLatBox& region) {
+    static std::mutex mutex;
+    static std::string lastKey;
+    static std::shared_ptr<const io::Coastlines> last;
+    if (coastline == "none") return std::make_shared<const io::Coastlines>();
+    const std::string key = coastline + "|" + numberText(region.lonMin, 12) + "|" + numberText(region.lonMax, 12) + "|" +
+                            numberText(region.latMin, 12) + "|" + numberText(region.latMax, 12);
+    std::lock_guard<std::mutex> lock(mutex);
+    if (last && key == lastKey) return last;
+    std::shared_ptr<const io::Coastlines> out;
+    const std::array<std::pair<const char*, io::GshhgResolution>, 4> levels{{{"crude", io::GshhgResolution::Crude},
+                                                                              {"low", io::GshhgResolution::Low},
+                                                                              {"intermediate", io::GshhgResolution::Intermediate},
+                                                                              {"high", io::GshhgResolution::High}}};
+    if (coastline.empty()) {
+        const io::GshhgResolution r = io::gshhgResolutionFor(region);
+        try {
+            out = std::make_shared<const io::Coastlines>(io::readGshhg(r, region));
+        } catch (const FileError& e) {
+            static std::once_flag said;
+            std::call_once(said, [&] { log::warning(std::string(e.what()) + "; the figure has no coastlines"); });
+            out = std::make_shared<const io::Coastlines>();
+        }
+    } else {
+        for (const auto& [name, r] : levels)
+            if (coastline == name) out = std::make_shared<const io::Coastlines>(io::readGshhg(r, region));
+        if (!out) out = std::make_shared<const io::Coastlines>(io::readVectorCoastlines(coastline, region));
+    }
+    if (!out->source.empty()) log::debug("coastlines: " + std::to_string(out->lines.size()) + " lines from " + out->source);
+    lastKey = key;
+    last = out;
+    return out;
+}
+
+void clipPolyline(const std::vector<dvec2>& points, dvec2 lo, dvec2 hi, std::vector<std::vector<dvec2>>& out) {
+    std::vector<dvec2> piece;
+    for (std::size_t i = 1; i < points.size(); ++i) {
+        double t0, t1;
+        const dvec2 a = points[i - 1], b = points[i];
+        if (!clipSegment(a, b, lo, hi, t0, t1)) {
+            if (piece.size() >= 2) out.push_back(std::move(piece));
+            piece.clear();
+            continue;
+        }
+        const dvec2 p0 = a + (b - a) * t0, p1 = a + (b - a) * t1;
+        if (piece.empty() || t0 > 0.0) {
+            if (piece.size() >= 2) out.push_back(std::move(piece));
+            piece.assign({p0});
+        }
+        piece.push_back(p1);
+        if (t1 < 1.0) {
+            out.push_back(std::move(piece));
+            piece.clear();
+        }
+    }
+    if (piece.size() >= 2) out.push_back(std::move(piece));
+}
+
 void writeFigure(const Frame& plot, const FigureSettings& f, const io::FigureLayout& layout, const FigureSubject& subject,
                  const Octree& tree, const Camera& camera, const RenderSettings& rs, const std::string& path) {
-    const io::FigureSpec spec = figureSpec(f, subject, tree, camera, rs);
+    const io::FigureSpec spec = figureSpec(plot, f, subject, tree, camera, rs);
     io::ImageWriteOptions options;
     options.dpi = layout.dpi;
     io::writeImage(io::composeFigure(plot, spec, layout), path, options);
@@ -112,7 +245,7 @@ io::FigureLayout figureLayout(const FigureSettings& f, int width, int height, bo
     return io::layoutFigure(width, height, dpi, colourBar);
 }
 
-io::FigureSpec figureSpec(const FigureSettings& f, const FigureSubject& subject, const Octree& tree, const Camera& camera,
+io::FigureSpec figureSpec(const Frame& plot, const FigureSettings& f, const FigureSubject& subject, const Octree& tree, const Camera& camera,
                           const RenderSettings& rs) {
     io::FigureSpec spec;
     spec.title = f.title;
@@ -158,6 +291,13 @@ io::FigureSpec figureSpec(const FigureSettings& f, const FigureSubject& subject,
             dvec2 pa, pb;
             if (project(corner[std::size_t(a)], pa) && project(corner[std::size_t(a | bit)], pb)) spec.lines.push_back({pa, pb});
         }
+
+    // Coastlines on the sea surface, or on the top of a grid that starts below it.
+    if (geographic.valid && f.coastline != "none") {
+        const GeoAxes g{geographic};
+        const auto coast = figureCoastlines(f.coastline, lonLatBox(geographic, box));
+        coastlinesIn3d(*coast, g, box, std::min(g.z(0.0), box.hi.z), plot, project, 1.5 * tree.voxelSize(), spec.coastlines);
+    }
 
     // Ticks on three edges that meet at the south-east corner of the top: along x at y = lo,
     // along y at x = hi, along z at (hi, lo).

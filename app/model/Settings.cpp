@@ -259,6 +259,7 @@ const std::unordered_map<std::string_view, Entry>& setters() {
         m.emplace(opt::dpi.key, figure([](const std::string& v, FigureSettings& f) { f.dpi = parseInteger(opt::dpi, v); }));
         m.emplace(opt::printSize.key, figure([](const std::string& v, FigureSettings& f) { f.printInches = parsePrintSize(opt::printSize, v); }));
         m.emplace(opt::scaleBar.key, figure([](const std::string&, FigureSettings& f) { f.scaleBar = true; }));
+        m.emplace(opt::coastline.key, figure([](const std::string& v, FigureSettings& f) { f.coastline = parseCoastline(v); }));
         // Slices.
         m.emplace(opt::plane.key, slice([](const std::string& v, SliceSpec& s) {
             const std::string name = parseChoice(opt::plane, v);

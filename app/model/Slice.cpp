@@ -163,6 +163,22 @@ io::FigureSpec sliceFigureSpec(const SliceSpec& a, const ScalarField& f, const S
             const double py = offset.y + v.gridMin.y + 0.5 + (tl[aU] - yt.world[i]) * U[aU] / v.pixelSize;
             spec.labels.push_back({{lo.x, py}, yt.text[i], -(0.5 * labelWidth(yt.text[i]) + 0.6), 0.0});
         }
+        // A map (a depth slice of a geographic grid): its coastlines, clipped to the grid.
+        if (f.geographic.valid && sliceNormalAxis(v.plane) == 2 && a.figure.coastline != "none") {
+            const GeoAxes g{f.geographic};
+            const Box3 box{dvec3(r0, u0, 0.0), dvec3(r1, u1, 0.0)};
+            const auto coast = figureCoastlines(a.figure.coastline, lonLatBox(f.geographic, box));
+            std::vector<dvec2> line;
+            for (const auto& lonLat : coast->lines) {
+                line.clear();
+                for (const dvec2& p : lonLat) {
+                    const dvec3 w(g.x(p.x), g.y(p.y), 0.0);
+                    line.push_back({offset.x + v.gridMin.x + 0.5 + (w[aR] - tl[aR]) * R[aR] / v.pixelSize,
+                                    offset.y + v.gridMin.y + 0.5 + (tl[aU] - w[aU]) * U[aU] / v.pixelSize});
+                }
+                clipPolyline(line, lo, hi, spec.coastlines);
+            }
+        }
     }
     // The scale bar (the figure's own, in the plot's lower left corner under the slice):
     // always for patient volumes, with `scale_bar` for other grids.

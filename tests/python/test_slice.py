@@ -46,6 +46,8 @@ def same_stats(img, expected, input_differs=False):
      dict(plane="x", index=50, colormap="viridis", colour_range=(0, 25))),
     (("--plane", "y", "--at", "30", "--figure", "--size", "600x400", "--title", "Section"),
      dict(plane="y", at=30, figure=True, size=(600, 400), title="Section")),
+    (("--plane", "z", "--at", "0", "--figure", "--size", "600x400", "--coastline", "low"),
+     dict(plane="z", at=0, figure=True, size=(600, 400), coastline="low")),
 ])
 def test_levitus_slices_are_the_clis(tmp_path, octrace_exe, levitus, args, keywords):
     expected, stats = cli_slice(octrace_exe, tmp_path, "cli", levitus, "--var", "TEMP", *args)

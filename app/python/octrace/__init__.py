@@ -201,7 +201,7 @@ def slice(source, plane=None, at=None, index=None, size=None, figure=False, **op
     default the middle one); ``size=(W, H)``: the image, unset one pixel per sample;
     ``figure=True``: the CLI's figure (grey or colour bar, letters or ticks, title). Other
     ``options``: window, colormap, colour_range, masked_colour, background, title, dpi,
-    print_size, scale_bar, threads (``octrace.options()``)."""
+    print_size, scale_bar, coastline, threads (``octrace.options()``)."""
     if type(source).__name__ == "DataArray" and hasattr(source, "octrace"):
         return source.octrace.slice(plane=plane, at=at, index=index, size=size, figure=figure, **options)
     if type(source).__name__ == "ndarray":

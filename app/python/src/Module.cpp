@@ -406,7 +406,7 @@ Image renderShell(const Shell& sh, const Settings& surfaceSettings, const Settin
             record.multiResolution = multires;
             image->stats = model::frameStats(record);
             if (layout) {
-                image->frame = io::composeFigure(frame, model::figureSpec(figure, model::figureSubject(s, spec.input), s.tree, cam, rs), *layout);
+                image->frame = io::composeFigure(frame, model::figureSpec(frame, figure, model::figureSubject(s, spec.input), s.tree, cam, rs), *layout);
                 image->dpi = layout->dpi;
                 FramePool::instance().give(std::move(frame));
             } else {

@@ -18,6 +18,7 @@ namespace {
 constexpr double kLabelPoints = 9.0, kTitlePoints = 11.0;
 const vec3 kInk{0.0f, 0.0f, 0.0f};           // text (linear)
 const vec3 kLineInk{0.05f, 0.05f, 0.05f};    // box edges and ticks (linear, near black)
+const vec3 kCoastInk{0.0f, 0.0f, 0.0f};     // coastlines (black, thinner than the box)
 
 /// UTF-8 to code points; a broken sequence becomes U+FFFD.
 std::vector<char32_t> codePoints(const std::string& s) {
@@ -221,6 +222,9 @@ Frame composeFigure(const Frame& plot, const FigureSpec& spec, const FigureLayou
 
     // Box edges and labelled ticks, in plot pixels.
     const dvec2 origin(l.plotX, l.plotY);
+    const double coastWidth = std::max(1.0, l.dpi / 160.0);
+    for (const auto& line : spec.coastlines)
+        for (std::size_t i = 1; i < line.size(); ++i) canvas.line(origin + line[i - 1], origin + line[i], coastWidth, kCoastInk);
     for (const auto& [a, b] : spec.lines) canvas.line(origin + a, origin + b, lineWidth, kLineInk);
     font.size(l.labelPx);
     for (const FigureLabel& lab : spec.labels) {

@@ -48,6 +48,9 @@ struct FigureSpec {
     /// Lines over the plot (the bounding box's edges, plot pixels) and labelled ticks on them.
     std::vector<std::pair<dvec2, dvec2>> lines;
     std::vector<FigureLabel> labels;
+    /// Coastlines over the plot (plot pixels), already clipped to where they belong; drawn
+    /// thinner than the box and under it.
+    std::vector<std::vector<dvec2>> coastlines;
     /// Scale bar in the plot's lower left corner: `scaleBarPx` plot pixels long (0: none),
     /// labelled `scaleBarLabel` (e.g. "500 km") above it.
     double scaleBarPx = 0.0;

@@ -6,11 +6,13 @@
 #include "octrace/model/OptionTable.h"
 #include "octrace/model/Surface.h"
 
+#include "octrace/io/Coastline.h"
 #include "octrace/io/Figure.h"
 #include "octrace/render/Camera.h"
 #include "octrace/render/Frame.h"
 #include "octrace/render/RenderSettings.h"
 
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -24,6 +26,9 @@ struct FigureSettings {
     int dpi = 0;              ///< `dpi`; 0: kDefaultDpi for a figure, none recorded for a plain image
     std::optional<dvec2> printInches;  ///< `print_size`, in inches
     bool scaleBar = false;    ///< `scale_bar`
+    /// `coastline`: "" (auto: GSHHG at the region's resolution if installed), "none", a GSHHG
+    /// resolution (crude, low, intermediate, high) or a vector file's path.
+    std::string coastline;
 };
 
 inline constexpr int kDefaultDpi = int(opt::dpi.defaultValue);
@@ -39,6 +44,23 @@ struct GeoAxes {
     double y(double latDeg) const;
     double z(double depthM) const;
 };
+
+/// `coastline`'s text as FigureSettings keeps it: "" for auto, "none", "crude", "low",
+/// "intermediate", "high", else a vector file's path. @throws UsageError when empty.
+std::string parseCoastline(const std::string& text);
+
+/// The longitude/latitude box of a world box on a geographic grid (longitudes unwrapped).
+io::LonLatBox lonLatBox(const ScalarField::Geographic& g, const Box3& box);
+
+/// The coastlines `coastline` (FigureSettings::coastline) asks for over `region`: none for
+/// "none"; GSHHG at the resolution given or, for auto, at io::gshhgResolutionFor(region), and
+/// for auto only a warning (once) and none when GSHHG is not installed; else the vector file.
+/// The last result is kept, so an animation's frames read the file once. Thread-safe.
+/// @throws as io::readGshhg and io::readVectorCoastlines.
+std::shared_ptr<const io::Coastlines> figureCoastlines(const std::string& coastline, const io::LonLatBox& region);
+
+/// Appends to `out` the parts of the polyline `points` inside the rectangle [lo, hi].
+void clipPolyline(const std::vector<dvec2>& points, dvec2 lo, dvec2 hi, std::vector<std::vector<dvec2>>& out);
 
 /// `v` at `precision` significant digits, -0 as 0: how figures and summaries print a number.
 std::string numberText(double v, int precision = 6);
@@ -84,8 +106,10 @@ std::pair<double, double> gridHeightRange(const ScalarField& grid);
 /// Title, subtitle (variable, iso value, colour variable, region), colour bar, the labelled
 /// bounding box (longitude, latitude and depth on geographic grids, world x, y, z otherwise)
 /// as seen by `camera` (whose image is the plot) and, with `scale_bar`, a scale bar measured
-/// at the look-at point's distance (exact for an orthographic camera).
-io::FigureSpec figureSpec(const FigureSettings& f, const FigureSubject& subject, const Octree& tree, const Camera& camera,
+/// at the look-at point's distance (exact for an orthographic camera). On a geographic field,
+/// the coastlines (`coastline`) on the sea surface (or the top of the grid read when it lies
+/// deeper) over the grid's region, hidden where `plot`'s depth shows the surface in front.
+io::FigureSpec figureSpec(const Frame& plot, const FigureSettings& f, const FigureSubject& subject, const Octree& tree, const Camera& camera,
                           const RenderSettings& rs);
 
 /// The figure around `plot` (rendered with `camera` at the layout's plot size), written as a

@@ -345,6 +345,14 @@ inline constexpr Option scaleBar{.key = "scale_bar", .kind = OptionKind::Flag, .
     .help = "draw a scale bar in the plot's lower left corner, a round length in km (geographic grids), m (cities) or "
             "world units, true at the distance of the look-at point",
     .commands = "render slice animate"};
+inline constexpr Option coastline{.key = "coastline", .kind = OptionKind::Text, .flag = "coastline",
+    .argument = "auto|none|crude|low|intermediate|high|FILE",
+    .defaultText = "auto: GSHHG at a resolution from the region's size, where GSHHG is installed",
+    .help = "coastlines on the figure of a geographic field (a depth slice's map; a 3-D view: on the sea surface, hidden "
+            "behind the surface): GSHHG at a resolution (Debian gmt-gshhg-low: crude, low; gmt-gshhg-high: intermediate, "
+            "high), the lines and polygons of a vector file OGR reads (shapefile, GeoPackage, GeoJSON; reprojected to "
+            "longitude/latitude), or none",
+    .commands = "render slice animate"};
 // Animations (`octrace animate`, model/Animation.h).
 inline constexpr Option times{.key = "times", .kind = OptionKind::Text, .flag = "time", .argument = "all|I:J|DATE:DATE",
     .defaultText = "all",
