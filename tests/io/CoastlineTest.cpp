@@ -139,7 +139,7 @@ TEST(Gshhg, LinesStayContiguousAcrossTheDateline) {
                 EXPECT_LE(lo, box.lonMax);
                 EXPECT_GE(hi, box.lonMin);
             }
-            EXPECT_LT(maxStep, 10.0) << gshhgResolutionName(r);
+            EXPECT_LT(maxStep, 20.0) << gshhgResolutionName(r);  // within a bin (20° in crude); a wrap would be ~360°
         }
         const Coastlines pacific = readGshhg(r, {160.0, 200.0, -25.0, 0.0});
         EXPECT_LT(distanceKm(pacific, {187.6, -13.8}), 60.0) << "Samoa, " << gshhgResolutionName(r);
