@@ -1,6 +1,6 @@
 // --coastline on figures: GSHHG's shorelines drawn where the Levitus atlas's land mask has its
-// edge (a global depth slice at 1°), on 3-D figures, from a vector file, and the errors: a file
-// that is no vector data, one without lines, a missing one, GSHHG not installed.
+// edge (a global depth slice at 1°), on 3-D figures behind the surface, from a vector file, and
+// GSHHG not installed (the invalid coastline files: InvalidInputTest.cpp).
 #include "CliRunner.h"
 #include "../io/ImageTestSupport.h"
 
@@ -179,29 +179,6 @@ TEST(CoastlineCli, TheSurfaceHidesTheCoastlineBehindIt) {
     EXPECT_GT(drawn[1], 300) << "coasts where no surface is in front";
     EXPECT_GT(onSurface[0], 150);
     EXPECT_LT(onSurface[1], onSurface[0] / 20);
-}
-
-TEST(CoastlineCli, InvalidCoastlineFilesExitOneNamingTheFile) {
-    if (!haveShared(kLevitus)) GTEST_SKIP() << "shared data absent";
-    Scratch s;
-    const std::string lev = sharedData(kLevitus);
-    const std::string invalid = std::string(OCTRACE_TEST_DATA) + "/invalid/";
-    const std::pair<std::string, const char*> cases[] = {
-        {invalid + "invalid_coastline_not_vector.geojson", "OGR cannot open it as vector data"},
-        {invalid + "invalid_coastline_points_only.geojson", "no line or polygon in any layer"},
-        {invalid + "no_such_coastline.geojson", "no such coastline file"},
-    };
-    for (const auto& [file, expect] : cases) {
-        Result r = run({"slice", lev, "--var", "TEMP", "--plane", "z", "--at", "0", "--figure", "--coastline", file, "-o", s.path("x.png")});
-        EXPECT_EQ(r.code, 1) << file << "\n" << r.err;
-        EXPECT_TRUE(has(r.err, expect)) << r.err;
-        EXPECT_TRUE(has(r.err, file)) << r.err;
-        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-    }
-    Result r = run({"slice", lev, "--var", "TEMP", "--coastline", "low", "-o", s.path("x.png")});
-    EXPECT_EQ(r.code, 2) << r.err;
-    EXPECT_TRUE(has(r.err, "--coastline needs --figure")) << r.err;
-    EXPECT_EQ(countEntries(s.dir()), 0);
 }
 
 // GSHHG not installed: the default figure is drawn without coastlines and a warning names the

@@ -126,3 +126,28 @@ TEST(InvalidInput, IsoValueOutsideTheRangeOfARealFieldExitsOneWithTheRange) {
     EXPECT_EQ(d.code, 2) << d.err;  // a latitude beyond 90 is a command-line mistake
     EXPECT_EQ(countEntries(s.dir()), 0);
 }
+
+// The coastline files of the corpus (README.md, "Coastline files"), given to --coastline of a
+// figure: exit 1, one line naming the file, no output; and --coastline without --figure: exit 2.
+TEST(InvalidInput, CoastlineFilesExitOneNamingTheFile) {
+    const std::string lev = sharedData("ocean/levitus_climatology.cdf");
+    if (!haveShared("ocean/levitus_climatology.cdf")) GTEST_SKIP() << "shared data absent: " << lev;
+    Scratch s;
+    const std::string invalid = std::string(OCTRACE_TEST_DATA) + "/invalid/";
+    const std::pair<std::string, const char*> cases[] = {
+        {invalid + "invalid_coastline_not_vector.geojson", "OGR cannot open it as vector data"},
+        {invalid + "invalid_coastline_points_only.geojson", "no line or polygon in any layer"},
+        {invalid + "no_such_coastline.geojson", "no such coastline file"},
+    };
+    for (const auto& [file, expect] : cases) {
+        Result r = run({"slice", lev, "--var", "TEMP", "--plane", "z", "--at", "0", "--figure", "--coastline", file, "-o", s.path("x.png")});
+        EXPECT_EQ(r.code, 1) << file << "\n" << r.err;
+        EXPECT_NE(r.err.find(expect), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    }
+    Result r = run({"slice", lev, "--var", "TEMP", "--coastline", "low", "-o", s.path("x.png")});
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_NE(r.err.find("--coastline needs --figure"), std::string::npos) << r.err;
+    EXPECT_EQ(countEntries(s.dir()), 0);
+}
