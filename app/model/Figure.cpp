@@ -155,6 +155,12 @@ std::pair<double, double> gridHeightRange(const ScalarField& grid) {
     return {-g.depthM(b.lo.z), -g.depthM(b.hi.z)};
 }
 
+void warnCoastlineUnused(const std::string& coastline, const std::string& why) {
+    if (coastline.empty() || coastline == "none") return;
+    static std::once_flag said;
+    std::call_once(said, [&] { log::warning(param(opt::coastline.key) + " " + coastline + " is not drawn: " + why); });
+}
+
 std::string parseCoastline(const std::string& text) {
     if (text.empty()) throw UsageError(param(opt::coastline.key) + ": give auto, none, crude, low, intermediate, high or a file");
     if (text == "auto") return "";
@@ -297,6 +303,8 @@ io::FigureSpec figureSpec(const Frame& plot, const FigureSettings& f, const Figu
         const GeoAxes g{geographic};
         const auto coast = figureCoastlines(f.coastline, lonLatBox(geographic, box));
         coastlinesIn3d(*coast, g, box, std::min(g.z(0.0), box.hi.z), plot, project, 1.5 * tree.voxelSize(), spec.coastlines);
+    } else if (!geographic.valid) {
+        warnCoastlineUnused(f.coastline, "the field is not on a longitude/latitude grid");
     }
 
     // Ticks on three edges that meet at the south-east corner of the top: along x at y = lo,

@@ -178,6 +178,9 @@ io::FigureSpec sliceFigureSpec(const SliceSpec& a, const ScalarField& f, const S
                 }
                 clipPolyline(line, lo, hi, spec.coastlines);
             }
+        } else {
+            warnCoastlineUnused(a.figure.coastline, f.geographic.valid ? "only a depth slice (plane z) is a map"
+                                                                       : "the field is not on a longitude/latitude grid");
         }
     }
     // The scale bar (the figure's own, in the plot's lower left corner under the slice):

@@ -198,3 +198,16 @@ TEST(CoastlineCli, MissingGshhgIsAWarningByDefaultAndAnErrorWhenAskedFor) {
     EXPECT_FALSE(std::filesystem::exists(s.path("b.png")));
     unsetenv("OCTRACE_GSHHG_DIR");
 }
+
+// Coastlines asked for where there is no map: a warning says they are not drawn, and why.
+TEST(CoastlineCli, AskedForWhereNoMapIsDrawnTheyAreNotDrawnWithAWarning) {
+    Scratch s;
+    Result r = run({"render", "analytic:sphere:6", "--size", "320x240", "--figure", "--coastline", "low", "-o", s.path("a.png")});
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(has(r.err, "--coastline low is not drawn: the field is not on a longitude/latitude grid")) << r.err;
+    if (!haveShared(kLevitus)) GTEST_SKIP() << "shared data absent";
+    r = run({"slice", sharedData(kLevitus), "--var", "TEMP", "--plane", "y", "--at", "30", "--figure", "--coastline", "low", "-o",
+             s.path("b.png")});
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(has(r.err, "--coastline low is not drawn: only a depth slice (plane z) is a map")) << r.err;
+}

@@ -59,6 +59,9 @@ io::LonLatBox lonLatBox(const ScalarField::Geographic& g, const Box3& box);
 /// @throws as io::readGshhg and io::readVectorCoastlines.
 std::shared_ptr<const io::Coastlines> figureCoastlines(const std::string& coastline, const io::LonLatBox& region);
 
+/// Warns (once a process) that `coastline`, given (not auto, not none), is not drawn, and `why`.
+void warnCoastlineUnused(const std::string& coastline, const std::string& why);
+
 /// Appends to `out` the parts of the polyline `points` inside the rectangle [lo, hi].
 void clipPolyline(const std::vector<dvec2>& points, dvec2 lo, dvec2 hi, std::vector<std::vector<dvec2>>& out);
 
