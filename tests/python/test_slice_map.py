@@ -53,7 +53,7 @@ def test_map_of_the_atlas_top_level_from_a_dataarray_level(levitus):
 def test_surface_of_a_two_dimensional_field_is_refused_saying_to_slice():
     xr = pytest.importorskip("xarray")
     da = xr.open_dataset(DATA / "levitus_sst_2d.nc")["sst"]
-    with pytest.raises(octrace.InputError, match="a surface needs a 3-D field; draw a 2-D field with slice"):
+    with pytest.raises(octrace.InputError, match="a surface needs a 3-D field; draw the 2-D sst with slice"):
         da.octrace.render(iso=10)
     with pytest.raises(octrace.InputError, match="draw the 2-D sst with slice"):
         octrace.surface(str(DATA / "levitus_sst_2d.nc"), iso=10)
