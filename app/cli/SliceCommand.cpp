@@ -68,6 +68,7 @@ int runSlice(const std::vector<std::string>& args) {
     model::checkSliceSpec(a);
     io::FieldRequest request = a.request;
     request.memoryBudget = model::memoryBudget(a);
+    request.acceptPlanar = true;  // a 2-D field is drawn as a map
 
     Timer loadTimer;
     const ScalarField field = loadField(a.input, request, 8);

@@ -18,12 +18,44 @@
 namespace octrace::model {
 namespace {
 
-/// `at` in world units along the plane's normal axis (geographic grids: depth, longitude, latitude).
+/// `at` in world units along the plane's normal axis (geographic grids: depth, longitude,
+/// latitude; a longitude in -180..180 or 0..360 alike, as `region` takes it: the grid is
+/// unwrapped within half a turn of lon0, so the longitude is taken there).
 double worldPosition(const ScalarField& f, SlicePlane plane, double at) {
     if (!f.geographic.valid) return at;
     const GeoAxes g{f.geographic};
     const int n = sliceNormalAxis(plane);
-    return n == 2 ? g.z(at) : n == 0 ? g.x(at) : g.y(at);
+    if (n == 0) return g.x(f.geographic.lon0 + std::remainder(at - f.geographic.lon0, 360.0));
+    return n == 2 ? g.z(at) : g.y(at);
+}
+
+/// Refuses `at` off a geographic grid in the user's terms, degrees east or north and metres of
+/// depth, before makeSliceView would in world kilometres (on other grids world units are the
+/// file's own, and its message says them). The same range: slicePositionRange.
+void checkGeographicAt(const ScalarField& f, const SliceSpec& a, SlicePlane plane, double position) {
+    if (!f.geographic.valid || !a.at) return;
+    const auto [lo, hi] = slicePositionRange(f, plane);
+    const double tolerance = 1e-9 * (1.0 + std::abs(position));
+    if (position >= lo - tolerance && position <= hi + tolerance) return;
+    const GeoAxes g{f.geographic};
+    const Box3 b = f.worldBounds();
+    const int n = sliceNormalAxis(plane);
+    const std::string at = param(opt::at.key) + " " + numberText(*a.at);
+    std::string why;
+    if (n == 2 && f.planar)
+        why = "'" + f.name + "' is a 2-D field, a map at " + numberText(g.depthM(b.hi.z)) + " m depth: leave " +
+              param(opt::at.key) + " out";
+    else if (n == 2)
+        why = (*a.at < 0.0 ? numberText(-*a.at) + " m above the sea surface" : numberText(*a.at) + " m depth") +
+              " lies outside the grid, whose levels run " + numberText(g.depthM(b.hi.z)) + " .. " + numberText(g.depthM(b.lo.z)) +
+              " m depth";
+    else if (n == 0)
+        why = "longitude outside the grid, which spans " + numberText(g.lon(b.lo.x)) + " .. " + numberText(g.lon(b.hi.x)) +
+              " degrees east (-180..180 and 0..360 both accepted)";
+    else
+        why = "latitude outside the grid, which spans " + numberText(g.lat(b.lo.y)) + " .. " + numberText(g.lat(b.hi.y)) +
+              " degrees north";
+    throw InputError(a.input + ": " + at + ": " + why);
 }
 
 /// The plane's position as the user reads it: "z = 12.5 mm", "500 m depth", "150°E".
@@ -116,6 +148,20 @@ struct AxisTicks {
     std::vector<double> world;
     std::vector<std::string> text;
 };
+/// Tick values in degrees on [lo, hi]: every 1, 2, 5, 10, 15, 20, 30, 45, 60 or 90 degrees,
+/// the finest step that gives about `count` ticks, as maps mark longitudes and latitudes (a
+/// global map every 60 and 30 degrees); spans under 2 degrees by niceTicks.
+std::vector<double> degreeTicks(double lo, double hi, int count) {
+    if (hi - lo >= 2.0)
+        for (double step : {1.0, 2.0, 5.0, 10.0, 15.0, 20.0, 30.0, 45.0, 60.0, 90.0}) {
+            if ((hi - lo) / step > count + 1) continue;
+            std::vector<double> t;
+            for (double v = std::ceil(lo / step - 1e-9) * step; v <= hi + 1e-9 * step; v += step) t.push_back(v);
+            return t;
+        }
+    return io::niceTicks(lo, hi, count);
+}
+
 AxisTicks axisTicks(const ScalarField& f, int a, double lo, double hi, int count) {
     AxisTicks t;
     if (!f.geographic.valid) {
@@ -124,9 +170,9 @@ AxisTicks axisTicks(const ScalarField& f, int a, double lo, double hi, int count
     }
     const GeoAxes g{f.geographic};
     if (a == 0) {
-        for (double lon : io::niceTicks(g.lon(lo), g.lon(hi), count)) t.world.push_back(g.x(lon)), t.text.push_back(longitudeText(lon));
+        for (double lon : degreeTicks(g.lon(lo), g.lon(hi), count)) t.world.push_back(g.x(lon)), t.text.push_back(longitudeText(lon));
     } else if (a == 1) {
-        for (double lat : io::niceTicks(g.lat(lo), g.lat(hi), count)) t.world.push_back(g.y(lat)), t.text.push_back(latitudeText(lat));
+        for (double lat : degreeTicks(g.lat(lo), g.lat(hi), count)) t.world.push_back(g.y(lat)), t.text.push_back(latitudeText(lat));
     } else {
         for (double d : io::niceTicks(g.depthM(hi), g.depthM(lo), count)) t.world.push_back(g.z(d)), t.text.push_back(numberText(d) + " m");
     }
@@ -195,7 +241,9 @@ io::FigureSpec sliceFigureSpec(const SliceSpec& a, const ScalarField& f, const S
     // The bar and the subtitle.
     const std::string units = f.units.empty() ? "" : " (" + f.units + ")";
     spec.barLabel = f.name + units;
+    const bool surfaceMap = f.planar && (!f.geographic.valid || GeoAxes{f.geographic}.depthM(v.position) == 0.0);
     std::string sub = f.patientLps                  ? f.name + ", " + slicePlaneName(v.plane) + " at " + positionText(f, v)
+                      : surfaceMap                   ? f.name  // a map: no plane to place
                       : !f.geographic.valid          ? f.name + ", " + slicePlaneName(v.plane) + " plane at " + positionText(f, v)
                       : sliceNormalAxis(v.plane) == 2 ? f.name + " at " + positionText(f, v)
                                                       : f.name + ", section at " + positionText(f, v);
@@ -233,8 +281,12 @@ SliceResult renderSlice(const ScalarField& field, const SliceSpec& a) {
     if (!field.patientLps && (plane == SlicePlane::Axial || plane == SlicePlane::Coronal || plane == SlicePlane::Sagittal))
         throw UsageError(param(opt::plane.key) + " " + slicePlaneName(plane) + ": " + a.input +
                          " is not in patient coordinates (DICOM, NIfTI, NRRD in LPS space); use x, y or z");
+    if (field.planar && sliceNormalAxis(plane) != 2)
+        throw InputError(a.input + ": " + param(opt::plane.key) + " " + slicePlaneName(plane) + ": '" + field.name +
+                         "' is a 2-D field (a map): only its z plane, the map itself, can be drawn; leave " + param(opt::plane.key) + " out");
     const double position = a.at ? worldPosition(field, plane, *a.at)
                                  : slicePositionOfIndex(field, plane, a.index.value_or(field.dims[sliceGridAxis(field, plane)] / 2));
+    checkGeographicAt(field, a, plane, position);
     // A figure: the slice fills the plot that its layout leaves (`size` or `print_size` is the
     // whole figure), less bands around it for the letters, ticks and scale bar.
     int width = a.width, height = a.height;

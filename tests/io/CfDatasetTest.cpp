@@ -316,7 +316,31 @@ TEST(CfDatasetInvalid, TwoDimensionalDataIsRefusedNamingTheVariable) {
     io::FieldRequest r;
     r.variable = "temp";
     EXPECT_THROW_WITH(io::readCfDataset(d, r), InputError,
-                      "test arrays: variable temp(lat, lon) has 2 dimension(s) longer than 1, a 3-D field is needed");
+                      "test arrays: variable temp(lat, lon) is a 2-D field (a map over lat and lon): a surface needs a 3-D "
+                      "field; draw a 2-D field with slice");
+    r.acceptPlanar = true;  // as slices read it: a map
+    const ScalarField map = io::readCfDataset(d, r);
+    EXPECT_TRUE(map.planar);
+    EXPECT_EQ(map.dims, ivec3(4, 3, 1));
+}
+
+// Maps (FieldRequest::acceptPlanar): the real ETOPO20 relief, and the Levitus-derived 2-D and
+// OISST-like files of tests/data/netcdf/make_maps.py, alike from memory and from the file.
+TEST(CfDatasetMaps, ArraysInMemoryGiveTheFilesMapBitForBit) {
+    std::vector<std::string> paths = {test::testData("netcdf/levitus_sst_2d.nc"), test::testData("netcdf/oisst_like_zlev.nc")};
+    const std::string etopo = test::sharedData("ocean/etopo20.cdf");
+    if (!etopo.empty()) paths.push_back(etopo);
+    for (const auto& path : paths) {
+        SCOPED_TRACE(path);
+        auto mem = test::cfDatasetFromGdal(path, "xarray DataArray");
+        io::FieldRequest map;
+        map.acceptPlanar = true;
+        expectSameRead(path, mem->data, map);
+        io::FieldRequest region = test::regionRequest("", -60, 30, -20, 50);  // across the seam of both files
+        region.acceptPlanar = true;
+        expectSameRead(path, mem->data, region);
+        expectSameRefusal<InputError>(path, mem->data, {});  // a surface: refused alike
+    }
 }
 
 TEST(CfDatasetInvalid, UnnamedRepeatedOrValuelessVariablesAreRefusedOrSkipped) {

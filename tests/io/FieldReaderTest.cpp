@@ -114,6 +114,8 @@ TEST(FieldReader, EveryInvalidCorpusFileFailsWithItsDocumentedMessage) {
         {"invalid_nan_coordinate.nc", "", Kind::File, "latitude axis holds a non-finite value"},
         {"invalid_repeated_coordinate.nc", "", Kind::File, "vertical values are not strictly monotonic (0.01 then 0.01"},
         {"invalid_infinite_extent.nc", "", Kind::File, "spacing along axis 0 must be positive and finite, is inf"},
+        {"invalid_no_field.nc", "", Kind::Input, "no 3-D variable, nor a 2-D one to draw as a map (variables: temp(depth))"},
+        {"invalid_map_all_masked.nc", "", Kind::Input, "a surface needs a 3-D field; draw the 2-D sst with slice"},
     };
     for (const auto& c : cases) {
         std::string path = test::testData(std::string("invalid/") + c.file);

@@ -100,10 +100,13 @@ def register():
         def volume(self, **reader_options):
             """The field octrace reads from the DataArray (region, depth_range, time,
             vertical_scale, max_memory as on the CLI), as an ``octrace.Volume``."""
-            settings = _reader_settings(reader_options, "volume")
+            return self._read(reader_options, "volume", planar=False)
+
+        def _read(self, reader_options, call, planar):
+            settings = _reader_settings(reader_options, call)
             variables = cf_variables(self._da)
             try:
-                return Volume._wrap(_octrace.read_cf(variables, _description(self._da), settings))
+                return Volume._wrap(_octrace.read_cf(variables, _description(self._da), settings, planar))
             finally:
                 _settings.flush_log()
 
@@ -131,8 +134,10 @@ def register():
 
         def slice(self, plane=None, at=None, index=None, size=None, figure=False, **options):
             """A planar slice (``octrace.slice``) of the field ``volume()`` reads, the reader's
-            settings (region, depth_range, time, ...) included: ``octrace slice``'s pixels."""
+            settings (region, depth_range, time, ...) included: ``octrace slice``'s pixels. A 2-D
+            DataArray (an SST map, bathymetry; or one vertical level) is drawn as a map."""
             reader, rest = _split(options)
-            return slice(self.volume(**reader), plane=plane, at=at, index=index, size=size, figure=figure, **rest)
+            field = self._read(reader, "slice", planar=True)
+            return slice(field, plane=plane, at=at, index=index, size=size, figure=figure, **rest)
 
     return OctraceAccessor

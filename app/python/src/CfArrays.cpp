@@ -65,12 +65,14 @@ io::CfDataset dataset(const nb::list& variables, const std::string& description)
 }  // namespace
 
 void bindCfArrays(nb::module_& m) {
-    m.def("read_cf", [](const nb::list& variables, const std::string& description, const Settings& settings) {
+    m.def("read_cf", [](const nb::list& variables, const std::string& description, const Settings& settings, bool planar) {
         const io::CfDataset data = dataset(variables, description);  // borrows the arrays `variables` holds
-        const io::FieldRequest req = readerRequest(settings);
+        io::FieldRequest req = readerRequest(settings);
+        req.acceptPlanar = planar;
         return makeField(runInterruptible([&] { return io::readCfDataset(data, req); }), description);
-    }, "variables"_a, "description"_a, "settings"_a,
-          "The field the NetCDF reader's CF interpretation reads from these variables (io/CfDataset.h).");
+    }, "variables"_a, "description"_a, "settings"_a, "planar"_a = false,
+          "The field the NetCDF reader's CF interpretation reads from these variables (io/CfDataset.h); `planar`: "
+          "a 2-D field is read as a map (FieldRequest::acceptPlanar), as slices read it.");
     m.def("describe_cf", [](const nb::list& variables, const std::string& description, const Settings& settings) {
         const io::CfDataset data = dataset(variables, description);
         const io::FieldRequest req = readerRequest(settings);

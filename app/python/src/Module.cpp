@@ -447,6 +447,7 @@ Image slicePath(const std::string& path, const Settings& settings) {
     model::checkSliceSpec(spec);
     io::FieldRequest request = spec.request;
     request.memoryBudget = model::memoryBudget(spec);
+    request.acceptPlanar = true;  // a 2-D field is drawn as a map
     return runInterruptible([&] {
         Timer t;
         const ScalarField field = model::loadField(path, request, int(model::opt::depth.defaultValue));

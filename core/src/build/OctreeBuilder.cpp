@@ -811,6 +811,9 @@ Octree buildShellOctree(const ScalarField& field, const BuildOptions& options, B
 }
 
 Octree buildOctree(const ScalarField& field, const BuildOptions& options, BuildReport* report) {
+    if (field.planar)
+        throw InputError(field.source + ": '" + field.name + "' is a 2-D field (a map, one level): a surface needs a 3-D field; "
+                         "draw a map with slice");
     Timer timer;
     const float isoF = checkedIso(field, options.depth, options.iso);
     Octree tree = emptyTree(field, options.depth, options.iso);

@@ -18,7 +18,7 @@ ScalarField ScalarField::copy() const {
     f.name = name, f.units = units, f.standardName = standardName, f.source = source;
     f.dims = dims, f.origin = origin, f.spacing = spacing, f.direction = direction, f.coords = coords;
     f.values = values, f.valid = valid;
-    f.window = window, f.invertedGrey = invertedGrey, f.patientLps = patientLps, f.geographic = geographic;
+    f.window = window, f.invertedGrey = invertedGrey, f.patientLps = patientLps, f.planar = planar, f.geographic = geographic;
     f.notes = notes;
     return f;
 }
@@ -71,9 +71,10 @@ void ScalarField::validate() const {
 
 void ScalarField::validateGeometry() const {
     auto fail = [&](const std::string& what) { throw FileError(source + ": " + what); };
-    if (dims.x < 2 || dims.y < 2 || dims.z < 2) {
+    if (dims.x < 2 || dims.y < 2 || (planar ? dims.z != 1 : dims.z < 2)) {
         std::ostringstream s;
-        s << "grid of '" << name << "' must have at least 2 samples per axis, has " << dims.x << "x" << dims.y << "x" << dims.z;
+        s << "grid of '" << name << "' must have at least 2 samples per axis" << (planar ? " across and 1 along z (a map)" : "")
+          << ", has " << dims.x << "x" << dims.y << "x" << dims.z;
         fail(s.str());
     }
     for (int a = 0; a < 3; ++a) {

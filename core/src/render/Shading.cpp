@@ -64,7 +64,7 @@ std::string defaultColormap(const std::string& standardName, const std::string& 
         if (contains(sn, "salinity")) return "haline";
     }
     if (contains(n, "sound") || n == "svel" || n == "c") return "speed";
-    if (contains(n, "temp") || n == "t" || n == "thetao" || n == "theta" || n == "pt") return "thermal";
+    if (contains(n, "temp") || n == "t" || n == "thetao" || n == "theta" || n == "pt" || n == "sst" || n == "tos") return "thermal";
     if (contains(n, "sal") || n == "s" || n == "so" || n == "psal") return "haline";
     return "viridis";
 }

@@ -106,6 +106,18 @@ double slicePositionOfIndex(const ScalarField& f, SlicePlane plane, int index) {
     return f.worldFromGrid(ijk.x, ijk.y, ijk.z)[n];
 }
 
+std::pair<double, double> slicePositionRange(const ScalarField& f, SlicePlane plane) {
+    const int n = sliceNormalAxis(plane);
+    const int g = sliceGridAxis(f, plane);
+    const int count = f.dims[g];
+    const Box3 b = f.worldBounds();
+    const double first = count < 2 ? 0.0 : f.axisPosition(g, 1) - f.axisPosition(g, 0);
+    const double last = count < 2 ? 0.0 : f.axisPosition(g, count - 1) - f.axisPosition(g, count - 2);
+    const double dn = f.direction[g][n];
+    const double halfLo = 0.5 * std::abs(dn) * (dn > 0.0 ? first : last), halfHi = 0.5 * std::abs(dn) * (dn > 0.0 ? last : first);
+    return {b.lo[n] - halfLo, b.hi[n] + halfHi};
+}
+
 SliceView makeSliceView(const ScalarField& f, SlicePlane plane, double position, int width, int height) {
     SliceView v;
     v.plane = plane;
@@ -120,8 +132,8 @@ SliceView makeSliceView(const ScalarField& f, SlicePlane plane, double position,
         for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], d[k]), hi[k] = std::max(hi[k], d[k]);
     }
     v.gridAxis = closestGridAxis(f, normal);
-    const double half = 0.5 * gridStep(f, v.gridAxis) * std::abs(f.direction[v.gridAxis][n]);
-    if (!(position >= lo[2] - half - 1e-9 * (1.0 + std::abs(position)) && position <= hi[2] + half + 1e-9 * (1.0 + std::abs(position))))
+    const auto [onLo, onHi] = slicePositionRange(f, plane);
+    if (!(position >= onLo - 1e-9 * (1.0 + std::abs(position)) && position <= onHi + 1e-9 * (1.0 + std::abs(position))))
         throw InputError(f.source + ": the " + std::string(slicePlaneName(plane)) + " plane at " + num(position) +
                          " lies outside the grid, which spans " + num(lo[2]) + " .. " + num(hi[2]) + " along world " +
                          std::string(1, char('x' + n)));

@@ -92,7 +92,7 @@ bool isUniform(const std::vector<double>& v) {
 
 
 GeoMapping mapGeographic(const std::string& path, const std::vector<double>& lon, const std::vector<double>& lat,
-                         const std::vector<double>& depthKm, const FieldRequest& req) {
+                         const std::vector<double>& depthKm, const FieldRequest& req, std::size_t minLevels) {
     requireFinite(path, "longitude", lon);
     requireFinite(path, "latitude", lat);
     requireFinite(path, "vertical", depthKm);
@@ -119,12 +119,12 @@ GeoMapping mapGeographic(const std::string& path, const std::vector<double>& lon
         if (!req.hasDepthRange || (m >= req.depthRange[0] - 1e-6 && m <= req.depthRange[1] + 1e-6)) zIdx.push_back(n);
     }
     if (depthOrder > 0) std::reverse(zIdx.begin(), zIdx.end());  // deepest first: z increases
-    if (zIdx.size() < 2) {
+    if (zIdx.size() < minLevels) {
         if (!req.hasDepthRange) throw EmptyResultError(path + ": the vertical axis has fewer than 2 levels");
         auto [lo, hi] = std::minmax_element(depthKm.begin(), depthKm.end());
         throw EmptyResultError(path + ": depth range " + num(req.depthRange[0]) + "," + num(req.depthRange[1]) +
                                " m holds " + std::to_string(zIdx.size()) +
-                               " level(s), need at least 2 (the file's levels run " + num(*lo * 1000.0) + " .. " +
+                               " level(s), need at least " + std::to_string(minLevels) + " (the file's levels run " + num(*lo * 1000.0) + " .. " +
                                num(*hi * 1000.0) + " m)");
     }
 
@@ -160,7 +160,9 @@ GeoMapping mapGeographic(const std::string& path, const std::vector<double>& lon
                       (req.hasDepthRange ? " (depth range " + num(req.depthRange[0]) + "," + num(req.depthRange[1]) + " m)" : "") +
                       (isUniform(m.z.world) ? "" : " (uneven)"));
     m.notes.push_back("vertical scale " + num(m.verticalScale) +
-                      (byDefault ? " (default: depth extent = 1/4 of the larger horizontal extent)" : " (requested)") +
+                      (!byDefault ? " (requested)"
+                       : dMax > dMin ? " (default: depth extent = 1/4 of the larger horizontal extent)"
+                                     : " (default: a single level)") +
                       ", z = -depth_km * scale");
     return m;
 }

@@ -27,11 +27,13 @@ constexpr double kEarthRadiusKm = ScalarField::Geographic::kEarthRadiusKm;
 
 /// Selects the grid points inside `req`'s region (all of them without one), unwraps
 /// longitudes so the selection is contiguous, and computes world coordinates.
-/// `depthKm` is positive down. `path` prefixes messages.
+/// `depthKm` is positive down. `path` prefixes messages. `minLevels`: 1 for a map (a 2-D
+/// field, one level), whose vertical scale is then 1 unless `req` gives one.
 /// @throws UsageError (bad region or vertical scale), FileError (non-finite or non-monotonic
-///         axis values), EmptyResultError (fewer than 2 grid points along an axis).
+///         axis values), EmptyResultError (fewer than 2 grid points along a horizontal axis,
+///         fewer than `minLevels` along the vertical).
 GeoMapping mapGeographic(const std::string& path, const std::vector<double>& lon, const std::vector<double>& lat,
-                         const std::vector<double>& depthKm, const FieldRequest& req);
+                         const std::vector<double>& depthKm, const FieldRequest& req, std::size_t minLevels = 2);
 
 /// True when `v` is uniformly spaced (to 1e-6 of the step); fewer than 3 values are.
 bool isUniform(const std::vector<double>& v);

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace octrace::io::detail {
 namespace {
@@ -127,22 +128,40 @@ Layout layoutFor(const std::string& path, const CfSource& file, const VariableIn
                          " are 2-D; octrace reads longitude and latitude only as 1-D axes: regrid the variable "
                          "onto a regular longitude/latitude grid first (e.g. cdo remapbil)");
     }
-    if (spread.size() < 3)
-        throw InputError(path + ": variable " + var.signature() + " has " + std::to_string(spread.size()) +
-                         " dimension(s) longer than 1, a 3-D field is needed");
+    std::vector<std::size_t> across;  // dimensions longer than 1 that are not time
+    for (std::size_t d : spread)
+        if (cls[d].role != AxisRole::Time) across.push_back(d);
+    // A 2-D field (SST, bathymetry, OISST's sst(time, zlev = 1, lat, lon)) is a map.
+    const bool planar = across.size() == 2;
+    if (across.size() < 2)
+        throw InputError(path + ": variable " + var.signature() + " has " + std::to_string(across.size()) +
+                         " dimension(s) longer than 1 besides time: nothing to draw (a map needs 2, a surface 3)");
+    if (planar && !req.acceptPlanar)
+        throw InputError(path + ": variable " + var.signature() + " is a 2-D field (a map over " +
+                         var.dimNames[across[0]] + " and " + var.dimNames[across[1]] +
+                         "): a surface needs a 3-D field; draw a 2-D field with slice");
+    // A map on longitude and latitude: at the level of its vertical dimension of length 1 if
+    // it has one (OISST's zlev), else at the surface.
+    std::optional<std::size_t> level;
+    if (planar) {
+        geographic = lon.size() == 1 && lat.size() == 1 && !info[lon[0]].values.empty() && !info[lat[0]].values.empty();
+        for (std::size_t d = 0; d < var.dimSizes.size() && geographic && !level; ++d) {
+            if (var.dimSizes[d] != 1) continue;
+            if (info[d].name.empty()) info[d] = file.axis(var, d), cls[d] = classifyAxis(info[d]);
+            if (cls[d].role == AxisRole::Vertical && info[d].values.size() == 1) level = d;
+        }
+    }
 
     std::vector<std::size_t> spatial;
-    if (geographic) spatial = {vert[0], lat[0], lon[0]};
+    if (planar) spatial = across;
+    else if (geographic) spatial = {vert[0], lat[0], lon[0]};
     else {  // the three fastest-varying dimensions that are not time
-        for (auto d = spread.rbegin(); d != spread.rend() && spatial.size() < 3; ++d)
-            if (cls[*d].role != AxisRole::Time) spatial.push_back(*d);
-        if (spatial.size() < 3)
-            throw InputError(path + ": variable " + var.signature() + " has no 3 spatial axes (" +
-                             std::to_string(3 - spatial.size()) + " of its dimensions longer than 1 are time)");
+        for (auto d = across.rbegin(); d != across.rend() && spatial.size() < 3; ++d) spatial.push_back(*d);
     }
     std::sort(spatial.begin(), spatial.end());
 
     Layout L;
+    L.planar = planar;
     L.fixedIndex.assign(var.dimSizes.size(), 0);
     bool timeChosen = false;
     for (std::size_t d = 0; d < var.dimSizes.size(); ++d) {
@@ -161,26 +180,33 @@ Layout layoutFor(const std::string& path, const CfSource& file, const VariableIn
         throw InputError(path + ": `time` " + req.time + ": variable " + var.signature() + " has no time axis");
 
     if (geographic) {
-        const AxisClass& vc = cls[vert[0]];
-        const std::vector<double>& levels = info[vert[0]].values;
+        // The vertical axis: the field's, a map's level, or the sea surface for a map without one.
+        const std::optional<std::size_t> vd = planar ? level : std::optional<std::size_t>(vert[0]);
+        const AxisClass vc = vd ? cls[*vd] : AxisClass{};
+        const std::vector<double> levels = vd ? info[*vd].values : std::vector<double>{0.0};
         std::vector<double> depthKm;
         for (double v : levels) depthKm.push_back(v * vc.toKm * (vc.positiveDown ? 1.0 : -1.0) + 0.0);  // + 0.0: no -0
-        GeoMapping m = mapGeographic(path, info[lon[0]].values, info[lat[0]].values, depthKm, req);
+        GeoMapping m = mapGeographic(path, info[lon[0]].values, info[lat[0]].values, depthKm, req, planar ? 1 : 2);
         L.geographic = true;
         L.lon0 = m.lon0;
         L.lat0 = m.lat0;
         L.verticalScale = m.verticalScale;
-        L.dim = {lon[0], lat[0], vert[0]};
+        L.dim = {lon[0], lat[0], planar ? kNoDimension : *vd};
         for (std::size_t j : m.y.stored) L.latitudeDeg.push_back(info[lat[0]].values[j]);
         for (std::size_t k : m.z.stored) {
             L.depthM.push_back(depthKm[k] * 1000.0);
-            if (vc.toDbar > 0.0) L.levelDbar.push_back(levels[k] * vc.toDbar * (vc.positiveDown ? 1.0 : -1.0));
+            if (vd && vc.toDbar > 0.0) L.levelDbar.push_back(levels[k] * vc.toDbar * (vc.positiveDown ? 1.0 : -1.0));
         }
         L.latitudeAxis = info[lat[0]].name;
-        L.verticalAxis = info[vert[0]].name;
+        if (vd) L.verticalAxis = info[*vd].name;
         L.axes = {std::move(m.x), std::move(m.y), std::move(m.z)};
+        if (planar)
+            L.notes.push_back("2-D field: read as a map at " +
+                              (vd ? num(L.depthM[0]) + " m depth (the one level of '" + info[*vd].name + "')"
+                                  : std::string("the surface (no vertical dimension)")) +
+                              "; drawn by slice, not as a surface");
         L.notes.insert(L.notes.end(), m.notes.begin(), m.notes.end());
-        if (!vc.note.empty()) L.notes.push_back(vc.note);
+        if (vd && !vc.note.empty()) L.notes.push_back(vc.note);
         return L;
     }
 
@@ -188,12 +214,18 @@ Layout layoutFor(const std::string& path, const CfSource& file, const VariableIn
         if (option)
             throw InputError(path + ": " + option + " needs a longitude/latitude/depth grid; variable " + var.signature() +
                              " has axes " + roleName(cls[spatial[0]].role) + ", " + roleName(cls[spatial[1]].role) +
-                             ", " + roleName(cls[spatial[2]].role));
+                             (planar ? std::string() : std::string(", ") + roleName(cls[spatial[2]].role)));
     if (req.verticalScale != 0.0)
         log::warning(path + ": vertical scale ignored, variable '" + var.shortName + "' is not on a geographic grid");
-    L.dim = {spatial[2], spatial[1], spatial[0]};  // x varies fastest
+    // x varies fastest; a map has one sample along z, at 0.
+    L.dim = planar ? std::array<std::size_t, 3>{spatial[1], spatial[0], kNoDimension}
+                   : std::array<std::size_t, 3>{spatial[2], spatial[1], spatial[0]};
+    if (planar) {
+        L.axes[2] = AxisSelection{{0}, {0.0}};
+        L.notes.push_back("2-D field: read as a map (one sample along z, at 0); drawn by slice, not as a surface");
+    }
     std::string axes, indexed;
-    for (int a = 0; a < 3; ++a) {
+    for (int a = 0; a < (planar ? 2 : 3); ++a) {
         const AxisInfo& ai = info[L.dim[std::size_t(a)]];
         std::vector<double> values = ai.values;
         if (values.empty()) {
@@ -218,11 +250,15 @@ ScalarField shapeField(const std::string& path, const VariableInfo& var, const L
     f.name = var.shortName;
     f.units = var.units;
     f.standardName = var.standardName;
+    f.planar = L.planar;
     if (L.geographic) f.geographic = {true, L.lon0, L.lat0, L.verticalScale};
     for (int a = 0; a < 3; ++a) {
         const auto& w = L.axes[std::size_t(a)].world;
         f.dims[a] = int(w.size());
-        if (isUniform(w)) {
+        if (w.size() == 1) {  // a map's one level: a spacing is needed, never used
+            f.origin[a] = w.front();
+            f.spacing[a] = 1.0;
+        } else if (isUniform(w)) {
             f.origin[a] = w.front();
             f.spacing[a] = (w.back() - w.front()) / double(w.size() - 1);
         } else {
@@ -249,6 +285,7 @@ void readSamples(const CfSource& file, const VariableInfo& var, const Layout& L,
     std::vector<std::uint64_t> start = L.fixedIndex;
     std::vector<std::size_t> count(nd, 1);
     for (int a = 1; a < 3; ++a) {
+        if (L.dim[std::size_t(a)] == kNoDimension) continue;  // a map's z
         const auto& s = L.axes[std::size_t(a)].stored;
         auto [lo, hi] = std::minmax_element(s.begin(), s.end());
         start[L.dim[std::size_t(a)]] = *lo;
@@ -274,7 +311,7 @@ void readSamples(const CfSource& file, const VariableInfo& var, const Layout& L,
             for (std::size_t j = 0; j < sy.size(); ++j)
                 for (std::size_t i = i0; i <= i1; ++i) {
                     std::size_t at = (sx[i] - xlo) * stride[L.dim[0]] + (sy[j] - start[L.dim[1]]) * stride[L.dim[1]] +
-                                     (sz[k] - start[L.dim[2]]) * stride[L.dim[2]];
+                                     (L.dim[2] == kNoDimension ? 0 : (sz[k] - start[L.dim[2]]) * stride[L.dim[2]]);
                     double raw = buf[at];
                     std::size_t idx = f.index(int(i), int(j), int(k));
                     if (!rules.isValid(raw)) continue;

@@ -17,8 +17,12 @@
 
 namespace octrace::io::detail {
 
+/// Layout::dim of a map's z, which no dimension of the variable makes.
+constexpr std::size_t kNoDimension = std::size_t(-1);
+
 struct Layout {
-    std::array<std::size_t, 3> dim{};  ///< the variable's dimensions that make x, y, z
+    std::array<std::size_t, 3> dim{};  ///< the variable's dimensions that make x, y, z (a map's z: kNoDimension)
+    bool planar = false;  ///< a 2-D field read as a map: one sample along z (FieldRequest::acceptPlanar)
     std::array<AxisSelection, 3> axes;
     std::vector<std::uint64_t> fixedIndex;  ///< per dimension: the index read along a non-spatial one
     std::vector<std::string> notes;
@@ -36,7 +40,9 @@ struct Layout {
 /// `coordinates` attribute, units, standard_name, axis, positive), the time step `req.time`
 /// (index or date in the axis's calendar; default the first, with a warning), the first index
 /// of any other extra dimension (with a warning), region and depth range on geographic grids.
-/// @throws InputError (curvilinear grid, no 3 spatial axes, --time without a time axis or out
+/// A variable with two dimensions longer than 1 besides time is a map (Layout::planar) when
+/// `req.acceptPlanar`, at its vertical dimension of length 1 if it has one, else at depth 0.
+/// @throws InputError (curvilinear grid, a 2-D field without acceptPlanar, fewer than 2 spatial axes, --time without a time axis or out
 ///         of range, a region or depth range on a non-geographic grid), FileError, UsageError,
 ///         EmptyResultError as NetcdfReader::read.
 Layout layoutFor(const std::string& path, const CfSource& file, const VariableInfo& var, const FieldRequest& req);

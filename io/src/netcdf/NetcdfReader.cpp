@@ -45,32 +45,93 @@ std::string listOf(const std::vector<const VariableInfo*>& vars) {
     return s.empty() ? std::string("none") : s;
 }
 
+// Why `v` is not a field to draw, empty when it is one: the cell bounds another variable names
+// by its CF `bounds` attribute (lon_bnds(y, x, 4) of a 2-D longitude too), a coordinate
+// variable, a coordinate another names by its `coordinates` attribute, or a longitude or
+// latitude by its units or standard_name (1-D or 2-D, e.g. a curvilinear grid's nav_lat).
+std::string notAField(const CfSource& file, const VariableInfo& v) {
+    for (const auto& w : file.variables())
+        if (&w != &v && w.bounds == v.shortName) return "the cell bounds of '" + w.shortName + "' (named by its `bounds` attribute)";
+    if (v.coordinate) return "the coordinate variable of dimension '" + v.shortName + "'";
+    for (const auto& w : file.variables()) {
+        const auto named = words(w.coordinates);
+        if (&w != &v && std::find(named.begin(), named.end(), v.shortName) != named.end())
+            return "a coordinate of '" + w.shortName + "' (named by its `coordinates` attribute)";
+    }
+    AxisInfo a;  // units and standard_name only: a field may be called "lat" without being one
+    a.units = v.units;
+    a.standardName = v.standardName;
+    const AxisRole r = classifyAxis(a).role;
+    if (r == AxisRole::Longitude || r == AxisRole::Latitude)
+        return std::string("a ") + roleName(r) + " coordinate (units '" + v.units + "'" +
+               (v.standardName.empty() ? "" : ", standard_name " + v.standardName) + ")";
+    return {};
+}
+
+// The numeric variables that are fields (not coordinates or cell bounds), whatever their shape.
 std::vector<const VariableInfo*> dataVariables(const CfSource& file) {
     std::vector<const VariableInfo*> out;
     for (const auto& v : file.variables())
-        if (v.numeric && !v.coordinate) out.push_back(&v);
+        if (v.numeric && notAField(file, v).empty()) out.push_back(&v);
     return out;
 }
 
-// Variables with at least 3 dimensions longer than 1 (a 4-D one is read at its first time step).
+// Dimensions of `v` longer than 1 that are not time (an axis the interpretation cannot read
+// counts: reading the variable says why).
+int spatialExtent(const CfSource& file, const VariableInfo& v) {
+    int n = 0;
+    for (std::size_t d = 0; d < v.dimSizes.size(); ++d) {
+        if (v.dimSizes[d] < 2) continue;
+        try {
+            n += classifyAxis(file.axis(v, d)).role != AxisRole::Time;
+        } catch (const InputError&) {
+            ++n;
+        }
+    }
+    return n;
+}
+
+// Fields with at least 3 spatial dimensions (a 4-D one is read at its first time step).
 std::vector<const VariableInfo*> volumes(const CfSource& file) {
     std::vector<const VariableInfo*> out;
     for (const auto* v : dataVariables(file))
-        if (v->extent() >= 3) out.push_back(v);
+        if (spatialExtent(file, *v) >= 3) out.push_back(v);
     return out;
 }
 
-// The variable `wanted` names: its name, its full name or, failing those, its CF standard_name.
-// Null when `wanted` asks for sound speed and the file has none (it is then derived).
-const VariableInfo* chooseVariable(const std::string& path, const CfSource& file, const std::string& wanted) {
+// Fields with 2 spatial dimensions: maps, drawn by slice (FieldRequest::acceptPlanar).
+std::vector<const VariableInfo*> maps(const CfSource& file) {
+    std::vector<const VariableInfo*> out;
+    for (const auto* v : dataVariables(file))
+        if (spatialExtent(file, *v) == 2) out.push_back(v);
+    return out;
+}
+
+std::string namesOf(const std::vector<const VariableInfo*>& vars) {
+    std::string names;
+    for (const auto* v : vars) names += (names.empty() ? "" : ", ") + v->shortName;
+    return names;
+}
+
+// The variable `wanted` names: its name, its full name or, failing those, its CF standard_name;
+// without one, the only 3-D field, else (`acceptPlanar`) the only 2-D one. Coordinates and cell
+// bounds are refused by name. Null when `wanted` asks for sound speed and the file has none (it
+// is then derived).
+const VariableInfo* chooseVariable(const std::string& path, const CfSource& file, const std::string& wanted,
+                                   bool acceptPlanar) {
     auto data = dataVariables(file);
     if (wanted.empty()) {
         auto vols = volumes(file);
         if (vols.size() == 1) return vols[0];
-        if (vols.empty()) throw InputError(path + ": no 3-D variable (variables: " + listOf(data) + ")");
-        std::string names;
-        for (const auto* v : vols) names += (names.empty() ? "" : ", ") + v->shortName;
-        throw InputError(path + ": several 3-D variables (" + names + "); choose one with `var`");
+        if (vols.size() > 1) throw InputError(path + ": several 3-D variables (" + namesOf(vols) + "); choose one with `var`");
+        auto flat = maps(file);
+        if (flat.empty())
+            throw InputError(path + ": no 3-D variable, nor a 2-D one to draw as a map (variables: " + listOf(data) + ")");
+        if (!acceptPlanar)
+            throw InputError(path + ": no 3-D variable (variables: " + listOf(data) + "): a surface needs a 3-D field; draw the 2-D " +
+                             namesOf(flat) + " with slice");
+        if (flat.size() == 1) return flat[0];
+        throw InputError(path + ": several 2-D variables (" + namesOf(flat) + "); choose one with `var`");
     }
     std::vector<const VariableInfo*> hits;
     for (const auto& v : file.variables())
@@ -86,6 +147,10 @@ const VariableInfo* chooseVariable(const std::string& path, const CfSource& file
         throw InputError(path + ": variable name '" + wanted + "' is ambiguous, use its full name (" + hits[0]->name +
                          ", ...)");
     if (!hits[0]->numeric) throw InputError(path + ": variable '" + wanted + "' is not numeric");
+    const std::string why = notAField(file, *hits[0]);
+    if (!why.empty())
+        throw InputError(path + ": variable " + hits[0]->signature() + " is " + why + ", not a field to draw (fields: " +
+                         listOf(data) + ")");
     return hits[0];
 }
 
@@ -120,7 +185,8 @@ ScalarField readVariable(const std::string& path, const CfSource& file, const Va
 
 // The field `req` asks for: a variable of the file, or sound speed derived from T and S.
 ScalarField readRequested(const std::string& path, const CfSource& file, const FieldRequest& req) {
-    if (const VariableInfo* var = chooseVariable(path, file, req.variable)) return readVariable(path, file, *var, req);
+    if (const VariableInfo* var = chooseVariable(path, file, req.variable, req.acceptPlanar))
+        return readVariable(path, file, *var, req);
     return finish(path, deriveSoundSpeed(path, file, req), req);
 }
 
@@ -175,6 +241,9 @@ void describeVariable(std::ostringstream& s, const CfSource& file, const Variabl
         if (!text.empty()) s << ", " << attr << " " << text;
     }
     if (!v.coordinates.empty()) s << ", coordinates '" << v.coordinates << "'";
+    const int extent = spatialExtent(file, v);
+    if (extent == 2) s << ", 2-D: a map, drawn by slice only";
+    else if (extent < 2) s << ", " << extent << "-D: not drawn";
     auto curvilinear = curvilinearCoordinates(file, v);
     if (!curvilinear.empty()) s << ", curvilinear (2-D " << curvilinear[0]->shortName << ", not drawn)";
     std::uint64_t total = 1;
@@ -205,13 +274,17 @@ void describeVariable(std::ostringstream& s, const CfSource& file, const Variabl
 // a choice in `req`, what keeps it from being read is said in the text; with one, it is thrown.
 void describeGrid(std::ostringstream& s, const std::string& path, const CfSource& file, FieldRequest req) {
     const bool chosen = !req.variable.empty() || req.hasRegion || req.hasDepthRange || !req.time.empty();
+    req.acceptPlanar = true;  // a map is described as slice reads it
     auto vols = volumes(file);
+    if (vols.empty()) vols = maps(file);
     if (vols.empty() && req.variable.empty()) {
-        s << "no 3-D variable: nothing to render\n";
+        s << "no 3-D or 2-D variable: nothing to draw\n";
         return;
     }
     if (req.variable.empty()) {
-        s << (vols.size() == 1 ? "grid of " : "grid of the first 3-D variable, ") << vols[0]->shortName;
+        const bool map = spatialExtent(file, *vols[0]) == 2;
+        s << (vols.size() == 1 ? (map ? "grid of the map " : "grid of ") : (map ? "grid of the first map, " : "grid of the first 3-D variable, "))
+          << vols[0]->shortName;
         req.variable = vols[0]->name;
     } else {
         s << "grid of " << req.variable;
@@ -279,6 +352,14 @@ std::string describeCf(const std::string& source, const std::string& formatLine,
         describeVariable(s, data, *v, req.memoryBudget);
         hasSoundSpeed = hasSoundSpeed || isSoundSpeedName(v->shortName) || isSoundSpeedName(v->standardName);
     }
+    bool heading = false;  // coordinates beyond the dimensions' own, and cell bounds
+    for (const auto& v : data.variables()) {
+        const std::string why = notAField(data, v);
+        if (why.empty() || v.coordinate) continue;
+        if (!heading) s << "coordinates and cell bounds (not fields):\n";
+        heading = true;
+        s << "  " << v.signature() << ": " << why << "\n";
+    }
     SoundSpeedSources src = soundSpeedSources(data);
     if (!hasSoundSpeed && src.problem.empty())
         s << "  sound_speed: derived from " << src.temperature->shortName << " and " << src.salinity->shortName
@@ -325,7 +406,7 @@ std::string NetcdfReader::describe(const std::string& path, const FieldRequest& 
 TimeAxis NetcdfReader::timeAxis(const std::string& path, const FieldRequest& req) {
     checkNetcdfOnDisk(path);
     NetcdfFile file(path);
-    const VariableInfo* var = chooseVariable(path, file, req.variable);
+    const VariableInfo* var = chooseVariable(path, file, req.variable, req.acceptPlanar);
     if (!var) {  // sound speed, derived: its steps are the temperature's
         const SoundSpeedSources src = soundSpeedSources(file);
         if (!src.problem.empty()) throw InputError(path + ": " + src.problem);

@@ -102,7 +102,8 @@ void fillVoxelValues(Octree& tree, const ScalarField& field, int threads = 0);
 /// solid; an inside cell next to a masked cell, a cell outside the grid or the cube's face is
 /// a boundary voxel of a *cap*, its normal pointing out towards them. So every voxel of the
 /// solid with an empty face neighbour is a boundary voxel, and extractShell draws the solid
-/// closed. BuildReport::boundaryVoxels counts boundary voxels only.
+/// closed. BuildReport::boundaryVoxels counts boundary voxels only. @throws InputError for a
+/// planar field (a 2-D map has no surface).
 Octree buildOctree(const ScalarField& field, const BuildOptions& options, BuildReport* report = nullptr);
 
 }  // namespace octrace

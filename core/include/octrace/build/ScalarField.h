@@ -68,6 +68,10 @@ public:
     /// left-posterior-superior. Slices are then named axial, coronal, sagittal and labelled
     /// with the patient's directions (SliceView.h).
     bool patientLps = false;
+    /// A 2-D field read as a map (an SST or bathymetry grid, or a 3-D variable with a single
+    /// vertical level): one sample along z (dims.z == 1, which validateGeometry allows only
+    /// then). Slices draw it; a surface needs a 3-D field, and buildOctree refuses it.
+    bool planar = false;
 
     /// Geographic grids (NetCDF longitude, latitude, depth): the contract's mapping to world
     /// kilometres, x = R (lon - lon0) cos(lat0), y = R (lat - lat0), z = -depth_km *
@@ -104,7 +108,7 @@ public:
     std::pair<float, float> validRange() const;
     std::size_t validCount() const;
 
-    /// Checks internal consistency (sizes, finite geometry, increasing coordinates,
+    /// Checks internal consistency (at least 2 samples per axis, 1 along z when `planar`; sizes, finite geometry, increasing coordinates,
     /// orthonormal direction, world coordinates within +-kMaxWorldCoordinate, a largest
     /// extent of at least kMinWorldExtent and of a billionth of the largest coordinate).
     /// Throws FileError naming `source` and the problem.

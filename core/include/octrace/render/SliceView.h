@@ -16,6 +16,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace octrace {
@@ -63,11 +64,16 @@ dvec3 sliceScreenUp(SlicePlane p);
 /// mean step of a rectilinear axis), so anisotropic voxels keep their aspect; the image
 /// covers the grid's extent in the plane plus half a pixel around. `width` x `height` > 0:
 /// that image size instead, the slice scaled to fit and centred. @throws InputError when
-/// `position` lies outside the grid (more than half a sample beyond its first or last).
+/// `position` lies outside slicePositionRange.
 SliceView makeSliceView(const ScalarField& f, SlicePlane plane, double position, int width = 0, int height = 0);
 
 /// The grid axis closest to the plane's normal (the axis --index counts along).
 int sliceGridAxis(const ScalarField& f, SlicePlane plane);
+
+/// Where along the plane's normal (world) a plane of `plane` meets the grid: from its first to
+/// its last sample, and half a step beyond each (the end step of that side on an uneven axis;
+/// nothing beyond the one level of a planar field). makeSliceView refuses positions outside.
+std::pair<double, double> slicePositionRange(const ScalarField& f, SlicePlane plane);
 
 /// World coordinate along the plane's normal of grid sample `index` along the grid axis
 /// closest to that normal (the middle sample: index = n / 2). @throws UsageError when `index`

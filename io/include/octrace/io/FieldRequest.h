@@ -9,8 +9,14 @@
 namespace octrace::io {
 
 struct FieldRequest {
-    /// Variable to read. Empty: the file's only 3-D variable (an error if it has several).
+    /// Variable to read. Empty: the file's only 3-D variable (an error if it has several);
+    /// with `acceptPlanar` and no 3-D variable, its only 2-D one.
     std::string variable;
+    /// Accept a 2-D field (NetCDF: two spatial dimensions longer than 1, e.g. `sst(lat, lon)` or
+    /// OISST's `sst(time, zlev = 1, lat, lon)`) and read it as a map, a ScalarField with
+    /// `planar` set and one sample along z. Slices set it; a surface needs a 3-D field, so
+    /// without it a 2-D field is refused with a message that says to draw it with slice.
+    bool acceptPlanar = false;
     /// When true, only grid points inside `region` are read (geographic grids only).
     bool hasRegion = false;
     /// LON0, LON1, LAT0, LAT1 in degrees. LON1 < LON0 crosses the dateline (170,-170 is
