@@ -63,6 +63,8 @@ const Case kCases[] = {
     {"invalid_cr_in_value.mha", nullptr, "control character 0x0D in the header"},
     {"invalid_truncated_zlib.mha", nullptr, "compressed data truncated: 16x16x16 MET_UCHAR need 4096 bytes, the 154 compressed bytes stop after "},
     {"invalid_compressed_size_past_end.mha", nullptr, "holds 309 bytes from byte 196"},
+    {"invalid_corrupt_chunk.zarr", "TEMP", "cannot read variable 'TEMP' of the Zarr store: Decompression of tile"},
+    {"invalid_zarr_v3.zarr", nullptr, "xr.open_zarr("},
 };
 }  // namespace
 

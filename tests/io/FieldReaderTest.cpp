@@ -114,6 +114,10 @@ TEST(FieldReader, EveryInvalidCorpusFileFailsWithItsDocumentedMessage) {
         {"invalid_nan_coordinate.nc", "", Kind::File, "latitude axis holds a non-finite value"},
         {"invalid_repeated_coordinate.nc", "", Kind::File, "vertical values are not strictly monotonic (0.01 then 0.01"},
         {"invalid_infinite_extent.nc", "", Kind::File, "spacing along axis 0 must be positive and finite, is inf"},
+        {"invalid_corrupt_chunk.zarr", "TEMP", Kind::File,
+         "cannot read variable 'TEMP' of the Zarr store: Decompression of tile"},
+        {"invalid_zarr_v3.zarr", "", Kind::FormatNotSupported,
+         "a Zarr v3 store in the final layout (zarr.json with \"zarr_format\": 3"},
     };
     for (const auto& c : cases) {
         std::string path = test::testData(std::string("invalid/") + c.file);
