@@ -60,3 +60,29 @@ TEST(ZarrCli, FinalV3StoreIsRefusedWithHowToConvertIt) {
     }
     EXPECT_FALSE(std::filesystem::exists(s.path("out.png")));
 }
+
+// A time series (three months of TEMP over the North Pacific, make_zarr_stores.py) as a store
+// and as a NetCDF file: the same steps, dated frames and video.
+TEST(ZarrCli, AnimateOfAStoreIsTheNetcdfFilesFrameForFrame) {
+    OCTRACE_ZARR_STORES_OR_SKIP(dir, levitus);
+    if (std::system("ffprobe -version > /dev/null 2>&1") != 0) GTEST_SKIP() << "ffprobe absent (Debian package ffmpeg)";
+    Scratch s;
+    std::vector<std::string> frames[2];
+    for (int i = 0; i < 2; ++i) {
+        const std::string input = dir + (i == 0 ? "/pacific_monthly.nc" : "/pacific_monthly.zarr");
+        const std::string folder = s.path(i == 0 ? "nc" : "zarr");
+        std::filesystem::create_directories(folder);
+        Result r = run({"animate", input, "--var", "TEMP", "--iso", "10", "--depth", "6", "--time", "all", "--size", "320x240",
+                        "--figure", "--frames", folder, "-o", folder + "/out.mp4"});
+        ASSERT_EQ(r.code, 0) << r.err;
+        EXPECT_NE(r.err.find("3 frames 320x240 at 12 fps (libx264), steps 2001-01-01 .. 2001-03-01 of 'time'"), std::string::npos)
+            << r.err;
+        for (int f = 0; f < 3; ++f) frames[i].push_back(slurp(folder + "/frame_000" + std::to_string(f) + ".png"));
+        frames[i].push_back(slurp(folder + "/out.mp4"));
+    }
+    for (std::size_t f = 0; f < 4; ++f) {
+        EXPECT_FALSE(frames[1][f].empty()) << f;
+        EXPECT_TRUE(frames[0][f] == frames[1][f]) << (f < 3 ? "frame " + std::to_string(f) : std::string("the MP4")) << " differs";
+    }
+    EXPECT_FALSE(frames[1][0] == frames[1][2]);  // a month later the 10 degree surface has moved
+}

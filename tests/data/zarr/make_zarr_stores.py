@@ -99,6 +99,15 @@ def levitus(source, out):
     gone = delete_masked_chunks(missing, ds, (5, 30, 30))
     with open(os.path.join(missing, "MISSING_CHUNKS"), "w") as f:
         f.write(f"{gone}\n")
+    # A monthly series (TEMP over the North Pacific, 1 degree cooler each month), as a NetCDF
+    # file and as a store, for `octrace animate`.
+    pacific = ds["TEMP"].sel(XAXLEVITR=slice(120, 180), YAXLEVITR=slice(10, 60))
+    series = xr.concat([pacific - k for k in range(3)], dim="time").to_dataset(name="TEMP")
+    series["time"] = ("time", np.array([0.0, 31.0, 59.0]),
+                      {"units": "days since 2001-01-01", "calendar": "noleap", "standard_name": "time"})
+    series["TEMP"].encoding = {"_FillValue": np.float32(-1e10), "dtype": "float32"}
+    series.to_netcdf(os.path.join(out, "pacific_monthly.nc"))
+    series.to_zarr(os.path.join(out, "pacific_monthly.zarr"), zarr_format=2, consolidated=True, mode="w")
     # zarr-python 3's default, the final v3 layout (refused), and its conversion to v2 as
     # octrace's refusal says to do it.
     v3 = os.path.join(out, "levitus_v3.zarr")
