@@ -9,9 +9,11 @@ set -euo pipefail
 # ffprobe, which the animate tests use to count and decode the frames.
 # gmt-gshhg-low, gmt-gshhg-high: GSHHG's shorelines (GMT's binned netCDF), the coastlines of map figures.
 # libgdcm-tools: Debian's GDCM CMake package (libgdcm-dev) imports its tools and fails without them.
+# gdal-bin: gdalmdimtranslate, with which tests/data/zarr/make_zarr_stores.py writes GDAL's Zarr
+# stores of the Levitus atlas at test time.
 PACKAGES=(
   cmake ninja-build g++ pkg-config python3-dev python3-venv
-  libgdal-dev libgdcm-dev libgdcm-tools libvtk9-dev libopenexr-dev libglm-dev libtbb-dev
+  libgdal-dev gdal-bin libgdcm-dev libgdcm-tools libvtk9-dev libopenexr-dev libglm-dev libtbb-dev
   libgtest-dev libbenchmark-dev libpng-dev libtiff-dev libzstd-dev zlib1g-dev nlohmann-json3-dev libfreetype-dev fonts-dejavu-core
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
   gmt-gshhg-low gmt-gshhg-high

@@ -30,8 +30,8 @@ const char* kTopHelp =
     "  sample NAME -o OUT    write an analytic sample field (sphere, torus, gyroid, noise) as NRRD\n"
     "  options               every setting: flag, range, default, session member, studio control\n"
     "\n"
-    "INPUT is a NetCDF file (.nc, .cdf), a NRRD file (.nrrd, .nhdr), a DICOM file or folder, an octree\n"
-    "file (.oct), or analytic:NAME[:SAMPLES].\n"
+    "INPUT is a NetCDF file (.nc, .cdf), a Zarr v2 store (its folder), a NRRD file (.nrrd, .nhdr), a DICOM\n"
+    "file or folder, an octree file (.oct), or analytic:NAME[:SAMPLES].\n"
     "Run 'octrace COMMAND --help' for the options of a command; see docs/user/cli.md.\n";
 
 }  // namespace

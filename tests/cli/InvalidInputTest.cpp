@@ -65,6 +65,8 @@ const Case kCases[] = {
     {"invalid_compressed_size_past_end.mha", nullptr, "holds 309 bytes from byte 196"},
     {"invalid_no_field.nc", nullptr, "no 3-D variable, nor a 2-D one to draw as a map"},
     {"invalid_map_all_masked.nc", nullptr, "a surface needs a 3-D field; draw the 2-D sst with slice"},
+    {"invalid_corrupt_chunk.zarr", "TEMP", "cannot read variable 'TEMP' of the Zarr store: Decompression of tile"},
+    {"invalid_zarr_v3.zarr", nullptr, "xr.open_zarr("},
 };
 }  // namespace
 

@@ -116,6 +116,10 @@ TEST(FieldReader, EveryInvalidCorpusFileFailsWithItsDocumentedMessage) {
         {"invalid_infinite_extent.nc", "", Kind::File, "spacing along axis 0 must be positive and finite, is inf"},
         {"invalid_no_field.nc", "", Kind::Input, "no 3-D variable, nor a 2-D one to draw as a map (variables: temp(depth))"},
         {"invalid_map_all_masked.nc", "", Kind::Input, "a surface needs a 3-D field; draw the 2-D sst with slice"},
+        {"invalid_corrupt_chunk.zarr", "TEMP", Kind::File,
+         "cannot read variable 'TEMP' of the Zarr store: Decompression of tile"},
+        {"invalid_zarr_v3.zarr", "", Kind::FormatNotSupported,
+         "a Zarr v3 store in the final layout (zarr.json with \"zarr_format\": 3"},
     };
     for (const auto& c : cases) {
         std::string path = test::testData(std::string("invalid/") + c.file);

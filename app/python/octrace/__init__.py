@@ -149,8 +149,8 @@ class Input:
 
 
 def open(path, **reader_options):  # noqa: A001 - the package's reader, as xarray.open_dataset
-    """Reads ``path`` with any reader of the CLI: NetCDF, DICOM folders and files, NRRD, NIfTI,
-    MetaImage, molecules, ``analytic:NAME``; city models and octree files become an ``Input``
+    """Reads ``path`` with any reader of the CLI: NetCDF, Zarr v2 stores (a folder), DICOM
+    folders and files, NRRD, NIfTI, MetaImage, molecules, ``analytic:NAME``; city models and octree files become an ``Input``
     built by ``octrace.surface``. ``reader_options``: var, time, region, depth_range,
     vertical_scale, series, max_memory and the city settings (crs, lod_select, dem, ...)."""
     path = os.fspath(path)

@@ -19,12 +19,13 @@ namespace {
 using detail::FileKind;
 
 const char* kSupported = "supported: NetCDF (.nc, .cdf, .nc4: classic, 64-bit offset, CDF-5, NetCDF-4/HDF5), "
+                         "Zarr v2 (a store's folder), "
                          "NRRD (.nrrd, .nhdr), DICOM (a file, a folder or a DICOMDIR), MetaImage (.mhd, .mha), "
                          "NIfTI (.nii, .nii.gz, .hdr), VTK image data (.vti)";
 
 FileKind kindOf(const std::string& path) {
     std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) return FileKind::Dicom;  // a folder of DICOM files
+    if (std::filesystem::is_directory(path, ec)) return detail::sniffFolder(path).kind;  // Zarr store or DICOM folder
     detail::Sniffed s = detail::sniffFormat(path);
     if (s.kind != FileKind::Unknown) return s.kind;
     // No known signature: trust the extension so the format's reader can say what is wrong.
@@ -75,13 +76,14 @@ std::optional<VolumeReader::Format> volumeFormat(FileKind kind) {
 InputChoices listInputChoices(const std::string& path) {
     InputChoices c;
     const FileKind kind = kindOf(path);
-    if (kind == FileKind::NetCdf) c.variables = NetcdfReader::volumeVariables(path);
+    if (kind == FileKind::NetCdf || kind == FileKind::Zarr) c.variables = NetcdfReader::volumeVariables(path);
     if (kind == FileKind::Dicom) c.series = DicomReader::listSeries(path);
     return c;
 }
 
 TimeAxis readTimeAxis(const std::string& path, const FieldRequest& req) {
-    if (kindOf(path) == FileKind::NetCdf) return NetcdfReader::timeAxis(path, req);
+    const FileKind kind = kindOf(path);
+    if (kind == FileKind::NetCdf || kind == FileKind::Zarr) return NetcdfReader::timeAxis(path, req);
     TimeAxis none;
     none.path = path;
     return none;

@@ -2,6 +2,7 @@
 
 #include "input/InputFile.h"
 #include "octrace/util/Error.h"
+#include "zarr/ZarrStore.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -40,6 +41,11 @@ Sniffed sniffFormat(const std::string& path) {
     if (head.find('=') != std::string::npos && (first == "objecttype" || first == "ndims" || first == "comment"))
         return {FileKind::MetaImage, "MetaImage"};
     return {FileKind::Unknown, quoteBytes(head.substr(0, 8))};
+}
+
+Sniffed sniffFolder(const std::string& path) {
+    if (isZarrFolder(path)) return {FileKind::Zarr, checkZarrOnDisk(path)};
+    return {FileKind::Dicom, "a folder of DICOM files"};
 }
 
 }  // namespace octrace::io::detail

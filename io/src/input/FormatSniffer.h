@@ -4,7 +4,7 @@
 
 namespace octrace::io::detail {
 
-enum class FileKind { NetCdf, Nrrd, Dicom, MetaImage, Nifti, Vti, Unknown };
+enum class FileKind { NetCdf, Zarr, Nrrd, Dicom, MetaImage, Nifti, Vti, Unknown };
 
 struct Sniffed {
     FileKind kind = FileKind::Unknown;
@@ -14,5 +14,10 @@ struct Sniffed {
 /// Requires a readable, non-empty file (InputError "PATH: no such file", FileError
 /// "PATH: file is empty (0 bytes)"), then looks at its signature only (not the extension).
 Sniffed sniffFormat(const std::string& path);
+
+/// A folder by its content: a Zarr store when a Zarr metadata file (`.zgroup`, `.zarray`,
+/// `.zmetadata`, `zarr.json`) lies at its root (description as checkZarrOnDisk gives it; throws
+/// as that does, e.g. FormatNotSupported for the final Zarr v3 layout), else a DICOM folder.
+Sniffed sniffFolder(const std::string& path);
 
 }  // namespace octrace::io::detail

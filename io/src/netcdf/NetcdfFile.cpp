@@ -39,11 +39,14 @@ std::vector<double> numberAttribute(const GDALMDArray& a, const char* name) {
     return attr->ReadAsDoubleArray();
 }
 
-void collect(const std::shared_ptr<GDALGroup>& group, std::vector<VariableInfo>& out,
+void collect(const std::string& path, const std::shared_ptr<GDALGroup>& group, std::vector<VariableInfo>& out,
              std::vector<std::shared_ptr<GDALMDArray>>& arrays) {
     for (const auto& name : group->GetMDArrayNames()) {
         auto a = group->OpenMDArray(name);
-        if (!a) continue;
+        if (!a) {  // e.g. a Zarr codec GDAL lacks: said, not silently missing from the variables
+            log::warning(path + ": variable '" + name + "' left out: GDAL cannot open it: " + GdalMessages::last());
+            continue;
+        }
         VariableInfo v;
         v.name = a->GetFullName();
         v.shortName = a->GetName();
@@ -63,7 +66,7 @@ void collect(const std::shared_ptr<GDALGroup>& group, std::vector<VariableInfo>&
         arrays.push_back(a);
     }
     for (const auto& name : group->GetGroupNames())
-        if (auto sub = group->OpenGroup(name)) collect(sub, out, arrays);
+        if (auto sub = group->OpenGroup(name)) collect(path, sub, out, arrays);
 }
 
 // Whether the file (on disk or a GDAL virtual file) starts with the HDF5 signature, i.e. is
@@ -131,26 +134,30 @@ struct Opened {
     std::vector<std::shared_ptr<GDALMDArray>> arrays;
 };
 
-Opened openAndCollect(const std::string& path) {
+Opened openAndCollect(const std::string& path, GdalDriver driver) {
     GdalMessages messages;
     Opened o;
-    const char* const drivers[] = {"netCDF", nullptr};
+    const char* const drivers[] = {gdalDriverName(driver), nullptr};
     o.dataset.reset(GDALDataset::Open(path.c_str(), GDAL_OF_MULTIDIM_RASTER | GDAL_OF_READONLY, drivers));
     if (!o.dataset) {
-        std::string detail = CPLGetLastErrorType() == CE_None ? std::string("the file is truncated or corrupt")
-                                                              : GdalMessages::last();
-        throw FileError(path + ": GDAL's netCDF driver cannot open it: " + detail);
+        std::string detail = CPLGetLastErrorType() != CE_None ? GdalMessages::last()
+                             : driver == GdalDriver::Zarr    ? std::string("its metadata are incomplete or corrupt")
+                                                             : std::string("the file is truncated or corrupt");
+        throw FileError(path + ": GDAL's " + gdalDriverName(driver) + " driver cannot open it: " + detail);
     }
     auto root = o.dataset->GetRootGroup();
     if (!root) throw FileError(path + ": GDAL gives no root group: " + GdalMessages::last());
-    collect(root, o.variables, o.arrays);
+    collect(path, root, o.variables, o.arrays);
     return o;
 }
 
 }  // namespace
 
+const char* gdalDriverName(GdalDriver driver) { return driver == GdalDriver::Zarr ? "Zarr" : "netCDF"; }
+
 struct NetcdfFile::Impl {
     std::string path;
+    GdalDriver driver = GdalDriver::NetCdf;
     GDALDatasetUniquePtr dataset;
     std::vector<VariableInfo> variables;
     std::vector<std::shared_ptr<GDALMDArray>> arrays;  // parallel to variables
@@ -162,13 +169,14 @@ struct NetcdfFile::Impl {
     }
 };
 
-NetcdfFile::NetcdfFile(const std::string& path) : impl_(std::make_unique<Impl>()) {
+NetcdfFile::NetcdfFile(const std::string& path, GdalDriver driver) : impl_(std::make_unique<Impl>()) {
     registerGdal();
     impl_->path = path;
+    impl_->driver = driver;
     // HDF5 can hang on a corrupt NetCDF-4 file while its metadata are read (fuzzing.md): that
     // part runs first in a child process with a deadline.
-    if (isHdf5(path)) guardHdf5Metadata(path, [&path] { openAndCollect(path); });
-    Opened o = openAndCollect(path);
+    if (driver == GdalDriver::NetCdf && isHdf5(path)) guardHdf5Metadata(path, [&path] { openAndCollect(path, GdalDriver::NetCdf); });
+    Opened o = openAndCollect(path, driver);
     impl_->dataset = std::move(o.dataset);
     impl_->variables = std::move(o.variables);
     impl_->arrays = std::move(o.arrays);
@@ -205,7 +213,8 @@ AxisInfo NetcdfFile::axis(const VariableInfo& variable, std::size_t dim) const {
     std::vector<double> values(a.size);
     GUInt64 start = 0;
     std::size_t count = a.size;
-    if (!iv->Read(&start, &count, nullptr, nullptr, GDALExtendedDataType::Create(GDT_Float64), values.data()))
+    const bool read = iv->Read(&start, &count, nullptr, nullptr, GDALExtendedDataType::Create(GDT_Float64), values.data());
+    if (!read || (impl_->driver == GdalDriver::Zarr && CPLGetLastErrorType() >= CE_Failure))  // as in read()
         throw FileError(impl_->path + ": cannot read coordinate variable '" + iv->GetName() + "': " + GdalMessages::last());
     a.values = std::move(values);
     return a;
@@ -249,9 +258,14 @@ std::vector<double> NetcdfFile::read(const VariableInfo& variable, const std::ve
     GdalMessages messages;
     std::vector<double> buffer(hyperslabSamples(impl_->path, variable, count));
     std::vector<GUInt64> gstart(start.begin(), start.end());
-    if (!impl_->array(variable)->Read(gstart.data(), count.data(), nullptr, nullptr,
-                                      GDALExtendedDataType::Create(GDT_Float64), buffer.data()))
-        throw FileError(impl_->path + ": cannot read variable '" + variable.shortName + "': " + GdalMessages::last());
+    // GDAL's Zarr driver reports a chunk that does not decompress as an error but may return
+    // true with the chunk left as it was: for a store, a failure reported during the read
+    // counts as one.
+    const bool read = impl_->array(variable)->Read(gstart.data(), count.data(), nullptr, nullptr,
+                                                   GDALExtendedDataType::Create(GDT_Float64), buffer.data());
+    if (!read || (impl_->driver == GdalDriver::Zarr && CPLGetLastErrorType() >= CE_Failure))
+        throw FileError(impl_->path + ": cannot read variable '" + variable.shortName + "'" +
+                        (impl_->driver == GdalDriver::Zarr ? " of the Zarr store" : "") + ": " + GdalMessages::last());
     return buffer;
 }
 

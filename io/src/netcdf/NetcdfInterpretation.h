@@ -7,6 +7,7 @@
 // target tests/fuzz/fuzz_netcdf_cf.cpp calls them on GDAL in-memory files (/vsimem/...), which
 // have no path on disk.
 #include "netcdf/CfSource.h"
+#include "netcdf/NetcdfFile.h"
 #include "octrace/build/ScalarField.h"
 #include "octrace/io/FieldRequest.h"
 
@@ -19,6 +20,16 @@ namespace octrace::io::detail {
 /// The on-disk checks: the signature and, for classic files, that the data the header
 /// announces are all there. Returns the format's name. Throws FormatNotSupported, FileError.
 std::string checkNetcdfOnDisk(const std::string& path);
+
+/// What the on-disk checks found: the format's name and the GDAL driver that reads it.
+struct CfOnDisk {
+    std::string format;
+    GdalDriver driver = GdalDriver::NetCdf;
+};
+
+/// checkNetcdfOnDisk for a file; for a folder, the Zarr store's (checkZarrOnDisk: Zarr
+/// metadata at its root, not the final v3 layout). Throws as those.
+CfOnDisk checkCfOnDisk(const std::string& path);
 
 /// Refuses a request before any data are touched: a bad region or vertical scale (UsageError
 /// naming `source`).
@@ -37,10 +48,12 @@ std::string describeCf(const std::string& source, const std::string& formatLine,
 std::vector<std::string> cfVolumeNames(const CfSource& data);
 
 /// NetcdfReader::read without the on-disk checks; `gdalPath` is anything GDAL's netCDF
-/// driver opens (a file, /vsimem/...). Throws as NetcdfReader::read.
-ScalarField interpretNetcdf(const std::string& gdalPath, const FieldRequest& req);
+/// driver (or Zarr driver) opens (a file, a store, /vsimem/...). Throws as NetcdfReader::read.
+ScalarField interpretNetcdf(const std::string& gdalPath, const FieldRequest& req,
+                            GdalDriver driver = GdalDriver::NetCdf);
 
 /// NetcdfReader::describe without the on-disk checks; `format` names the format in the text.
-std::string describeNetcdf(const std::string& gdalPath, const std::string& format, const FieldRequest& req);
+std::string describeNetcdf(const std::string& gdalPath, const std::string& format, const FieldRequest& req,
+                           GdalDriver driver = GdalDriver::NetCdf);
 
 }  // namespace octrace::io::detail

@@ -13,10 +13,12 @@
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
 #include "octrace/util/Memory.h"
+#include "zarr/ZarrStore.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 
 namespace octrace::io {
@@ -33,6 +35,12 @@ std::string detail::checkNetcdfOnDisk(const std::string& path) {
                             ", the file has " + std::to_string(have) + " bytes");
     }
     return s.description;
+}
+
+detail::CfOnDisk detail::checkCfOnDisk(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) return {checkZarrOnDisk(path), GdalDriver::Zarr};
+    return {checkNetcdfOnDisk(path), GdalDriver::NetCdf};
 }
 
 namespace {
@@ -374,22 +382,23 @@ std::vector<std::string> cfVolumeNames(const CfSource& data) {
     return names;
 }
 
-ScalarField interpretNetcdf(const std::string& path, const FieldRequest& req) {
+ScalarField interpretNetcdf(const std::string& path, const FieldRequest& req, GdalDriver driver) {
     checkFieldRequest(path, req);
-    NetcdfFile file(path);
+    NetcdfFile file(path, driver);
     return interpretCf(path, file, req);
 }
 
-std::string describeNetcdf(const std::string& path, const std::string& format, const FieldRequest& req) {
-    NetcdfFile file(path);
-    return describeCf(path, "format: " + format + ", read through GDAL's netCDF driver", file, req);
+std::string describeNetcdf(const std::string& path, const std::string& format, const FieldRequest& req,
+                           GdalDriver driver) {
+    NetcdfFile file(path, driver);
+    return describeCf(path, "format: " + format + ", read through GDAL's " + gdalDriverName(driver) + " driver", file,
+                      req);
 }
 
 }  // namespace detail
 
 ScalarField NetcdfReader::read(const std::string& path, const FieldRequest& req) {
-    checkNetcdfOnDisk(path);
-    return interpretNetcdf(path, req);
+    return interpretNetcdf(path, req, checkCfOnDisk(path).driver);
 }
 
 std::string NetcdfReader::describe(const std::string& path, std::uint64_t memoryBudget) {
@@ -400,12 +409,12 @@ std::string NetcdfReader::describe(const std::string& path, std::uint64_t memory
 
 std::string NetcdfReader::describe(const std::string& path, const FieldRequest& req) {
     if (req.hasRegion) checkRegion(req.region, path);
-    return describeNetcdf(path, checkNetcdfOnDisk(path), req);
+    const CfOnDisk onDisk = checkCfOnDisk(path);
+    return describeNetcdf(path, onDisk.format, req, onDisk.driver);
 }
 
 TimeAxis NetcdfReader::timeAxis(const std::string& path, const FieldRequest& req) {
-    checkNetcdfOnDisk(path);
-    NetcdfFile file(path);
+    NetcdfFile file(path, checkCfOnDisk(path).driver);
     const VariableInfo* var = chooseVariable(path, file, req.variable, req.acceptPlanar);
     if (!var) {  // sound speed, derived: its steps are the temperature's
         const SoundSpeedSources src = soundSpeedSources(file);
@@ -456,8 +465,7 @@ double TimeAxis::valueOf(const std::string& isoDate) const {
 }
 
 std::vector<std::string> NetcdfReader::volumeVariables(const std::string& path) {
-    checkNetcdfOnDisk(path);
-    return cfVolumeNames(NetcdfFile(path));
+    return cfVolumeNames(NetcdfFile(path, checkCfOnDisk(path).driver));
 }
 
 }  // namespace octrace::io

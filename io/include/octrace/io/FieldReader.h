@@ -13,8 +13,10 @@ namespace octrace::io {
 
 /// Reads a scalar field from `path`, choosing the reader by the file's first bytes
 /// ("CDF\x01|\x02|\x05" NetCDF classic, HDF5 signature for NetCDF-4, "NRRD", "DICM" at
-/// byte 128), then by extension (.nc .cdf .nc4 .nrrd .nhdr .dcm, DICOMDIR); a folder is read
-/// as DICOM (DicomReader).
+/// byte 128), then by extension (.nc .cdf .nc4 .nrrd .nhdr .dcm, DICOMDIR); a folder by its
+/// content: a Zarr store (`.zgroup`, `.zarray`, `.zmetadata` or `zarr.json` at its root, read
+/// by NetcdfReader through GDAL's Zarr driver; the final Zarr v3 layout is refused with
+/// FormatNotSupported), else DICOM (DicomReader).
 /// NRRD and DICOM hold one field: a non-empty `req.variable` must equal its name, and a
 /// region is refused (InputError); `req.verticalScale` is ignored there with a warning.
 /// `req.series` is refused (InputError) for anything but DICOM.

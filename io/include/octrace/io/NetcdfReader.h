@@ -1,6 +1,7 @@
 #pragma once
 /// @file NetcdfReader.h
-/// Reads 3-D variables of NetCDF files (classic, 64-bit offset, CDF-5, NetCDF-4/HDF5) through
+/// Reads 3-D variables of NetCDF files (classic, 64-bit offset, CDF-5, NetCDF-4/HDF5) and of
+/// Zarr v2 stores (a folder: the same CF interpretation, through GDAL's Zarr driver) through
 /// GDAL's multidimensional API, mapping geographic grids to world kilometres.
 #include "octrace/build/ScalarField.h"
 #include "octrace/io/FieldRequest.h"
