@@ -34,6 +34,10 @@ struct FieldRequest {
     /// (with the reader's own buffers) would need more is refused with LimitError before
     /// anything that size is allocated.
     std::uint64_t memoryBudget = 0;
+    /// Curvilinear grids (2-D longitude/latitude): lattice points along the larger horizontal
+    /// extent of the regular lattice they are resampled onto; the octree's 2^depth + 1 when
+    /// reading for an octree. 0: about the source grid's own spacing.
+    int horizontalSamples = 0;
 };
 
 /// Parses "LON0,LON1,LAT0,LAT1" (degrees) and checks the values (see checkRegion).
