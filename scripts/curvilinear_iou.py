@@ -2,7 +2,7 @@
 """Mask agreement of curvilinear-grid renders with the regular Levitus file's (issue 25).
 
 For each curvilinear test file (tests/data/netcdf/make_curvilinear.py) and the regular Levitus
-atlas, renders the 10 degC temperature isosurface with the same region, vertical scale, octree
+atlas, renders a temperature isosurface (10 degC; 0 degC in the Arctic) with the same region, vertical scale, octree
 depth and camera, with a transparent background, and prints JSON: per file the intersection
 over union of the pixels where a surface is hit (alpha > 0) in the two images.
 
@@ -20,12 +20,16 @@ import zlib
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
-# name: (file, variable, region, vertical scale, camera position, look-at)
+# name: (file, variable, iso, region, vertical scale, camera position, look-at)
 CASES = {
-    "rotated_natl": ("tests/data/netcdf/rotated_natl.nc", "temp", "-70,-10,20,55", 300,
+    "rotated_natl": ("tests/data/netcdf/rotated_natl.nc", "temp", 10, "-70,-10,20,55", 300,
                      "0,-5200,4200", "0,-300,-600"),
-    "tripolar_global": ("tests/data/netcdf/tripolar_global.nc", "temp", "-180,180,-75,88", 600,
-                        "0,-16000,16000", "0,0,-1000"),
+    "tripolar_global": ("tests/data/netcdf/tripolar_global.nc", "temp", 10, "-180,180,-75,88", 600,
+                        "0,-26000,26000", "0,0,-1000"),
+    # The Arctic under the tripolar fold (the grid poles sit on land at 60 N): 0 degC, which lies
+    # a few hundred metres down there.
+    "tripolar_arctic": ("tests/data/netcdf/tripolar_global.nc", "temp", 0, "-180,180,66,88", 1500,
+                        "0,-3500,3000", "0,0,-500"),
 }
 
 
@@ -69,8 +73,8 @@ def png_alpha(path):
     return rows
 
 
-def render(octrace, path, var, region, scale, pos, look, out, depth, size):
-    cmd = [octrace, "render", path, "--var", var, "--iso", "10", "--region", region, "--vertical-scale", str(scale),
+def render(octrace, path, var, iso, region, scale, pos, look, out, depth, size):
+    cmd = [octrace, "render", path, "--var", var, "--iso", str(iso), "--region", region, "--vertical-scale", str(scale),
            "--depth", str(depth), "--camera-pos", pos, "--look-at", look, "--up", "0,0,1", "--fov", "40",
            "--size", size, "--background", "0,0,0,0", "-o", out]
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -82,16 +86,16 @@ def main():
     ap.add_argument("--levitus", default=os.path.join(ROOT, "../shared/data/ocean/levitus_climatology.cdf"))
     ap.add_argument("--out", default=None)
     ap.add_argument("--depth", type=int, default=8)
-    ap.add_argument("--size", default="480x320")
+    ap.add_argument("--size", default="640x360")
     a = ap.parse_args()
     out = a.out or tempfile.mkdtemp(prefix="curvi_iou_")
     os.makedirs(out, exist_ok=True)
-    result = {"iso": 10, "depth": a.depth, "size": a.size, "files": {}}
-    for name, (path, var, region, scale, pos, look) in CASES.items():
+    result = {"depth": a.depth, "size": a.size, "files": {}}
+    for name, (path, var, iso, region, scale, pos, look) in CASES.items():
         cur = os.path.join(out, name + "_curvilinear.png")
         reg = os.path.join(out, name + "_regular.png")
-        render(a.octrace, os.path.join(ROOT, path), var, region, scale, pos, look, cur, a.depth, a.size)
-        render(a.octrace, a.levitus, "TEMP", region, scale, pos, look, reg, a.depth, a.size)
+        render(a.octrace, os.path.join(ROOT, path), var, iso, region, scale, pos, look, cur, a.depth, a.size)
+        render(a.octrace, a.levitus, "TEMP", iso, region, scale, pos, look, reg, a.depth, a.size)
         inter = union = hit_c = hit_r = 0
         for rc, rr in zip(png_alpha(cur), png_alpha(reg)):
             for x, y in zip(rc, rr):
@@ -99,7 +103,7 @@ def main():
                 union += x > 0 or y > 0
                 hit_c += x > 0
                 hit_r += y > 0
-        result["files"][name] = {"file": path, "region": region, "vertical_scale": scale, "camera_pos": pos,
+        result["files"][name] = {"file": path, "iso": iso, "region": region, "vertical_scale": scale, "camera_pos": pos,
                                  "look_at": look, "pixels_curvilinear": hit_c, "pixels_regular": hit_r,
                                  "iou": round(inter / union, 4) if union else None}
     print(json.dumps(result, indent=2))

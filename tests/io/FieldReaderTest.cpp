@@ -114,10 +114,10 @@ TEST(FieldReader, EveryInvalidCorpusFileFailsWithItsDocumentedMessage) {
         {"invalid_nan_coordinate.nc", "", Kind::File, "latitude axis holds a non-finite value"},
         {"invalid_repeated_coordinate.nc", "", Kind::File, "vertical values are not strictly monotonic (0.01 then 0.01"},
         {"invalid_infinite_extent.nc", "", Kind::File, "spacing along axis 0 must be positive and finite, is inf"},
-        {"invalid_curvilinear_shape.nc", "", Kind::Input, "variable temp(depth, y, x): its 2-D coordinate lat(y2, x) is 2 x 4, "
+        {"invalid_curvilinear_shape.nc", "", Kind::File, "variable temp(depth, y, x): its 2-D coordinate lat(y2, x) is 2 x 4, "
          "which is not the shape of two of the variable's dimensions (depth, y, x: 2 x 3 x 4)"},
-        {"invalid_curvilinear_nan.nc", "", Kind::Input, "its 2-D coordinate lon(y, x) is missing or not finite at (1, 2)"},
-        {"invalid_curvilinear_latitude.nc", "", Kind::Input, "its latitude lat(y, x) is 90.2 at (0, 1), outside -90 .. 90 degrees"},
+        {"invalid_curvilinear_nan.nc", "", Kind::File, "its 2-D coordinate lon(y, x) is missing or not finite at (1, 2)"},
+        {"invalid_curvilinear_latitude.nc", "", Kind::File, "its latitude lat(y, x) is 90.2 at (0, 1), outside -90 .. 90 degrees"},
     };
     for (const auto& c : cases) {
         std::string path = test::testData(std::string("invalid/") + c.file);

@@ -2,6 +2,7 @@
 
 #include "input/InputFile.h"
 #include "octrace/util/Error.h"
+#include "octrace/util/Memory.h"
 
 #include <algorithm>
 #include <cmath>
@@ -110,7 +111,7 @@ CurvilinearGrid CurvilinearGrid::read(const std::string& path, const CfSource& f
                     horizontal += (horizontal.empty() ? "" : " x ") + std::to_string(var.dimSizes[n]);
                     names += (names.empty() ? "" : ", ") + var.dimNames[n];
                 }
-            throw InputError(what + ": its 2-D coordinate " + c->signature() + " is " + shape(*c, d) +
+            throw FileError(what + ": its 2-D coordinate " + c->signature() + " is " + shape(*c, d) +
                              ", which is not the shape of two of the variable's dimensions (" + names + ": " +
                              horizontal + "): the coordinates must lie over the variable's horizontal dimensions");
         }
@@ -133,21 +134,51 @@ CurvilinearGrid CurvilinearGrid::read(const std::string& path, const CfSource& f
         for (std::size_t n = 0; n < v.size(); ++n) {
             double x = v[n] * r.scale + r.offset;
             if (!r.isValid(v[n]) || !std::isfinite(x))
-                throw InputError(what + ": its 2-D coordinate " + c->signature() + " is missing or not finite at (" +
+                throw FileError(what + ": its 2-D coordinate " + c->signature() + " is missing or not finite at (" +
                                  std::to_string(n / g.nx) + ", " + std::to_string(n % g.nx) +
                                  "): every grid point needs a longitude and a latitude (fill the land points' "
                                  "coordinates, as the model's mesh file has them)");
-            if (c == lat && (x < -90.0 || x > 90.0))
-                throw InputError(what + ": its latitude " + c->signature() + " is " + num(x) + " at (" +
-                                 std::to_string(n / g.nx) + ", " + std::to_string(n % g.nx) +
-                                 "), outside -90 .. 90 degrees");
             v[n] = x;
         }
         (c == lon ? g.lon_ : g.lat_) = std::move(v);
     }
-    g.periodicX = g.detectPeriodic();
-    g.northFold = g.periodicX && g.detectFold();
+    g.check(what);
     return g;
+}
+
+CurvilinearGrid CurvilinearGrid::fromCoordinates(const std::string& what, std::size_t ny, std::size_t nx,
+                                                 std::vector<double> lon, std::vector<double> lat) {
+    CurvilinearGrid g;
+    g.ny = ny, g.nx = nx;
+    g.lonName = "longitude", g.latName = "latitude";
+    if (ny < 2 || nx < 2 || lon.size() != ny * nx || lat.size() != ny * nx)
+        throw FileError(what + ": 2-D coordinates of " + std::to_string(lon.size()) + " and " +
+                         std::to_string(lat.size()) + " values for a " + std::to_string(nx) + " x " +
+                         std::to_string(ny) + " grid (at least 2 x 2)");
+    for (std::size_t n = 0; n < lon.size(); ++n)
+        if (!std::isfinite(lon[n]) || !std::isfinite(lat[n]))
+            throw FileError(what + ": 2-D coordinates not finite at (" + std::to_string(n / nx) + ", " +
+                             std::to_string(n % nx) + ")");
+    g.lon_ = std::move(lon);
+    g.lat_ = std::move(lat);
+    g.check(what);
+    return g;
+}
+
+void CurvilinearGrid::check(const std::string& what) {
+    if (ny < 2 || nx < 2)
+        throw FileError(what + ": its 2-D coordinates " + lonName + " and " + latName + " are " + std::to_string(nx) +
+                         " x " + std::to_string(ny) + ", a curvilinear grid needs at least 2 x 2 points");
+    for (std::size_t n = 0; n < lat_.size(); ++n) {
+        const std::string at = " at (" + std::to_string(n / nx) + ", " + std::to_string(n % nx) + ")";
+        if (lat_[n] < -90.0 || lat_[n] > 90.0)
+            throw FileError(what + ": its latitude " + latName + " is " + num(lat_[n]) + at + ", outside -90 .. 90 degrees");
+        if (std::abs(lon_[n]) > 1e4)
+            throw FileError(what + ": its longitude " + lonName + " is " + num(lon_[n]) + at +
+                             ", not a longitude in degrees");
+    }
+    periodicX = detectPeriodic();
+    northFold = periodicX && detectFold();
 }
 
 double CurvilinearGrid::medianStepDeg() const {
@@ -231,14 +262,23 @@ CurvilinearGrid::Lattice CurvilinearGrid::lattice(const std::string& path, const
     L.latStep = stepKm / (kDeg * kEarthRadiusKm);
     L.lonStep = L.latStep / cosLat0;
     const bool whole = e - w >= 360.0 - 1e-9;
-    auto fill = [](std::vector<double>& v, double a, double b, double step, bool open) {
-        std::size_t count = std::size_t(std::floor((b - a) / step + 1e-9)) + 1;
+    auto fill = [&](std::vector<double>& v, double a, double b, double step, bool open) {
+        const double points = std::floor((b - a) / step + 1e-9) + 1.0;
+        if (!(points <= double(kMaxAxisPoints)))
+            throw InputError(path + ": resampling the curvilinear grid at a step of " + num(stepKm) + " km would take " +
+                             num(points) + " lattice points along one axis, more than the " +
+                             std::to_string(kMaxAxisPoints) + " octrace reads; choose a smaller region");
+        std::size_t count = std::size_t(points);
         if (open && a + double(count - 1) * step >= b - 1e-9) --count;  // the circle's end is its start
         for (std::size_t k = 0; k < count; ++k) v.push_back(a + double(k) * step);
     };
     if (whole) L.lonStep = 360.0 / std::ceil(360.0 / L.lonStep);  // the circle closes on a lattice point
     fill(L.lon, w, e, L.lonStep, whole);
     fill(L.lat, s, n, L.latStep, false);
+    // The lookup (corners and weights per lattice point) counts against the memory budget.
+    checkMemoryBudget(path + ": resampling the curvilinear grid onto " + std::to_string(L.lon.size()) + " x " +
+                          std::to_string(L.lat.size()) + " lattice points",
+                      saturatingMultiply(L.lon.size() * L.lat.size(), sizeof(Weights)), req.memoryBudget);
     if (L.lon.size() < 2 || L.lat.size() < 2)
         throw EmptyResultError(path + ": the region holds fewer than 2 lattice points along an axis at the resampling "
                                       "step of " + num(stepKm) + " km");
@@ -275,11 +315,12 @@ void CurvilinearGrid::rasterise(const std::uint32_t corner[4], const std::vector
     const double lon0 = lonOut.front(), lat0 = latOut.front();
     const double dLon = lonOut.size() > 1 ? lonOut[1] - lonOut[0] : 1.0, dLat = latOut.size() > 1 ? latOut[1] - latOut[0] : 1.0;
     const long nxo = long(lonOut.size()), nyo = long(latOut.size());
-    long j0 = std::max(0L, long(std::ceil((latLo - lat0) / dLat - 1e-9)));
-    long j1 = std::min(nyo - 1, long(std::floor((latHi - lat0) / dLat + 1e-9)));
+    // Lattice index ranges, clamped as doubles before any conversion.
+    auto first = [](double x, long n) { return long(std::clamp(std::ceil(x - 1e-9), 0.0, double(n))); };
+    auto last = [](double x, long n) { return long(std::clamp(std::floor(x + 1e-9), -1.0, double(n - 1))); };
+    const long j0 = first((latLo - lat0) / dLat, nyo), j1 = last((latHi - lat0) / dLat, nyo);
     for (double shift : {-720.0, -360.0, 0.0, 360.0, 720.0}) {
-        long i0 = std::max(0L, long(std::ceil((lonLo + shift - lon0) / dLon - 1e-9)));
-        long i1 = std::min(nxo - 1, long(std::floor((lonHi + shift - lon0) / dLon + 1e-9)));
+        const long i0 = first((lonLo + shift - lon0) / dLon, nxo), i1 = last((lonHi + shift - lon0) / dLon, nxo);
         for (long j = j0; j <= j1; ++j)
             for (long i = i0; i <= i1; ++i) {
                 Weights& out = lookup_[std::size_t(j) * std::size_t(nxo) + std::size_t(i)];

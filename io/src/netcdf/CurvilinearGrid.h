@@ -26,12 +26,18 @@ namespace octrace::io::detail {
 class CurvilinearGrid {
 public:
     /// Reads and checks the 2-D coordinates `coords` (from curvilinearCoordinates) of `var`.
-    /// @throws InputError naming `path`, the variable and the coordinate: not exactly one
-    ///         longitude and one latitude, a coordinate whose dimensions are not two of the
-    ///         variable's (or differ between the two), a non-finite coordinate, a latitude outside
-    ///         -90..90. FileError as CfSource::read.
+    /// @throws InputError naming `path`, the variable and the coordinates when there is not
+    ///         exactly one 2-D longitude and one latitude; FileError (a broken file) for a
+    ///         coordinate whose dimensions are not two of the variable's (or differ between the
+    ///         two), fewer than 2 x 2 points, a missing or non-finite coordinate, a latitude
+    ///         outside -90..90, a longitude beyond +-10^4; FileError as CfSource::read.
     static CurvilinearGrid read(const std::string& path, const CfSource& file, const VariableInfo& var,
                                 const std::vector<const VariableInfo*>& coords);
+
+    /// A grid from its coordinates (ny x nx, x fastest), checked as `read` checks them; for
+    /// tests and the fuzz target. @throws FileError naming `what`.
+    static CurvilinearGrid fromCoordinates(const std::string& what, std::size_t ny, std::size_t nx,
+                                           std::vector<double> lon, std::vector<double> lat);
 
     std::size_t yDim = 0, xDim = 0;  ///< the variable's dimensions the coordinates lie over (y slower)
     std::size_t ny = 0, nx = 0;      ///< source size
@@ -76,6 +82,7 @@ private:
     std::vector<Weights> lookup_;
     std::size_t skipped_ = 0;
     double medianStepDeg() const;
+    void check(const std::string& what);  // latitudes within +-90, sane longitudes; periodic and fold
     bool detectPeriodic() const;
     bool detectFold() const;
     void rasterise(const std::uint32_t corner[4], const std::vector<double>& lonOut, const std::vector<double>& latOut);

@@ -95,8 +95,8 @@ def tripolar(nx=240, lat_south=-78.0, lat_cap=60.0, step=1.5, ncap=20, pole_lon=
     return (lon + 180.0) % 360.0 - 180.0, lat
 
 
-def write(path, title, dims, lon, lat, depth, temp, extra):
-    d = netCDF4.Dataset(path, "w", format="NETCDF4")
+def write(path, title, dims, lon, lat, depth, temp, extra, fmt="NETCDF4"):
+    d = netCDF4.Dataset(path, "w", format=fmt)
     d.title = title
     d.Conventions = "CF-1.8"
     d.source = "interpolated from Levitus 1982 (levitus_climatology.cdf) by tests/data/netcdf/make_curvilinear.py"
