@@ -117,7 +117,7 @@ ScalarField loadField(const std::string& input, const io::FieldRequest& req, int
     }
     if (!isAnalytic(input)) {
         io::FieldRequest at = req;  // a curvilinear grid is resampled at the octree's resolution
-        if (at.horizontalSamples == 0) at.horizontalSamples = (1 << std::min(depth, 12)) + 1;
+        if (at.horizontalSamples == 0) at.horizontalSamples = io::latticeSamplesForDepth(depth);
         return io::readField(input, at);
     }
     if (req.hasRegion) throw UsageError("`region` applies to geographic NetCDF inputs, not to " + input);

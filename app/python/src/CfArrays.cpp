@@ -67,7 +67,9 @@ io::CfDataset dataset(const nb::list& variables, const std::string& description)
 void bindCfArrays(nb::module_& m) {
     m.def("read_cf", [](const nb::list& variables, const std::string& description, const Settings& settings) {
         const io::CfDataset data = dataset(variables, description);  // borrows the arrays `variables` holds
-        const io::FieldRequest req = readerRequest(settings);
+        io::FieldRequest req = readerRequest(settings);
+        // A curvilinear grid is resampled as octrace.open does (model::loadField): at the default depth.
+        req.horizontalSamples = io::latticeSamplesForDepth(int(model::opt::depth.defaultValue));
         return makeField(runInterruptible([&] { return io::readCfDataset(data, req); }), description);
     }, "variables"_a, "description"_a, "settings"_a,
           "The field the NetCDF reader's CF interpretation reads from these variables (io/CfDataset.h).");

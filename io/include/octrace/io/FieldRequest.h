@@ -40,6 +40,9 @@ struct FieldRequest {
     int horizontalSamples = 0;
 };
 
+/// The `horizontalSamples` that match an octree of `depth`: 2^depth + 1 (depth clamped to 1..12).
+inline int latticeSamplesForDepth(int depth) { return (1 << (depth < 1 ? 1 : depth > 12 ? 12 : depth)) + 1; }
+
 /// Parses "LON0,LON1,LAT0,LAT1" (degrees) and checks the values (see checkRegion).
 /// @throws UsageError naming the text and the problem.
 std::array<double, 4> parseRegion(const std::string& text);
