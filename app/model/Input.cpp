@@ -115,7 +115,11 @@ ScalarField loadField(const std::string& input, const io::FieldRequest& req, int
             throw InputError(input + ": no variable '" + req.variable + "' (it has: " + f.name + ")");
         return f;
     }
-    if (!isAnalytic(input)) return io::readField(input, req);
+    if (!isAnalytic(input)) {
+        io::FieldRequest at = req;  // a curvilinear grid is resampled at the octree's resolution
+        if (at.horizontalSamples == 0) at.horizontalSamples = io::latticeSamplesForDepth(depth);
+        return io::readField(input, at);
+    }
     if (req.hasRegion) throw UsageError("`region` applies to geographic NetCDF inputs, not to " + input);
     if (req.hasDepthRange) throw UsageError("`depth_range` applies to geographic NetCDF inputs, not to " + input);
     if (!req.time.empty()) throw UsageError("`time` applies to NetCDF inputs with a time axis, not to " + input);

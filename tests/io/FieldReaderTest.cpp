@@ -120,6 +120,10 @@ TEST(FieldReader, EveryInvalidCorpusFileFailsWithItsDocumentedMessage) {
          "cannot read variable 'TEMP' of the Zarr store: Decompression of tile"},
         {"invalid_zarr_v3.zarr", "", Kind::FormatNotSupported,
          "a Zarr v3 store in the final layout (zarr.json with \"zarr_format\": 3"},
+        {"invalid_curvilinear_shape.nc", "", Kind::File, "variable temp(depth, y, x): its 2-D coordinate lat(y2, x) is 2 x 4, "
+         "which is not the shape of two of the variable's dimensions (depth, y, x: 2 x 3 x 4)"},
+        {"invalid_curvilinear_nan.nc", "", Kind::File, "its 2-D coordinate lon(y, x) is missing or not finite at (1, 2)"},
+        {"invalid_curvilinear_latitude.nc", "", Kind::File, "its latitude lat(y, x) is 90.2 at (0, 1), outside -90 .. 90 degrees"},
     };
     for (const auto& c : cases) {
         std::string path = test::testData(std::string("invalid/") + c.file);

@@ -1,6 +1,6 @@
 // CF interpretation on files written by GDAL in the test (tests/io/CfFileWriter.h): packing and
-// masking, depth positive up or down, depth ranges, time steps in CF calendars, curvilinear
-// grids, grids without coordinate variables, and sound speed derived from T and S.
+// masking, depth positive up or down, depth ranges, time steps in CF calendars (curvilinear
+// grids: CurvilinearGridTest.cpp), grids without coordinate variables, and sound speed derived from T and S.
 #include "CfFileWriter.h"
 #include "IoTestSupport.h"
 #include "netcdf/SeaWater.h"
@@ -248,44 +248,6 @@ TEST(NetcdfCf, TimeOnAVariableWithoutTimeAxisIsRefused) {
     }
     EXPECT_THROW_WITH(io::NetcdfReader::read(path, at("0")), InputError,
                       "`time` 0: variable temp(depth, lat, lon) has no time axis");
-}
-
-// 2-D latitude and longitude (an ocean model's curvilinear grid) are refused, never drawn as if
-// the indices were degrees: named by `coordinates` or, without it, found over the same dimensions.
-TEST(NetcdfCf, CurvilinearGridIsRefusedNamingTheTwoDimensionalCoordinates) {
-    test::TempDir dir;
-    for (bool attribute : {true, false}) {
-        const std::string path = dir.file(attribute ? "curvilinear.nc" : "curvilinear_no_attribute.nc");
-        {
-            CfFileWriter w(path);
-            w.dimension("y", 3);
-            w.dimension("x", 4);
-            w.coordinate("depth", kDepth, {{"units", "m"}, {"positive", "down"}});
-            std::vector<double> lat, lon;
-            for (int j = 0; j < 3; ++j)
-                for (int i = 0; i < 4; ++i) {
-                    lat.push_back(40.0 + j + 0.2 * i);  // rotated grid lines
-                    lon.push_back(140.0 + i - 0.2 * j);
-                }
-            w.variable("nav_lat", {"y", "x"}, GDT_Float64, lat, {{"units", "degrees_north"}});
-            w.variable("nav_lon", {"y", "x"}, GDT_Float64, lon, {{"units", "degrees_east"}});
-            std::map<std::string, std::string> a = {{"units", "degC"}};
-            if (attribute) a["coordinates"] = "nav_lon nav_lat";
-            w.variable("votemper", {"depth", "y", "x"}, GDT_Float32, ramp(), a);
-        }
-        SCOPED_TRACE(path);
-        EXPECT_THROW_WITH(io::NetcdfReader::read(path, {}), InputError,
-                          "variable votemper(depth, y, x) is on a curvilinear grid: its coordinates nav_lat(y, x) and "
-                          "nav_lon(y, x) are 2-D; octrace reads longitude and latitude only as 1-D axes");
-        std::string info = io::NetcdfReader::describe(path);
-        const std::string marked = std::string("votemper(depth, y, x) Float32 [3 x 3 x 4], units 'degC'") +
-                                   (attribute ? ", coordinates 'nav_lon nav_lat'" : "") +
-                                   ", curvilinear (2-D nav_lat, not drawn)";
-        EXPECT_NE(info.find(marked), std::string::npos) << info;
-        EXPECT_EQ(info.find("nav_lat(y, x) Float64 [3 x 4], units 'degrees_north', curvilinear"), std::string::npos)
-            << info;  // a coordinate is not itself curvilinear
-        EXPECT_NE(info.find("cannot be drawn: "), std::string::npos) << info;
-    }
 }
 
 // No coordinate variable at all: the grid indices are the world coordinates, with a warning.

@@ -69,6 +69,8 @@ void bindCfArrays(nb::module_& m) {
         const io::CfDataset data = dataset(variables, description);  // borrows the arrays `variables` holds
         io::FieldRequest req = readerRequest(settings);
         req.acceptPlanar = planar;
+        // A curvilinear grid is resampled as octrace.open does (model::loadField): at the default depth.
+        req.horizontalSamples = io::latticeSamplesForDepth(int(model::opt::depth.defaultValue));
         return makeField(runInterruptible([&] { return io::readCfDataset(data, req); }), description);
     }, "variables"_a, "description"_a, "settings"_a, "planar"_a = false,
           "The field the NetCDF reader's CF interpretation reads from these variables (io/CfDataset.h); `planar`: "

@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <numbers>
+#include <numeric>
 
 namespace octrace::io::detail {
 namespace {
@@ -77,6 +79,11 @@ bool isLonLat(const VariableInfo& v) {
     return r == AxisRole::Longitude || r == AxisRole::Latitude;
 }
 
+// 1-D axes in a rotated pole's coordinates (CF 5.6: grid_longitude, grid_latitude).
+bool isRotatedPole(const AxisInfo& lon, const AxisInfo& lat) {
+    return lon.standardName == "grid_longitude" || lat.standardName == "grid_latitude";
+}
+
 bool hasAllDims(const VariableInfo& var, const VariableInfo& c) {
     for (const auto& d : c.dimNames)
         if (std::find(var.dimNames.begin(), var.dimNames.end(), d) == var.dimNames.end()) return false;
@@ -119,14 +126,27 @@ Layout layoutFor(const std::string& path, const CfSource& file, const VariableIn
     bool geographic = lon.size() == 1 && lat.size() == 1 && vert.size() == 1 && !info[lon[0]].values.empty() &&
                       !info[lat[0]].values.empty() && !info[vert[0]].values.empty();
 
-    auto curvilinear = curvilinearCoordinates(file, var);
-    if (!curvilinear.empty() && !(lon.size() == 1 && lat.size() == 1 && !info[lon[0]].values.empty() &&
-                                  !info[lat[0]].values.empty())) {
-        std::string names;
-        for (const auto* c : curvilinear) names += (names.empty() ? "" : " and ") + c->signature();
-        throw InputError(path + ": variable " + var.signature() + " is on a curvilinear grid: its coordinates " + names +
-                         " are 2-D; octrace reads longitude and latitude only as 1-D axes: regrid the variable "
-                         "onto a regular longitude/latitude grid first (e.g. cdo remapbil)");
+    // A curvilinear grid: 2-D longitude/latitude and no 1-D ones but rotated-pole axes
+    // (grid_longitude/grid_latitude), which the 2-D true coordinates then replace.
+    std::shared_ptr<CurvilinearGrid> curvi;
+    if (auto coords = curvilinearCoordinates(file, var);
+        !coords.empty() && !(lon.size() == 1 && lat.size() == 1 && !info[lon[0]].values.empty() &&
+                             !info[lat[0]].values.empty() && !isRotatedPole(info[lon[0]], info[lat[0]]))) {
+        curvi = std::make_shared<CurvilinearGrid>(CurvilinearGrid::read(path, file, var, coords));
+        auto others = [&](const std::vector<std::size_t>& v) {
+            std::vector<std::size_t> out;
+            for (std::size_t d : v)
+                if (d != curvi->xDim && d != curvi->yDim) out.push_back(d);
+            return out;
+        };
+        vert = others(vert);
+        lon = {curvi->xDim};
+        lat = {curvi->yDim};
+        geographic = vert.size() == 1 && !info[vert[0]].values.empty();
+        if (!geographic)
+            throw InputError(path + ": variable " + var.signature() + " is on a curvilinear grid (" + curvi->lonName +
+                             ", " + curvi->latName + ") but has " + std::to_string(vert.size()) +
+                             " vertical axes with coordinates; one is needed for a 3-D field");
     }
     std::vector<std::size_t> across;  // dimensions longer than 1 that are not time
     for (std::size_t d : spread)
@@ -186,13 +206,30 @@ Layout layoutFor(const std::string& path, const CfSource& file, const VariableIn
         const std::vector<double> levels = vd ? info[*vd].values : std::vector<double>{0.0};
         std::vector<double> depthKm;
         for (double v : levels) depthKm.push_back(v * vc.toKm * (vc.positiveDown ? 1.0 : -1.0) + 0.0);  // + 0.0: no -0
-        GeoMapping m = mapGeographic(path, info[lon[0]].values, info[lat[0]].values, depthKm, req, planar ? 1 : 2);
+        CurvilinearGrid::Lattice lattice;
+        if (curvi) lattice = curvi->lattice(path, req, req.horizontalSamples);
+        GeoMapping m = mapGeographic(path, curvi ? lattice.lon : info[lon[0]].values,
+                                     curvi ? lattice.lat : info[lat[0]].values, depthKm, req, planar ? 1 : 2);
+        if (curvi) {
+            std::vector<double> lonOut, latOut;  // the lattice in output order
+            for (std::size_t i : m.x.stored) lonOut.push_back(lattice.lon[i]);
+            for (std::size_t j : m.y.stored) latOut.push_back(lattice.lat[j]);
+            for (std::size_t i = 1; i < lonOut.size(); ++i)  // unwrapped as the mapping sees it
+                lonOut[i] = lonOut[i - 1] + std::remainder(lonOut[i] - lonOut[i - 1], 360.0);
+            curvi->buildLookup(lonOut, latOut);
+            m.notes.push_back(curvi->description(lattice, lonOut.size(), latOut.size()));
+            // From here x and y index the lattice in output order.
+            std::iota(m.x.stored.begin(), m.x.stored.end(), std::size_t(0));
+            std::iota(m.y.stored.begin(), m.y.stored.end(), std::size_t(0));
+        }
         L.geographic = true;
         L.lon0 = m.lon0;
         L.lat0 = m.lat0;
         L.verticalScale = m.verticalScale;
         L.dim = {lon[0], lat[0], planar ? kNoDimension : *vd};
-        for (std::size_t j : m.y.stored) L.latitudeDeg.push_back(info[lat[0]].values[j]);
+        for (std::size_t j : m.y.stored) L.latitudeDeg.push_back(curvi ? m.lat0 + m.y.world[j] / (kEarthRadiusKm * std::numbers::pi / 180.0)
+                                                                   : info[lat[0]].values[j]);
+        L.curvilinear = std::move(curvi);
         for (std::size_t k : m.z.stored) {
             L.depthM.push_back(depthKm[k] * 1000.0);
             if (vd && vc.toDbar > 0.0) L.levelDbar.push_back(levels[k] * vc.toDbar * (vc.positiveDown ? 1.0 : -1.0));
@@ -277,10 +314,35 @@ ScalarField shapeField(const std::string& path, const VariableInfo& var, const L
     return f;
 }
 
+namespace {
+
+// A curvilinear grid: each level's whole horizontal plane, resampled onto the lattice.
+void readCurvilinearSamples(const CfSource& file, const VariableInfo& var, const Layout& L, const SampleRules& rules,
+                            ScalarField& f) {
+    const CurvilinearGrid& g = *L.curvilinear;
+    std::vector<std::uint64_t> start = L.fixedIndex;
+    std::vector<std::size_t> count(var.dimSizes.size(), 1);
+    count[g.yDim] = g.ny;
+    count[g.xDim] = g.nx;
+    start[g.yDim] = start[g.xDim] = 0;
+    f.values.assign(f.sampleCount(), 0.0f);
+    f.valid.assign(f.sampleCount(), 0);
+    const std::size_t plane = std::size_t(f.dims.x) * std::size_t(f.dims.y);
+    const auto& sz = L.axes[2].stored;
+    for (std::size_t k = 0; k < sz.size(); ++k) {
+        start[L.dim[2]] = sz[k];
+        std::vector<double> raw = file.read(var, start, count);
+        g.resample(raw, rules, f.values.data() + k * plane, f.valid.data() + k * plane);
+    }
+}
+
+}  // namespace
+
 // Reads one hyperslab per run of consecutive stored x indices (a region across the file's
 // longitude seam is two runs).
 void readSamples(const CfSource& file, const VariableInfo& var, const Layout& L, const SampleRules& rules,
                  ScalarField& f) {
+    if (L.curvilinear) return readCurvilinearSamples(file, var, L, rules, f);
     const std::size_t nd = var.dimSizes.size();
     std::vector<std::uint64_t> start = L.fixedIndex;
     std::vector<std::size_t> count(nd, 1);

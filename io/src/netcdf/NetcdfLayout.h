@@ -5,6 +5,7 @@
 // variable through it; SoundSpeedField reads two on the same layout.
 #include "netcdf/GeoGrid.h"
 #include "netcdf/CfSource.h"
+#include "netcdf/CurvilinearGrid.h"
 
 #include "octrace/build/ScalarField.h"
 #include "octrace/io/FieldRequest.h"
@@ -12,6 +13,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -34,6 +36,9 @@ struct Layout {
     std::vector<double> levelDbar;    ///< pressure of each z when the vertical axis is pressure, else empty
     std::string latitudeAxis, verticalAxis;  ///< dimension names, for messages
     double lon0 = 0.0, lat0 = 0.0, verticalScale = 1.0;  ///< the mapping (ScalarField::Geographic)
+    /// Curvilinear grids only: x and y are a regular lattice resampled from the 2-D grid over
+    /// dimensions dim[0] (x) and dim[1] (y) of the variable; readSamples goes through it.
+    std::shared_ptr<const CurvilinearGrid> curvilinear;
 };
 
 /// The layout of `var` for `req`: spatial axes by CF rules (1-D coordinate variables, the
@@ -42,7 +47,9 @@ struct Layout {
 /// of any other extra dimension (with a warning), region and depth range on geographic grids.
 /// A variable with two dimensions longer than 1 besides time is a map (Layout::planar) when
 /// `req.acceptPlanar`, at its vertical dimension of length 1 if it has one, else at depth 0.
-/// @throws InputError (curvilinear grid, a 2-D field without acceptPlanar, fewer than 2 spatial axes, --time without a time axis or out
+/// A curvilinear grid (2-D longitude/latitude) is resampled onto a regular lattice
+/// (CurvilinearGrid) of `req.horizontalSamples` points along its larger extent.
+/// @throws InputError (unusable 2-D coordinates, a 2-D field without acceptPlanar, fewer than 2 spatial axes, --time without a time axis or out
 ///         of range, a region or depth range on a non-geographic grid), FileError, UsageError,
 ///         EmptyResultError as NetcdfReader::read.
 Layout layoutFor(const std::string& path, const CfSource& file, const VariableInfo& var, const FieldRequest& req);

@@ -253,7 +253,11 @@ void describeVariable(std::ostringstream& s, const CfSource& file, const Variabl
     if (extent == 2) s << ", 2-D: a map, drawn by slice only";
     else if (extent < 2) s << ", " << extent << "-D: not drawn";
     auto curvilinear = curvilinearCoordinates(file, v);
-    if (!curvilinear.empty()) s << ", curvilinear (2-D " << curvilinear[0]->shortName << ", not drawn)";
+    if (!curvilinear.empty()) {
+        s << ", curvilinear (2-D";
+        for (const auto* c : curvilinear) s << " " << c->shortName;
+        s << ": resampled onto a regular lattice)";
+    }
     std::uint64_t total = 1;
     for (auto n : v.dimSizes) total = saturatingMultiply(total, n);
     if (total > 200'000'000u || (budget && saturatingMultiply(total, sizeof(double)) > budget)) {

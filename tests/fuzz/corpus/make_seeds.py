@@ -150,7 +150,8 @@ data:
     4800, 4900, 5000, 5100 ;
 }
 """,
-    # A curvilinear grid (2-D nav_lat/nav_lon named by `coordinates`), refused with their names.
+    # A curvilinear grid (2-D nav_lat/nav_lon named by `coordinates`), resampled onto a lattice
+    # (more curvilinear seeds: make_curvilinear_seeds.py).
     "cf_curvilinear": """netcdf cf_curvilinear {
 dimensions:
   deptht = 2 ; y = 2 ; x = 3 ;

@@ -40,7 +40,14 @@ struct FieldRequest {
     /// (with the reader's own buffers) would need more is refused with LimitError before
     /// anything that size is allocated.
     std::uint64_t memoryBudget = 0;
+    /// Curvilinear grids (2-D longitude/latitude): lattice points along the larger horizontal
+    /// extent of the regular lattice they are resampled onto; the octree's 2^depth + 1 when
+    /// reading for an octree. 0: about the source grid's own spacing.
+    int horizontalSamples = 0;
 };
+
+/// The `horizontalSamples` that match an octree of `depth`: 2^depth + 1 (depth clamped to 1..12).
+inline int latticeSamplesForDepth(int depth) { return (1 << (depth < 1 ? 1 : depth > 12 ? 12 : depth)) + 1; }
 
 /// Parses "LON0,LON1,LAT0,LAT1" (degrees) and checks the values (see checkRegion).
 /// @throws UsageError naming the text and the problem.

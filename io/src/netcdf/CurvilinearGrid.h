@@ -1,0 +1,91 @@
+#pragma once
+// Curvilinear horizontal grids (internal, no GDAL types): a variable whose longitude and
+// latitude are 2-D auxiliary coordinates (CF 5.2; NEMO nav_lat/nav_lon, POP TLAT/TLONG, MOM6
+// geolat/geolon, ROMS lat_rho/lon_rho, rotated-pole models with 2-D lat/lon) is resampled onto a
+// regular longitude/latitude lattice, which then maps to world km as a regular grid does.
+//
+// How: every source cell (the quad between four neighbouring grid points, plus the quads across
+// a periodic x seam and across a tripolar north fold) is rasterised onto the lattice in
+// longitude/latitude, unwrapped around its first corner so that a cell across the dateline is
+// one small quad; a lattice point inside it gets the cell's four corners and their bilinear
+// weights by inverse bilinear mapping. Degenerate, folded or pole-enclosing cells are skipped.
+// Per level, a lattice point takes the weighted mean of the ocean corners only; it is land when
+// less than half of its weight is ocean (so the coastline stays where the source's is, and no
+// value is ever interpolated across land). Why this and not a nearest-cell search:
+// docs/dev/ocean.md, "Curvilinear grids".
+#include "netcdf/CfSource.h"
+#include "octrace/io/FieldRequest.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace octrace::io::detail {
+
+class CurvilinearGrid {
+public:
+    /// Reads and checks the 2-D coordinates `coords` (from curvilinearCoordinates) of `var`.
+    /// @throws InputError naming `path`, the variable and the coordinates when there is not
+    ///         exactly one 2-D longitude and one latitude; FileError (a broken file) for a
+    ///         coordinate whose dimensions are not two of the variable's (or differ between the
+    ///         two), fewer than 2 x 2 points, a missing or non-finite coordinate, a latitude
+    ///         outside -90..90, a longitude beyond +-10^4; FileError as CfSource::read.
+    static CurvilinearGrid read(const std::string& path, const CfSource& file, const VariableInfo& var,
+                                const std::vector<const VariableInfo*>& coords);
+
+    /// A grid from its coordinates (ny x nx, x fastest), checked as `read` checks them; for
+    /// tests and the fuzz target. @throws FileError naming `what`.
+    static CurvilinearGrid fromCoordinates(const std::string& what, std::size_t ny, std::size_t nx,
+                                           std::vector<double> lon, std::vector<double> lat);
+
+    std::size_t yDim = 0, xDim = 0;  ///< the variable's dimensions the coordinates lie over (y slower)
+    std::size_t ny = 0, nx = 0;      ///< source size
+    std::string lonName, latName;    ///< coordinate signatures, for notes
+    bool periodicX = false;          ///< the last column neighbours the first (a global grid)
+    bool northFold = false;          ///< the top row neighbours itself mirrored (a tripolar grid)
+
+    /// The lattice for `req`: its region, else the source's extent (the whole circle when the
+    /// source goes round it). `samples` points along the larger extent (in km on the contract's
+    /// mapping); 0 chooses about the source's own spacing. Longitudes increase from the
+    /// region's west edge (unwrapped, may pass 180), latitudes increase.
+    struct Lattice {
+        std::vector<double> lon, lat;
+        double lonStep = 0.0, latStep = 0.0;
+        std::string how;  ///< how the step was chosen, for notes
+    };
+    Lattice lattice(const std::string& path, const FieldRequest& req, int samples) const;
+
+    /// Builds the lookup onto the lattice points lonOut x latOut (both increasing and uniform,
+    /// longitudes unwrapped), x fastest. Not thread-safe with resample on the same object.
+    void buildLookup(const std::vector<double>& lonOut, const std::vector<double>& latOut);
+
+    /// One horizontal plane: `raw` holds ny x nx stored samples (x fastest); writes the
+    /// resampled values and validity of the lattice (as built) into `values` and `valid`, each
+    /// lonOut.size() * latOut.size() long.
+    void resample(const std::vector<double>& raw, const SampleRules& rules, float* values, std::uint8_t* valid) const;
+
+    /// Lattice points inside some source cell, of all.
+    std::size_t coveredPoints() const;
+    std::size_t skippedCells() const { return skipped_; }
+
+    /// For `info`: "curvilinear grid: 2-D coordinates ...; source ...; resampled onto ...".
+    std::string description(const Lattice& lattice, std::size_t nxOut, std::size_t nyOut) const;
+
+private:
+    std::vector<double> lon_, lat_;  ///< ny x nx, degrees
+    struct Weights {
+        std::uint32_t corner[4];  ///< flat source indices; corner[0] == kNone: outside every cell
+        float w[4];
+    };
+    static constexpr std::uint32_t kNone = 0xffffffffu;
+    std::vector<Weights> lookup_;
+    std::size_t skipped_ = 0;
+    double medianStepDeg() const;
+    void check(const std::string& what);  // latitudes within +-90, sane longitudes; periodic and fold
+    bool detectPeriodic() const;
+    bool detectFold() const;
+    void rasterise(const std::uint32_t corner[4], const std::vector<double>& lonOut, const std::vector<double>& latOut);
+};
+
+}  // namespace octrace::io::detail

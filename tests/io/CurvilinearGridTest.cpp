@@ -1,0 +1,227 @@
+// Curvilinear grids (2-D longitude/latitude): resampled onto a regular lattice (io/src/netcdf/
+// CurvilinearGrid), checked on fields linear in longitude and latitude (reproduced exactly by
+// the inverse bilinear mapping of an affine grid), with land, across the dateline, and on the
+// files tests/data/netcdf/make_curvilinear.py made from the real Levitus atlas against the atlas.
+#include "CfFileWriter.h"
+#include "IoTestSupport.h"
+
+#include "octrace/io/NetcdfReader.h"
+#include "octrace/util/Error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+using namespace octrace;
+using test::CfFileWriter;
+
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+const std::vector<double> kDepth = {0, 100, 500};
+
+bool hasNote(const ScalarField& f, const std::string& text) {
+    return std::any_of(f.notes.begin(), f.notes.end(), [&](const std::string& n) { return n.find(text) != std::string::npos; });
+}
+
+// Longitude (unwrapped as the mapping has it), latitude and depth in metres of sample (i, j, k).
+struct Place {
+    double lon, lat, depthM;
+};
+Place placeOf(const ScalarField& f, int i, int j, int k) {
+    dvec3 w = f.worldFromGrid(i, j, k);
+    const auto& g = f.geographic;
+    const double R = ScalarField::Geographic::kEarthRadiusKm;
+    return {g.lon0 + w.x / (R * std::cos(g.lat0 * kDeg) * kDeg), g.lat0 + w.y / (R * kDeg), -w.z / g.verticalScale * 1000.0};
+}
+
+// A 6 x 8 grid turned by about 11 degrees: lat = lat0 + j + 0.2 i, lon = lon0 + i - 0.2 j (wrapped
+// into -180..180), temp = unwrapped lon + 10 lat + depth, with `land` (j, i) points filled.
+void writeTurnedGrid(const std::string& path, double lon0, double lat0, bool coordinatesAttribute,
+                     const std::vector<std::pair<int, int>>& land = {}) {
+    CfFileWriter w(path);
+    w.dimension("y", 6);
+    w.dimension("x", 8);
+    w.coordinate("depth", kDepth, {{"units", "m"}, {"positive", "down"}});
+    std::vector<double> lat, lon, temp;
+    for (int j = 0; j < 6; ++j)
+        for (int i = 0; i < 8; ++i) {
+            lat.push_back(lat0 + j + 0.2 * i);
+            lon.push_back(std::remainder(lon0 + i - 0.2 * j, 360.0));
+        }
+    for (double d : kDepth)
+        for (int j = 0; j < 6; ++j)
+            for (int i = 0; i < 8; ++i) {
+                bool isLand = std::find(land.begin(), land.end(), std::make_pair(j, i)) != land.end();
+                temp.push_back(isLand ? -999.0 : (lon0 + i - 0.2 * j) + 10.0 * (lat0 + j + 0.2 * i) + d);
+            }
+    w.variable("nav_lat", {"y", "x"}, GDT_Float64, lat, {{"units", "degrees_north"}});
+    w.variable("nav_lon", {"y", "x"}, GDT_Float64, lon, {{"units", "degrees_east"}});
+    std::map<std::string, std::string> a = {{"units", "degC"}};
+    if (coordinatesAttribute) a["coordinates"] = "nav_lon nav_lat";
+    auto t = w.variable("votemper", {"depth", "y", "x"}, GDT_Float32, temp, a);
+    CfFileWriter::numbers(*t, "missing_value", GDT_Float32, {-999.0});
+}
+
+// Every valid sample equals lon + 10 lat + depth (lon unwrapped); returns how many are valid.
+std::size_t expectLinear(const ScalarField& f, double tolerance = 2e-3) {
+    std::size_t valid = 0;
+    for (int k = 0; k < f.dims.z; ++k)
+        for (int j = 0; j < f.dims.y; ++j)
+            for (int i = 0; i < f.dims.x; ++i) {
+                std::size_t n = f.index(i, j, k);
+                if (!f.isValid(n)) continue;
+                ++valid;
+                Place p = placeOf(f, i, j, k);
+                double want = (p.lon < 0.0 ? p.lon + 360.0 : p.lon) + 10.0 * p.lat + p.depthM;
+                EXPECT_NEAR(f.values[n], want, tolerance) << "at " << p.lon << ", " << p.lat << ", " << p.depthM << " m";
+            }
+    return valid;
+}
+
+}  // namespace
+
+// 2-D coordinates named by `coordinates` or, without it, found over the variable's dimensions:
+// the field is resampled, and a field linear in longitude and latitude comes out exactly.
+TEST(CurvilinearGrid, TurnedGridIsResampledAndALinearFieldComesOutExactly) {
+    test::TempDir dir;
+    for (bool attribute : {true, false}) {
+        const std::string path = dir.file(attribute ? "turned.nc" : "turned_no_attribute.nc");
+        writeTurnedGrid(path, 140.0, 40.0, attribute);
+        SCOPED_TRACE(path);
+        ScalarField f = io::NetcdfReader::read(path, {});
+        ASSERT_TRUE(f.geographic.valid);
+        EXPECT_TRUE(hasNote(f, "curvilinear grid: 2-D coordinates nav_lon(y, x) and nav_lat(y, x), source 8 x 6 points"));
+        EXPECT_TRUE(hasNote(f, "by inverse bilinear mapping in each source cell, ocean corners only"));
+        EXPECT_FALSE(hasNote(f, "periodic in x"));
+        std::size_t valid = expectLinear(f);
+        // The lattice covers the turned grid's bounding box; the corners outside it are empty.
+        EXPECT_GT(valid, f.sampleCount() / 2);
+        EXPECT_LT(valid, f.sampleCount());
+        std::string info = io::NetcdfReader::describe(path);
+        EXPECT_NE(info.find("curvilinear (2-D nav_lat nav_lon: resampled onto a regular lattice)"), std::string::npos) << info;
+        EXPECT_EQ(info.find("nav_lat(y, x) Float64 [6 x 8], units 'degrees_north', curvilinear"), std::string::npos)
+            << info;  // a coordinate is not itself curvilinear
+        EXPECT_NE(info.find("note: curvilinear grid"), std::string::npos) << info;
+    }
+}
+
+// Land: a lattice point takes only ocean corners and is land when less than half its weight is
+// ocean; cells whose four corners are ocean still give the linear field exactly.
+TEST(CurvilinearGrid, LandIsNeverInterpolatedAcross) {
+    test::TempDir dir;
+    const std::string path = dir.file("land.nc");
+    writeTurnedGrid(path, 140.0, 40.0, true, {{2, 3}});
+    const std::string sea = dir.file("sea.nc");
+    writeTurnedGrid(sea, 140.0, 40.0, true);
+    io::FieldRequest r;
+    r.horizontalSamples = 41;
+    ScalarField f = io::NetcdfReader::read(path, r), all = io::NetcdfReader::read(sea, r);
+    ASSERT_EQ(f.dims, all.dims);
+    const double landLon = 140.0 + 3 - 0.4, landLat = 40.0 + 2 + 0.6;
+    std::size_t lost = 0;
+    for (int k = 0; k < f.dims.z; ++k)
+        for (int j = 0; j < f.dims.y; ++j)
+            for (int i = 0; i < f.dims.x; ++i) {
+                std::size_t n = f.index(i, j, k);
+                Place p = placeOf(f, i, j, k);
+                double d = std::hypot(p.lon - landLon, p.lat - landLat);  // in source cells, about
+                if (d < 0.3) EXPECT_FALSE(f.isValid(n)) << "next to the land point: " << p.lon << ", " << p.lat;
+                if (d > 1.5) {
+                    EXPECT_EQ(f.isValid(n), all.isValid(n)) << p.lon << ", " << p.lat;
+                    if (f.isValid(n)) EXPECT_EQ(f.values[n], all.values[n]);
+                }
+                if (f.isValid(n) && d <= 1.5) {  // only ocean corners: within the ocean values around
+                    EXPECT_GT(f.values[n], all.values[n] - 12.0f);
+                    EXPECT_LT(f.values[n], all.values[n] + 12.0f);
+                }
+                lost += all.isValid(n) && !f.isValid(n);
+            }
+    EXPECT_GT(lost, 0u);
+}
+
+// A grid across the dateline (longitudes stored 176 .. 180, -180 .. -171): a region across it is
+// filled without a gap or a smear at the seam.
+TEST(CurvilinearGrid, GridAcrossTheDatelineIsResampledWithoutASeam) {
+    test::TempDir dir;
+    const std::string path = dir.file("dateline.nc");
+    writeTurnedGrid(path, 177.0, -10.0, true);
+    io::FieldRequest r;
+    r.hasRegion = true;
+    const double region[4] = {178.0, -178.0, -8.0, -6.0};  // inside the turned grid
+    std::copy(region, region + 4, r.region);
+    r.horizontalSamples = 9;  // 0.5 degrees: coarser than the quarter-cell limit
+    ScalarField f = io::NetcdfReader::read(path, r);
+    EXPECT_EQ(f.geographic.lon0, 180.0);
+    EXPECT_EQ(expectLinear(f), f.sampleCount());  // every lattice point inside a cell: no gap
+    EXPECT_EQ(f.dims.x, 9);
+}
+
+// The rotated-pole North Atlantic file: its 1-D rlon/rlat (grid_longitude/grid_latitude) give
+// way to the 2-D true coordinates, and the resampled field agrees with the Levitus atlas it was
+// made from, in values and in its land.
+void expectAgreesWithLevitus(const std::string& file, const std::string& note, const double region[4], double tolerance,
+                             double maskAgreement) {
+    OCTRACE_SHARED_FILE_OR_SKIP(levitus, "ocean/levitus_climatology.cdf");
+    io::FieldRequest r;
+    r.hasRegion = true;
+    std::copy(region, region + 4, r.region);
+    r.verticalScale = 100.0;
+    r.horizontalSamples = 129;
+    ScalarField c = io::NetcdfReader::read(test::testData(file), r);
+    r.variable = "TEMP";
+    ScalarField g = io::NetcdfReader::read(levitus, r);
+    EXPECT_TRUE(hasNote(c, note)) << file;
+    EXPECT_EQ(c.geographic.lon0, g.geographic.lon0);
+    EXPECT_EQ(c.geographic.lat0, g.geographic.lat0);
+    ASSERT_EQ(c.dims.z, g.dims.z);
+    std::vector<double> diff;
+    std::size_t both = 0, either = 0;
+    for (int k = 0; k < c.dims.z; ++k)
+        for (int j = 0; j < c.dims.y; ++j)
+            for (int i = 0; i < c.dims.x; ++i) {
+                // The Levitus sample nearest this lattice point (same mapping, uniform 1-degree steps).
+                dvec3 w = c.worldFromGrid(i, j, k);
+                int gi = int(std::lround((w.x - g.origin.x) / g.spacing.x));
+                int gj = int(std::lround((w.y - g.origin.y) / g.spacing.y));
+                if (gi < 0 || gj < 0 || gi >= g.dims.x || gj >= g.dims.y) continue;
+                bool vc = c.isValid(c.index(i, j, k)), vg = g.isValid(g.index(gi, gj, k));
+                both += vc && vg;
+                either += vc || vg;
+                if (vc && vg) diff.push_back(std::abs(c.values[c.index(i, j, k)] - g.values[g.index(gi, gj, k)]));
+            }
+    ASSERT_FALSE(diff.empty());
+    std::nth_element(diff.begin(), diff.begin() + std::ptrdiff_t(diff.size() / 2), diff.end());
+    EXPECT_LT(diff[diff.size() / 2], tolerance) << file << ": median |curvilinear - Levitus|";
+    EXPECT_GT(double(both) / double(either), maskAgreement) << file << ": ocean points in both / in either";
+}
+
+TEST(CurvilinearGrid, RotatedPoleFileAgreesWithTheLevitusAtlas) {
+    const double region[4] = {-70.0, -10.0, 20.0, 55.0};
+    expectAgreesWithLevitus("netcdf/rotated_natl.nc", "2-D coordinates lon(rlat, rlon) and lat(rlat, rlon), source 121 x 89",
+                            region, 0.3, 0.9);
+}
+
+// The tripolar-like global file: x is periodic across its stored seam and the top row folds onto
+// itself; the Arctic under the fold agrees with the atlas (no smear, no gap), as does the rest.
+TEST(CurvilinearGrid, TripolarFileAgreesWithTheLevitusAtlasAcrossTheSeamAndUnderTheFold) {
+    const double arctic[4] = {-180.0, 180.0, 70.0, 89.0};
+    expectAgreesWithLevitus("netcdf/tripolar_global.nc", "periodic in x, tripolar north fold", arctic, 0.3, 0.85);
+    const double pacific[4] = {150.0, -120.0, -40.0, 40.0};  // across the dateline and the file's seam
+    expectAgreesWithLevitus("netcdf/tripolar_global.nc", "periodic in x, tripolar north fold", pacific, 0.3, 0.9);
+}
+
+// `horizontalSamples` (the octree's 2^depth + 1) sets the lattice along the larger extent.
+TEST(CurvilinearGrid, LatticeFollowsTheRequestedResolution) {
+    const std::string path = test::testData("netcdf/tripolar_global.nc");
+    io::FieldRequest r;
+    r.hasRegion = true;
+    const double region[4] = {-60.0, 0.0, -20.0, 20.0};
+    std::copy(region, region + 4, r.region);
+    for (int n : {65, 129}) {
+        r.horizontalSamples = n;
+        ScalarField f = io::NetcdfReader::read(path, r);
+        EXPECT_EQ(std::max(f.dims.x, f.dims.y), n);
+        EXPECT_TRUE(hasNote(f, std::to_string(n) + " points along the larger extent (the octree's 2^depth + 1)"));
+    }
+}
