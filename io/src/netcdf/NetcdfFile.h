@@ -30,6 +30,8 @@ public:
     SampleRules rules(const VariableInfo& variable) const override;
     std::vector<double> read(const VariableInfo& variable, const std::vector<std::uint64_t>& start,
                              const std::vector<std::size_t>& count) const override;
+    /// A 0-D variable of the root group, opened by name (GDAL lists none).
+    std::optional<double> scalar(const std::string& shortName) const override;
 
 private:
     struct Impl;

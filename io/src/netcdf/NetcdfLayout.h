@@ -5,6 +5,7 @@
 // variable through it; SoundSpeedField reads two on the same layout.
 #include "netcdf/GeoGrid.h"
 #include "netcdf/CfSource.h"
+#include "netcdf/VerticalFormula.h"
 
 #include "octrace/build/ScalarField.h"
 #include "octrace/io/FieldRequest.h"
@@ -12,6 +13,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -30,6 +32,11 @@ struct Layout {
     std::vector<double> levelDbar;    ///< pressure of each z when the vertical axis is pressure, else empty
     std::string latitudeAxis, verticalAxis;  ///< dimension names, for messages
     double lon0 = 0.0, lat0 = 0.0, verticalScale = 1.0;  ///< the mapping (ScalarField::Geographic)
+    /// A parametric vertical coordinate (VerticalFormula.h): each selected column's native
+    /// depths; axes[2].stored then indexes `latticeM`, the depths (m) every column is
+    /// resampled onto, and readSamples reads all native levels. Null on z-level grids.
+    std::shared_ptr<const ColumnDepths> columns;
+    std::vector<double> latticeM;
 };
 
 /// The layout of `var` for `req`: spatial axes by CF rules (1-D coordinate variables, the
