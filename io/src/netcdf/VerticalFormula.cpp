@@ -229,6 +229,21 @@ std::vector<FormulaTerm> parseFormulaTerms(const std::string& text, const std::s
     return terms;
 }
 
+std::vector<std::string> formulaTermVariables(const CfSource& file) {
+    std::vector<std::string> names;
+    for (const auto& v : file.variables()) {
+        if (!v.coordinate) continue;  // formula_terms belong to a vertical coordinate variable
+        const std::string ft = file.attributeText(v, "formula_terms");
+        if (ft.empty()) continue;
+        try {
+            for (const auto& t : parseFormulaTerms(ft, v.shortName))
+                if (t.variable != v.shortName) names.push_back(t.variable);
+        } catch (const InputError&) {  // said when the field is read
+        }
+    }
+    return names;
+}
+
 std::string ParametricVertical::text() const {
     std::string s = formula;
     if (terms.empty()) return s;

@@ -28,6 +28,10 @@ struct FormulaTerm {
 /// by `what` when a term has no variable, a variable no term, or a term comes twice.
 std::vector<FormulaTerm> parseFormulaTerms(const std::string& text, const std::string& what);
 
+/// The variables `formula_terms` attributes of `file` name (malformed attributes skipped): the
+/// terms of a vertical coordinate, never offered as the field to draw.
+std::vector<std::string> formulaTermVariables(const CfSource& file);
+
 /// Which formula turns a column's terms into depths.
 enum class VerticalKind {
     SigmaG1,      ///< ocean_s_coordinate_g1 (ROMS Vtransform = 1)

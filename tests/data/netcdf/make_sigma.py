@@ -20,8 +20,9 @@ sigma_small.nc: ocean_sigma_coordinate, 8 sigma levels over a 9 x 7 grid (1-D lo
   depth runs from 20 m to 420 m, eta(time, lat, lon) of up to 1 m, two steps, and
   temp = 20 - 0.01 * depth_below_surface at every point (so a resampled column must give the
   same linear law).
-The invalid corpus (tests/data/invalid, see its README): formula_terms naming a missing
-  variable, a malformed formula_terms, a term whose dimensions are not the field's.
+The invalid corpus (tests/data/invalid, see its README), 3 x 3 x 3 with one time step:
+  formula_terms naming a missing variable, a malformed formula_terms, a term whose dimensions
+  are not the field's.
 """
 import os
 
@@ -169,7 +170,7 @@ def sigma_file(path, formula_terms="sigma: sigma eta: eta depth: depth", depth_d
     sigma = -(np.arange(nk) + 0.5) / nk  # surface to floor
     yy, xx = np.meshgrid(lat, lon, indexing="ij")
     depth = 20.0 + 400.0 * (xx - lon[0]) / (lon[-1] - lon[0]) * (0.5 + 0.5 * (yy - lat[0]) / (lat[-1] - lat[0]))
-    etas = [np.zeros_like(depth), 1.0 * (yy - lat[0]) / (lat[-1] - lat[0])]
+    etas = [np.zeros_like(depth), 1.0 * (yy - lat[0]) / (lat[-1] - lat[0])][:1 if small else 2]
     d = netCDF4.Dataset(path, "w", format="NETCDF3_CLASSIC")
     d.Conventions = "CF-1.8"
     d.createDimension("time", None)
@@ -186,7 +187,7 @@ def sigma_file(path, formula_terms="sigma: sigma eta: eta depth: depth", depth_d
     v[:] = lat
     v = d.createVariable("time", "f8", ("time",))
     v.units = "hours since 2010-06-01"
-    v[:] = [0.0, 6.0]
+    v[:] = [0.0, 6.0][:len(etas)]
     v = d.createVariable("sigma", "f8", ("sigma",))
     v.standard_name = "ocean_sigma_coordinate"
     v.long_name = "sigma at layer midpoints"
