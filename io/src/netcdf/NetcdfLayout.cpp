@@ -355,16 +355,18 @@ void readSamples(const CfSource& file, const VariableInfo& var, const Layout& L,
         native[at] = v;
         nativeValid[at] = std::isfinite(float(v)) ? 1 : 0;
     });
-    const auto& sz = L.axes[2].stored;
+    std::vector<double> depths, out(L.axes[2].stored.size());
+    std::vector<std::uint8_t> outValid(out.size());
+    for (std::size_t k : L.axes[2].stored) depths.push_back(L.latticeM[k]);
     for (std::size_t j = 0; j < c.ny; ++j)
         for (std::size_t i = 0; i < c.nx; ++i) {
             const std::size_t col = j * c.nx + i;
-            for (std::size_t k = 0; k < sz.size(); ++k) {
-                double v = 0.0;
-                if (!resampleColumn(c, j, i, native.data() + col, nativeValid.data() + col, columns, L.latticeM[sz[k]], v))
-                    continue;
+            resampleColumn(c, j, i, native.data() + col, nativeValid.data() + col, columns, depths, out.data(),
+                           outValid.data());
+            for (std::size_t k = 0; k < out.size(); ++k) {
+                if (!outValid[k]) continue;
                 std::size_t idx = f.index(int(i), int(j), int(k));
-                f.values[idx] = float(v);
+                f.values[idx] = float(out[k]);
                 f.valid[idx] = 1;
             }
         }

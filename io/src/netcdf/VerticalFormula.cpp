@@ -429,41 +429,45 @@ std::vector<double> chooseLattice(const std::string& path, const ColumnDepths& c
     return lattice;
 }
 
-bool resampleColumn(const ColumnDepths& c, std::size_t j, std::size_t i, const double* values, const std::uint8_t* valid,
-                    std::size_t stride, double depthM, double& out) {
+void resampleColumn(const ColumnDepths& c, std::size_t j, std::size_t i, const double* values, const std::uint8_t* valid,
+                    std::size_t stride, const std::vector<double>& depthM, double* out, std::uint8_t* outValid) {
+    std::fill(outValid, outValid + depthM.size(), std::uint8_t(0));
     const std::size_t col = j * c.nx + i;
     const double top = c.top[col], bottom = c.bottom[col];
-    if (!std::isfinite(top)) return false;
+    if (!std::isfinite(top)) return;
+    std::vector<std::pair<double, std::size_t>> levels;  // (depth, native k), ascending
+    sortedColumn(c, j, i, levels);
+    if (levels.empty()) return;
     const double tol = 1e-9 * std::max(1.0, std::abs(bottom));
-    if (depthM < top - tol || depthM > bottom + tol) return false;
-    // The native levels just above and below depthM.
-    std::size_t above = c.nk, below = c.nk;
-    double dAbove = -INFINITY, dBelow = INFINITY;
-    for (std::size_t k = 0; k < c.nk; ++k) {
-        double d = c.depth[(k * c.ny + j) * c.nx + i];
-        if (!std::isfinite(d)) continue;
-        if (d <= depthM && d > dAbove) { dAbove = d; above = k; }
-        if (d >= depthM && d < dBelow) { dBelow = d; below = k; }
+    auto ok = [&](std::size_t k) { return valid[k * stride] != 0; };
+    for (std::size_t n = 0; n < depthM.size(); ++n) {
+        const double d = depthM[n];
+        if (d < top - tol || d > bottom + tol) continue;
+        // the first native level at or below d
+        auto below = std::lower_bound(levels.begin(), levels.end(), std::make_pair(d, std::size_t(0)),
+                                      [](const auto& a, const auto& b) { return a.first < b.first; });
+        if (below == levels.begin() || (below != levels.end() && below->first == d)) {
+            // above the shallowest level (its half layer) or exactly on a level
+            std::size_t k = below == levels.end() ? levels.back().second : below->second;
+            if (ok(k)) {
+                out[n] = values[k * stride];
+                outValid[n] = 1;
+            }
+            continue;
+        }
+        auto above = below - 1;
+        if (below == levels.end()) {  // between the deepest level and the floor
+            if (ok(above->second)) {
+                out[n] = values[above->second * stride];
+                outValid[n] = 1;
+            }
+            continue;
+        }
+        if (!ok(above->second) || !ok(below->second)) continue;
+        const double w = (d - above->first) / (below->first - above->first);
+        out[n] = values[above->second * stride] * (1.0 - w) + values[below->second * stride] * w;
+        outValid[n] = 1;
     }
-    auto ok = [&](std::size_t k) { return k < c.nk && valid[k * stride] != 0; };
-    if (above == c.nk) {  // between the surface and the shallowest level
-        if (!ok(below)) return false;
-        out = values[below * stride];
-        return true;
-    }
-    if (below == c.nk) {  // between the deepest level and the floor
-        if (!ok(above)) return false;
-        out = values[above * stride];
-        return true;
-    }
-    if (!ok(above) || !ok(below)) return false;
-    if (above == below || dBelow == dAbove) {
-        out = values[above * stride];
-        return true;
-    }
-    const double w = (depthM - dAbove) / (dBelow - dAbove);
-    out = values[above * stride] * (1.0 - w) + values[below * stride] * w;
-    return true;
 }
 
 }  // namespace octrace::io::detail

@@ -97,12 +97,14 @@ std::vector<double> chooseLattice(const std::string& path, const ColumnDepths& c
 
 constexpr std::size_t kMaxLatticeLevels = 1024;
 
-/// Resamples the native samples of one column (values[k], valid[k] in the file's level order)
-/// to `depthM`: linear between the two native levels around it when both are valid, the
-/// nearest level's value between the surface and the shallowest level or between the deepest
-/// level and the floor, invalid above the surface, below the floor, next to an invalid level
-/// or in a column left out. Returns false for invalid.
-bool resampleColumn(const ColumnDepths& c, std::size_t j, std::size_t i, const double* values,
-                    const std::uint8_t* valid, std::size_t stride, double depthM, double& out);
+/// Resamples the native samples of column (j, i) (values[k * stride], valid[k * stride] in the
+/// file's level order) to each of `depthM`, into out[n] and outValid[n] (1 = valid): linear
+/// between the two native levels around a depth when both are valid, the nearest level's value
+/// between the surface and the shallowest level or between the deepest level and the floor,
+/// invalid above the surface, below the floor, next to an invalid level or in a column left
+/// out. O(nk log nk + depths log nk).
+void resampleColumn(const ColumnDepths& c, std::size_t j, std::size_t i, const double* values,
+                    const std::uint8_t* valid, std::size_t stride, const std::vector<double>& depthM, double* out,
+                    std::uint8_t* outValid);
 
 }  // namespace octrace::io::detail
