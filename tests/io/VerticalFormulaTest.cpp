@@ -433,3 +433,19 @@ TEST(VerticalFormulaInvalid, KnownFormulaWithoutTermsOrWithAMissingTermIsRefused
     Columns unknown("atmosphere_ln_pressure_coordinate", "p0: p lev: lev", sigma, depthOf);
     EXPECT_THROW_WITH(io::readCfDataset(unknown.data, temp()), InputError, "not a formula octrace evaluates");
 }
+
+TEST(VerticalFormulaFiles, InfoSaysTheFormulaItsTermsAndTheLattice) {
+    io::FieldRequest r = temp();
+    r.time = "0";
+    const std::string text = io::NetcdfReader::describe(test::testData("netcdf/roms_g2_nwatlantic.nc"), r);
+    for (const char* part : {"s_rho = 20: vertical (positive up), parametric: ocean_s_coordinate_g2, formula_terms 's: "
+                             "s_rho C: Cs_r eta: zeta depth: h depth_c: hc'",
+                             "note: vertical: parametric, ocean_s_coordinate_g2 (s: s_rho, C: Cs_r, eta: zeta, depth: h, "
+                             "depth_c: hc), depths computed per column",
+                             "note: vertical: 20 native levels per column resampled onto 24 levels 0 .. 5603.81 m",
+                             "the median level spacing of the columns at each depth"})
+        EXPECT_NE(text.find(part), std::string::npos) << "lacks '" << part << "' in\n" << text;
+    // the terms are not offered as volumes: without `var`, temp is the one
+    const std::string plain = io::NetcdfReader::describe(test::testData("netcdf/roms_g2_nwatlantic.nc"), io::FieldRequest{});
+    EXPECT_NE(plain.find("grid of temp (whole grid)"), std::string::npos) << plain;
+}
