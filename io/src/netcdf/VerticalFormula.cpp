@@ -210,7 +210,7 @@ std::vector<FormulaTerm> parseFormulaTerms(const std::string& text, const std::s
         }
     }
     std::vector<FormulaTerm> terms;
-    for (std::size_t n = 0; n < tokens.size(); ++n) {
+    for (std::size_t n = 0; n < tokens.size(); n += 2) {  // "term:" then its variable
         const std::string& tok = tokens[n];
         if (tok.back() != ':')
             throw InputError(what + ": formula_terms '" + text + "' is malformed: '" + tok +
@@ -223,7 +223,6 @@ std::vector<FormulaTerm> parseFormulaTerms(const std::string& text, const std::s
             if (u.term == t.term)
                 throw InputError(what + ": formula_terms '" + text + "' is malformed: term '" + t.term + "' comes twice");
         terms.push_back(std::move(t));
-        ++n;
     }
     if (terms.empty()) throw InputError(what + ": formula_terms '" + text + "' is empty");
     return terms;
