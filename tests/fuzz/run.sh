@@ -16,7 +16,7 @@ SECONDS_PER_TARGET="${1:-20}"
 shift || true
 TARGETS=("$@")
 if [ ${#TARGETS[@]} -eq 0 ]; then
-  TARGETS=(fuzz_nrrd fuzz_netcdf_cf fuzz_netcdf_classic_header fuzz_cli_options fuzz_dicom fuzz_octree_file fuzz_molecule fuzz_cityjson fuzz_citygml fuzz_scene fuzz_footprints fuzz_session fuzz_metaimage fuzz_zarr_metadata fuzz_curvilinear_grid)
+  TARGETS=(fuzz_nrrd fuzz_netcdf_cf fuzz_netcdf_classic_header fuzz_cli_options fuzz_dicom fuzz_octree_file fuzz_molecule fuzz_cityjson fuzz_citygml fuzz_scene fuzz_footprints fuzz_session fuzz_metaimage fuzz_zarr_metadata fuzz_curvilinear_grid fuzz_formula_terms)
 fi
 if ! command -v clang++ >/dev/null; then
   echo "fuzz: clang++ not found; run scripts/setup.sh --fuzz" >&2

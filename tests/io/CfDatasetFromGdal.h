@@ -6,7 +6,9 @@
 
 #include <gdal_priv.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <sstream>
 #include <limits>
 #include <list>
 #include <memory>
@@ -38,7 +40,22 @@ inline std::unique_ptr<CfArrays> cfDatasetFromGdal(const std::string& path, cons
     out->data.description = description;
     auto root = ds->GetRootGroup();
     if (!root) throw std::runtime_error("GDAL gives no root group for " + path);
+    // GDAL lists no 0-D variable; those a formula_terms attribute names (ROMS's hc) are added,
+    // as a caller hands over the terms with the field.
+    std::vector<std::string> names = root->GetMDArrayNames();
     for (const auto& name : root->GetMDArrayNames()) {
+        auto a = root->OpenMDArray(name);
+        auto ft = a ? a->GetAttribute("formula_terms") : nullptr;
+        if (!ft || ft->GetDataType().GetClass() != GEDTC_STRING || !ft->ReadAsString()) continue;
+        std::istringstream words(ft->ReadAsString());
+        for (std::string w; words >> w;) {
+            if (w.find(':') != std::string::npos) continue;
+            auto t = root->OpenMDArray(w);
+            if (t && t->GetDimensionCount() == 0 && std::find(names.begin(), names.end(), w) == names.end())
+                names.push_back(w);
+        }
+    }
+    for (const auto& name : names) {
         auto a = root->OpenMDArray(name);
         if (!a) throw std::runtime_error("GDAL cannot open the array " + name + " of " + path);  // a damaged file
         io::CfVariable v;

@@ -8,6 +8,8 @@ same pixels. Nothing is interpreted here: this module only lists the arrays. Tim
 over as the numbers a file stores (xarray's decoded datetimes and cftime dates are encoded back
 with the coordinate's own units and calendar); choose a time step with xarray's ``.sel`` /
 ``.isel`` first, or with ``time=`` as on the CLI. Dask-backed arrays are computed here.
+A parametric vertical coordinate (ROMS's s_rho, CF formula_terms) needs its terms, which a
+DataArray carries only as coordinates: open the file with ``decode_coords="all"``.
 """
 
 from __future__ import annotations
@@ -53,6 +55,10 @@ def _values(name, variable):
 def _variable(name, variable):
     values, extra = _values(name, variable)
     attributes = {str(k): _attribute(v) for k, v in variable.attrs.items()}
+    # xarray's decode_coords="all" moves formula_terms to the encoding (and its terms into the
+    # coordinates): the reader needs it where a file has it.
+    if "formula_terms" in variable.encoding and "formula_terms" not in attributes:
+        attributes["formula_terms"] = str(variable.encoding["formula_terms"])
     attributes.update(extra)
     return {"name": str(name), "dims": [str(d) for d in variable.dims], "shape": [int(n) for n in variable.shape],
             "values": values, "attributes": attributes}
@@ -63,7 +69,8 @@ def cf_variables(da):
     name = da.name if da.name is not None else "data"
     variables = [_variable(name, da.variable)]
     for cname, coord in da.coords.items():
-        if coord.ndim == 0 or cname == name:
+        # 0-D numbers go too: a parametric vertical coordinate's constants (ROMS's hc)
+        if (coord.ndim == 0 and coord.dtype.kind not in "biuf") or cname == name:
             continue
         variables.append(_variable(cname, coord.variable))
     return variables

@@ -175,7 +175,10 @@ CfMemorySource::CfMemorySource(const CfDataset& data) : source_(cfSourceName(dat
         if (hasValues(v.values) && valueCount(v.values) != n)
             throw InputError(what + ": shape " + shapeText(v.shape) + " needs " + std::to_string(n) + " values, " +
                              std::to_string(valueCount(v.values)) + " given");
-        if (v.dims.empty()) continue;  // GDAL lists no 0-D variable either
+        if (v.dims.empty()) {  // GDAL lists no 0-D variable either, but opens one by name
+            scalars_.push_back(&v);
+            continue;
+        }
         VariableInfo info;
         info.name = "/" + v.name;
         info.shortName = v.name;
@@ -283,6 +286,30 @@ std::vector<double> CfMemorySource::read(const VariableInfo& variable, const std
         },
         v.values);
     return out;
+}
+
+std::optional<double> CfMemorySource::scalar(const std::string& shortName) const {
+    for (const CfVariable* v : scalars_) {
+        if (v->name != shortName || !hasValues(v->values)) continue;
+        double raw = 0.0;
+        std::visit(
+            [&](const auto& values) {
+                if constexpr (!std::is_same_v<std::decay_t<decltype(values)>, std::monostate>) raw = double(values[0]);
+            },
+            v->values);
+        VariableInfo info;
+        info.dataType = !v->dataType.empty() ? v->dataType : elementType(v->values);
+        SampleAttributes s;
+        s.missingValue = numberAttribute(*v, "missing_value");
+        s.fillValue = numberAttribute(*v, "_FillValue");
+        auto scale = numberAttribute(*v, "scale_factor"), offset = numberAttribute(*v, "add_offset");
+        if (!scale.empty()) s.scale = scale[0];
+        if (!offset.empty()) s.offset = offset[0];
+        SampleRules r = sampleRules(s, info.dataType);
+        if (!r.isValid(raw)) return std::nullopt;
+        return raw * r.scale + r.offset;
+    }
+    return std::nullopt;
 }
 
 }  // namespace octrace::io::detail

@@ -30,6 +30,8 @@ public:
     SampleRules rules(const VariableInfo& variable) const override;
     std::vector<double> read(const VariableInfo& variable, const std::vector<std::uint64_t>& start,
                              const std::vector<std::size_t>& count) const override;
+    /// A 0-D variable of the dataset (checked, not listed).
+    std::optional<double> scalar(const std::string& shortName) const override;
 
 private:
     const CfVariable& array(const VariableInfo& v) const;
@@ -37,6 +39,7 @@ private:
     std::string source_;
     std::vector<VariableInfo> variables_;
     std::vector<const CfVariable*> arrays_;  // parallel to variables_, into the borrowed CfDataset
+    std::vector<const CfVariable*> scalars_;  // the 0-D variables, into the borrowed CfDataset
 };
 
 /// `data.description`, or "in-memory dataset" when it is empty.

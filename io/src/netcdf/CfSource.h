@@ -90,6 +90,10 @@ public:
     /// A hyperslab as double, C order over the variable's dimensions. Throws FileError.
     virtual std::vector<double> read(const VariableInfo& variable, const std::vector<std::uint64_t>& start,
                                      const std::vector<std::size_t>& count) const = 0;
+    /// The value of the 0-D numeric variable `shortName` (e.g. ROMS's `hc`, named by a
+    /// `formula_terms` attribute), unpacked; nullopt when there is none or its raw value is
+    /// missing or invalid. 0-D variables are not in variables(). Throws FileError.
+    virtual std::optional<double> scalar(const std::string& shortName) const = 0;
 
 protected:
     CfSource() = default;

@@ -101,7 +101,10 @@ AxisClass classifyAxis(const AxisInfo& a) {
     if (sn == "longitude" || sn == "grid_longitude") return role(AxisRole::Longitude);
     if (sn == "latitude" || sn == "grid_latitude") return role(AxisRole::Latitude);
     // GDAL's VERTICAL type alone is not enough: it calls any axis in metres vertical.
-    if (sn == "depth" || sn == "altitude" || sn == "height" || sn == "sea_water_pressure" || axis == "z" ||
+    // CF parametric vertical coordinates (Appendix D: ocean_sigma_coordinate, ...) are vertical
+    // whatever their units; VerticalFormula.h turns them into depths.
+    const bool parametric = sn.rfind("ocean_", 0) == 0 && sn.find("coordinate") != std::string::npos;
+    if (parametric || sn == "depth" || sn == "altitude" || sn == "height" || sn == "sea_water_pressure" || axis == "z" ||
         !trim(a.positive).empty() || pressureToDbar(a.units) > 0.0 ||
         a.gdalDirection == "UP" || a.gdalDirection == "DOWN")
         return vertical(a);

@@ -269,4 +269,25 @@ std::vector<double> NetcdfFile::read(const VariableInfo& variable, const std::ve
     return buffer;
 }
 
+std::optional<double> NetcdfFile::scalar(const std::string& shortName) const {
+    GdalMessages messages;
+    auto root = impl_->dataset->GetRootGroup();
+    auto a = root ? root->OpenMDArray(shortName) : nullptr;
+    if (!a || a->GetDimensionCount() != 0 || a->GetDataType().GetClass() != GEDTC_NUMERIC) return std::nullopt;
+    double raw = 0.0;
+    if (!a->Read(nullptr, nullptr, nullptr, nullptr, GDALExtendedDataType::Create(GDT_Float64), &raw))
+        throw FileError(impl_->path + ": cannot read variable '" + shortName + "': " + GdalMessages::last());
+    SampleAttributes s;
+    s.missingValue = numberAttribute(*a, "missing_value");
+    s.fillValue = numberAttribute(*a, "_FillValue");
+    bool has = false;
+    double scale = a->GetScale(&has);
+    if (has) s.scale = scale;
+    double offset = a->GetOffset(&has);
+    if (has) s.offset = offset;
+    SampleRules r = sampleRules(s, GDALGetDataTypeName(a->GetDataType().GetNumericDataType()));
+    if (!r.isValid(raw)) return std::nullopt;
+    return raw * r.scale + r.offset;
+}
+
 }  // namespace octrace::io::detail

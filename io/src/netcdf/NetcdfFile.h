@@ -41,6 +41,8 @@ public:
     /// (a Zarr chunk that does not decompress) but returns the samples all the same.
     std::vector<double> read(const VariableInfo& variable, const std::vector<std::uint64_t>& start,
                              const std::vector<std::size_t>& count) const override;
+    /// A 0-D variable of the root group, opened by name (GDAL lists none).
+    std::optional<double> scalar(const std::string& shortName) const override;
 
 private:
     struct Impl;

@@ -9,9 +9,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
+#include <memory>
 #include <numbers>
 #include <numeric>
+#include <optional>
 
 namespace octrace::io::detail {
 namespace {
@@ -90,6 +91,39 @@ bool hasAllDims(const VariableInfo& var, const VariableInfo& c) {
     return true;
 }
 
+// The lattice (km, positive down) the columns of a parametric vertical coordinate are
+// resampled onto: the columns of the region are evaluated first (the horizontal selection does
+// not depend on the vertical axis), then the lattice is chosen from them. Fills L.columns,
+// L.latticeM and the notes; L.dim and L.fixedIndex are set.
+std::vector<double> parametricLattice(const std::string& path, const CfSource& file, const VariableInfo& var,
+                                      const ParametricVertical& p, const FieldRequest& req,
+                                      const std::vector<double>& lon, const std::vector<double>& lat, Layout& L) {
+    FieldRequest horizontal = req;
+    horizontal.hasDepthRange = false;
+    GeoMapping h = mapGeographic(path, lon, lat, {0.0, 0.001}, horizontal);
+    ColumnSelection sel{L.dim, L.fixedIndex, h.x.stored, h.y.stored};
+    auto columns = std::make_shared<ColumnDepths>(evaluateColumns(path, file, var, p, sel, req.memoryBudget));
+    L.latticeM = chooseLattice(path, *columns);
+    double smallest = INFINITY, largest = 0.0;
+    for (std::size_t n = 1; n < L.latticeM.size(); ++n) {
+        smallest = std::min(smallest, L.latticeM[n] - L.latticeM[n - 1]);
+        largest = std::max(largest, L.latticeM[n] - L.latticeM[n - 1]);
+    }
+    L.notes.push_back("vertical: parametric, " + p.text() + ", depths computed per column (CF Appendix D)");
+    L.notes.push_back("vertical: " + std::to_string(columns->nk) + " native levels per column resampled onto " +
+                      std::to_string(L.latticeM.size()) + " levels " + num(L.latticeM.front()) + " .. " +
+                      num(L.latticeM.back()) + " m, steps " + num(smallest) + " .. " + num(largest) +
+                      " m (the median level spacing of the columns at each depth); linear within each column, "
+                      "masked above its surface and below its floor and next to masked levels");
+    if (columns->badColumns)
+        L.notes.push_back("vertical: " + std::to_string(columns->badColumns) +
+                          " column(s) masked: their depths are not finite or not monotonic");
+    std::vector<double> km;
+    for (double d : L.latticeM) km.push_back(d / 1000.0 + 0.0);
+    L.columns = std::move(columns);
+    return km;
+}
+
 }  // namespace
 
 std::vector<const VariableInfo*> curvilinearCoordinates(const CfSource& file, const VariableInfo& var) {
@@ -123,8 +157,11 @@ Layout layoutFor(const std::string& path, const CfSource& file, const VariableIn
         return hits;
     };
     auto lon = find(AxisRole::Longitude), lat = find(AxisRole::Latitude), vert = find(AxisRole::Vertical);
-    bool geographic = lon.size() == 1 && lat.size() == 1 && vert.size() == 1 && !info[lon[0]].values.empty() &&
-                      !info[lat[0]].values.empty() && !info[vert[0]].values.empty();
+    const bool horizontal = lon.size() == 1 && lat.size() == 1 && !info[lon[0]].values.empty() &&
+                            !info[lat[0]].values.empty();
+    std::optional<ParametricVertical> parametric;
+    if (horizontal && vert.size() == 1) parametric = findParametricVertical(path, file, var, vert[0]);
+    bool geographic = horizontal && vert.size() == 1 && (!info[vert[0]].values.empty() || parametric);
 
     // A curvilinear grid: 2-D longitude/latitude and no 1-D ones but rotated-pole axes
     // (grid_longitude/grid_latitude), which the 2-D true coordinates then replace.
@@ -205,7 +242,12 @@ Layout layoutFor(const std::string& path, const CfSource& file, const VariableIn
         const AxisClass vc = vd ? cls[*vd] : AxisClass{};
         const std::vector<double> levels = vd ? info[*vd].values : std::vector<double>{0.0};
         std::vector<double> depthKm;
-        for (double v : levels) depthKm.push_back(v * vc.toKm * (vc.positiveDown ? 1.0 : -1.0) + 0.0);  // + 0.0: no -0
+        if (parametric) {
+            L.dim = {lon[0], lat[0], vert[0]};
+            depthKm = parametricLattice(path, file, var, *parametric, req, info[lon[0]].values, info[lat[0]].values, L);
+        } else {
+            for (double v : levels) depthKm.push_back(v * vc.toKm * (vc.positiveDown ? 1.0 : -1.0) + 0.0);  // + 0.0: no -0
+        }
         CurvilinearGrid::Lattice lattice;
         if (curvi) lattice = curvi->lattice(path, req, req.horizontalSamples);
         GeoMapping m = mapGeographic(path, curvi ? lattice.lon : info[lon[0]].values,
@@ -232,7 +274,7 @@ Layout layoutFor(const std::string& path, const CfSource& file, const VariableIn
         L.curvilinear = std::move(curvi);
         for (std::size_t k : m.z.stored) {
             L.depthM.push_back(depthKm[k] * 1000.0);
-            if (vd && vc.toDbar > 0.0) L.levelDbar.push_back(levels[k] * vc.toDbar * (vc.positiveDown ? 1.0 : -1.0));
+            if (vd && vc.toDbar > 0.0 && !parametric) L.levelDbar.push_back(levels[k] * vc.toDbar * (vc.positiveDown ? 1.0 : -1.0));
         }
         L.latitudeAxis = info[lat[0]].name;
         if (vd) L.verticalAxis = info[*vd].name;
@@ -243,7 +285,7 @@ Layout layoutFor(const std::string& path, const CfSource& file, const VariableIn
                                   : std::string("the surface (no vertical dimension)")) +
                               "; drawn by slice, not as a surface");
         L.notes.insert(L.notes.end(), m.notes.begin(), m.notes.end());
-        if (vd && !vc.note.empty()) L.notes.push_back(vc.note);
+        if (vd && !vc.note.empty() && !parametric) L.notes.push_back(vc.note);
         return L;
     }
 
@@ -336,28 +378,23 @@ void readCurvilinearSamples(const CfSource& file, const VariableInfo& var, const
     }
 }
 
-}  // namespace
-
 // Reads one hyperslab per run of consecutive stored x indices (a region across the file's
-// longitude seam is two runs).
-void readSamples(const CfSource& file, const VariableInfo& var, const Layout& L, const SampleRules& rules,
-                 ScalarField& f) {
-    if (L.curvilinear) return readCurvilinearSamples(file, var, L, rules, f);
+// longitude seam is two runs) at the levels `sz`; calls put(i, j, k, raw) per sample.
+template <class Put>
+void readRuns(const CfSource& file, const VariableInfo& var, const Layout& L, const std::vector<std::size_t>& sz,
+              Put&& put) {
     const std::size_t nd = var.dimSizes.size();
     std::vector<std::uint64_t> start = L.fixedIndex;
     std::vector<std::size_t> count(nd, 1);
     for (int a = 1; a < 3; ++a) {
         if (L.dim[std::size_t(a)] == kNoDimension) continue;  // a map's z
-        const auto& s = L.axes[std::size_t(a)].stored;
+        const auto& s = a == 2 ? sz : L.axes[std::size_t(a)].stored;
         auto [lo, hi] = std::minmax_element(s.begin(), s.end());
         start[L.dim[std::size_t(a)]] = *lo;
         count[L.dim[std::size_t(a)]] = *hi - *lo + 1;
     }
     const auto& sx = L.axes[0].stored;
     const auto& sy = L.axes[1].stored;
-    const auto& sz = L.axes[2].stored;
-    f.values.assign(f.sampleCount(), 0.0f);
-    f.valid.assign(f.sampleCount(), 0);
     for (std::size_t i0 = 0; i0 < sx.size();) {
         std::size_t i1 = i0;
         while (i1 + 1 < sx.size() && (sx[i1 + 1] == sx[i1] + 1 || sx[i1 + 1] + 1 == sx[i1]) &&
@@ -374,15 +411,59 @@ void readSamples(const CfSource& file, const VariableInfo& var, const Layout& L,
                 for (std::size_t i = i0; i <= i1; ++i) {
                     std::size_t at = (sx[i] - xlo) * stride[L.dim[0]] + (sy[j] - start[L.dim[1]]) * stride[L.dim[1]] +
                                      (L.dim[2] == kNoDimension ? 0 : (sz[k] - start[L.dim[2]]) * stride[L.dim[2]]);
-                    double raw = buf[at];
-                    std::size_t idx = f.index(int(i), int(j), int(k));
-                    if (!rules.isValid(raw)) continue;
-                    float v = float(raw * rules.scale + rules.offset);
-                    f.values[idx] = v;
-                    f.valid[idx] = std::isfinite(v) ? 1 : 0;
+                    put(i, j, k, buf[at]);
                 }
         i0 = i1 + 1;
     }
+}
+
+}  // namespace
+
+void readSamples(const CfSource& file, const VariableInfo& var, const Layout& L, const SampleRules& rules,
+                 ScalarField& f) {
+    if (L.curvilinear) return readCurvilinearSamples(file, var, L, rules, f);
+    f.values.assign(f.sampleCount(), 0.0f);
+    f.valid.assign(f.sampleCount(), 0);
+    if (!L.columns) {
+        readRuns(file, var, L, L.axes[2].stored, [&](std::size_t i, std::size_t j, std::size_t k, double raw) {
+            if (!rules.isValid(raw)) return;
+            std::size_t idx = f.index(int(i), int(j), int(k));
+            float v = float(raw * rules.scale + rules.offset);
+            f.values[idx] = v;
+            f.valid[idx] = std::isfinite(v) ? 1 : 0;
+        });
+        return;
+    }
+    // A parametric vertical coordinate: every native level of each column, then each column
+    // resampled onto the lattice levels the output keeps.
+    const ColumnDepths& c = *L.columns;
+    const std::size_t columns = c.ny * c.nx;
+    std::vector<std::size_t> levels(c.nk);
+    for (std::size_t k = 0; k < c.nk; ++k) levels[k] = k;
+    std::vector<double> native(c.nk * columns, 0.0);
+    std::vector<std::uint8_t> nativeValid(c.nk * columns, 0);
+    readRuns(file, var, L, levels, [&](std::size_t i, std::size_t j, std::size_t k, double raw) {
+        if (!rules.isValid(raw)) return;
+        double v = raw * rules.scale + rules.offset;
+        std::size_t at = k * columns + j * c.nx + i;
+        native[at] = v;
+        nativeValid[at] = std::isfinite(float(v)) ? 1 : 0;
+    });
+    std::vector<double> depths, out(L.axes[2].stored.size());
+    std::vector<std::uint8_t> outValid(out.size());
+    for (std::size_t k : L.axes[2].stored) depths.push_back(L.latticeM[k]);
+    for (std::size_t j = 0; j < c.ny; ++j)
+        for (std::size_t i = 0; i < c.nx; ++i) {
+            const std::size_t col = j * c.nx + i;
+            resampleColumn(c, j, i, native.data() + col, nativeValid.data() + col, columns, depths, out.data(),
+                           outValid.data());
+            for (std::size_t k = 0; k < out.size(); ++k) {
+                if (!outValid[k]) continue;
+                std::size_t idx = f.index(int(i), int(j), int(k));
+                f.values[idx] = float(out[k]);
+                f.valid[idx] = 1;
+            }
+        }
 }
 
 }  // namespace octrace::io::detail

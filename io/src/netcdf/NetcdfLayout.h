@@ -6,6 +6,7 @@
 #include "netcdf/GeoGrid.h"
 #include "netcdf/CfSource.h"
 #include "netcdf/CurvilinearGrid.h"
+#include "netcdf/VerticalFormula.h"
 
 #include "octrace/build/ScalarField.h"
 #include "octrace/io/FieldRequest.h"
@@ -39,6 +40,11 @@ struct Layout {
     /// Curvilinear grids only: x and y are a regular lattice resampled from the 2-D grid over
     /// dimensions dim[0] (x) and dim[1] (y) of the variable; readSamples goes through it.
     std::shared_ptr<const CurvilinearGrid> curvilinear;
+    /// A parametric vertical coordinate (VerticalFormula.h): each selected column's native
+    /// depths; axes[2].stored then indexes `latticeM`, the depths (m) every column is
+    /// resampled onto, and readSamples reads all native levels. Null on z-level grids.
+    std::shared_ptr<const ColumnDepths> columns;
+    std::vector<double> latticeM;
 };
 
 /// The layout of `var` for `req`: spatial axes by CF rules (1-D coordinate variables, the

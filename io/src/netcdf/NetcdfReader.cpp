@@ -10,6 +10,7 @@
 #include "netcdf/NetcdfInterpretation.h"
 #include "netcdf/NetcdfLayout.h"
 #include "netcdf/SoundSpeedField.h"
+#include "netcdf/VerticalFormula.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
 #include "octrace/util/Memory.h"
@@ -99,11 +100,13 @@ int spatialExtent(const CfSource& file, const VariableInfo& v) {
     return n;
 }
 
-// Fields with at least 3 spatial dimensions (a 4-D one is read at its first time step).
+// Fields with at least 3 spatial dimensions (a 4-D one is read at its first time step), but the
+// terms of a parametric vertical coordinate (zeta(time, y, x) is no volume).
 std::vector<const VariableInfo*> volumes(const CfSource& file) {
     std::vector<const VariableInfo*> out;
+    const auto terms = formulaTermVariables(file);
     for (const auto* v : dataVariables(file))
-        if (spatialExtent(file, *v) >= 3) out.push_back(v);
+        if (spatialExtent(file, *v) >= 3 && std::find(terms.begin(), terms.end(), v->shortName) == terms.end()) out.push_back(v);
     return out;
 }
 
@@ -222,6 +225,13 @@ void describeAxes(std::ostringstream& s, const CfSource& file) {
             AxisClass c = classifyAxis(a);
             s << "  " << a.name << " = " << a.size << ": " << roleName(c.role);
             if (c.role == AxisRole::Vertical) s << (c.positiveDown ? " (positive down)" : " (positive up)");
+            if (c.role == AxisRole::Vertical && !a.coordinateVariable.empty())
+                for (const auto& cv : file.variables()) {
+                    const std::string ft = cv.shortName == a.coordinateVariable ? file.attributeText(cv, "formula_terms") : "";
+                    if (!ft.empty())
+                        s << ", parametric: " << (a.standardName.empty() ? "no standard_name" : a.standardName)
+                          << ", formula_terms '" << ft << "' (depths per column: see the grid's notes)";
+                }
             if (!a.units.empty()) s << ", units '" << a.units << "'";
             if (a.values.empty()) {
                 s << ", no coordinate variable\n";

@@ -442,4 +442,31 @@ out("fuzz_metaimage", "not_3d.mha", mha(["ObjectType = Image", "NDims = 2", "Dim
 out("fuzz_metaimage", "huge.mhd", mha(MHA_BASE + ["DimSize = 100000 100000 100000", "ElementType = MET_DOUBLE",
                                                   "ElementDataFile = data.raw"]))
 
+
+# ---------------------------------------------------------------- formula_terms (fuzz_formula_terms)
+def formula_seed(kind, nk, nt, given_depth, text):
+    """The target's input: kind, levels, steps, the formula_terms text, then int16 numbers / 100."""
+    sv = [-(k + 0.5) / nk for k in range(nk)]
+    lev = [1.0 - (k + 0.5) / nk * 2 if kind == 3 else v for k, v in enumerate(sv)]
+    numbers = [0, 1, 2] + [10, 11] + list(range(nt)) + lev + sv + [-v * v for v in sv]
+    numbers += [50, 100, 150, 200, 250, 300] + [0.1 * (i % 3) for i in range(6 * nt)]
+    numbers += [20, 3, 0.5, 40, 80, 150, 3]  # hc, a, b, z1, z2, href, k_c
+    numbers += [(k + 0.5) / nk * (50 + 50 * i) for t in range(nt) for k in range(nk) for i in range(6)]
+    numbers += [1] * 12 + [20 - 0.05 * k * (i + 1) for t in range(nt) for k in range(nk) for i in range(6)]
+    ints = struct.pack("<%dh" % len(numbers), *[max(-32768, min(32767, int(round(v * 100)))) for v in numbers])
+    return bytes([kind, nk - 1, (nt - 1) | (2 if given_depth else 0)]) + text.encode() + b"\n" + ints
+
+
+G = "s: s C: C eta: zeta depth: h depth_c: hc"
+out("fuzz_formula_terms", "g1.bin", formula_seed(0, 6, 1, False, G))
+out("fuzz_formula_terms", "g2_two_steps.bin", formula_seed(1, 6, 2, False, G))
+out("fuzz_formula_terms", "sigma.bin", formula_seed(2, 5, 1, False, "sigma: s eta: zeta depth: h"))
+out("fuzz_formula_terms", "double_sigma.bin",
+    formula_seed(3, 6, 1, False, "sigma: lev depth: h z1: z1 z2: z2 a: a href: href k_c: k_c"))
+out("fuzz_formula_terms", "s_coordinate.bin", formula_seed(4, 8, 1, False, "s: s eta: zeta depth: h a: a b: b depth_c: hc"))
+out("fuzz_formula_terms", "unknown_formula.bin", formula_seed(5, 4, 1, False, "sigma: s ps: h ptop: hc"))
+out("fuzz_formula_terms", "given_depth.bin", formula_seed(6, 6, 2, True, ""))
+out("fuzz_formula_terms", "foreign_term.bin", formula_seed(2, 4, 1, False, "sigma: s eta: zeta depth: foreign"))
+out("fuzz_formula_terms", "malformed.bin", formula_seed(1, 3, 1, False, "s: s C C eta: : zeta depth:"))
+
 print("seeds written under", HERE)

@@ -1,0 +1,228 @@
+#!/usr/bin/env python3
+"""Writes the terrain-following test files (run once; the outputs are committed).
+
+Needs netCDF4, NumPy and SciPy (the project's venv) and the shared real data
+(../shared/data/ocean: etopo20.cdf, levitus_climatology.cdf; or OCTRACE_SHARED_DATA).
+
+roms_g2_nwatlantic.nc: a ROMS-like file (as ROMS writes its history files, but on 1-D
+  longitude/latitude) over the North-West Atlantic, 80W-56W, 30N-47N: the shelf from Cape
+  Hatteras to Nova Scotia, the slope and the deep basin. The grid is ETOPO20's own 1/3 degree
+  points; h = -ETOPO20 relief, clipped to at least 10 m (ROMS's hmin), land (relief >= 0)
+  masked. 20 s-levels `s_rho` with standard_name ocean_s_coordinate_g2 (Vtransform = 2) and
+  ROMS's Vstretching = 4 (theta_s = 5, theta_b = 0.4, hc = 100 m), formula_terms
+  "s: s_rho C: Cs_r eta: zeta depth: h depth_c: hc". Two time steps: zeta = 0, then a
+  sea-surface bump of up to 0.5 m. temp(ocean_time, s_rho, lat, lon) is the Levitus 1982
+  annual temperature interpolated (linearly in depth, longitude and latitude) at each
+  s-level's depth of each column and step; Levitus's own land and sea floor are filled from
+  the nearest valid point of the same level first (then the level above), so that every
+  ETOPO20 water column has values down to its floor.
+sigma_small.nc: ocean_sigma_coordinate, 8 sigma levels over a 9 x 7 grid (1-D lon/lat) whose
+  depth runs from 20 m to 420 m, eta(time, lat, lon) of up to 1 m, two steps, and
+  temp = 20 - 0.01 * depth_below_surface at every point (so a resampled column must give the
+  same linear law).
+The invalid corpus (tests/data/invalid, see its README), 3 x 3 x 3 with one time step:
+  formula_terms naming a missing variable, a malformed formula_terms, a term whose dimensions
+  are not the field's.
+"""
+import os
+
+import netCDF4
+import numpy as np
+from scipy.interpolate import RegularGridInterpolator
+from scipy.ndimage import distance_transform_edt
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+INVALID = os.path.join(HERE, "..", "invalid")
+SHARED = os.environ.get("OCTRACE_SHARED_DATA",
+                        os.path.join(HERE, "..", "..", "..", "..", "shared", "data"))
+OCEAN = os.path.join(SHARED, "ocean")
+if not os.path.isdir(OCEAN):
+    OCEAN = "/work/shared/data/ocean"
+
+REGION = (-80.0, -56.0, 30.0, 47.0)
+N = 20
+THETA_S, THETA_B, HC, HMIN = 5.0, 0.4, 100.0, 10.0
+FILL = 1.0e37
+
+
+def stretching(sc):
+    """ROMS Vstretching = 4 (Shchepetkin 2010): C(s) for s in [-1, 0]."""
+    csur = (1.0 - np.cosh(THETA_S * sc)) / (np.cosh(THETA_S) - 1.0)
+    return (np.exp(THETA_B * csur) - 1.0) / (1.0 - np.exp(-THETA_B))
+
+
+def depth_g2(s, C, h, zeta, hc):
+    """CF ocean_s_coordinate_g2 (ROMS Vtransform = 2): depth (positive down) per (k, j, i)."""
+    S = (hc * s[:, None, None] + h[None] * C[:, None, None]) / (hc + h[None])
+    return -(zeta[None] + (zeta[None] + h[None]) * S)
+
+
+def etopo_region():
+    d = netCDF4.Dataset(os.path.join(OCEAN, "etopo20.cdf"))
+    lon = d.variables["ETOPO20X1_1081"][:].astype(float)
+    lat = d.variables["ETOPO20Y"][:].astype(float)
+    lon360 = (np.array(REGION[:2]) + 360.0)
+    ii = np.where((lon >= lon360[0] - 1e-6) & (lon <= lon360[1] + 1e-6))[0]
+    jj = np.where((lat >= REGION[2] - 1e-6) & (lat <= REGION[3] + 1e-6))[0]
+    rose = np.asarray(d.variables["ROSE"][jj, ii], dtype=float)
+    return lon[ii] - 360.0, lat[jj], rose
+
+
+def levitus_interpolator():
+    d = netCDF4.Dataset(os.path.join(OCEAN, "levitus_climatology.cdf"))
+    lon = d.variables["XAXLEVITR"][:].astype(float)
+    lat = d.variables["YAXLEVITR"][:].astype(float)
+    z = d.variables["ZAXLEVITR"][:].astype(float)
+    # a box a few degrees around the region, longitudes as -180..180
+    lon180 = np.where(lon > 180.0, lon - 360.0, lon)
+    ii = np.where((lon180 >= REGION[0] - 4) & (lon180 <= REGION[1] + 4))[0]
+    ii = ii[np.argsort(lon180[ii])]
+    jj = np.where((lat >= REGION[2] - 4) & (lat <= REGION[3] + 4))[0]
+    t = np.ma.filled(d.variables["TEMP"][:, jj, :][:, :, ii].astype(float), np.nan)
+    t[t < -100] = np.nan
+    for k in range(len(z)):
+        bad = ~np.isfinite(t[k])
+        if bad.all():
+            t[k] = t[k - 1]
+            continue
+        if bad.any():  # nearest valid point of the same level
+            _, (a, b) = distance_transform_edt(bad, return_indices=True)
+            t[k] = t[k][a, b]
+    return RegularGridInterpolator((z, lat[jj], lon180[ii]), t), z[-1]
+
+
+def roms_file(path):
+    lon, lat, rose = etopo_region()
+    land = rose >= 0.0
+    h = np.maximum(-rose, HMIN)
+    sc = (np.arange(1, N + 1) - N - 0.5) / N  # s at rho points, -0.975 .. -0.025
+    C = stretching(sc)
+    interp, zmax = levitus_interpolator()
+    yy, xx = np.meshgrid(lat, lon, indexing="ij")
+    zetas = [np.zeros_like(h), 0.5 * np.exp(-(((xx + 68.0) / 6.0) ** 2 + ((yy - 38.0) / 4.0) ** 2))]
+    temps = []
+    for zeta in zetas:
+        zeta = np.where(land, 0.0, zeta)
+        dep = depth_g2(sc, C, h, zeta, HC)
+        pts = np.stack([np.clip(dep, 0.0, zmax), np.broadcast_to(yy, dep.shape), np.broadcast_to(xx, dep.shape)], -1)
+        t = interp(pts.reshape(-1, 3)).reshape(dep.shape)
+        t[:, land] = FILL
+        temps.append(t)
+    d = netCDF4.Dataset(path, "w", format="NETCDF4_CLASSIC")
+    d.title = "ROMS-like s-coordinate (Vtransform 2) file over ETOPO20 with Levitus 1982 temperature (octrace test)"
+    d.Conventions = "CF-1.8"
+    d.createDimension("ocean_time", None)
+    d.createDimension("s_rho", N)
+    d.createDimension("lat", len(lat))
+    d.createDimension("lon", len(lon))
+    v = d.createVariable("lon", "f8", ("lon",))
+    v.units, v.standard_name = "degrees_east", "longitude"
+    v[:] = lon
+    v = d.createVariable("lat", "f8", ("lat",))
+    v.units, v.standard_name = "degrees_north", "latitude"
+    v[:] = lat
+    v = d.createVariable("ocean_time", "f8", ("ocean_time",))
+    v.units, v.calendar = "days since 2000-01-01 00:00:00", "proleptic_gregorian"
+    v[:] = [0.0, 1.0]
+    for name, value in (("Vtransform", 2), ("Vstretching", 4)):
+        v = d.createVariable(name, "i4", ())
+        v[...] = value
+    for name, value in (("theta_s", THETA_S), ("theta_b", THETA_B)):
+        v = d.createVariable(name, "f8", ())
+        v[...] = value
+    v = d.createVariable("hc", "f8", ())
+    v.long_name, v.units = "S-coordinate parameter, critical depth", "meter"
+    v[...] = HC
+    v = d.createVariable("s_rho", "f8", ("s_rho",))
+    v.long_name = "S-coordinate at RHO-points"
+    v.valid_min, v.valid_max = -1.0, 0.0
+    v.positive = "up"
+    v.standard_name = "ocean_s_coordinate_g2"
+    v.formula_terms = "s: s_rho C: Cs_r eta: zeta depth: h depth_c: hc"
+    v[:] = sc
+    v = d.createVariable("Cs_r", "f8", ("s_rho",))
+    v.long_name = "S-coordinate stretching curves at RHO-points"
+    v.valid_min, v.valid_max = -1.0, 0.0
+    v[:] = C
+    v = d.createVariable("h", "f8", ("lat", "lon"))
+    v.long_name, v.units = "bathymetry at RHO-points", "meter"
+    v[:] = h
+    v = d.createVariable("mask_rho", "f8", ("lat", "lon"))
+    v.long_name = "mask on RHO-points"
+    v.flag_values, v.flag_meanings = np.array([0.0, 1.0]), "land water"
+    v[:] = np.where(land, 0.0, 1.0)
+    v = d.createVariable("zeta", "f4", ("ocean_time", "lat", "lon"), fill_value=FILL)
+    v.long_name, v.units = "free-surface", "meter"
+    v[:] = np.where(land, FILL, np.stack(zetas))
+    v = d.createVariable("temp", "f4", ("ocean_time", "s_rho", "lat", "lon"), fill_value=FILL, zlib=True)
+    v.long_name, v.units = "potential temperature", "Celsius"
+    v.standard_name = "sea_water_potential_temperature"
+    v.coordinates = "lon lat s_rho ocean_time"
+    v[:] = np.stack(temps)
+    d.close()
+
+
+def sigma_file(path, formula_terms="sigma: sigma eta: eta depth: depth", depth_dims=("lat", "lon"),
+               drop=(), small=False):
+    nlon, nlat, nk = (9, 7, 8) if not small else (3, 3, 3)
+    lon = np.linspace(10.0, 14.0, nlon)
+    lat = np.linspace(40.0, 43.0, nlat)
+    sigma = -(np.arange(nk) + 0.5) / nk  # surface to floor
+    yy, xx = np.meshgrid(lat, lon, indexing="ij")
+    depth = 20.0 + 400.0 * (xx - lon[0]) / (lon[-1] - lon[0]) * (0.5 + 0.5 * (yy - lat[0]) / (lat[-1] - lat[0]))
+    etas = [np.zeros_like(depth), 1.0 * (yy - lat[0]) / (lat[-1] - lat[0])][:1 if small else 2]
+    d = netCDF4.Dataset(path, "w", format="NETCDF3_CLASSIC")
+    d.Conventions = "CF-1.8"
+    d.createDimension("time", None)
+    d.createDimension("sigma", nk)
+    d.createDimension("lat", nlat)
+    d.createDimension("lon", nlon)
+    if depth_dims != ("lat", "lon"):
+        d.createDimension("lat_v", nlat - 1)
+    v = d.createVariable("lon", "f8", ("lon",))
+    v.units = "degrees_east"
+    v[:] = lon
+    v = d.createVariable("lat", "f8", ("lat",))
+    v.units = "degrees_north"
+    v[:] = lat
+    v = d.createVariable("time", "f8", ("time",))
+    v.units = "hours since 2010-06-01"
+    v[:] = [0.0, 6.0][:len(etas)]
+    v = d.createVariable("sigma", "f8", ("sigma",))
+    v.standard_name = "ocean_sigma_coordinate"
+    v.long_name = "sigma at layer midpoints"
+    v.positive = "up"
+    v.formula_terms = formula_terms
+    v[:] = sigma
+    if "depth" not in drop:
+        v = d.createVariable("depth", "f8", depth_dims)
+        v.units = "m"
+        v.long_name = "sea floor depth below mean sea level"
+        v[:] = depth if depth_dims == ("lat", "lon") else depth[:-1]
+    if "eta" not in drop:
+        v = d.createVariable("eta", "f8", ("time", "lat", "lon"))
+        v.units = "m"
+        v.standard_name = "sea_surface_height_above_geoid"
+        v[:] = np.stack(etas)
+    t = d.createVariable("temp", "f4", ("time", "sigma", "lat", "lon"), fill_value=np.float32(-999.0))
+    t.units = "degC"
+    t.standard_name = "sea_water_temperature"
+    vals = []
+    for eta in etas:
+        below = -sigma[:, None, None] * (depth[None] + eta[None])  # depth below the surface
+        vals.append(20.0 - 0.01 * below)
+    t[:] = np.stack(vals)
+    d.close()
+
+
+def main():
+    roms_file(os.path.join(HERE, "roms_g2_nwatlantic.nc"))
+    sigma_file(os.path.join(HERE, "sigma_small.nc"))
+    sigma_file(os.path.join(INVALID, "invalid_formula_terms_missing_variable.nc"), drop=("eta",), small=True)
+    sigma_file(os.path.join(INVALID, "invalid_formula_terms_malformed.nc"),
+               formula_terms="sigma: sigma eta eta depth: depth", small=True)
+    sigma_file(os.path.join(INVALID, "invalid_formula_terms_shape.nc"), depth_dims=("lat_v", "lon"), small=True)
+
+
+if __name__ == "__main__":
+    main()
