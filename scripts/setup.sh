@@ -7,12 +7,14 @@ set -euo pipefail
 # xvfb, xauth and Mesa's llvmpipe (libgl1-mesa-dri) run its tests without a display.
 # libavcodec-dev ... libswscale-dev: MP4 videos of `octrace animate` (H.264 through libx264); ffmpeg: its
 # ffprobe, which the animate tests use to count and decode the frames.
+# libudunits2-dev, libudunits2-data: UDUNITS-2 and its unit database (vertical axes in cm or km, `--iso 10degC`).
 # libgdcm-tools: Debian's GDCM CMake package (libgdcm-dev) imports its tools and fails without them.
 PACKAGES=(
   cmake ninja-build g++ pkg-config python3-dev python3-venv
   libgdal-dev libgdcm-dev libgdcm-tools libvtk9-dev libopenexr-dev libglm-dev libtbb-dev
   libgtest-dev libbenchmark-dev libpng-dev libtiff-dev libzstd-dev zlib1g-dev nlohmann-json3-dev libfreetype-dev fonts-dejavu-core
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
+  libudunits2-dev libudunits2-data
   qt6-base-dev libqt6opengl6-dev libgl-dev libxkbcommon-dev xvfb xauth libgl1-mesa-dri
 )
 if [ "${1:-}" = "--fuzz" ]; then
