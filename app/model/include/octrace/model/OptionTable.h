@@ -414,6 +414,22 @@ double parseFinite(const Option& o, const std::string& text);
 /// @throws UsageError "`key`: 'x' is not a number" and as checkNumber.
 double parseNumber(const Option& o, const std::string& text);
 int parseInteger(const Option& o, const std::string& text);
+/// A number with an optional unit, as `iso` and `colour_range` take it: "10", "10degC",
+/// "283.15 K", "-2km". Without a unit the number is in the units of what it applies to.
+struct Quantity {
+    double value = 0.0;
+    std::string unit;  ///< as given, "" for a plain number
+    std::string text;  ///< the whole text as given, for messages
+};
+/// Parses `text` as a finite number (strtod rules) followed by an optional unit that UDUNITS-2
+/// knows (io/Units.h), checks the number against the option's range when no unit is given.
+/// @throws UsageError "`key`: 'x' is not a number ..." or "`key`: unknown unit 'u' in '10u' ...".
+Quantity parseQuantity(const Option& o, const std::string& text);
+/// q's value in `units`, the units of `subject` (e.g. "levitus.nc: variable 'TEMP'"); `what`
+/// names the setting ("`iso`"). A plain number is returned as it is. @throws InputError
+/// saying what was given, `units` and what to do, when subject has no units, UDUNITS-2 does
+/// not know them, or q's unit does not convert to them.
+double quantityIn(const Quantity& q, const std::string& units, const std::string& what, const std::string& subject);
 /// Parses one of the option's choices. @throws UsageError "`key`: choose on or off, got 'x'".
 std::string parseChoice(const Option& o, const std::string& text);
 
