@@ -89,9 +89,10 @@ namespace opt {
 inline constexpr Option depth{.key = "depth", .kind = OptionKind::Integer, .flag = "depth", .argument = "N",
     .session = "surface.depth", .label = "Depth", .defaultValue = 8, .min = 1, .max = Octree::kMaxDepth,
     .help = "octree depth, voxels = 2^N per cube edge", .commands = "render export build csg animate"};
-inline constexpr Option iso{.key = "iso", .kind = OptionKind::Text, .flag = "iso", .argument = "VALUE|NAME",
+inline constexpr Option iso{.key = "iso", .kind = OptionKind::Text, .flag = "iso", .argument = "VALUE[UNIT]|NAME",
     .session = "surface.iso", .label = "Iso value", .defaultText = "the middle of the variable's valid range",
-    .help = "iso value of the surface, or a CT preset in Hounsfield units", .commands = "render export build csg animate"};
+    .help = "iso value of the surface in the variable's units, or with a unit converted into them by UDUNITS-2 "
+            "(10degC on a field in K), or a CT preset in Hounsfield units", .commands = "render export build csg animate"};
 inline constexpr Option variable{.key = "var", .kind = OptionKind::Text, .flag = "var", .argument = "NAME",
     .session = "input.variable", .label = "Variable", .defaultText = "the file's only 3-D variable",
     .help = "variable to draw, by name or CF standard_name; sound_speed is derived from temperature and salinity when "
@@ -190,8 +191,8 @@ inline constexpr Option colourBy{.key = "colour_by", .kind = OptionKind::Text, .
     .commands = "render export animate"};
 inline constexpr Option colourRange{.key = "colour_range", .kind = OptionKind::Text, .flag = "colour-range",
     .argument = "MIN,MAX", .defaultText = "the range of what is coloured",
-    .help = "the values mapped onto the colour map's ends (a surface coloured by height: heights, in metres above the sea "
-            "surface on a geographic grid)", .commands = "render export slice animate"};
+    .help = "the values mapped onto the colour map's ends, each in the units of what is coloured or with a unit "
+            "(5degC,20degC; a surface coloured by height: heights, in metres above the sea surface on a geographic grid)", .commands = "render export slice animate"};
 inline constexpr Option maskedColour{.key = "masked_colour", .kind = OptionKind::Text, .flag = "masked-colour",
     .argument = "R,G,B", .defaultText = "0.6,0.6,0.6", .help = "colour of what is masked, sRGB in [0,1]",
     .commands = "render export slice animate"};
