@@ -49,15 +49,15 @@ def test_stats_are_the_clis_keys(tmp_path, octrace_exe, levitus):
             assert img.stats[key] == cli[key], key
 
 
-def test_values_with_units_are_the_clis(tmp_path, octrace_exe, levitus):
+def test_values_with_units_are_the_clis(tmp_path, octrace_exe):
     """iso="10degC" on a field in kelvin and colour_range=("5degC", "20degC") go through the
     options table's parser (one parser for both front ends) and give the CLI's pixels."""
     import pathlib
 
     kelvin = str(pathlib.Path(__file__).parents[1] / "data" / "netcdf" / "levitus_kelvin.nc")
     cli_png = tmp_path / "cli.png"
-    run_cli(octrace_exe, "render", levitus, "--var", "TEMP", "--iso", "10", "--region", "300,340,20,60", "--depth", "7",
-            "--colour-by", "TEMP", "--colour-range", "5,20", "--size", "200x150", "-o", cli_png)
+    run_cli(octrace_exe, "render", kelvin, "--var", "TEMP", "--iso", "10degC", "--depth", "7",
+            "--colour-by", "TEMP", "--colour-range", "5degC,20degC", "--size", "200x150", "-o", cli_png)
     shell = octrace.surface(kelvin, var="TEMP", iso="10degC", depth=7, colour_by="TEMP")
     assert abs(shell.iso - 283.15) < 1e-9
     img = shell.render(size=(200, 150), colour_range=("5degC", "20degC"))
