@@ -128,3 +128,15 @@ TEST(UnitsCli, RefusesUnitsThatDoNotFitTheField) {
     EXPECT_EQ(r.code, 1) << r.err;
     EXPECT_NE(r.err.find("--iso skin is a CT preset in Hounsfield units"), std::string::npos) << r.err;
 }
+
+TEST(UnitsCli, AMissingUnitDatabaseIsSaidClearly) {
+    // The child inherits the environment: UDUNITS-2 then looks for its database where there is none.
+    Scratch s;
+    ASSERT_EQ(setenv("UDUNITS2_XML_PATH", s.path("none.xml").c_str(), 1), 0);
+    const Result r = run({"render", kCentimetres, "--var", "TEMP", "--iso", "10", "-o", s.path("x.png")});
+    unsetenv("UDUNITS2_XML_PATH");
+    EXPECT_EQ(r.code, 1) << r.err;
+    EXPECT_NE(r.err.find("the UDUNITS-2 unit database could not be read (UDUNITS2_XML_PATH="), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("install Debian's libudunits2-data"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(s.path("x.png")));
+}
