@@ -8,6 +8,7 @@ set -euo pipefail
 # libavcodec-dev ... libswscale-dev: MP4 videos of `octrace animate` (H.264 through libx264); ffmpeg: its
 # ffprobe, which the animate tests use to count and decode the frames.
 # gmt-gshhg-low, gmt-gshhg-high: GSHHG's shorelines (GMT's binned netCDF), the coastlines of map figures.
+# libudunits2-dev, libudunits2-data: UDUNITS-2 and its unit database (vertical axes in cm or km, `--iso 10degC`).
 # libgdcm-tools: Debian's GDCM CMake package (libgdcm-dev) imports its tools and fails without them.
 # gdal-bin: gdalmdimtranslate, with which tests/data/zarr/make_zarr_stores.py writes GDAL's Zarr
 # stores of the Levitus atlas at test time.
@@ -17,6 +18,7 @@ PACKAGES=(
   libgtest-dev libbenchmark-dev libpng-dev libtiff-dev libzstd-dev zlib1g-dev nlohmann-json3-dev libfreetype-dev fonts-dejavu-core
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
   gmt-gshhg-low gmt-gshhg-high
+  libudunits2-dev libudunits2-data
   qt6-base-dev libqt6opengl6-dev libgl-dev libxkbcommon-dev xvfb xauth libgl1-mesa-dri
 )
 if [ "${1:-}" = "--fuzz" ]; then

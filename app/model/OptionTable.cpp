@@ -1,9 +1,12 @@
 #include "octrace/model/OptionTable.h"
 
+#include "octrace/io/Units.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Parameter.h"
 
 #include <array>
+#include <cctype>
+#include <cmath>
 #include <cerrno>
 #include <cstdlib>
 #include <sstream>
@@ -179,6 +182,42 @@ double parseFinite(const Option& o, const std::string& text) {
 }
 
 double parseNumber(const Option& o, const std::string& text) { return checkNumber(o, parseFinite(o, text)); }
+
+Quantity parseQuantity(const Option& o, const std::string& text) {
+    const char* b = text.c_str();
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(b, &end);
+    if (text.empty() || end == b || errno == ERANGE || !std::isfinite(v) || std::isspace(static_cast<unsigned char>(*b)))
+        refuse(o, "'" + text + "' is not a number with an optional unit (e.g. 10, 10degC, 283.15K)");
+    Quantity q{v, std::string(end), text};
+    const std::size_t first = q.unit.find_first_not_of(" \t"), last = q.unit.find_last_not_of(" \t");
+    q.unit = first == std::string::npos ? std::string() : q.unit.substr(first, last - first + 1);
+    if (q.unit.empty()) {
+        q.value = checkNumber(o, v);
+    } else if (!io::knownUnits(q.unit)) {
+        refuse(o, "unknown unit '" + q.unit + "' in '" + text +
+                      "' (UDUNITS-2 does not know it: write a unit such as degC, K, m, km or dbar after the number, or "
+                      "give a plain number in the units of the field)");
+    }
+    return q;
+}
+
+double quantityIn(const Quantity& q, const std::string& units, const std::string& what, const std::string& subject) {
+    if (q.unit.empty()) return q.value;
+    const std::string given = what + " " + q.text;
+    if (units.find_first_not_of(" \t") == std::string::npos)
+        throw InputError(subject + " has no units, so " + given + " cannot be converted into them (give a plain number, in "
+                                   "the variable's own values)");
+    if (!io::knownUnits(units))
+        throw InputError(subject + " is in '" + units + "', which UDUNITS-2 does not know, so " + given +
+                         " cannot be converted into it (give a plain number in " + units + ")");
+    const auto v = io::convertUnits(q.value, q.unit, units);
+    if (!v || !std::isfinite(*v))
+        throw InputError(subject + " is in " + units + ": " + given + " does not convert to " + units +
+                         " (give a value in a unit of the same quantity as " + units + ", or a plain number in " + units + ")");
+    return *v;
+}
 
 int parseInteger(const Option& o, const std::string& text) {
     const char* b = text.c_str();

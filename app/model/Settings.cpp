@@ -122,8 +122,14 @@ const std::unordered_map<std::string_view, Entry>& setters() {
         m.emplace(opt::iso.key, surface([](const std::string& v, SurfaceSpec& s) {
             s.isoPreset.clear();
             s.iso.reset();
-            if (ctIsoPreset(v)) s.isoPreset = v;
-            else s.iso = parseNumber(opt::iso, v);
+            s.isoUnit.clear();
+            if (ctIsoPreset(v)) {
+                s.isoPreset = v;
+            } else {
+                const Quantity q = parseQuantity(opt::iso, v);
+                s.iso = q.value;
+                s.isoUnit = q.unit;
+            }
         }));
         m.emplace(opt::depth.key, surface([](const std::string& v, SurfaceSpec& s) {
             s.depth = parseInteger(opt::depth, v);
@@ -199,9 +205,11 @@ const std::unordered_map<std::string_view, Entry>& setters() {
             s.colourBy = nonEmpty(opt::colourBy, v, "a variable name");
         }));
         const auto colourRange = [](const std::string& v, auto& s) {
-            const dvec2 r = parseRange(opt::colourRange, v);
-            s.colourMin = float(r.x);
-            s.colourMax = float(r.y);
+            const auto [lo, hi] = parseQuantityRange(opt::colourRange, v);
+            s.colourMin = float(lo.value);
+            s.colourMax = float(hi.value);
+            s.colourMinGiven = lo;
+            s.colourMaxGiven = hi;
         };
         m.emplace(opt::colourRange.key, andSlice(shading(colourRange), colourRange));
         const auto maskedColour = [](const std::string& v, auto& s) { s.maskedColour = vec3(parseColour(opt::maskedColour, v, false)); };
@@ -375,6 +383,15 @@ dvec2 parseRange(const Option& o, const std::string& text) {
     if (!(lo < hi) || std::abs(lo) > 3e38 || std::abs(hi) > 3e38)
         refuse(o, "MIN must be below MAX, both finite, got '" + text + "'");
     return dvec2(lo, hi);
+}
+
+std::pair<Quantity, Quantity> parseQuantityRange(const Option& o, const std::string& text) {
+    const auto p = split(text, ',');
+    if (p.size() != 2) refuse(o, "expected MIN,MAX (each a number with an optional unit, e.g. 5degC,20degC), got '" + text + "'");
+    const Quantity lo = parseQuantity(o, p[0]), hi = parseQuantity(o, p[1]);
+    if (std::abs(lo.value) > 3e38 || std::abs(hi.value) > 3e38 || (lo.unit == hi.unit && !(lo.value < hi.value)))
+        refuse(o, "MIN must be below MAX, both finite, got '" + text + "'");
+    return {lo, hi};
 }
 
 std::uint64_t parseByteSize(const Option& o, const std::string& text) {

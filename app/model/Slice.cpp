@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <tuple>
 #include <vector>
 
 namespace octrace::model {
@@ -93,7 +94,8 @@ SliceColour chooseColouring(const SliceSpec& a, const ScalarField& f, const Slic
     if (!c.window.valid()) {
         c.colormap = a.colormap.empty() ? defaultColormap(f.standardName, f.name) : a.colormap;
         if (!std::isnan(a.colourMin)) {
-            c.low = a.colourMin, c.high = a.colourMax;
+            std::tie(c.low, c.high) = colourRangeIn(a.colourMinGiven, a.colourMaxGiven, f.units,
+                                                    a.input + ": variable '" + f.name + "'");
             out.source = param(opt::colourRange.key);
         } else {
             const auto [lo, hi] = values.range();

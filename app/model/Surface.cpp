@@ -21,6 +21,7 @@
 #include <functional>
 #include <optional>
 #include <sstream>
+#include <tuple>
 
 namespace octrace::model {
 namespace {
@@ -246,9 +247,16 @@ void buildFromField(const SurfaceSpec& a, Surface& s, const BuildHooks& hooks) {
     // A sphere input's field is the signed distance to its spheres: their surface is at 0.
     const bool sphereDistance = isSphereInput(a.input);
     s.iso = !a.isoPreset.empty() ? *ctIsoPreset(a.isoPreset)
-            : a.iso                ? *a.iso
+            : a.iso                ? quantityIn({*a.iso, a.isoUnit, numberText(*a.iso) + a.isoUnit}, s.field.units, "`iso`",
+                                                a.input + ": variable '" + s.field.name + "'")
             : sphereDistance       ? 0.0
                                    : 0.5 * (double(vmin) + double(vmax));
+    if (a.iso && !a.isoUnit.empty()) {
+        std::ostringstream m;
+        m << "`iso` " << numberText(*a.iso) << a.isoUnit << " is " << numberText(s.iso, 9) << " " << s.field.units
+          << ", the units of '" << s.field.name << "' (UDUNITS-2)";
+        log::info(m.str());
+    }
     if (!a.iso && a.isoPreset.empty() && !sphereDistance) {
         std::ostringstream m;
         m << "no `iso` given: using " << s.iso << ", the middle of the range [" << vmin << ", " << vmax << "] of '"
@@ -314,17 +322,42 @@ void applyColour(const SurfaceSpec& a, const Surface& s, RenderSettings& setting
         settings.colormap = defaultColormap(s.tree.valueStandardName(), s.tree.valueName());
     settings.colourMin = a.colourMin;
     settings.colourMax = a.colourMax;
-    if (!settings.colormap.empty() && s.tree.voxelValues().empty() && !std::isnan(a.colourMin)) {
+    const bool byHeight = !settings.colormap.empty() && s.tree.voxelValues().empty();
+    const bool values = !s.tree.voxelValues().empty();
+    if (!std::isnan(a.colourMin) && (values || byHeight) && (!a.colourMinGiven.unit.empty() || !a.colourMaxGiven.unit.empty())) {
+        // The units of what is coloured: colour_by's variable (or the window's field), else heights
+        // in metres on a geographic grid.
+        const std::string units = values ? (s.tree.valueName().empty() ? s.field.units : s.tree.valueUnits())
+                                  : byHeight && s.field.geographic.valid ? std::string("m") : std::string();
+        const std::string subject = values ? a.input + ": variable '" + (s.tree.valueName().empty() ? s.field.name : s.tree.valueName()) + "'"
+                                  : s.field.geographic.valid ? a.input + ": the surface's heights (coloured by height, in metres above the sea surface)"
+                                                             : a.input + ": the surface's heights (coloured by height, in world z)";
+        std::tie(settings.colourMin, settings.colourMax) =
+            colourRangeIn(a.colourMinGiven, a.colourMaxGiven, units, subject);
+    }
+    if (byHeight && !std::isnan(a.colourMin)) {
         // Coloured by height: `colour_range` is in the figure's units (metres above the sea
         // surface on a geographic field, else world z); the renderers take world z.
         const auto worldZ = [&](float height) {
             return s.field.geographic.valid ? float(GeoAxes{s.field.geographic}.z(-double(height))) : height;
         };
-        settings.colourMin = worldZ(a.colourMin);
-        settings.colourMax = worldZ(a.colourMax);
+        settings.colourMin = worldZ(settings.colourMin);
+        settings.colourMax = worldZ(settings.colourMax);
     }
     settings.maskedColour = vec3(displayToLinear(vec4(a.maskedColour, 1.0f)));
     settings.floorColour = vec3(displayToLinear(vec4(a.floorColour, 1.0f)));
+}
+
+std::pair<float, float> colourRangeIn(const Quantity& min, const Quantity& max, const std::string& units,
+                                      const std::string& subject) {
+    const double lo = quantityIn(min, units, "`colour_range`", subject), hi = quantityIn(max, units, "`colour_range`", subject);
+    const std::string given = "`colour_range` " + min.text + "," + max.text;
+    std::ostringstream m;
+    m << given << " is " << numberText(lo, 9) << "," << numberText(hi, 9) << " " << units;
+    if (!(lo < hi) || std::abs(lo) > 3e38 || std::abs(hi) > 3e38)
+        throw InputError(subject + ": " + m.str() + ", not an increasing range (give MIN below MAX)");
+    if (!min.unit.empty() || !max.unit.empty()) log::debug(m.str() + " (UDUNITS-2)");
+    return {float(lo), float(hi)};
 }
 
 void applyLighting(const SurfaceSpec& a, RenderSettings& settings) {

@@ -47,3 +47,25 @@ def test_stats_are_the_clis_keys(tmp_path, octrace_exe, levitus):
     for key in ("renderer", "width", "height", "boundary_voxels", "octree_depth", "iso", "rays"):
         if key in cli:
             assert img.stats[key] == cli[key], key
+
+
+def test_values_with_units_are_the_clis(tmp_path, octrace_exe):
+    """iso="10degC" on a field in kelvin and colour_range=("5degC", "20degC") go through the
+    options table's parser (one parser for both front ends) and give the CLI's pixels."""
+    import pathlib
+
+    kelvin = str(pathlib.Path(__file__).parents[1] / "data" / "netcdf" / "levitus_kelvin.nc")
+    cli_png = tmp_path / "cli.png"
+    run_cli(octrace_exe, "render", kelvin, "--var", "TEMP", "--iso", "10degC", "--depth", "7",
+            "--colour-by", "TEMP", "--colour-range", "5degC,20degC", "--size", "200x150", "-o", cli_png)
+    shell = octrace.surface(kelvin, var="TEMP", iso="10degC", depth=7, colour_by="TEMP")
+    assert abs(shell.iso - 283.15) < 1e-9
+    img = shell.render(size=(200, 150), colour_range=("5degC", "20degC"))
+    assert np.array_equal(np.asarray(img), read_png(cli_png))
+    # The same errors as the CLI's, as the package's exceptions.
+    import pytest
+
+    with pytest.raises(octrace.UsageError, match="unknown unit 'degx'"):
+        octrace.surface(kelvin, var="TEMP", iso="10degx")
+    with pytest.raises(octrace.InputError, match="10m does not convert to K"):
+        octrace.surface(kelvin, var="TEMP", iso="10m")

@@ -63,9 +63,10 @@ def _texts(option, value):
         return ["on" if value else "off"]
     if isinstance(value, (list, tuple)) or type(value).__name__ == "ndarray":
         parts = list(value)
-        if parts and all(isinstance(p, str) for p in parts):
-            return parts  # a repeatable setting, once per value (`cut`, `bake_light`)
         separator = option["separator"]
+        if parts and all(isinstance(p, str) for p in parts) and (separator is None or all(separator in p for p in parts)):
+            return parts  # a repeatable setting, once per value (`cut`, `bake_light`)
+        # Otherwise the parts of one value: numbers, or texts with a unit (colour_range=("5degC", "20degC")).
         if separator is None:
             raise _octrace.UsageError(f"'{key}': expected one value ({option['argument']}), got {value!r}")
         return [separator.join(_scalar(key, p) for p in parts)]

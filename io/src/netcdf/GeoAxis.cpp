@@ -1,8 +1,10 @@
 #include "netcdf/GeoAxis.h"
 
 #include "input/InputFile.h"
+#include "octrace/io/Units.h"
 
 #include <algorithm>
+#include <sstream>
 
 namespace octrace::io::detail {
 namespace {
@@ -25,25 +27,15 @@ bool isLatUnits(const std::string& u) {
     return isOneOf(squeeze(u), {"degreesnorth", "degreenorth", "degreesn", "degreen"});
 }
 
-// km per unit for length units; 0 when not a length.
-double lengthToKm(const std::string& units) {
-    std::string u = squeeze(units);
-    if (isOneOf(u, {"m", "meter", "meters", "metre", "metres"})) return 0.001;
-    if (isOneOf(u, {"km", "kilometer", "kilometers", "kilometre", "kilometres"})) return 1.0;
-    if (isOneOf(u, {"cm", "centimeter", "centimeters", "centimetre", "centimetres"})) return 1e-5;
-    if (isOneOf(u, {"dbar", "decibar", "decibars", "db"})) return 0.001;  // ~1 m per dbar
-    return 0.0;
-}
+// dbar per unit for pressure units (dbar, db, bar, hPa, mbar, Pa, kPa, ...; UDUNITS-2); 0 when
+// not a pressure.
+double pressureToDbar(const std::string& units) { return decibarsPer(units); }
 
-// dbar per unit for pressure units; 0 when not a pressure.
-double pressureToDbar(const std::string& units) {
-    std::string u = squeeze(units);
-    if (isOneOf(u, {"dbar", "decibar", "decibars", "db"})) return 1.0;
-    if (isOneOf(u, {"bar", "bars"})) return 10.0;
-    if (isOneOf(u, {"hpa", "mbar", "millibar", "millibars"})) return 0.01;
-    if (isOneOf(u, {"pa", "pascal", "pascals"})) return 1e-4;
-    if (isOneOf(u, {"kpa"})) return 0.1;
-    return 0.0;
+// km per unit for length units (any UDUNITS-2 reads: m, METERS, centimeters, km, feet, ...);
+// 0 when not a length. A pressure is placed at ~1 m per dbar (1 % off at 5000 m).
+double lengthToKm(const std::string& units) {
+    if (const double dbar = pressureToDbar(units); dbar > 0.0) return 0.001 * dbar;
+    return 0.001 * metresPer(units);
 }
 
 bool nameIs(const std::string& name, std::initializer_list<const char*> list) { return isOneOf(lower(name), list); }
@@ -73,6 +65,11 @@ AxisClass vertical(const AxisInfo& a) {
         c.toKm = 0.001;
         std::string why = "vertical axis '" + a.name + "' units '" + a.units + "' taken as metres";
         c.note = c.note.empty() ? why : c.note + "; " + why;
+    } else if (c.toKm != 0.001 && c.toDbar == 0.0) {
+        std::ostringstream why;
+        why << "vertical axis '" << a.name << "' in " << a.units << ", converted to metres (" << 1000.0 * c.toKm
+            << " m each, UDUNITS-2)";
+        c.note = c.note.empty() ? why.str() : c.note + "; " + why.str();
     }
     if (c.toDbar > 0.0) {
         c.toKm = 0.001 * c.toDbar;  // 1 dbar ~ 1 m of sea water (1 % off at 5000 m)

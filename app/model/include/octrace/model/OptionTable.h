@@ -89,9 +89,10 @@ namespace opt {
 inline constexpr Option depth{.key = "depth", .kind = OptionKind::Integer, .flag = "depth", .argument = "N",
     .session = "surface.depth", .label = "Depth", .defaultValue = 8, .min = 1, .max = Octree::kMaxDepth,
     .help = "octree depth, voxels = 2^N per cube edge", .commands = "render export build csg animate"};
-inline constexpr Option iso{.key = "iso", .kind = OptionKind::Text, .flag = "iso", .argument = "VALUE|NAME",
+inline constexpr Option iso{.key = "iso", .kind = OptionKind::Text, .flag = "iso", .argument = "VALUE[UNIT]|NAME",
     .session = "surface.iso", .label = "Iso value", .defaultText = "the middle of the variable's valid range",
-    .help = "iso value of the surface, or a CT preset in Hounsfield units", .commands = "render export build csg animate"};
+    .help = "iso value of the surface in the variable's units, or with a unit converted into them by UDUNITS-2 "
+            "(10degC on a field in K), or a CT preset in Hounsfield units", .commands = "render export build csg animate"};
 inline constexpr Option variable{.key = "var", .kind = OptionKind::Text, .flag = "var", .argument = "NAME",
     .session = "input.variable", .label = "Variable", .defaultText = "the file's only 3-D variable",
     .help = "variable to draw, by name or CF standard_name; sound_speed is derived from temperature and salinity when "
@@ -190,8 +191,8 @@ inline constexpr Option colourBy{.key = "colour_by", .kind = OptionKind::Text, .
     .commands = "render export animate"};
 inline constexpr Option colourRange{.key = "colour_range", .kind = OptionKind::Text, .flag = "colour-range",
     .argument = "MIN,MAX", .defaultText = "the range of what is coloured",
-    .help = "the values mapped onto the colour map's ends (a surface coloured by height: heights, in metres above the sea "
-            "surface on a geographic grid)", .commands = "render export slice animate"};
+    .help = "the values mapped onto the colour map's ends, each in the units of what is coloured or with a unit "
+            "(5degC,20degC; a surface coloured by height: heights, in metres above the sea surface on a geographic grid)", .commands = "render export slice animate"};
 inline constexpr Option maskedColour{.key = "masked_colour", .kind = OptionKind::Text, .flag = "masked-colour",
     .argument = "R,G,B", .defaultText = "0.6,0.6,0.6", .help = "colour of what is masked, sRGB in [0,1]",
     .commands = "render export slice animate"};
@@ -422,6 +423,22 @@ double parseFinite(const Option& o, const std::string& text);
 /// @throws UsageError "`key`: 'x' is not a number" and as checkNumber.
 double parseNumber(const Option& o, const std::string& text);
 int parseInteger(const Option& o, const std::string& text);
+/// A number with an optional unit, as `iso` and `colour_range` take it: "10", "10degC",
+/// "283.15 K", "-2km". Without a unit the number is in the units of what it applies to.
+struct Quantity {
+    double value = 0.0;
+    std::string unit;  ///< as given, "" for a plain number
+    std::string text;  ///< the whole text as given, for messages
+};
+/// Parses `text` as a finite number (strtod rules) followed by an optional unit that UDUNITS-2
+/// knows (io/Units.h), checks the number against the option's range when no unit is given.
+/// @throws UsageError "`key`: 'x' is not a number ..." or "`key`: unknown unit 'u' in '10u' ...".
+Quantity parseQuantity(const Option& o, const std::string& text);
+/// q's value in `units`, the units of `subject` (e.g. "levitus.nc: variable 'TEMP'"); `what`
+/// names the setting ("`iso`"). A plain number is returned as it is. @throws InputError
+/// saying what was given, `units` and what to do, when subject has no units, UDUNITS-2 does
+/// not know them, or q's unit does not convert to them.
+double quantityIn(const Quantity& q, const std::string& units, const std::string& what, const std::string& subject);
 /// Parses one of the option's choices. @throws UsageError "`key`: choose on or off, got 'x'".
 std::string parseChoice(const Option& o, const std::string& text);
 

@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 
 namespace octrace::model {
 
@@ -74,6 +75,9 @@ void parseSize(const Option& o, const std::string& text, int& w, int& h);
 dvec2 parsePrintSize(const Option& o, const std::string& text);
 /// "MIN,MAX", finite, MIN < MAX, within float range.
 dvec2 parseRange(const Option& o, const std::string& text);
+/// "MIN,MAX", each a number with an optional unit (parseQuantity: "5degC,20degC"); finite,
+/// within float range, MIN < MAX when both are in the same units (else checked once converted).
+std::pair<Quantity, Quantity> parseQuantityRange(const Option& o, const std::string& text);
 /// A memory size: a positive number of bytes with an optional suffix K, M, G, T or KiB, MiB,
 /// GiB, TiB (powers of 1024, any case; "1.5G" is allowed), or N% of the physical memory.
 std::uint64_t parseByteSize(const Option& o, const std::string& text);

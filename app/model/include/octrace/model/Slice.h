@@ -41,6 +41,7 @@ struct SliceSpec {
     ValueWindow window;
     std::string colormap;  ///< `colormap`; empty: the variable's (defaultColormap, Shading.h)
     float colourMin = std::numeric_limits<float>::quiet_NaN(), colourMax = std::numeric_limits<float>::quiet_NaN();  ///< `colour_range`
+    Quantity colourMinGiven, colourMaxGiven;  ///< `colour_range`'s ends as given, with their units ("" the field's)
     vec3 maskedColour{0.6f, 0.6f, 0.6f};  ///< `masked_colour`, sRGB
     std::optional<vec4> background;       ///< `background`, sRGB and alpha; unset: opaque black, with a figure the paper
     FigureSettings figure;                ///< `figure`, `title`, `dpi`, `print_size`, `scale_bar`

@@ -35,6 +35,7 @@ struct SurfaceSpec {
     std::string input;
     io::FieldRequest request;
     std::optional<double> iso;
+    std::string isoUnit;    ///< the unit `iso` was given in ("" the field's own): converted once the field is read
     std::string isoPreset;  ///< --iso NAME (CtPresets.h): resolved once the field is read
     /// --window: "" (not given: the file's window, if any, unless --colour or --colormap),
     /// "none", a preset name (CtPresets.h), or the centre and width given as numbers.
@@ -48,6 +49,7 @@ struct SurfaceSpec {
     std::string colormap;              // empty: uniform colour, or the colour-by variable's default
     std::string colourBy;              // --colour-by: second variable sampled at the voxels
     float colourMin = std::numeric_limits<float>::quiet_NaN(), colourMax = std::numeric_limits<float>::quiet_NaN();
+    Quantity colourMinGiven, colourMaxGiven;  // `colour_range`'s ends as given, with their units ("" those coloured)
     vec3 maskedColour{0.6f, 0.6f, 0.6f};      // sRGB
     vec3 floorColour{0.55f, 0.5f, 0.45f};     // sRGB
     bool floor = false;                // --floor: sea floor / land from the validity mask
@@ -78,6 +80,11 @@ vec4 displayToLinear(vec4 c);
 /// Refuses (InputError) a CT preset (`what`, e.g. "`iso` bone") for a field whose values are not
 /// Hounsfield units.
 void requireHounsfield(const ScalarField& f, const std::string& input, const std::string& what);
+/// `colour_range` as given (its ends `min`, `max`) in `units`, the units of `subject`
+/// ("FILE: variable 'TEMP'"), as quantityIn converts each end.
+/// @throws InputError as quantityIn, and when the converted MIN is not below MAX.
+std::pair<float, float> colourRangeIn(const Quantity& min, const Quantity& max, const std::string& units,
+                                      const std::string& subject);
 /// The memory budget in bytes: spec.maxMemory, or the default share of physical memory.
 std::uint64_t memoryBudget(const SurfaceSpec& a);
 /// The first setting of `request` that chooses part of a field, as a message names it
