@@ -84,7 +84,7 @@ TEST(NetcdfMap, LevitusLevelZeroAsATwoDimensionalFileIsTheAtlasTopLevel) {
         for (int i = 0; i < map.dims.x; ++i) {
             const std::size_t m = map.index(i, j, 0), a = atlas.index(i, j, top);
             ASSERT_EQ(map.isValid(m), atlas.isValid(a)) << i << "," << j;
-            if (map.isValid(m)) ASSERT_EQ(map.values[m], atlas.values[a]) << i << "," << j;
+            if (map.isValid(m)) { ASSERT_EQ(map.values[m], atlas.values[a]) << i << "," << j; }
             masked += !map.isValid(m);
         }
     EXPECT_GT(masked, 20000u);  // land
