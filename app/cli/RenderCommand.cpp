@@ -322,7 +322,6 @@ int runRender(const std::vector<std::string>& args) {
     // Load and build.
     Surface surface = buildSurface(a);
     const ScalarField& field = surface.field;
-    const double iso = surface.iso, loadMs = surface.loadMs;
     const BuildReport& report = surface.report;
     Octree& tree = surface.tree;
     if (multires) tree.computeSummaries();
