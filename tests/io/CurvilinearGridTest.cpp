@@ -225,3 +225,37 @@ TEST(CurvilinearGrid, LatticeFollowsTheRequestedResolution) {
         EXPECT_TRUE(hasNote(f, std::to_string(n) + " points along the larger extent (the octree's 2^depth + 1)"));
     }
 }
+
+// A curvilinear grid with terrain-following levels (a real ROMS file: 2-D lat_rho/lon_rho and
+// s_rho): refused by name rather than drawn with sigma read as a depth in metres.
+TEST(CurvilinearGrid, ParametricVerticalCoordinateOnACurvilinearGridIsRefused) {
+    test::TempDir dir;
+    const std::string path = dir.file("curvilinear_sigma.nc");
+    {
+        CfFileWriter w(path);
+        w.dimension("y", 6);
+        w.dimension("x", 8);
+        w.coordinate("sigma", {-0.75, -0.25}, {{"standard_name", "ocean_sigma_coordinate"}, {"positive", "up"},
+                                               {"formula_terms", "sigma: sigma eta: zeta depth: h"}});
+        std::vector<double> lat, lon, h(48, 100.0), zeta(48, 0.0), temp(96, 10.0);
+        for (int j = 0; j < 6; ++j)
+            for (int i = 0; i < 8; ++i) lat.push_back(40.0 + j + 0.2 * i), lon.push_back(140.0 + i - 0.2 * j);
+        w.variable("lat_rho", {"y", "x"}, GDT_Float64, lat, {{"units", "degrees_north"}});
+        w.variable("lon_rho", {"y", "x"}, GDT_Float64, lon, {{"units", "degrees_east"}});
+        w.variable("h", {"y", "x"}, GDT_Float64, h, {{"units", "m"}, {"coordinates", "lon_rho lat_rho"}});
+        w.variable("zeta", {"y", "x"}, GDT_Float64, zeta, {{"units", "m"}, {"coordinates", "lon_rho lat_rho"}});
+        w.variable("temp", {"sigma", "y", "x"}, GDT_Float32, temp,
+                   {{"units", "degC"}, {"coordinates", "lon_rho lat_rho sigma"}});
+    }
+    io::FieldRequest req;
+    req.variable = "temp";
+    try {
+        io::NetcdfReader::read(path, req);
+        FAIL() << "read a curvilinear grid with sigma levels";
+    } catch (const InputError& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("is on a curvilinear grid (lon_rho(y, x), lat_rho(y, x)) with a parametric vertical coordinate"),
+                  std::string::npos) << m;
+        EXPECT_NE(m.find("ocean_sigma_coordinate"), std::string::npos) << m;
+    }
+}

@@ -184,6 +184,13 @@ Layout layoutFor(const std::string& path, const CfSource& file, const VariableIn
             throw InputError(path + ": variable " + var.signature() + " is on a curvilinear grid (" + curvi->lonName +
                              ", " + curvi->latName + ") but has " + std::to_string(vert.size()) +
                              " vertical axes with coordinates; one is needed for a 3-D field");
+        // Per-column depths are computed over 1-D longitude/latitude only so far: refuse rather
+        // than read the formula's parameter (s or sigma) as if it were a depth.
+        if (auto p = findParametricVertical(path, file, var, vert[0]))
+            throw InputError(path + ": variable " + var.signature() + " is on a curvilinear grid (" + curvi->lonName +
+                             ", " + curvi->latName + ") with a parametric vertical coordinate (" + p->text() +
+                             "); octrace computes per-column depths only on grids with 1-D longitude and latitude "
+                             "so far: regrid horizontally first (e.g. cdo remapbil) or compute the depths");
     }
     std::vector<std::size_t> across;  // dimensions longer than 1 that are not time
     for (std::size_t d : spread)
