@@ -268,6 +268,9 @@ CurvilinearGrid::Lattice CurvilinearGrid::lattice(const std::string& path, const
             throw InputError(path + ": resampling the curvilinear grid at a step of " + num(stepKm) + " km would take " +
                              num(points) + " lattice points along one axis, more than the " +
                              std::to_string(kMaxAxisPoints) + " octrace reads; choose a smaller region");
+        if (!(points >= 1.0))  // an empty or reversed span, or a step of the wrong sign (broken coordinates)
+            throw EmptyResultError(path + ": the curvilinear grid spans no lattice point from " + num(a) + " to " +
+                                   num(b) + " degrees at a step of " + num(step) + " degrees");
         std::size_t count = std::size_t(points);
         if (open && a + double(count - 1) * step >= b - 1e-9) --count;  // the circle's end is its start
         for (std::size_t k = 0; k < count; ++k) v.push_back(a + double(k) * step);
