@@ -43,7 +43,7 @@ OptionParser makeParser(SliceArgs& a) {
                         "thermal/haline/speed/viridis",
                         "here the slice's values, by default their range",
                         "masked samples (land, missing values, outside a resampled gantry-tilted stack)");
-    p.add({"background", "R,G,B[,A]", "colour outside the grid, sRGB components in [0,1] (default 0,0,0,1; with --figure 0,0,0,0: the paper)",
+    p.add({"background", "R,G,B[,A]", "colour outside the grid: sRGB components in [0,1], #RRGGBB[AA] or a CSS colour name (default 0,0,0,1; with --figure 0,0,0,0: the paper)",
            [into](const std::string& v) { model::applySetting(model::opt::background, v, into); }});
     addGeographicOptions(p, a.request);
     addSeriesOption(p, a.request);

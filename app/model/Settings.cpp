@@ -8,6 +8,7 @@
 #include "octrace/util/Memory.h"
 #include "octrace/util/Parameter.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -337,9 +338,26 @@ dvec3 parseVec3(const Option& o, const std::string& text) {
 }
 
 vec4 parseColour(const Option& o, const std::string& text, bool allowAlpha) {
+    const std::string expected = "expected R,G,B" + std::string(allowAlpha ? "[,A]" : "") + " in [0,1], #RRGGBB" +
+                                 (allowAlpha ? "[AA]" : "") + " or a CSS colour name (e.g. steelblue)";
+    if (!text.empty() && text[0] == '#') {
+        const std::string hex = text.substr(1);
+        const bool digits = std::all_of(hex.begin(), hex.end(), [](char c) { return std::isxdigit(static_cast<unsigned char>(c)) != 0; });
+        const std::size_t n = hex.size();
+        if (!digits || !(n == 3 || n == 6 || (allowAlpha && n == 8))) refuse(o, expected + ", got '" + text + "'");
+        vec4 c(1.0f);
+        for (std::size_t i = 0; i < (n == 3 ? 3u : n / 2); ++i) {
+            const std::string byte = n == 3 ? std::string(2, hex[i]) : hex.substr(2 * i, 2);
+            c[int(i)] = float(std::stoi(byte, nullptr, 16)) / 255.0f;
+        }
+        return c;
+    }
+    if (!text.empty() && std::isalpha(static_cast<unsigned char>(text[0]))) {
+        if (const auto named = namedColour(text)) return vec4(*named, 1.0f);
+        refuse(o, "unknown colour name '" + text + "'; " + expected);
+    }
     const auto p = split(text, ',');
-    if (p.size() != 3 && !(allowAlpha && p.size() == 4))
-        refuse(o, "expected R,G,B" + std::string(allowAlpha ? "[,A]" : "") + " in [0,1], got '" + text + "'");
+    if (p.size() != 3 && !(allowAlpha && p.size() == 4)) refuse(o, expected + ", got '" + text + "'");
     vec4 c(1.0f);
     for (std::size_t i = 0; i < p.size(); ++i) {
         const double v = parseFinite(o, p[i]);

@@ -115,10 +115,12 @@ TEST(OptionTable, KeysAndFlagsAreUniqueAndEveryHelpStatesItsDefault) {
         }
         if (o->kind == model::OptionKind::Choice) EXPECT_FALSE(o->defaultSaid().empty()) << o->key;
         std::istringstream commands(o->commands);
-        for (std::string c; commands >> c;)
-            for (const model::Option* p : model::allOptions())
+        for (std::string c; commands >> c;) {
+            for (const model::Option* p : model::allOptions()) {
                 EXPECT_FALSE(p != o && *o->flag && std::string(p->flag) == o->flag && p->takenBy(c))
                     << o->key << " and " << p->key << " are both --" << o->flag << " of " << c;
+            }
+        }
     }
 }
 

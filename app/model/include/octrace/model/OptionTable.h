@@ -179,7 +179,7 @@ inline constexpr Option bakeLight{.key = "bake_light", .kind = OptionKind::Text,
 // Colour.
 inline constexpr Option colour{.key = "colour", .kind = OptionKind::Text, .flag = "colour", .argument = "R,G,B",
     .session = "shading.colour", .defaultText = "0.85,0.62,0.35; city inputs: per object and texture",
-    .help = "surface colour, sRGB components in [0,1], also over a city's own colours", .commands = "render export animate"};
+    .help = "surface colour: sRGB components in [0,1], #RRGGBB or a CSS colour name (steelblue), also over a city's own colours", .commands = "render export animate"};
 inline constexpr Option colormap{.key = "colormap", .kind = OptionKind::Text, .flag = "colormap", .argument = "NAME",
     .session = "shading.colormap", .label = "Colour map", .defaultText = "uniform colour",
     .help = "colour by a colour map", .commands = "render export slice animate"};
@@ -194,14 +194,14 @@ inline constexpr Option colourRange{.key = "colour_range", .kind = OptionKind::T
     .help = "the values mapped onto the colour map's ends, each in the units of what is coloured or with a unit "
             "(5degC,20degC; a surface coloured by height: heights, in metres above the sea surface on a geographic grid)", .commands = "render export slice animate"};
 inline constexpr Option maskedColour{.key = "masked_colour", .kind = OptionKind::Text, .flag = "masked-colour",
-    .argument = "R,G,B", .defaultText = "0.6,0.6,0.6", .help = "colour of what is masked, sRGB in [0,1]",
+    .argument = "R,G,B", .defaultText = "0.6,0.6,0.6", .help = "colour of what is masked: sRGB in [0,1], #RRGGBB or a CSS colour name",
     .commands = "render export slice animate"};
 inline constexpr Option floorColour{.key = "floor_colour", .kind = OptionKind::Text, .flag = "floor-colour",
-    .argument = "R,G,B", .defaultText = "0.55,0.5,0.45", .help = "colour of the sea floor and land (`floor`), sRGB in [0,1]",
+    .argument = "R,G,B", .defaultText = "0.55,0.5,0.45", .help = "colour of the sea floor and land (`floor`): sRGB in [0,1], #RRGGBB or a CSS colour name",
     .commands = "render export animate"};
 inline constexpr Option background{.key = "background", .kind = OptionKind::Text, .flag = "background",
     .argument = "R,G,B[,A]", .session = "shading.background", .defaultText = "1,1,1,1",
-    .help = "background colour, sRGB components in [0,1]", .commands = "render animate"};
+    .help = "background colour: sRGB components in [0,1], #RRGGBB[AA] or a CSS colour name (black)", .commands = "render animate"};
 inline constexpr Option light{.key = "light", .kind = OptionKind::Text, .flag = "light", .argument = "X,Y,Z",
     .session = "shading.light", .defaultText = "0.4,0.6,1",
     .help = "direction towards the light in camera space, x right, y up, z to the viewer", .commands = "render animate"};

@@ -14,8 +14,11 @@
 #include "octrace/util/Math.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
+#include <vector>
 
 namespace octrace::model {
 
@@ -67,8 +70,14 @@ char valueSeparator(const Option& o);
 // throws UsageError naming `o.key` and the text.
 /// "X,Y,Z", each a finite number.
 dvec3 parseVec3(const Option& o, const std::string& text);
-/// "R,G,B" or (allowAlpha) "R,G,B,A", each in [0,1] (sRGB display values, as a user picks a colour).
+/// A colour: "R,G,B" or (allowAlpha) "R,G,B,A", each in [0,1] (sRGB display values, as a user
+/// picks a colour); "#RRGGBB" or "#RGB" (and with allowAlpha "#RRGGBBAA"); or a CSS colour name
+/// ("steelblue", any case, spaces ignored). Alpha is 1 unless given.
 vec4 parseColour(const Option& o, const std::string& text, bool allowAlpha);
+/// The CSS Color Level 4 colour `name` (any case; spaces, '_' and '-' ignored) in sRGB [0,1].
+std::optional<vec3> namedColour(std::string_view name);
+/// Every accepted colour name, sorted.
+std::vector<std::string> colourNames();
 /// "WxH", each within `width`'s and `height`'s ranges.
 void parseSize(const Option& o, const std::string& text, int& w, int& h);
 /// "WxH" with a unit mm, cm or in ("180x120mm", "7x5in"), in inches, each side at most 100 in.
