@@ -4,6 +4,7 @@
 #include "octrace/model/Surface.h"
 #include "octrace/csg/Solid.h"
 #include "octrace/model/OptionTable.h"
+#include "octrace/model/Settings.h"
 #include "octrace/io/AtomicFile.h"
 #include "octrace/octree/Octree.h"
 #include "octrace/render/Renderer.h"
@@ -18,6 +19,7 @@
 #include <QJsonObject>
 
 #include <map>
+#include <optional>
 #include <type_traits>
 
 #include <algorithm>
@@ -105,18 +107,40 @@ public:
         const auto v = numbers(key, 3, -limit, limit);
         out = dvec3(v[0], v[1], v[2]);
     }
+    /// An array of 3 (4: with alpha) numbers in [0,1], or a text the options table's colour
+    /// parser takes ("steelblue", "#4682b4"), as a hand-written session may give.
     void colour(const char* key, vec3& out) const {
         if (!has(key)) return;
+        if (const auto text = colourText(key, false)) {
+            out = vec3(*text);
+            return;
+        }
         const auto v = numbers(key, 3, 0.0, 1.0);
         out = vec3(float(v[0]), float(v[1]), float(v[2]));
     }
     void colour(const char* key, vec4& out) const {
         if (!has(key)) return;
+        if (const auto text = colourText(key, true)) {
+            out = *text;
+            return;
+        }
         const auto v = numbers(key, 4, 0.0, 1.0);
         out = vec4(float(v[0]), float(v[1]), float(v[2]), float(v[3]));
     }
 
 private:
+    std::optional<vec4> colourText(const char* key, bool alpha) const {
+        const QJsonValue v = o_.value(QLatin1String(key));
+        if (!v.isString()) return std::nullopt;
+        const model::Option& o = alpha ? model::opt::background : model::opt::colour;
+        try {
+            return model::parseColour(o, v.toString().toStdString(), alpha);
+        } catch (const UsageError& e) {
+            const std::string why = e.what();
+            fail(key, QString::fromStdString(why.substr(why.find(": ") == std::string::npos ? 0 : why.find(": ") + 2)));
+        }
+    }
+
     QJsonObject o_;
     QString path_;
 };

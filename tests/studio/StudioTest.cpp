@@ -772,6 +772,10 @@ private slots:
             "camera.position:");
         row("light zero", R"({"octrace_studio_session": 1, "shading": {"light": [0, 0, 0]}})", "shading.light: direction must not be zero");
         row("colour range", R"({"octrace_studio_session": 1, "shading": {"colour": [1, 2, 0]}})", "shading.colour: 2 is outside");
+        row("colour name", R"({"octrace_studio_session": 1, "shading": {"colour": "tomatoes"}})",
+            "shading.colour: unknown colour name 'tomatoes'");
+        // (Not raw strings: moc's preprocessor takes a '#' inside one for a directive.)
+        row("colour hex alpha", "{\"octrace_studio_session\": 1, \"shading\": {\"colour\": \"#ff634780\"}}", "shading.colour: expected");
         row("colormap", R"({"octrace_studio_session": 1, "shading": {"colormap": "rainbow2"}})", "unknown colour map 'rainbow2'");
         row("export size", R"({"octrace_studio_session": 1, "export": {"width": 16385}})", "export.width: 16385 is outside");
         row("window", R"({"octrace_studio_session": 1, "shading": {"window": "liver"}})", "shading.window:");
@@ -820,6 +824,11 @@ private slots:
             R"({"octrace_studio_session": 1, "surface": {"cut": "relief:../shared/data/ocean/etopo20.cdf"}})");
         QCOMPARE(r.cut, std::string("relief:../shared/data/ocean/etopo20.cdf"));
         QCOMPARE(octrace::studio::parseSession(octrace::studio::sessionJson(r)).cut, r.cut);
+        // Colours as a hand-written session may give them: the options table's names and hex.
+        const auto c = octrace::studio::parseSession(
+            "{\"octrace_studio_session\": 1, \"shading\": {\"colour\": \"tomato\", \"background\": \"#00000080\"}}");
+        QCOMPARE(c.colour, octrace::vec3(1.0f, 99.0f / 255.0f, 71.0f / 255.0f));
+        QCOMPARE(c.background, octrace::vec4(0.0f, 0.0f, 0.0f, 128.0f / 255.0f));
     }
 
     /// The widgets whose settings are in the options table, by key; the export dialog's are
