@@ -11,5 +11,8 @@ if [ "${OCTRACE_PYTHON:-}" = "1" ] || [ -x "$ROOT/.venv/bin/python" ]; then
 fi
 LAUNCHER=()
 if command -v ccache >/dev/null 2>&1; then LAUNCHER=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache); fi
+# The test binaries use a precompiled header (tests/CMakeLists.txt): ccache caches their objects
+# only with these two relaxations, which its manual names for precompiled headers.
+export CCACHE_SLOPPINESS="${CCACHE_SLOPPINESS:-pch_defines,time_macros}"
 cmake -S "$ROOT" -B "$ROOT/build" -G Ninja -DCMAKE_BUILD_TYPE=Release "${PYTHON_ARGS[@]}" "${LAUNCHER[@]}" >/dev/null
 ninja -C "$ROOT/build" "$@"

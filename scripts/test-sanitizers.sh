@@ -16,7 +16,7 @@ export LSAN_OPTIONS="suppressions=$ROOT/tests/sanitizers/lsan.supp:print_suppres
 export OCTRACE_TEST_SCALE="${OCTRACE_TEST_SCALE:-0.2}"
 
 cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DOCTRACE_SANITIZE=ON -DOCTRACE_BUILD_BENCH=OFF -DOCTRACE_BUILD_STUDIO=OFF >/dev/null
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DOCTRACE_SANITIZE=ON -DOCTRACE_BUILD_BENCH=OFF -DOCTRACE_BUILD_STUDIO=OFF >/dev/null
 ninja -C "$BUILD"
 cd "$BUILD"
 ctest --output-on-failure -j 2 --timeout 1500 "$@"

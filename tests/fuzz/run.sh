@@ -24,7 +24,7 @@ if ! command -v clang++ >/dev/null; then
 fi
 
 cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DOCTRACE_FUZZ=ON -DOCTRACE_BUILD_TESTS=OFF >/dev/null
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DOCTRACE_FUZZ=ON -DOCTRACE_BUILD_TESTS=OFF >/dev/null
 ninja -C "$BUILD" "${TARGETS[@]}"
 
 # Leaks inside third-party libraries only (the sanitizer build's list, see the file).
