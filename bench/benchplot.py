@@ -12,6 +12,7 @@ import os
 import platform
 import subprocess
 import sys
+import textwrap
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RUN_JSON = "run.json"
@@ -71,7 +72,7 @@ def finish_run(run, raw_dir):
 
 
 def load_run(raw_dir):
-    """RAW_DIR/run.json, or None when the raw data were measured before runs were recorded."""
+    """RAW_DIR/run.json, or None when there is none."""
     path = os.path.join(raw_dir, RUN_JSON)
     if not os.path.exists(path):
         return None
@@ -80,9 +81,14 @@ def load_run(raw_dir):
 
 
 def caption(run, how):
-    """One line: the machine and commit the raw JSON records, then HOW the points were measured."""
+    """One line: the machine and commit the raw JSON records, then HOW the points were measured.
+    Raw data measured before runs were recorded carry a run.json with "recorded": false, saying
+    what is known of them instead: the cores the page named, the commit that brought the JSON."""
     if run is None:
-        where = "Machine and commit: not recorded with these raw data (measured before the script recorded them)"
+        where = "Machine and commit: not recorded with these raw data"
+    elif not run.get("recorded", True):
+        where = ("Machine: %d cores (%s), CPU model not recorded; build commit not recorded, raw JSON committed in "
+                 "%s (%s UTC)") % (run["cores"], run["cores_source"], run["committed_in"], run["committed_utc"])
     else:
         where = "Machine: %s, %d cores; commit %s; %s UTC, load average %.1f to %.1f" % (
             run["cpu"], run["cores"], run["commit"], run["date_utc"], run["load_average_start"][0],
@@ -164,13 +170,14 @@ def time_against_rays(path, title, scenes, xlabel, caption_line, target=None, po
     if target is not None:
         value, text = target
         ax_r.axhline(value, color="#2e8b57", lw=1.2, ls="-.", label=text)
-    ax_r.set_ylim(0, 1.15 * max([p[2] / p[1] for _, pts in scenes for p in pts] + [target[0] if target else 1]))
+    ax_r.set_ylim(0, 1.3 * max([p[2] / p[1] for _, pts in scenes for p in pts] + [target[0] if target else 1]))
     ax_r.set_ylabel("Samet's time / beam's time, linear scale")
     ax_r.set_title("Speed-up of the beam over Samet")
-    ax_r.legend(fontsize=8, loc="lower right")
+    # "best" weighs the lines, not the point labels, which sit above and left of the points.
+    ax_r.legend(fontsize=8, loc="lower right" if point_labels else "best")
 
     fig.suptitle(title, fontsize=12)
-    fig.text(0.5, 0.015, caption_line, ha="center", va="bottom", fontsize=8, wrap=True)
+    fig.text(0.5, 0.015, textwrap.fill(caption_line, 170), ha="center", va="bottom", fontsize=8)
     fig.tight_layout(rect=(0, 0.06, 1, 0.95))
     fig.savefig(path)
     plt.close(fig)
