@@ -67,8 +67,9 @@ def write_outputs(raw, out):
     """Draws OUT/figure5.png and writes OUT/figure5.md from the raw JSON in RAW."""
     rows = load_rows(raw)
     run = benchplot.load_run(raw)
-    repeat, threads = rows[0][3]["repeat"], rows[0][3]["threads"]
-    how = "each point the fastest of %d renders, beam and Samet alternating, %d threads" % (repeat, threads)
+    repeat, threads = rows[0][3].get("repeat", 1), rows[0][3]["threads"]  # the stats name "repeat" only above 1
+    how = "each point the fastest of %d renders, beam and Samet alternating, %d threads" % (repeat, threads) \
+        if repeat > 1 else "each point one render of each tracer, %d threads" % threads
     caption = benchplot.caption(run, how)
     scenes = [(name, [(r[3]["rays"], r[3]["render_ms"], r[3]["baseline_render_ms"]) for r in rows if r[0] == scene])
               for scene, name in SCENES]
