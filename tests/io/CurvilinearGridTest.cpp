@@ -312,4 +312,9 @@ TEST(CurvilinearGrid, ParametricVerticalCoordinateOnACurvilinearGridHasEachColum
         }
     EXPECT_LE(deepest, h + 1e-6);
     EXPECT_GE(deepest, h - step - 1e-6) << "h " << h << " at " << at.lon << ", " << at.lat;
+    // Every level of the source and of the lattice is held while resampling: counted against
+    // the memory budget (about 68 bytes per lattice point here, the lookup 32).
+    req.memoryBudget = 50 * std::uint64_t(f.dims.x) * std::uint64_t(f.dims.y);
+    EXPECT_THROW_WITH(io::NetcdfReader::read(path, req), LimitError,
+                      "resampling the 4 levels of 'temp' and their depths onto the lattice");
 }

@@ -140,6 +140,13 @@ std::vector<double> curvilinearParametricLattice(const std::string& path, const 
                                                  const VariableInfo& var, const ParametricVertical& p,
                                                  const FieldRequest& req, const CurvilinearGrid& g,
                                                  const CurvilinearGrid::Lattice& lattice, Layout& L) {
+    // readCurvilinearColumns holds every native level of the source (value, validity) and of the
+    // lattice (value, validity, depth) besides the columns evaluateColumns counts.
+    const std::uint64_t nk = var.dimSizes.at(L.dim[2]), lattice2d = lattice.lon.size() * lattice.lat.size();
+    checkMemoryBudget(path + ": resampling the " + std::to_string(nk) + " levels of '" + var.shortName +
+                          "' and their depths onto the lattice",
+                      saturatingMultiply(nk, saturatingMultiply(g.ny * g.nx + lattice2d, 2 * sizeof(double) + 1)),
+                      req.memoryBudget);
     ColumnSelection sel{L.dim, L.fixedIndex, {}, {}};
     for (std::size_t i = 0; i < g.nx; ++i) sel.x.push_back(i);
     for (std::size_t j = 0; j < g.ny; ++j) sel.y.push_back(j);
