@@ -161,9 +161,10 @@ std::vector<double> curvilinearParametricLattice(const std::string& path, const 
             (lonHalf < 180.0 && std::abs(std::remainder(lo - lonMid, 360.0)) > lonHalf))
             inside.top[col] = inside.bottom[col] = NAN;
     }
+    std::vector<double> km = parametricLattice(path, p, columns, inside, L);
     L.notes.push_back("vertical: each column's depths resampled onto the horizontal lattice with the field's "
                       "weights (ocean corners only), so each lattice column keeps its own depths");
-    return parametricLattice(path, p, columns, inside, L);
+    return km;
 }
 
 }  // namespace

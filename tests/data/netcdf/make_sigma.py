@@ -29,7 +29,8 @@ sigma_small.nc: ocean_sigma_coordinate, 8 sigma levels over a 9 x 7 grid (1-D lo
   same linear law).
 The invalid corpus (tests/data/invalid, see its README), 3 x 3 x 3 with one time step:
   formula_terms naming a missing variable, a malformed formula_terms, a term whose dimensions
-  are not the field's.
+  are not the field's; and a ROMS-like curvilinear one (3 s-levels, 4 x 3 rho points) whose h
+  lies on the staggered v points (eta_v, xi_rho) instead of the field's rho points.
 """
 import os
 import sys
@@ -299,6 +300,41 @@ def sigma_file(path, formula_terms="sigma: sigma eta: eta depth: depth", depth_d
     d.close()
 
 
+def staggered_curvilinear_file(path):
+    """A tiny ROMS-like curvilinear file whose `depth` term h is on the v points (eta_v = eta_rho - 1)."""
+    lon, lat = curvilinear_grid(nx=4, ny=3, step_km=50.0)
+    d = netCDF4.Dataset(path, "w", format="NETCDF3_CLASSIC")
+    d.Conventions = "CF-1.8"
+    for name, n in (("ocean_time", 1), ("s_rho", 3), ("eta_rho", 3), ("eta_v", 2), ("xi_rho", 4)):
+        d.createDimension(name, n)
+    v = d.createVariable("ocean_time", "f8", ("ocean_time",))
+    v.units = "seconds since 2000-01-01"
+    v[:] = [0.0]
+    v = d.createVariable("hc", "f8", ())
+    v[...] = HC
+    sc = np.array([-5.0, -3.0, -1.0]) / 6.0
+    v = d.createVariable("s_rho", "f8", ("s_rho",))
+    v.positive, v.standard_name = "up", "ocean_s_coordinate_g2"
+    v.formula_terms = "s: s_rho C: Cs_r eta: zeta depth: h depth_c: hc"
+    v[:] = sc
+    v = d.createVariable("Cs_r", "f8", ("s_rho",))
+    v[:] = stretching(sc)
+    for name, units, data in (("lon_rho", "degree_east", lon), ("lat_rho", "degree_north", lat)):
+        v = d.createVariable(name, "f8", ("eta_rho", "xi_rho"))
+        v.units = units
+        v[:] = data
+    v = d.createVariable("h", "f8", ("eta_v", "xi_rho"))
+    v.units = "meter"
+    v[:] = np.full((2, 4), 500.0)
+    v = d.createVariable("zeta", "f4", ("ocean_time", "eta_rho", "xi_rho"))
+    v.units = "meter"
+    v[:] = np.zeros((1, 3, 4))
+    v = d.createVariable("temp", "f4", ("ocean_time", "s_rho", "eta_rho", "xi_rho"))
+    v.units, v.coordinates = "Celsius", "lon_rho lat_rho s_rho ocean_time"
+    v[:] = np.full((1, 3, 3, 4), 10.0)
+    d.close()
+
+
 def main():
     # make_sigma.py roms_curvilinear writes only that file (the others are committed as made)
     if sys.argv[1:] == ["roms_curvilinear"]:
@@ -311,6 +347,7 @@ def main():
     sigma_file(os.path.join(INVALID, "invalid_formula_terms_malformed.nc"),
                formula_terms="sigma: sigma eta eta depth: depth", small=True)
     sigma_file(os.path.join(INVALID, "invalid_formula_terms_shape.nc"), depth_dims=("lat_v", "lon"), small=True)
+    staggered_curvilinear_file(os.path.join(INVALID, "invalid_formula_terms_curvilinear_staggered.nc"))
 
 
 if __name__ == "__main__":
