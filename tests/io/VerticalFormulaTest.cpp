@@ -398,18 +398,22 @@ TEST(VerticalFormulaFiles, DepthRangeAndVerticalScaleWorkAsOnZLevels) {
     }
 }
 
+// Both ROMS-like files: on 1-D longitude/latitude and on the curvilinear grid (2-D lat_rho/lon_rho).
 TEST(VerticalFormulaFiles, InMemoryTwinOfTheRomsFileGivesTheSameFieldBitForBit) {
-    const std::string path = test::testData("netcdf/roms_g2_nwatlantic.nc");
-    auto arrays = test::cfDatasetFromGdal(path, "ROMS twin");
-    io::FieldRequest r = test::regionRequest("temp", -76.0, -60.0, 33.0, 44.0);
-    r.time = "1";
-    ScalarField file = io::NetcdfReader::read(path, r);
-    ScalarField memory = io::readCfDataset(arrays->data, r);
-    ASSERT_EQ(memory.dims, file.dims);
-    EXPECT_EQ(memory.coords[2], file.coords[2]);
-    EXPECT_EQ(std::memcmp(memory.values.data(), file.values.data(), file.values.size() * sizeof(float)), 0);
-    EXPECT_EQ(memory.valid, file.valid);
-    EXPECT_EQ(memory.notes, file.notes);
+    for (const char* name : {"netcdf/roms_g2_nwatlantic.nc", "netcdf/roms_curvilinear_nwatlantic.nc"}) {
+        SCOPED_TRACE(name);
+        const std::string path = test::testData(name);
+        auto arrays = test::cfDatasetFromGdal(path, "ROMS twin");
+        io::FieldRequest r = test::regionRequest("temp", -76.0, -60.0, 33.0, 44.0);
+        r.time = "1";
+        ScalarField file = io::NetcdfReader::read(path, r);
+        ScalarField memory = io::readCfDataset(arrays->data, r);
+        ASSERT_EQ(memory.dims, file.dims);
+        EXPECT_EQ(memory.coords[2], file.coords[2]);
+        EXPECT_EQ(std::memcmp(memory.values.data(), file.values.data(), file.values.size() * sizeof(float)), 0);
+        EXPECT_EQ(memory.valid, file.valid);
+        EXPECT_EQ(memory.notes, file.notes);
+    }
 }
 
 TEST(VerticalFormulaInvalid, CorpusFilesAreRefusedNamingTheTermAndVariable) {
