@@ -26,6 +26,8 @@ const Case kCases[] = {
     {"invalid_formula_terms_missing_variable.nc", "temp", "name variable 'eta' for term 'eta', which the file does not have"},
     {"invalid_formula_terms_malformed.nc", "temp", "is malformed: 'eta' is not of the form 'term:'"},
     {"invalid_formula_terms_shape.nc", "temp", "its dimension 'lat_v' is not one of variable temp(time, sigma, lat, lon)'s"},
+    {"invalid_formula_terms_curvilinear_staggered.nc", "temp",
+     "h(eta_v, xi_rho): its dimension 'eta_v' is not one of variable temp(ocean_time, s_rho, eta_rho, xi_rho)'s"},
     {"invalid_truncated.nc", nullptr, "NetCDF data truncated"},
     {"invalid_truncated_hdf5.nc", nullptr, "cannot open it"},
     {"invalid_not_netcdf.nc", nullptr, "not a NetCDF file"},

@@ -51,6 +51,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         std::vector<float> values(lattice.lon.size() * lattice.lat.size());
         std::vector<std::uint8_t> valid(values.size());
         g.resample(plane, rules, values.data(), valid.data());
+        // the decoded form (a parametric coordinate's column depths): validity from the first pass
+        std::vector<std::uint8_t> ocean(plane.size());
+        for (std::size_t p = 0; p < plane.size(); ++p) ocean[p] = rules.isValid(plane[p]) ? 1 : 0;
+        std::vector<double> depths(values.size());
+        std::vector<std::uint8_t> depthValid(values.size());
+        g.resample(plane.data(), ocean.data(), depths.data(), depthValid.data());
         (void)g.description(lattice, lattice.lon.size(), lattice.lat.size());
     } catch (const octrace::Error&) {
     }

@@ -88,6 +88,8 @@ TEST(FieldReader, EveryInvalidCorpusFileFailsWithItsDocumentedMessage) {
         {"invalid_formula_terms_missing_variable.nc", "temp", Kind::Input, "for term 'eta', which the file does not have"},
         {"invalid_formula_terms_malformed.nc", "temp", Kind::Input, "'eta' is not of the form 'term:'"},
         {"invalid_formula_terms_shape.nc", "temp", Kind::Input, "its dimension 'lat_v' is not one of variable temp("},
+        {"invalid_formula_terms_curvilinear_staggered.nc", "temp", Kind::Input,
+         "its dimension 'eta_v' is not one of variable temp(ocean_time, s_rho, eta_rho, xi_rho)'s"},
         {"invalid_truncated.nc", "", Kind::File, "NetCDF data truncated"},
         {"invalid_truncated_hdf5.nc", "", Kind::File, "GDAL's netCDF driver cannot open it"},
         {"invalid_not_netcdf.nc", "", Kind::FormatNotSupported, "not a NetCDF file"},

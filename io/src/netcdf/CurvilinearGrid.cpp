@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace octrace::io::detail {
@@ -358,28 +359,58 @@ void CurvilinearGrid::buildLookup(const std::vector<double>& lonOut, const std::
         }
 }
 
+namespace {
+
+// The weighted mean of the valid corners of each lattice point; `sample(c, x)` says whether
+// source point c is valid and gives its value in x. Land where less than half the weight is
+// valid (ocean): the coast stays between the source's ocean and land points, as on a regular
+// grid, and only ocean values are averaged.
+template <class Weights, class Sample, class Out>
+void resampleLookup(const std::vector<Weights>& lookup, std::uint32_t none, Sample&& sample, Out&& put) {
+    for (std::size_t p = 0; p < lookup.size(); ++p) {
+        const Weights& w = lookup[p];
+        double ws = 0.0, vs = 0.0;
+        if (w.corner[0] != none)
+            for (int k = 0; k < 4; ++k) {
+                double x = 0.0;
+                if (!sample(w.corner[k], x) || !std::isfinite(x)) continue;
+                ws += w.w[k];
+                vs += w.w[k] * x;
+            }
+        put(p, ws >= 0.5, ws >= 0.5 ? vs / ws : 0.0);
+    }
+}
+
+}  // namespace
+
 void CurvilinearGrid::resample(const std::vector<double>& raw, const SampleRules& rules, float* values,
                                std::uint8_t* valid) const {
-    for (std::size_t p = 0; p < lookup_.size(); ++p) {
-        const Weights& w = lookup_[p];
-        values[p] = 0.0f;
-        valid[p] = 0;
-        if (w.corner[0] == kNone) continue;
-        double ws = 0.0, vs = 0.0;
-        for (int k = 0; k < 4; ++k) {
-            double r = raw[w.corner[k]];
-            if (!rules.isValid(r)) continue;
-            double x = r * rules.scale + rules.offset;
-            if (!std::isfinite(x)) continue;
-            ws += w.w[k];
-            vs += w.w[k] * x;
-        }
-        // Land where less than half the weight is ocean: the coast stays between the source's
-        // ocean and land points, as on a regular grid, and only ocean values are averaged.
-        if (ws < 0.5) continue;
-        values[p] = float(vs / ws);
-        valid[p] = std::isfinite(values[p]) ? 1 : 0;
-    }
+    resampleLookup(
+        lookup_, kNone,
+        [&](std::uint32_t c, double& x) {
+            if (!rules.isValid(raw[c])) return false;
+            x = raw[c] * rules.scale + rules.offset;
+            return true;
+        },
+        [&](std::size_t p, bool ok, double x) {
+            values[p] = ok ? float(x) : 0.0f;
+            valid[p] = ok && std::isfinite(values[p]) ? 1 : 0;
+            if (!valid[p]) values[p] = 0.0f;
+        });
+}
+
+void CurvilinearGrid::resample(const double* values, const std::uint8_t* valid, double* out,
+                               std::uint8_t* outValid) const {
+    resampleLookup(
+        lookup_, kNone,
+        [&](std::uint32_t c, double& x) {
+            x = values[c];
+            return valid[c] != 0;
+        },
+        [&](std::size_t p, bool ok, double x) {
+            out[p] = ok ? x : std::numeric_limits<double>::quiet_NaN();
+            outValid[p] = ok ? 1 : 0;
+        });
 }
 
 std::size_t CurvilinearGrid::coveredPoints() const {

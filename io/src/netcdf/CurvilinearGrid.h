@@ -65,6 +65,17 @@ public:
     /// lonOut.size() * latOut.size() long.
     void resample(const std::vector<double>& raw, const SampleRules& rules, float* values, std::uint8_t* valid) const;
 
+    /// The same weighting for samples already decoded: `values` and `valid` (1 = ocean) hold
+    /// ny x nx source points; `out` gets the weighted mean of a lattice point's valid corners
+    /// (NaN and outValid 0 where less than half the weight is valid). For what follows the
+    /// field's cells, e.g. a parametric vertical coordinate's per-column depths.
+    void resample(const double* values, const std::uint8_t* valid, double* out, std::uint8_t* outValid) const;
+
+    /// The source coordinates, ny x nx (x fastest), degrees; the median cell size, degrees.
+    const std::vector<double>& lon() const { return lon_; }
+    const std::vector<double>& lat() const { return lat_; }
+    double medianStepDeg() const;
+
     /// Lattice points inside some source cell, of all.
     std::size_t coveredPoints() const;
     std::size_t skippedCells() const { return skipped_; }
@@ -81,7 +92,6 @@ private:
     static constexpr std::uint32_t kNone = 0xffffffffu;
     std::vector<Weights> lookup_;
     std::size_t skipped_ = 0;
-    double medianStepDeg() const;
     void check(const std::string& what);  // latitudes within +-90, sane longitudes; periodic and fold
     bool detectPeriodic() const;
     bool detectFold() const;

@@ -92,18 +92,12 @@ bool hasAllDims(const VariableInfo& var, const VariableInfo& c) {
 }
 
 // The lattice (km, positive down) the columns of a parametric vertical coordinate are
-// resampled onto: the columns of the region are evaluated first (the horizontal selection does
-// not depend on the vertical axis), then the lattice is chosen from them. Fills L.columns,
-// L.latticeM and the notes; L.dim and L.fixedIndex are set.
-std::vector<double> parametricLattice(const std::string& path, const CfSource& file, const VariableInfo& var,
-                                      const ParametricVertical& p, const FieldRequest& req,
-                                      const std::vector<double>& lon, const std::vector<double>& lat, Layout& L) {
-    FieldRequest horizontal = req;
-    horizontal.hasDepthRange = false;
-    GeoMapping h = mapGeographic(path, lon, lat, {0.0, 0.001}, horizontal);
-    ColumnSelection sel{L.dim, L.fixedIndex, h.x.stored, h.y.stored};
-    auto columns = std::make_shared<ColumnDepths>(evaluateColumns(path, file, var, p, sel, req.memoryBudget));
-    L.latticeM = chooseLattice(path, *columns);
+// resampled onto, chosen from `forLattice` (the columns of the region): fills L.columns with
+// `columns`, L.latticeM and the notes.
+std::vector<double> parametricLattice(const std::string& path, const ParametricVertical& p,
+                                      std::shared_ptr<const ColumnDepths> columns, const ColumnDepths& forLattice,
+                                      Layout& L) {
+    L.latticeM = chooseLattice(path, forLattice);
     double smallest = INFINITY, largest = 0.0;
     for (std::size_t n = 1; n < L.latticeM.size(); ++n) {
         smallest = std::min(smallest, L.latticeM[n] - L.latticeM[n - 1]);
@@ -121,6 +115,55 @@ std::vector<double> parametricLattice(const std::string& path, const CfSource& f
     std::vector<double> km;
     for (double d : L.latticeM) km.push_back(d / 1000.0 + 0.0);
     L.columns = std::move(columns);
+    return km;
+}
+
+// On 1-D longitude/latitude: the columns of the region are evaluated first (the horizontal
+// selection does not depend on the vertical axis). L.dim and L.fixedIndex are set.
+std::vector<double> regularParametricLattice(const std::string& path, const CfSource& file, const VariableInfo& var,
+                                             const ParametricVertical& p, const FieldRequest& req,
+                                             const std::vector<double>& lon, const std::vector<double>& lat,
+                                             Layout& L) {
+    FieldRequest horizontal = req;
+    horizontal.hasDepthRange = false;
+    GeoMapping h = mapGeographic(path, lon, lat, {0.0, 0.001}, horizontal);
+    ColumnSelection sel{L.dim, L.fixedIndex, h.x.stored, h.y.stored};
+    auto columns = std::make_shared<ColumnDepths>(evaluateColumns(path, file, var, p, sel, req.memoryBudget));
+    return parametricLattice(path, p, columns, *columns, L);
+}
+
+// On a curvilinear grid: every source column is evaluated (readSamples resamples their depths
+// onto the horizontal lattice with the field's weights); the vertical lattice is chosen from
+// the source columns within a few cells of the horizontal lattice's box. L.dim and
+// L.fixedIndex are set.
+std::vector<double> curvilinearParametricLattice(const std::string& path, const CfSource& file,
+                                                 const VariableInfo& var, const ParametricVertical& p,
+                                                 const FieldRequest& req, const CurvilinearGrid& g,
+                                                 const CurvilinearGrid::Lattice& lattice, Layout& L) {
+    // readCurvilinearColumns holds every native level of the source (value, validity) and of the
+    // lattice (value, validity, depth) besides the columns evaluateColumns counts.
+    const std::uint64_t nk = var.dimSizes.at(L.dim[2]), lattice2d = lattice.lon.size() * lattice.lat.size();
+    checkMemoryBudget(path + ": resampling the " + std::to_string(nk) + " levels of '" + var.shortName +
+                          "' and their depths onto the lattice",
+                      saturatingMultiply(nk, saturatingMultiply(g.ny * g.nx + lattice2d, 2 * sizeof(double) + 1)),
+                      req.memoryBudget);
+    ColumnSelection sel{L.dim, L.fixedIndex, {}, {}};
+    for (std::size_t i = 0; i < g.nx; ++i) sel.x.push_back(i);
+    for (std::size_t j = 0; j < g.ny; ++j) sel.y.push_back(j);
+    auto columns = std::make_shared<ColumnDepths>(evaluateColumns(path, file, var, p, sel, req.memoryBudget));
+    ColumnDepths inside = *columns;
+    const double margin = 2.0 * std::max(lattice.lonStep, lattice.latStep) + g.medianStepDeg();
+    const double lonMid = 0.5 * (lattice.lon.front() + lattice.lon.back());
+    const double lonHalf = 0.5 * (lattice.lon.back() - lattice.lon.front()) + margin;
+    for (std::size_t col = 0; col < g.ny * g.nx; ++col) {
+        const double lo = g.lon()[col], la = g.lat()[col];
+        if (la < lattice.lat.front() - margin || la > lattice.lat.back() + margin ||
+            (lonHalf < 180.0 && std::abs(std::remainder(lo - lonMid, 360.0)) > lonHalf))
+            inside.top[col] = inside.bottom[col] = NAN;
+    }
+    std::vector<double> km = parametricLattice(path, p, columns, inside, L);
+    L.notes.push_back("vertical: each column's depths resampled onto the horizontal lattice with the field's "
+                      "weights (ocean corners only), so each lattice column keeps its own depths");
     return km;
 }
 
@@ -163,6 +206,10 @@ Layout layoutFor(const std::string& path, const CfSource& file, const VariableIn
     if (horizontal && vert.size() == 1) parametric = findParametricVertical(path, file, var, vert[0]);
     bool geographic = horizontal && vert.size() == 1 && (!info[vert[0]].values.empty() || parametric);
 
+    std::vector<std::size_t> across;  // dimensions longer than 1 that are not time
+    for (std::size_t d : spread)
+        if (cls[d].role != AxisRole::Time) across.push_back(d);
+
     // A curvilinear grid: 2-D longitude/latitude and no 1-D ones but rotated-pole axes
     // (grid_longitude/grid_latitude), which the 2-D true coordinates then replace.
     std::shared_ptr<CurvilinearGrid> curvi;
@@ -179,22 +226,13 @@ Layout layoutFor(const std::string& path, const CfSource& file, const VariableIn
         vert = others(vert);
         lon = {curvi->xDim};
         lat = {curvi->yDim};
-        geographic = vert.size() == 1 && !info[vert[0]].values.empty();
-        if (!geographic)
+        if (vert.size() == 1) parametric = findParametricVertical(path, file, var, vert[0]);
+        geographic = vert.size() == 1 && (!info[vert[0]].values.empty() || parametric);
+        if (!geographic && across.size() != 2)  // a map (2-D field) needs no vertical axis
             throw InputError(path + ": variable " + var.signature() + " is on a curvilinear grid (" + curvi->lonName +
                              ", " + curvi->latName + ") but has " + std::to_string(vert.size()) +
                              " vertical axes with coordinates; one is needed for a 3-D field");
-        // Per-column depths are computed over 1-D longitude/latitude only so far: refuse rather
-        // than read the formula's parameter (s or sigma) as if it were a depth.
-        if (auto p = findParametricVertical(path, file, var, vert[0]))
-            throw InputError(path + ": variable " + var.signature() + " is on a curvilinear grid (" + curvi->lonName +
-                             ", " + curvi->latName + ") with a parametric vertical coordinate (" + p->text() +
-                             "); octrace computes per-column depths only on grids with 1-D longitude and latitude "
-                             "so far: regrid horizontally first (e.g. cdo remapbil) or compute the depths");
     }
-    std::vector<std::size_t> across;  // dimensions longer than 1 that are not time
-    for (std::size_t d : spread)
-        if (cls[d].role != AxisRole::Time) across.push_back(d);
     // A 2-D field (SST, bathymetry, OISST's sst(time, zlev = 1, lat, lon)) is a map.
     const bool planar = across.size() == 2;
     if (across.size() < 2)
@@ -208,7 +246,8 @@ Layout layoutFor(const std::string& path, const CfSource& file, const VariableIn
     // it has one (OISST's zlev), else at the surface.
     std::optional<std::size_t> level;
     if (planar) {
-        geographic = lon.size() == 1 && lat.size() == 1 && !info[lon[0]].values.empty() && !info[lat[0]].values.empty();
+        geographic = curvi || (lon.size() == 1 && lat.size() == 1 && !info[lon[0]].values.empty() &&
+                               !info[lat[0]].values.empty());
         for (std::size_t d = 0; d < var.dimSizes.size() && geographic && !level; ++d) {
             if (var.dimSizes[d] != 1) continue;
             if (info[d].name.empty()) info[d] = file.axis(var, d), cls[d] = classifyAxis(info[d]);
@@ -248,15 +287,17 @@ Layout layoutFor(const std::string& path, const CfSource& file, const VariableIn
         const std::optional<std::size_t> vd = planar ? level : std::optional<std::size_t>(vert[0]);
         const AxisClass vc = vd ? cls[*vd] : AxisClass{};
         const std::vector<double> levels = vd ? info[*vd].values : std::vector<double>{0.0};
+        CurvilinearGrid::Lattice lattice;
+        if (curvi) lattice = curvi->lattice(path, req, req.horizontalSamples);
         std::vector<double> depthKm;
         if (parametric) {
             L.dim = {lon[0], lat[0], vert[0]};
-            depthKm = parametricLattice(path, file, var, *parametric, req, info[lon[0]].values, info[lat[0]].values, L);
+            depthKm = curvi ? curvilinearParametricLattice(path, file, var, *parametric, req, *curvi, lattice, L)
+                            : regularParametricLattice(path, file, var, *parametric, req, info[lon[0]].values,
+                                                       info[lat[0]].values, L);
         } else {
             for (double v : levels) depthKm.push_back(v * vc.toKm * (vc.positiveDown ? 1.0 : -1.0) + 0.0);  // + 0.0: no -0
         }
-        CurvilinearGrid::Lattice lattice;
-        if (curvi) lattice = curvi->lattice(path, req, req.horizontalSamples);
         GeoMapping m = mapGeographic(path, curvi ? lattice.lon : info[lon[0]].values,
                                      curvi ? lattice.lat : info[lat[0]].values, depthKm, req, planar ? 1 : 2);
         if (curvi) {
@@ -379,10 +420,82 @@ void readCurvilinearSamples(const CfSource& file, const VariableInfo& var, const
     const std::size_t plane = std::size_t(f.dims.x) * std::size_t(f.dims.y);
     const auto& sz = L.axes[2].stored;
     for (std::size_t k = 0; k < sz.size(); ++k) {
-        start[L.dim[2]] = sz[k];
+        if (L.dim[2] != kNoDimension) start[L.dim[2]] = sz[k];  // a map has no vertical dimension
         std::vector<double> raw = file.read(var, start, count);
         g.resample(raw, rules, f.values.data() + k * plane, f.valid.data() + k * plane);
     }
+}
+
+// Each column (j, i) of `c`, its native samples values/valid[k * ny * nx + j * nx + i], onto
+// the vertical lattice levels the output keeps, into f (x = i, y = j).
+void columnsOntoLattice(const ColumnDepths& c, const double* values, const std::uint8_t* valid, const Layout& L,
+                        ScalarField& f) {
+    f.values.assign(f.sampleCount(), 0.0f);
+    f.valid.assign(f.sampleCount(), 0);
+    std::vector<double> depths, out(L.axes[2].stored.size());
+    std::vector<std::uint8_t> outValid(out.size());
+    for (std::size_t k : L.axes[2].stored) depths.push_back(L.latticeM[k]);
+    for (std::size_t j = 0; j < c.ny; ++j)
+        for (std::size_t i = 0; i < c.nx; ++i) {
+            const std::size_t col = j * c.nx + i;
+            resampleColumn(c, j, i, values + col, valid + col, c.ny * c.nx, depths, out.data(), outValid.data());
+            for (std::size_t k = 0; k < out.size(); ++k) {
+                if (!outValid[k]) continue;
+                std::size_t idx = f.index(int(i), int(j), int(k));
+                f.values[idx] = float(out[k]);
+                f.valid[idx] = 1;
+            }
+        }
+}
+
+// A curvilinear grid with a parametric vertical coordinate: every native level's plane and
+// every source column's depths are resampled onto the horizontal lattice with the same
+// weights (ocean corners only: a source column counts where its depths are defined and the
+// field has a valid sample in it), then each lattice column onto the vertical lattice.
+void readCurvilinearColumns(const CfSource& file, const VariableInfo& var, const Layout& L, const SampleRules& rules,
+                            ScalarField& f) {
+    const CurvilinearGrid& g = *L.curvilinear;
+    const ColumnDepths& src = *L.columns;  // ny x nx source columns
+    const std::size_t n = g.ny * g.nx, plane = std::size_t(f.dims.x) * std::size_t(f.dims.y), nk = src.nk;
+    std::vector<std::uint64_t> start = L.fixedIndex;
+    std::vector<std::size_t> count(var.dimSizes.size(), 1);
+    count[g.yDim] = g.ny;
+    count[g.xDim] = g.nx;
+    start[g.yDim] = start[g.xDim] = 0;
+    std::vector<double> values(nk * n, 0.0);
+    std::vector<std::uint8_t> valid(nk * n, 0), ocean(n, 0);
+    for (std::size_t k = 0; k < nk; ++k) {
+        start[L.dim[2]] = k;
+        std::vector<double> raw = file.read(var, start, count);
+        for (std::size_t p = 0; p < n; ++p) {
+            if (!rules.isValid(raw[p])) continue;
+            double v = raw[p] * rules.scale + rules.offset;
+            if (!std::isfinite(float(v))) continue;
+            values[k * n + p] = v;
+            valid[k * n + p] = 1;
+            if (std::isfinite(src.top[p])) ocean[p] = 1;
+        }
+    }
+    // The lattice's columns: depths, surface and floor resampled like the field.
+    ColumnDepths c;
+    c.nk = nk;
+    c.ny = std::size_t(f.dims.y);
+    c.nx = std::size_t(f.dims.x);
+    c.depth.assign(nk * plane, NAN);
+    c.top.assign(plane, NAN);
+    c.bottom.assign(plane, NAN);
+    std::vector<double> latticeValues(nk * plane, 0.0);
+    std::vector<std::uint8_t> latticeValid(nk * plane, 0), ok(plane, 0), columnOk(plane, 0);
+    g.resample(src.top.data(), ocean.data(), c.top.data(), columnOk.data());
+    g.resample(src.bottom.data(), ocean.data(), c.bottom.data(), ok.data());
+    for (std::size_t k = 0; k < nk; ++k) {
+        g.resample(src.depth.data() + k * n, ocean.data(), c.depth.data() + k * plane, ok.data());
+        g.resample(values.data() + k * n, valid.data() + k * n, latticeValues.data() + k * plane,
+                   latticeValid.data() + k * plane);
+    }
+    for (std::size_t p = 0; p < plane; ++p)
+        if (!columnOk[p]) c.top[p] = c.bottom[p] = NAN;
+    columnsOntoLattice(c, latticeValues.data(), latticeValid.data(), L, f);
 }
 
 // Reads one hyperslab per run of consecutive stored x indices (a region across the file's
@@ -428,6 +541,7 @@ void readRuns(const CfSource& file, const VariableInfo& var, const Layout& L, co
 
 void readSamples(const CfSource& file, const VariableInfo& var, const Layout& L, const SampleRules& rules,
                  ScalarField& f) {
+    if (L.curvilinear && L.columns) return readCurvilinearColumns(file, var, L, rules, f);
     if (L.curvilinear) return readCurvilinearSamples(file, var, L, rules, f);
     f.values.assign(f.sampleCount(), 0.0f);
     f.valid.assign(f.sampleCount(), 0);
@@ -456,21 +570,7 @@ void readSamples(const CfSource& file, const VariableInfo& var, const Layout& L,
         native[at] = v;
         nativeValid[at] = std::isfinite(float(v)) ? 1 : 0;
     });
-    std::vector<double> depths, out(L.axes[2].stored.size());
-    std::vector<std::uint8_t> outValid(out.size());
-    for (std::size_t k : L.axes[2].stored) depths.push_back(L.latticeM[k]);
-    for (std::size_t j = 0; j < c.ny; ++j)
-        for (std::size_t i = 0; i < c.nx; ++i) {
-            const std::size_t col = j * c.nx + i;
-            resampleColumn(c, j, i, native.data() + col, nativeValid.data() + col, columns, depths, out.data(),
-                           outValid.data());
-            for (std::size_t k = 0; k < out.size(); ++k) {
-                if (!outValid[k]) continue;
-                std::size_t idx = f.index(int(i), int(j), int(k));
-                f.values[idx] = float(out[k]);
-                f.valid[idx] = 1;
-            }
-        }
+    columnsOntoLattice(c, native.data(), nativeValid.data(), L, f);
 }
 
 }  // namespace octrace::io::detail
