@@ -342,8 +342,8 @@ io::FigureSpec figureSpec(const Frame& plot, const FigureSettings& f, const Figu
         const GeoAxes g{geographic};
         const io::LonLatBox ll = lonLatBox(geographic, box);
         const double d0 = g.depthM(box.hi.z), d1 = g.depthM(box.lo.z);
-        for (double x : io::niceTicks(box.lo.x, box.hi.x, 5)) tick({x, box.lo.y, box.hi.z}, numberText(x, 4) + " km", 0.0, 1.4);
-        for (double y : io::niceTicks(box.lo.y, box.hi.y, 5)) tick({box.hi.x, y, box.hi.z}, numberText(y, 4) + " km", 2.2, 0.0);
+        for (double x : io::niceTicks(box.lo.x, box.hi.x, 5)) tick({x, box.lo.y, box.hi.z}, numberText(x) + " km", 0.0, 1.4);
+        for (double y : io::niceTicks(box.lo.y, box.hi.y, 5)) tick({box.hi.x, y, box.hi.z}, numberText(y) + " km", 2.2, 0.0);
         for (double d : io::niceTicks(d0, d1, 4)) tick({box.hi.x, box.lo.y, g.z(d)}, numberText(d) + " m", 2.6, 0.0);
         sub += "; polar stereographic, " + latitudeText(ll.latMin) + "\u2013" + latitudeText(ll.latMax) + ", " +
                numberText(std::round(d0)) + "\u2013" + numberText(std::round(d1)) + " m";

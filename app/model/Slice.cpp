@@ -177,7 +177,7 @@ AxisTicks axisTicks(const ScalarField& f, int a, double lo, double hi, int count
     }
     const GeoAxes g{f.geographic};
     if (a != 2 && f.geographic.polar()) {  // the polar plane: km
-        for (double v : io::niceTicks(lo, hi, count)) t.world.push_back(v), t.text.push_back(numberText(v, 4) + " km");
+        for (double v : io::niceTicks(lo, hi, count)) t.world.push_back(v), t.text.push_back(numberText(v) + " km");
     } else if (a == 0) {
         for (double lon : degreeTicks(g.lon(lo), g.lon(hi), count)) t.world.push_back(g.x(lon)), t.text.push_back(longitudeText(lon));
     } else if (a == 1) {
