@@ -140,7 +140,7 @@ void addLayerOptions(OptionParser& p, SurfaceArgs& a) {
 }
 
 void addGeographicOptions(OptionParser& p, io::FieldRequest& request, bool timeStep) {
-    for (const model::Option* o : {&model::opt::region, &model::opt::depthRange, &model::opt::time, &model::opt::verticalScale})
+    for (const model::Option* o : {&model::opt::region, &model::opt::depthRange, &model::opt::mapProjection, &model::opt::time, &model::opt::verticalScale})
         if (timeStep || o != &model::opt::time) p.add(settingOption(*o, into(request)));
 }
 

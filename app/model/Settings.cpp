@@ -110,6 +110,12 @@ const std::unordered_map<std::string_view, Entry>& setters() {
             q.depthRange[0] = r[0];
             q.depthRange[1] = r[1];
         }));
+        m.emplace(opt::mapProjection.key, request([](const std::string& v, io::FieldRequest& q) {
+            const std::string c = parseChoice(opt::mapProjection, v);
+            q.projection = c == "polar"    ? io::FieldRequest::Projection::Polar
+                           : c == "lonlat" ? io::FieldRequest::Projection::LonLat
+                                           : io::FieldRequest::Projection::Auto;
+        }));
         m.emplace(opt::time.key, request([](const std::string& v, io::FieldRequest& q) {
             io::checkTimeText(v);
             q.time = v;

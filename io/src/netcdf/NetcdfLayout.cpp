@@ -3,6 +3,7 @@
 #include "netcdf/CfTime.h"
 #include "netcdf/GeoAxis.h"
 #include "input/InputFile.h"
+#include "octrace/build/PolarStereographic.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
 #include "octrace/util/Memory.h"
@@ -287,8 +288,23 @@ Layout layoutFor(const std::string& path, const CfSource& file, const VariableIn
         const std::optional<std::size_t> vd = planar ? level : std::optional<std::size_t>(vert[0]);
         const AxisClass vc = vd ? cls[*vd] : AxisClass{};
         const std::vector<double> levels = vd ? info[*vd].values : std::vector<double>{0.0};
-        CurvilinearGrid::Lattice lattice;
-        if (curvi) lattice = curvi->lattice(path, req, req.horizontalSamples);
+        // Near a pole, the polar stereographic mapping (docs/dev/ocean.md, "Polar regions"):
+        // any grid is then resampled onto a lattice in the projected plane.
+        const auto [latLo, latHi] = curvi ? curvi->latitudeRange()
+                                          : std::pair<double, double>(*std::min_element(info[lat[0]].values.begin(), info[lat[0]].values.end()),
+                                                                      *std::max_element(info[lat[0]].values.begin(), info[lat[0]].values.end()));
+        int pole = polarPole(req, latLo, latHi);
+        if (pole && parametric) {
+            if (req.projection == FieldRequest::Projection::Polar)
+                throw InputError(path + ": variable " + var.signature() + " has a parametric vertical coordinate (" +
+                                 parametric->text() + "); its per-column depths are computed on the lon/lat mapping only: "
+                                 "use `map_projection` lonlat or auto");
+            L.notes.push_back("polar mapping not used: per-column depths (parametric vertical coordinate) are computed "
+                              "on the lon/lat mapping only");
+            pole = 0;
+        }
+        CurvilinearGrid::Lattice lattice;  // the lon/lat lattice (not used on the polar mapping)
+        if (curvi && !pole) lattice = curvi->lattice(path, req, req.horizontalSamples);
         std::vector<double> depthKm;
         if (parametric) {
             L.dim = {lon[0], lat[0], vert[0]};
@@ -298,27 +314,56 @@ Layout layoutFor(const std::string& path, const CfSource& file, const VariableIn
         } else {
             for (double v : levels) depthKm.push_back(v * vc.toKm * (vc.positiveDown ? 1.0 : -1.0) + 0.0);  // + 0.0: no -0
         }
-        GeoMapping m = mapGeographic(path, curvi ? lattice.lon : info[lon[0]].values,
-                                     curvi ? lattice.lat : info[lat[0]].values, depthKm, req, planar ? 1 : 2);
-        if (curvi) {
-            std::vector<double> lonOut, latOut;  // the lattice in output order
-            for (std::size_t i : m.x.stored) lonOut.push_back(lattice.lon[i]);
-            for (std::size_t j : m.y.stored) latOut.push_back(lattice.lat[j]);
-            for (std::size_t i = 1; i < lonOut.size(); ++i)  // unwrapped as the mapping sees it
-                lonOut[i] = lonOut[i - 1] + std::remainder(lonOut[i] - lonOut[i - 1], 360.0);
-            curvi->buildLookup(lonOut, latOut);
-            m.notes.push_back(curvi->description(lattice, lonOut.size(), latOut.size()));
-            // From here x and y index the lattice in output order.
-            std::iota(m.x.stored.begin(), m.x.stored.end(), std::size_t(0));
-            std::iota(m.y.stored.begin(), m.y.stored.end(), std::size_t(0));
+        GeoMapping m;
+        if (pole) {
+            if (!curvi)
+                curvi = std::make_shared<CurvilinearGrid>(CurvilinearGrid::fromAxes(
+                    path + ": variable " + var.signature(), info[lon[0]].values, info[lat[0]].values, lon[0], lat[0],
+                    info[lon[0]].name, info[lat[0]].name));
+            if (req.hasRegion) checkRegion(req.region, path);
+            const CurvilinearGrid::PlaneLattice plane = curvi->planeLattice(path, req, pole, req.horizontalSamples);
+            m = mapPolar(path, plane.x, plane.y, depthKm, req, planar ? 1 : 2);
+            curvi->buildPlaneLookup(plane);
+            m.lon0 = plane.lon0;
+            m.lat0 = 90.0 * pole;
+            const std::string mapping =
+                "geographic: polar stereographic, " + std::string(pole > 0 ? "north" : "south") + " pole, true scale at " +
+                num(ScalarField::Geographic::kPolarStandardParallel) + (pole > 0 ? " N" : " S") + ", central meridian " +
+                num(plane.lon0) + " (" + polarReason(req, pole) + "); world units km, x = rho sin(lon - lon0) - x0, y = " +
+                (pole > 0 ? "-" : "") + "rho cos(lon - lon0) - y0, rho = R (1 + sin 71) tan(45 " +
+                (pole > 0 ? "- lat" : "+ lat") + "/2), R = 6371, x0=" + num(plane.x0) + " y0=" + num(plane.y0);
+            log::info(path + ": " + mapping);
+            m.notes.insert(m.notes.begin(), mapping);
+            m.notes.push_back(curvi->planeDescription(plane));
+            L.pole = pole;
+            L.x0 = plane.x0;
+            L.y0 = plane.y0;
+            for (double y : m.y.world)  // each row's latitude where it crosses the lattice's middle column
+                L.latitudeDeg.push_back(polar::lonLatFromPlane(pole, plane.lon0, plane.x0, y + plane.y0).y);
+        } else {
+            m = mapGeographic(path, curvi ? lattice.lon : info[lon[0]].values,
+                              curvi ? lattice.lat : info[lat[0]].values, depthKm, req, planar ? 1 : 2);
+            if (curvi) {
+                std::vector<double> lonOut, latOut;  // the lattice in output order
+                for (std::size_t i : m.x.stored) lonOut.push_back(lattice.lon[i]);
+                for (std::size_t j : m.y.stored) latOut.push_back(lattice.lat[j]);
+                for (std::size_t i = 1; i < lonOut.size(); ++i)  // unwrapped as the mapping sees it
+                    lonOut[i] = lonOut[i - 1] + std::remainder(lonOut[i] - lonOut[i - 1], 360.0);
+                curvi->buildLookup(lonOut, latOut);
+                m.notes.push_back(curvi->description(lattice, lonOut.size(), latOut.size()));
+                // From here x and y index the lattice in output order.
+                std::iota(m.x.stored.begin(), m.x.stored.end(), std::size_t(0));
+                std::iota(m.y.stored.begin(), m.y.stored.end(), std::size_t(0));
+            }
+            for (std::size_t j : m.y.stored)
+                L.latitudeDeg.push_back(curvi ? m.lat0 + m.y.world[j] / (kEarthRadiusKm * std::numbers::pi / 180.0)
+                                              : info[lat[0]].values[j]);
         }
         L.geographic = true;
         L.lon0 = m.lon0;
         L.lat0 = m.lat0;
         L.verticalScale = m.verticalScale;
         L.dim = {lon[0], lat[0], planar ? kNoDimension : *vd};
-        for (std::size_t j : m.y.stored) L.latitudeDeg.push_back(curvi ? m.lat0 + m.y.world[j] / (kEarthRadiusKm * std::numbers::pi / 180.0)
-                                                                   : info[lat[0]].values[j]);
         L.curvilinear = std::move(curvi);
         for (std::size_t k : m.z.stored) {
             L.depthM.push_back(depthKm[k] * 1000.0);
@@ -378,7 +423,7 @@ ScalarField shapeField(const std::string& path, const VariableInfo& var, const L
     f.units = var.units;
     f.standardName = var.standardName;
     f.planar = L.planar;
-    if (L.geographic) f.geographic = {true, L.lon0, L.lat0, L.verticalScale};
+    if (L.geographic) f.geographic = {true, L.lon0, L.lat0, L.verticalScale, L.pole, L.x0, L.y0};
     for (int a = 0; a < 3; ++a) {
         const auto& w = L.axes[std::size_t(a)].world;
         f.dims[a] = int(w.size());

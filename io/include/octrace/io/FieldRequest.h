@@ -44,6 +44,11 @@ struct FieldRequest {
     /// extent of the regular lattice they are resampled onto; the octree's 2^depth + 1 when
     /// reading for an octree. 0: about the source grid's own spacing.
     int horizontalSamples = 0;
+    /// Horizontal mapping of a geographic grid (`map_projection`): Auto is polar stereographic when
+    /// the region (else the grid) lies in one hemisphere and reaches 75 degrees or more towards
+    /// its pole, else the contract's lon x cos(lat0) mapping; LonLat and Polar force one.
+    enum class Projection { Auto, LonLat, Polar };
+    Projection projection = Projection::Auto;
 };
 
 /// The `horizontalSamples` that match an octree of `depth`: 2^depth + 1 (depth clamped to 1..12).

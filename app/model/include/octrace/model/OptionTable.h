@@ -165,6 +165,12 @@ inline constexpr Option region{.key = "region", .kind = OptionKind::Text, .flag 
 inline constexpr Option depthRange{.key = "depth_range", .kind = OptionKind::Text, .flag = "depth-range", .argument = "Z0,Z1",
     .defaultText = "every level", .help = "depth levels from Z0 to Z1 metres (positive down), NetCDF only",
     .commands = "render export build slice info animate"};
+inline constexpr Option mapProjection{.key = "map_projection", .kind = OptionKind::Choice, .flag = "map-projection",
+    .argument = "auto|lonlat|polar", .choices = "auto|lonlat|polar",
+    .help = "horizontal mapping of a geographic grid: polar stereographic (true scale at 71 degrees) or longitude x "
+            "cos(latitude); auto is polar when the region lies in one hemisphere and reaches 75 degrees or beyond, "
+            "NetCDF only",
+    .commands = "render export build csg slice info animate"};
 inline constexpr Option lodSelect{.key = "lod_select", .kind = OptionKind::Text, .flag = "lod-select", .argument = "LOD",
     .defaultText = "each object's highest",
     .help = "city inputs: level of detail to voxelize, e.g. 1, 2 or 2.2 (a prefix takes its sublevels)",
