@@ -7,13 +7,15 @@ make_fixtures.py's byte writer) whose TemporalPositionIdentifier tells their tim
 at the positions the NIfTI's sform gives (RAS turned into DICOM's LPS). Two time points each:
 
 - invalid_volume_slice_counts/: time point 1 has all 6 slices, time point 2 only slices 3..6;
-- invalid_volume_missing_slice/: time point 2 lacks slice 3 (its other 5 slices are there).
+- invalid_volume_missing_slice/: time point 2 lacks slice 3 (its other 5 slices are there);
+
+and the fuzz_dicom seed two_time_points.dcm (two slices of each time point).
 
 Run once from this folder with the shared data beside the checkout; the outputs are committed."""
 import os
 import struct
 
-from make_fixtures import INVALID, MR_IMAGE, SHARED, ds, fresh, image, write
+from make_fixtures import INVALID, MR_IMAGE, SEEDS, SEPARATOR, SHARED, ds, fresh, image, write
 
 NIFTI = os.path.join(SHARED, "siemens_xa10_fmri_4d", "reference_dcm2niix.nii")
 SERIES = "1.2.826.0.1.3680043.9.7777.90"
@@ -66,6 +68,10 @@ def main():
     d = fresh(os.path.join(INVALID, "invalid_volume_missing_slice"))
     write_volume(d, dims, srow, samples, 0, range(nz))
     write_volume(d, dims, srow, samples, 1, [k for k in range(nz) if k != 2])
+    # A fuzz_dicom seed (up to 4 files joined by its separator): two time points of two slices each.
+    with open(os.path.join(SEEDS, "two_time_points.dcm"), "wb") as f:
+        f.write(SEPARATOR.join(open(os.path.join(d, name), "rb").read()
+                               for name in ["t1_s1.dcm", "t1_s2.dcm", "t2_s1.dcm", "t2_s2.dcm"]))
 
 
 if __name__ == "__main__":
