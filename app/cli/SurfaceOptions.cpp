@@ -150,7 +150,10 @@ void addCityOptions(OptionParser& p, SurfaceArgs& a) {
         p.add(settingOption(*o, into(a)));
 }
 
-void addSeriesOption(OptionParser& p, io::FieldRequest& request) { p.add(settingOption(model::opt::series, into(request))); }
+void addSeriesOption(OptionParser& p, io::FieldRequest& request) {
+    p.add(settingOption(model::opt::series, into(request)));
+    p.add(settingOption(model::opt::volume, into(request)));
+}
 
 void addMessageOptions(OptionParser& p, SurfaceArgs& a) { addMessageOptions(p, a, into(a)); }
 

@@ -15,7 +15,7 @@ namespace octrace::model {
 namespace {
 
 constexpr std::array kOptions{
-    &opt::depth,           &opt::iso,         &opt::variable,         &opt::time,        &opt::series,
+    &opt::depth,           &opt::iso,         &opt::variable,         &opt::time,        &opt::series,      &opt::volume,
     &opt::form,            &opt::inside,      &opt::threads,          &opt::maxMemory,   &opt::verticalScale,
     &opt::terrainDepth,    &opt::crs,         &opt::heightAttr,       &opt::baseAttr,    &opt::dem,         &opt::texture,
     &opt::cut,             &opt::renderer,    &opt::fov,              &opt::orthoHeight, &opt::projection,

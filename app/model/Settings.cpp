@@ -99,6 +99,9 @@ const std::unordered_map<std::string_view, Entry>& setters() {
         m.emplace(opt::series.key, request([](const std::string& v, io::FieldRequest& q) {
             q.series = nonEmpty(opt::series, v, "a UID, an index or a description");
         }));
+        m.emplace(opt::volume.key, request([](const std::string& v, io::FieldRequest& q) {
+            q.volume = parseInteger(opt::volume, v);
+        }));
         m.emplace(opt::region.key, request([](const std::string& v, io::FieldRequest& q) {
             const auto r = io::parseRegion(v);
             q.hasRegion = true;

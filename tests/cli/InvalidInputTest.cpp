@@ -39,6 +39,8 @@ const Case kCases[] = {
     {"invalid_no_dicom_images", nullptr, "no DICOM image"},
     {"invalid_not_an_image.dcm", nullptr, "a DICOM file without an image"},
     {"invalid_mixed_sizes", nullptr, "mixed image sizes in one series"},
+    {"invalid_volume_slice_counts", nullptr, "volume 1 (temporal position 2) has 4 slices"},
+    {"invalid_volume_missing_slice", nullptr, "volume 1 (temporal position 2) is missing a slice"},
     {"invalid_huge_frame_count.dcm", nullptr, "header declares 100000 frame(s)"},
     {"invalid_zero_pixel_spacing.dcm", nullptr, "PixelSpacing 0\\0.5 must be positive"},
     {"invalid_nan_position.dcm", nullptr, "is not 3 finite numbers"},

@@ -101,6 +101,8 @@ TEST(FieldReader, EveryInvalidCorpusFileFailsWithItsDocumentedMessage) {
         {"invalid_no_dicom_images", "", Kind::File, "no DICOM image"},
         {"invalid_not_an_image.dcm", "", Kind::File, "a DICOM file without an image (no Rows/Columns)"},
         {"invalid_mixed_sizes", "", Kind::File, "mixed image sizes in one series"},
+        {"invalid_volume_slice_counts", "", Kind::File, "volume 1 (temporal position 2) has 4 slices, volume 0 (temporal position 1) has 6 slices at other positions"},
+        {"invalid_volume_missing_slice", "", Kind::File, "volume 1 (temporal position 2) is missing a slice: it has none at"},
         {"invalid_huge_frame_count.dcm", "", Kind::File, "header declares 100000 frame(s) of 64x64 x 16 bits"},
         {"invalid_zero_pixel_spacing.dcm", "", Kind::File, "PixelSpacing 0\\0.5 must be positive"},
         {"invalid_nan_position.dcm", "", Kind::File, "ImagePositionPatient 'NaN\\0\\1' of frame 2 is not 3 finite numbers"},

@@ -36,6 +36,10 @@ struct FieldRequest {
     /// DICOM series to read: SeriesInstanceUID, 1-based index in `octrace info`'s list, or
     /// SeriesDescription. Empty: the largest series. Refused for other formats.
     std::string series;
+    /// Volume of a multi-volume DICOM series (time points, echoes, ...) or of a 4-D NIfTI
+    /// image, 0-based. -1: volume 0, said with log::info when there are several. Refused for
+    /// the other formats.
+    int volume = -1;
     /// Memory budget in bytes (see octrace/util/Memory.h); 0 = no limit. A read whose samples
     /// (with the reader's own buffers) would need more is refused with LimitError before
     /// anything that size is allocated.
