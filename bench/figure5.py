@@ -1,8 +1,9 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Generates docs/benchmarks/figure5.md and figure5.png: paper B's Figure 5 (time against the
 number of primary rays, beam tracing against Samet's one-ray-at-a-time tracing) in 3D, on the
 SphereFlake (level 4, 7,381 spheres) and on random spheres, at 1600x1200 with 1, 4 and 16 rays per
-pixel (--samples). Raw stats JSON of every run in docs/benchmarks/figure5/.
+pixel (--samples). Raw stats JSON of every run in docs/benchmarks/figure5/, with run.json: the
+machine (CPU model, cores), the commit, the date and the load average of the run.
 
 Each point is one `octrace render SCENE --renderer beam --baseline samet` process: the two
 tracers render the same frame alternately, --repeat R times each, and the fastest of each is
@@ -11,15 +12,20 @@ kept, so a change in the machine's load hits both alike. Primary rays only (--bo
 add the same time to each. Exactness is checked on a smaller frame (--verify at 400x300 with the
 same samples: every pixel's hit against the reference tracer and against the brute force).
 
+The plot (matplotlib: Debian's python3-matplotlib, hence /usr/bin/python3) and the Markdown are
+drawn from the raw JSON alone; --plot-only redraws them from the committed JSON without
+measuring (--raw and --out read and write elsewhere).
+
 Usage: bench/figure5.py [--octrace PATH] [--repeat R] [--threads N]
+       bench/figure5.py --plot-only [--raw DIR] [--out DIR]
 """
 import argparse
 import json
 import os
-import struct
 import subprocess
 import sys
-import zlib
+
+import benchplot
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENES = [("sphereflake:4", "SphereFlake level 4 (7,381 spheres)"),
@@ -37,105 +43,56 @@ def render(args, scene, samples, size, extra, stats):
         return json.load(f)
 
 
-def plot(path, series, width=800, height=500):
-    """A log-log line plot as an RGB PNG (no text: the legend is in the markdown).
-    series: [(colour (r,g,b), dashed, [(x, y), ...])]."""
-    import math
-    img = bytearray(b"\xff" * (width * height * 3))
-    left, right, top, bottom = 60, 20, 20, 40
-    xs = [x for _, _, pts in series for x, _ in pts]
-    ys = [y for _, _, pts in series for _, y in pts]
-    x0, x1 = math.floor(math.log10(min(xs))), math.ceil(math.log10(max(xs)))
-    y0, y1 = math.floor(math.log10(min(ys))), math.ceil(math.log10(max(ys)))
-
-    def px(x, y):
-        u = left + (math.log10(x) - x0) / (x1 - x0) * (width - left - right)
-        v = height - bottom - (math.log10(y) - y0) / (y1 - y0) * (height - top - bottom)
-        return u, v
-
-    def dot(u, v, c, r=1):
-        for dv in range(-r, r + 1):
-            for du in range(-r, r + 1):
-                a, b = int(round(u)) + du, int(round(v)) + dv
-                if 0 <= a < width and 0 <= b < height:
-                    img[(b * width + a) * 3:(b * width + a) * 3 + 3] = bytes(c)
-
-    def line(p, q, c, dashed=False, r=1):
-        n = int(max(abs(q[0] - p[0]), abs(q[1] - p[1]))) + 1
-        for i in range(n + 1):
-            if dashed and (i // 8) % 2:
-                continue
-            t = i / n
-            dot(p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1]), c, r)
-
-    grey = (200, 200, 200)
-    for e in range(x0, x1 + 1):  # decade grid lines
-        line(px(10 ** e, 10 ** y0), px(10 ** e, 10 ** y1), grey, r=0)
-    for e in range(y0, y1 + 1):
-        line(px(10 ** x0, 10 ** e), px(10 ** x1, 10 ** e), grey, r=0)
-    line(px(10 ** x0, 10 ** y0), px(10 ** x1, 10 ** y0), (0, 0, 0), r=0)
-    line(px(10 ** x0, 10 ** y0), px(10 ** x0, 10 ** y1), (0, 0, 0), r=0)
-    for colour, dashed, pts in series:
-        for a, b in zip(pts, pts[1:]):
-            line(px(*a), px(*b), colour, dashed)
-        for p in pts:
-            dot(*px(*p), colour, r=4)
-    raw = b"".join(b"\x00" + bytes(img[y * width * 3:(y + 1) * width * 3]) for y in range(height))
-
-    def chunk(tag, data):
-        return struct.pack(">I", len(data)) + tag + data + struct.pack(">I", zlib.crc32(tag + data) & 0xffffffff)
-    with open(path, "wb") as f:
-        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)) +
-                chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
-    return (x0, x1, y0, y1)
-
-
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--octrace", default=os.path.join(ROOT, "build", "app", "octrace"))
-    ap.add_argument("--repeat", type=int, default=5)
-    ap.add_argument("--threads", type=int, default=2)
-    args = ap.parse_args()
-    args.tmp = "/tmp/octrace-figure5"
-    os.makedirs(args.tmp, exist_ok=True)
-    outdir = os.path.join(ROOT, "docs", "benchmarks", "figure5")
-    os.makedirs(outdir, exist_ok=True)
-
+def load_rows(raw):
+    """The measured points from RAW's stats JSON: [(scene, name, samples, timed, checked)]."""
     rows = []
     for scene, name in SCENES:
         tag = scene.split(":")[0]
         for s in SAMPLES:
-            timed = render(args, scene, s, "1600x1200", ["--baseline", "samet", "--repeat", str(args.repeat)],
-                           os.path.join(outdir, "%s_s%d.json" % (tag, s)))
-            checked = render(args, scene, s, "400x300", ["--verify"], os.path.join(outdir, "%s_s%d_verify.json" % (tag, s)))
-            rows.append((scene, name, s, timed, checked))
-            print("%s samples %d: beam %.0f ms, samet %.0f ms, %.2fx; mismatched %d / %d" % (
-                scene, s, timed["render_ms"], timed["baseline_render_ms"], timed["speedup_over_baseline"],
-                checked["mismatched_pixels"], checked["mismatched_pixels_brute_force"]), flush=True)
+            paths = [os.path.join(raw, "%s_s%d%s.json" % (tag, s, v)) for v in ("", "_verify")]
+            for p in paths:
+                if not os.path.exists(p):
+                    sys.exit("figure5.py: raw JSON %s is missing: run bench/figure5.py without --plot-only to "
+                             "measure it" % p)
+            rows.append((scene, name, s) + tuple(load(p) for p in paths))
+    return rows
 
-    colours = {"sphereflake": (200, 40, 40), "random": (40, 80, 200)}
-    series = []
-    for scene, _ in SCENES:
-        tag = scene.split(":")[0]
-        pts = [r for r in rows if r[0] == scene]
-        series.append((colours[tag], False, [(r[3]["rays"], r[3]["render_ms"]) for r in pts]))
-        series.append((colours[tag], True, [(r[3]["rays"], r[3]["baseline_render_ms"]) for r in pts]))
-    x0, x1, y0, y1 = plot(os.path.join(ROOT, "docs", "benchmarks", "figure5.png"), series)
+
+def load(path):
+    with open(path) as f:
+        return json.load(f)
+
+
+def write_outputs(raw, out):
+    """Draws OUT/figure5.png and writes OUT/figure5.md from the raw JSON in RAW."""
+    rows = load_rows(raw)
+    run = benchplot.load_run(raw)
+    repeat, threads = rows[0][3].get("repeat", 1), rows[0][3]["threads"]  # the stats name "repeat" only above 1
+    how = "each point the fastest of %d renders, beam and Samet alternating, %d threads" % (repeat, threads) \
+        if repeat > 1 else "each point one render of each tracer, %d threads" % threads
+    caption = benchplot.caption(run, how)
+    scenes = [(name, [(r[3]["rays"], r[3]["render_ms"], r[3]["baseline_render_ms"]) for r in rows if r[0] == scene])
+              for scene, name in SCENES]
+    benchplot.time_against_rays(
+        os.path.join(out, "figure5.png"),
+        "Paper B's Figure 5 in 3D: beam tracing against Samet's, 1600x1200, primary rays only",
+        scenes, "primary rays meeting the scene cube (count)", caption,
+        target=(TARGET, "target at 4 rays per pixel: %gx" % TARGET),
+        point_labels=["%d ray%s/pixel" % (s, "" if s == 1 else "s") for s in SAMPLES])
 
     L = ["# Paper B's Figure 5, reproduced in 3D\n",
-         "Generated by `bench/figure5.py` (do not edit by hand); raw stats JSON of every run in",
-         "[`figure5/`](figure5/).\n",
+         "Generated by `bench/figure5.py` (do not edit by hand; `--plot-only` redraws it from the raw",
+         "JSON); raw stats JSON of every run in [`figure5/`](figure5/).\n",
          "**Paper's claim** (paper B, Figure 5, 2D quadtrees over a random scene and a 2D SphereFlake):",
          "the beam tracer's time stays almost flat as the number of rays grows, Samet's individual",
          "tracing grows steadily, so the advantage grows with the number of rays (high resolution,",
          "supersampling).\n",
          "**Here**: the same comparison in 3D, in the object octree (`--leaf-objects` default), at 1600x1200",
          "with 1, 4 and 16 rays per pixel; primary rays only (`--bounces 0 --shadows off`). Each time is the",
-         "fastest of %d renders, beam and samet alternating in one process (`--baseline samet`), %d threads;" % (args.repeat, args.threads),
-         "the machine is a shared 2-core VM, so read the ratios. `rays` = primary rays meeting the scene cube.\n",
+         "fastest of %d renders, beam and samet alternating in one process (`--baseline samet`), %d threads;" % (repeat, threads),
+         "the machine is shared, so read the ratios. `rays` = primary rays meeting the scene cube.\n",
          "![time against rays](figure5.png)\n",
-         "Plot: log-log, x = rays (decades 10^%d..10^%d), y = render ms (10^%d..10^%d); red SphereFlake, blue" % (x0, x1, y0, y1),
-         "random; solid beam, dashed samet.\n",
+         caption + "\n",
          "| scene | rays per pixel | rays | beam ms | samet ms | samet / beam | beam ray-sphere tests | mismatched (400x300, vs reference / brute force) |",
          "|---|---|---|---|---|---|---|---|"]
     for scene, name, s, t, c in rows:
@@ -156,9 +113,35 @@ def main():
             name, "grows" if grows else "does **not** grow steadily", ", ".join("%.2fx" % v for v in r)))
     L.append("")
     L.append("The paper's own experiment in 2D (quadtrees, 10^2..10^6 rays): [figure5-2d.md](figure5-2d.md).")
-    with open(os.path.join(ROOT, "docs", "benchmarks", "figure5.md"), "w") as f:
+    with open(os.path.join(out, "figure5.md"), "w") as f:
         f.write("\n".join(L) + "\n")
-    print("wrote docs/benchmarks/figure5.md")
+    print("wrote %s and figure5.png" % os.path.join(out, "figure5.md"))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--octrace", default=os.path.join(ROOT, "build", "app", "octrace"))
+    ap.add_argument("--repeat", type=int, default=5)
+    ap.add_argument("--threads", type=int, default=2)
+    benchplot.add_plot_options(ap, "figure5")
+    args = ap.parse_args()
+    if not args.plot_only:
+        args.tmp = "/tmp/octrace-figure5"
+        os.makedirs(args.tmp, exist_ok=True)
+        os.makedirs(args.raw, exist_ok=True)
+        run = benchplot.start_run(repeat=args.repeat, threads=args.threads)
+        for scene, _ in SCENES:
+            tag = scene.split(":")[0]
+            for s in SAMPLES:
+                timed = render(args, scene, s, "1600x1200", ["--baseline", "samet", "--repeat", str(args.repeat)],
+                               os.path.join(args.raw, "%s_s%d.json" % (tag, s)))
+                checked = render(args, scene, s, "400x300", ["--verify"],
+                                 os.path.join(args.raw, "%s_s%d_verify.json" % (tag, s)))
+                print("%s samples %d: beam %.0f ms, samet %.0f ms, %.2fx; mismatched %d / %d" % (
+                    scene, s, timed["render_ms"], timed["baseline_render_ms"], timed["speedup_over_baseline"],
+                    checked["mismatched_pixels"], checked["mismatched_pixels_brute_force"]), flush=True)
+        benchplot.finish_run(run, args.raw)
+    write_outputs(args.raw, args.out)
     return 0
 
 

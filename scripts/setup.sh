@@ -12,6 +12,8 @@ set -euo pipefail
 # libgdcm-tools: Debian's GDCM CMake package (libgdcm-dev) imports its tools and fails without them.
 # gdal-bin: gdalmdimtranslate, with which tests/data/zarr/make_zarr_stores.py writes GDAL's Zarr
 # stores of the Levitus atlas at test time.
+# python3-matplotlib: the benchmark plots (bench/figure5.py, bench/figure5_2d.py, drawn by the system
+# /usr/bin/python3, not the virtual environment) and their CTest BenchPlots.*.
 PACKAGES=(
   cmake ninja-build g++ pkg-config python3-dev python3-venv
   libgdal-dev gdal-bin libgdcm-dev libgdcm-tools libvtk9-dev libopenexr-dev libglm-dev libtbb-dev
@@ -19,6 +21,7 @@ PACKAGES=(
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
   gmt-gshhg-low gmt-gshhg-high
   libudunits2-dev libudunits2-data
+  python3-matplotlib
   qt6-base-dev libqt6opengl6-dev libgl-dev libxkbcommon-dev xvfb xauth libgl1-mesa-dri
 )
 if [ "${1:-}" = "--fuzz" ]; then

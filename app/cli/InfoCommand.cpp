@@ -13,7 +13,7 @@ namespace octrace::cli {
 int runInfo(const std::vector<std::string>& args) {
     bool help = false;
     io::FieldRequest request;
-    OptionParser p("info", "octrace info INPUT... [--var NAME] [--region ...] [--depth-range Z0,Z1] [--time INDEX|DATE] [--series ...] [--crs CRS] [--lod-select LOD] [--dem RASTER] [--texture RASTER]");
+    OptionParser p("info", "octrace info INPUT... [--var NAME] [--region ...] [--depth-range Z0,Z1] [--time INDEX|DATE] [--series ...] [--volume N] [--crs CRS] [--lod-select LOD] [--dem RASTER] [--texture RASTER]");
     addVariableOption(p, request);
     addGeographicOptions(p, request);
     addSeriesOption(p, request);

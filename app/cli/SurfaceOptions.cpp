@@ -140,7 +140,7 @@ void addLayerOptions(OptionParser& p, SurfaceArgs& a) {
 }
 
 void addGeographicOptions(OptionParser& p, io::FieldRequest& request, bool timeStep) {
-    for (const model::Option* o : {&model::opt::region, &model::opt::depthRange, &model::opt::time, &model::opt::verticalScale})
+    for (const model::Option* o : {&model::opt::region, &model::opt::depthRange, &model::opt::mapProjection, &model::opt::time, &model::opt::verticalScale})
         if (timeStep || o != &model::opt::time) p.add(settingOption(*o, into(request)));
 }
 
@@ -150,7 +150,10 @@ void addCityOptions(OptionParser& p, SurfaceArgs& a) {
         p.add(settingOption(*o, into(a)));
 }
 
-void addSeriesOption(OptionParser& p, io::FieldRequest& request) { p.add(settingOption(model::opt::series, into(request))); }
+void addSeriesOption(OptionParser& p, io::FieldRequest& request) {
+    p.add(settingOption(model::opt::series, into(request)));
+    p.add(settingOption(model::opt::volume, into(request)));
+}
 
 void addMessageOptions(OptionParser& p, SurfaceArgs& a) { addMessageOptions(p, a, into(a)); }
 

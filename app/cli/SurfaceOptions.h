@@ -95,7 +95,7 @@ void addLayerOptions(OptionParser& p, SurfaceArgs& a);
 void addGeographicOptions(OptionParser& p, io::FieldRequest& request, bool timeStep = true);
 /// --lod-select, --crs, --dem, --texture, --height-attr, --base-attr, --terrain-depth (city inputs).
 void addCityOptions(OptionParser& p, SurfaceArgs& a);
-/// --series (DICOM).
+/// --series and --volume (DICOM; --volume also 4-D NIfTI).
 void addSeriesOption(OptionParser& p, io::FieldRequest& request);
 /// --max-memory (landing in `budget`), --quiet, --verbose, --help.
 void addMessageOptions(OptionParser& p, SurfaceArgs& a);

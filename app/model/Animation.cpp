@@ -92,12 +92,17 @@ AnimationPlan planAnimation(const AnimationSpec& spec, const AnimationHooks& hoo
     SurfaceSpec& surface = plan.spec.surface;
     if (!surface.request.time.empty())
         throw UsageError(param("time") + " chooses one step; an animation's steps are chosen by " + param("times"));
+    if (surface.request.volume >= 0)
+        throw UsageError(param("volume") + " chooses one volume; an animation's volumes are chosen by " + param("times"));
     const TimeSelection selection = parseTimeSelection(spec.times);
     if (isOctreeInput(surface.input) || isSphereInput(surface.input) || surface.input.rfind("analytic:", 0) == 0)
         throw InputError(surface.input + ": the field has no time axis: an animation draws one frame per time step");
     io::FieldRequest request = surface.request;
     request.memoryBudget = memoryBudget(surface);
     const io::TimeAxis axis = io::readTimeAxis(surface.input, request);
+    if (axis.volumes && selection.kind == TimeSelection::Kind::Dates)
+        throw InputError(surface.input + ": its " + std::to_string(axis.size) + " volumes have no dates: " + param("times") +
+                         " takes all or I:J for them");
     const std::vector<std::size_t> steps = selectSteps(selection, axis);
     plan.timeAxis = axis.name;
     plan.calendar = axis.calendar;
@@ -106,9 +111,15 @@ AnimationPlan planAnimation(const AnimationSpec& spec, const AnimationHooks& hoo
     for (std::size_t k = 0; k < steps.size(); ++k) {
         AnimationFrame f;
         f.step = steps[k];
-        f.time = std::to_string(f.step);
-        f.date = axis.dates[f.step];
-        f.caption = f.date.empty() ? "step " + f.time : f.date;
+        if (axis.volumes) {
+            f.volume = int(f.step);
+            const std::string& label = axis.labels[f.step];
+            f.caption = "volume " + std::to_string(f.step) + (label.empty() ? "" : ": " + label);
+        } else {
+            f.time = std::to_string(f.step);
+            f.date = axis.dates[f.step];
+            f.caption = f.date.empty() ? "step " + f.time : f.date;
+        }
         f.orbitDegrees = spec.orbitDegrees * double(k) / n;
         plan.frames.push_back(f);
     }
@@ -121,9 +132,19 @@ AnimationPlan planAnimation(const AnimationSpec& spec, const AnimationHooks& hoo
     };
     progress(0.0);
     request.time = plan.frames.front().time;
+    request.volume = plan.frames.front().volume;
     const ScalarField grid = loadField(surface.input, request, surface.depth);
     plan.bounds = grid.worldBounds();
     progress(1.0);
+    // The file's display window, as the first step gives it, greys every frame: each volume of
+    // a DICOM series may carry its own, and the frames would not compare.
+    if (surface.windowName.empty() && !surface.colourGiven && surface.colormap.empty() && surface.colourBy.empty() &&
+        grid.window.valid()) {
+        surface.window = grid.window;
+        surface.windowName = numberText(grid.window.centre) + "," + numberText(grid.window.width);
+        plan.notes.push_back("every frame greyed by the display window of the first (centre " + numberText(grid.window.centre) +
+                             ", width " + numberText(grid.window.width) + "; " + param("window") + " sets another)");
+    }
 
     // The colour range: given, or the union of colour_by's valid ranges over the steps.
     if (!std::isnan(surface.colourMin)) {
@@ -136,6 +157,7 @@ AnimationPlan planAnimation(const AnimationSpec& spec, const AnimationHooks& hoo
         colour.variable = surface.colourBy;
         for (std::size_t k = 0; k < plan.frames.size(); ++k) {
             colour.time = plan.frames[k].time;
+            colour.volume = plan.frames[k].volume;
             const auto [vlo, vhi] = loadField(surface.input, colour, surface.depth).validRange();
             lo = std::min(lo, vlo);
             hi = std::max(hi, vhi);
@@ -197,6 +219,7 @@ AnimationImage renderAnimationFrame(const AnimationPlan& plan, std::size_t i, co
     const AnimationFrame& f = plan.frames[i];
     SurfaceSpec spec = plan.spec.surface;
     spec.request.time = f.time;
+    spec.request.volume = f.volume;
     spec.colourMin = plan.colourMin;
     spec.colourMax = plan.colourMax;
     const Surface surface = buildSurface(spec, hooks);

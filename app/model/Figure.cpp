@@ -1,5 +1,7 @@
 #include "octrace/model/Figure.h"
 
+#include "octrace/build/PolarStereographic.h"
+
 #include "octrace/io/CityReader.h"
 #include "octrace/io/ImageWriter.h"
 #include "octrace/render/Shading.h"
@@ -60,7 +62,7 @@ void coastlinesIn3d(const io::Coastlines& coast, const GeoAxes& g, const Box3& b
     std::vector<dvec2> xy;
     for (const auto& line : coast.lines) {
         xy.clear();
-        for (const dvec2& p : line) xy.push_back({g.x(p.x), g.y(p.y)});
+        for (const dvec2& p : line) xy.push_back(g.world(p.x, p.y));
         clipPolyline(xy, dvec2(box.lo), dvec2(box.hi), world);
     }
     const RayGenerator& rays = project.rays;
@@ -116,6 +118,12 @@ std::string latitudeText(double lat) {
     return std::to_string(std::labs(r)) + (r > 0 ? "\u00b0N" : "\u00b0S");
 }
 
+dvec2 GeoAxes::world(double lonDeg, double latDeg) const {
+    return g.polar() ? polar::worldFromLonLat(g, lonDeg, latDeg) : dvec2(x(lonDeg), y(latDeg));
+}
+dvec2 GeoAxes::lonLat(double wx, double wy) const {
+    return g.polar() ? polar::lonLatFromWorld(g, wx, wy) : dvec2(lon(wx), lat(wy));
+}
 double GeoAxes::lon(double x) const { return g.lon0 + x / (ScalarField::Geographic::kEarthRadiusKm * std::cos(g.lat0 * kPi / 180.0)) * 180.0 / kPi; }
 double GeoAxes::lat(double y) const { return g.lat0 + y / ScalarField::Geographic::kEarthRadiusKm * 180.0 / kPi; }
 double GeoAxes::depthM(double z) const { return -z / g.verticalScale * 1000.0; }
@@ -169,6 +177,22 @@ std::string parseCoastline(const std::string& text) {
 
 io::LonLatBox lonLatBox(const ScalarField::Geographic& geographic, const Box3& box) {
     const GeoAxes g{geographic};
+    if (geographic.polar()) {
+        // The box's horizontal face sampled; the whole circle when it holds the pole (or when
+        // its longitudes wrap behind it).
+        double lonLo = INFINITY, lonHi = -INFINITY, latLo = INFINITY, latHi = -INFINITY;
+        for (int j = 0; j <= 64; ++j)
+            for (int i = 0; i <= 64; ++i) {
+                const dvec2 p = g.lonLat(box.lo.x + (box.hi.x - box.lo.x) * i / 64.0, box.lo.y + (box.hi.y - box.lo.y) * j / 64.0);
+                lonLo = std::min(lonLo, p.x), lonHi = std::max(lonHi, p.x), latLo = std::min(latLo, p.y), latHi = std::max(latHi, p.y);
+            }
+        const dvec2 pole = polar::worldFromLonLat(geographic, 0.0, 90.0 * geographic.pole);
+        if ((pole.x >= box.lo.x && pole.x <= box.hi.x && pole.y >= box.lo.y && pole.y <= box.hi.y) || lonHi - lonLo > 300.0) {
+            lonLo = geographic.lon0 - 180.0, lonHi = geographic.lon0 + 180.0;
+            (geographic.pole > 0 ? latHi : latLo) = 90.0 * geographic.pole;
+        }
+        return {lonLo, lonHi, latLo, latHi};
+    }
     return {std::min(g.lon(box.lo.x), g.lon(box.hi.x)), std::max(g.lon(box.lo.x), g.lon(box.hi.x)),
             std::min(g.lat(box.lo.y), g.lat(box.hi.y)), std::max(g.lat(box.lo.y), g.lat(box.hi.y))};
 }
@@ -313,7 +337,17 @@ io::FigureSpec figureSpec(const Frame& plot, const FigureSettings& f, const Figu
         dvec2 at;
         if (project(p, at)) spec.labels.push_back({at, text, dx, dy});
     };
-    if (geographic.valid) {
+    if (geographic.valid && geographic.polar()) {
+        // The polar plane: ticks in km along x and y, the latitudes covered in the subtitle.
+        const GeoAxes g{geographic};
+        const io::LonLatBox ll = lonLatBox(geographic, box);
+        const double d0 = g.depthM(box.hi.z), d1 = g.depthM(box.lo.z);
+        for (double x : io::niceTicks(box.lo.x, box.hi.x, 5)) tick({x, box.lo.y, box.hi.z}, numberText(x) + " km", 0.0, 1.4);
+        for (double y : io::niceTicks(box.lo.y, box.hi.y, 5)) tick({box.hi.x, y, box.hi.z}, numberText(y) + " km", 2.2, 0.0);
+        for (double d : io::niceTicks(d0, d1, 4)) tick({box.hi.x, box.lo.y, g.z(d)}, numberText(d) + " m", 2.6, 0.0);
+        sub += "; polar stereographic, " + latitudeText(ll.latMin) + "\u2013" + latitudeText(ll.latMax) + ", " +
+               numberText(std::round(d0)) + "\u2013" + numberText(std::round(d1)) + " m";
+    } else if (geographic.valid) {
         const GeoAxes g{geographic};
         const double lon0 = g.lon(box.lo.x), lon1 = g.lon(box.hi.x), lat0 = g.lat(box.lo.y), lat1 = g.lat(box.hi.y);
         const double d0 = g.depthM(box.hi.z), d1 = g.depthM(box.lo.z);

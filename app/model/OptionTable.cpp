@@ -15,7 +15,7 @@ namespace octrace::model {
 namespace {
 
 constexpr std::array kOptions{
-    &opt::depth,           &opt::iso,         &opt::variable,         &opt::time,        &opt::series,
+    &opt::depth,           &opt::iso,         &opt::variable,         &opt::time,        &opt::series,      &opt::volume,
     &opt::form,            &opt::inside,      &opt::threads,          &opt::maxMemory,   &opt::verticalScale,
     &opt::terrainDepth,    &opt::crs,         &opt::heightAttr,       &opt::baseAttr,    &opt::dem,         &opt::texture,
     &opt::cut,             &opt::renderer,    &opt::fov,              &opt::orthoHeight, &opt::projection,
@@ -24,7 +24,7 @@ constexpr std::array kOptions{
     &opt::height,          &opt::octree,      &opt::leafObjects,      &opt::samples,     &opt::bounces,
     &opt::ambient,         &opt::lighting,    &opt::shadows,          &opt::bakeAo,      &opt::bakeAoDistance,
     &opt::bakeShadows,     &opt::dpi, &opt::bakeLight, &opt::colourRange, &opt::maskedColour, &opt::floorColour, &opt::background, &opt::light, &opt::cameraPos, &opt::lookAt, &opt::up, &opt::verify, &opt::baseline, &opt::figure, &opt::title, &opt::caption, &opt::printSize, &opt::scaleBar, &opt::coastline,         &opt::plane, &opt::at, &opt::format, &opt::ascii, &opt::index,            &opt::compression, &opt::sampleCount,
-    &opt::seed,            &opt::clip,        &opt::extendDown,       &opt::region,      &opt::depthRange,
+    &opt::seed,            &opt::clip,        &opt::extendDown,       &opt::region,      &opt::depthRange,     &opt::mapProjection,
     &opt::lodSelect,       &opt::bake,        &opt::colour,           &opt::colormap,    &opt::window,
     &opt::colourBy,        &opt::floor,       &opt::size,        &opt::times,       &opt::fps,
     &opt::orbit,           &opt::frames,

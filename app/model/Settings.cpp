@@ -99,6 +99,9 @@ const std::unordered_map<std::string_view, Entry>& setters() {
         m.emplace(opt::series.key, request([](const std::string& v, io::FieldRequest& q) {
             q.series = nonEmpty(opt::series, v, "a UID, an index or a description");
         }));
+        m.emplace(opt::volume.key, request([](const std::string& v, io::FieldRequest& q) {
+            q.volume = parseInteger(opt::volume, v);
+        }));
         m.emplace(opt::region.key, request([](const std::string& v, io::FieldRequest& q) {
             const auto r = io::parseRegion(v);
             q.hasRegion = true;
@@ -109,6 +112,12 @@ const std::unordered_map<std::string_view, Entry>& setters() {
             q.hasDepthRange = true;
             q.depthRange[0] = r[0];
             q.depthRange[1] = r[1];
+        }));
+        m.emplace(opt::mapProjection.key, request([](const std::string& v, io::FieldRequest& q) {
+            const std::string c = parseChoice(opt::mapProjection, v);
+            q.projection = c == "polar"    ? io::FieldRequest::Projection::Polar
+                           : c == "lonlat" ? io::FieldRequest::Projection::LonLat
+                                           : io::FieldRequest::Projection::Auto;
         }));
         m.emplace(opt::time.key, request([](const std::string& v, io::FieldRequest& q) {
             io::checkTimeText(v);

@@ -26,6 +26,7 @@ double worldPosition(const ScalarField& f, SlicePlane plane, double at) {
     if (!f.geographic.valid) return at;
     const GeoAxes g{f.geographic};
     const int n = sliceNormalAxis(plane);
+    if (n != 2 && f.geographic.polar()) return at;  // the polar plane's x and y: world km
     if (n == 0) return g.x(f.geographic.lon0 + std::remainder(at - f.geographic.lon0, 360.0));
     return n == 2 ? g.z(at) : g.y(at);
 }
@@ -50,6 +51,9 @@ void checkGeographicAt(const ScalarField& f, const SliceSpec& a, SlicePlane plan
         why = (*a.at < 0.0 ? numberText(-*a.at) + " m above the sea surface" : numberText(*a.at) + " m depth") +
               " lies outside the grid, whose levels run " + numberText(g.depthM(b.hi.z)) + " .. " + numberText(g.depthM(b.lo.z)) +
               " m depth";
+    else if (f.geographic.polar())
+        why = std::string(n == 0 ? "x" : "y") + " (km in the polar stereographic plane) outside the grid, which spans " +
+              numberText(n == 0 ? b.lo.x : b.lo.y) + " .. " + numberText(n == 0 ? b.hi.x : b.hi.y) + " km";
     else if (n == 0)
         why = "longitude outside the grid, which spans " + numberText(g.lon(b.lo.x)) + " .. " + numberText(g.lon(b.hi.x)) +
               " degrees east (-180..180 and 0..360 both accepted)";
@@ -64,6 +68,7 @@ std::string positionText(const ScalarField& f, const SliceView& v) {
     const int n = sliceNormalAxis(v.plane);
     if (f.geographic.valid) {
         const GeoAxes g{f.geographic};
+        if (n != 2 && f.geographic.polar()) return std::string(1, char('x' + n)) + " = " + numberText(v.position, 5) + " km";
         return n == 2 ? numberText(g.depthM(v.position), 5) + " m depth"
                : n == 0 ? longitudeText(g.lon(v.position))
                         : latitudeText(g.lat(v.position));
@@ -171,7 +176,9 @@ AxisTicks axisTicks(const ScalarField& f, int a, double lo, double hi, int count
         return t;
     }
     const GeoAxes g{f.geographic};
-    if (a == 0) {
+    if (a != 2 && f.geographic.polar()) {  // the polar plane: km
+        for (double v : io::niceTicks(lo, hi, count)) t.world.push_back(v), t.text.push_back(numberText(v) + " km");
+    } else if (a == 0) {
         for (double lon : degreeTicks(g.lon(lo), g.lon(hi), count)) t.world.push_back(g.x(lon)), t.text.push_back(longitudeText(lon));
     } else if (a == 1) {
         for (double lat : degreeTicks(g.lat(lo), g.lat(hi), count)) t.world.push_back(g.y(lat)), t.text.push_back(latitudeText(lat));
@@ -220,7 +227,7 @@ io::FigureSpec sliceFigureSpec(const SliceSpec& a, const ScalarField& f, const S
             for (const auto& lonLat : coast->lines) {
                 line.clear();
                 for (const dvec2& p : lonLat) {
-                    const dvec3 w(g.x(p.x), g.y(p.y), 0.0);
+                    const dvec3 w(g.world(p.x, p.y), 0.0);
                     line.push_back({offset.x + v.gridMin.x + 0.5 + (w[aR] - tl[aR]) * R[aR] / v.pixelSize,
                                     offset.y + v.gridMin.y + 0.5 + (tl[aU] - w[aU]) * U[aU] / v.pixelSize});
                 }

@@ -315,3 +315,37 @@ TEST(AnimateCli, RefusesWhatItCannotAnimateClearly) {
     }
     std::filesystem::permissions(locked, std::filesystem::perms::owner_all);
 }
+
+// The four time points of the XA10 fMRI series (four enhanced MR files): one frame per volume,
+// in order, each captioned with its volume and temporal position, from one camera and one
+// window (the file's), counted with ffprobe.
+TEST(AnimateCli, WritesOneVideoFramePerVolumeOfADicomSeriesWithItsLabelInTheCaption) {
+    if (!haveFfmpeg()) GTEST_SKIP() << "ffprobe/ffmpeg absent (Debian package ffmpeg, scripts/setup.sh)";
+    const std::string folder = sharedData("medical/siemens_xa10_fmri_4d");
+    if (!std::filesystem::exists(folder)) GTEST_SKIP() << "shared data absent: " << folder;
+    Scratch s;
+    const std::string mp4 = s.path("fmri.mp4"), dir = s.path("frames");
+    const Result r = run({"animate", folder, "--iso", "300", "--depth", "6", "--size", "320x240", "--figure", "--frames", dir,
+                          "-o", mp4});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("4 frames"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("steps volume 0: temporal position 1 .. volume 3: temporal position 4 of 'volume'"), std::string::npos) << r.err;
+    EXPECT_EQ(capture("ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 " +
+                      quoteArg(mp4)),
+              "4\n");
+    // Each frame's subtitle (above the plot) says its own volume.
+    std::vector<DecodedPng> frames;
+    for (int i = 0; i < 4; ++i) frames.push_back(decodePng(readBytes(dir + "/frame_000" + std::to_string(i) + ".png")));
+    auto topRows = [](const DecodedPng& p) {
+        return std::vector<std::uint8_t>(p.pixels.begin(), p.pixels.begin() + std::ptrdiff_t(70 * p.width * p.channels));
+    };
+    for (int i = 1; i < 4; ++i) EXPECT_NE(topRows(frames[0]), topRows(frames[std::size_t(i)])) << "frame " << i;
+    for (const DecodedPng& f : frames) EXPECT_GT(drawn(f), 1000u);
+    // Volumes have no dates; one volume is not an animation's to choose.
+    Result bad = run({"animate", folder, "--time", "2000-01-01:2000-02-01", "-o", s.path("b.mp4")});
+    EXPECT_EQ(bad.code, 1);
+    EXPECT_NE(bad.err.find("its 4 volumes have no dates"), std::string::npos) << bad.err;
+    bad = run({"animate", folder, "--time", "2:7", "-o", s.path("c.mp4")});
+    EXPECT_EQ(bad.code, 1);
+    EXPECT_NE(bad.err.find("has 4 steps, indices 0..3"), std::string::npos) << bad.err;
+}

@@ -39,6 +39,15 @@ double rowMean(const octrace::test::DecodedPng& p, int y0, int y1) {
     return sum / (double(y1 - y0) * p.width);
 }
 
+// `args` sliced into `out` with the view the top-level comparisons share: -2..30 degC, land
+// magenta, the Atlantic from 100 W to 20 E, 60 S to 70 N.
+Result sliceAtlasView(Scratch& s, std::vector<std::string> args, const std::string& out) {
+    for (const char* a : {"--colour-range", "-2,30", "--masked-colour", "1,0,1", "--region", "-100,20,-60,70", "-o"})
+        args.push_back(a);
+    args.push_back(s.path(out));
+    return run(args);
+}
+
 }  // namespace
 
 // ETOPO20 as a map: one pixel per 20' sample, north up (Antarctica's ice, high, at the bottom
@@ -79,12 +88,7 @@ TEST(SliceMapCli, Etopo20IsDrawnAsAMapNorthUp) {
 TEST(SliceMapCli, TwoDimensionalAndSingleLevelFilesGiveTheAtlasTopLevelPixels) {
     if (!haveShared("ocean/levitus_climatology.cdf")) GTEST_SKIP() << "shared data absent";
     Scratch s;
-    const std::vector<std::string> common = {"--colour-range", "-2,30", "--masked-colour", "1,0,1", "--region", "-100,20,-60,70"};
-    auto slice = [&](std::vector<std::string> args, const std::string& out) {
-        args.insert(args.end(), common.begin(), common.end());
-        args.insert(args.end(), {"-o", s.path(out)});
-        return run(args);
-    };
+    auto slice = [&](std::vector<std::string> args, const std::string& out) { return sliceAtlasView(s, args, out); };
     Result r = slice({"slice", sharedData("ocean/levitus_climatology.cdf"), "--var", "TEMP", "--at", "0"}, "atlas.png");
     ASSERT_EQ(r.code, 0) << r.err;
     r = slice({"slice", testFile("netcdf/levitus_sst_2d.nc")}, "map.png");
@@ -172,4 +176,49 @@ TEST(SliceMapCli, CellBoundsAreRefusedByNameAndNotListedAsFields) {
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_TRUE(has(r.out, "coordinates and cell bounds (not fields):\n  lat(y, x)")) << r.out;
     EXPECT_EQ(countEntries(s.dir()), 0);
+}
+
+// A NEMO-like 2-D SST on the tripolar grid (make_curvilinear.py: nemo_sst_2d.nc, the surface of
+// tripolar_global.nc) is sliced as a map on the resampled lattice: the same pixels as the 3-D
+// file's 0 m slice (within its 0.001 degC packing), land masked.
+TEST(SliceMapCli, CurvilinearTwoDimensionalFieldIsDrawnAsTheThreeDimensionalFilesTopLevel) {
+    Scratch s;
+    auto slice = [&](std::vector<std::string> args, const std::string& out) { return sliceAtlasView(s, args, out); };
+    Result r = slice({"slice", testFile("netcdf/nemo_sst_2d.nc")}, "map.png");
+    ASSERT_EQ(r.code, 0) << r.err;
+    r = slice({"slice", testFile("netcdf/tripolar_global.nc"), "--var", "temp", "--at", "0"}, "top.png");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto map = png(s.path("map.png")), top = png(s.path("top.png"));
+    EXPECT_EQ(differing(map, top, 1), 0);
+    long land = 0;
+    for (int y = 0; y < map.height; ++y)
+        for (int x = 0; x < map.width; ++x) land += map.at(x, y, 0) == 255 && map.at(x, y, 1) == 0 && map.at(x, y, 2) == 255;
+    EXPECT_GT(land, map.width * map.height / 10);  // the Americas, Africa, Europe masked
+    EXPECT_LT(land, map.width * map.height / 2);
+    r = run({"info", testFile("netcdf/nemo_sst_2d.nc")});
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(has(r.out, "2-D: a map, drawn by slice only, curvilinear (2-D nav_lat nav_lon: resampled onto a regular lattice)"))
+        << r.out;
+    r = run({"render", testFile("netcdf/nemo_sst_2d.nc"), "--iso", "10", "-o", s.path("a.png")});
+    EXPECT_EQ(r.code, 1);
+    EXPECT_TRUE(has(r.err, "a surface needs a 3-D field")) << r.err;
+}
+
+// A ROMS-like file on a curvilinear grid with s-levels (make_sigma.py): rendered, and `info`
+// says the grid, the formula and how the depths are resampled.
+TEST(SliceMapCli, CurvilinearRomsFileWithSLevelsRendersAndInfoSaysHow) {
+    Scratch s;
+    const std::string roms = testFile("netcdf/roms_curvilinear_nwatlantic.nc");
+    Result r = run({"render", roms, "--var", "temp", "--time", "1", "--iso", "10", "--depth", "6", "--size", "160x120",
+                    "--stats", s.path("st.json"), "-o", s.path("r.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto img = png(s.path("r.png"));
+    EXPECT_EQ(img.width, 160);
+    r = run({"info", roms, "--var", "temp", "--time", "1"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    for (const char* part : {"s_rho = 20: vertical (positive up), parametric: ocean_s_coordinate_g2",
+                             "note: curvilinear grid: 2-D coordinates lon_rho(eta_rho, xi_rho) and lat_rho(eta_rho, xi_rho)",
+                             "note: vertical: each column's depths resampled onto the horizontal lattice with the field's weights",
+                             "time step 1 of 2 (2000-01-02"})
+        EXPECT_TRUE(has(r.out, part)) << "lacks '" << part << "' in\n" << r.out;
 }

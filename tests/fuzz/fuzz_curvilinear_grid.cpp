@@ -2,7 +2,8 @@
 // any value: the checks, the periodic-seam and north-fold detection, the lattice a region or the
 // source extent gives, the rasterisation of every source cell (seams, degenerate and folded
 // cells), and the resampling of one plane with land. Input: a header byte each for nx and ny
-// (2..17), one for the lattice resolution and one for a region flag, then the region (4 doubles),
+// (2..17), one for the lattice resolution and one for flags (1: a region; 2: the polar
+// stereographic plane lattice instead, 4: its south pole), then the region (4 doubles),
 // then doubles for the longitudes, latitudes and one plane of values (missing ones are 0).
 #include "FuzzSupport.h"
 #include "netcdf/CurvilinearGrid.h"
@@ -43,6 +44,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     try {
         if (req.hasRegion) checkRegion(req.region, "fuzz");
         auto g = detail::CurvilinearGrid::fromCoordinates("fuzz", ny, nx, lon, lat);
+        if (data[3] & 2) {  // the polar stereographic plane lattice, north or south
+            auto pl = g.planeLattice("fuzz", req, (data[3] & 4) ? -1 : 1, samples);
+            if (pl.x.size() * pl.y.size() > (1u << 16)) return 0;
+            g.buildPlaneLookup(pl);
+            detail::SampleRules rules;
+            rules.missing = {0.0};
+            std::vector<float> values(pl.x.size() * pl.y.size());
+            std::vector<std::uint8_t> valid(values.size());
+            g.resample(plane, rules, values.data(), valid.data());
+            (void)g.planeDescription(pl);
+            return 0;
+        }
         auto lattice = g.lattice("fuzz", req, samples);
         if (lattice.lon.size() * lattice.lat.size() > (1u << 16)) return 0;  // keeps one input well under a second
         g.buildLookup(lattice.lon, lattice.lat);
@@ -51,6 +64,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         std::vector<float> values(lattice.lon.size() * lattice.lat.size());
         std::vector<std::uint8_t> valid(values.size());
         g.resample(plane, rules, values.data(), valid.data());
+        // the decoded form (a parametric coordinate's column depths): validity from the first pass
+        std::vector<std::uint8_t> ocean(plane.size());
+        for (std::size_t p = 0; p < plane.size(); ++p) ocean[p] = rules.isValid(plane[p]) ? 1 : 0;
+        std::vector<double> depths(values.size());
+        std::vector<std::uint8_t> depthValid(values.size());
+        g.resample(plane.data(), ocean.data(), depths.data(), depthValid.data());
         (void)g.description(lattice, lattice.lon.size(), lattice.lat.size());
     } catch (const octrace::Error&) {
     }

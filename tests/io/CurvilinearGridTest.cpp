@@ -228,34 +228,93 @@ TEST(CurvilinearGrid, LatticeFollowsTheRequestedResolution) {
 
 // A curvilinear grid with terrain-following levels (a real ROMS file: 2-D lat_rho/lon_rho and
 // s_rho): refused by name rather than drawn with sigma read as a depth in metres.
-TEST(CurvilinearGrid, ParametricVerticalCoordinateOnACurvilinearGridIsRefused) {
+// A curvilinear grid with a parametric vertical coordinate: each source column's depths are
+// resampled onto the lattice with the field's weights, so each lattice column has its own. On
+// the turned grid with h linear in longitude and latitude (so the bilinear floor is exact) and
+// temp equal to the depth of its native level, every lattice depth between a column's
+// shallowest and deepest level comes back as its own depth, and the floor is h at that place.
+TEST(CurvilinearGrid, ParametricVerticalCoordinateOnACurvilinearGridHasEachColumnsDepths) {
     test::TempDir dir;
     const std::string path = dir.file("curvilinear_sigma.nc");
+    const std::vector<double> sigma = {-0.875, -0.625, -0.375, -0.125};
+    auto hAt = [](double lon, double lat) { return 100.0 + 40.0 * (lon - 140.0) + 25.0 * (lat - 40.0); };
     {
         CfFileWriter w(path);
-        w.dimension("y", 6);
-        w.dimension("x", 8);
-        w.coordinate("sigma", {-0.75, -0.25}, {{"standard_name", "ocean_sigma_coordinate"}, {"positive", "up"},
-                                               {"formula_terms", "sigma: sigma eta: zeta depth: h"}});
-        std::vector<double> lat, lon, h(48, 100.0), zeta(48, 0.0), temp(96, 10.0);
+        w.dimension("eta_rho", 6);
+        w.dimension("xi_rho", 8);
+        w.coordinate("sigma", sigma, {{"standard_name", "ocean_sigma_coordinate"}, {"positive", "up"},
+                                      {"formula_terms", "sigma: sigma eta: zeta depth: h"}});
+        std::vector<double> lat, lon, h, zeta(48, 0.0), temp;
         for (int j = 0; j < 6; ++j)
-            for (int i = 0; i < 8; ++i) lat.push_back(40.0 + j + 0.2 * i), lon.push_back(140.0 + i - 0.2 * j);
-        w.variable("lat_rho", {"y", "x"}, GDT_Float64, lat, {{"units", "degrees_north"}});
-        w.variable("lon_rho", {"y", "x"}, GDT_Float64, lon, {{"units", "degrees_east"}});
-        w.variable("h", {"y", "x"}, GDT_Float64, h, {{"units", "m"}, {"coordinates", "lon_rho lat_rho"}});
-        w.variable("zeta", {"y", "x"}, GDT_Float64, zeta, {{"units", "m"}, {"coordinates", "lon_rho lat_rho"}});
-        w.variable("temp", {"sigma", "y", "x"}, GDT_Float32, temp,
-                   {{"units", "degC"}, {"coordinates", "lon_rho lat_rho sigma"}});
+            for (int i = 0; i < 8; ++i) {
+                lat.push_back(40.0 + j + 0.2 * i), lon.push_back(140.0 + i - 0.2 * j);
+                h.push_back(hAt(lon.back(), lat.back()));
+            }
+        for (double s : sigma)
+            for (double d : h) temp.push_back(-s * d);
+        w.variable("lat_rho", {"eta_rho", "xi_rho"}, GDT_Float64, lat, {{"units", "degree_north"}});
+        w.variable("lon_rho", {"eta_rho", "xi_rho"}, GDT_Float64, lon, {{"units", "degree_east"}});
+        w.variable("h", {"eta_rho", "xi_rho"}, GDT_Float64, h, {{"units", "m"}, {"coordinates", "lon_rho lat_rho"}});
+        w.variable("zeta", {"eta_rho", "xi_rho"}, GDT_Float64, zeta, {{"units", "m"}, {"coordinates", "lon_rho lat_rho"}});
+        w.variable("temp", {"sigma", "eta_rho", "xi_rho"}, GDT_Float32, temp,
+                   {{"units", "m"}, {"coordinates", "lon_rho lat_rho sigma"}});
     }
     io::FieldRequest req;
     req.variable = "temp";
-    try {
-        io::NetcdfReader::read(path, req);
-        FAIL() << "read a curvilinear grid with sigma levels";
-    } catch (const InputError& e) {
-        const std::string m = e.what();
-        EXPECT_NE(m.find("is on a curvilinear grid (lon_rho(y, x), lat_rho(y, x)) with a parametric vertical coordinate"),
-                  std::string::npos) << m;
-        EXPECT_NE(m.find("ocean_sigma_coordinate"), std::string::npos) << m;
-    }
+    req.horizontalSamples = 33;
+    ScalarField f = io::NetcdfReader::read(path, req);
+    ASSERT_TRUE(f.geographic.valid);
+    EXPECT_TRUE(hasNote(f, "curvilinear grid: 2-D coordinates lon_rho(eta_rho, xi_rho) and lat_rho(eta_rho, xi_rho)"));
+    EXPECT_TRUE(hasNote(f, "vertical: parametric, ocean_sigma_coordinate (sigma: sigma, eta: zeta, depth: h)"));
+    EXPECT_TRUE(hasNote(f, "each column's depths resampled onto the horizontal lattice with the field's weights"));
+    ASSERT_GT(f.dims.z, 4);
+    std::size_t inner = 0, columns = 0;
+    for (int j = 0; j < f.dims.y; ++j)
+        for (int i = 0; i < f.dims.x; ++i) {
+            const Place top = placeOf(f, i, j, 0);
+            const double h = hAt(top.lon, top.lat);
+            bool any = false;
+            for (int k = 0; k < f.dims.z; ++k) {
+                const std::size_t n = f.index(i, j, k);
+                const double d = placeOf(f, i, j, k).depthM;
+                if (d > h + 1e-6) {
+                    EXPECT_FALSE(f.isValid(n)) << "below the floor " << h << " m: " << d << " m";
+                }
+                if (!f.isValid(n)) continue;
+                any = true;
+                if (d >= 0.125 * h + 1e-6 && d <= 0.875 * h - 1e-6) {  // between the native levels: linear, exact
+                    EXPECT_NEAR(f.values[n], d, 1e-3 * h) << top.lon << ", " << top.lat << ", " << d << " m";
+                    ++inner;
+                }
+            }
+            columns += any;
+        }
+    EXPECT_GT(columns, std::size_t(f.dims.x * f.dims.y) / 2);
+    EXPECT_GT(inner, columns / 2);
+    // A known column: the lattice point nearest 143.4 E, 42.6 N (h = 301 m there) reaches its
+    // floor: its deepest valid level lies within one lattice step above h.
+    int bi = 0, bj = 0;
+    for (int j = 0; j < f.dims.y; ++j)
+        for (int i = 0; i < f.dims.x; ++i) {
+            Place p = placeOf(f, i, j, 0), b = placeOf(f, bi, bj, 0);
+            if (std::hypot(p.lon - 143.4, p.lat - 42.6) < std::hypot(b.lon - 143.4, b.lat - 42.6)) bi = i, bj = j;
+        }
+    const Place at = placeOf(f, bi, bj, 0);
+    const double h = hAt(at.lon, at.lat);
+    double deepest = -1.0, step = 0.0;
+    for (int k = 0; k < f.dims.z; ++k)
+        if (f.isValid(f.index(bi, bj, k))) {
+            double d = placeOf(f, bi, bj, k).depthM;
+            if (d > deepest) {
+                step = k + 1 < f.dims.z ? std::abs(placeOf(f, bi, bj, k + 1).depthM - d) : 0.0;
+                deepest = d;
+            }
+        }
+    EXPECT_LE(deepest, h + 1e-6);
+    EXPECT_GE(deepest, h - step - 1e-6) << "h " << h << " at " << at.lon << ", " << at.lat;
+    // Every level of the source and of the lattice is held while resampling: counted against
+    // the memory budget (about 68 bytes per lattice point here, the lookup 32).
+    req.memoryBudget = 50 * std::uint64_t(f.dims.x) * std::uint64_t(f.dims.y);
+    EXPECT_THROW_WITH(io::NetcdfReader::read(path, req), LimitError,
+                      "resampling the 4 levels of 'temp' and their depths onto the lattice");
 }

@@ -5,10 +5,15 @@
 #include "dicom/DicomFile.h"
 #include "octrace/io/DicomReader.h"
 #include "octrace/io/FieldReader.h"
+#include "octrace/io/TimeAxis.h"
+#include "octrace/io/VolumeReader.h"
 #include "octrace/util/Error.h"
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 using namespace octrace;
 
@@ -256,4 +261,138 @@ TEST(DicomReader, TheLittleAndBigEndianSingleMrImagesDecodeIdentically) {
     EXPECT_EQ(va.size(), std::size_t(64 * 64));
     EXPECT_TRUE(va == vb) << "decoded values differ";
     EXPECT_NE(*std::max_element(va.begin(), va.end()), *std::min_element(va.begin(), va.end()));
+}
+
+namespace {
+
+// dcm2niix's NIfTI of the XA10 series, read by the test itself (not by octrace's NIfTI
+// reader): dims, the sform (RAS, rows), and the int16 samples, x fastest.
+struct RawNifti {
+    int dim[8] = {};
+    double srow[3][4] = {};
+    std::vector<std::int16_t> samples;
+};
+
+RawNifti readRawNifti(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    RawNifti n;
+    EXPECT_GE(bytes.size(), 352u);
+    std::int16_t d[8], datatype;
+    std::memcpy(d, bytes.data() + 40, sizeof d);
+    std::memcpy(&datatype, bytes.data() + 70, 2);
+    EXPECT_EQ(datatype, 4) << "int16 expected";
+    float offset, srow[12];
+    std::memcpy(&offset, bytes.data() + 108, 4);
+    std::memcpy(srow, bytes.data() + 280, sizeof srow);
+    for (int i = 0; i < 8; ++i) n.dim[i] = d[i];
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c) n.srow[r][c] = srow[4 * r + c];
+    const std::size_t count = std::size_t(n.dim[1]) * std::size_t(n.dim[2]) * std::size_t(n.dim[3]) * std::size_t(n.dim[4]);
+    n.samples.resize(count);
+    EXPECT_GE(bytes.size(), std::size_t(offset) + 2 * count);
+    std::memcpy(n.samples.data(), bytes.data() + std::size_t(offset), 2 * count);
+    return n;
+}
+
+}  // namespace
+
+// The Siemens XA10 resting-state fMRI (four enhanced MR files, one time point each, 6 frames
+// at the same positions in each) is four volumes told apart by TemporalPositionIndex. Each
+// equals dcm2niix's 4-D NIfTI of the series: every voxel's world position (DICOM LPS, turned
+// into RAS) lies on a NIfTI voxel through the inverse of its sform, and the stored integers
+// there are equal, voxel for voxel. octrace's own 4-D NIfTI reader gives the same volume at
+// the same LPS positions.
+TEST(DicomReader, TheXa10FmriSeriesIsFourVolumesEqualToDcm2niixsReference) {
+    OCTRACE_SHARED_FILE_OR_SKIP(folder, "medical/siemens_xa10_fmri_4d");
+    const std::string nii = folder + "/reference_dcm2niix.nii";
+    const RawNifti ref = readRawNifti(nii);
+    ASSERT_EQ(ref.dim[0], 4);
+    ASSERT_EQ(ref.dim[4], 4);
+    const std::vector<std::string> labels = io::DicomReader::listVolumes(folder);
+    ASSERT_EQ(labels.size(), 4u);
+    for (int t = 0; t < 4; ++t) EXPECT_EQ(labels[std::size_t(t)], "temporal position " + std::to_string(t + 1));
+
+    // The sform's inverse: RAS -> NIfTI voxel.
+    dmat3 m;
+    dvec3 offset;
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) m[c][r] = ref.srow[r][c];
+        offset[r] = ref.srow[r][3];
+    }
+    const dmat3 inverse = glm::inverse(m);
+    const int nx = ref.dim[1], ny = ref.dim[2], nz = ref.dim[3];
+    for (int t = 0; t < 4; ++t) {
+        const ScalarField f = io::DicomReader::read(folder, {}, 0, t);
+        ASSERT_EQ(f.dims, ivec3(nx, ny, nz)) << "volume " << t;
+        const ScalarField fromNifti = io::VolumeReader::read(nii, io::VolumeReader::Format::Nifti, 0, t);
+        ASSERT_EQ(fromNifti.dims, ivec3(nx, ny, nz));
+        dmat3 niftiAxes = fromNifti.direction;
+        for (int a = 0; a < 3; ++a) niftiAxes[a] *= fromNifti.spacing[a];
+        const dmat3 niftiGrid = glm::inverse(niftiAxes);  // LPS offset from the origin -> grid index
+        std::size_t checked = 0;
+        double worst = 0.0, worstNifti = 0.0;
+        for (int k = 0; k < nz; ++k)
+            for (int j = 0; j < ny; ++j)
+                for (int i = 0; i < nx; ++i) {
+                    const dvec3 lps = f.worldFromGrid(i, j, k);
+                    const dvec3 voxel = inverse * (dvec3(-lps.x, -lps.y, lps.z) - offset);
+                    const dvec3 rounded = glm::round(voxel);
+                    worst = std::max(worst, glm::length(voxel - rounded));
+                    const ivec3 v(rounded);
+                    ASSERT_TRUE(v.x >= 0 && v.y >= 0 && v.z >= 0 && v.x < nx && v.y < ny && v.z < nz)
+                        << "volume " << t << " voxel " << i << "," << j << "," << k << " lies outside the NIfTI";
+                    const std::size_t at = ((std::size_t(t) * nz + v.z) * ny + v.y) * nx + v.x;
+                    ASSERT_EQ(f.values[f.index(i, j, k)], float(ref.samples[at]))
+                        << "volume " << t << " voxel " << i << "," << j << "," << k;
+                    // octrace's NIfTI reader (which may store the slices reversed: VTK does with a
+                    // reflection): the same value at the same LPS position.
+                    const dvec3 g = niftiGrid * (lps - fromNifti.origin);
+                    const ivec3 w(glm::round(g));
+                    worstNifti = std::max(worstNifti, glm::length(g - dvec3(w)));
+                    ASSERT_TRUE(w.x >= 0 && w.y >= 0 && w.z >= 0 && w.x < nx && w.y < ny && w.z < nz);
+                    EXPECT_EQ(fromNifti.values[fromNifti.index(w.x, w.y, w.z)], float(ref.samples[at]));
+                    ++checked;
+                }
+        EXPECT_EQ(checked, std::size_t(nx) * ny * nz);
+        EXPECT_LT(worst, 1e-3) << "volume " << t << ": DICOM voxels off the NIfTI's grid (in NIfTI voxels)";
+        EXPECT_LT(worstNifti, 1e-3) << "volume " << t << ": DICOM voxels off octrace's NIfTI grid (in its voxels)";
+    }
+    // The default is volume 0, and a volume beyond the last is refused naming the count.
+    expectSameVoxels(io::DicomReader::read(folder), io::DicomReader::read(folder, {}, 0, 0), "default volume");
+    EXPECT_THROW_WITH(io::DicomReader::read(folder, {}, 0, 4), InputError, "no volume 4: series");
+    EXPECT_THROW_WITH(io::DicomReader::read(folder, {}, 0, 4), InputError, "holds 4 volumes, 0..3 (0: temporal position 1");
+    EXPECT_THROW_WITH(io::VolumeReader::read(nii, io::VolumeReader::Format::Nifti, 0, 4), InputError,
+                      "no volume 4: the NIfTI image holds 4 volumes (dim[4]), 0..3");
+    // info lists the volumes with what tells them apart.
+    const std::string text = io::DicomReader::describe(folder, {}, 0, 2);
+    EXPECT_NE(text.find("4 volumes)"), std::string::npos) << text;
+    EXPECT_NE(text.find("volume 3: temporal position 4, 6 slices"), std::string::npos) << text;
+    EXPECT_NE(text.find("chosen: series 1, volume 2"), std::string::npos) << text;
+    // An animation's steps are the volumes.
+    const io::TimeAxis axis = io::readTimeAxis(folder);
+    EXPECT_TRUE(axis.volumes);
+    EXPECT_EQ(axis.size, 4u);
+    EXPECT_EQ(io::readTimeAxis(nii).size, 4u);
+}
+
+// Real slices (the XA10 series as dcm2niix wrote it) as classic MR files of two time points
+// (TemporalPositionIdentifier): volumes that do not hold the same slices are refused, naming
+// the volume (tests/data/dicom/make_volume_corpus.py writes them).
+TEST(DicomReader, VolumesWithoutTheSameSlicesAreRefusedNamingTheVolume) {
+    const std::string counts = test::testData("invalid/invalid_volume_slice_counts");
+    EXPECT_THROW_WITH(io::DicomReader::read(counts), FileError,
+                      counts + ": volume 1 (temporal position 2) has 4 slices, volume 0 (temporal position 1) has 6 slices");
+    EXPECT_THROW_WITH(io::DicomReader::listVolumes(counts), FileError, "volume 1 (temporal position 2) has 4 slices");
+    const std::string missing = test::testData("invalid/invalid_volume_missing_slice");
+    EXPECT_THROW_WITH(io::DicomReader::read(missing, {}, 0, 0), FileError,
+                      missing + ": volume 1 (temporal position 2) is missing a slice: it has none at");
+    EXPECT_THROW_WITH(io::DicomReader::read(missing), FileError, "(slice 4 of the series' 6 positions)");
+    // Without the second time point's files the first is one ordinary volume.
+    test::TempDir dir;
+    for (int k = 1; k <= 6; ++k)
+        std::filesystem::copy_file(missing + "/t1_s" + std::to_string(k) + ".dcm", dir.file("s" + std::to_string(k) + ".dcm"));
+    const ScalarField one = io::DicomReader::read(dir.file(""));
+    EXPECT_EQ(one.dims, ivec3(64, 64, 6));
+    EXPECT_EQ(io::DicomReader::listVolumes(dir.file("")).size(), 1u);
 }

@@ -158,3 +158,48 @@ TEST(NetcdfMap, RefusesAFileOfZeroAndOneDimensionalVariablesOnly) {
                       "variable temp(depth) has 1 dimension(s) longer than 1 besides time: nothing to draw (a map needs 2, a surface 3)");
     EXPECT_NE(io::NetcdfReader::describe(path, io::FieldRequest{}).find("no 3-D or 2-D variable: nothing to draw"), std::string::npos);
 }
+
+// A NEMO-like 2-D map on a curvilinear grid (make_curvilinear.py: sosstsst(time_counter, y, x)
+// with nav_lat/nav_lon on the tripolar grid, the surface of tripolar_global.nc): read as a map
+// on the resampled lattice, land masked, and the same samples as the 3-D file's top level
+// resampled onto the same lattice (the same weights, the same ocean corners).
+TEST(NetcdfMap, CurvilinearTwoDimensionalFieldIsAMapOnTheResampledLattice) {
+    io::FieldRequest r = mapRequest();
+    r.hasRegion = true;
+    const double region[4] = {-100.0, 20.0, -60.0, 70.0};
+    std::copy(region, region + 4, r.region);
+    r.horizontalSamples = 241;
+    ScalarField map = io::NetcdfReader::read(test::testData("netcdf/nemo_sst_2d.nc"), r);
+    EXPECT_EQ(map.name, "sosstsst");
+    EXPECT_TRUE(map.planar);
+    EXPECT_EQ(map.dims.z, 1);
+    EXPECT_TRUE(hasNote(map, "curvilinear grid: 2-D coordinates nav_lon(y, x) and nav_lat(y, x), source 240 x 113 points"));
+    EXPECT_TRUE(hasNote(map, "tripolar north fold"));
+    EXPECT_TRUE(hasNote(map, "2-D field: read as a map at the surface"));
+    io::FieldRequest t = r;
+    t.variable = "temp";
+    t.acceptPlanar = false;
+    t.hasDepthRange = true;
+    t.depthRange[0] = 0.0;  // the top two levels, 0 and 10 m
+    t.depthRange[1] = 10.0;
+    ScalarField top = io::NetcdfReader::read(test::testData("netcdf/tripolar_global.nc"), t);
+    ASSERT_EQ(top.dims.x, map.dims.x);
+    ASSERT_EQ(top.dims.y, map.dims.y);
+    std::size_t land = 0, sea = 0;
+    for (int j = 0; j < map.dims.y; ++j)
+        for (int i = 0; i < map.dims.x; ++i) {
+            const std::size_t m = map.index(i, j, 0), n = top.index(i, j, top.dims.z - 1);
+            ASSERT_EQ(map.isValid(m), top.isValid(n)) << i << ", " << j;
+            if (!map.isValid(m)) {
+                ++land;
+                continue;
+            }
+            ++sea;
+            EXPECT_NEAR(map.values[m], top.values[n], 1e-3) << i << ", " << j;  // int16 packed at 0.001 there
+        }
+    EXPECT_GT(land, map.sampleCount() / 5);  // the Americas, Africa, Europe
+    EXPECT_GT(sea, map.sampleCount() / 3);
+    // Without acceptPlanar (render, build) it is refused as every map is.
+    EXPECT_THROW_WITH(io::NetcdfReader::read(test::testData("netcdf/nemo_sst_2d.nc"), io::FieldRequest{}), InputError,
+                      "a surface needs a 3-D field");
+}

@@ -398,18 +398,22 @@ TEST(VerticalFormulaFiles, DepthRangeAndVerticalScaleWorkAsOnZLevels) {
     }
 }
 
+// Both ROMS-like files: on 1-D longitude/latitude and on the curvilinear grid (2-D lat_rho/lon_rho).
 TEST(VerticalFormulaFiles, InMemoryTwinOfTheRomsFileGivesTheSameFieldBitForBit) {
-    const std::string path = test::testData("netcdf/roms_g2_nwatlantic.nc");
-    auto arrays = test::cfDatasetFromGdal(path, "ROMS twin");
-    io::FieldRequest r = test::regionRequest("temp", -76.0, -60.0, 33.0, 44.0);
-    r.time = "1";
-    ScalarField file = io::NetcdfReader::read(path, r);
-    ScalarField memory = io::readCfDataset(arrays->data, r);
-    ASSERT_EQ(memory.dims, file.dims);
-    EXPECT_EQ(memory.coords[2], file.coords[2]);
-    EXPECT_EQ(std::memcmp(memory.values.data(), file.values.data(), file.values.size() * sizeof(float)), 0);
-    EXPECT_EQ(memory.valid, file.valid);
-    EXPECT_EQ(memory.notes, file.notes);
+    for (const char* name : {"netcdf/roms_g2_nwatlantic.nc", "netcdf/roms_curvilinear_nwatlantic.nc"}) {
+        SCOPED_TRACE(name);
+        const std::string path = test::testData(name);
+        auto arrays = test::cfDatasetFromGdal(path, "ROMS twin");
+        io::FieldRequest r = test::regionRequest("temp", -76.0, -60.0, 33.0, 44.0);
+        r.time = "1";
+        ScalarField file = io::NetcdfReader::read(path, r);
+        ScalarField memory = io::readCfDataset(arrays->data, r);
+        ASSERT_EQ(memory.dims, file.dims);
+        EXPECT_EQ(memory.coords[2], file.coords[2]);
+        EXPECT_EQ(std::memcmp(memory.values.data(), file.values.data(), file.values.size() * sizeof(float)), 0);
+        EXPECT_EQ(memory.valid, file.valid);
+        EXPECT_EQ(memory.notes, file.notes);
+    }
 }
 
 TEST(VerticalFormulaInvalid, CorpusFilesAreRefusedNamingTheTermAndVariable) {
@@ -448,4 +452,59 @@ TEST(VerticalFormulaFiles, InfoSaysTheFormulaItsTermsAndTheLattice) {
     // the terms are not offered as volumes: without `var`, temp is the one
     const std::string plain = io::NetcdfReader::describe(test::testData("netcdf/roms_g2_nwatlantic.nc"), io::FieldRequest{});
     EXPECT_NE(plain.find("grid of temp (whole grid)"), std::string::npos) << plain;
+}
+
+// The ROMS-like file on a curvilinear grid (make_sigma.py: 2-D lat_rho/lon_rho turned 30
+// degrees, the same s-levels, h from ETOPO20 and temperatures from Levitus) against the same
+// model set-up on ETOPO20's own regular grid: a Sargasso Sea column's profile agrees, both
+// reach the surface, and both reach the deep floor there (over 5000 m).
+TEST(VerticalFormulaFiles, RomsLikeFileOnACurvilinearGridHasTheRegularFilesColumns) {
+    io::FieldRequest r = test::regionRequest("temp", -66.0, -63.0, 33.5, 36.5);
+    r.time = "0";
+    r.horizontalSamples = 10;
+    ScalarField curvi = io::NetcdfReader::read(test::testData("netcdf/roms_curvilinear_nwatlantic.nc"), r);
+    ScalarField regular = io::NetcdfReader::read(test::testData("netcdf/roms_g2_nwatlantic.nc"), r);
+    EXPECT_TRUE(hasNote(curvi, "curvilinear grid: 2-D coordinates lon_rho(eta_rho, xi_rho) and lat_rho(eta_rho, xi_rho)"));
+    EXPECT_TRUE(hasNote(curvi, "ocean_s_coordinate_g2 (s: s_rho, C: Cs_r, eta: zeta, depth: h, depth_c: hc)"));
+    EXPECT_TRUE(hasNote(curvi, "each column's depths resampled onto the horizontal lattice with the field's weights"));
+    // The profile of each at the centre of the region (64.5 W, 35 N), by depth.
+    auto profile = [](const ScalarField& f) {
+        const int i = f.dims.x / 2, j = f.dims.y / 2;
+        std::vector<std::pair<double, double>> p;  // (depth, value), valid only, ascending depth
+        for (int k = 0; k < f.dims.z; ++k)
+            if (f.isValid(f.index(i, j, k))) p.emplace_back(latticeDepth(f, k), f.values[f.index(i, j, k)]);
+        std::sort(p.begin(), p.end());
+        return p;
+    };
+    const auto a = profile(curvi), b = profile(regular);
+    ASSERT_GE(a.size(), 10u);
+    ASSERT_GE(b.size(), 10u);
+    EXPECT_LT(a.front().first, 10.0);  // from the surface
+    EXPECT_GT(a.back().first, 4000.0);  // to the abyssal floor
+    EXPECT_NEAR(a.back().first, b.back().first, 300.0);  // the same floor, within ETOPO20's relief between the grids
+    int compared = 0;
+    for (const auto& [d, v] : a) {
+        if (d < b.front().first || d > b.back().first || d > 3000.0) continue;
+        auto it = std::lower_bound(b.begin(), b.end(), std::make_pair(d, -1e30));
+        if (it == b.begin()) continue;
+        const auto& [d1, v1] = *it;
+        const auto& [d0, v0] = *(it - 1);
+        const double want = v0 + (v1 - v0) * (d - d0) / (d1 - d0);
+        // above 700 m tens of metres between s-levels; deeper ~300 m, whose chords differ more
+        EXPECT_NEAR(v, want, d < 700.0 ? 0.3 : 1.0) << "depth " << d;
+        ++compared;
+    }
+    EXPECT_GE(compared, 8);
+}
+
+TEST(VerticalFormulaFiles, InfoOnACurvilinearRomsFileSaysTheGridTheFormulaAndTheResampling) {
+    io::FieldRequest r = temp();
+    r.time = "0";
+    const std::string text = io::NetcdfReader::describe(test::testData("netcdf/roms_curvilinear_nwatlantic.nc"), r);
+    for (const char* part : {"parametric: ocean_s_coordinate_g2, formula_terms 's: s_rho C: Cs_r eta: zeta depth: h depth_c: hc'",
+                             "note: curvilinear grid: 2-D coordinates lon_rho(eta_rho, xi_rho) and lat_rho(eta_rho, xi_rho), source 100 x 96 points",
+                             "resampled onto a regular",
+                             "note: vertical: each column's depths resampled onto the horizontal lattice with the field's weights",
+                             "note: vertical: 20 native levels per column resampled onto"})
+        EXPECT_NE(text.find(part), std::string::npos) << "lacks '" << part << "' in\n" << text;
 }

@@ -106,7 +106,7 @@ def animate(da, dim="time", path=None, *, frames=None, fps=None, orbit=0.0, size
     fps = int(_octrace.parse_number("fps", str(fps if fps is not None else int(_settings.default("fps")))))
     orbit = _octrace.parse_number("orbit", repr(float(orbit)))
     camera = dict(options.pop("camera", None) or {})
-    reader_keys = _settings.reader_keys() - {"var", "series", "time"}
+    reader_keys = _settings.reader_keys() - {"var", "series", "time", "volume"}
     view_keys = _settings.keys(("render", "figure"), shading=True)
     reader = {k: v for k, v in options.items() if k in reader_keys}
     view = {k: v for k, v in options.items() if k in view_keys}

@@ -81,13 +81,13 @@ def _description(da):
 
 
 def _reader_settings(kwargs, call):
-    accepted = _settings.reader_keys() - {"var", "series"}
+    accepted = _settings.reader_keys() - {"var", "series", "volume"}
     return _settings.settings(kwargs, accepted, call)
 
 
 def _split(kwargs):
     """Reader settings (region, depth_range, time, vertical_scale, max_memory) and the rest."""
-    reader = _settings.reader_keys() - {"var", "series"}
+    reader = _settings.reader_keys() - {"var", "series", "volume"}
     return {k: v for k, v in kwargs.items() if k in reader}, {k: v for k, v in kwargs.items() if k not in reader}
 
 

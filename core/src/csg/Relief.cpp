@@ -40,6 +40,9 @@ Relief::~Relief() = default;
 
 std::shared_ptr<const Relief> Relief::geographic(ReliefRaster r, const ScalarField::Geographic& g) {
     if (!g.valid) throw UsageError(r.source + ": a geographic relief needs a geographic field (longitude, latitude, depth)");
+    if (g.polar())
+        throw UsageError(r.source + ": a geographic relief is laid out on the longitude/latitude mapping only, and this "
+                         "field is on the polar stereographic one: give `map_projection` lonlat");
     if (!(r.du > 0.0) || r.nx < 2) throw UsageError(r.source + ": a relief needs at least 2 x 2 heights");
     const double turns = 360.0 / r.du;
     const long period = std::lround(turns);

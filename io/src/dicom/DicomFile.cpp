@@ -14,6 +14,7 @@
 #include <gdcmStringFilter.h>
 #include <gdcmTrace.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -37,6 +38,17 @@ const gdcm::Tag kPosition(0x0020, 0x0032), kOrientation(0x0020, 0x0037), kPixelS
 const gdcm::Tag kSlope(0x0028, 0x1053), kIntercept(0x0028, 0x1052);
 const gdcm::Tag kSliceThickness(0x0018, 0x0050), kSpacingBetweenSlices(0x0018, 0x0088);
 const gdcm::Tag kFrameVoiLut(0x0028, 0x9132), kWindowCentre(0x0028, 0x1050), kWindowWidth(0x0028, 0x1051);
+// What tells the volumes of a series apart (DicomSeries.h, VolumeAttribute): the functional
+// group macro that holds an attribute in enhanced files, the attribute, and the classic one.
+const gdcm::Tag kFrameContent(0x0020, 0x9111), kCardiacSync(0x0018, 0x9118), kMrEcho(0x0018, 0x9114),
+    kMrDiffusion(0x0018, 0x9117), kGradientDirectionSeq(0x0018, 0x9076), kMrFrameType(0x0018, 0x9226),
+    kCtFrameType(0x0018, 0x9329), kDimensionIndexSeq(0x0020, 0x9222), kDimensionIndexPointer(0x0020, 0x9165);
+const gdcm::Tag kTemporalPositionIndex(0x0020, 0x9128), kTemporalPositionIdentifier(0x0020, 0x0100),
+    kNominalTriggerDelay(0x0020, 0x9153), kTriggerTimeTag(0x0018, 0x1060), kStackId(0x0020, 0x9056),
+    kInStackPosition(0x0020, 0x9057), kEchoNumbers(0x0018, 0x0086), kEffectiveEchoTime(0x0018, 0x9082),
+    kEchoTimeTag(0x0018, 0x0081), kBValueTag(0x0018, 0x9087), kGradientOrientation(0x0018, 0x9089), kFrameType(0x0008, 0x9007),
+    kImageTypeTag(0x0008, 0x0008), kComplexComponentTag(0x0008, 0x9208), kDimensionIndexValues(0x0020, 0x9157),
+    kFrameAcquisitionDateTime(0x0018, 0x9074), kAcquisitionDateTime(0x0008, 0x002a), kAcquisitionTime(0x0008, 0x0032);
 
 // GDCM (and the codecs under it) would print to stderr; octrace reports its own one-line errors.
 void silenceGdcm() {
@@ -83,12 +95,18 @@ public:
     /// `attr` of frame `frame`: in macro `macro` of its per-frame item, of the shared item, or
     /// at the top level.
     std::optional<std::string> frameText(std::size_t frame, gdcm::Tag macro, gdcm::Tag attr) {
+        return frameText(frame, macro, std::nullopt, attr);
+    }
+    /// The same, with `attr` in the first item of sequence `inner` of the macro.
+    std::optional<std::string> frameText(std::size_t frame, gdcm::Tag macro, std::optional<gdcm::Tag> inner, gdcm::Tag attr) {
         for (const gdcm::DataSet* groups : {item(top_, kPerFrameGroups, frame), item(top_, kSharedGroups, 0)}) {
             const gdcm::DataSet* m = groups ? item(*groups, macro, 0) : nullptr;
+            if (m && inner) m = item(*m, *inner, 0);
             if (auto v = m ? text(*m, attr) : std::nullopt) return v;
         }
         return text(attr);
     }
+    const gdcm::DataSet& top() const { return top_; }
 
 private:
     const gdcm::DataSet& top_;
@@ -98,19 +116,8 @@ private:
 
 // `count` numbers separated by backslashes (a DS or IS value); all finite.
 std::optional<std::vector<double>> numbers(const std::string& text, std::size_t count) {
-    std::vector<double> v;
-    std::size_t start = 0;
-    while (start <= text.size()) {
-        std::size_t end = text.find('\\', start);
-        if (end == std::string::npos) end = text.size();
-        const std::string item = trim(text.substr(start, end - start));
-        char* stop = nullptr;
-        const double x = std::strtod(item.c_str(), &stop);
-        if (item.empty() || *stop != '\0' || !std::isfinite(x)) return std::nullopt;
-        v.push_back(x);
-        start = end + 1;
-    }
-    if (v.size() != count) return std::nullopt;
+    auto v = dicomNumbers(text);
+    if (!v || v->size() != count) return std::nullopt;
     return v;
 }
 
@@ -210,6 +217,65 @@ DicomFrame readFrame(const Context& c, std::size_t n) {
         f.windowWidth = *width;
     }
     return f;
+}
+
+// The attribute tags of a gdcm AT value as text ("(0020,9056)" or "00209056"): its hex digits.
+std::optional<gdcm::Tag> tagOf(const std::string& text) {
+    std::string hex;
+    for (char ch : text)
+        if (std::isxdigit(static_cast<unsigned char>(ch))) hex += ch;
+    if (hex.size() != 8) return std::nullopt;
+    const unsigned long v = std::strtoul(hex.c_str(), nullptr, 16);
+    return gdcm::Tag(std::uint16_t(v >> 16), std::uint16_t(v & 0xffff));
+}
+
+// Which of DimensionIndexValues' entries are spatial (the stack, the position in it, the
+// position itself): those say where a frame lies, not which volume it belongs to. Nothing
+// when a pointer cannot be read (the values are then not used).
+std::optional<std::vector<bool>> spatialDimensions(Attributes& attrs) {
+    std::vector<bool> spatial;
+    for (std::size_t i = 0, n = attrs.items(kDimensionIndexSeq); i < n; ++i) {
+        const gdcm::DataSet* d = attrs.item(attrs.top(), kDimensionIndexSeq, i);
+        const auto pointer = d ? attrs.text(*d, kDimensionIndexPointer) : std::nullopt;
+        const auto tag = pointer ? tagOf(*pointer) : std::nullopt;
+        if (!tag) return std::nullopt;
+        spatial.push_back(*tag == kStackId || *tag == kInStackPosition || *tag == kPosition);
+    }
+    return spatial;
+}
+
+// The VolumeAttributes of frame `n` (DicomSeries.h) and its acquisition time.
+void readVolumeKey(const Context& c, std::size_t n, const std::optional<std::vector<bool>>& spatial, DicomFrame& f) {
+    Attributes& a = c.attrs;
+    auto first = [](std::initializer_list<std::optional<std::string>> v) {
+        for (const auto& x : v)
+            if (x && !x->empty()) return *x;
+        return std::string();
+    };
+    auto& k = f.volumeKey;
+    k[kTemporalPosition] = first({a.frameText(n, kFrameContent, kTemporalPositionIndex), a.text(kTemporalPositionIdentifier)});
+    k[kTriggerTime] = first({a.frameText(n, kCardiacSync, kNominalTriggerDelay), a.text(kTriggerTimeTag)});
+    k[kStack] = first({a.frameText(n, kFrameContent, kStackId)});
+    k[kEchoNumber] = first({a.text(kEchoNumbers)});
+    k[kEchoTime] = first({a.frameText(n, kMrEcho, kEffectiveEchoTime), a.text(kEchoTimeTag)});
+    k[kBValue] = first({a.frameText(n, kMrDiffusion, kBValueTag)});
+    k[kGradientDirection] = first({a.frameText(n, kMrDiffusion, kGradientDirectionSeq, kGradientOrientation)});
+    k[kImageType] = first({a.frameText(n, kMrFrameType, kFrameType), a.frameText(n, kCtFrameType, kFrameType), a.text(kImageTypeTag)});
+    k[kComplexComponent] = first({a.frameText(n, kMrFrameType, kComplexComponentTag)});
+    if (spatial && !spatial->empty()) {
+        const std::string values = first({a.frameText(n, kFrameContent, kDimensionIndexValues)});
+        std::string kept;
+        std::size_t start = 0, index = 0;
+        while (!values.empty() && start <= values.size()) {
+            std::size_t end = values.find('\\', start);
+            if (end == std::string::npos) end = values.size();
+            if (index < spatial->size() && !(*spatial)[index]) kept += (kept.empty() ? "" : "\\") + trim(values.substr(start, end - start));
+            start = end + 1;
+            ++index;
+        }
+        k[kDimensionIndex] = kept;
+    }
+    f.acquired = first({a.frameText(n, kFrameContent, kFrameAcquisitionDateTime), a.text(kAcquisitionDateTime), a.text(kAcquisitionTime)});
 }
 
 // What the pixel data must occupy at least, checked against the bytes left in the file, so
@@ -317,7 +383,11 @@ std::optional<DicomHeader> readDicomHeader(const std::string& file, std::string&
     const std::uintmax_t size = fileSize(file), at = reader.GetStreamCurrentPosition();
     checkPixelDataFits(c, h, encapsulated, size > at ? size - at : 0);
 
-    for (std::size_t n = 0; n < h.frames.size(); ++n) h.frames[n] = readFrame(c, n);
+    const auto spatial = spatialDimensions(attrs);
+    for (std::size_t n = 0; n < h.frames.size(); ++n) {
+        h.frames[n] = readFrame(c, n);
+        readVolumeKey(c, n, spatial, h.frames[n]);
+    }
     // For an image with functional groups GDCM's image reader computes the slice spacing from
     // the orientation in them (or at the top level) and asserts, aborting the process, when
     // there is none (found by fuzz_dicom).

@@ -27,6 +27,7 @@ constexpr double kMaxSamples = double(1u << 31);
 struct Series {
     DicomSeriesInfo info;
     std::vector<DicomHeader> headers;
+    std::vector<detail::SeriesVolume> volumes;  ///< splitVolumes of the headers
 };
 
 // Runs `step` on one file of the input; a refusal names the input first when the input is a
@@ -101,7 +102,11 @@ Scan scan(const std::string& path) {
     if (byUid.empty())
         throw FileError(path + ": no DICOM image (" + std::to_string(files.size()) + " DICOM-looking file(s), " +
                         std::to_string(skipped) + " without an image)");
-    for (auto& [uid, series] : byUid) s.series.push_back(std::move(series));
+    for (auto& [uid, series] : byUid) {
+        series.volumes = detail::splitVolumes(series.headers);
+        series.info.volumes = int(series.volumes.size());
+        s.series.push_back(std::move(series));
+    }
     std::stable_sort(s.series.begin(), s.series.end(), [](const Series& a, const Series& b) {
         return a.info.seriesNumber < b.info.seriesNumber;  // then UID: the map's order
     });
@@ -112,7 +117,8 @@ std::string seriesLine(const DicomSeriesInfo& i) {
     std::ostringstream s;
     s << (i.uid.empty() ? std::string("(no SeriesInstanceUID)") : i.uid) << " (" << (i.modality.empty() ? "?" : i.modality)
       << (i.description.empty() ? std::string() : ", '" + i.description + "'") << ", " << i.columns << "x" << i.rows << "x"
-      << i.slices << ", " << i.files << " file" << (i.files == 1 ? "" : "s") << ")";
+      << i.slices << ", " << i.files << " file" << (i.files == 1 ? "" : "s")
+      << (i.volumes > 1 ? ", " + std::to_string(i.volumes) + " volumes" : std::string()) << ")";
     return s.str();
 }
 
@@ -143,11 +149,13 @@ std::size_t chooseSeries(const Scan& s, const std::string& want, const std::stri
 // Stored values (rescaled for CT) of every slice, in the layout's z order.
 std::vector<float> decodeSlices(const std::vector<DicomHeader>& headers, const detail::SeriesLayout& L, bool rescale,
                                 const std::string& path) {
+    // Only the files that hold a slice of the volume are decoded.
     const std::size_t plane = std::size_t(L.sliceDims.x) * std::size_t(L.sliceDims.y);
     std::vector<std::vector<std::pair<int, std::size_t>>> wanted(headers.size());  // per file: (frame, slice)
     for (std::size_t k = 0; k < L.slices.size(); ++k) wanted[L.slices[k].header].push_back({L.slices[k].frame, k});
     std::vector<float> stored(plane * L.slices.size());
     for (std::size_t h = 0; h < headers.size(); ++h) {
+        if (wanted[h].empty()) continue;
         const std::vector<float> frames = forFile(path, headers[h].file, [&] { return detail::decodeDicomFrames(headers[h]); });
         for (auto [frame, k] : wanted[h]) {
             const detail::DicomFrame& g = headers[h].frames[std::size_t(frame)];
@@ -169,8 +177,26 @@ std::uint64_t peakBytes(const Series& series, double stored, double samples, boo
     return total >= 1.8e19 ? std::numeric_limits<std::uint64_t>::max() : std::uint64_t(total);
 }
 
-ScalarField assemble(const Series& series, const std::string& path, std::uint64_t memoryBudget) {
-    detail::SeriesLayout L = detail::layoutSeries(series.headers, path);
+// The volume `want` (-1: the first, said when there are several) of a series, checked.
+std::size_t chooseVolume(const Series& series, int want, const std::string& path) {
+    const std::size_t n = series.volumes.size();
+    detail::checkVolumesAlike(series.headers, series.volumes, path);
+    if (want >= 0 && std::size_t(want) < n) return std::size_t(want);
+    std::string list;
+    for (std::size_t v = 0; v < n && v < 8; ++v) list += (v ? "; " : "") + std::to_string(v) + ": " + series.volumes[v].label;
+    if (n > 8) list += "; ...";
+    if (want >= 0)
+        throw InputError(path + ": no volume " + std::to_string(want) + ": series " + series.info.uid + " holds " +
+                         (n == 1 ? std::string("one volume (`volume` 0)") : std::to_string(n) + " volumes, 0.." + std::to_string(n - 1) + " (" + list + ")"));
+    if (n > 1)
+        log::info(path + ": the series holds " + std::to_string(n) + " volumes (" + list + "); reading volume 0, choose another with `volume`");
+    return 0;
+}
+
+ScalarField assemble(const Series& series, const std::string& path, std::uint64_t memoryBudget, int volume) {
+    const std::size_t chosen = chooseVolume(series, volume, path);
+    const detail::SeriesVolume& vol = series.volumes[chosen];
+    detail::SeriesLayout L = detail::layoutSeries(series.headers, path, vol.images);
     const double stored = double(L.sliceDims.x) * double(L.sliceDims.y) * double(L.sliceDims.z);
     ivec3 dims = L.sliceDims;
     dvec2 offset(0.0);
@@ -207,6 +233,8 @@ ScalarField assemble(const Series& series, const std::string& path, std::uint64_
     if (f.invertedGrey) f.notes.push_back("MONOCHROME1: low values displayed bright");
 
     f.notes.push_back("DICOM series " + seriesLine(series.info));
+    if (series.volumes.size() > 1)
+        f.notes.push_back("volume " + std::to_string(chosen) + " of " + std::to_string(series.volumes.size()) + ": " + vol.label);
     f.notes.push_back(ct ? "values: Hounsfield units (RescaleSlope/Intercept of each image)" : "values: as stored");
     f.notes.push_back("coordinates: patient LPS, mm");
     f.patientLps = true;
@@ -218,7 +246,7 @@ ScalarField assemble(const Series& series, const std::string& path, std::uint64_
     return f;
 }
 
-ScalarField readScanned(const Scan& s, const std::string& path, const std::string& want, std::uint64_t memoryBudget) {
+ScalarField readScanned(const Scan& s, const std::string& path, const std::string& want, std::uint64_t memoryBudget, int volume) {
     const std::size_t chosen = chooseSeries(s, want, path);
     const DicomSeriesInfo& info = s.series[chosen].info;
     // Said when there was a choice to make; a folder of one series gets a debugging line.
@@ -226,7 +254,7 @@ ScalarField readScanned(const Scan& s, const std::string& path, const std::strin
                              ", " + seriesLine(info);
     if (s.series.size() > 1) log::info(said + (want.empty() ? ": the largest; choose another with `series`" : ""));
     else log::debug(said);
-    return assemble(s.series[chosen], path, memoryBudget);
+    return assemble(s.series[chosen], path, memoryBudget, volume);
 }
 
 }  // namespace
@@ -237,17 +265,36 @@ std::vector<DicomSeriesInfo> DicomReader::listSeries(const std::string& path) {
     return list;
 }
 
-ScalarField DicomReader::read(const std::string& path, const std::string& series, std::uint64_t memoryBudget) {
-    return readScanned(scan(path), path, series, memoryBudget);
+ScalarField DicomReader::read(const std::string& path, const std::string& series, std::uint64_t memoryBudget, int volume) {
+    return readScanned(scan(path), path, series, memoryBudget, volume);
 }
 
-std::string DicomReader::describe(const std::string& path, const std::string& series, std::uint64_t memoryBudget) {
+std::vector<std::string> DicomReader::listVolumes(const std::string& path, const std::string& series) {
+    const Scan s = scan(path);
+    const Series& chosen = s.series[chooseSeries(s, series, path)];
+    detail::checkVolumesAlike(chosen.headers, chosen.volumes, path);
+    std::vector<std::string> labels;
+    for (const detail::SeriesVolume& v : chosen.volumes) labels.push_back(v.label);
+    return labels;
+}
+
+std::string DicomReader::describe(const std::string& path, const std::string& series, std::uint64_t memoryBudget, int volume) {
     const Scan s = scan(path);
     std::ostringstream out;
     out << path << "\nformat: DICOM, " << s.series.size() << " image series\n";
     for (std::size_t i = 0; i < s.series.size(); ++i) out << "series " << i + 1 << ": " << seriesLine(s.series[i].info) << "\n";
-    const ScalarField f = readScanned(s, path, series, memoryBudget);
-    out << "chosen: series " << chooseSeries(s, series, path) + 1 << "\n" << detail::describeVolume(f);
+    const std::size_t chosen = chooseSeries(s, series, path);
+    const Series& c = s.series[chosen];
+    if (c.volumes.size() > 1) {
+        detail::checkVolumesAlike(c.headers, c.volumes, path);
+        out << "volumes: " << c.volumes.size() << " (choose with `volume`, from 0)\n";
+        for (std::size_t v = 0; v < c.volumes.size(); ++v)
+            out << "volume " << v << ": " << c.volumes[v].label << ", " << c.volumes[v].images.size() << " slices\n";
+    }
+    const ScalarField f = readScanned(s, path, series, memoryBudget, volume);
+    out << "chosen: series " << chosen + 1;
+    if (c.volumes.size() > 1) out << ", volume " << (volume < 0 ? 0 : volume);
+    out << "\n" << detail::describeVolume(f);
     return out.str();
 }
 

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <map>
 #include <numbers>
 
 namespace octrace::io::detail {
@@ -74,9 +76,201 @@ void checkDistances(SeriesLayout& L) {
                              "); the true positions are kept as a rectilinear z axis");
 }
 
+constexpr double kSamePosition = 1e-3;  // mm along the normal: two images at one position
+
+const DicomFrame& frameOf(const std::vector<DicomHeader>& headers, const SliceRef& s) {
+    return headers[s.header].frames[std::size_t(s.frame)];
+}
+
+// The slice normal of the series (row x column of the first image; z without an orientation).
+dvec3 seriesNormal(const std::vector<DicomHeader>& headers) {
+    const DicomFrame& f0 = headers.front().frames.front();
+    if (!f0.hasOrientation) return dvec3(0.0, 0.0, 1.0);
+    const dvec3 n = glm::cross(f0.rowDir, f0.colDir);
+    const double l = glm::length(n);
+    return l > 0.0 && std::isfinite(l) ? n / l : dvec3(0.0, 0.0, 1.0);
+}
+
+// Each image's position along the normal as the index of a cluster of positions less than
+// kSamePosition apart, clusters numbered from the lowest position; `where` gets each
+// cluster's position. Images without a position are each a cluster of their own.
+std::vector<std::size_t> positionClusters(const std::vector<DicomHeader>& headers, const std::vector<SliceRef>& images,
+                                          std::vector<double>& where) {
+    const dvec3 normal = seriesNormal(headers);
+    std::vector<std::size_t> order(images.size());
+    std::vector<double> z(images.size());
+    for (std::size_t i = 0; i < images.size(); ++i) {
+        const DicomFrame& f = frameOf(headers, images[i]);
+        z[i] = f.hasPosition ? glm::dot(f.position, normal) : 1e12 + double(i);  // apart from any position and each other
+        order[i] = i;
+    }
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return z[a] < z[b]; });
+    std::vector<std::size_t> cluster(images.size());
+    where.clear();
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        if (k == 0 || !(z[order[k]] - z[order[k - 1]] <= kSamePosition)) where.push_back(z[order[k]]);
+        cluster[order[k]] = where.size() - 1;
+    }
+    return cluster;
+}
+
+// Orders two attribute values: as numbers when both are (every backslash-separated part),
+// else as text.
+bool valueLess(const std::string& a, const std::string& b) {
+    const auto x = a.empty() ? std::nullopt : dicomNumbers(a), y = b.empty() ? std::nullopt : dicomNumbers(b);
+    if (x && y) return *x < *y;
+    return a < b;
+}
+
+struct KeyLess {
+    bool operator()(const std::vector<std::string>& a, const std::vector<std::string>& b) const {
+        for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) {
+            if (valueLess(a[i], b[i])) return true;
+            if (valueLess(b[i], a[i])) return false;
+        }
+        return a.size() < b.size();
+    }
+};
+
+// The images grouped by the values of `attributes`, in KeyLess order of the values.
+std::map<std::vector<std::string>, std::vector<SliceRef>, KeyLess> groupBy(const std::vector<DicomHeader>& headers,
+                                                                          const std::vector<SliceRef>& images,
+                                                                          const std::vector<int>& attributes) {
+    std::map<std::vector<std::string>, std::vector<SliceRef>, KeyLess> groups;
+    for (const SliceRef& s : images) {
+        std::vector<std::string> key;
+        for (int a : attributes) key.push_back(frameOf(headers, s).volumeKey[std::size_t(a)]);
+        groups[key].push_back(s);
+    }
+    return groups;
+}
+
+std::string sliceCount(std::size_t n) { return std::to_string(n) + (n == 1 ? " slice" : " slices"); }
+
+std::string volumeName(const std::vector<SeriesVolume>& volumes, std::size_t v) {
+    return "volume " + std::to_string(v) + (volumes[v].label.empty() ? "" : " (" + volumes[v].label + ")");
+}
+
 }  // namespace
 
-SeriesLayout layoutSeries(const std::vector<DicomHeader>& headers, const std::string& what) {
+std::optional<std::vector<double>> dicomNumbers(const std::string& text) {
+    std::vector<double> v;
+    std::size_t start = 0;
+    while (start <= text.size()) {
+        std::size_t end = text.find('\\', start);
+        if (end == std::string::npos) end = text.size();
+        const std::string item = trim(text.substr(start, end - start));
+        char* stop = nullptr;
+        const double x = std::strtod(item.c_str(), &stop);
+        if (item.empty() || *stop != '\0' || !std::isfinite(x)) return std::nullopt;
+        v.push_back(x);
+        start = end + 1;
+    }
+    return v;
+}
+
+const char* volumeAttributeName(int attribute) {
+    static const char* const names[kVolumeAttributeCount] = {
+        "temporal position", "trigger time", "stack", "echo", "echo time", "b-value", "gradient direction",
+        "image type", "complex component", "dimension index"};
+    return attribute >= 0 && attribute < kVolumeAttributeCount ? names[attribute] : "?";
+}
+
+std::vector<SeriesVolume> splitVolumes(const std::vector<DicomHeader>& headers) {
+    std::vector<SliceRef> all;
+    for (std::size_t h = 0; h < headers.size(); ++h)
+        for (std::size_t n = 0; n < headers[h].frames.size(); ++n) all.push_back({h, int(n), dvec2(0.0)});
+    std::vector<double> where;
+    const std::vector<std::size_t> cluster = positionClusters(headers, all, where);
+    std::vector<std::size_t> perPosition(where.size(), 0);
+    for (std::size_t c : cluster) ++perPosition[c];
+    const std::size_t repeats = perPosition.empty() ? 1 : *std::max_element(perPosition.begin(), perPosition.end());
+    if (repeats <= 1) return {SeriesVolume{"", all}};
+
+    // The attributes that split the images into at most `repeats` groups, each only if it splits further.
+    std::vector<int> used;
+    std::size_t groups = 1;
+    for (int a = 0; a < kVolumeAttributeCount; ++a) {
+        std::vector<int> trial = used;
+        trial.push_back(a);
+        const std::size_t n = groupBy(headers, all, trial).size();
+        if (n > groups && n <= repeats) {
+            used = trial;
+            groups = n;
+        }
+    }
+    std::vector<SeriesVolume> volumes;
+    for (auto& [key, images] : groupBy(headers, all, used)) {
+        std::string label;
+        for (std::size_t i = 0; i < used.size(); ++i)
+            label += (i ? ", " : "") + std::string(volumeAttributeName(used[i])) + " " + (key[i].empty() ? "(none)" : key[i]);
+        // Images still sharing a position: the first acquired at each position is in the first repeat.
+        std::vector<std::size_t> at = positionClusters(headers, images, where);
+        std::vector<std::vector<std::size_t>> byPosition(where.size());
+        for (std::size_t i = 0; i < images.size(); ++i) byPosition[at[i]].push_back(i);
+        std::size_t deepest = 0;
+        for (auto& list : byPosition) {
+            std::stable_sort(list.begin(), list.end(), [&](std::size_t a, std::size_t b) {
+                return valueLess(frameOf(headers, images[a]).acquired, frameOf(headers, images[b]).acquired);
+            });
+            deepest = std::max(deepest, list.size());
+        }
+        if (deepest <= 1) {
+            volumes.push_back({label, images});
+            continue;
+        }
+        for (std::size_t r = 0; r < deepest; ++r) {
+            SeriesVolume v;
+            for (const auto& list : byPosition)
+                if (r < list.size()) v.images.push_back(images[list[r]]);
+            const std::string when = frameOf(headers, v.images.front()).acquired;
+            v.label = label + (label.empty() ? "" : ", ") + "repeat " + std::to_string(r + 1) +
+                      (when.empty() ? " (in file order)" : " (acquired " + when + ")");
+            volumes.push_back(std::move(v));
+        }
+    }
+    return volumes;
+}
+
+void checkVolumesAlike(const std::vector<DicomHeader>& headers, const std::vector<SeriesVolume>& volumes, const std::string& what) {
+    if (volumes.size() < 2) return;
+    std::vector<SliceRef> all;
+    std::vector<std::size_t> owner;
+    for (std::size_t v = 0; v < volumes.size(); ++v)
+        for (const SliceRef& s : volumes[v].images) {
+            all.push_back(s);
+            owner.push_back(v);
+        }
+    std::vector<double> where;
+    const std::vector<std::size_t> cluster = positionClusters(headers, all, where);
+    std::vector<std::vector<bool>> has(volumes.size(), std::vector<bool>(where.size(), false));
+    for (std::size_t i = 0; i < all.size(); ++i) has[owner[i]][cluster[i]] = true;
+    // A hole inside a volume's own first..last slice is a missing slice.
+    for (std::size_t v = 0; v < volumes.size(); ++v) {
+        const auto lo = std::find(has[v].begin(), has[v].end(), true) - has[v].begin();
+        const auto hi = has[v].rend() - std::find(has[v].rbegin(), has[v].rend(), true) - 1;
+        for (auto c = lo; c <= hi; ++c)
+            if (!has[v][std::size_t(c)]) {
+                std::size_t other = 0;
+                while (other < volumes.size() && !has[other][std::size_t(c)]) ++other;
+                throw FileError(what + ": " + volumeName(volumes, v) + " is missing a slice: it has none at " +
+                                num(where[std::size_t(c)]) + " mm along the slice normal, where " + volumeName(volumes, other) +
+                                " has one (slice " + std::to_string(c + 1) + " of the series' " + std::to_string(where.size()) +
+                                " positions); every volume of a series needs the same slices");
+            }
+    }
+    for (std::size_t v = 1; v < volumes.size(); ++v)
+        if (has[v] != has[0])
+            throw FileError(what + ": " + volumeName(volumes, v) + " has " + sliceCount(volumes[v].images.size()) + ", " +
+                            volumeName(volumes, 0) + " has " + sliceCount(volumes[0].images.size()) +
+                            " at other positions: every volume of a series needs the same slices");
+    for (std::size_t v = 0; v < volumes.size(); ++v)
+        if (volumes[v].images.size() != where.size())
+            throw FileError(what + ": " + volumeName(volumes, v) + " has " + sliceCount(volumes[v].images.size()) + " at " +
+                            std::to_string(where.size()) + " positions: several images of it lie at one position");
+}
+
+SeriesLayout layoutSeries(const std::vector<DicomHeader>& headers, const std::string& what, const std::vector<SliceRef>& images) {
     if (headers.empty()) throw FileError(what + ": no DICOM image");
     checkSameGeometry(headers, what);
     const DicomHeader& h0 = headers.front();
@@ -85,11 +279,12 @@ SeriesLayout layoutSeries(const std::vector<DicomHeader>& headers, const std::st
     SeriesLayout L;
     std::size_t count = 0, positioned = 0;
     for (std::size_t h = 0; h < headers.size(); ++h)
-        for (std::size_t n = 0; n < headers[h].frames.size(); ++n) {
-            L.slices.push_back({h, int(n), dvec2(0.0)});
-            ++count;
-            positioned += headers[h].frames[n].hasPosition ? 1 : 0;
-        }
+        for (std::size_t n = 0; n < headers[h].frames.size(); ++n) L.slices.push_back({h, int(n), dvec2(0.0)});
+    if (!images.empty()) L.slices = images;
+    for (const SliceRef& s : L.slices) {
+        ++count;
+        positioned += frameOf(headers, s).hasPosition ? 1 : 0;
+    }
     if (count < 2)
         throw FileError(what + ": series " + h0.seriesUid + " holds a single " + std::to_string(h0.columns) + "x" +
                         std::to_string(h0.rows) + " image (" + h0.file + "); a volume needs at least 2 slices");
@@ -120,7 +315,7 @@ SeriesLayout layoutSeries(const std::vector<DicomHeader>& headers, const std::st
                 const SliceRef& b = L.slices[k];
                 throw FileError(what + ": " + imageName(headers[a.header], a.frame) + " and " +
                                 imageName(headers[b.header], b.frame) + " lie at the same position along the slice normal (" +
-                                vecText(framePos(b)) + "): several volumes in one series (echoes, phases, time points) are not supported");
+                                vecText(framePos(b)) + ") and nothing in their headers tells their volumes apart");
             }
         }
     } else if (positioned == 0 && headers.size() == 1) {

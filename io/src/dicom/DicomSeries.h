@@ -4,11 +4,37 @@
 // and the resampling of a sheared stack onto an orthogonal grid.
 #include "octrace/util/Math.h"
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace octrace::io::detail {
+
+/// The attributes that may tell the volumes of one series apart (several images at one
+/// position: time points, echoes, diffusion directions, magnitude and phase), in the order the
+/// volumes are sorted and labelled by.
+enum VolumeAttribute : int {
+    kTemporalPosition,   ///< TemporalPositionIndex (enhanced) or TemporalPositionIdentifier
+    kTriggerTime,        ///< NominalCardiacTriggerDelayTime (enhanced) or TriggerTime: cardiac phases
+    kStack,              ///< StackID (enhanced)
+    kEchoNumber,         ///< EchoNumbers
+    kEchoTime,           ///< EffectiveEchoTime (enhanced) or EchoTime, ms
+    kBValue,             ///< DiffusionBValue
+    kGradientDirection,  ///< DiffusionGradientOrientation
+    kImageType,          ///< FrameType (enhanced) or ImageType: M, P, R, I, field maps
+    kComplexComponent,   ///< ComplexImageComponent: MAGNITUDE, PHASE, REAL, IMAGINARY
+    kDimensionIndex,     ///< DimensionIndexValues without the spatial indices (stack, in-stack position, position)
+    kVolumeAttributeCount
+};
+
+/// The numbers of a DS, IS or multi-valued numeric text, separated by backslashes; nothing when
+/// a part is not a finite number.
+std::optional<std::vector<double>> dicomNumbers(const std::string& text);
+
+/// How a message and `octrace info` name a VolumeAttribute.
+const char* volumeAttributeName(int attribute);
 
 /// Where one image (a frame of a file) lies and how its stored values map to real values.
 struct DicomFrame {
@@ -21,6 +47,11 @@ struct DicomFrame {
     dvec2 pixelSpacing{1.0};            ///< PixelSpacing: (between rows, between columns), mm
     double slope = 1.0, intercept = 0.0;  ///< RescaleSlope / RescaleIntercept
     double windowCentre = 0.0, windowWidth = 0.0;  ///< WindowCenter / WindowWidth (the first pair); width 0: none
+    /// The values of the VolumeAttributes as the file gives them (trimmed; "" when absent).
+    std::array<std::string, kVolumeAttributeCount> volumeKey;
+    /// FrameAcquisitionDateTime, AcquisitionDateTime or AcquisitionTime ("" when absent): orders
+    /// the repeats at one position when no VolumeAttribute tells them apart.
+    std::string acquired;
 };
 
 /// The header of one DICOM image file: the attributes octrace uses, checked for sanity.
@@ -58,12 +89,36 @@ struct SeriesLayout {
     std::vector<std::string> warnings;  ///< each one line, without the path
 };
 
+/// One volume of a series: what tells it apart from the others and its images.
+struct SeriesVolume {
+    std::string label;             ///< "temporal position 2", "echo time 4.92, complex component PHASE"; "" when alone
+    std::vector<SliceRef> images;  ///< (header, frame) of each image, shift 0
+};
+
+/// Splits the images of one series into volumes. A series where no two images lie at the same
+/// position along the slice normal is one volume. Otherwise the images are grouped by the
+/// VolumeAttributes, each taken (in their order) only when it splits the groups further and
+/// leaves no more groups than there are images at one position; images that still share a
+/// position within a group are told apart by their acquisition time (then file and frame
+/// order): the first acquired at each position is in the first repeat. Volumes are sorted by
+/// their attributes' values (numerically where both are numbers).
+/// Every volume must hold the same slices: checked with checkVolumesAlike.
+std::vector<SeriesVolume> splitVolumes(const std::vector<DicomHeader>& headers);
+
+/// Refuses volumes that do not hold the same slices, naming the volume: one missing a slice
+/// (a position the others have, inside its own first..last), or one with a different number
+/// of slices. `what` prefixes the message. @throws FileError.
+void checkVolumesAlike(const std::vector<DicomHeader>& headers, const std::vector<SeriesVolume>& volumes,
+                       const std::string& what);
+
 /// Orders the images of one series (all `headers` belong to it) and derives its geometry.
 /// Every image must have the same size, orientation and pixel spacing; positions must be
 /// finite and distinct. Images without ImagePositionPatient are allowed only as the frames of
 /// one multi-frame file, stacked in frame order `sliceSpacing` apart (with a warning).
 /// @throws FileError "WHAT: ..." naming the offending file when it is not the same for all.
-SeriesLayout layoutSeries(const std::vector<DicomHeader>& headers, const std::string& what);
+/// `images` (non-empty) restricts it to those images (one volume of splitVolumes).
+SeriesLayout layoutSeries(const std::vector<DicomHeader>& headers, const std::string& what,
+                          const std::vector<SliceRef>& images = {});
 
 /// Samples of the orthogonal grid of a sheared stack: `stored` holds the slices (x fastest,
 /// `layout.sliceDims`, already in z order and rescaled); returns the grid of `outDims` whose

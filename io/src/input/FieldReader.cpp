@@ -62,6 +62,12 @@ void refuseSeries(const std::string& path, const FieldRequest& req) {
     if (!req.series.empty()) throw InputError(path + ": `series` chooses a DICOM series, this input is not DICOM");
 }
 
+void refuseVolume(const std::string& path, const FieldRequest& req, const std::string& format) {
+    if (req.volume >= 0)
+        throw InputError(path + ": `volume` chooses a volume of a DICOM series or a 4-D NIfTI image; " + format + " inputs have none" +
+                         (format == "NetCDF" ? " (`time` chooses a time step)" : ""));
+}
+
 std::optional<VolumeReader::Format> volumeFormat(FileKind kind) {
     switch (kind) {
         case FileKind::MetaImage: return VolumeReader::Format::MetaImage;
@@ -84,9 +90,20 @@ InputChoices listInputChoices(const std::string& path) {
 TimeAxis readTimeAxis(const std::string& path, const FieldRequest& req) {
     const FileKind kind = kindOf(path);
     if (kind == FileKind::NetCdf || kind == FileKind::Zarr) return NetcdfReader::timeAxis(path, req);
-    TimeAxis none;
-    none.path = path;
-    return none;
+    TimeAxis axis;
+    axis.path = path;
+    // A multi-volume DICOM series or a 4-D NIfTI image: its volumes are the steps.
+    std::vector<std::string> labels;
+    if (kind == FileKind::Dicom) labels = DicomReader::listVolumes(path, req.series);
+    else if (kind == FileKind::Nifti) labels.resize(VolumeReader::volumeCount(path, VolumeReader::Format::Nifti));
+    if (labels.size() > 1) {
+        axis.name = "volume";
+        axis.volumes = true;
+        axis.size = labels.size();
+        axis.labels = std::move(labels);
+        axis.dates.assign(axis.size, "");
+    }
+    return axis;
 }
 
 ScalarField readField(const std::string& path, const FieldRequest& req) {
@@ -96,22 +113,24 @@ ScalarField readField(const std::string& path, const FieldRequest& req) {
         const char* name = VolumeReader::formatName(*format);
         refuseSeries(path, req);
         refuseRegion(path, req, name);
-        f = checkVolume(VolumeReader::read(path, *format, req.memoryBudget), path, req, name);
+        f = checkVolume(VolumeReader::read(path, *format, req.memoryBudget, req.volume), path, req, name);
         f.validate();
         return f;
     }
     switch (kind) {
         case FileKind::Nrrd:
             refuseSeries(path, req);
+            refuseVolume(path, req, "NRRD");
             refuseRegion(path, req, "NRRD");
             f = checkVolume(NrrdReader::read(path, req.memoryBudget), path, req, "NRRD");
             break;
         case FileKind::Dicom:
             refuseRegion(path, req, "DICOM");
-            f = checkVolume(DicomReader::read(path, req.series, req.memoryBudget), path, req, "DICOM");
+            f = checkVolume(DicomReader::read(path, req.series, req.memoryBudget, req.volume), path, req, "DICOM");
             break;
         default:
             refuseSeries(path, req);
+            refuseVolume(path, req, "NetCDF");
             f = NetcdfReader::read(path, req);
     }
     f.validate();
@@ -123,15 +142,16 @@ std::string describeInput(const std::string& path, const FieldRequest& req) {
     if (auto format = volumeFormat(kind)) {
         refuseSeries(path, req);
         refuseRegion(path, req, VolumeReader::formatName(*format));
-        return VolumeReader::describe(path, *format, req.memoryBudget);
+        return VolumeReader::describe(path, *format, req.memoryBudget, req.volume);
     }
     switch (kind) {
         case FileKind::Nrrd:
             refuseSeries(path, req);
+            refuseVolume(path, req, "NRRD");
             refuseRegion(path, req, "NRRD");
             return NrrdReader::describe(path, req.memoryBudget);
-        case FileKind::Dicom: refuseRegion(path, req, "DICOM"); return DicomReader::describe(path, req.series, req.memoryBudget);
-        default: refuseSeries(path, req); return NetcdfReader::describe(path, req);
+        case FileKind::Dicom: refuseRegion(path, req, "DICOM"); return DicomReader::describe(path, req.series, req.memoryBudget, req.volume);
+        default: refuseSeries(path, req); refuseVolume(path, req, "NetCDF"); return NetcdfReader::describe(path, req);
     }
 }
 

@@ -1,11 +1,13 @@
 #include "netcdf/CurvilinearGrid.h"
 
 #include "input/InputFile.h"
+#include "octrace/build/PolarStereographic.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Memory.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace octrace::io::detail {
@@ -165,6 +167,25 @@ CurvilinearGrid CurvilinearGrid::fromCoordinates(const std::string& what, std::s
     return g;
 }
 
+CurvilinearGrid CurvilinearGrid::fromAxes(const std::string& what, const std::vector<double>& lon,
+                                          const std::vector<double>& lat, std::size_t lonDim, std::size_t latDim,
+                                          const std::string& lonName, const std::string& latName) {
+    const bool latRows = latDim < lonDim;  // rows along the slower dimension, as the variable stores them
+    const std::size_t ny = latRows ? lat.size() : lon.size(), nx = latRows ? lon.size() : lat.size();
+    std::vector<double> lon2(ny * nx), lat2(ny * nx);
+    for (std::size_t j = 0; j < ny; ++j)
+        for (std::size_t i = 0; i < nx; ++i) {
+            lon2[j * nx + i] = latRows ? lon[i] : lon[j];
+            lat2[j * nx + i] = latRows ? lat[j] : lat[i];
+        }
+    CurvilinearGrid g = fromCoordinates(what, ny, nx, std::move(lon2), std::move(lat2));
+    g.yDim = std::min(lonDim, latDim);
+    g.xDim = std::max(lonDim, latDim);
+    g.lonName = lonName, g.latName = latName;
+    g.northFold = false;  // a regular grid's top row is a parallel, never a fold
+    return g;
+}
+
 void CurvilinearGrid::check(const std::string& what) {
     if (ny < 2 || nx < 2)
         throw FileError(what + ": its 2-D coordinates " + lonName + " and " + latName + " are " + std::to_string(nx) +
@@ -288,6 +309,149 @@ CurvilinearGrid::Lattice CurvilinearGrid::lattice(const std::string& path, const
     return L;
 }
 
+CurvilinearGrid::PlaneLattice CurvilinearGrid::planeLattice(const std::string& path, const FieldRequest& req, int pole,
+                                                            int samples) const {
+    double w, e, s, n;
+    if (req.hasRegion) {
+        w = req.region[0];
+        e = req.region[1] <= w ? req.region[1] + 360.0 : req.region[1];
+        s = req.region[2];
+        n = req.region[3];
+    } else {  // the source's latitudes on the pole's side, the whole circle
+        const auto [lo, hi] = std::minmax_element(lat_.begin(), lat_.end());
+        w = -180.0, e = 180.0;
+        s = pole > 0 ? std::max(*lo, 0.0) : -90.0;
+        n = pole > 0 ? 90.0 : std::min(*hi, 0.0);
+        if (!(s < n))
+            throw EmptyResultError(path + ": the curvilinear grid has no latitude on the " +
+                                   std::string(pole > 0 ? "north" : "south") + "ern side for the polar mapping");
+    }
+    PlaneLattice L;
+    L.pole = pole;
+    const bool whole = e - w >= 360.0 - 1e-9;
+    L.lon0 = whole ? 0.0 : 0.5 * (w + e);
+    // The bounding box of the region's image: its boundary, sampled.
+    double xLo = INFINITY, xHi = -INFINITY, yLo = INFINITY, yHi = -INFINITY;
+    auto add = [&](double lon, double lat) {
+        const dvec2 p = polar::planeFromLonLat(pole, L.lon0, lon, lat);
+        xLo = std::min(xLo, p.x), xHi = std::max(xHi, p.x), yLo = std::min(yLo, p.y), yHi = std::max(yHi, p.y);
+    };
+    for (int t = 0; t <= 1440; ++t) add(w + (e - w) * t / 1440.0, s), add(w + (e - w) * t / 1440.0, n);
+    for (int t = 0; t <= 360; ++t) add(w, s + (n - s) * t / 360.0), add(e, s + (n - s) * t / 360.0);
+    const double extentKm = std::max(xHi - xLo, yHi - yLo);
+    const double sourceKm = medianStepDeg() * kDeg * kEarthRadiusKm;
+    if (samples > 1) {
+        L.stepKm = std::max(extentKm / double(samples - 1), sourceKm / 4.0);
+        L.how = L.stepKm > extentKm / double(samples - 1) ? "a quarter of the source's median cell (finer adds nothing)"
+                                                          : std::to_string(samples) + " points along the larger extent (the octree's 2^depth + 1)";
+    } else {
+        L.stepKm = sourceKm;
+        L.how = "the source's median cell";
+    }
+    L.x0 = 0.5 * (xLo + xHi), L.y0 = 0.5 * (yLo + yHi);
+    auto fill = [&](std::vector<double>& v, double lo, double hi) {
+        const double points = std::floor((hi - lo) / L.stepKm + 1e-9) + 1.0;
+        if (!(points <= double(kMaxAxisPoints)))
+            throw InputError(path + ": resampling onto the polar lattice at a step of " + num(L.stepKm) + " km would take " +
+                             num(points) + " lattice points along one axis, more than the " +
+                             std::to_string(kMaxAxisPoints) + " octrace reads; choose a smaller region");
+        if (!(points >= 2.0))
+            throw EmptyResultError(path + ": the region holds fewer than 2 polar lattice points along an axis at the "
+                                          "resampling step of " + num(L.stepKm) + " km");
+        const std::size_t count = std::size_t(points);
+        for (std::size_t k = 0; k < count; ++k) v.push_back((double(k) - 0.5 * double(count - 1)) * L.stepKm);
+    };
+    fill(L.x, xLo, xHi);
+    fill(L.y, yLo, yHi);
+    checkMemoryBudget(path + ": resampling onto " + std::to_string(L.x.size()) + " x " + std::to_string(L.y.size()) +
+                          " polar lattice points",
+                      saturatingMultiply(L.x.size() * L.y.size(), sizeof(Weights) + 1), req.memoryBudget);
+    L.inside.assign(L.x.size() * L.y.size(), 0);
+    for (std::size_t j = 0; j < L.y.size(); ++j)
+        for (std::size_t i = 0; i < L.x.size(); ++i) {
+            const dvec2 ll = polar::lonLatFromPlane(pole, L.lon0, L.x[i] + L.x0, L.y[j] + L.y0);
+            const double u = w + std::fmod(std::fmod(ll.x - w + 1e-7, 360.0) + 360.0, 360.0) - 1e-7;
+            const bool lonIn = whole || std::abs(ll.y) >= 90.0 - 1e-9 || u <= e + 1e-7;
+            L.inside[j * L.x.size() + i] = lonIn && ll.y >= s - 1e-7 && ll.y <= n + 1e-7;
+        }
+    return L;
+}
+
+void CurvilinearGrid::buildPlaneLookup(const PlaneLattice& L) {
+    lookup_.assign(L.x.size() * L.y.size(), Weights{{kNone, kNone, kNone, kNone}, {0, 0, 0, 0}});
+    skipped_ = 0;
+    poleCap_ = false;
+    std::vector<double> px(lon_.size()), py(lon_.size());
+    std::vector<std::uint8_t> far(lon_.size());
+    for (std::size_t k = 0; k < lon_.size(); ++k) {
+        const dvec2 p = polar::planeFromLonLat(L.pole, L.lon0, lon_[k], lat_[k]);
+        px[k] = p.x - L.x0, py[k] = p.y - L.y0;
+        far[k] = double(L.pole) * lat_[k] < -60.0;  // 150 degrees or more from the pole: the plane runs off
+    }
+    static const std::vector<double> noShift{0.0};
+    auto quad = [&](const std::uint32_t q[4]) {
+        double qx[4], qy[4];
+        double latLo = INFINITY, latHi = -INFINITY;
+        for (int k = 0; k < 4; ++k) {
+            if (far[q[k]]) return;
+            qx[k] = px[q[k]], qy[k] = py[q[k]];
+            latLo = std::min(latLo, lat_[q[k]]), latHi = std::max(latHi, lat_[q[k]]);
+        }
+        if (latHi - latLo > 45.0) {
+            ++skipped_;
+            return;
+        }
+        rasteriseQuad(q, qx, qy, 1.0, noShift, L.x, L.y);
+    };
+    auto at = [&](std::size_t j, std::size_t i) { return std::uint32_t(j * nx + i); };
+    const std::size_t columns = periodicX ? nx : nx - 1;
+    for (std::size_t j = 0; j + 1 < ny; ++j)
+        for (std::size_t i = 0; i < columns; ++i) {
+            std::size_t i1 = (i + 1) % nx;
+            const std::uint32_t q[4] = {at(j, i), at(j, i1), at(j + 1, i1), at(j + 1, i)};
+            quad(q);
+        }
+    if (northFold)
+        for (std::size_t i = 0; i < nx; ++i) {
+            std::size_t i1 = (i + 1) % nx;
+            const std::uint32_t q[4] = {at(ny - 1, i), at(ny - 1, i1), at(ny - 1, nx - 1 - i1), at(ny - 1, nx - 1 - i)};
+            quad(q);
+        }
+    // A first or last row that rings the pole (a regular grid's 89.5 N): the strips across it,
+    // each the convex quad of ring points i, i+1, i+h, i+h+1 (h = nx / 2), cover the disc inside
+    // the ring, and the pole gets the mean of opposite points.
+    if (periodicX && nx >= 4)
+        for (std::size_t r : {std::size_t(0), ny - 1}) {
+            if (northFold && r == ny - 1) continue;
+            bool ring = true;
+            for (std::size_t i = 0; i < nx && ring; ++i) ring = double(L.pole) * lat_[r * nx + i] >= 80.0;
+            if (!ring) continue;
+            poleCap_ = true;
+            const std::size_t h = nx / 2;
+            for (std::size_t i = 0; i < nx; ++i) {
+                const std::uint32_t q[4] = {at(r, i), at(r, (i + 1) % nx), at(r, (i + h) % nx), at(r, (i + h + 1) % nx)};
+                quad(q);
+            }
+        }
+    for (std::size_t p = 0; p < lookup_.size(); ++p)
+        if (!L.inside[p]) lookup_[p].corner[0] = kNone;
+}
+
+std::string CurvilinearGrid::planeDescription(const PlaneLattice& L) const {
+    const std::size_t inside = std::size_t(std::count(L.inside.begin(), L.inside.end(), std::uint8_t(1)));
+    std::string s = "source " + std::to_string(nx) + " x " +
+                    std::to_string(ny) + " points (" + lonName + ", " + latName + "), median cell " +
+                    num(medianStepDeg()) + " deg" + (periodicX ? ", periodic in x" : "") +
+                    (northFold ? ", tripolar north fold" : "");
+    s += "; resampled onto a regular " + std::to_string(L.x.size()) + " x " + std::to_string(L.y.size()) +
+         " lattice in the polar stereographic plane (step " + num(L.stepKm) + " km: " + L.how +
+         ") by inverse bilinear mapping in each source cell projected, ocean corners only (land where less than half "
+         "the weight is ocean)" + (poleCap_ ? ", the ring of points round the pole bridged across it" : "") + "; " +
+         std::to_string(coveredPoints()) + " of the " + std::to_string(inside) + " lattice points inside the region lie in a cell";
+    if (skipped_) s += ", " + std::to_string(skipped_) + " degenerate cell(s) skipped";
+    return s;
+}
+
 void CurvilinearGrid::rasterise(const std::uint32_t corner[4], const std::vector<double>& lonOut,
                                 const std::vector<double>& latOut) {
     double qx[4], qy[4];
@@ -303,8 +467,15 @@ void CurvilinearGrid::rasterise(const std::uint32_t corner[4], const std::vector
         ++skipped_;
         return;
     }
-    // Convex and not folded: the four turns agree in sign (cos(lat) keeps the shape near the poles).
-    const double c = std::cos(0.25 * (qy[0] + qy[1] + qy[2] + qy[3]) * kDeg);
+    // cos(lat) keeps the shape near the poles in the convexity test.
+    static const std::vector<double> shifts{-720.0, -360.0, 0.0, 360.0, 720.0};
+    rasteriseQuad(corner, qx, qy, std::cos(0.25 * (qy[0] + qy[1] + qy[2] + qy[3]) * kDeg), shifts, lonOut, latOut);
+}
+
+void CurvilinearGrid::rasteriseQuad(const std::uint32_t corner[4], const double qx[4], const double qy[4], double c,
+                                    const std::vector<double>& shifts, const std::vector<double>& lonOut,
+                                    const std::vector<double>& latOut) {
+    // Convex and not folded: the four turns agree in sign.
     int pos = 0, neg = 0;
     for (int k = 0; k < 4; ++k) {
         int a = (k + 1) % 4, b = (k + 2) % 4;
@@ -315,6 +486,8 @@ void CurvilinearGrid::rasterise(const std::uint32_t corner[4], const std::vector
         ++skipped_;
         return;
     }
+    const double lonLo = *std::min_element(qx, qx + 4), lonHi = *std::max_element(qx, qx + 4);
+    const double latLo = *std::min_element(qy, qy + 4), latHi = *std::max_element(qy, qy + 4);
     const double lon0 = lonOut.front(), lat0 = latOut.front();
     const double dLon = lonOut.size() > 1 ? lonOut[1] - lonOut[0] : 1.0, dLat = latOut.size() > 1 ? latOut[1] - latOut[0] : 1.0;
     const long nxo = long(lonOut.size()), nyo = long(latOut.size());
@@ -322,7 +495,7 @@ void CurvilinearGrid::rasterise(const std::uint32_t corner[4], const std::vector
     auto first = [](double x, long n) { return long(std::clamp(std::ceil(x - 1e-9), 0.0, double(n))); };
     auto last = [](double x, long n) { return long(std::clamp(std::floor(x + 1e-9), -1.0, double(n - 1))); };
     const long j0 = first((latLo - lat0) / dLat, nyo), j1 = last((latHi - lat0) / dLat, nyo);
-    for (double shift : {-720.0, -360.0, 0.0, 360.0, 720.0}) {
+    for (double shift : shifts) {
         const long i0 = first((lonLo + shift - lon0) / dLon, nxo), i1 = last((lonHi + shift - lon0) / dLon, nxo);
         for (long j = j0; j <= j1; ++j)
             for (long i = i0; i <= i1; ++i) {
@@ -358,28 +531,63 @@ void CurvilinearGrid::buildLookup(const std::vector<double>& lonOut, const std::
         }
 }
 
+namespace {
+
+// The weighted mean of the valid corners of each lattice point; `sample(c, x)` says whether
+// source point c is valid and gives its value in x. Land where less than half the weight is
+// valid (ocean): the coast stays between the source's ocean and land points, as on a regular
+// grid, and only ocean values are averaged.
+template <class Weights, class Sample, class Out>
+void resampleLookup(const std::vector<Weights>& lookup, std::uint32_t none, Sample&& sample, Out&& put) {
+    for (std::size_t p = 0; p < lookup.size(); ++p) {
+        const Weights& w = lookup[p];
+        double ws = 0.0, vs = 0.0;
+        if (w.corner[0] != none)
+            for (int k = 0; k < 4; ++k) {
+                double x = 0.0;
+                if (!sample(w.corner[k], x) || !std::isfinite(x)) continue;
+                ws += w.w[k];
+                vs += w.w[k] * x;
+            }
+        put(p, ws >= 0.5, ws >= 0.5 ? vs / ws : 0.0);
+    }
+}
+
+}  // namespace
+
 void CurvilinearGrid::resample(const std::vector<double>& raw, const SampleRules& rules, float* values,
                                std::uint8_t* valid) const {
-    for (std::size_t p = 0; p < lookup_.size(); ++p) {
-        const Weights& w = lookup_[p];
-        values[p] = 0.0f;
-        valid[p] = 0;
-        if (w.corner[0] == kNone) continue;
-        double ws = 0.0, vs = 0.0;
-        for (int k = 0; k < 4; ++k) {
-            double r = raw[w.corner[k]];
-            if (!rules.isValid(r)) continue;
-            double x = r * rules.scale + rules.offset;
-            if (!std::isfinite(x)) continue;
-            ws += w.w[k];
-            vs += w.w[k] * x;
-        }
-        // Land where less than half the weight is ocean: the coast stays between the source's
-        // ocean and land points, as on a regular grid, and only ocean values are averaged.
-        if (ws < 0.5) continue;
-        values[p] = float(vs / ws);
-        valid[p] = std::isfinite(values[p]) ? 1 : 0;
-    }
+    resampleLookup(
+        lookup_, kNone,
+        [&](std::uint32_t c, double& x) {
+            if (!rules.isValid(raw[c])) return false;
+            x = raw[c] * rules.scale + rules.offset;
+            return true;
+        },
+        [&](std::size_t p, bool ok, double x) {
+            values[p] = ok ? float(x) : 0.0f;
+            valid[p] = ok && std::isfinite(values[p]) ? 1 : 0;
+            if (!valid[p]) values[p] = 0.0f;
+        });
+}
+
+void CurvilinearGrid::resample(const double* values, const std::uint8_t* valid, double* out,
+                               std::uint8_t* outValid) const {
+    resampleLookup(
+        lookup_, kNone,
+        [&](std::uint32_t c, double& x) {
+            x = values[c];
+            return valid[c] != 0;
+        },
+        [&](std::size_t p, bool ok, double x) {
+            out[p] = ok ? x : std::numeric_limits<double>::quiet_NaN();
+            outValid[p] = ok ? 1 : 0;
+        });
+}
+
+std::pair<double, double> CurvilinearGrid::latitudeRange() const {
+    const auto [lo, hi] = std::minmax_element(lat_.begin(), lat_.end());
+    return {*lo, *hi};
 }
 
 std::size_t CurvilinearGrid::coveredPoints() const {

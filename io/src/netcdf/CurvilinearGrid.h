@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace octrace::io::detail {
@@ -39,6 +40,13 @@ public:
     static CurvilinearGrid fromCoordinates(const std::string& what, std::size_t ny, std::size_t nx,
                                            std::vector<double> lon, std::vector<double> lat);
 
+    /// A regular grid's 1-D axes as a curvilinear grid (the polar mapping resamples both the
+    /// same way): `lon` over the variable's dimension `lonDim`, `lat` over `latDim`, rows along
+    /// the slower of the two. Never a tripolar fold. @throws FileError as fromCoordinates.
+    static CurvilinearGrid fromAxes(const std::string& what, const std::vector<double>& lon, const std::vector<double>& lat,
+                                    std::size_t lonDim, std::size_t latDim, const std::string& lonName,
+                                    const std::string& latName);
+
     std::size_t yDim = 0, xDim = 0;  ///< the variable's dimensions the coordinates lie over (y slower)
     std::size_t ny = 0, nx = 0;      ///< source size
     std::string lonName, latName;    ///< coordinate signatures, for notes
@@ -56,6 +64,32 @@ public:
     };
     Lattice lattice(const std::string& path, const FieldRequest& req, int samples) const;
 
+    /// A lattice regular in the polar stereographic plane (PolarStereographic.h) of `pole`
+    /// (+1 north, -1 south): over the bounding box of the region (else of the source's
+    /// latitudes poleward of its equatorward edge, the whole circle), centred, `samples` points
+    /// along the larger side as `lattice` chooses them; `inside` marks the points whose
+    /// longitude and latitude lie in the region (the others stay empty).
+    struct PlaneLattice {
+        int pole = 0;
+        double lon0 = 0.0;            ///< central meridian, degrees
+        double x0 = 0.0, y0 = 0.0;    ///< plane position of the world origin (km)
+        std::vector<double> x, y;     ///< world km (plane minus x0, y0), increasing, uniform
+        std::vector<std::uint8_t> inside;  ///< x fastest
+        double stepKm = 0.0;
+        std::string how;
+    };
+    PlaneLattice planeLattice(const std::string& path, const FieldRequest& req, int pole, int samples) const;
+
+    /// Builds the lookup onto a plane lattice: every source cell rasterised in the projected
+    /// plane (no seam there: a cell across the dateline or around the pole is an ordinary quad),
+    /// plus, on a periodic grid without a fold whose first or last row rings the pole within
+    /// 10 degrees, the strips across that ring (row points i, i+1, i+n/2, i+n/2+1), so the pole
+    /// is filled with the mean of opposite ring points. Points outside `lattice.inside` stay
+    /// empty.
+    void buildPlaneLookup(const PlaneLattice& lattice);
+    /// For `info`, after buildPlaneLookup.
+    std::string planeDescription(const PlaneLattice& lattice) const;
+
     /// Builds the lookup onto the lattice points lonOut x latOut (both increasing and uniform,
     /// longitudes unwrapped), x fastest. Not thread-safe with resample on the same object.
     void buildLookup(const std::vector<double>& lonOut, const std::vector<double>& latOut);
@@ -64,6 +98,19 @@ public:
     /// resampled values and validity of the lattice (as built) into `values` and `valid`, each
     /// lonOut.size() * latOut.size() long.
     void resample(const std::vector<double>& raw, const SampleRules& rules, float* values, std::uint8_t* valid) const;
+
+    /// The same weighting for samples already decoded: `values` and `valid` (1 = ocean) hold
+    /// ny x nx source points; `out` gets the weighted mean of a lattice point's valid corners
+    /// (NaN and outValid 0 where less than half the weight is valid). For what follows the
+    /// field's cells, e.g. a parametric vertical coordinate's per-column depths.
+    void resample(const double* values, const std::uint8_t* valid, double* out, std::uint8_t* outValid) const;
+
+    /// The source coordinates, ny x nx (x fastest), degrees; the median cell size, degrees.
+    const std::vector<double>& lon() const { return lon_; }
+    const std::vector<double>& lat() const { return lat_; }
+    double medianStepDeg() const;
+    /// The smallest and largest latitude of the source, degrees.
+    std::pair<double, double> latitudeRange() const;
 
     /// Lattice points inside some source cell, of all.
     std::size_t coveredPoints() const;
@@ -81,11 +128,16 @@ private:
     static constexpr std::uint32_t kNone = 0xffffffffu;
     std::vector<Weights> lookup_;
     std::size_t skipped_ = 0;
-    double medianStepDeg() const;
     void check(const std::string& what);  // latitudes within +-90, sane longitudes; periodic and fold
     bool detectPeriodic() const;
     bool detectFold() const;
     void rasterise(const std::uint32_t corner[4], const std::vector<double>& lonOut, const std::vector<double>& latOut);
+    // Rasterises the quad (qx, qy) of source corners `corner` onto the uniform axes xOut x yOut,
+    // the quad shifted by each of `shifts` along x. Skips (and counts) a folded or collapsed quad;
+    // `cosY` scales x for the convexity test (cos(lat) in longitude/latitude, 1 in a plane).
+    void rasteriseQuad(const std::uint32_t corner[4], const double qx[4], const double qy[4], double cosY,
+                       const std::vector<double>& shifts, const std::vector<double>& xOut, const std::vector<double>& yOut);
+    bool poleCap_ = false;  // the last buildPlaneLookup added cells across a ring round the pole
 };
 
 }  // namespace octrace::io::detail

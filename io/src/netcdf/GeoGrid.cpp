@@ -80,6 +80,52 @@ std::vector<std::pair<double, std::size_t>> selectLongitudes(const std::string& 
     return sel;
 }
 
+// The levels of `depthKm` inside req's depth range, deepest first (z increases).
+std::vector<std::size_t> selectLevels(const std::string& path, const std::vector<double>& depthKm, const FieldRequest& req,
+                                      std::size_t minLevels, int depthOrder) {
+    std::vector<std::size_t> zIdx;
+    for (std::size_t n = 0; n < depthKm.size(); ++n) {
+        double m = depthKm[n] * 1000.0;
+        if (!req.hasDepthRange || (m >= req.depthRange[0] - 1e-6 && m <= req.depthRange[1] + 1e-6)) zIdx.push_back(n);
+    }
+    if (depthOrder > 0) std::reverse(zIdx.begin(), zIdx.end());  // deepest first: z increases
+    if (zIdx.size() < minLevels) {
+        if (!req.hasDepthRange) throw EmptyResultError(path + ": the vertical axis has fewer than 2 levels");
+        auto [lo, hi] = std::minmax_element(depthKm.begin(), depthKm.end());
+        throw EmptyResultError(path + ": depth range " + num(req.depthRange[0]) + "," + num(req.depthRange[1]) +
+                               " m holds " + std::to_string(zIdx.size()) +
+                               " level(s), need at least " + std::to_string(minLevels) + " (the file's levels run " + num(*lo * 1000.0) + " .. " +
+                               num(*hi * 1000.0) + " m)");
+    }
+    return zIdx;
+}
+
+// The vertical scale (req's, else the default from the horizontal extent) and m.z; returns the
+// depth extent (km) of the levels.
+std::pair<double, double> scaleLevels(const std::vector<double>& depthKm, const std::vector<std::size_t>& zIdx,
+                                      const FieldRequest& req, double horizontal, GeoMapping& m) {
+    double dMin = depthKm[zIdx.front()], dMax = depthKm[zIdx.front()];
+    for (std::size_t n : zIdx) {
+        dMin = std::min(dMin, depthKm[n]);
+        dMax = std::max(dMax, depthKm[n]);
+    }
+    bool byDefault = req.verticalScale == 0.0;
+    m.verticalScale = !byDefault ? req.verticalScale : (dMax > dMin ? 0.25 * horizontal / (dMax - dMin) : 1.0);
+    for (std::size_t n : zIdx) {
+        m.z.stored.push_back(n);
+        m.z.world.push_back(-depthKm[n] * m.verticalScale + 0.0);  // + 0.0: no -0 at the surface
+    }
+    return {dMin, dMax};
+}
+
+std::string verticalScaleNote(double scale, bool byDefault, bool extent) {
+    return "vertical scale " + num(scale) +
+           (!byDefault ? " (requested)"
+            : extent   ? " (default: depth extent = 1/4 of the larger horizontal extent)"
+                       : " (default: a single level)") +
+           ", z = -depth_km * scale";
+}
+
 }  // namespace
 
 bool isUniform(const std::vector<double>& v) {
@@ -113,20 +159,7 @@ GeoMapping mapGeographic(const std::string& path, const std::vector<double>& lon
     requireTwo(path, req, latIdx.size(), "latitude", lat);
     m.lat0 = req.hasRegion ? 0.5 * (req.region[2] + req.region[3]) : 0.5 * (lat.front() + lat.back());
 
-    std::vector<std::size_t> zIdx;
-    for (std::size_t n = 0; n < depthKm.size(); ++n) {
-        double m = depthKm[n] * 1000.0;
-        if (!req.hasDepthRange || (m >= req.depthRange[0] - 1e-6 && m <= req.depthRange[1] + 1e-6)) zIdx.push_back(n);
-    }
-    if (depthOrder > 0) std::reverse(zIdx.begin(), zIdx.end());  // deepest first: z increases
-    if (zIdx.size() < minLevels) {
-        if (!req.hasDepthRange) throw EmptyResultError(path + ": the vertical axis has fewer than 2 levels");
-        auto [lo, hi] = std::minmax_element(depthKm.begin(), depthKm.end());
-        throw EmptyResultError(path + ": depth range " + num(req.depthRange[0]) + "," + num(req.depthRange[1]) +
-                               " m holds " + std::to_string(zIdx.size()) +
-                               " level(s), need at least " + std::to_string(minLevels) + " (the file's levels run " + num(*lo * 1000.0) + " .. " +
-                               num(*hi * 1000.0) + " m)");
-    }
+    const std::vector<std::size_t> zIdx = selectLevels(path, depthKm, req, minLevels, depthOrder);
 
     double cosLat0 = std::cos(m.lat0 * kDeg);
     for (auto& [u, n] : lonSel) {
@@ -137,18 +170,9 @@ GeoMapping mapGeographic(const std::string& path, const std::vector<double>& lon
         m.y.stored.push_back(n);
         m.y.world.push_back(kEarthRadiusKm * (lat[n] - m.lat0) * kDeg);
     }
-    double dMin = depthKm[zIdx.front()], dMax = depthKm[zIdx.front()];
-    for (std::size_t n : zIdx) {
-        dMin = std::min(dMin, depthKm[n]);
-        dMax = std::max(dMax, depthKm[n]);
-    }
     double horizontal = std::max(m.x.world.back() - m.x.world.front(), m.y.world.back() - m.y.world.front());
-    bool byDefault = req.verticalScale == 0.0;
-    m.verticalScale = !byDefault ? req.verticalScale : (dMax > dMin ? 0.25 * horizontal / (dMax - dMin) : 1.0);
-    for (std::size_t n : zIdx) {
-        m.z.stored.push_back(n);
-        m.z.world.push_back(-depthKm[n] * m.verticalScale + 0.0);  // + 0.0: no -0 at the surface
-    }
+    const auto [dMin, dMax] = scaleLevels(depthKm, zIdx, req, horizontal, m);
+    const bool byDefault = req.verticalScale == 0.0;
 
     m.notes.push_back("geographic: lon0=" + num(m.lon0) + " lat0=" + num(m.lat0) +
                       " (world units km, x = R (lon - lon0) cos(lat0), y = R (lat - lat0), R = 6371)");
@@ -159,11 +183,45 @@ GeoMapping mapGeographic(const std::string& path, const std::vector<double>& lon
                       " levels " + num(dMin * 1000.0) + " .. " + num(dMax * 1000.0) + " m" +
                       (req.hasDepthRange ? " (depth range " + num(req.depthRange[0]) + "," + num(req.depthRange[1]) + " m)" : "") +
                       (isUniform(m.z.world) ? "" : " (uneven)"));
-    m.notes.push_back("vertical scale " + num(m.verticalScale) +
-                      (!byDefault ? " (requested)"
-                       : dMax > dMin ? " (default: depth extent = 1/4 of the larger horizontal extent)"
-                                     : " (default: a single level)") +
-                      ", z = -depth_km * scale");
+    m.notes.push_back(verticalScaleNote(m.verticalScale, byDefault, dMax > dMin));
+    return m;
+}
+
+int polarPole(const FieldRequest& req, double latLo, double latHi) {
+    if (req.hasRegion) latLo = req.region[2], latHi = req.region[3];
+    using P = FieldRequest::Projection;
+    if (req.projection == P::LonLat) return 0;
+    if (req.projection == P::Polar) return latLo + latHi >= 0.0 ? 1 : -1;
+    if (latHi >= kPolarAutoLatitude && latLo >= 0.0) return 1;
+    if (latLo <= -kPolarAutoLatitude && latHi <= 0.0) return -1;
+    return 0;
+}
+
+std::string polarReason(const FieldRequest& req, int pole) {
+    const std::string side = pole > 0 ? "north" : "south";
+    if (req.projection == FieldRequest::Projection::Polar) return "`map_projection` polar: the " + side + " pole, the side of the region's middle latitude";
+    return "chosen automatically: the " + std::string(req.hasRegion ? "region" : "grid") + " lies in the " + side +
+           "ern hemisphere and reaches " + num(kPolarAutoLatitude) + " degrees " + side + " or beyond";
+}
+
+GeoMapping mapPolar(const std::string& path, const std::vector<double>& xKm, const std::vector<double>& yKm,
+                    const std::vector<double>& depthKm, const FieldRequest& req, std::size_t minLevels) {
+    requireFinite(path, "vertical", depthKm);
+    if (!(req.verticalScale >= 0.0) || !std::isfinite(req.verticalScale))
+        throw UsageError(path + ": vertical scale must be positive (0 = default), got " + num(req.verticalScale));
+    const int depthOrder = monotonicity(path, "vertical", depthKm);
+    GeoMapping m;
+    const std::vector<std::size_t> zIdx = selectLevels(path, depthKm, req, minLevels, depthOrder);
+    for (std::size_t i = 0; i < xKm.size(); ++i) m.x.stored.push_back(i), m.x.world.push_back(xKm[i]);
+    for (std::size_t j = 0; j < yKm.size(); ++j) m.y.stored.push_back(j), m.y.world.push_back(yKm[j]);
+    const double horizontal = std::max(xKm.back() - xKm.front(), yKm.back() - yKm.front());
+    const auto [dMin, dMax] = scaleLevels(depthKm, zIdx, req, horizontal, m);
+    m.notes.push_back((req.hasRegion ? "region " + regionText(req) : std::string("whole grid")) + ": " +
+                      std::to_string(xKm.size()) + " x " + std::to_string(yKm.size()) + " polar lattice points, " +
+                      std::to_string(zIdx.size()) + " levels " + num(dMin * 1000.0) + " .. " + num(dMax * 1000.0) + " m" +
+                      (req.hasDepthRange ? " (depth range " + num(req.depthRange[0]) + "," + num(req.depthRange[1]) + " m)" : "") +
+                      (isUniform(m.z.world) ? "" : " (uneven)"));
+    m.notes.push_back(verticalScaleNote(m.verticalScale, req.verticalScale == 0.0, dMax > dMin));
     return m;
 }
 

@@ -35,6 +35,23 @@ constexpr double kEarthRadiusKm = ScalarField::Geographic::kEarthRadiusKm;
 GeoMapping mapGeographic(const std::string& path, const std::vector<double>& lon, const std::vector<double>& lat,
                          const std::vector<double>& depthKm, const FieldRequest& req, std::size_t minLevels = 2);
 
+/// The auto rule's latitude: a region (else a grid) in one hemisphere that reaches this far
+/// towards its pole is mapped polar stereographic.
+constexpr double kPolarAutoLatitude = 75.0;
+
+/// The pole of the polar mapping for `req` (+1 north, -1 south), 0 for the lon/lat mapping:
+/// `projection` lonlat or polar decides; auto is polar when the region (else latLo..latHi, the
+/// grid's latitudes) lies in one hemisphere and reaches kPolarAutoLatitude or beyond.
+int polarPole(const FieldRequest& req, double latLo, double latHi);
+/// Why polarPole chose `pole`, for notes.
+std::string polarReason(const FieldRequest& req, int pole);
+
+/// The polar mapping's axes: x and y are a plane lattice already in world km (PolarStereographic.h),
+/// kept whole (stored = index); z as mapGeographic selects and scales it.
+/// @throws UsageError (vertical scale), FileError (vertical axis), EmptyResultError (levels).
+GeoMapping mapPolar(const std::string& path, const std::vector<double>& xKm, const std::vector<double>& yKm,
+                    const std::vector<double>& depthKm, const FieldRequest& req, std::size_t minLevels = 2);
+
 /// True when `v` is uniformly spaced (to 1e-6 of the step); fewer than 3 values are.
 bool isUniform(const std::vector<double>& v);
 

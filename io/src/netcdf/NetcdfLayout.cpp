@@ -3,6 +3,7 @@
 #include "netcdf/CfTime.h"
 #include "netcdf/GeoAxis.h"
 #include "input/InputFile.h"
+#include "octrace/build/PolarStereographic.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
 #include "octrace/util/Memory.h"
@@ -92,18 +93,12 @@ bool hasAllDims(const VariableInfo& var, const VariableInfo& c) {
 }
 
 // The lattice (km, positive down) the columns of a parametric vertical coordinate are
-// resampled onto: the columns of the region are evaluated first (the horizontal selection does
-// not depend on the vertical axis), then the lattice is chosen from them. Fills L.columns,
-// L.latticeM and the notes; L.dim and L.fixedIndex are set.
-std::vector<double> parametricLattice(const std::string& path, const CfSource& file, const VariableInfo& var,
-                                      const ParametricVertical& p, const FieldRequest& req,
-                                      const std::vector<double>& lon, const std::vector<double>& lat, Layout& L) {
-    FieldRequest horizontal = req;
-    horizontal.hasDepthRange = false;
-    GeoMapping h = mapGeographic(path, lon, lat, {0.0, 0.001}, horizontal);
-    ColumnSelection sel{L.dim, L.fixedIndex, h.x.stored, h.y.stored};
-    auto columns = std::make_shared<ColumnDepths>(evaluateColumns(path, file, var, p, sel, req.memoryBudget));
-    L.latticeM = chooseLattice(path, *columns);
+// resampled onto, chosen from `forLattice` (the columns of the region): fills L.columns with
+// `columns`, L.latticeM and the notes.
+std::vector<double> parametricLattice(const std::string& path, const ParametricVertical& p,
+                                      std::shared_ptr<const ColumnDepths> columns, const ColumnDepths& forLattice,
+                                      Layout& L) {
+    L.latticeM = chooseLattice(path, forLattice);
     double smallest = INFINITY, largest = 0.0;
     for (std::size_t n = 1; n < L.latticeM.size(); ++n) {
         smallest = std::min(smallest, L.latticeM[n] - L.latticeM[n - 1]);
@@ -121,6 +116,55 @@ std::vector<double> parametricLattice(const std::string& path, const CfSource& f
     std::vector<double> km;
     for (double d : L.latticeM) km.push_back(d / 1000.0 + 0.0);
     L.columns = std::move(columns);
+    return km;
+}
+
+// On 1-D longitude/latitude: the columns of the region are evaluated first (the horizontal
+// selection does not depend on the vertical axis). L.dim and L.fixedIndex are set.
+std::vector<double> regularParametricLattice(const std::string& path, const CfSource& file, const VariableInfo& var,
+                                             const ParametricVertical& p, const FieldRequest& req,
+                                             const std::vector<double>& lon, const std::vector<double>& lat,
+                                             Layout& L) {
+    FieldRequest horizontal = req;
+    horizontal.hasDepthRange = false;
+    GeoMapping h = mapGeographic(path, lon, lat, {0.0, 0.001}, horizontal);
+    ColumnSelection sel{L.dim, L.fixedIndex, h.x.stored, h.y.stored};
+    auto columns = std::make_shared<ColumnDepths>(evaluateColumns(path, file, var, p, sel, req.memoryBudget));
+    return parametricLattice(path, p, columns, *columns, L);
+}
+
+// On a curvilinear grid: every source column is evaluated (readSamples resamples their depths
+// onto the horizontal lattice with the field's weights); the vertical lattice is chosen from
+// the source columns within a few cells of the horizontal lattice's box. L.dim and
+// L.fixedIndex are set.
+std::vector<double> curvilinearParametricLattice(const std::string& path, const CfSource& file,
+                                                 const VariableInfo& var, const ParametricVertical& p,
+                                                 const FieldRequest& req, const CurvilinearGrid& g,
+                                                 const CurvilinearGrid::Lattice& lattice, Layout& L) {
+    // readCurvilinearColumns holds every native level of the source (value, validity) and of the
+    // lattice (value, validity, depth) besides the columns evaluateColumns counts.
+    const std::uint64_t nk = var.dimSizes.at(L.dim[2]), lattice2d = lattice.lon.size() * lattice.lat.size();
+    checkMemoryBudget(path + ": resampling the " + std::to_string(nk) + " levels of '" + var.shortName +
+                          "' and their depths onto the lattice",
+                      saturatingMultiply(nk, saturatingMultiply(g.ny * g.nx + lattice2d, 2 * sizeof(double) + 1)),
+                      req.memoryBudget);
+    ColumnSelection sel{L.dim, L.fixedIndex, {}, {}};
+    for (std::size_t i = 0; i < g.nx; ++i) sel.x.push_back(i);
+    for (std::size_t j = 0; j < g.ny; ++j) sel.y.push_back(j);
+    auto columns = std::make_shared<ColumnDepths>(evaluateColumns(path, file, var, p, sel, req.memoryBudget));
+    ColumnDepths inside = *columns;
+    const double margin = 2.0 * std::max(lattice.lonStep, lattice.latStep) + g.medianStepDeg();
+    const double lonMid = 0.5 * (lattice.lon.front() + lattice.lon.back());
+    const double lonHalf = 0.5 * (lattice.lon.back() - lattice.lon.front()) + margin;
+    for (std::size_t col = 0; col < g.ny * g.nx; ++col) {
+        const double lo = g.lon()[col], la = g.lat()[col];
+        if (la < lattice.lat.front() - margin || la > lattice.lat.back() + margin ||
+            (lonHalf < 180.0 && std::abs(std::remainder(lo - lonMid, 360.0)) > lonHalf))
+            inside.top[col] = inside.bottom[col] = NAN;
+    }
+    std::vector<double> km = parametricLattice(path, p, columns, inside, L);
+    L.notes.push_back("vertical: each column's depths resampled onto the horizontal lattice with the field's "
+                      "weights (ocean corners only), so each lattice column keeps its own depths");
     return km;
 }
 
@@ -163,6 +207,10 @@ Layout layoutFor(const std::string& path, const CfSource& file, const VariableIn
     if (horizontal && vert.size() == 1) parametric = findParametricVertical(path, file, var, vert[0]);
     bool geographic = horizontal && vert.size() == 1 && (!info[vert[0]].values.empty() || parametric);
 
+    std::vector<std::size_t> across;  // dimensions longer than 1 that are not time
+    for (std::size_t d : spread)
+        if (cls[d].role != AxisRole::Time) across.push_back(d);
+
     // A curvilinear grid: 2-D longitude/latitude and no 1-D ones but rotated-pole axes
     // (grid_longitude/grid_latitude), which the 2-D true coordinates then replace.
     std::shared_ptr<CurvilinearGrid> curvi;
@@ -179,22 +227,13 @@ Layout layoutFor(const std::string& path, const CfSource& file, const VariableIn
         vert = others(vert);
         lon = {curvi->xDim};
         lat = {curvi->yDim};
-        geographic = vert.size() == 1 && !info[vert[0]].values.empty();
-        if (!geographic)
+        if (vert.size() == 1) parametric = findParametricVertical(path, file, var, vert[0]);
+        geographic = vert.size() == 1 && (!info[vert[0]].values.empty() || parametric);
+        if (!geographic && across.size() != 2)  // a map (2-D field) needs no vertical axis
             throw InputError(path + ": variable " + var.signature() + " is on a curvilinear grid (" + curvi->lonName +
                              ", " + curvi->latName + ") but has " + std::to_string(vert.size()) +
                              " vertical axes with coordinates; one is needed for a 3-D field");
-        // Per-column depths are computed over 1-D longitude/latitude only so far: refuse rather
-        // than read the formula's parameter (s or sigma) as if it were a depth.
-        if (auto p = findParametricVertical(path, file, var, vert[0]))
-            throw InputError(path + ": variable " + var.signature() + " is on a curvilinear grid (" + curvi->lonName +
-                             ", " + curvi->latName + ") with a parametric vertical coordinate (" + p->text() +
-                             "); octrace computes per-column depths only on grids with 1-D longitude and latitude "
-                             "so far: regrid horizontally first (e.g. cdo remapbil) or compute the depths");
     }
-    std::vector<std::size_t> across;  // dimensions longer than 1 that are not time
-    for (std::size_t d : spread)
-        if (cls[d].role != AxisRole::Time) across.push_back(d);
     // A 2-D field (SST, bathymetry, OISST's sst(time, zlev = 1, lat, lon)) is a map.
     const bool planar = across.size() == 2;
     if (across.size() < 2)
@@ -208,7 +247,8 @@ Layout layoutFor(const std::string& path, const CfSource& file, const VariableIn
     // it has one (OISST's zlev), else at the surface.
     std::optional<std::size_t> level;
     if (planar) {
-        geographic = lon.size() == 1 && lat.size() == 1 && !info[lon[0]].values.empty() && !info[lat[0]].values.empty();
+        geographic = curvi || (lon.size() == 1 && lat.size() == 1 && !info[lon[0]].values.empty() &&
+                               !info[lat[0]].values.empty());
         for (std::size_t d = 0; d < var.dimSizes.size() && geographic && !level; ++d) {
             if (var.dimSizes[d] != 1) continue;
             if (info[d].name.empty()) info[d] = file.axis(var, d), cls[d] = classifyAxis(info[d]);
@@ -248,36 +288,82 @@ Layout layoutFor(const std::string& path, const CfSource& file, const VariableIn
         const std::optional<std::size_t> vd = planar ? level : std::optional<std::size_t>(vert[0]);
         const AxisClass vc = vd ? cls[*vd] : AxisClass{};
         const std::vector<double> levels = vd ? info[*vd].values : std::vector<double>{0.0};
+        // Near a pole, the polar stereographic mapping (docs/dev/ocean.md, "Polar regions"):
+        // any grid is then resampled onto a lattice in the projected plane.
+        const auto [latLo, latHi] = curvi ? curvi->latitudeRange()
+                                          : std::pair<double, double>(*std::min_element(info[lat[0]].values.begin(), info[lat[0]].values.end()),
+                                                                      *std::max_element(info[lat[0]].values.begin(), info[lat[0]].values.end()));
+        int pole = polarPole(req, latLo, latHi);
+        if (pole && parametric) {
+            if (req.projection == FieldRequest::Projection::Polar)
+                throw InputError(path + ": variable " + var.signature() + " has a parametric vertical coordinate (" +
+                                 parametric->text() + "); its per-column depths are computed on the lon/lat mapping only: "
+                                 "use `map_projection` lonlat or auto");
+            L.notes.push_back("polar mapping not used: per-column depths (parametric vertical coordinate) are computed "
+                              "on the lon/lat mapping only");
+            pole = 0;
+        }
+        CurvilinearGrid::Lattice lattice;  // the lon/lat lattice (not used on the polar mapping)
+        if (curvi && !pole) lattice = curvi->lattice(path, req, req.horizontalSamples);
         std::vector<double> depthKm;
         if (parametric) {
             L.dim = {lon[0], lat[0], vert[0]};
-            depthKm = parametricLattice(path, file, var, *parametric, req, info[lon[0]].values, info[lat[0]].values, L);
+            depthKm = curvi ? curvilinearParametricLattice(path, file, var, *parametric, req, *curvi, lattice, L)
+                            : regularParametricLattice(path, file, var, *parametric, req, info[lon[0]].values,
+                                                       info[lat[0]].values, L);
         } else {
             for (double v : levels) depthKm.push_back(v * vc.toKm * (vc.positiveDown ? 1.0 : -1.0) + 0.0);  // + 0.0: no -0
         }
-        CurvilinearGrid::Lattice lattice;
-        if (curvi) lattice = curvi->lattice(path, req, req.horizontalSamples);
-        GeoMapping m = mapGeographic(path, curvi ? lattice.lon : info[lon[0]].values,
-                                     curvi ? lattice.lat : info[lat[0]].values, depthKm, req, planar ? 1 : 2);
-        if (curvi) {
-            std::vector<double> lonOut, latOut;  // the lattice in output order
-            for (std::size_t i : m.x.stored) lonOut.push_back(lattice.lon[i]);
-            for (std::size_t j : m.y.stored) latOut.push_back(lattice.lat[j]);
-            for (std::size_t i = 1; i < lonOut.size(); ++i)  // unwrapped as the mapping sees it
-                lonOut[i] = lonOut[i - 1] + std::remainder(lonOut[i] - lonOut[i - 1], 360.0);
-            curvi->buildLookup(lonOut, latOut);
-            m.notes.push_back(curvi->description(lattice, lonOut.size(), latOut.size()));
-            // From here x and y index the lattice in output order.
-            std::iota(m.x.stored.begin(), m.x.stored.end(), std::size_t(0));
-            std::iota(m.y.stored.begin(), m.y.stored.end(), std::size_t(0));
+        GeoMapping m;
+        if (pole) {
+            if (!curvi)
+                curvi = std::make_shared<CurvilinearGrid>(CurvilinearGrid::fromAxes(
+                    path + ": variable " + var.signature(), info[lon[0]].values, info[lat[0]].values, lon[0], lat[0],
+                    info[lon[0]].name, info[lat[0]].name));
+            if (req.hasRegion) checkRegion(req.region, path);
+            const CurvilinearGrid::PlaneLattice plane = curvi->planeLattice(path, req, pole, req.horizontalSamples);
+            m = mapPolar(path, plane.x, plane.y, depthKm, req, planar ? 1 : 2);
+            curvi->buildPlaneLookup(plane);
+            m.lon0 = plane.lon0;
+            m.lat0 = 90.0 * pole;
+            const std::string mapping =
+                "geographic: polar stereographic, " + std::string(pole > 0 ? "north" : "south") + " pole, true scale at " +
+                num(ScalarField::Geographic::kPolarStandardParallel) + (pole > 0 ? " N" : " S") + ", central meridian " +
+                num(plane.lon0) + " (" + polarReason(req, pole) + "); world units km, x = rho sin(lon - lon0) - x0, y = " +
+                (pole > 0 ? "-" : "") + "rho cos(lon - lon0) - y0, rho = R (1 + sin 71) tan(45 " +
+                (pole > 0 ? "- lat" : "+ lat") + "/2), R = 6371, x0=" + num(plane.x0) + " y0=" + num(plane.y0);
+            log::info(path + ": " + mapping);
+            m.notes.insert(m.notes.begin(), mapping);
+            m.notes.push_back(curvi->planeDescription(plane));
+            L.pole = pole;
+            L.x0 = plane.x0;
+            L.y0 = plane.y0;
+            for (double y : m.y.world)  // each row's latitude where it crosses the lattice's middle column
+                L.latitudeDeg.push_back(polar::lonLatFromPlane(pole, plane.lon0, plane.x0, y + plane.y0).y);
+        } else {
+            m = mapGeographic(path, curvi ? lattice.lon : info[lon[0]].values,
+                              curvi ? lattice.lat : info[lat[0]].values, depthKm, req, planar ? 1 : 2);
+            if (curvi) {
+                std::vector<double> lonOut, latOut;  // the lattice in output order
+                for (std::size_t i : m.x.stored) lonOut.push_back(lattice.lon[i]);
+                for (std::size_t j : m.y.stored) latOut.push_back(lattice.lat[j]);
+                for (std::size_t i = 1; i < lonOut.size(); ++i)  // unwrapped as the mapping sees it
+                    lonOut[i] = lonOut[i - 1] + std::remainder(lonOut[i] - lonOut[i - 1], 360.0);
+                curvi->buildLookup(lonOut, latOut);
+                m.notes.push_back(curvi->description(lattice, lonOut.size(), latOut.size()));
+                // From here x and y index the lattice in output order.
+                std::iota(m.x.stored.begin(), m.x.stored.end(), std::size_t(0));
+                std::iota(m.y.stored.begin(), m.y.stored.end(), std::size_t(0));
+            }
+            for (std::size_t j : m.y.stored)
+                L.latitudeDeg.push_back(curvi ? m.lat0 + m.y.world[j] / (kEarthRadiusKm * std::numbers::pi / 180.0)
+                                              : info[lat[0]].values[j]);
         }
         L.geographic = true;
         L.lon0 = m.lon0;
         L.lat0 = m.lat0;
         L.verticalScale = m.verticalScale;
         L.dim = {lon[0], lat[0], planar ? kNoDimension : *vd};
-        for (std::size_t j : m.y.stored) L.latitudeDeg.push_back(curvi ? m.lat0 + m.y.world[j] / (kEarthRadiusKm * std::numbers::pi / 180.0)
-                                                                   : info[lat[0]].values[j]);
         L.curvilinear = std::move(curvi);
         for (std::size_t k : m.z.stored) {
             L.depthM.push_back(depthKm[k] * 1000.0);
@@ -337,7 +423,7 @@ ScalarField shapeField(const std::string& path, const VariableInfo& var, const L
     f.units = var.units;
     f.standardName = var.standardName;
     f.planar = L.planar;
-    if (L.geographic) f.geographic = {true, L.lon0, L.lat0, L.verticalScale};
+    if (L.geographic) f.geographic = {true, L.lon0, L.lat0, L.verticalScale, L.pole, L.x0, L.y0};
     for (int a = 0; a < 3; ++a) {
         const auto& w = L.axes[std::size_t(a)].world;
         f.dims[a] = int(w.size());
@@ -379,10 +465,82 @@ void readCurvilinearSamples(const CfSource& file, const VariableInfo& var, const
     const std::size_t plane = std::size_t(f.dims.x) * std::size_t(f.dims.y);
     const auto& sz = L.axes[2].stored;
     for (std::size_t k = 0; k < sz.size(); ++k) {
-        start[L.dim[2]] = sz[k];
+        if (L.dim[2] != kNoDimension) start[L.dim[2]] = sz[k];  // a map has no vertical dimension
         std::vector<double> raw = file.read(var, start, count);
         g.resample(raw, rules, f.values.data() + k * plane, f.valid.data() + k * plane);
     }
+}
+
+// Each column (j, i) of `c`, its native samples values/valid[k * ny * nx + j * nx + i], onto
+// the vertical lattice levels the output keeps, into f (x = i, y = j).
+void columnsOntoLattice(const ColumnDepths& c, const double* values, const std::uint8_t* valid, const Layout& L,
+                        ScalarField& f) {
+    f.values.assign(f.sampleCount(), 0.0f);
+    f.valid.assign(f.sampleCount(), 0);
+    std::vector<double> depths, out(L.axes[2].stored.size());
+    std::vector<std::uint8_t> outValid(out.size());
+    for (std::size_t k : L.axes[2].stored) depths.push_back(L.latticeM[k]);
+    for (std::size_t j = 0; j < c.ny; ++j)
+        for (std::size_t i = 0; i < c.nx; ++i) {
+            const std::size_t col = j * c.nx + i;
+            resampleColumn(c, j, i, values + col, valid + col, c.ny * c.nx, depths, out.data(), outValid.data());
+            for (std::size_t k = 0; k < out.size(); ++k) {
+                if (!outValid[k]) continue;
+                std::size_t idx = f.index(int(i), int(j), int(k));
+                f.values[idx] = float(out[k]);
+                f.valid[idx] = 1;
+            }
+        }
+}
+
+// A curvilinear grid with a parametric vertical coordinate: every native level's plane and
+// every source column's depths are resampled onto the horizontal lattice with the same
+// weights (ocean corners only: a source column counts where its depths are defined and the
+// field has a valid sample in it), then each lattice column onto the vertical lattice.
+void readCurvilinearColumns(const CfSource& file, const VariableInfo& var, const Layout& L, const SampleRules& rules,
+                            ScalarField& f) {
+    const CurvilinearGrid& g = *L.curvilinear;
+    const ColumnDepths& src = *L.columns;  // ny x nx source columns
+    const std::size_t n = g.ny * g.nx, plane = std::size_t(f.dims.x) * std::size_t(f.dims.y), nk = src.nk;
+    std::vector<std::uint64_t> start = L.fixedIndex;
+    std::vector<std::size_t> count(var.dimSizes.size(), 1);
+    count[g.yDim] = g.ny;
+    count[g.xDim] = g.nx;
+    start[g.yDim] = start[g.xDim] = 0;
+    std::vector<double> values(nk * n, 0.0);
+    std::vector<std::uint8_t> valid(nk * n, 0), ocean(n, 0);
+    for (std::size_t k = 0; k < nk; ++k) {
+        start[L.dim[2]] = k;
+        std::vector<double> raw = file.read(var, start, count);
+        for (std::size_t p = 0; p < n; ++p) {
+            if (!rules.isValid(raw[p])) continue;
+            double v = raw[p] * rules.scale + rules.offset;
+            if (!std::isfinite(float(v))) continue;
+            values[k * n + p] = v;
+            valid[k * n + p] = 1;
+            if (std::isfinite(src.top[p])) ocean[p] = 1;
+        }
+    }
+    // The lattice's columns: depths, surface and floor resampled like the field.
+    ColumnDepths c;
+    c.nk = nk;
+    c.ny = std::size_t(f.dims.y);
+    c.nx = std::size_t(f.dims.x);
+    c.depth.assign(nk * plane, NAN);
+    c.top.assign(plane, NAN);
+    c.bottom.assign(plane, NAN);
+    std::vector<double> latticeValues(nk * plane, 0.0);
+    std::vector<std::uint8_t> latticeValid(nk * plane, 0), ok(plane, 0), columnOk(plane, 0);
+    g.resample(src.top.data(), ocean.data(), c.top.data(), columnOk.data());
+    g.resample(src.bottom.data(), ocean.data(), c.bottom.data(), ok.data());
+    for (std::size_t k = 0; k < nk; ++k) {
+        g.resample(src.depth.data() + k * n, ocean.data(), c.depth.data() + k * plane, ok.data());
+        g.resample(values.data() + k * n, valid.data() + k * n, latticeValues.data() + k * plane,
+                   latticeValid.data() + k * plane);
+    }
+    for (std::size_t p = 0; p < plane; ++p)
+        if (!columnOk[p]) c.top[p] = c.bottom[p] = NAN;
+    columnsOntoLattice(c, latticeValues.data(), latticeValid.data(), L, f);
 }
 
 // Reads one hyperslab per run of consecutive stored x indices (a region across the file's
@@ -428,6 +586,7 @@ void readRuns(const CfSource& file, const VariableInfo& var, const Layout& L, co
 
 void readSamples(const CfSource& file, const VariableInfo& var, const Layout& L, const SampleRules& rules,
                  ScalarField& f) {
+    if (L.curvilinear && L.columns) return readCurvilinearColumns(file, var, L, rules, f);
     if (L.curvilinear) return readCurvilinearSamples(file, var, L, rules, f);
     f.values.assign(f.sampleCount(), 0.0f);
     f.valid.assign(f.sampleCount(), 0);
@@ -456,21 +615,7 @@ void readSamples(const CfSource& file, const VariableInfo& var, const Layout& L,
         native[at] = v;
         nativeValid[at] = std::isfinite(float(v)) ? 1 : 0;
     });
-    std::vector<double> depths, out(L.axes[2].stored.size());
-    std::vector<std::uint8_t> outValid(out.size());
-    for (std::size_t k : L.axes[2].stored) depths.push_back(L.latticeM[k]);
-    for (std::size_t j = 0; j < c.ny; ++j)
-        for (std::size_t i = 0; i < c.nx; ++i) {
-            const std::size_t col = j * c.nx + i;
-            resampleColumn(c, j, i, native.data() + col, nativeValid.data() + col, columns, depths, out.data(),
-                           outValid.data());
-            for (std::size_t k = 0; k < out.size(); ++k) {
-                if (!outValid[k]) continue;
-                std::size_t idx = f.index(int(i), int(j), int(k));
-                f.values[idx] = float(out[k]);
-                f.valid[idx] = 1;
-            }
-        }
+    columnsOntoLattice(c, native.data(), nativeValid.data(), L, f);
 }
 
 }  // namespace octrace::io::detail

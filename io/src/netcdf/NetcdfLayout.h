@@ -37,7 +37,10 @@ struct Layout {
     std::vector<double> levelDbar;    ///< pressure of each z when the vertical axis is pressure, else empty
     std::string latitudeAxis, verticalAxis;  ///< dimension names, for messages
     double lon0 = 0.0, lat0 = 0.0, verticalScale = 1.0;  ///< the mapping (ScalarField::Geographic)
-    /// Curvilinear grids only: x and y are a regular lattice resampled from the 2-D grid over
+    int pole = 0;                ///< polar stereographic mapping (ScalarField::Geographic::pole), 0: lon/lat
+    double x0 = 0.0, y0 = 0.0;   ///< its plane position of the world origin (km)
+    /// Curvilinear grids, and every grid in the polar mapping (a regular grid then as
+    /// CurvilinearGrid::fromAxes): x and y are a regular lattice resampled from the 2-D grid over
     /// dimensions dim[0] (x) and dim[1] (y) of the variable; readSamples goes through it.
     std::shared_ptr<const CurvilinearGrid> curvilinear;
     /// A parametric vertical coordinate (VerticalFormula.h): each selected column's native

@@ -6,6 +6,7 @@
 #include "volume/VolumeGeometry.h"
 #include "volume/VtkSupport.h"
 #include "octrace/util/Error.h"
+#include "octrace/util/Log.h"
 #include "octrace/util/Memory.h"
 
 #include <vtkDataArray.h>
@@ -83,22 +84,36 @@ bool endsWith(const std::string& s, const std::string& tail) {
     return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
-ScalarField readNifti(const std::string& path, std::uint64_t budget) {
+// The header of a NIfTI file through `reader` (watched by `messages`), checked.
+vtkNIFTIImageHeader* niftiHeader(vtkNIFTIImageReader* reader, detail::VtkMessages& messages, const std::string& path) {
     detail::requireReadableFile(path);
-    vtkNew<vtkNIFTIImageReader> reader;
-    detail::VtkMessages messages;
     messages.watch(reader);
     reader->SetFileName(path.c_str());
     reader->UpdateInformation();  // the header only
     if (!messages.errors().empty()) throw FileError(path + ": cannot read the NIfTI header: " + messages.errors());
     vtkNIFTIImageHeader* h = reader->GetNIFTIHeader();
     if (!h) throw FileError(path + ": cannot read the NIfTI header");
+    return h;
+}
+
+ScalarField readNifti(const std::string& path, std::uint64_t budget, int volume) {
+    vtkNew<vtkNIFTIImageReader> reader;
+    detail::VtkMessages messages;
+    vtkNIFTIImageHeader* h = niftiHeader(reader, messages, path);
     const long long rank = h->GetDim(0);
     if (rank < 3 || rank > 7) throw FileError(path + ": NIfTI dim[0] = " + std::to_string(rank) + ": octrace reads 3-D volumes");
-    for (int d = 4; d <= rank; ++d)
+    for (int d = 5; d <= rank; ++d)
         if (h->GetDim(d) > 1)
-            throw FileError(path + ": NIfTI image has " + std::to_string(h->GetDim(d)) + (d == 4 ? " time points" : " values along dimension " + std::to_string(d)) +
-                            ": octrace reads one 3-D volume");
+            throw FileError(path + ": NIfTI image has " + std::to_string(h->GetDim(d)) + " values along dimension " + std::to_string(d) +
+                            ": octrace reads 3-D volumes and 4-D series of them");
+    // A 4-D image is a series of volumes (time points, diffusion directions): `volume` chooses one.
+    const long long volumes = rank >= 4 ? std::max<long long>(1, h->GetDim(4)) : 1;
+    if (volume >= volumes)
+        throw InputError(path + ": no volume " + std::to_string(volume) + ": the NIfTI image holds " +
+                         (volumes == 1 ? std::string("one volume (`volume` 0)") : std::to_string(volumes) + " volumes (dim[4]), 0.." + std::to_string(volumes - 1)));
+    const long long chosen = std::max(0, volume);
+    if (volumes > 1 && volume < 0)
+        log::info(path + ": the NIfTI image holds " + std::to_string(volumes) + " volumes (dim[4]); reading volume 0, choose another with `volume`");
     ivec3 dims;
     for (int a = 0; a < 3; ++a) dims[a] = axisSamples(h->GetDim(a + 1), path + ": NIfTI dim[" + std::to_string(a + 1) + "]");
     const int bitpix = h->GetBitPix();
@@ -149,17 +164,27 @@ ScalarField readNifti(const std::string& path, std::uint64_t budget) {
     f.origin = start;
     detail::setAxes(axes, f, path + ": NIfTI " + (which.empty() ? std::string("pixdim") : which));
     f.validateGeometry();
-    checkBudget(path, dims, typeSize, budget);
+    // Every volume is decoded (VTK reads them as the components of each sample), one is kept.
+    checkBudget(path, dims, saturatingMultiply(typeSize, std::uint64_t(volumes)), budget);
     if (!endsWith(detail::lower(path), ".gz") && endsWith(detail::lower(path), ".nii")) {
-        const std::uint64_t need = std::uint64_t(f.sampleCount()) * typeSize + std::uint64_t(std::max<long long>(0, h->GetVoxOffset()));
+        const std::uint64_t need = std::uint64_t(f.sampleCount()) * std::uint64_t(volumes) * typeSize + std::uint64_t(std::max<long long>(0, h->GetVoxOffset()));
         if (detail::fileSize(path) < need)
             throw FileError(path + ": NIfTI data truncated: " + dimsText(dims) + " x " + std::to_string(bitpix) + " bits from byte " +
                             std::to_string(h->GetVoxOffset()) + " need " + std::to_string(need) + " bytes, the file has " +
                             std::to_string(detail::fileSize(path)));
     }
 
+    if (volumes > 1) {
+        reader->TimeAsVectorOn();
+        f.notes.push_back("volume " + std::to_string(chosen) + " of " + std::to_string(volumes) + " (NIfTI dim[4])");
+    }
     update(reader, messages, path, "NIfTI");
-    std::vector<float> values = detail::scalarsAsFloat(reader->GetOutput(), f.sampleCount(), path);
+    std::vector<float> values = detail::scalarsAsFloat(reader->GetOutput(), f.sampleCount() * std::size_t(volumes), path, volumes == 1);
+    if (volumes > 1) {  // sample-major: the volumes of one sample are adjacent
+        std::vector<float> one(f.sampleCount());
+        for (std::size_t i = 0; i < one.size(); ++i) one[i] = values[i * std::size_t(volumes) + std::size_t(chosen)];
+        values = std::move(one);
+    }
     const double slope = h->GetSclSlope(), inter = h->GetSclInter();
     if (slope != 0.0 && std::isfinite(slope) && std::isfinite(inter) && (slope != 1.0 || inter != 0.0)) {
         for (float& v : values) v = float(double(v) * slope + inter);
@@ -224,16 +249,27 @@ const char* VolumeReader::formatName(Format format) {
     }
 }
 
-ScalarField VolumeReader::read(const std::string& path, Format format, std::uint64_t memoryBudget) {
+ScalarField VolumeReader::read(const std::string& path, Format format, std::uint64_t memoryBudget, int volume) {
+    if (volume >= 0 && format != Format::Nifti)
+        throw InputError(path + ": `volume` chooses a volume of a DICOM series or a 4-D NIfTI image; a " +
+                         std::string(formatName(format)) + " file holds one");
     switch (format) {
         case Format::MetaImage: return readMetaImage(path, memoryBudget);
-        case Format::Nifti: return readNifti(path, memoryBudget);
+        case Format::Nifti: return readNifti(path, memoryBudget, volume);
         default: return readVti(path, memoryBudget);
     }
 }
 
-std::string VolumeReader::describe(const std::string& path, Format format, std::uint64_t memoryBudget) {
-    const ScalarField f = read(path, format, memoryBudget);
+std::size_t VolumeReader::volumeCount(const std::string& path, Format format) {
+    if (format != Format::Nifti) return 1;
+    vtkNew<vtkNIFTIImageReader> reader;
+    detail::VtkMessages messages;
+    vtkNIFTIImageHeader* h = niftiHeader(reader, messages, path);
+    return h->GetDim(0) >= 4 && h->GetDim(4) > 1 ? std::size_t(h->GetDim(4)) : 1;
+}
+
+std::string VolumeReader::describe(const std::string& path, Format format, std::uint64_t memoryBudget, int volume) {
+    const ScalarField f = read(path, format, memoryBudget, volume);
     std::ostringstream s;
     s << path << "\nformat: " << formatName(format) << "\n" << detail::describeVolume(f);
     return s.str();

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes curvilinear-grid test files from the real Levitus 1982 atlas (the outputs are committed).
 
-Usage: make_curvilinear.py [LEVITUS.cdf] [OUTDIR]
+Usage: make_curvilinear.py [LEVITUS.cdf] [OUTDIR] [--only nemo_sst]
 (defaults: ../shared/data/ocean/levitus_climatology.cdf beside the checkout, this folder).
 Needs netCDF4 and NumPy (the project's venv).
 
@@ -14,7 +14,11 @@ tripolar_global.nc: a global tripolar-like grid (x periodic, 240 columns, longit
   60 N, above them a bipolar Arctic cap whose two grid poles sit on land at 60 N, 70 E and
   60 N, 110 W (Murray 1996's construction: ellipses in the polar stereographic plane), the top
   row folding onto itself mirrored (column i meets column 239 - i) over the Arctic Ocean.
-Both: temp(depth, y, x) as int16 (scale 0.001, _FillValue -32767, zlib), the Levitus depth
+nemo_sst_2d.nc: a NEMO-like 2-D map on the tripolar grid: sosstsst(time_counter, y, x) (float32,
+  _FillValue 1e20 on land), the surface level of tripolar_global.nc's temperature (the same
+  interpolation), with nav_lat(y, x)/nav_lon(y, x) named by its `coordinates` as NEMO names them
+  and one time step (time_counter, seconds since 1900-01-01, with time_centered beside it).
+Both 3-D files: temp(depth, y, x) as int16 (scale 0.001, _FillValue -32767, zlib), the Levitus depth
 levels, values interpolated bilinearly from Levitus's TEMP with its land: a point is land when
 less than half of the bilinear weight falls on Levitus ocean, else the weighted mean of the
 ocean neighbours.
@@ -126,9 +130,41 @@ def write(path, title, dims, lon, lat, depth, temp, extra, fmt="NETCDF4"):
     d.close()
 
 
+def nemo_sst(path, lon, lat, sst):
+    """A NEMO-like 2-D surface field on the grid (lon, lat): names and attributes as NEMO writes them."""
+    d = netCDF4.Dataset(path, "w", format="NETCDF4")
+    d.title = "Levitus surface temperature on a tripolar-like global grid, NEMO-like 2-D map (octrace test)"
+    d.Conventions = "CF-1.6"
+    d.source = "interpolated from Levitus 1982 (levitus_climatology.cdf) by tests/data/netcdf/make_curvilinear.py"
+    d.createDimension("y", lat.shape[0])
+    d.createDimension("x", lat.shape[1])
+    d.createDimension("time_counter", None)
+    for name, units, sn, data in (("nav_lat", "degrees_north", "latitude", lat),
+                                  ("nav_lon", "degrees_east", "longitude", lon)):
+        v = d.createVariable(name, "f4", ("y", "x"), zlib=True)
+        v.units, v.standard_name, v.long_name = units, sn, sn.capitalize()
+        v.nav_model = "grid_T"
+        v[:] = data
+    for name in ("time_counter", "time_centered"):
+        v = d.createVariable(name, "f8", ("time_counter",))
+        v.units, v.calendar, v.standard_name = "seconds since 1900-01-01 00:00:00", "gregorian", "time"
+        v.long_name = "Time axis" if name == "time_counter" else "Time axis (centered)"
+        v[:] = [3155716800.0]  # 2000-01-01
+    v = d.createVariable("sosstsst", "f4", ("time_counter", "y", "x"), zlib=True, fill_value=np.float32(1e20))
+    v.units, v.standard_name = "degC", "sea_surface_temperature"
+    v.long_name = "sea surface temperature"
+    v.online_operation = "average"
+    v.coordinates = "time_centered nav_lat nav_lon"
+    v[:] = np.where(np.isfinite(sst), sst, np.float32(1e20))[None].astype(np.float32)
+    d.close()
+
+
 def main():
-    src = sys.argv[1] if len(sys.argv) > 1 else os.path.join(HERE, "../../../../shared/data/ocean/levitus_climatology.cdf")
-    out = sys.argv[2] if len(sys.argv) > 2 else HERE
+    args = sys.argv[1:]
+    only_nemo = args[-2:] == ["--only", "nemo_sst"]  # writes only nemo_sst_2d.nc (the others are committed)
+    args = args[:-2] if only_nemo else args
+    src = args[0] if len(args) > 0 else os.path.join(HERE, "../../../../shared/data/ocean/levitus_climatology.cdf")
+    out = args[1] if len(args) > 1 else HERE
     lon_a, lat_a, depth, t_a = levitus(src)
 
     rlon = np.arange(-30.0, 30.0 + 1e-9, 0.5)
@@ -145,10 +181,15 @@ def main():
             v.units, v.standard_name, v.axis = "degrees", sn, "X" if name == "rlon" else "Y"
             v[:] = values
 
-    write(os.path.join(out, "rotated_natl.nc"), "Levitus temperature on a rotated-pole North Atlantic grid",
-          ("rlat", "rlon"), lon, lat, depth, interpolate(lon_a, lat_a, t_a, lon, lat), rotated_axes)
+    if not only_nemo:
+        write(os.path.join(out, "rotated_natl.nc"), "Levitus temperature on a rotated-pole North Atlantic grid",
+              ("rlat", "rlon"), lon, lat, depth, interpolate(lon_a, lat_a, t_a, lon, lat), rotated_axes)
 
     lon, lat = tripolar()
+    surface = interpolate(lon_a, lat_a, t_a[:1], lon, lat)[0]
+    nemo_sst(os.path.join(out, "nemo_sst_2d.nc"), lon, lat, surface)
+    if only_nemo:
+        return
     write(os.path.join(out, "tripolar_global.nc"), "Levitus temperature on a tripolar-like global grid",
           ("y", "x"), lon, lat, depth, interpolate(lon_a, lat_a, t_a, lon, lat), lambda d: None)
 

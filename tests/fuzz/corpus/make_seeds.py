@@ -189,7 +189,8 @@ for name in ("cartesian.nc", "dateline_cf.nc", "packed_4d.nc"):
     copy(cf, os.path.join(DATA, "netcdf", name))
     copy(classic, os.path.join(DATA, "netcdf", name))
 for name in ("invalid_all_masked.nc", "invalid_no_variable.nc", "invalid_truncated.nc", "invalid_nan_coordinate.nc",
-             "invalid_infinite_extent.nc", "invalid_billion_points.nc", "invalid_size_overflow.nc"):
+             "invalid_infinite_extent.nc", "invalid_billion_points.nc", "invalid_size_overflow.nc",
+             "invalid_formula_terms_curvilinear_staggered.nc"):
     copy(cf, os.path.join(DATA, "invalid", name))
     copy(classic, os.path.join(DATA, "invalid", name))
 # Mutated, this one led fuzz_netcdf_cf within seconds to inputs HDF5 never finishes opening

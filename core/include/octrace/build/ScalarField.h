@@ -77,10 +77,20 @@ public:
     /// kilometres, x = R (lon - lon0) cos(lat0), y = R (lat - lat0), z = -depth_km *
     /// verticalScale (R = kEarthRadiusKm, angles in radians), so that world points can be told
     /// in degrees and metres (figure ticks). `valid` is false on other grids.
+    /// A region near a pole is mapped polar stereographic instead (`pole` +1 north, -1 south;
+    /// 0 is the lon/lat mapping above): on the sphere of radius R, true scale at latitude
+    /// `pole` x kPolarStandardParallel, rho = R (1 + sin 71 deg) tan(45 deg - |lat| / 2),
+    /// x = rho sin(lon - lon0) - x0, y = -pole rho cos(lon - lon0) - y0, so lon0 is the
+    /// central meridian (pointing to -y in the north, +y in the south) and (x0, y0) the
+    /// projected centre of the region. docs/dev/ocean.md, "Polar regions".
     struct Geographic {
         static constexpr double kEarthRadiusKm = 6371.0;
+        static constexpr double kPolarStandardParallel = 71.0;
         bool valid = false;
         double lon0 = 0.0, lat0 = 0.0, verticalScale = 1.0;
+        int pole = 0;
+        double x0 = 0.0, y0 = 0.0;
+        bool polar() const { return pole != 0; }
     };
     Geographic geographic;
 

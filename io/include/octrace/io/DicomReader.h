@@ -20,6 +20,7 @@ struct DicomSeriesInfo {
     int columns = 0, rows = 0;
     int slices = 0;           ///< images: frames summed over the files
     int files = 0;
+    int volumes = 1;          ///< volumes (time points, echoes, ...) at the same slices; see read()
     /// columns * rows * slices: the measure of "the largest series".
     double samples() const { return double(columns) * double(rows) * double(slices); }
 };
@@ -57,10 +58,29 @@ public:
     ///         would need more than `memoryBudget` bytes (0 = no limit), found from the headers
     ///         before any of it is allocated.
     /// Thread-safe (no shared state).
-    static ScalarField read(const std::string& path, const std::string& series = {}, std::uint64_t memoryBudget = 0);
+    ///
+    /// Several volumes in one series (images at the same position: time points, echoes,
+    /// cardiac phases, diffusion directions, magnitude and phase) are told apart by their
+    /// attributes: TemporalPositionIndex / TemporalPositionIdentifier, cardiac trigger delay,
+    /// StackID, EchoNumbers, (Effective)EchoTime, DiffusionBValue and gradient direction,
+    /// FrameType / ImageType, ComplexImageComponent, DimensionIndexValues (spatial indices
+    /// left out), in that order, each used only when it splits the images further; repeats
+    /// that nothing tells apart by their acquisition time. `volume` (0-based) chooses one; -1
+    /// reads volume 0 and says (log::info) how many there are. The field's volumeLabel says
+    /// what tells the volume read apart.
+    /// @throws InputError for a `volume` beyond the last; FileError naming the volume when the
+    ///         volumes do not hold the same slices (one missing a slice, different counts).
+    static ScalarField read(const std::string& path, const std::string& series = {}, std::uint64_t memoryBudget = 0,
+                            int volume = -1);
 
-    /// `octrace info` text: the series list, then the chosen series as read().
-    static std::string describe(const std::string& path, const std::string& series = {}, std::uint64_t memoryBudget = 0);
+    /// The labels of the volumes of the series `series` chooses (one "" for a series of one
+    /// volume), from the headers only. @throws as read().
+    static std::vector<std::string> listVolumes(const std::string& path, const std::string& series = {});
+
+    /// `octrace info` text: the series list, the chosen series' volumes, then the chosen
+    /// volume as read().
+    static std::string describe(const std::string& path, const std::string& series = {}, std::uint64_t memoryBudget = 0,
+                                int volume = -1);
 };
 
 }  // namespace octrace::io

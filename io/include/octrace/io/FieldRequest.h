@@ -36,6 +36,10 @@ struct FieldRequest {
     /// DICOM series to read: SeriesInstanceUID, 1-based index in `octrace info`'s list, or
     /// SeriesDescription. Empty: the largest series. Refused for other formats.
     std::string series;
+    /// Volume of a multi-volume DICOM series (time points, echoes, ...) or of a 4-D NIfTI
+    /// image, 0-based. -1: volume 0, said with log::info when there are several. Refused for
+    /// the other formats.
+    int volume = -1;
     /// Memory budget in bytes (see octrace/util/Memory.h); 0 = no limit. A read whose samples
     /// (with the reader's own buffers) would need more is refused with LimitError before
     /// anything that size is allocated.
@@ -44,6 +48,11 @@ struct FieldRequest {
     /// extent of the regular lattice they are resampled onto; the octree's 2^depth + 1 when
     /// reading for an octree. 0: about the source grid's own spacing.
     int horizontalSamples = 0;
+    /// Horizontal mapping of a geographic grid (`map_projection`): Auto is polar stereographic when
+    /// the region (else the grid) lies in one hemisphere and reaches 75 degrees or more towards
+    /// its pole, else the contract's lon x cos(lat0) mapping; LonLat and Polar force one.
+    enum class Projection { Auto, LonLat, Polar };
+    Projection projection = Projection::Auto;
 };
 
 /// The `horizontalSamples` that match an octree of `depth`: 2^depth + 1 (depth clamped to 1..12).

@@ -20,6 +20,11 @@ struct TimeAxis {
     /// Per step, the date as `octrace info` and `time`'s notes say it ("1990-01-15", or with
     /// the time of day when it is not midnight); "" when the axis has no CF time units.
     std::vector<std::string> dates;
+    /// The steps are the volumes of a multi-volume DICOM series or of a 4-D NIfTI image (name
+    /// "volume"): a step is chosen by FieldRequest::volume, not `time`.
+    bool volumes = false;
+    /// With `volumes`, per step what tells it apart ("temporal position 2"; "" for NIfTI).
+    std::vector<std::string> labels;
 
     bool empty() const { return size == 0; }
     /// Whether the steps have dates (CF "UNIT since DATE" units that decode).
@@ -40,7 +45,8 @@ std::vector<std::string> timeDates(const std::vector<double>& values, const std:
 /// The time axis of the field `req` asks for (its variable, or the file's only 3-D variable),
 /// without reading samples. NetCDF: the variable's time dimension (by CF rules, as read() picks
 /// it), of size 1 too; none (empty) when it has no time dimension. Other formats have none
-/// (a DICOM series' time points are a later change: they would be a FieldRequest setting).
+/// but the volumes of a multi-volume DICOM series or of a 4-D NIfTI image (`volumes`; none for
+/// a single volume).
 /// @throws as readField() when the input cannot be opened or the variable is not found.
 TimeAxis readTimeAxis(const std::string& path, const FieldRequest& req = {});
 

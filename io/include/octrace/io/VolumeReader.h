@@ -5,6 +5,7 @@
 /// ScalarField with the file's direction matrix. No VTK type appears here.
 #include "octrace/build/ScalarField.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -31,10 +32,17 @@ public:
     ///         components or time points, sheared directions, truncated or undecodable data);
     ///         LimitError when decoding would need more than `memoryBudget` bytes (0 = no
     ///         limit), found from the header before the samples are allocated.
-    static ScalarField read(const std::string& path, Format format, std::uint64_t memoryBudget = 0);
+    ///
+    /// A 4-D NIfTI image (dim[4] > 1: time points, diffusion directions) is a series of
+    /// volumes: `volume` (0-based) chooses one; -1 reads volume 0 and says (log::info) how many
+    /// there are. Other formats hold one volume and refuse a `volume` (InputError).
+    static ScalarField read(const std::string& path, Format format, std::uint64_t memoryBudget = 0, int volume = -1);
+
+    /// Volumes in the file, from its header: dim[4] of a 4-D NIfTI image, else 1.
+    static std::size_t volumeCount(const std::string& path, Format format);
 
     /// `octrace info` text: format line, then the volume as NrrdReader::describe prints it.
-    static std::string describe(const std::string& path, Format format, std::uint64_t memoryBudget = 0);
+    static std::string describe(const std::string& path, Format format, std::uint64_t memoryBudget = 0, int volume = -1);
 
     /// "MetaImage", "NIfTI", "VTK image data".
     static const char* formatName(Format format);

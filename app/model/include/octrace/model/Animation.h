@@ -63,12 +63,13 @@ struct AnimationSpec {
 /// One frame: which input slice it draws, from where, and what its caption says.
 struct AnimationFrame {
     /// The step of the input's time axis, and the same as FieldRequest::time text (its index),
-    /// which is what a frame changes in the request. (A DICOM series' time point would be a
-    /// FieldRequest setting of its own, chosen here likewise: a later change.)
+    /// which is what a frame changes in the request; or, when the steps are the volumes of a
+    /// DICOM series or a 4-D NIfTI image (TimeAxis::volumes), FieldRequest::volume (`time` "").
     std::size_t step = 0;
     std::string time;
+    int volume = -1;
     std::string date;     ///< as the file gives it ("1990-01-15"); "" on an axis without dates
-    std::string caption;  ///< the date, or "step 3" on an axis without dates
+    std::string caption;  ///< the date, or "step 3" on an axis without dates, or "volume 2: temporal position 3"
     double orbitDegrees = 0.0;  ///< the camera's turn about the vertical (up) axis, from the spec's camera
 };
 

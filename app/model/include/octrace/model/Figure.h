@@ -34,9 +34,12 @@ struct FigureSettings {
 inline constexpr int kDefaultDpi = int(opt::dpi.defaultValue);
 
 /// World <-> longitude, latitude (degrees) and depth (metres, positive down) on a geographic
-/// grid, by the contract's mapping (ScalarField::Geographic).
+/// grid, by the contract's mapping (ScalarField::Geographic). lon, lat, x and y alone hold on
+/// the lon/lat mapping only; world and lonLat on the polar one too.
 struct GeoAxes {
     const ScalarField::Geographic& g;
+    dvec2 world(double lonDeg, double latDeg) const;
+    dvec2 lonLat(double x, double y) const;
     double lon(double x) const;
     double lat(double y) const;
     double depthM(double z) const;

@@ -106,6 +106,12 @@ inline constexpr Option series{.key = "series", .kind = OptionKind::Text, .flag 
     .session = "input.series", .label = "Series", .defaultText = "the largest",
     .help = "DICOM series to read: its UID, its number in `octrace info`'s list or its description",
     .commands = "render export build slice info"};
+inline constexpr Option volume{.key = "volume", .kind = OptionKind::Integer, .flag = "volume", .argument = "N",
+    .defaultValue = 0, .defaultText = "0, with a note naming how many there are",
+    .min = 0, .max = 100000,
+    .help = "volume of a multi-volume DICOM series (time points, echoes, cardiac phases, diffusion directions, magnitude "
+            "and phase: `octrace info` lists them) or of a 4-D NIfTI image, 0-based like `time`",
+    .commands = "render export build slice info"};
 inline constexpr Option form{.key = "form", .kind = OptionKind::Choice, .flag = "form", .argument = "shell|volume",
     .choices = "shell|volume",
     .help = "octree form: the isosurface's boundary voxels (shell), or the solid it bounds with its interior and caps where "
@@ -165,6 +171,12 @@ inline constexpr Option region{.key = "region", .kind = OptionKind::Text, .flag 
 inline constexpr Option depthRange{.key = "depth_range", .kind = OptionKind::Text, .flag = "depth-range", .argument = "Z0,Z1",
     .defaultText = "every level", .help = "depth levels from Z0 to Z1 metres (positive down), NetCDF only",
     .commands = "render export build slice info animate"};
+inline constexpr Option mapProjection{.key = "map_projection", .kind = OptionKind::Choice, .flag = "map-projection",
+    .argument = "auto|lonlat|polar", .choices = "auto|lonlat|polar",
+    .help = "horizontal mapping of a geographic grid: polar stereographic (true scale at 71 degrees) or longitude x "
+            "cos(latitude); auto is polar when the region lies in one hemisphere and reaches 75 degrees or beyond, "
+            "NetCDF only",
+    .commands = "render export build csg slice info animate"};
 inline constexpr Option lodSelect{.key = "lod_select", .kind = OptionKind::Text, .flag = "lod-select", .argument = "LOD",
     .defaultText = "each object's highest",
     .help = "city inputs: level of detail to voxelize, e.g. 1, 2 or 2.2 (a prefix takes its sublevels)",
@@ -357,8 +369,9 @@ inline constexpr Option coastline{.key = "coastline", .kind = OptionKind::Text, 
 // Animations (`octrace animate`, model/Animation.h).
 inline constexpr Option times{.key = "times", .kind = OptionKind::Text, .flag = "time", .argument = "all|I:J|DATE:DATE",
     .defaultText = "all",
-    .help = "time steps to animate, NetCDF only: all, 0-based indices I to J (both included, as `time` INDEX) or the steps "
-            "dated between two dates YYYY-MM-DD[THH:MM[:SS]] (both included) in the file's calendar",
+    .help = "time steps to animate: all, 0-based indices I to J (both included, as `time` INDEX) or the steps "
+            "dated between two dates YYYY-MM-DD[THH:MM[:SS]] (both included) in the file's calendar; for a multi-volume "
+            "DICOM series or a 4-D NIfTI image the steps are its volumes (all or I:J, as `volume`)",
     .commands = "animate"};
 inline constexpr Option fps{.key = "fps", .kind = OptionKind::Integer, .flag = "fps", .argument = "N", .defaultValue = 12,
     .min = 1, .max = 240, .unit = "frames a second", .help = "frame rate of the video", .commands = "animate"};
