@@ -169,8 +169,20 @@ std::uint64_t peakBytes(const Series& series, double stored, double samples, boo
     return total >= 1.8e19 ? std::numeric_limits<std::uint64_t>::max() : std::uint64_t(total);
 }
 
-ScalarField assemble(const Series& series, const std::string& path, std::uint64_t memoryBudget) {
+// What a single image is, as messages name it: "a single 128x128 CT image (FILE, series UID)".
+std::string singleImageText(const Series& series, const std::string& path) {
+    const DicomHeader& h = series.headers.front();
+    std::string where = h.file == path ? std::string() : h.file + ", ";
+    return "a single " + std::to_string(h.columns) + "x" + std::to_string(h.rows) + " " +
+           (h.modality.empty() ? std::string() : h.modality + " ") + "image (" + where + "series " +
+           (h.seriesUid.empty() ? std::string("without a SeriesInstanceUID") : h.seriesUid) + ")";
+}
+
+ScalarField assemble(const Series& series, const std::string& path, std::uint64_t memoryBudget, bool acceptPlanar) {
     detail::SeriesLayout L = detail::layoutSeries(series.headers, path);
+    if (L.single && !acceptPlanar)
+        throw InputError(path + ": " + singleImageText(series, path) +
+                         ": a surface needs a volume, a series of slices or a multi-frame image; draw a single image with slice");
     const double stored = double(L.sliceDims.x) * double(L.sliceDims.y) * double(L.sliceDims.z);
     ivec3 dims = L.sliceDims;
     dvec2 offset(0.0);
@@ -191,7 +203,10 @@ ScalarField assemble(const Series& series, const std::string& path, std::uint64_
     f.units = ct ? "HU" : "";
     f.dims = dims;
     f.direction = L.direction;
-    f.spacing = dvec3(L.spacing, L.uniform ? L.z.back() / double(L.z.size() - 1) : 1.0);
+    // A single image has one sample along its normal and no distance to a neighbour: the
+    // field needs a positive spacing there, and nothing reads it (a map's, NetcdfLayout's).
+    f.planar = L.single;
+    f.spacing = dvec3(L.spacing, L.single ? 1.0 : L.uniform ? L.z.back() / double(L.z.size() - 1) : 1.0);
     if (!L.uniform) f.coords[2] = L.z;
     f.origin = L.origin + L.direction[0] * offset.x + L.direction[1] * offset.y;
     std::vector<float> values = decodeSlices(series.headers, L, ct, path);
@@ -207,6 +222,9 @@ ScalarField assemble(const Series& series, const std::string& path, std::uint64_
     if (f.invertedGrey) f.notes.push_back("MONOCHROME1: low values displayed bright");
 
     f.notes.push_back("DICOM series " + seriesLine(series.info));
+    if (L.single)
+        f.notes.push_back(singleImageText(series, path) +
+                          ": a 2-D field in its own plane, no spacing between slices; drawn by slice, not as a surface");
     f.notes.push_back(ct ? "values: Hounsfield units (RescaleSlope/Intercept of each image)" : "values: as stored");
     f.notes.push_back("coordinates: patient LPS, mm");
     f.patientLps = true;
@@ -218,7 +236,8 @@ ScalarField assemble(const Series& series, const std::string& path, std::uint64_
     return f;
 }
 
-ScalarField readScanned(const Scan& s, const std::string& path, const std::string& want, std::uint64_t memoryBudget) {
+ScalarField readScanned(const Scan& s, const std::string& path, const std::string& want, std::uint64_t memoryBudget,
+                        bool acceptPlanar) {
     const std::size_t chosen = chooseSeries(s, want, path);
     const DicomSeriesInfo& info = s.series[chosen].info;
     // Said when there was a choice to make; a folder of one series gets a debugging line.
@@ -226,7 +245,7 @@ ScalarField readScanned(const Scan& s, const std::string& path, const std::strin
                              ", " + seriesLine(info);
     if (s.series.size() > 1) log::info(said + (want.empty() ? ": the largest; choose another with `series`" : ""));
     else log::debug(said);
-    return assemble(s.series[chosen], path, memoryBudget);
+    return assemble(s.series[chosen], path, memoryBudget, acceptPlanar);
 }
 
 }  // namespace
@@ -237,8 +256,9 @@ std::vector<DicomSeriesInfo> DicomReader::listSeries(const std::string& path) {
     return list;
 }
 
-ScalarField DicomReader::read(const std::string& path, const std::string& series, std::uint64_t memoryBudget) {
-    return readScanned(scan(path), path, series, memoryBudget);
+ScalarField DicomReader::read(const std::string& path, const std::string& series, std::uint64_t memoryBudget,
+                              bool acceptPlanar) {
+    return readScanned(scan(path), path, series, memoryBudget, acceptPlanar);
 }
 
 std::string DicomReader::describe(const std::string& path, const std::string& series, std::uint64_t memoryBudget) {
@@ -246,7 +266,7 @@ std::string DicomReader::describe(const std::string& path, const std::string& se
     std::ostringstream out;
     out << path << "\nformat: DICOM, " << s.series.size() << " image series\n";
     for (std::size_t i = 0; i < s.series.size(); ++i) out << "series " << i + 1 << ": " << seriesLine(s.series[i].info) << "\n";
-    const ScalarField f = readScanned(s, path, series, memoryBudget);
+    const ScalarField f = readScanned(s, path, series, memoryBudget, true);  // a single image is described, not refused
     out << "chosen: series " << chooseSeries(s, series, path) + 1 << "\n" << detail::describeVolume(f);
     return out.str();
 }

@@ -90,10 +90,8 @@ SeriesLayout layoutSeries(const std::vector<DicomHeader>& headers, const std::st
             ++count;
             positioned += headers[h].frames[n].hasPosition ? 1 : 0;
         }
-    if (count < 2)
-        throw FileError(what + ": series " + h0.seriesUid + " holds a single " + std::to_string(h0.columns) + "x" +
-                        std::to_string(h0.rows) + " image (" + h0.file + "); a volume needs at least 2 slices");
     L.sliceDims = ivec3(h0.columns, h0.rows, int(count));
+    L.single = count == 1;
 
     dvec3 row(1.0, 0.0, 0.0), col(0.0, 1.0, 0.0);
     if (f0.hasOrientation) orientation(h0, f0, what, row, col);
@@ -105,6 +103,14 @@ SeriesLayout layoutSeries(const std::vector<DicomHeader>& headers, const std::st
     else L.warnings.push_back("no PixelSpacing: 1 mm assumed");
 
     const auto framePos = [&](const SliceRef& s) { return headers[s.header].frames[std::size_t(s.frame)].position; };
+    if (L.single) {
+        // One image: its plane, and no distance to a neighbour it does not have (none is
+        // invented from SliceThickness or SpacingBetweenSlices).
+        L.z = {0.0};
+        if (positioned) L.origin = f0.position;
+        else L.warnings.push_back("no ImagePositionPatient: the image is placed at the origin");
+        return L;
+    }
     if (positioned == count) {
         std::stable_sort(L.slices.begin(), L.slices.end(), [&](const SliceRef& a, const SliceRef& b) {
             return glm::dot(framePos(a), normal) < glm::dot(framePos(b), normal);

@@ -108,7 +108,7 @@ ScalarField readField(const std::string& path, const FieldRequest& req) {
             break;
         case FileKind::Dicom:
             refuseRegion(path, req, "DICOM");
-            f = checkVolume(DicomReader::read(path, req.series, req.memoryBudget), path, req, "DICOM");
+            f = checkVolume(DicomReader::read(path, req.series, req.memoryBudget, req.acceptPlanar), path, req, "DICOM");
             break;
         default:
             refuseSeries(path, req);

@@ -50,16 +50,23 @@ public:
     /// Functional Groups. CT values are Hounsfield units (RescaleSlope/Intercept of each
     /// image; units "HU"); other modalities keep their stored values. The field's name is
     /// the modality.
-    /// @throws InputError for an unknown `series`; FileError naming the file for a broken
+    ///
+    /// A single image (one file of one frame) is a 2-D field in its own plane
+    /// (ScalarField::planar: one sample along the normal, at the image's position, and no
+    /// slice spacing, none being invented) when `acceptPlanar` (slices ask for it); otherwise
+    /// it is refused with InputError: a surface needs a volume.
+    /// @throws InputError for an unknown `series`, or a single image without `acceptPlanar`; FileError naming the file for a broken
     ///         or unsupported series (undecodable or truncated pixel data, mixed sizes or
     ///         orientations, absurd headers: checked before any large allocation).
     ///         LimitError when the slices, the volume and the largest file's decoding buffers
     ///         would need more than `memoryBudget` bytes (0 = no limit), found from the headers
     ///         before any of it is allocated.
     /// Thread-safe (no shared state).
-    static ScalarField read(const std::string& path, const std::string& series = {}, std::uint64_t memoryBudget = 0);
+    static ScalarField read(const std::string& path, const std::string& series = {}, std::uint64_t memoryBudget = 0,
+                            bool acceptPlanar = false);
 
-    /// `octrace info` text: the series list, then the chosen series as read().
+    /// `octrace info` text: the series list, then the chosen series as read() (a single image
+    /// too, with a note that says it is one).
     static std::string describe(const std::string& path, const std::string& series = {}, std::uint64_t memoryBudget = 0);
 };
 
