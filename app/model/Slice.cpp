@@ -63,6 +63,51 @@ void checkGeographicAt(const ScalarField& f, const SliceSpec& a, SlicePlane plan
     throw InputError(a.input + ": " + at + ": " + why);
 }
 
+/// The world axis a planar field's one plane is normal to: z for a map, the patient axis
+/// nearest the normal of a single image (ImageOrientationPatient's row x column).
+int planarNormalAxis(const ScalarField& f) {
+    const dvec3& n = f.direction[2];
+    return std::abs(n.x) >= std::abs(n.y) && std::abs(n.x) >= std::abs(n.z) ? 0 : std::abs(n.y) >= std::abs(n.z) ? 1 : 2;
+}
+
+/// A planar field's own plane: the patient plane of a single image, z for a map.
+SlicePlane planarPlane(const ScalarField& f) {
+    constexpr SlicePlane patient[3] = {SlicePlane::Sagittal, SlicePlane::Coronal, SlicePlane::Axial};
+    constexpr SlicePlane world[3] = {SlicePlane::X, SlicePlane::Y, SlicePlane::Z};
+    return (f.patientLps ? patient : world)[planarNormalAxis(f)];
+}
+
+/// A single image (a planar field in patient coordinates) has one plane, its own: any other
+/// plane would cut it along a line, and a position off it would miss it. An oblique image
+/// (its normal off the patient axis) is refused: slices are patient-aligned, and one image
+/// has no neighbours to resample from. Returns the plane's position, the image's own; an
+/// `at` within a micrometre of it (DICOM positions carry 6 to 16 digits) is taken as it.
+double singleImagePosition(const ScalarField& f, const SliceSpec& a, SlicePlane plane) {
+    const SlicePlane own = planarPlane(f);
+    const std::string what = a.input + ": a single " + slicePlaneName(own) + " image";
+    if (sliceNormalAxis(plane) != sliceNormalAxis(own))
+        throw InputError(what + " has one slice, its own plane: " + param(opt::plane.key) + " " + slicePlaneName(plane) +
+                         " would cut it along a line; leave " + param(opt::plane.key) + " out (or give " + slicePlaneName(own) +
+                         "); a series of slices or a multi-frame image can be cut in any plane");
+    const int n = planarNormalAxis(f);
+    const double cosine = std::abs(f.direction[2][n]);
+    if (cosine < 1.0 - 5e-9) {  // 1e-4 radians, the reader's tolerance for "the same orientation"
+        const double degrees = std::acos(std::min(cosine, 1.0)) * 180.0 / 3.14159265358979323846;
+        throw InputError(what + " is oblique: its normal is " + numberText(degrees, 3) + " degrees from the " +
+                         slicePlaneName(own) + " plane's; slices are patient-aligned and a single image has no neighbours to "
+                         "resample it from, so it is not drawn");
+    }
+    const double ownPosition = f.origin[n];
+    if (a.index && *a.index != 0)
+        throw InputError(what + " has one slice: " + param(opt::index.key) + " " + std::to_string(*a.index) +
+                         " is beyond it; leave " + param(opt::index.key) + " out (or give 0)");
+    if (a.at && std::abs(*a.at - ownPosition) > 1e-3)
+        throw InputError(what + " lies at " + std::string(1, char('x' + n)) + " = " + numberText(ownPosition) + " mm: " +
+                         param(opt::at.key) + " " + numberText(*a.at) + " is off it (there is one slice); leave " +
+                         param(opt::at.key) + " out");
+    return ownPosition;
+}
+
 /// The plane's position as the user reads it: "z = 12.5 mm", "500 m depth", "150°E".
 std::string positionText(const ScalarField& f, const SliceView& v) {
     const int n = sliceNormalAxis(v.plane);
@@ -286,15 +331,18 @@ void checkSliceSpec(const SliceSpec& a) {
 SliceResult renderSlice(const ScalarField& field, const SliceSpec& a) {
     checkSliceSpec(a);
     SliceResult r;
-    const SlicePlane plane = a.plane.value_or(field.patientLps ? SlicePlane::Axial : SlicePlane::Z);
+    const SlicePlane plane =
+        a.plane.value_or(field.planar ? planarPlane(field) : field.patientLps ? SlicePlane::Axial : SlicePlane::Z);
     if (!field.patientLps && (plane == SlicePlane::Axial || plane == SlicePlane::Coronal || plane == SlicePlane::Sagittal))
         throw UsageError(param(opt::plane.key) + " " + slicePlaneName(plane) + ": " + a.input +
                          " is not in patient coordinates (DICOM, NIfTI, NRRD in LPS space); use x, y or z");
-    if (field.planar && sliceNormalAxis(plane) != 2)
+    const bool singleImage = field.planar && field.patientLps;
+    if (field.planar && !singleImage && sliceNormalAxis(plane) != 2)
         throw InputError(a.input + ": " + param(opt::plane.key) + " " + slicePlaneName(plane) + ": '" + field.name +
                          "' is a 2-D field (a map): only its z plane, the map itself, can be drawn; leave " + param(opt::plane.key) + " out");
-    const double position = a.at ? worldPosition(field, plane, *a.at)
-                                 : slicePositionOfIndex(field, plane, a.index.value_or(field.dims[sliceGridAxis(field, plane)] / 2));
+    const double position = singleImage ? singleImagePosition(field, a, plane)
+                            : a.at      ? worldPosition(field, plane, *a.at)
+                                        : slicePositionOfIndex(field, plane, a.index.value_or(field.dims[sliceGridAxis(field, plane)] / 2));
     checkGeographicAt(field, a, plane, position);
     // A figure: the slice fills the plot that its layout leaves (`size` or `print_size` is the
     // whole figure), less bands around it for the letters, ticks and scale bar.

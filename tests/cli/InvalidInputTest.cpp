@@ -75,6 +75,7 @@ const Case kCases[] = {
     {"invalid_compressed_size_past_end.mha", nullptr, "holds 309 bytes from byte 196"},
     {"invalid_no_field.nc", nullptr, "no 3-D variable, nor a 2-D one to draw as a map"},
     {"invalid_map_all_masked.nc", nullptr, "a surface needs a 3-D field; draw the 2-D sst with slice"},
+    {"invalid_single_image.dcm", nullptr, "a single 4x4 CT image (series 1.2.826.0.1.3680043.9.7777.90): a surface needs a volume"},
     {"invalid_corrupt_chunk.zarr", "TEMP", "cannot read variable 'TEMP' of the Zarr store: Decompression of tile"},
     {"invalid_zarr_v3.zarr", nullptr, "xr.open_zarr("},
 };
@@ -99,7 +100,8 @@ TEST(InvalidInput, EveryCorpusFileExitsOneWithItsMessageAndNoOutput) {
         // info reports the same problem, exit 1 (a valid file merely lacking a 3-D variable is
         // still described).
         const std::string file = c.file;
-        if (!c.var && file != "invalid_no_variable.nc" && file != "invalid_no_field.nc" && file != "invalid_map_all_masked.nc") {
+        if (!c.var && file != "invalid_no_variable.nc" && file != "invalid_no_field.nc" && file != "invalid_map_all_masked.nc" &&
+            file != "invalid_single_image.dcm") {
             Result i = run({"info", path});
             EXPECT_EQ(i.code, 1) << c.file;
         }

@@ -44,7 +44,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         start = end == bytes.size() ? bytes.size() + 1 : end + kSeparator.size();
     }
     try {
-        octrace::ScalarField f = octrace::io::DicomReader::read(scratch().path("series"));
+        // 2-D fields accepted, so that a single image is decoded too, as slice reads it.
+        octrace::ScalarField f = octrace::io::DicomReader::read(scratch().path("series"), {}, 0, -1, true);
         (void)f;
     } catch (const octrace::Error&) {
         // A clean refusal: what we want for broken input.

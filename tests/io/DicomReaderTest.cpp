@@ -1,5 +1,6 @@
 // DICOM series: the real files of ../shared/data/medical (skipped when absent) and the
 // synthetic fixtures of tests/data/dicom (make_fixtures.py there says what each holds).
+#include "DicomPixelData.h"
 #include "IoTestSupport.h"
 
 #include "dicom/DicomFile.h"
@@ -35,6 +36,15 @@ void expectSameVoxels(const ScalarField& a, const ScalarField& b, const std::str
 void expectNear(dvec3 a, dvec3 b, double tol, const std::string& what) {
     EXPECT_LT(glm::length(a - b), tol) << what << ": (" << a.x << ", " << a.y << ", " << a.z << ") vs (" << b.x << ", "
                                        << b.y << ", " << b.z << ")";
+}
+
+/// A DICOM input read as `slice` reads it (2-D fields accepted): expected to be a single image.
+ScalarField readAsSlicesDo(const std::string& path) {
+    io::FieldRequest req;
+    req.acceptPlanar = true;
+    ScalarField f = io::readField(path, req);
+    EXPECT_TRUE(f.planar) << path;
+    return f;
 }
 
 }  // namespace
@@ -236,13 +246,94 @@ TEST(DicomReader, RefusesAFolderHoldingAFileWhoseLengthRunsPastItsEndInsteadOfAb
     EXPECT_THROW_WITH(io::DicomReader::listSeries(folder), FileError, broken + ": DICOM structure broken at byte 492");
 }
 
+// Asked for a volume (a surface), a single image is refused saying what it is and what a
+// surface needs; asked by a slice (acceptPlanar), it is a 2-D field in its own plane.
 TEST(DicomReader, ASingleImageIsNotAVolume) {
     OCTRACE_SHARED_FILE_OR_SKIP(path, "medical/CT_small.dcm");
-    EXPECT_THROW_WITH(io::readField(path), FileError, "holds a single 128x128 image");
+    EXPECT_THROW_WITH(io::readField(path), InputError,
+                      path + ": a single 128x128 CT image (series 1.3.6.1.4.1.5962.1.3.1.1.20040119072730.12322): a surface "
+                             "needs a volume, a series of slices or a multi-frame image; draw a single image with slice");
 }
 
-// The single-image MR in little and big endian: not a volume each (refused as above), but the
-// same image: identical decoded values, size and geometry.
+// The corpus' single 4x4 CT image (make_fixtures.py: stored 0..15, intercept -1024, at z = 3):
+// refused as a volume, read as a 2-D field in its own plane when asked.
+TEST(DicomReader, TheCorpusSingleImageIsRefusedAsAVolumeAndReadAsAMap) {
+    const std::string path = test::testData("invalid/invalid_single_image.dcm");
+    EXPECT_THROW_WITH(io::DicomReader::read(path), InputError,
+                      path + ": a single 4x4 CT image (series 1.2.826.0.1.3680043.9.7777.90): a surface needs a volume");
+    const ScalarField f = io::DicomReader::read(path, {}, 0, -1, true);
+    EXPECT_TRUE(f.planar);
+    EXPECT_EQ(f.dims, ivec3(4, 4, 1));
+    EXPECT_EQ(f.origin, dvec3(-10.0, -20.0, 3.0));
+    EXPECT_EQ(f.spacing.x, 0.5);
+    for (int i = 0; i < 16; ++i) EXPECT_EQ(f.values[std::size_t(i)], float(i - 1024)) << i;
+}
+
+// CT_small.dcm: 128 x 128 axial (ImageOrientationPatient 1\0\0\0\1\0), PixelSpacing 0.661468,
+// ImagePositionPatient -158.135803\-179.035797\-75.699997, RescaleIntercept -1024, no window.
+// Read as a map in its own plane: one sample along the normal, the HU of every pixel equal to
+// the stored pixels (found by the Pixel Data element's bytes, not by GDCM) plus the intercept,
+// and no slice spacing made up from SliceThickness or SpacingBetweenSlices (both 5 in the file).
+TEST(DicomReader, ASingleCtImageIsA2DFieldInItsOwnPlaneWithItsHounsfieldUnits) {
+    OCTRACE_SHARED_FILE_OR_SKIP(path, "medical/CT_small.dcm");
+    const ScalarField f = readAsSlicesDo(path);
+    EXPECT_TRUE(f.patientLps);
+    EXPECT_EQ(f.dims, ivec3(128, 128, 1));
+    EXPECT_EQ(f.units, "HU");
+    EXPECT_FALSE(f.window.valid());
+    EXPECT_EQ(f.direction, dmat3(1.0));
+    expectNear(f.origin, dvec3(-158.135803, -179.035797, -75.699997), 1e-9, "origin");
+    EXPECT_NEAR(f.spacing.x, 0.661468, 1e-12);
+    EXPECT_NEAR(f.spacing.y, 0.661468, 1e-12);
+    const std::vector<double> stored = test::storedPixels16(path, 128 * 128, false, true);
+    ASSERT_EQ(stored.size(), f.values.size());
+    int wrong = 0;
+    for (std::size_t i = 0; i < stored.size(); ++i) wrong += f.values[i] != float(stored[i] - 1024.0);
+    EXPECT_EQ(wrong, 0);
+    EXPECT_EQ(f.values[0], float(0xaf - 1024));  // the first stored bytes: af 00
+    const std::string text = io::describeInput(path);
+    EXPECT_NE(text.find("spacing: 0.661468 x 0.661468 x none (one sample)"), std::string::npos) << text;
+    EXPECT_NE(text.find("a single 128x128 CT image"), std::string::npos) << text;
+    EXPECT_NE(text.find("no spacing between slices"), std::string::npos) << text;
+}
+
+// MR_small.dcm keeps its stored window (600/1600) and its values as stored; the multi-frame
+// emri_small.dcm (10 frames) stays a volume; JPEG-lossy.dcm, one NM frame without position or
+// orientation, is a single image placed at the origin with a warning.
+TEST(DicomReader, SingleImagesKeepTheirWindowAndMultiFrameImagesStayVolumes) {
+    OCTRACE_SHARED_FILE_OR_SKIP(mr, "medical/MR_small.dcm");
+    const ScalarField f = readAsSlicesDo(mr);
+    EXPECT_EQ(f.dims, ivec3(64, 64, 1));
+    EXPECT_EQ(f.units, "");
+    EXPECT_EQ(f.window.centre, 600.0);
+    EXPECT_EQ(f.window.width, 1600.0);
+    const std::vector<double> stored = test::storedPixels16(mr, 64 * 64, false, true);
+    ASSERT_EQ(stored.size(), f.values.size());
+    EXPECT_TRUE(std::equal(stored.begin(), stored.end(), f.values.begin(), [](double a, float b) { return float(a) == b; }));
+    const std::string big = test::sharedData("medical/MR_small_bigendian.dcm");
+    ASSERT_FALSE(big.empty());
+    expectSameVoxels(readAsSlicesDo(big), f, "big endian");
+
+    const std::string emri = test::sharedData("medical/emri_small.dcm");
+    ASSERT_FALSE(emri.empty());
+    io::FieldRequest req;
+    req.acceptPlanar = true;
+    const ScalarField volume = io::readField(emri, req);
+    EXPECT_FALSE(volume.planar);
+    EXPECT_EQ(volume.dims, ivec3(64, 64, 10));
+
+    const std::string nm = test::sharedData("medical/JPEG-lossy.dcm");
+    ASSERT_FALSE(nm.empty());
+    test::LogCapture log;
+    const ScalarField one = readAsSlicesDo(nm);
+    EXPECT_EQ(one.dims, ivec3(256, 1024, 1));
+    EXPECT_EQ(one.origin, dvec3(0.0));
+    EXPECT_TRUE(anyWarningContains(log, "no ImagePositionPatient: the image is placed at the origin"));
+    EXPECT_THROW_WITH(io::readField(nm), InputError, "a single 256x1024 NM image");
+}
+
+// The single-image MR in little and big endian: the same image: identical decoded values,
+// size and geometry.
 TEST(DicomReader, TheLittleAndBigEndianSingleMrImagesDecodeIdentically) {
     OCTRACE_SHARED_FILE_OR_SKIP(little, "medical/MR_small.dcm");
     const std::string big = test::sharedData("medical/MR_small_bigendian.dcm");

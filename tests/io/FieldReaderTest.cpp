@@ -104,6 +104,9 @@ TEST(FieldReader, EveryInvalidCorpusFileFailsWithItsDocumentedMessage) {
         {"invalid_volume_slice_counts", "", Kind::File, "volume 1 (temporal position 2) has 4 slices, volume 0 (temporal position 1) has 6 slices at other positions"},
         {"invalid_volume_missing_slice", "", Kind::File, "volume 1 (temporal position 2) is missing a slice: it has none at"},
         {"invalid_huge_frame_count.dcm", "", Kind::File, "header declares 100000 frame(s) of 64x64 x 16 bits"},
+        {"invalid_single_image.dcm", "", Kind::Input,
+         "a single 4x4 CT image (series 1.2.826.0.1.3680043.9.7777.90): a surface needs a volume, a series of slices or a "
+         "multi-frame image; draw a single image with slice"},
         {"invalid_zero_pixel_spacing.dcm", "", Kind::File, "PixelSpacing 0\\0.5 must be positive"},
         {"invalid_nan_position.dcm", "", Kind::File, "ImagePositionPatient 'NaN\\0\\1' of frame 2 is not 3 finite numbers"},
         {"invalid_huge_sizes.nrrd", "", Kind::File, "size of axis 0 is 1000000000, more than the 16777216 (2^24)"},

@@ -193,10 +193,23 @@ std::size_t chooseVolume(const Series& series, int want, const std::string& path
     return 0;
 }
 
-ScalarField assemble(const Series& series, const std::string& path, std::uint64_t memoryBudget, int volume) {
+// What a single image is, as messages name it: "a single 128x128 CT image (FILE, series UID)".
+std::string singleImageText(const Series& series, const std::string& path) {
+    const DicomHeader& h = series.headers.front();
+    std::string where = h.file == path ? std::string() : h.file + ", ";
+    return "a single " + std::to_string(h.columns) + "x" + std::to_string(h.rows) + " " +
+           (h.modality.empty() ? std::string() : h.modality + " ") + "image (" + where + "series " +
+           (h.seriesUid.empty() ? std::string("without a SeriesInstanceUID") : h.seriesUid) + ")";
+}
+
+ScalarField assemble(const Series& series, const std::string& path, std::uint64_t memoryBudget, int volume,
+                     bool acceptPlanar) {
     const std::size_t chosen = chooseVolume(series, volume, path);
     const detail::SeriesVolume& vol = series.volumes[chosen];
     detail::SeriesLayout L = detail::layoutSeries(series.headers, path, vol.images);
+    if (L.single && !acceptPlanar)
+        throw InputError(path + ": " + singleImageText(series, path) +
+                         ": a surface needs a volume, a series of slices or a multi-frame image; draw a single image with slice");
     const double stored = double(L.sliceDims.x) * double(L.sliceDims.y) * double(L.sliceDims.z);
     ivec3 dims = L.sliceDims;
     dvec2 offset(0.0);
@@ -217,7 +230,10 @@ ScalarField assemble(const Series& series, const std::string& path, std::uint64_
     f.units = ct ? "HU" : "";
     f.dims = dims;
     f.direction = L.direction;
-    f.spacing = dvec3(L.spacing, L.uniform ? L.z.back() / double(L.z.size() - 1) : 1.0);
+    // A single image has one sample along its normal and no distance to a neighbour: the
+    // field needs a positive spacing there, and nothing reads it (a map's, NetcdfLayout's).
+    f.planar = L.single;
+    f.spacing = dvec3(L.spacing, L.single ? 1.0 : L.uniform ? L.z.back() / double(L.z.size() - 1) : 1.0);
     if (!L.uniform) f.coords[2] = L.z;
     f.origin = L.origin + L.direction[0] * offset.x + L.direction[1] * offset.y;
     std::vector<float> values = decodeSlices(series.headers, L, ct, path);
@@ -235,6 +251,9 @@ ScalarField assemble(const Series& series, const std::string& path, std::uint64_
     f.notes.push_back("DICOM series " + seriesLine(series.info));
     if (series.volumes.size() > 1)
         f.notes.push_back("volume " + std::to_string(chosen) + " of " + std::to_string(series.volumes.size()) + ": " + vol.label);
+    if (L.single)
+        f.notes.push_back(singleImageText(series, path) +
+                          ": a 2-D field in its own plane, no spacing between slices; drawn by slice, not as a surface");
     f.notes.push_back(ct ? "values: Hounsfield units (RescaleSlope/Intercept of each image)" : "values: as stored");
     f.notes.push_back("coordinates: patient LPS, mm");
     f.patientLps = true;
@@ -246,7 +265,8 @@ ScalarField assemble(const Series& series, const std::string& path, std::uint64_
     return f;
 }
 
-ScalarField readScanned(const Scan& s, const std::string& path, const std::string& want, std::uint64_t memoryBudget, int volume) {
+ScalarField readScanned(const Scan& s, const std::string& path, const std::string& want, std::uint64_t memoryBudget, int volume,
+                        bool acceptPlanar) {
     const std::size_t chosen = chooseSeries(s, want, path);
     const DicomSeriesInfo& info = s.series[chosen].info;
     // Said when there was a choice to make; a folder of one series gets a debugging line.
@@ -254,7 +274,7 @@ ScalarField readScanned(const Scan& s, const std::string& path, const std::strin
                              ", " + seriesLine(info);
     if (s.series.size() > 1) log::info(said + (want.empty() ? ": the largest; choose another with `series`" : ""));
     else log::debug(said);
-    return assemble(s.series[chosen], path, memoryBudget, volume);
+    return assemble(s.series[chosen], path, memoryBudget, volume, acceptPlanar);
 }
 
 }  // namespace
@@ -265,8 +285,9 @@ std::vector<DicomSeriesInfo> DicomReader::listSeries(const std::string& path) {
     return list;
 }
 
-ScalarField DicomReader::read(const std::string& path, const std::string& series, std::uint64_t memoryBudget, int volume) {
-    return readScanned(scan(path), path, series, memoryBudget, volume);
+ScalarField DicomReader::read(const std::string& path, const std::string& series, std::uint64_t memoryBudget, int volume,
+                              bool acceptPlanar) {
+    return readScanned(scan(path), path, series, memoryBudget, volume, acceptPlanar);
 }
 
 std::vector<std::string> DicomReader::listVolumes(const std::string& path, const std::string& series) {
@@ -291,7 +312,7 @@ std::string DicomReader::describe(const std::string& path, const std::string& se
         for (std::size_t v = 0; v < c.volumes.size(); ++v)
             out << "volume " << v << ": " << c.volumes[v].label << ", " << c.volumes[v].images.size() << " slices\n";
     }
-    const ScalarField f = readScanned(s, path, series, memoryBudget, volume);
+    const ScalarField f = readScanned(s, path, series, memoryBudget, volume, true);  // a single image is described, not refused
     out << "chosen: series " << chosen + 1;
     if (c.volumes.size() > 1) out << ", volume " << (volume < 0 ? 0 : volume);
     out << "\n" << detail::describeVolume(f);

@@ -280,15 +280,13 @@ SeriesLayout layoutSeries(const std::vector<DicomHeader>& headers, const std::st
     std::size_t count = 0, positioned = 0;
     for (std::size_t h = 0; h < headers.size(); ++h)
         for (std::size_t n = 0; n < headers[h].frames.size(); ++n) L.slices.push_back({h, int(n), dvec2(0.0)});
-    if (!images.empty()) L.slices = images;
+    if (!images.empty()) L.slices = images;  // one volume of several (DicomVolumes)
     for (const SliceRef& s : L.slices) {
         ++count;
         positioned += frameOf(headers, s).hasPosition ? 1 : 0;
     }
-    if (count < 2)
-        throw FileError(what + ": series " + h0.seriesUid + " holds a single " + std::to_string(h0.columns) + "x" +
-                        std::to_string(h0.rows) + " image (" + h0.file + "); a volume needs at least 2 slices");
     L.sliceDims = ivec3(h0.columns, h0.rows, int(count));
+    L.single = count == 1;
 
     dvec3 row(1.0, 0.0, 0.0), col(0.0, 1.0, 0.0);
     if (f0.hasOrientation) orientation(h0, f0, what, row, col);
@@ -300,6 +298,14 @@ SeriesLayout layoutSeries(const std::vector<DicomHeader>& headers, const std::st
     else L.warnings.push_back("no PixelSpacing: 1 mm assumed");
 
     const auto framePos = [&](const SliceRef& s) { return headers[s.header].frames[std::size_t(s.frame)].position; };
+    if (L.single) {
+        // One image: its plane, and no distance to a neighbour it does not have (none is
+        // invented from SliceThickness or SpacingBetweenSlices).
+        L.z = {0.0};
+        if (positioned) L.origin = f0.position;
+        else L.warnings.push_back("no ImagePositionPatient: the image is placed at the origin");
+        return L;
+    }
     if (positioned == count) {
         std::stable_sort(L.slices.begin(), L.slices.end(), [&](const SliceRef& a, const SliceRef& b) {
             return glm::dot(framePos(a), normal) < glm::dot(framePos(b), normal);

@@ -83,6 +83,9 @@ struct SeriesLayout {
     dvec2 spacing{1.0};          ///< x (between columns), y (between rows), mm
     std::vector<double> z;       ///< slice positions along the normal, from 0, increasing
     bool uniform = true;         ///< slice distances equal within 1%
+    /// One image (one file of one frame): z = {0}, no slice distance, never tilted. A volume
+    /// needs at least 2 slices; the reader reads it as a 2-D field (ScalarField::planar).
+    bool single = false;
     std::vector<SliceRef> slices;  ///< in z order
     bool tilted = false;         ///< in-plane shifts present (gantry tilt)
     double tiltDegrees = 0.0;
@@ -113,7 +116,7 @@ void checkVolumesAlike(const std::vector<DicomHeader>& headers, const std::vecto
 
 /// Orders the images of one series (all `headers` belong to it) and derives its geometry.
 /// Every image must have the same size, orientation and pixel spacing; positions must be
-/// finite and distinct. Images without ImagePositionPatient are allowed only as the frames of
+/// finite and distinct. A single image gives a layout with `single` set. Images without ImagePositionPatient are allowed only as the frames of
 /// one multi-frame file, stacked in frame order `sliceSpacing` apart (with a warning).
 /// @throws FileError "WHAT: ..." naming the offending file when it is not the same for all.
 /// `images` (non-empty) restricts it to those images (one volume of splitVolumes).

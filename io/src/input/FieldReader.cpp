@@ -126,7 +126,7 @@ ScalarField readField(const std::string& path, const FieldRequest& req) {
             break;
         case FileKind::Dicom:
             refuseRegion(path, req, "DICOM");
-            f = checkVolume(DicomReader::read(path, req.series, req.memoryBudget, req.volume), path, req, "DICOM");
+            f = checkVolume(DicomReader::read(path, req.series, req.memoryBudget, req.volume, req.acceptPlanar), path, req, "DICOM");
             break;
         default:
             refuseSeries(path, req);

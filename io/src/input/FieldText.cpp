@@ -16,7 +16,8 @@ std::string describeVolume(const ScalarField& f) {
     s << "spacing:";
     for (int a = 0; a < 3; ++a) {
         s << (a ? " x " : " ");
-        if (f.isRectilinear(a)) s << "rectilinear " << num(f.coords[a].front()) << " .. " << num(f.coords[a].back());
+        if (f.dims[a] == 1) s << "none (one sample)";  // a map's or a single image's: no neighbour, no distance
+        else if (f.isRectilinear(a)) s << "rectilinear " << num(f.coords[a].front()) << " .. " << num(f.coords[a].back());
         else s << num(f.spacing[a]);
     }
     s << "\norigin: (" << num(f.origin.x) << ", " << num(f.origin.y) << ", " << num(f.origin.z) << ")\n";

@@ -160,6 +160,12 @@ def main():
     write(os.path.join(INVALID, "invalid_nan_position.dcm"),
           enhanced_ct([ds(0, 0, 0), "NaN\\0\\1"], [0, 0]), ENHANCED_CT)
 
+    # A single 4x4 CT image: not broken, but not a volume: render refuses it (a surface needs a
+    # volume), slice draws it in its own plane.
+    write(os.path.join(INVALID, "invalid_single_image.dcm"),
+          slice_at("1.2.826.0.1.3680043.9.7777.90", "CT", 4, 4, 3, 0,
+                   extra={(0x0028, 0x1052): ("DS", ds(-1024)), (0x0028, 0x1053): ("DS", ds(1))}))
+
     # Files on which GDCM (Debian builds it with assertions on) aborts the process; octrace's
     # own structure walk (io/src/DicomValidator.*) refuses them before GDCM opens them.
     # fuzz_dicom's first finding: two_series' sub/ct0.dcm whose RescaleIntercept (DS, 8 bytes

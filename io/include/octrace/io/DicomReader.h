@@ -51,7 +51,12 @@ public:
     /// Functional Groups. CT values are Hounsfield units (RescaleSlope/Intercept of each
     /// image; units "HU"); other modalities keep their stored values. The field's name is
     /// the modality.
-    /// @throws InputError for an unknown `series`; FileError naming the file for a broken
+    ///
+    /// A single image (one file of one frame) is a 2-D field in its own plane
+    /// (ScalarField::planar: one sample along the normal, at the image's position, and no
+    /// slice spacing, none being invented) when `acceptPlanar` (slices ask for it); otherwise
+    /// it is refused with InputError: a surface needs a volume.
+    /// @throws InputError for an unknown `series`, or a single image without `acceptPlanar`; FileError naming the file for a broken
     ///         or unsupported series (undecodable or truncated pixel data, mixed sizes or
     ///         orientations, absurd headers: checked before any large allocation).
     ///         LimitError when the slices, the volume and the largest file's decoding buffers
@@ -71,14 +76,14 @@ public:
     /// @throws InputError for a `volume` beyond the last; FileError naming the volume when the
     ///         volumes do not hold the same slices (one missing a slice, different counts).
     static ScalarField read(const std::string& path, const std::string& series = {}, std::uint64_t memoryBudget = 0,
-                            int volume = -1);
+                            int volume = -1, bool acceptPlanar = false);
 
     /// The labels of the volumes of the series `series` chooses (one "" for a series of one
     /// volume), from the headers only. @throws as read().
     static std::vector<std::string> listVolumes(const std::string& path, const std::string& series = {});
 
     /// `octrace info` text: the series list, the chosen series' volumes, then the chosen
-    /// volume as read().
+    /// volume as read() (a single image too, with a note that says it is one).
     static std::string describe(const std::string& path, const std::string& series = {}, std::uint64_t memoryBudget = 0,
                                 int volume = -1);
 };

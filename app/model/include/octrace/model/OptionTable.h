@@ -384,7 +384,7 @@ inline constexpr Option frames{.key = "frames", .kind = OptionKind::Text, .flag 
     .defaultText = "none",
     .help = "also write each frame as DIR/frame_NNNN.png (the folder is made if missing)", .commands = "animate"};
 inline constexpr Option plane{.key = "plane", .kind = OptionKind::Choice, .flag = "plane", .argument = "NAME",
-    .defaultText = "axial for patient volumes, else z", .choices = "axial|coronal|sagittal|x|y|z",
+    .defaultText = "axial for patient volumes, else z; a single image: its own plane", .choices = "axial|coronal|sagittal|x|y|z",
     .help = "slice plane: axial, coronal, sagittal (patient volumes: DICOM, NIfTI, NRRD in LPS space), or x, y, z (normal to "
             "a world axis; on a geographic grid z is a horizontal slice at a depth, x one at a longitude, y at a latitude)",
     .commands = "slice"};
