@@ -116,28 +116,10 @@ std::string seriesLine(const DicomSeriesInfo& i) {
     return s.str();
 }
 
-std::size_t chooseSeries(const Scan& s, const std::string& want, const std::string& path) {
-    const std::size_t n = s.series.size();
-    if (want.empty()) {
-        std::size_t best = 0;
-        for (std::size_t i = 1; i < n; ++i)
-            if (s.series[i].info.samples() > s.series[best].info.samples()) best = i;
-        return best;
-    }
-    for (std::size_t i = 0; i < n; ++i)
-        if (s.series[i].info.uid == want) return i;
-    if (want.find_first_not_of("0123456789") == std::string::npos && want.size() < 9) {
-        const std::size_t index = std::stoul(want);
-        if (index >= 1 && index <= n) return index - 1;
-    }
-    std::vector<std::size_t> described;
-    for (std::size_t i = 0; i < n; ++i)
-        if (detail::lower(s.series[i].info.description) == detail::lower(want)) described.push_back(i);
-    if (described.size() == 1) return described[0];
-    std::string list;
-    for (std::size_t i = 0; i < n; ++i) list += (i ? "; " : "") + std::to_string(i + 1) + ": " + seriesLine(s.series[i].info);
-    throw InputError(path + ": " + (described.size() > 1 ? "several series are described '" : "no series '") + want +
-                     "' (give a UID, an index or a description; series: " + list + ")");
+std::size_t chooseScanned(const Scan& s, const std::string& want, const std::string& path) {
+    std::vector<DicomSeriesInfo> list;
+    for (const Series& series : s.series) list.push_back(series.info);
+    return DicomReader::chooseSeries(list, want, path);
 }
 
 // Stored values (rescaled for CT) of every slice, in the layout's z order.
@@ -219,7 +201,7 @@ ScalarField assemble(const Series& series, const std::string& path, std::uint64_
 }
 
 ScalarField readScanned(const Scan& s, const std::string& path, const std::string& want, std::uint64_t memoryBudget) {
-    const std::size_t chosen = chooseSeries(s, want, path);
+    const std::size_t chosen = chooseScanned(s, want, path);
     const DicomSeriesInfo& info = s.series[chosen].info;
     // Said when there was a choice to make; a folder of one series gets a debugging line.
     const std::string said = path + ": series " + std::to_string(chosen + 1) + " of " + std::to_string(s.series.size()) +
@@ -230,6 +212,30 @@ ScalarField readScanned(const Scan& s, const std::string& path, const std::strin
 }
 
 }  // namespace
+
+std::size_t DicomReader::chooseSeries(const std::vector<DicomSeriesInfo>& list, const std::string& want, const std::string& path) {
+    const std::size_t n = list.size();
+    if (want.empty()) {
+        std::size_t best = 0;
+        for (std::size_t i = 1; i < n; ++i)
+            if (list[i].samples() > list[best].samples()) best = i;
+        return best;
+    }
+    for (std::size_t i = 0; i < n; ++i)
+        if (list[i].uid == want) return i;
+    if (want.find_first_not_of("0123456789") == std::string::npos && want.size() < 9) {
+        const std::size_t index = std::stoul(want);
+        if (index >= 1 && index <= n) return index - 1;
+    }
+    std::vector<std::size_t> described;
+    for (std::size_t i = 0; i < n; ++i)
+        if (detail::lower(list[i].description) == detail::lower(want)) described.push_back(i);
+    if (described.size() == 1) return described[0];
+    std::string known;
+    for (std::size_t i = 0; i < n; ++i) known += (i ? "; " : "") + std::to_string(i + 1) + ": " + seriesLine(list[i]);
+    throw InputError(path + ": " + (described.size() > 1 ? "several series are described '" : "no series '") + want +
+                     "' (give a UID, an index or a description; series: " + known + ")");
+}
 
 std::vector<DicomSeriesInfo> DicomReader::listSeries(const std::string& path) {
     std::vector<DicomSeriesInfo> list;
@@ -247,7 +253,7 @@ std::string DicomReader::describe(const std::string& path, const std::string& se
     out << path << "\nformat: DICOM, " << s.series.size() << " image series\n";
     for (std::size_t i = 0; i < s.series.size(); ++i) out << "series " << i + 1 << ": " << seriesLine(s.series[i].info) << "\n";
     const ScalarField f = readScanned(s, path, series, memoryBudget);
-    out << "chosen: series " << chooseSeries(s, series, path) + 1 << "\n" << detail::describeVolume(f);
+    out << "chosen: series " << chooseScanned(s, series, path) + 1 << "\n" << detail::describeVolume(f);
     return out.str();
 }
 
