@@ -7,4 +7,4 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 mkdir -p "$ROOT/docs/user/images"
 ninja -C "$ROOT/build" octrace_studio_tests octrace
 cd "$ROOT"  # the window shows the input as given: data_samples/torus.nrrd
-OCTRACE_STUDIO_SCREENSHOTS="$ROOT/docs/user/images" xvfb-run -a -s "-screen 0 1280x1024x24" build/tests/octrace_studio_tests
+OCTRACE_STUDIO_SCREENSHOTS="$ROOT/docs/user/images" xvfb-run -a -s "-screen 0 1920x1200x24" build/tests/octrace_studio_tests

@@ -124,6 +124,10 @@ void Engine::open(const StudioState& state) {
                                        .arg(s.columns)
                                        .arg(s.rows)
                                        .arg(s.slices);
+                // The series the reader takes, for the Series box to show (the default is
+                // the largest, not the first listed).
+                if (!choices.series.empty())
+                    info.seriesRead = int(io::DicomReader::chooseSeries(choices.series, a.request.series, state.input));
             }
             auto base = std::make_shared<model::Surface>();
             model::readSurfaceField(a, *base);

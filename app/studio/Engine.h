@@ -28,6 +28,7 @@ struct InputInfo {
     QString input, variable, units;
     QStringList variables;    ///< 3-D variables of a NetCDF file (empty for other formats)
     QStringList series;       ///< DICOM series as "N: description (modality, size)"
+    int seriesRead = -1;      ///< the index in `series` of the series read (-1: not DICOM)
     bool octreeFile = false;  ///< a .oct input: no field, the iso value and depth are fixed
     double minimum = 0.0, maximum = 0.0;  ///< valid value range
     std::vector<double> histogram;        ///< counts of valid samples over [minimum, maximum]

@@ -6,6 +6,7 @@
 #include "Navigation.h"
 #include "RenderView.h"
 #include "Session.h"
+#include "SidePanel.h"
 #include "SurfelView.h"
 #include "ViewInput.h"
 
@@ -45,7 +46,6 @@
 #include <QPlainTextEdit>
 #include <QProgressBar>
 #include <QPushButton>
-#include <QScrollArea>
 #include <QSettings>
 #include <QSlider>
 #include <QSpinBox>
@@ -118,10 +118,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
 
     auto* dock = new QDockWidget(tr("Surface"), this);
     dock->setObjectName(QStringLiteral("surfaceDock"));
-    auto* scroll = new QScrollArea(dock);
-    scroll->setWidget(buildControls());
-    scroll->setWidgetResizable(true);
-    dock->setWidget(scroll);
+    auto* panel = new SidePanel(buildControls(), dock);
+    panel->setObjectName(QStringLiteral("sidePanel"));
+    dock->setWidget(panel);
     addDockWidget(Qt::LeftDockWidgetArea, dock);
 
     auto* msgDock = new QDockWidget(tr("Messages"), this);
@@ -761,6 +760,9 @@ void MainWindow::openInput(const QString& input) {
 
 void MainWindow::load(const StudioState& s) {
     if (s.input.empty()) return;
+    // A build still waiting for its timer was for the input on screen: started after this read,
+    // it would supersede it (a newer job), and the input asked for would never come.
+    buildTimer_.stop();
     pending_ = s;
     cancelButton_->setEnabled(true);
     engine_.open(s);
@@ -887,6 +889,7 @@ void MainWindow::onInputLoaded() {
     variableCombo_->setEnabled(in.variables.size() > 1);
     seriesCombo_->clear();
     seriesCombo_->addItems(in.series);
+    seriesCombo_->setCurrentIndex(in.seriesRead);  // the series on screen, not the first listed
     seriesCombo_->setEnabled(in.series.size() > 1);
     timeEdit_->setEnabled(!in.octreeFile);
     const double span = in.maximum - in.minimum;
@@ -1074,7 +1077,7 @@ void MainWindow::chooseExport() {
     auto* form = new QFormLayout(&dlg);
     auto* path = new QLineEdit(&dlg);
     path->setObjectName(QStringLiteral("exportPath"));
-    path->setText(QStringLiteral("figure.png"));
+    path->setText(exportPath_);  // the last export's file (and folder), for this run of the studio
     auto* browse = new QPushButton(tr("Browse..."), &dlg);
     connect(browse, &QPushButton::clicked, &dlg, [&] {
         const QString f = QFileDialog::getSaveFileName(&dlg, tr("Export figure"), path->text(),
@@ -1089,7 +1092,10 @@ void MainWindow::chooseExport() {
     auto* h = new QSpinBox(&dlg);
     configure(w, model::opt::width);
     configure(h, model::opt::height);
-    for (QSpinBox* s : {w, h}) s->setSuffix(QStringLiteral(" px"));
+    for (QSpinBox* s : {w, h}) {
+        s->setSuffix(QStringLiteral(" px"));
+        s->setKeyboardTracking(false);  // a value while typing (1, 10, 100 on the way to 1000) is none
+    }
     w->setObjectName(QStringLiteral("exportWidth"));
     h->setObjectName(QStringLiteral("exportHeight"));
     w->setValue(state_.exportWidth);
@@ -1102,7 +1108,9 @@ void MainWindow::chooseExport() {
     form->addRow(transparent);
     // A publication figure, as render --figure: the text is set in points at the dpi. The dpi
     // follows the width (text, lines and bars keep their share of the figure: the annotations
-    // scale with the image) until it is set by hand.
+    // scale with the image), always in proportion to the width and dpi the dialog opened with
+    // or the user last set the dpi at: never from a value it scaled itself, so that no change
+    // of width, however many, builds on the rounding or the 36..1200 clamp of an earlier one.
     auto* figure = new QGroupBox(tr("Figure (PNG): title, colour bar, box with ticks"), &dlg);
     figure->setObjectName(QStringLiteral("figureBox"));
     figure->setCheckable(true);
@@ -1116,9 +1124,18 @@ void MainWindow::chooseExport() {
     configure(dpi, model::opt::dpi);
     dpi->setValue(state_.dpi);
     dpi->setSuffix(tr(" dpi"));
-    connect(w, &QSpinBox::valueChanged, dpi, [dpi, last = w->value()](int width) mutable {
-        dpi->setValue(scaledDpi(dpi->value(), last, width));
-        last = width;
+    dpi->setKeyboardTracking(false);
+    struct {
+        int width, dpi;
+        bool scaling = false;
+    } base{w->value(), dpi->value()};
+    connect(w, &QSpinBox::valueChanged, dpi, [dpi, &base](int width) {
+        base.scaling = true;
+        dpi->setValue(scaledDpi(base.dpi, base.width, width));
+        base.scaling = false;
+    });
+    connect(dpi, &QSpinBox::valueChanged, w, [w, &base](int value) {
+        if (!base.scaling) base = {w->value(), value};  // set by hand: the new reference
     });
     figureForm->addRow(tr("Resolution"), dpi);
     auto* scaleBar = new QCheckBox(tr("Scale bar"), figure);
@@ -1134,6 +1151,7 @@ void MainWindow::chooseExport() {
     if (dlg.exec() != QDialog::Accepted) return;
     setFigure(figure->isChecked(), title->text(), dpi->value(), scaleBar->isChecked());
     exportFigure(path->text(), w->value(), h->value(), transparent->isChecked());
+    if (!path->text().trimmed().isEmpty()) exportPath_ = QFileInfo(path->text().trimmed()).absoluteFilePath();
 }
 
 }  // namespace octrace::studio

@@ -162,6 +162,7 @@ private:
     QAction *splitAction_ = nullptr, *differenceAction_ = nullptr;
     QMenu* recentMenu_ = nullptr;
     QTimer buildTimer_, exactTimer_;
+    QString exportPath_ = QStringLiteral("figure.png");  // the export dialog's file: the last one exported
     bool updating_ = false;  // controls being set from the state: no feedback
     unsigned frameSerial_ = 0;
 };

@@ -11,10 +11,13 @@
 #include "RenderView.h"
 #include "Session.h"
 #include "Navigation.h"
+#include "SidePanel.h"
 #include "SurfelView.h"
 
 #include "OptionWidgets.h"
 #include "octrace/model/OptionTable.h"
+#include "octrace/io/DicomSeriesWriter.h"
+#include "octrace/io/FieldReader.h"
 #include "octrace/util/Error.h"
 
 #include <QCheckBox>
@@ -32,12 +35,17 @@
 #include <QProcess>
 #include <QPushButton>
 #include <QScrollArea>
+#include <QScrollBar>
+#include <QSpontaneKeyEvent>
+#include <QWheelEvent>
 #include <QSignalSpy>
 #include <QSpinBox>
 #include <QStandardItemModel>
 #include <QStandardPaths>
 #include <QTemporaryDir>
 #include <QtTest>
+
+#include <functional>
 
 using octrace::studio::Engine;
 using octrace::studio::FrameResult;
@@ -123,6 +131,76 @@ private:
         QVERIFY(surfacePixels(img, img.pixel(0, 0)) > width * height / 50);  // the surface is in the picture
         QCOMPARE(img.hasAlphaChannel(), transparent);
         if (transparent) QCOMPARE(qAlpha(img.pixel(0, 0)), 0);
+    }
+
+    /// The export dialog's controls (null where one is missing).
+    struct ExportControls {
+        QLineEdit* path = nullptr;
+        QSpinBox *width = nullptr, *height = nullptr, *dpi = nullptr;
+        QGroupBox* figure = nullptr;
+        QLineEdit* title = nullptr;
+        QCheckBox* scaleBar = nullptr;
+        bool complete() const { return path && width && height && dpi && figure && title && scaleBar; }
+    };
+    static ExportControls exportControls(QDialog* dlg) {
+        return {dlg->findChild<QLineEdit*>(QStringLiteral("exportPath")), dlg->findChild<QSpinBox*>(QStringLiteral("exportWidth")),
+                dlg->findChild<QSpinBox*>(QStringLiteral("exportHeight")), dlg->findChild<QSpinBox*>(QStringLiteral("figureDpi")),
+                dlg->findChild<QGroupBox*>(QStringLiteral("figureBox")), dlg->findChild<QLineEdit*>(QStringLiteral("figureTitle")),
+                dlg->findChild<QCheckBox*>(QStringLiteral("figureScaleBar"))};
+    }
+    /// Opens File > Export Figure... and hands the dialog to `fill` (which accepts or rejects
+    /// it; a dialog left open is rejected); returns whether the dialog opened.
+    bool runExportDialog(const std::function<void(QDialog*)>& fill) {
+        QAction* action = nullptr;
+        for (QAction* a : window_->findChildren<QAction*>())
+            if (a->text() == QStringLiteral("&Export Figure...")) action = a;
+        if (!action) return false;
+        // A message box left open (window-modal) would be the active modal widget, not the dialog.
+        for (auto* box : window_->findChildren<QWidget*>(QStringLiteral("errorBox"))) box->close();
+        bool opened = false;
+        QTimer poll;
+        poll.setInterval(20);
+        connect(&poll, &QTimer::timeout, this, [&] {
+            auto* dlg = qobject_cast<QDialog*>(QApplication::activeModalWidget());
+            if (!dlg || dlg->objectName() != QStringLiteral("exportDialog")) return;
+            poll.stop();
+            opened = true;
+            fill(dlg);
+            if (dlg->isVisible()) dlg->reject();
+        });
+        poll.start();
+        action->trigger();  // returns when the dialog has closed
+        return opened;
+    }
+    QString messagesText() const {
+        auto* messages = window_->findChild<QDockWidget*>(QStringLiteral("messagesDock"))->findChild<QPlainTextEdit*>();
+        return messages ? messages->toPlainText() : QString();
+    }
+    /// The side panel (the dock's scroll area) and the controls in it that take the wheel.
+    QScrollArea* sidePanel() const { return window_->findChild<QScrollArea*>(QStringLiteral("sidePanel")); }
+    QList<QWidget*> wheelControls() const {
+        QList<QWidget*> out;
+        for (QWidget* w : sidePanel()->widget()->findChildren<QWidget*>())
+            if (octrace::studio::SidePanel::isWheelControl(w) && w->isVisible()) out << w;
+        return out;
+    }
+    /// A control's value as text (spin box, combo box, slider).
+    static QString controlValue(QWidget* w) {
+        if (auto* spin = qobject_cast<QAbstractSpinBox*>(w)) return spin->text();
+        if (auto* combo = qobject_cast<QComboBox*>(w)) return QString::number(combo->currentIndex());
+        if (auto* slider = qobject_cast<QAbstractSlider*>(w)) return QString::number(slider->value());
+        return QString();
+    }
+    /// A turn of the mouse wheel over the middle of `w`, delivered as the window system's
+    /// (spontaneous: Qt passes an ignored one on to the parents, as it does a real one).
+    static void wheel(QWidget* w, int angle) {
+        // To the widget under the pointer, as the window delivers it: a spin box's line edit.
+        const QPoint centre(w->width() / 2, w->height() / 2);
+        QWidget* under = w->childAt(centre) ? w->childAt(centre) : w;
+        const QPointF local = under->mapFrom(w, QPointF(centre));
+        QWheelEvent e(local, under->mapToGlobal(local), QPoint(), QPoint(0, angle), Qt::NoButton, Qt::NoModifier, Qt::NoScrollPhase, false);
+        QSpontaneKeyEvent::setSpontaneous(&e);
+        QApplication::instance()->notify(under, &e);
     }
 
 private slots:
@@ -359,28 +437,14 @@ private slots:
     void exportDialogSetsTheFigure() {
         // File > Export Figure... as a user fills it in: a smaller figure (its dpi follows the
         // width: the annotations keep their share of the image), a title and a scale bar.
-        QAction* action = nullptr;
-        for (QAction* a : window_->findChildren<QAction*>())
-            if (a->text() == QStringLiteral("&Export Figure...")) action = a;
-        QVERIFY(action);
         const QString studioPng = tmp_.filePath(QStringLiteral("dialog-studio.png"));
         const QString cliPng = tmp_.filePath(QStringLiteral("dialog-cli.png"));
         int widthBefore = 0, dpiBefore = 0, dpiAfter = 0;
         bool filled = false;
-        QTimer fill;
-        fill.setInterval(20);
-        connect(&fill, &QTimer::timeout, this, [&] {
-            auto* dlg = qobject_cast<QDialog*>(QApplication::activeModalWidget());
-            if (!dlg || dlg->objectName() != QStringLiteral("exportDialog")) return;
-            fill.stop();
-            auto* width = dlg->findChild<QSpinBox*>(QStringLiteral("exportWidth"));
-            auto* height = dlg->findChild<QSpinBox*>(QStringLiteral("exportHeight"));
-            auto* dpi = dlg->findChild<QSpinBox*>(QStringLiteral("figureDpi"));
-            auto* figure = dlg->findChild<QGroupBox*>(QStringLiteral("figureBox"));
-            auto* title = dlg->findChild<QLineEdit*>(QStringLiteral("figureTitle"));
-            auto* scaleBar = dlg->findChild<QCheckBox*>(QStringLiteral("figureScaleBar"));
-            auto* path = dlg->findChild<QLineEdit*>(QStringLiteral("exportPath"));
-            if (width && height && dpi && figure && title && scaleBar && path) {
+        QSignalSpy exported(&window_->engine(), &Engine::exported);
+        QVERIFY(runExportDialog([&](QDialog* dlg) {
+            const auto [path, width, height, dpi, figure, title, scaleBar] = exportControls(dlg);
+            if (exportControls(dlg).complete()) {
                 path->setText(studioPng);
                 widthBefore = width->value();
                 dpiBefore = dpi->value();
@@ -393,10 +457,7 @@ private slots:
                 filled = true;
             }
             dlg->accept();
-        });
-        fill.start();
-        QSignalSpy exported(&window_->engine(), &Engine::exported);
-        action->trigger();  // the dialog runs until the timer has filled it in
+        }));
         QVERIFY(filled);
         QVERIFY(exported.wait(kWaitMs));
         QCOMPARE(dpiAfter, octrace::studio::scaledDpi(dpiBefore, widthBefore, 640));
@@ -408,6 +469,85 @@ private slots:
         QCOMPARE(runCli(window_->commandLine(cliPng, 640, 480)), 0);
         QCOMPARE(differingPixels(studioPng, cliPng), 0);
         window_->setFigure(false, QString(), 150, false);
+    }
+
+    void exportDialogTypedWidthKeepsTheDpiInProportion() {
+        // A width typed into the dialog goes through 1, 10 and 100 on the way to 1000: the dpi
+        // follows the width typed, in proportion to the one the dialog opened with, not each
+        // keystroke (it once climbed 36 -> 360 -> 1200 dpi and the figure was one giant title).
+        const QString studioPng = tmp_.filePath(QStringLiteral("typed-studio.png"));
+        const QString cliPng = tmp_.filePath(QStringLiteral("typed-cli.png"));
+        int widthBefore = 0, dpiBefore = 0, dpiShown = 0;
+        bool filled = false;
+        QSignalSpy exported(&window_->engine(), &Engine::exported);
+        QVERIFY(runExportDialog([&](QDialog* dlg) {
+            const auto [path, width, height, dpi, figure, title, scaleBar] = exportControls(dlg);
+            if (!exportControls(dlg).complete()) return;
+            path->setText(studioPng);
+            height->setValue(700);
+            figure->setChecked(true);
+            title->setText(QStringLiteral("A width typed"));
+            widthBefore = width->value();
+            dpiBefore = dpi->value();
+            width->setFocus();
+            width->selectAll();
+            QTest::keyClicks(width, QStringLiteral("1000"));
+            QTest::keyClick(width, Qt::Key_Return);  // as a user ends it: the default button (OK) exports
+            dpiShown = dpi->value();
+            filled = true;
+            if (dlg->isVisible()) dlg->accept();
+        }));
+        QVERIFY(filled);
+        const auto reset = qScopeGuard([this] { window_->setFigure(false, QString(), 150, false); });
+        QSignalSpy failed(&window_->engine(), &Engine::failed);
+        QTRY_VERIFY_WITH_TIMEOUT(exported.count() + failed.count() > 0, kWaitMs);  // the export has ended
+        QVERIFY(widthBefore != 1000);
+        const int expected = octrace::studio::scaledDpi(dpiBefore, widthBefore, 1000);
+        QVERIFY2(dpiShown == expected, qPrintable(QStringLiteral("%1 dpi shown, %2 expected (%3 dpi at %4 px)")
+                                                      .arg(dpiShown).arg(expected).arg(dpiBefore).arg(widthBefore)));
+        QCOMPARE(window_->state().dpi, expected);
+        QCOMPARE(exported.count(), 1);
+        QCOMPARE(window_->state().exportWidth, 1000);
+        // The figure is right: the CLI's for the same settings, pixel for pixel, and the plot
+        // fills most of it (at 1200 dpi the title band alone was taller than the figure).
+        QCOMPARE(QImage(studioPng).size(), QSize(1000, 700));
+        QCOMPARE(runCli(window_->commandLine(cliPng, 1000, 700)), 0);
+        QCOMPARE(differingPixels(studioPng, cliPng), 0);
+        const auto layout = octrace::studio::figureLayoutFor(window_->state(), 1000, 700);
+        QVERIFY(layout);
+        QVERIFY2(layout->plotH > 700 / 2 && layout->plotW > 1000 / 2, qPrintable(QStringLiteral("plot %1x%2").arg(layout->plotW).arg(layout->plotH)));
+    }
+
+    void exportDialogKeepsTheLastFile() {
+        // The file name (and its folder) of the last export is the dialog's next proposal, not
+        // figure.png again.
+        QVERIFY(QDir(tmp_.path()).mkpath(QStringLiteral("kept")));
+        const QString kept = QFileInfo(tmp_.filePath(QStringLiteral("kept/last-export.png"))).absoluteFilePath();
+        QSignalSpy exported(&window_->engine(), &Engine::exported);
+        QVERIFY(runExportDialog([&](QDialog* dlg) {
+            const ExportControls c = exportControls(dlg);
+            if (!c.complete()) return;
+            const auto [path, width, height, dpi, figure, title, scaleBar] = c;
+            path->setText(kept);
+            figure->setChecked(false);  // a plain image
+            width->setValue(160);
+            height->setValue(120);
+            dlg->accept();
+        }));
+        QVERIFY(exported.wait(kWaitMs));
+        QVERIFY(QFileInfo::exists(kept));
+        QString proposed;
+        QVERIFY(runExportDialog([&](QDialog* dlg) {
+            if (QLineEdit* path = exportControls(dlg).path) proposed = path->text();
+            dlg->reject();
+        }));
+        QCOMPARE(proposed, kept);
+        // A dialog cancelled keeps the proposal too.
+        QVERIFY(runExportDialog([&](QDialog* dlg) {
+            if (QLineEdit* path = exportControls(dlg).path) proposed = path->text();
+            dlg->reject();
+        }));
+        QCOMPARE(proposed, kept);
     }
 
     void lightingControlsMatchTheCli() {
@@ -751,6 +891,108 @@ private slots:
         windows->setCurrentIndex(0);
     }
 
+    void seriesBoxShowsTheSeriesRead() {
+        // A folder with the LIDC chest CT as a series and, listed first (a lower SeriesNumber), a
+        // 3-slice decoy: the reader takes the largest, the chest, and the Series box shows it.
+        const std::string chestNrrd = OCTRACE_SHARED_DATA "/medical/lidc2_chest_ct.nrrd";
+        if (!QFileInfo::exists(QString::fromStdString(chestNrrd))) QSKIP("needs ../shared/data/medical/lidc2_chest_ct.nrrd");
+        const std::string folder = tmp_.filePath(QStringLiteral("chest_with_decoy")).toStdString();
+        octrace::ScalarField chest = octrace::io::readField(chestNrrd);
+        octrace::ScalarField decoy = chest.copy();
+        decoy.dims.z = 3;
+        decoy.values.resize(decoy.sampleCount());
+        octrace::io::DicomSeriesWriteOptions o;
+        o.description = "decoy";
+        o.seriesNumber = 1;
+        octrace::io::DicomSeriesWriter::write(decoy, folder + "/decoy", o);
+        o.description = "chest";
+        o.seriesNumber = 2;
+        octrace::io::DicomSeriesWriter::write(chest, folder + "/chest", o);
+
+        auto* series = window_->findChild<QComboBox*>(QStringLiteral("seriesCombo"));
+        QVERIFY(series);
+        // The z extent of the surface on screen: the chest's 133 slices of 2.5 mm, or the decoy's 5 mm.
+        const auto height = [this] {
+            const auto tree = window_->engine().tree();
+            return tree ? tree->occupiedBounds().hi.z - tree->occupiedBounds().lo.z : 0.0;
+        };
+        QSignalSpy loaded(&window_->engine(), &Engine::inputLoaded);
+        window_->openInput(QString::fromStdString(folder));
+        QTRY_VERIFY2_WITH_TIMEOUT(!loaded.isEmpty() && window_->state().input == folder, qPrintable(messagesText()), kWaitMs);
+        QCOMPARE(series->count(), 2);
+        QVERIFY2(series->itemText(0).contains(QStringLiteral("decoy")), qPrintable(series->itemText(0)));
+        QVERIFY2(series->currentText().contains(QStringLiteral("chest")) && series->currentText().contains(QStringLiteral("256x256x133")),
+                 qPrintable(series->currentText()));
+        QCOMPARE(series->currentIndex(), 1);
+        QTRY_VERIFY_WITH_TIMEOUT(height() > 100.0, kWaitMs);  // what was built is the chest
+        waitFrame();
+        sidePanel()->verticalScrollBar()->setValue(0);  // the Input box at the top
+        screenshot(QStringLiteral("studio-series.png"));
+    }
+
+    void sidePanelFitsAt1600x1000() {
+        // At 1600x1000 (and with the chest series' long names in the Series box) the side panel
+        // shows all its controls: no horizontal scroll bar, nothing narrower than it needs.
+        const QSize before = window_->size();
+        window_->resize(1600, 1000);
+        QTRY_COMPARE(window_->size(), QSize(1600, 1000));
+        QTest::qWait(200);  // the docks' layout settles
+        QScrollArea* panel = sidePanel();
+        QVERIFY(panel);
+        QWidget* content = panel->widget();
+        QVERIFY2(!panel->horizontalScrollBar()->isVisible(), qPrintable(QStringLiteral("content needs %1 px, has %2 px")
+                                                                      .arg(content->minimumSizeHint().width()).arg(panel->viewport()->width())));
+        QVERIFY(panel->viewport()->width() >= content->minimumSizeHint().width());
+        QVERIFY(content->width() >= content->minimumSizeHint().width());
+        // ... and the render view keeps most of the window.
+        QVERIFY2(window_->view(0)->width() > 1600 / 2, qPrintable(QString::number(window_->view(0)->width())));
+        window_->resize(before);
+        QTRY_COMPARE(window_->size(), before);
+        waitFrame();
+    }
+
+    void wheelScrollsThePanelNotItsControls() {
+        // The mouse wheel over the side panel scrolls it; a spin box, combo box or slider under
+        // the pointer keeps its value unless it has the keyboard focus (it once turned the light).
+        QScrollArea* panel = sidePanel();
+        QVERIFY(panel);
+        QScrollBar* bar = panel->verticalScrollBar();
+        QVERIFY2(bar->maximum() > 0, "the panel must be taller than the dock for this test");
+        window_->activateWindow();
+        QVERIFY(QTest::qWaitForWindowActive(window_));
+        const QList<QWidget*> controls = wheelControls();
+        QVERIFY(controls.size() >= 15);
+        const QString sessionBefore = QString::fromUtf8(octrace::studio::sessionJson(window_->state()));
+        int scrolled = 0;
+        for (QWidget* c : controls) {
+            if (QWidget* focused = QApplication::focusWidget()) focused->clearFocus();  // none has the focus
+            QVERIFY(!c->hasFocus());
+            panel->ensureWidgetVisible(c);
+            const int at = bar->value();
+            const QString value = controlValue(c);
+            const int angle = at < bar->maximum() ? -120 : 120;  // down, or up at the end
+            wheel(c, angle);
+            QVERIFY2(controlValue(c) == value, qPrintable(QStringLiteral("%1 (%2) changed from %3 to %4")
+                                                             .arg(c->objectName(), QLatin1String(c->metaObject()->className()), value, controlValue(c))));
+            QVERIFY2(angle < 0 ? bar->value() > at : bar->value() < at, qPrintable(c->objectName()));
+            ++scrolled;
+        }
+        QCOMPARE(scrolled, controls.size());
+        QCOMPARE(QString::fromUtf8(octrace::studio::sessionJson(window_->state())), sessionBefore);
+        // A control with the focus (clicked or tabbed into) takes the wheel.
+        auto* light = window_->findChild<QDoubleSpinBox*>(QStringLiteral("lightx"));
+        QVERIFY(light);
+        panel->ensureWidgetVisible(light);
+        light->setFocus();
+        QTRY_VERIFY(light->hasFocus());
+        const double x = light->value();
+        wheel(light, 120);
+        QVERIFY(light->value() != x);
+        light->clearFocus();
+        light->setValue(x);
+        waitFrame();
+    }
+
     void sessionParserChecksEveryMember_data() {
         QTest::addColumn<QByteArray>("json");
         QTest::addColumn<QString>("message");
@@ -850,19 +1092,11 @@ private slots:
         namespace model = octrace::model;
         // The export dialog's controls, read while it is open.
         QMap<QString, QPair<double, double>> dialogRanges;
-        QTimer probe;
-        probe.setInterval(20);
-        connect(&probe, &QTimer::timeout, this, [&] {
-            auto* dlg = qobject_cast<QDialog*>(QApplication::activeModalWidget());
-            if (!dlg || dlg->objectName() != QStringLiteral("exportDialog")) return;
-            probe.stop();
+        QVERIFY(runExportDialog([&](QDialog* dlg) {
             for (auto [key, w] : optionWidgets(dlg).asKeyValueRange())
                 if (auto* box = qobject_cast<QSpinBox*>(w)) dialogRanges.insert(key, {double(box->minimum()), double(box->maximum())});
             dlg->reject();
-        });
-        probe.start();
-        for (QAction* a : window_->findChildren<QAction*>())
-            if (a->text() == QStringLiteral("&Export Figure...")) a->trigger();
+        }));
         const QMap<QString, QWidget*> panel = optionWidgets(window_);
         int widgets = 0, sessions = 0;
         for (const model::Option* o : model::allOptions()) {

@@ -122,28 +122,10 @@ std::string seriesLine(const DicomSeriesInfo& i) {
     return s.str();
 }
 
-std::size_t chooseSeries(const Scan& s, const std::string& want, const std::string& path) {
-    const std::size_t n = s.series.size();
-    if (want.empty()) {
-        std::size_t best = 0;
-        for (std::size_t i = 1; i < n; ++i)
-            if (s.series[i].info.samples() > s.series[best].info.samples()) best = i;
-        return best;
-    }
-    for (std::size_t i = 0; i < n; ++i)
-        if (s.series[i].info.uid == want) return i;
-    if (want.find_first_not_of("0123456789") == std::string::npos && want.size() < 9) {
-        const std::size_t index = std::stoul(want);
-        if (index >= 1 && index <= n) return index - 1;
-    }
-    std::vector<std::size_t> described;
-    for (std::size_t i = 0; i < n; ++i)
-        if (detail::lower(s.series[i].info.description) == detail::lower(want)) described.push_back(i);
-    if (described.size() == 1) return described[0];
-    std::string list;
-    for (std::size_t i = 0; i < n; ++i) list += (i ? "; " : "") + std::to_string(i + 1) + ": " + seriesLine(s.series[i].info);
-    throw InputError(path + ": " + (described.size() > 1 ? "several series are described '" : "no series '") + want +
-                     "' (give a UID, an index or a description; series: " + list + ")");
+std::size_t chooseScanned(const Scan& s, const std::string& want, const std::string& path) {
+    std::vector<DicomSeriesInfo> list;
+    for (const Series& series : s.series) list.push_back(series.info);
+    return DicomReader::chooseSeries(list, want, path);
 }
 
 // Stored values (rescaled for CT) of every slice, in the layout's z order.
@@ -267,7 +249,7 @@ ScalarField assemble(const Series& series, const std::string& path, std::uint64_
 
 ScalarField readScanned(const Scan& s, const std::string& path, const std::string& want, std::uint64_t memoryBudget, int volume,
                         bool acceptPlanar) {
-    const std::size_t chosen = chooseSeries(s, want, path);
+    const std::size_t chosen = chooseScanned(s, want, path);
     const DicomSeriesInfo& info = s.series[chosen].info;
     // Said when there was a choice to make; a folder of one series gets a debugging line.
     const std::string said = path + ": series " + std::to_string(chosen + 1) + " of " + std::to_string(s.series.size()) +
@@ -278,6 +260,30 @@ ScalarField readScanned(const Scan& s, const std::string& path, const std::strin
 }
 
 }  // namespace
+
+std::size_t DicomReader::chooseSeries(const std::vector<DicomSeriesInfo>& list, const std::string& want, const std::string& path) {
+    const std::size_t n = list.size();
+    if (want.empty()) {
+        std::size_t best = 0;
+        for (std::size_t i = 1; i < n; ++i)
+            if (list[i].samples() > list[best].samples()) best = i;
+        return best;
+    }
+    for (std::size_t i = 0; i < n; ++i)
+        if (list[i].uid == want) return i;
+    if (want.find_first_not_of("0123456789") == std::string::npos && want.size() < 9) {
+        const std::size_t index = std::stoul(want);
+        if (index >= 1 && index <= n) return index - 1;
+    }
+    std::vector<std::size_t> described;
+    for (std::size_t i = 0; i < n; ++i)
+        if (detail::lower(list[i].description) == detail::lower(want)) described.push_back(i);
+    if (described.size() == 1) return described[0];
+    std::string known;
+    for (std::size_t i = 0; i < n; ++i) known += (i ? "; " : "") + std::to_string(i + 1) + ": " + seriesLine(list[i]);
+    throw InputError(path + ": " + (described.size() > 1 ? "several series are described '" : "no series '") + want +
+                     "' (give a UID, an index or a description; series: " + known + ")");
+}
 
 std::vector<DicomSeriesInfo> DicomReader::listSeries(const std::string& path) {
     std::vector<DicomSeriesInfo> list;
@@ -292,7 +298,7 @@ ScalarField DicomReader::read(const std::string& path, const std::string& series
 
 std::vector<std::string> DicomReader::listVolumes(const std::string& path, const std::string& series) {
     const Scan s = scan(path);
-    const Series& chosen = s.series[chooseSeries(s, series, path)];
+    const Series& chosen = s.series[chooseScanned(s, series, path)];
     detail::checkVolumesAlike(chosen.headers, chosen.volumes, path);
     std::vector<std::string> labels;
     for (const detail::SeriesVolume& v : chosen.volumes) labels.push_back(v.label);
@@ -304,7 +310,7 @@ std::string DicomReader::describe(const std::string& path, const std::string& se
     std::ostringstream out;
     out << path << "\nformat: DICOM, " << s.series.size() << " image series\n";
     for (std::size_t i = 0; i < s.series.size(); ++i) out << "series " << i + 1 << ": " << seriesLine(s.series[i].info) << "\n";
-    const std::size_t chosen = chooseSeries(s, series, path);
+    const std::size_t chosen = chooseScanned(s, series, path);
     const Series& c = s.series[chosen];
     if (c.volumes.size() > 1) {
         detail::checkVolumesAlike(c.headers, c.volumes, path);

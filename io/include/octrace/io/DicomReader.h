@@ -5,6 +5,7 @@
 /// multi-frame) into a ScalarField. No GDCM type appears here.
 #include "octrace/build/ScalarField.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -34,6 +35,13 @@ public:
     /// @throws InputError if `path` does not exist; FileError "no DICOM image" when nothing
     ///         under it is a DICOM image; FileError for a broken single file.
     static std::vector<DicomSeriesInfo> listSeries(const std::string& path);
+
+    /// The index in `list` (listSeries' order, 0-based) of the series `series` chooses, as
+    /// read() chooses it: a SeriesInstanceUID, a 1-based index or a SeriesDescription; empty =
+    /// the largest. A front end shows with it which series was read.
+    /// @throws InputError naming `path` and the series for a `series` that matches none.
+    static std::size_t chooseSeries(const std::vector<DicomSeriesInfo>& list, const std::string& series,
+                                    const std::string& path);
 
     /// Reads one series as a volume. `series` chooses it: a SeriesInstanceUID, an index of
     /// listSeries() (1-based) or a SeriesDescription; empty = the largest series (said with
