@@ -23,8 +23,10 @@ if ! command -v clang++ >/dev/null; then
   exit 1
 fi
 
+LAUNCHER=()
+if command -v ccache >/dev/null 2>&1; then LAUNCHER=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache); fi
 cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DOCTRACE_FUZZ=ON -DOCTRACE_BUILD_TESTS=OFF >/dev/null
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DOCTRACE_FUZZ=ON -DOCTRACE_BUILD_TESTS=OFF "${LAUNCHER[@]}" >/dev/null
 ninja -C "$BUILD" "${TARGETS[@]}"
 
 # Leaks inside third-party libraries only (the sanitizer build's list, see the file).

@@ -1,5 +1,6 @@
 // CityJSON through io::readCityModel: transform, levels of detail, CRS, broken files, and the
 // real Delft file of ../shared/data/city.
+#include "../FileBytes.h"
 #include "city/CityGml.h"
 #include "city/CityJson.h"
 #include "city/CityScene.h"
@@ -24,8 +25,7 @@ namespace {
 const std::string kCube = testData("city/cube.city.json");
 
 std::string cubeText() {
-    std::ifstream in(kCube);
-    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return testutil::fileBytes(kCube);
 }
 }  // namespace
 

@@ -3,6 +3,7 @@
 // its Pixel Data element alone, without GDCM or octrace's reader: an independent reference for
 // what a reader decodes and a slice shows. Enough for the real single images of
 // ../shared/data/medical (explicit VR, OW, little or big endian); anything else returns empty.
+#include "../FileBytes.h"
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -14,8 +15,7 @@ namespace octrace::test {
 
 /// `count` samples of the file's (7FE0,0010) OW element, as signed or unsigned 16-bit values.
 inline std::vector<double> storedPixels16(const std::string& path, std::size_t count, bool bigEndian, bool isSigned) {
-    std::ifstream in(path, std::ios::binary);
-    const std::vector<unsigned char> b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto b = testutil::fileBytes<std::vector<unsigned char>>(path);
     const unsigned char le[] = {0xE0, 0x7F, 0x10, 0x00, 'O', 'W', 0x00, 0x00};
     const unsigned char be[] = {0x7F, 0xE0, 0x00, 0x10, 'O', 'W', 0x00, 0x00};
     const unsigned char* tag = bigEndian ? be : le;

@@ -1,5 +1,6 @@
 // DICOM series: the real files of ../shared/data/medical (skipped when absent) and the
 // synthetic fixtures of tests/data/dicom (make_fixtures.py there says what each holds).
+#include "../FileBytes.h"
 #include "DicomPixelData.h"
 #include "IoTestSupport.h"
 
@@ -365,8 +366,7 @@ struct RawNifti {
 };
 
 RawNifti readRawNifti(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto bytes = testutil::fileBytes<std::vector<char>>(path);
     RawNifti n;
     EXPECT_GE(bytes.size(), 352u);
     std::int16_t d[8], datatype;

@@ -2,6 +2,7 @@
 // file of ../shared/data/medical passes, every truncation of them is refused cleanly or read,
 // and hand-made files exercise each rule (lengths against their container, items and
 // delimiters, nesting, transfer syntaxes, layouts without preamble).
+#include "../FileBytes.h"
 #include "IoTestSupport.h"
 #include "../TestScale.h"
 
@@ -77,10 +78,7 @@ void expectRefused(const std::string& bytes, std::size_t at, const std::string& 
     EXPECT_THROW_WITH(validate(bytes), FileError, "t.dcm: DICOM structure broken at byte " + std::to_string(at) + ": " + what);
 }
 
-std::string slurp(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+std::string slurp(const std::string& path) { return testutil::fileBytes(path); }
 
 /// Every file under ../shared/data/medical with the DICOM preamble.
 std::vector<std::string> realDicomFiles() {

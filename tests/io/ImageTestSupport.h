@@ -1,6 +1,7 @@
 #pragma once
 // Shared by the image writer tests: a scratch folder, and independent decoders (libpng,
 // OpenEXR) to read back what the writers produced.
+#include "../FileBytes.h"
 #include <gtest/gtest.h>
 #include <png.h>
 #include <tiffio.h>
@@ -59,8 +60,7 @@ private:
 };
 
 inline std::vector<std::uint8_t> readBytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    return testutil::fileBytes<std::vector<std::uint8_t>>(path);
 }
 
 /// A PNG as stored: channels is 3 (RGB) or 4 (RGBA), 8 bits each, no conversion applied.

@@ -1,5 +1,6 @@
 // MetaImage, NIfTI and VTK image data: written from NRRD samples and generated volumes with
 // non-trivial origin, spacing and direction, read back through readField().
+#include "../FileBytes.h"
 #include "IoTestSupport.h"
 
 #include "octrace/io/FieldReader.h"
@@ -61,7 +62,9 @@ void expectSameVolume(const ScalarField& in, const ScalarField& out, double tole
     SCOPED_TRACE(what);
     ASSERT_EQ(in.dims, out.dims);
     ASSERT_EQ(in.values.size(), out.values.size());
-    if (sameOrder) EXPECT_TRUE(in.values == out.values) << "samples differ";
+    if (sameOrder) {
+        EXPECT_TRUE(in.values == out.values) << "samples differ";
+    }
     std::size_t misplaced = 0;
     double worst = 0.0;
     for (int k = 0; k < in.dims.z; ++k)
@@ -275,8 +278,7 @@ TEST(VolumeReader, CorruptVtiAndNiftiAreRefusedInOneLineWithoutVtksPipelineDump)
         SCOPED_TRACE(ext);
         const std::string good = dir.file(std::string("good") + ext);
         io::VolumeWriter::write(f, good);
-        std::ifstream in(good, std::ios::binary);
-        std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        const std::string bytes = testutil::fileBytes(good);
         std::string bad = bytes;
         for (std::size_t i = bad.size() / 2; i < bad.size() / 2 + 64; ++i) bad[i] = char(bad[i] ^ 0x5A);
         writeText(dir.file(std::string("bad") + ext), bad);

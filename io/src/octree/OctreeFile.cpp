@@ -417,10 +417,13 @@ std::vector<std::uint8_t> readAll(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw InputError(path + ": no such file");
     if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a folder, not an octree file");
-    std::ifstream in(path, std::ios::binary);
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
     if (!in) throw InputError(path + ": cannot open for reading");
-    std::vector<std::uint8_t> b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) throw InputError(path + ": read error");
+    const std::streamoff size = in.tellg();
+    if (size < 0) throw InputError(path + ": read error");
+    std::vector<std::uint8_t> b(static_cast<std::size_t>(size));
+    in.seekg(0);
+    if (size > 0 && !in.read(reinterpret_cast<char*>(b.data()), size)) throw InputError(path + ": read error");
     return b;
 }
 
