@@ -64,7 +64,7 @@ OptionParser makeParser(AnimateArgs& a) {
            "x" + std::to_string(kHeight) + "; odd sides are padded to even in the video)",
            [into](const std::string& v) { model::applySetting(model::opt::size, v, into); }});
     for (const model::Option* o : {&model::opt::cameraPos, &model::opt::lookAt, &model::opt::up, &model::opt::fov,
-                                   &model::opt::background, &model::opt::light})
+                                   &model::opt::background, &model::opt::light, &model::opt::samples})
         p.add(settingOption(*o, into));
     addThreadsOption(p, a, "the video");
     addFigureOptions(p, a.figure, "a colour bar with units, the variable, the region, labelled ticks on the bounding box, and each "

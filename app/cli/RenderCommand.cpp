@@ -296,7 +296,7 @@ int runRender(const std::vector<std::string>& args) {
     }
     // The object octree's options, given for a voxel scene.
     for (const std::string& flag : parser.given())
-        for (const model::Option* o : {&model::opt::leafObjects, &model::opt::samples, &model::opt::bounces})
+        for (const model::Option* o : {&model::opt::leafObjects, &model::opt::bounces})
             if (flag == o->flag)
                 throw UsageError("--" + flag + " applies to sphere scenes in the object octree (renderers reference, samet, beam)");
     const bool multires = model::checkRenderSpec(a, a, a.baseline);
@@ -342,7 +342,7 @@ int runRender(const std::vector<std::string>& args) {
     const RepeatedRender rep = renderRepeated(a, frame, [&](const Renderer& r, const RendererName& name, Frame& f) {
         RenderSettings s = rs;
         name.applyTo(s);
-        return r.render(tree, cam, s, f);
+        return renderAntialiased(r, tree, cam, s, f);
     });
     const RenderStats& st = rep.stats;
     const Renderer* renderer = rep.renderer.get();
@@ -355,6 +355,7 @@ int runRender(const std::vector<std::string>& args) {
     record.multiResolution = multires;
     StatsJson js;
     static_cast<model::Stats&>(js) = model::frameStats(record);
+    js.set("samples", a.spheres.samples);
 
     std::ostringstream summary;
     summary.precision(4);

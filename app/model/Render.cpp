@@ -81,7 +81,7 @@ RenderStats renderFrame(const Octree& tree, const Camera& camera, const RenderSe
     if (!r->drawsVoxels()) throw UsageError("renderer " + renderer + " does not draw voxel octrees");
     RenderSettings s = settings;
     name.applyTo(s);
-    return r->render(tree, camera, s, frame);
+    return renderAntialiased(*r, tree, camera, s, frame);
 }
 
 std::string vectorText(const dvec3& v) {

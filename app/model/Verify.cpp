@@ -12,8 +12,8 @@ Verification verifyFrame(const Octree& tree, const Camera& camera, const RenderS
     Verification v;
     const auto reference = makeRenderer("reference");
     Frame rf;
-    RenderStats rst = reference->render(tree, camera, settings, rf);
-    for (int i = 1; i < repeat; ++i) rst.renderMs = std::min(rst.renderMs, reference->render(tree, camera, settings, rf).renderMs);
+    RenderStats rst = renderAntialiased(*reference, tree, camera, settings, rf);
+    for (int i = 1; i < repeat; ++i) rst.renderMs = std::min(rst.renderMs, renderAntialiased(*reference, tree, camera, settings, rf).renderMs);
     for (std::size_t i = 0; i < frame.hitId.size(); ++i)
         v.mismatchedPixels += !(frame.flags[i] & Frame::kColourFilled) && frame.hitId[i] != rf.hitId[i];
     const ImageDifference d = compareImages(frame, rf);
@@ -23,7 +23,7 @@ Verification verifyFrame(const Octree& tree, const Camera& camera, const RenderS
     v.referenceUsPerRay = rst.rays ? rst.renderMs * 1000.0 / double(rst.rays) : 0.0;
 
     Frame uf;
-    makeRenderer("reference-unquantized")->render(tree, camera, settings, uf);
+    renderAntialiased(*makeRenderer("reference-unquantized"), tree, camera, settings, uf);
     for (std::size_t i = 0; i < rf.hitId.size(); ++i) v.unquantizedMismatchedPixels += rf.hitId[i] != uf.hitId[i];
 
     std::uint64_t either = 0, both = 0;
@@ -42,7 +42,7 @@ Verification verifyFrame(const Octree& tree, const Camera& camera, const RenderS
         exactSettings.detail.lodPixels = 0.0;
         exactSettings.detail.level = -1;
         Frame exact;
-        renderer.render(tree, camera, exactSettings, exact);
+        renderAntialiased(renderer, tree, camera, exactSettings, exact);
         v.levelOfDetail = compareImages(frame, exact);
     }
     return v;

@@ -125,7 +125,8 @@ TEST(SphereCli, BadSpecsAndOptionsAreUsageErrors) {
         {"sphereflake:2", "--leaf-objects: 0 is outside [1, 100000]", "--leaf-objects", "0"},
         {"sphereflake:2", "renderer full draws voxel octrees only", "--renderer", "full", "--octree", "object"},
         {"sphereflake:2", "--iso applies to voxel octrees", "--renderer", "beam", "--iso", "0"},
-        {"analytic:sphere", "--samples applies to sphere scenes", "--samples", "4"},
+        {"analytic:sphere", "--leaf-objects applies to sphere scenes", "--leaf-objects", "4"},
+        {"analytic:sphere", "--samples: must be a square number", "--samples", "8"},
         {"analytic:sphere", "--octree applies to sphere inputs", "--octree", "voxel"},
     };
     for (const auto& c : cases) {

@@ -18,6 +18,8 @@ void Camera::validate() const {
     if (orthographic() && !(orthoHeight > 0.0 && std::isfinite(orthoHeight)))
         throw UsageError("orthographic view height must be positive");
     if (width <= 0 || height <= 0) throw UsageError("image size must be positive");
+    if (!(std::abs(sampleOffset.x) <= 0.5 && std::abs(sampleOffset.y) <= 0.5))
+        throw UsageError("a pixel's sample offset must lie within the pixel (-0.5 to 0.5)");
 }
 
 void Camera::basis(dvec3& right, dvec3& trueUp, dvec3& back) const {
@@ -34,8 +36,12 @@ RayGenerator::RayGenerator(const Camera& camera) : eye_(camera.position), ortho_
     halfW_ = halfH_ * (double(camera.width) / double(camera.height));
     invWidth_ = 1.0 / camera.width;
     invHeight_ = 1.0 / camera.height;
-    pixelX0_ = 0.5 * camera.width;
-    pixelY0_ = 0.5 * camera.height;
+    sampleX_ = 0.5 + camera.sampleOffset.x;
+    sampleY_ = 0.5 + camera.sampleOffset.y;
+    // A point whose ray passes through the centre of pixel x lies sampleOffset.x to the left of
+    // this camera's pixel x's ray: toPixel's coordinates shift by the offset.
+    pixelX0_ = 0.5 * camera.width - camera.sampleOffset.x;
+    pixelY0_ = 0.5 * camera.height - camera.sampleOffset.y;
     pixelScaleX_ = 0.5 * camera.width / halfW_;
     pixelScaleY_ = 0.5 * camera.height / halfH_;
 }

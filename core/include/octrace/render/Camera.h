@@ -26,10 +26,14 @@ public:
     double orthoHeight = 1.0;   ///< world height of the view window (orthographic)
     int width = 640;
     int height = 480;
+    /// Where each pixel's ray passes through the pixel, in pixels from its centre (x right, y
+    /// down), each in [-0.5, 0.5]; the samples of antialiasing (renderAntialiased, Renderer.h).
+    /// Every renderer reads it through RayGenerator; 0 gives the pixel-centre rays bit for bit.
+    dvec2 sampleOffset{0.0, 0.0};
 
     /// Throws UsageError when position == lookAt, up is parallel to the view direction,
-    /// the field of view is outside (0,180), the orthographic height is not positive or the
-    /// size is not positive.
+    /// the field of view is outside (0,180), the orthographic height is not positive, the
+    /// size is not positive or the sample offset leaves the pixel.
     void validate() const;
 
     /// Primary ray through the centre of pixel (x, y); y = 0 is the top row.
@@ -88,10 +92,11 @@ public:
 private:
     // Offsets of the pixel centre on the view plane at unit distance (perspective) or in
     // world units (orthographic), along right and up.
-    double screenX(int x) const { return ((x + 0.5) * invWidth_ * 2.0 - 1.0) * halfW_; }
-    double screenY(int y) const { return (1.0 - (y + 0.5) * invHeight_ * 2.0) * halfH_; }
+    double screenX(int x) const { return ((x + sampleX_) * invWidth_ * 2.0 - 1.0) * halfW_; }
+    double screenY(int y) const { return (1.0 - (y + sampleY_) * invHeight_ * 2.0) * halfH_; }
     dvec3 eye_, right_, up_, back_;
     double halfH_, halfW_, invWidth_, invHeight_;
+    double sampleX_, sampleY_;  // where in a pixel its ray passes: 0.5 + Camera::sampleOffset
     double pixelX0_, pixelY0_, pixelScaleX_, pixelScaleY_;  // toPixel: image centre, pixels per unit
     bool ortho_;
 };

@@ -75,6 +75,18 @@ int renderProgressive(const Renderer& renderer, const Octree& octree, const Came
                       const std::function<bool(const Frame&, double lodPixels)>& onFrame,
                       const std::vector<double>& lodPasses = {8.0, 4.0, 2.0});
 
+/// The side s of antialiasing's s x s grid of rays per pixel: `samples` must be a square number
+/// from 1 to 256 (RenderSettings::spheres.samples); throws UsageError otherwise.
+int samplesPerSide(int samples);
+/// Renders the voxel octree with RenderSettings::spheres.samples rays per pixel (s x s, on the
+/// grid of the sphere tracers: sample (a, b) of a pixel passes at ((a + 0.5) / s, (b + 0.5) / s)
+/// of it): `renderer` draws the frame once per sample with Camera::sampleOffset, each draw
+/// exact as its renderer is, and the colours are averaged with their alpha (premultiplied), so
+/// an edge against a transparent background is not darkened. Depth, hitId and flags are the
+/// first sample's (the pixel's top-left one), as renderSpheres gives them. The stats sum the
+/// samples' counters and time (pixels counted once). One sample is renderer.render() itself.
+RenderStats renderAntialiased(const Renderer& renderer, const Octree& octree, const Camera& camera,
+                              const RenderSettings& settings, Frame& frame);
 /// Primary rays of a sphere scene tested against every sphere, no octree (the oracle that
 /// --verify and the tests judge the octree tracers by; O(spheres) per ray). Draws spheres only.
 std::unique_ptr<Renderer> makeBruteForceSphereRenderer();

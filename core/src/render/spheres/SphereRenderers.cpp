@@ -27,13 +27,6 @@ namespace {
 constexpr int kTileSamples = 128;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-int samplesPerSide(int samples) {
-    const int s = int(std::lround(std::sqrt(double(samples))));
-    if (samples < 1 || s * s != samples || s > 16)
-        throw UsageError("`samples` must be a square number of rays per pixel (1, 4, 9, 16, ... 256), got " + std::to_string(samples));
-    return s;
-}
-
 /// Whitted shading shared by every sphere tracer. Secondary rays go by Samet's method.
 class SphereShader {
 public:

@@ -305,7 +305,8 @@ inline constexpr Option leafObjects{.key = "leaf_objects", .kind = OptionKind::I
     .help = "object octree: split a node while it holds more than N spheres", .commands = "render"};
 inline constexpr Option samples{.key = "samples", .kind = OptionKind::Integer, .flag = "samples", .argument = "N",
     .defaultValue = 1, .min = 1, .max = 256,
-    .help = "object octree: rays per pixel on a sqrt(N) x sqrt(N) grid, averaged; a square number", .commands = "render"};
+    .help = "antialiasing: rays per pixel on a sqrt(N) x sqrt(N) grid in each pixel, averaged; a square number (every "
+            "renderer and scene; each sample exact, N times the work)", .commands = "render animate"};
 inline constexpr Option bounces{.key = "bounces", .kind = OptionKind::Integer, .flag = "bounces", .argument = "N",
     .defaultValue = 2, .min = 0, .max = 16,
     .help = "object octree: Whitted depth, reflected and transmitted rays at most N deep", .commands = "render"};
