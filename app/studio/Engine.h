@@ -51,6 +51,7 @@ struct FrameResult {
     std::uint64_t mismatching = 0;  ///< pixels where the two panes differ (8-bit sRGB)
     QImage difference;         ///< |a - b| amplified, when asked for
     int level = -1;            ///< octree level drawn (preview), -1 = the voxels
+    Camera camera;             ///< the camera of the frames (a preview's: half the size)
 };
 
 struct FrameRequest {
@@ -87,6 +88,9 @@ public:
     double iso() const { return iso_; }
     int depth() const { return depth_; }
     bool hasField() const { return bool(base_); }
+    /// A copy of the field read, for the slice panes (SliceViews.h): the build borrows base_'s
+    /// own; null for inputs without a field (octree files, city models).
+    std::shared_ptr<const ScalarField> field() const { return sliceField_; }
     /// The display window the build chose (model::Surface::window), and its inversion.
     const ValueWindow& window() const { return window_; }
     bool invertedGrey() const { return invertedGrey_; }
@@ -116,6 +120,7 @@ private:
 
     InputInfo info_;
     std::shared_ptr<model::Surface> base_;  // holds the field read (lent to one build at a time)
+    std::shared_ptr<const ScalarField> sliceField_;
     ValueWindow window_;
     bool invertedGrey_ = false;
     std::shared_ptr<const Octree> tree_;
