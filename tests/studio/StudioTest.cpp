@@ -58,16 +58,19 @@ namespace {
 
 constexpr int kWaitMs = 60000;  // generous: a loaded CI machine; the steps take well under a second each
 
-/// Runs `octrace render ARGS`; returns its exit code (stderr shown on failure).
-int runCli(const QStringList& args) {
+/// Runs `octrace COMMAND ARGS`; returns its exit code (stderr shown on failure).
+int runOctrace(const QString& command, const QStringList& args) {
     QProcess p;
     p.setProgram(QStringLiteral(OCTRACE_BINARY));
-    p.setArguments(QStringList{QStringLiteral("render")} + args + QStringList{QStringLiteral("--quiet")});
+    p.setArguments(QStringList{command} + args + QStringList{QStringLiteral("--quiet")});
     p.start();
     if (!p.waitForFinished(kWaitMs)) return -1;
-    if (p.exitCode() != 0) qWarning("octrace render: %s", p.readAllStandardError().constData());
+    if (p.exitCode() != 0) qWarning("octrace %s: %s", qPrintable(command), p.readAllStandardError().constData());
     return p.exitCode();
 }
+
+/// Runs `octrace render ARGS`.
+int runCli(const QStringList& args) { return runOctrace(QStringLiteral("render"), args); }
 
 /// Number of pixels whose RGBA differ (-1 when the sizes differ or a file is unreadable).
 qint64 differingPixels(const QString& a, const QString& b) {
@@ -1018,16 +1021,8 @@ private slots:
         return slices->fourUp();
     }
 
-    /// Runs `octrace slice ARGS`; returns its exit code.
-    static int runSlice(const QStringList& args) {
-        QProcess p;
-        p.setProgram(QStringLiteral(OCTRACE_BINARY));
-        p.setArguments(QStringList{QStringLiteral("slice")} + args + QStringList{QStringLiteral("--quiet")});
-        p.start();
-        if (!p.waitForFinished(kWaitMs)) return -1;
-        if (p.exitCode() != 0) qWarning("octrace slice: %s", p.readAllStandardError().constData());
-        return p.exitCode();
-    }
+    /// Runs `octrace slice ARGS`.
+    static int runSlice(const QStringList& args) { return runOctrace(QStringLiteral("slice"), args); }
 
     /// Pane `i`'s image and the CLI's `slice` of the pane's own command line: 0 differing pixels.
     void paneEqualsCli(int i, const QString& stem) {
