@@ -3,6 +3,7 @@
 #include "octrace/model/OptionTable.h"
 
 #include "octrace/model/Input.h"
+#include "octrace/model/Slice.h"
 #include "octrace/model/Surface.h"
 
 #include "octrace/build/OctreeBuilder.h"
@@ -140,6 +141,7 @@ void Engine::open(const StudioState& state) {
             info.maximum = hi;
             info.histogram = histogramOf(base->field, lo, hi);
             info.fileWindow = base->field.window;
+            if (base->field.patientLps && !base->field.window.valid()) info.percentileWindow = model::quantileWindow(base->field, 0.01, 0.99);
             auto sliceField = std::make_shared<const ScalarField>(base->field.copy());
             if (stop) throw CancelledError("cancelled");
             handBack(gen, [this, info, base, sliceField, state] {

@@ -33,6 +33,9 @@ struct InputInfo {
     double minimum = 0.0, maximum = 0.0;  ///< valid value range
     std::vector<double> histogram;        ///< counts of valid samples over [minimum, maximum]
     ValueWindow fileWindow;               ///< the display window stored in the file (DICOM), if any
+    /// A patient volume without a stored window: its 1st to 99th percentile (model::quantileWindow),
+    /// the slice panes' automatic window; computed with the read, off the GUI thread.
+    ValueWindow percentileWindow;
 };
 
 /// One pane's rendered frame.

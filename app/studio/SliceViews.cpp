@@ -126,7 +126,7 @@ SliceViews::SliceViews(QWidget* threeD, Engine& engine, QWidget* parent) : QWidg
     });
     connect(&engine_, &Engine::inputLoaded, this, [this] { setField(engine_.field(), engine_.info().input); });
     connect(&engine_, &Engine::frameReady, this, [this](const FrameResult& r) {
-        if (r.preview || r.panes.empty()) return;
+        if (r.preview || r.panes.empty() || !fourUp()) return;  // picking is for the four-up layout
         pickFrame_ = r.panes[0].frame;
         pickCamera_ = r.camera;
     });
@@ -169,7 +169,7 @@ void SliceViews::setField(std::shared_ptr<const ScalarField> field, const QStrin
                 autoWindow_ = field_->window;
                 windowSource_ = tr("the file's window");
             } else {
-                autoWindow_ = model::quantileWindow(*field_, 0.01, 0.99);
+                autoWindow_ = engine_.info().percentileWindow;
                 windowSource_ = tr("1st to 99th percentile");
             }
             window_ = autoWindow_;
