@@ -171,12 +171,6 @@ const char* patientLetter(const dvec3& d) {
 /// The world axis of a screen direction (a signed world axis).
 int worldAxisOf(const dvec3& d) { return std::abs(d.x) > 0.5 ? 0 : std::abs(d.y) > 0.5 ? 1 : 2; }
 
-/// A screen direction as the figure labels it: a patient letter, else "+x", "-y", ...
-std::string directionName(const ScalarField& f, const dvec3& d) {
-    if (f.patientLps) return patientLetter(d);
-    const int a = worldAxisOf(d);
-    return std::string(d[a] > 0.0 ? "+" : "-") + char('x' + a);
-}
 
 /// Rough width of a label in label heights (DejaVu Sans: about 0.6 of the height a character).
 double labelWidth(const std::string& text) {
@@ -245,10 +239,10 @@ io::FigureSpec sliceFigureSpec(const SliceSpec& a, const ScalarField& f, const S
     const dvec3 R = v.screenRight(), U = v.screenUp();
     const dvec2 mid = 0.5 * (lo + hi);
     if (f.patientLps) {
-        spec.labels.push_back({{hi.x, mid.y}, patientLetter(R), 0.9, 0.0});
-        spec.labels.push_back({{lo.x, mid.y}, patientLetter(-R), -0.9, 0.0});
-        spec.labels.push_back({{mid.x, lo.y}, patientLetter(U), 0.0, -0.9});
-        spec.labels.push_back({{mid.x, hi.y}, patientLetter(-U), 0.0, 0.9});
+        spec.labels.push_back({{hi.x, mid.y}, sliceDirectionName(f, R), 0.9, 0.0});
+        spec.labels.push_back({{lo.x, mid.y}, sliceDirectionName(f, -R), -0.9, 0.0});
+        spec.labels.push_back({{mid.x, lo.y}, sliceDirectionName(f, U), 0.0, -0.9});
+        spec.labels.push_back({{mid.x, hi.y}, sliceDirectionName(f, -U), 0.0, 0.9});
     } else {
         const int aR = worldAxisOf(R), aU = worldAxisOf(U);
         const dvec3 tl = v.world(v.gridMin.x, v.gridMin.y), br = v.world(v.gridMax.x, v.gridMax.y);
@@ -319,6 +313,27 @@ io::FigureSpec sliceFigureSpec(const SliceSpec& a, const ScalarField& f, const S
 
 }  // namespace
 
+std::string sliceDirectionName(const ScalarField& f, const dvec3& d) {
+    if (f.patientLps) return patientLetter(d);
+    const int a = worldAxisOf(d);
+    return std::string(d[a] > 0.0 ? "+" : "-") + char('x' + a);
+}
+
+ValueWindow quantileWindow(const ScalarField& f, double lowFraction, double highFraction) {
+    std::vector<float> v;
+    v.reserve(f.validCount());
+    for (std::size_t i = 0; i < f.values.size(); ++i)
+        if (f.isValid(i) && std::isfinite(f.values[i])) v.push_back(f.values[i]);
+    if (v.empty()) throw EmptyResultError(f.source + ": '" + f.name + "' has no valid value to take a window from");
+    const auto rank = [&](double q) {
+        const auto k = std::size_t(std::clamp(std::llround(q * double(v.size() - 1)), 0LL, (long long)(v.size() - 1)));
+        std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(k), v.end());
+        return double(v[k]);
+    };
+    const double lo = rank(lowFraction), hi = rank(highFraction);
+    return {0.5 * (lo + hi), std::max(hi - lo, 1e-30)};
+}
+
 std::uint64_t memoryBudget(const SliceSpec& spec) { return spec.maxMemory ? spec.maxMemory : defaultMemoryBudget(); }
 
 void checkSliceSpec(const SliceSpec& a) {
@@ -364,10 +379,11 @@ SliceResult renderSlice(const ScalarField& field, const SliceSpec& a) {
     checkMemoryBudget(a.input + ": a slice of " + std::to_string(view.width) + "x" + std::to_string(view.height) + " pixels",
                       Frame::bytesFor(view.width, view.height) + std::uint64_t(view.width) * std::uint64_t(view.height) * 29,
                       memoryBudget(a));
-    const SliceValues values = sampleSlice(field, view, a.threads);
+    SliceValues values = sampleSlice(field, view, a.threads);
     r.colour = chooseColouring(a, field, values);
     for (SliceSample s : values.state) r.validPixels += s == SliceSample::Valid, r.maskedPixels += s == SliceSample::Masked;
     Frame slice = colourSlice(values, r.colour.colouring);
+    r.values = std::move(values);
     r.dpi = a.figure.dpi;
     if (!r.layout) {
         r.image = std::move(slice);
@@ -414,8 +430,8 @@ Stats sliceStats(const ScalarField& field, const SliceResult& r, const std::stri
     js.set("height", view.height);
     js.set("pixel_size", view.pixelSize);
     js.set("patient_lps", field.patientLps);
-    js.set("screen_right", directionName(field, view.screenRight()));
-    js.set("screen_up", directionName(field, view.screenUp()));
+    js.set("screen_right", sliceDirectionName(field, view.screenRight()));
+    js.set("screen_up", sliceDirectionName(field, view.screenUp()));
     if (r.layout) {
         js.set("figure_width", r.layout->width);
         js.set("figure_height", r.layout->height);

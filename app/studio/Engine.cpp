@@ -3,6 +3,7 @@
 #include "octrace/model/OptionTable.h"
 
 #include "octrace/model/Input.h"
+#include "octrace/model/Slice.h"
 #include "octrace/model/Surface.h"
 
 #include "octrace/build/OctreeBuilder.h"
@@ -106,6 +107,7 @@ void Engine::open(const StudioState& state) {
                 handBack(gen, [this, info, tree, surface, subject = model::figureSubject(*surface, state.input)] {
                     info_ = info;
                     base_.reset();
+                    sliceField_.reset();
                     setSurface(tree, *surface, subject, tree->depth);
                     emit inputLoaded();
                     emit surfaceBuilt();
@@ -139,9 +141,13 @@ void Engine::open(const StudioState& state) {
             info.maximum = hi;
             info.histogram = histogramOf(base->field, lo, hi);
             info.fileWindow = base->field.window;
-            handBack(gen, [this, info, base, state] {
+            if (base->field.patientLps && !base->field.window.valid()) info.percentileWindow = model::quantileWindow(base->field, 0.01, 0.99);
+            auto sliceField = std::make_shared<const ScalarField>(base->field.copy());
+            if (stop) throw CancelledError("cancelled");
+            handBack(gen, [this, info, base, sliceField, state] {
                 info_ = info;
                 base_ = base;
+                sliceField_ = sliceField;
                 tree_.reset();
                 emit inputLoaded();
                 startBuild(state);
@@ -241,6 +247,7 @@ void Engine::requestFrame(const FrameRequest& request) {
                 cam.height = std::max(1, cam.height / 2);
                 out.level = previewLevel(tree->depth);
             }
+            out.camera = cam;
             for (const auto& name : request.renderers) {
                 if (stop) return;
                 const RendererName resolved = resolveRendererName(name);

@@ -33,6 +33,9 @@ struct InputInfo {
     double minimum = 0.0, maximum = 0.0;  ///< valid value range
     std::vector<double> histogram;        ///< counts of valid samples over [minimum, maximum]
     ValueWindow fileWindow;               ///< the display window stored in the file (DICOM), if any
+    /// A patient volume without a stored window: its 1st to 99th percentile (model::quantileWindow),
+    /// the slice panes' automatic window; computed with the read, off the GUI thread.
+    ValueWindow percentileWindow;
 };
 
 /// One pane's rendered frame.
@@ -51,6 +54,7 @@ struct FrameResult {
     std::uint64_t mismatching = 0;  ///< pixels where the two panes differ (8-bit sRGB)
     QImage difference;         ///< |a - b| amplified, when asked for
     int level = -1;            ///< octree level drawn (preview), -1 = the voxels
+    Camera camera;             ///< the camera of the frames (a preview's: half the size)
 };
 
 struct FrameRequest {
@@ -87,6 +91,9 @@ public:
     double iso() const { return iso_; }
     int depth() const { return depth_; }
     bool hasField() const { return bool(base_); }
+    /// A copy of the field read, for the slice panes (SliceViews.h): the build borrows base_'s
+    /// own; null for inputs without a field (octree files, city models).
+    std::shared_ptr<const ScalarField> field() const { return sliceField_; }
     /// The display window the build chose (model::Surface::window), and its inversion.
     const ValueWindow& window() const { return window_; }
     bool invertedGrey() const { return invertedGrey_; }
@@ -116,6 +123,7 @@ private:
 
     InputInfo info_;
     std::shared_ptr<model::Surface> base_;  // holds the field read (lent to one build at a time)
+    std::shared_ptr<const ScalarField> sliceField_;
     ValueWindow window_;
     bool invertedGrey_ = false;
     std::shared_ptr<const Octree> tree_;

@@ -7,6 +7,7 @@
 #include "RenderView.h"
 #include "Session.h"
 #include "SidePanel.h"
+#include "SliceViews.h"
 #include "SurfelView.h"
 #include "ViewInput.h"
 
@@ -114,7 +115,17 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     connectNavigation(surfelView_->input());
     secondPane_->addWidget(surfelView_);
     secondPane_->hide();
-    setCentralWidget(splitter);
+    // The 3-D views alone, or in the four-up layout with the slice panes.
+    slices_ = new SliceViews(splitter, engine_, this);
+    setCentralWidget(slices_);
+    connect(slices_, &SliceViews::cursorChanged, this, &MainWindow::showCrosshair);
+    connect(slices_, &SliceViews::layoutChanged, this, [this] {
+        showCrosshair();
+        exactTimer_.start();  // the 3-D view's size changed
+    });
+    connect(views_[0]->input(), &ViewInput::clicked, this, [this](QPointF pos) {
+        if (slices_->fourUp()) slices_->pickSurface(pos * views_[0]->devicePixelRatioF());
+    });
 
     auto* dock = new QDockWidget(tr("Surface"), this);
     dock->setObjectName(QStringLiteral("surfaceDock"));
@@ -288,6 +299,10 @@ void MainWindow::buildMenus() {
     differenceAction_->setToolTip(tr("Show |left - right| (x4) in the right pane"));
     connect(differenceAction_, &QAction::toggled, this, [this] { requestRender(false); });
     bar->addAction(differenceAction_);
+    view->addSeparator();
+    const QList<QAction*> layouts = slices_->layoutActions();
+    layouts[1]->setShortcut(Qt::Key_F3);
+    view->addActions(layouts);
 }
 
 QWidget* MainWindow::buildControls() {
@@ -1030,7 +1045,15 @@ void MainWindow::onFrame(const FrameResult& r) {
         views_[i]->setImage(i == 1 && !r.difference.isNull() ? r.difference : r.panes[i].image);
         views_[i]->setOverlay(i == 1 && !r.difference.isNull() ? tr("difference |left - right| x4\n") + text : text);
     }
+    showCrosshair();
     if (!r.preview) emit frameShown();
+}
+
+void MainWindow::showCrosshair() {
+    std::optional<QPointF> at;
+    if (slices_->fourUp())
+        if (const auto px = slices_->crosshairIn(viewCamera())) at = *px / views_[0]->devicePixelRatioF();
+    views_[0]->setMarker(at);
 }
 
 QStringList MainWindow::commandLine(const QString& output, int width, int height) const {

@@ -32,6 +32,7 @@ class QStackedWidget;
 namespace octrace::studio {
 
 class HistogramView;
+class SliceViews;
 class ViewInput;
 class RenderView;
 class SurfelView;
@@ -67,6 +68,8 @@ public:
     Engine& engine() { return engine_; }
     RenderView* view(int pane) const { return views_[pane]; }
     SurfelView* surfelView() const { return surfelView_; }
+    /// The slice panes and the layout around the 3-D view (SliceViews.h).
+    SliceViews* slices() const { return slices_; }
     /// The camera of pane views at their current size.
     Camera viewCamera() const;
 
@@ -131,6 +134,8 @@ private:
     /// Gives the OpenGL view the current surfels (extracted again when the surface or its
     /// colour changed) and camera.
     void updateSurfelView();
+    /// Shows the slice panes' crosshair in the main 3-D view (four-up layout only).
+    void showCrosshair();
 
     StudioState state_;
     StudioState pending_;  // what load() is reading
@@ -138,6 +143,7 @@ private:
     RenderView* views_[2] = {nullptr, nullptr};
     QStackedWidget* secondPane_ = nullptr;
     SurfelView* surfelView_ = nullptr;
+    SliceViews* slices_ = nullptr;
     std::shared_ptr<const std::vector<Surfel>> surfels_;
     std::shared_ptr<const Octree> surfelTree_;  // what surfels_ were extracted from
     RenderSettings surfelSettings_;

@@ -20,6 +20,12 @@ void RenderView::setOverlay(const QString& text) {
     update();
 }
 
+void RenderView::setMarker(std::optional<QPointF> pos) {
+    if (pos == marker_) return;
+    marker_ = pos;
+    update();
+}
+
 void RenderView::paintEvent(QPaintEvent*) {
     QPainter p(this);
     p.fillRect(rect(), palette().color(QPalette::Base));
@@ -27,6 +33,16 @@ void RenderView::paintEvent(QPaintEvent*) {
         // A preview is smaller than the pane: scaled up to fill it.
         p.setRenderHint(QPainter::SmoothPixmapTransform, image_.size() != size());
         p.drawImage(rect(), image_);
+    }
+    if (marker_) {
+        const QPointF c = *marker_;
+        for (const auto& [colour, width] : {std::pair{QColor(0, 0, 0, 160), 3}, std::pair{QColor(255, 220, 0), 1}}) {
+            p.setPen(QPen(colour, width));
+            p.drawLine(c + QPointF(-12, 0), c + QPointF(-3, 0));
+            p.drawLine(c + QPointF(3, 0), c + QPointF(12, 0));
+            p.drawLine(c + QPointF(0, -12), c + QPointF(0, -3));
+            p.drawLine(c + QPointF(0, 3), c + QPointF(0, 12));
+        }
     }
     if (!overlay_.isEmpty()) {
         QFont f = font();

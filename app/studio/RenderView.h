@@ -4,8 +4,11 @@
 #include "ViewInput.h"
 
 #include <QImage>
+#include <QPointF>
 #include <QString>
 #include <QWidget>
+
+#include <optional>
 
 namespace octrace::studio {
 
@@ -15,6 +18,9 @@ public:
     explicit RenderView(QWidget* parent = nullptr);
     void setImage(const QImage& image);
     void setOverlay(const QString& text);
+    /// A crosshair mark at `pos` (logical pixels; none: hidden): the slice panes' crosshair.
+    void setMarker(std::optional<QPointF> pos);
+    std::optional<QPointF> marker() const { return marker_; }
     const QImage& image() const { return image_; }
     /// The camera moves asked for in this view.
     ViewInput* input() const { return input_; }
@@ -30,6 +36,7 @@ protected:
 private:
     QImage image_;
     QString overlay_;
+    std::optional<QPointF> marker_;
     ViewInput* input_;
 };
 

@@ -22,7 +22,7 @@ bool ViewInput::eventFilter(QObject* watched, QEvent* event) {
     switch (event->type()) {
         case QEvent::MouseButtonPress: mousePress(static_cast<QMouseEvent*>(event)); return true;
         case QEvent::MouseMove: mouseMove(static_cast<QMouseEvent*>(event)); return true;
-        case QEvent::MouseButtonRelease: mouseRelease(); return true;
+        case QEvent::MouseButtonRelease: mouseRelease(static_cast<QMouseEvent*>(event)); return true;
         case QEvent::Wheel: wheel(static_cast<QWheelEvent*>(event)); return true;
         case QEvent::KeyPress: return key(static_cast<QKeyEvent*>(event));
         default: return false;
@@ -32,6 +32,7 @@ bool ViewInput::eventFilter(QObject* watched, QEvent* event) {
 void ViewInput::mousePress(QMouseEvent* e) {
     view_->setFocus();
     last_ = e->position().toPoint();
+    moved_ = false;
     if (e->button() == Qt::LeftButton) drag_ = (e->modifiers() & Qt::ShiftModifier) ? Drag::Pan : Drag::Orbit;
     else if (e->button() == Qt::MiddleButton) drag_ = Drag::Pan;
     else if (e->button() == Qt::RightButton) drag_ = Drag::Zoom;
@@ -42,6 +43,7 @@ void ViewInput::mouseMove(QMouseEvent* e) {
     const QPoint d = pos - last_;
     last_ = pos;
     if (d.isNull()) return;
+    moved_ = moved_ || drag_ != Drag::None;
     switch (drag_) {
         case Drag::Orbit: emit orbitBy(d.x() * kDegreesPerPixel, d.y() * kDegreesPerPixel); break;
         case Drag::Pan: emit panBy(d.x(), d.y(), view_->height()); break;
@@ -50,7 +52,8 @@ void ViewInput::mouseMove(QMouseEvent* e) {
     }
 }
 
-void ViewInput::mouseRelease() {
+void ViewInput::mouseRelease(QMouseEvent* e) {
+    if (drag_ == Drag::Orbit && !moved_ && e->button() == Qt::LeftButton) emit clicked(e->position());
     if (drag_ != Drag::None) emit interactionFinished();
     drag_ = Drag::None;
 }

@@ -2,11 +2,13 @@
 // Mouse and keyboard camera control shared by the studio's views (the CPU panes' RenderView and
 // the OpenGL SurfelView), with ParaView / 3D Slicer conventions:
 //   left drag: orbit; middle drag or Shift+left drag: pan; right drag or wheel: zoom;
-//   arrow keys: orbit 5 degrees (with Shift: pan); + / -: zoom.
+//   arrow keys: orbit 5 degrees (with Shift: pan); + / -: zoom; a left click (press and
+//   release without moving): clicked (the window picks the surface point under it).
 // It filters the input events of its view; the window turns the signals into camera moves
 // (Navigation.h), so that every view moves the one camera the same way.
 #include <QObject>
 #include <QPoint>
+#include <QPointF>
 
 class QEvent;
 class QKeyEvent;
@@ -30,11 +32,13 @@ signals:
     void dollyBy(double factor);
     /// The camera stopped moving (button released, or a key or wheel step done).
     void interactionFinished();
+    /// A left click that did not move the camera, at `pos` (the view's logical pixels).
+    void clicked(QPointF pos);
 
 private:
     void mousePress(QMouseEvent* e);
     void mouseMove(QMouseEvent* e);
-    void mouseRelease();
+    void mouseRelease(QMouseEvent* e);
     void wheel(QWheelEvent* e);
     /// False for a key that is not a camera key (the view gets it).
     bool key(QKeyEvent* e);
@@ -43,6 +47,7 @@ private:
     QWidget* view_;
     Drag drag_ = Drag::None;
     QPoint last_;
+    bool moved_ = false;  // the camera moved since the button went down
 };
 
 }  // namespace octrace::studio

@@ -12,6 +12,7 @@
 #include "Session.h"
 #include "Navigation.h"
 #include "SidePanel.h"
+#include "SliceViews.h"
 #include "SurfelView.h"
 
 #include "OptionWidgets.h"
@@ -26,6 +27,7 @@
 #include <QDockWidget>
 #include <QGroupBox>
 #include <QTimer>
+#include <QToolButton>
 #include <QDoubleSpinBox>
 #include <QImage>
 #include <QLineEdit>
@@ -56,16 +58,19 @@ namespace {
 
 constexpr int kWaitMs = 60000;  // generous: a loaded CI machine; the steps take well under a second each
 
-/// Runs `octrace render ARGS`; returns its exit code (stderr shown on failure).
-int runCli(const QStringList& args) {
+/// Runs `octrace COMMAND ARGS`; returns its exit code (stderr shown on failure).
+int runOctrace(const QString& command, const QStringList& args) {
     QProcess p;
     p.setProgram(QStringLiteral(OCTRACE_BINARY));
-    p.setArguments(QStringList{QStringLiteral("render")} + args + QStringList{QStringLiteral("--quiet")});
+    p.setArguments(QStringList{command} + args + QStringList{QStringLiteral("--quiet")});
     p.start();
     if (!p.waitForFinished(kWaitMs)) return -1;
-    if (p.exitCode() != 0) qWarning("octrace render: %s", p.readAllStandardError().constData());
+    if (p.exitCode() != 0) qWarning("octrace %s: %s", qPrintable(command), p.readAllStandardError().constData());
     return p.exitCode();
 }
+
+/// Runs `octrace render ARGS`.
+int runCli(const QStringList& args) { return runOctrace(QStringLiteral("render"), args); }
 
 /// Number of pixels whose RGBA differ (-1 when the sizes differ or a file is unreadable).
 qint64 differingPixels(const QString& a, const QString& b) {
@@ -990,6 +995,343 @@ private slots:
         QVERIFY(light->value() != x);
         light->clearFocus();
         light->setValue(x);
+        waitFrame();
+    }
+
+    // --- The radiology layout: slice panes beside the 3-D view (SliceViews.h) ---------------
+
+    /// Opens the real chest CT in the four-up layout at 1600x1000 (false: the data is absent).
+    bool openChestFourUp() {
+        // As a user in the repository types it (../shared/data/...), for the screenshot.
+        const QString chest = QDir::current().relativeFilePath(QStringLiteral(OCTRACE_SHARED_DATA "/medical/lidc2_chest_ct.nrrd"));
+        if (!QFileInfo::exists(chest)) return false;
+        auto* slices = window_->slices();
+        if (window_->state().input == chest.toStdString() && slices->fourUp() && window_->size() == QSize(1600, 1000)) return true;
+        if (window_->state().input != chest.toStdString()) {
+            QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
+            window_->openInput(chest);
+            if (!built.wait(kWaitMs)) return false;
+        }
+        window_->resize(1600, 1000);
+        if (!QTest::qWaitFor([this] { return window_->size() == QSize(1600, 1000); }, kWaitMs)) return false;
+        QAction* fourUp = window_->findChild<QAction*>(QStringLiteral("layoutFourUp"));
+        if (!fourUp) return false;
+        fourUp->trigger();
+        QTest::qWait(200);  // the layout settles
+        waitFrame();
+        return slices->fourUp();
+    }
+
+    /// Runs `octrace slice ARGS`.
+    static int runSlice(const QStringList& args) { return runOctrace(QStringLiteral("slice"), args); }
+
+    /// Pane `i`'s image and the CLI's `slice` of the pane's own command line: 0 differing pixels.
+    void paneEqualsCli(int i, const QString& stem) {
+        auto* slices = window_->slices();
+        const QString studioPng = tmp_.filePath(stem + QStringLiteral("-pane.png"));
+        const QString cliPng = tmp_.filePath(stem + QStringLiteral("-cli.png"));
+        const QImage shown = slices->pane(i)->image();
+        QCOMPARE(shown.size(), slices->pane(i)->imageSize());
+        QVERIFY(shown.save(studioPng));
+        QCOMPARE(runSlice(slices->commandLine(i, cliPng)), 0);
+        QCOMPARE(differingPixels(studioPng, cliPng), 0);
+    }
+
+    void fourUpLayoutShowsTheThreeSlices() {
+        if (!openChestFourUp()) QSKIP("needs ../shared/data/medical/lidc2_chest_ct.nrrd");
+        auto* slices = window_->slices();
+        const auto field = window_->engine().field();
+        QVERIFY(field && field->patientLps);
+        // Axial, coronal, sagittal, each through the middle sample (the CLI's default index, n/2).
+        const octrace::SlicePlane planes[3] = {octrace::SlicePlane::Axial, octrace::SlicePlane::Coronal, octrace::SlicePlane::Sagittal};
+        for (int i = 0; i < 3; ++i) {
+            auto* pane = slices->pane(i);
+            QVERIFY(pane->isVisible());
+            QVERIFY2(pane->hasSlice(), qPrintable(pane->objectName()));
+            QCOMPARE(pane->plane(), planes[i]);
+            QVERIFY(pane->width() > 300 && pane->height() > 300);
+            QVERIFY(surfacePixels(pane->image(), qRgb(0, 0, 0)) > 10000);  // the body, not black
+        }
+        QCOMPARE(slices->cursor(), octrace::ivec3(128, 128, 66));
+        // The 3-D view shares the window: upper right, beside the axial pane.
+        QVERIFY(window_->view(0)->isVisible());
+        QVERIFY(window_->view(0)->mapTo(window_, QPoint(0, 0)).x() > slices->pane(0)->mapTo(window_, QPoint(0, 0)).x());
+        // The orientation letters of `slice --figure`: axial seen from the feet, L on the right, A up.
+        const auto& axial = slices->pane(0)->content();
+        QCOMPARE(axial.letters[0], QStringLiteral("L"));
+        QCOMPARE(axial.letters[1], QStringLiteral("R"));
+        QCOMPARE(axial.letters[2], QStringLiteral("A"));
+        QCOMPARE(axial.letters[3], QStringLiteral("P"));
+        QCOMPARE(slices->pane(1)->content().letters[2], QStringLiteral("S"));
+        QCOMPARE(slices->pane(2)->content().letters[0], QStringLiteral("P"));
+        // The scale bar as the figure's: io::scaleBarLength of the pixel size and width, in mm.
+        QVERIFY(axial.scaleBar > 10.0 && axial.scaleBar < axial.image.width());
+        QVERIFY(axial.scaleBarLabel.endsWith(QStringLiteral(" mm")));
+        // The crosshair in the 3-D view.
+        QVERIFY(window_->view(0)->marker().has_value());
+        sidePanel()->verticalScrollBar()->setValue(0);  // the Input box at the top
+        screenshot(QStringLiteral("studio-fourup-ct.png"));
+    }
+
+    void sliceWheelAndArrowKeysMoveExactlyOneSlice() {
+        if (!openChestFourUp()) QSKIP("needs ../shared/data/medical/lidc2_chest_ct.nrrd");
+        auto* slices = window_->slices();
+        window_->activateWindow();
+        QVERIFY(QTest::qWaitForWindowActive(window_));
+        for (int i = 0; i < 3; ++i) {
+            auto* pane = slices->pane(i);
+            const int start = slices->sliceIndex(i);
+            const QImage before = pane->image();
+            const octrace::ivec3 cursor = slices->cursor();
+            wheel(pane, 120);  // one notch up: the next slice
+            QCOMPARE(slices->sliceIndex(i), start + 1);
+            QVERIFY(pane->image() != before);  // another slice on screen
+            // Only this pane's slice moved; the other two stay.
+            for (int a = 0; a < 3; ++a)
+                if (a != octrace::sliceGridAxis(*window_->engine().field(), pane->plane())) QCOMPARE(slices->cursor()[a], cursor[a]);
+            wheel(pane, -120);
+            QCOMPARE(slices->sliceIndex(i), start);
+            QCOMPARE(pane->image(), before);
+            // A fine-grained wheel: half a notch does nothing, the second half one slice.
+            wheel(pane, 60);
+            QCOMPARE(slices->sliceIndex(i), start);
+            wheel(pane, 60);
+            QCOMPARE(slices->sliceIndex(i), start + 1);
+            pane->setFocus();
+            QTRY_VERIFY(pane->hasFocus());
+            QTest::keyClick(pane, Qt::Key_Down);
+            QCOMPARE(slices->sliceIndex(i), start);
+            QTest::keyClick(pane, Qt::Key_Down);
+            QCOMPARE(slices->sliceIndex(i), start - 1);
+            QTest::keyClick(pane, Qt::Key_Up);
+            QCOMPARE(slices->sliceIndex(i), start);
+            QCOMPARE(pane->image(), before);
+        }
+        // At the last slice the wheel stops there.
+        auto* axial = slices->pane(0);
+        const int n = window_->engine().field()->dims.z;
+        slices->step(0, n);
+        QCOMPARE(slices->sliceIndex(0), n - 1);
+        wheel(axial, 120);
+        QCOMPARE(slices->sliceIndex(0), n - 1);
+        slices->setCursor(octrace::ivec3(128, 128, 66));
+    }
+
+    void slicePanesEqualTheCliSlice() {
+        if (!openChestFourUp()) QSKIP("needs ../shared/data/medical/lidc2_chest_ct.nrrd");
+        auto* slices = window_->slices();
+        // The NRRD has no window and is not in HU: the window is the 1st to 99th percentile of
+        // its values (as for MR), and the CT presets are off.
+        const auto field = window_->engine().field();
+        std::vector<float> v;
+        for (std::size_t k = 0; k < field->values.size(); ++k)
+            if (field->isValid(k)) v.push_back(field->values[k]);
+        std::sort(v.begin(), v.end());
+        const double p1 = v[std::size_t(std::llround(0.01 * double(v.size() - 1)))];
+        const double p99 = v[std::size_t(std::llround(0.99 * double(v.size() - 1)))];
+        QVERIFY(p99 > p1);
+        QCOMPARE(slices->window().centre, 0.5 * (p1 + p99));
+        QCOMPARE(slices->window().width, p99 - p1);
+        QVERIFY(slices->windowSource().contains(QStringLiteral("percentile")));
+        auto* combo = window_->findChild<QComboBox*>(QStringLiteral("sliceWindowCombo"));
+        QVERIFY(combo);
+        auto* model = qobject_cast<QStandardItemModel*>(combo->model());
+        QVERIFY(model);
+        const int lung = combo->findData(QStringLiteral("lung"));
+        QVERIFY(lung > 0);
+        QVERIFY(!model->item(lung)->isEnabled());
+        // Each pane: the CLI's slice at the same plane, index, size and window, pixel for pixel.
+        for (int i = 0; i < 3; ++i) paneEqualsCli(i, QStringLiteral("pane%1").arg(i));
+        // Another slice, then a window set by a right drag: still the CLI's.
+        slices->step(0, -20);
+        auto* axial = slices->pane(0);
+        const auto before = slices->window();
+        const QPoint c = axial->rect().center();
+        QTest::mousePress(axial, Qt::RightButton, Qt::NoModifier, c);
+        QMouseEvent move(QEvent::MouseMove, QPointF(c + QPoint(40, -25)), axial->mapToGlobal(QPointF(c + QPoint(40, -25))), Qt::NoButton,
+                         Qt::RightButton, Qt::NoModifier);
+        QApplication::sendEvent(axial, &move);
+        QTest::mouseRelease(axial, Qt::RightButton, Qt::NoModifier, c + QPoint(40, -25));
+        QVERIFY(slices->window().width > before.width);    // dragged right: wider
+        QVERIFY(slices->window().centre > before.centre);  // dragged up: a higher level
+        QCOMPARE(combo->currentData().toInt(), 1000);      // "Custom (dragged)"
+        paneEqualsCli(0, QStringLiteral("dragged"));
+        // Left drag in window/level mode does the same; the crosshair stays.
+        auto* wl = window_->findChild<QToolButton*>(QStringLiteral("windowLevelButton"));
+        QVERIFY(wl);
+        wl->setChecked(true);
+        const auto cursor = slices->cursor();
+        const auto dragged = slices->window();
+        QTest::mousePress(axial, Qt::LeftButton, Qt::NoModifier, c);
+        QMouseEvent left(QEvent::MouseMove, QPointF(c + QPoint(-30, 0)), axial->mapToGlobal(QPointF(c + QPoint(-30, 0))), Qt::NoButton,
+                         Qt::LeftButton, Qt::NoModifier);
+        QApplication::sendEvent(axial, &left);
+        QTest::mouseRelease(axial, Qt::LeftButton, Qt::NoModifier, c + QPoint(-30, 0));
+        QVERIFY(slices->window().width < dragged.width);
+        QCOMPARE(slices->cursor(), cursor);
+        wl->setChecked(false);
+        // Back to automatic.
+        combo->setCurrentIndex(0);
+        QCOMPARE(slices->window().width, p99 - p1);
+        slices->setCursor(octrace::ivec3(128, 128, 66));
+    }
+
+    void ctPresetWindowsTheSlicesAsTheCli() {
+        // A CT series in HU (tests/data): the presets are on, and a pane with one equals the
+        // CLI's `slice --window lung`.
+        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
+        window_->openInput(QStringLiteral(OCTRACE_TEST_DATA "/dicom/two_series"));
+        QVERIFY(built.wait(kWaitMs));
+        auto* slices = window_->slices();
+        slices->setFourUp(true);
+        waitFrame();
+        auto* combo = window_->findChild<QComboBox*>(QStringLiteral("sliceWindowCombo"));
+        auto* model = qobject_cast<QStandardItemModel*>(combo->model());
+        const int lung = combo->findData(QStringLiteral("lung"));
+        QVERIFY(model->item(lung)->isEnabled());
+        combo->setCurrentIndex(lung);
+        QCOMPARE(slices->window().centre, -600.0);
+        QCOMPARE(slices->window().width, 1500.0);
+        QVERIFY(slices->commandLine(0, QStringLiteral("x.png")).contains(QStringLiteral("lung")));
+        for (int i = 0; i < 3; ++i) paneEqualsCli(i, QStringLiteral("lung%1").arg(i));
+    }
+
+    void mrWindowsFromItsPercentiles() {
+        // A real MR (multi-frame, 64x64x10, no stored window, not in HU): no presets, the
+        // automatic window from its 1st to 99th percentile, and the panes equal the CLI's slice.
+        const QString mr = QStringLiteral(OCTRACE_SHARED_DATA "/medical/emri_small.dcm");
+        if (!QFileInfo::exists(mr)) QSKIP("needs ../shared/data/medical/emri_small.dcm");
+        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
+        window_->openInput(mr);
+        QVERIFY(built.wait(kWaitMs));
+        auto* slices = window_->slices();
+        slices->setFourUp(true);
+        const auto field = window_->engine().field();
+        QVERIFY(field && field->patientLps && !field->window.valid());
+        std::vector<float> v(field->values.begin(), field->values.end());
+        std::sort(v.begin(), v.end());
+        const double p1 = v[std::size_t(std::llround(0.01 * double(v.size() - 1)))];
+        const double p99 = v[std::size_t(std::llround(0.99 * double(v.size() - 1)))];
+        QCOMPARE(slices->window().centre, 0.5 * (p1 + p99));
+        QCOMPARE(slices->window().width, p99 - p1);
+        QVERIFY(slices->window().width < double(v.back() - v.front()));  // not the whole range
+        auto* combo = window_->findChild<QComboBox*>(QStringLiteral("sliceWindowCombo"));
+        auto* model = qobject_cast<QStandardItemModel*>(combo->model());
+        QVERIFY(!model->item(combo->findData(QStringLiteral("brain")))->isEnabled());
+        for (int i = 0; i < 3; ++i) paneEqualsCli(i, QStringLiteral("mr%1").arg(i));
+        // Ten slices along z: the wheel walks them one by one.
+        slices->setCursor(octrace::ivec3(32, 32, 0));
+        for (int k = 1; k < field->dims.z; ++k) {
+            wheel(slices->pane(0), 120);
+            QCOMPARE(slices->sliceIndex(0), k);
+        }
+        waitFrame();
+    }
+
+    void probeShowsTheCliSliceValue() {
+        if (!openChestFourUp()) QSKIP("needs ../shared/data/medical/lidc2_chest_ct.nrrd");
+        auto* slices = window_->slices();
+        // The CLI's slice of each pane with the window 127.5/255 over the chest's 0..255: its
+        // PNG holds round(value), so the probe's value must round to the CLI's grey.
+        for (int i = 0; i < 3; ++i) {
+            auto* pane = slices->pane(i);
+            QStringList args = slices->commandLine(i, tmp_.filePath(QStringLiteral("probe%1.png").arg(i)));
+            const int w = int(args.indexOf(QStringLiteral("--window")));
+            QVERIFY(w > 0);
+            args[w + 1] = QStringLiteral("127.5,255");
+            QCOMPARE(runSlice(args), 0);
+            const QImage cli = QImage(tmp_.filePath(QStringLiteral("probe%1.png").arg(i))).convertToFormat(QImage::Format_RGBA8888);
+            QCOMPARE(cli.size(), pane->imageSize());
+            int probed = 0;
+            for (const QPoint at : {QPoint(pane->width() / 2, pane->height() / 2), QPoint(pane->width() / 3, pane->height() / 2 + 17),
+                                    QPoint(pane->width() / 2 + 23, pane->height() / 3)}) {
+                QMouseEvent move(QEvent::MouseMove, QPointF(at), pane->mapToGlobal(QPointF(at)), Qt::NoButton, Qt::NoButton, Qt::NoModifier);
+                QApplication::sendEvent(pane, &move);
+                const auto& probe = slices->probe();
+                QVERIFY2(probe.valid, qPrintable(probe.text));
+                const QPointF px = pane->imagePixel(QPointF(at));
+                const int grey = qRed(cli.pixel(int(px.x()), int(px.y())));
+                QVERIFY2(std::abs(probe.value - grey) <= 0.5 + 1e-3,
+                         qPrintable(QStringLiteral("probe %1, CLI grey %2 at %3,%4").arg(probe.value).arg(grey).arg(px.x()).arg(px.y())));
+                // The position: the pixel's centre in LPS, and in RAS (x and y negated).
+                const octrace::dvec3 world = pane->content().result.view.world(std::floor(px.x()), std::floor(px.y()));
+                QVERIFY(glm::length(probe.world - world) < 1e-9);
+                auto num = [](double x) { return QString::number(x, 'g', 6); };
+                QVERIFY2(probe.text.contains(QStringLiteral("LPS (%1, %2, %3) mm").arg(num(world.x), num(world.y), num(world.z))),
+                         qPrintable(probe.text));
+                QVERIFY2(probe.text.contains(QStringLiteral("RAS (%1, %2, %3) mm").arg(num(-world.x + 0.0), num(-world.y + 0.0), num(world.z))),
+                         qPrintable(probe.text));
+                auto* label = window_->findChild<QLabel*>(QStringLiteral("probeLabel"));
+                QVERIFY(label && label->isVisible());
+                QCOMPARE(label->text(), probe.text);
+                ++probed;
+            }
+            QCOMPARE(probed, 3);
+        }
+    }
+
+    void clickOnTheSurfaceMovesTheSlicesThere() {
+        if (!openChestFourUp()) QSKIP("needs ../shared/data/medical/lidc2_chest_ct.nrrd");
+        auto* slices = window_->slices();
+        RenderView* view = window_->view(0);
+        // The frame on screen, and its camera: where the surface is.
+        QSignalSpy frames(&window_->engine(), &Engine::frameReady);
+        QTest::keyClick(view, Qt::Key_Left);  // an exact frame follows the key
+        QTRY_VERIFY_WITH_TIMEOUT(!frames.isEmpty() && !frames.last().at(0).value<FrameResult>().preview, kWaitMs);
+        const FrameResult r = frames.last().at(0).value<FrameResult>();
+        const octrace::Frame& frame = r.panes[0].frame;
+        const auto field = window_->engine().field();
+        const double iso = window_->engine().iso();
+        int tried = 0;
+        for (const QPoint at : {QPoint(view->width() / 2, view->height() / 2), QPoint(view->width() / 2 - 40, view->height() / 2 + 30),
+                                QPoint(view->width() / 2 + 35, view->height() / 2 - 25)}) {
+            const std::size_t k = frame.pixel(at.x(), at.y());
+            if (frame.hitId[k] == octrace::kNoHit) continue;
+            ++tried;
+            const octrace::Ray ray = r.camera.primaryRay(at.x(), at.y());
+            const octrace::dvec3 hit = ray.origin + double(frame.depth[k]) * ray.direction;
+            slices->setCursor(octrace::ivec3(0, 0, 0));
+            QTest::mouseClick(view, Qt::LeftButton, Qt::NoModifier, at);
+            const octrace::ivec3 c = slices->cursor();
+            // The three slices pass through the picked sample ...
+            QCOMPARE(slices->sliceIndex(0), c.z);
+            QCOMPARE(slices->sliceIndex(1), c.y);
+            QCOMPARE(slices->sliceIndex(2), c.x);
+            // ... within one voxel of the surface point under the pointer ...
+            const octrace::dvec3 w = field->worldFromGrid(c.x, c.y, c.z);
+            for (int a = 0; a < 3; ++a)
+                QVERIFY2(std::abs(w[a] - hit[a]) <= field->spacing[a] + 1e-9,
+                         qPrintable(QStringLiteral("axis %1: sample at %2, surface at %3").arg(a).arg(w[a]).arg(hit[a])));
+            // ... on the surface: samples within one of the octree's voxels of it (larger than a
+            // sample at a low depth) lie on both sides of the iso value.
+            const double voxel = window_->engine().tree()->voxelSize();
+            const octrace::ivec3 reach(int(std::ceil(voxel / field->spacing.x)), int(std::ceil(voxel / field->spacing.y)),
+                                       int(std::ceil(voxel / field->spacing.z)));
+            bool below = false, above = false;
+            for (int dz = -reach.z; dz <= reach.z; ++dz)
+                for (int dy = -reach.y; dy <= reach.y; ++dy)
+                    for (int dx = -reach.x; dx <= reach.x; ++dx) {
+                        const octrace::ivec3 s = glm::clamp(c + octrace::ivec3(dx, dy, dz), octrace::ivec3(0), field->dims - 1);
+                        const float v = field->values[field->index(s.x, s.y, s.z)];
+                        below = below || v < iso;
+                        above = above || v >= iso;
+                    }
+            QVERIFY2(below && above, qPrintable(QStringLiteral("depth %1, voxel %2 mm").arg(window_->engine().depth()).arg(voxel)));
+            // The 3-D view's crosshair mark lies where it was clicked (the voxel's centre, not the hit point: a few pixels).
+            QVERIFY(view->marker().has_value());
+            QVERIFY2(QLineF(*view->marker(), QPointF(at) + QPointF(0.5, 0.5)).length() < 8.0,
+                     qPrintable(QStringLiteral("%1,%2").arg(view->marker()->x()).arg(view->marker()->y())));
+        }
+        QVERIFY(tried >= 2);
+        // A click on the background moves nothing.
+        const octrace::ivec3 before = slices->cursor();
+        QTest::mouseClick(view, Qt::LeftButton, Qt::NoModifier, QPoint(3, 3));
+        QCOMPARE(slices->cursor(), before);
+        // Back to the 3-D view alone.
+        window_->findChild<QAction*>(QStringLiteral("layout3d"))->trigger();
+        QVERIFY(!slices->pane(0)->isVisible());
+        QVERIFY(!view->marker().has_value());
+        window_->resize(1000, 640);
         waitFrame();
     }
 

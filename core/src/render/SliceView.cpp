@@ -266,4 +266,9 @@ Frame colourSlice(const SliceValues& s, const SliceColouring& c) {
     return f;
 }
 
+dvec3 sliceGridPosition(const ScalarField& f, const dvec3& p) {
+    const dvec3 local = glm::transpose(f.direction) * (p - f.origin);
+    return {continuousIndex(f, 0, local.x), continuousIndex(f, 1, local.y), continuousIndex(f, 2, local.z)};
+}
+
 }  // namespace octrace

@@ -80,6 +80,10 @@ std::pair<double, double> slicePositionRange(const ScalarField& f, SlicePlane pl
 /// is outside 0..n-1.
 double slicePositionOfIndex(const ScalarField& f, SlicePlane plane, int index);
 
+/// The continuous sample indices (i, j, k) of world point `p`: integers at the samples; beyond
+/// the grid's ends by its first or last step (the studio's crosshair and probe).
+dvec3 sliceGridPosition(const ScalarField& f, const dvec3& p);
+
 /// What one pixel of a slice holds.
 enum class SliceSample : std::uint8_t { Valid, Masked, Outside };
 

@@ -70,6 +70,8 @@ struct SliceResult {
     Frame image;
     int dpi = 0;  ///< what the image records: the figure's, else `dpi` as given (0: none)
     SliceView view;
+    /// The values at the slice's pixels (before a figure frames them): what a probe reads.
+    SliceValues values;
     SliceColour colour;
     std::uint64_t validPixels = 0, maskedPixels = 0;
     /// With a figure: its layout, and where the slice's pixel (0, 0) lies in the plot.
@@ -87,6 +89,16 @@ struct SliceResult {
 /// InputError (the plane outside the grid, a preset on a field not in HU), LimitError (over the
 /// budget).
 SliceResult renderSlice(const ScalarField& field, const SliceSpec& spec);
+
+/// How a slice's figure labels screen direction `d` (a signed world axis, SliceView.h): the
+/// patient letter of a patient volume (L, R, P, A, S, I), else "+x", "-y", ...
+std::string sliceDirectionName(const ScalarField& field, const dvec3& d);
+
+/// A display window over the valid values from the `lowFraction` to the `highFraction` quantile
+/// (nearest rank): the studio's automatic window for a volume without presets (MR: 1st to 99th
+/// percentile). A width of at least 1e-30 when the quantiles meet. @throws EmptyResultError
+/// when no value is valid.
+ValueWindow quantileWindow(const ScalarField& field, double lowFraction = 0.01, double highFraction = 0.99);
 
 /// The one-line summary that `octrace slice` logs, starting with `output` (what was written):
 /// the plane, the variable and position, the sample across the plane, the image's size and
