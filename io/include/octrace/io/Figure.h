@@ -31,6 +31,9 @@ struct FigureLabel {
     dvec2 at;
     std::string text;
     double dx = 0.0, dy = 0.0;
+    /// The axis the label belongs to (ticks of one axis): labels of an axis that would collide
+    /// are thinned together, keeping every k-th.
+    int axis = 0;
 };
 
 /// What a figure shows besides the plot.
@@ -45,6 +48,9 @@ struct FigureSpec {
     bool greyRamp = false, invertedGrey = false;
     double low = 0.0, high = 1.0;
     std::string barLabel;
+    /// The bar's ticks read -value (a depth, positive down, for a bar over heights low..high):
+    /// the colours stay where they are (high at the top), the numbers grow downwards.
+    bool barPositiveDown = false;
     /// Lines over the plot (the bounding box's edges, plot pixels) and labelled ticks on them.
     std::vector<std::pair<dvec2, dvec2>> lines;
     std::vector<FigureLabel> labels;
@@ -62,13 +68,31 @@ struct FigureSpec {
 /// 0 when there is none (no finite positive scale).
 double scaleBarLength(double worldPerPixel, int plotWidth);
 
+/// One element of a composed figure as laid out (pixels of the figure, [x0, x1) x [y0, y1)):
+/// a text's inked pixels (its glyphs as FreeType rasterises them), or a graphic that text must
+/// not cover (the colour bar). What composeFigure's `text` reports, for tests and debugging.
+struct FigureTextBox {
+    std::string role;  ///< "title", "subtitle", "bar label", "bar tick", "scale bar", "axis N", "colour bar"
+    std::string text;  ///< as drawn (after thinning, wrapping or abbreviation); empty for a graphic
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    bool graphic = false;
+};
+
 /// The figure as a Frame (linear RGBA, opaque white paper) of layout's size; the plot's pixels
 /// are copied unchanged into its area except where a line or label is drawn over them, which
 /// `overlay` (when not null) marks with 1 (figure pixels, row-major). Colour bar pixels are
 /// the map's colour for their row (high end at the top). @throws UsageError when plot's size
 /// is not layout's plot size, OutputError when the font cannot be read.
+///
+/// Text is laid out from FreeType's metrics before it is drawn, so that no two texts overlap
+/// and none leaves the figure: the subtitle drops its last "; " or ", " parts and ends in "…"
+/// when it is wider than the figure; the colour bar's label moves left, wraps before its units or
+/// is abbreviated; tick labels of an axis that would collide keep every k-th (at least 3
+/// when they can) and the others go. `text` (when not null) receives every text's inked box
+/// and the colour bar's. With the environment variable OCTRACE_TEST_FIGURE_TEXT set to a
+/// path, each figure also appends them to that file as one JSON line (the figure-text test).
 Frame composeFigure(const Frame& plot, const FigureSpec& spec, const FigureLayout& layout,
-                    std::vector<std::uint8_t>* overlay = nullptr);
+                    std::vector<std::uint8_t>* overlay = nullptr, std::vector<FigureTextBox>* text = nullptr);
 
 /// Up to about `count` round values (1, 2 or 5 times a power of ten) in [lo, hi].
 std::vector<double> niceTicks(double lo, double hi, int count);
