@@ -153,7 +153,35 @@ FigureSubject figureSubject(const Surface& s, const std::string& input) {
     if (!s.field.values.empty()) out.gridBounds = s.field.worldBounds();
     out.iso = s.iso;
     out.lengthUnit = s.field.geographic.valid ? "km" : io::isCityInput(input) ? "m" : "";
+    out.patientLps = s.field.patientLps;
+    out.time = timeText(s.field);
     return out;
+}
+
+std::string timeText(const ScalarField& field) {
+    // The notes "time step N of M[ (DATE, calendar C)]" and "dimension 'T' (time): first of M
+    // steps used[ (DATE, calendar C)]; ...".
+    for (const std::string& note : field.notes) {
+        std::string step;
+        std::size_t rest = 0;
+        if (note.rfind("time step ", 0) == 0) {
+            rest = note.find(" (");
+            step = note.substr(0, rest);
+        } else if (const std::size_t k = note.find(" (time): first of "); note.rfind("dimension '", 0) == 0 && k != std::string::npos) {
+            const std::size_t n0 = k + 18, n1 = note.find(' ', n0);
+            if (n1 == std::string::npos) continue;
+            step = "time step 0 of " + note.substr(n0, n1 - n0);
+            rest = note.find(" (", n1);
+        } else {
+            continue;
+        }
+        if (rest != std::string::npos && note.compare(rest, 2, " (") == 0) {
+            const std::size_t end = note.find(", calendar", rest);
+            if (end != std::string::npos) return note.substr(rest + 2, end - rest - 2);
+        }
+        return step;
+    }
+    return {};
 }
 
 std::pair<double, double> gridHeightRange(const ScalarField& grid) {
@@ -300,7 +328,9 @@ io::FigureSpec figureSpec(const Frame& plot, const FigureSettings& f, const Figu
             const GeoAxes g{geographic};
             spec.low = -g.depthM(z0);
             spec.high = -g.depthM(z1);
-            spec.barLabel = "height (m)";
+            // Below the sea surface throughout: the bar reads depth, positive down.
+            spec.barPositiveDown = spec.high <= 0.0;
+            spec.barLabel = spec.barPositiveDown ? "depth (m)" : "height (m)";
         } else {
             spec.low = z0;
             spec.high = z1;
@@ -333,9 +363,10 @@ io::FigureSpec figureSpec(const Frame& plot, const FigureSettings& f, const Figu
 
     // Ticks on three edges that meet at the south-east corner of the top: along x at y = lo,
     // along y at x = hi, along z at (hi, lo).
+    int axis = 0;  // the axis the next ticks belong to (their labels are thinned together)
     auto tick = [&](const dvec3& p, const std::string& text, double dx, double dy) {
         dvec2 at;
-        if (project(p, at)) spec.labels.push_back({at, text, dx, dy});
+        if (project(p, at)) spec.labels.push_back({at, text, dx, dy, axis});
     };
     if (geographic.valid && geographic.polar()) {
         // The polar plane: ticks in km along x and y, the latitudes covered in the subtitle.
@@ -343,7 +374,9 @@ io::FigureSpec figureSpec(const Frame& plot, const FigureSettings& f, const Figu
         const io::LonLatBox ll = lonLatBox(geographic, box);
         const double d0 = g.depthM(box.hi.z), d1 = g.depthM(box.lo.z);
         for (double x : io::niceTicks(box.lo.x, box.hi.x, 5)) tick({x, box.lo.y, box.hi.z}, numberText(x) + " km", 0.0, 1.4);
+        axis = 1;
         for (double y : io::niceTicks(box.lo.y, box.hi.y, 5)) tick({box.hi.x, y, box.hi.z}, numberText(y) + " km", 2.2, 0.0);
+        axis = 2;
         for (double d : io::niceTicks(d0, d1, 4)) tick({box.hi.x, box.lo.y, g.z(d)}, numberText(d) + " m", 2.6, 0.0);
         sub += "; polar stereographic, " + latitudeText(ll.latMin) + "\u2013" + latitudeText(ll.latMax) + ", " +
                numberText(std::round(d0)) + "\u2013" + numberText(std::round(d1)) + " m";
@@ -352,17 +385,47 @@ io::FigureSpec figureSpec(const Frame& plot, const FigureSettings& f, const Figu
         const double lon0 = g.lon(box.lo.x), lon1 = g.lon(box.hi.x), lat0 = g.lat(box.lo.y), lat1 = g.lat(box.hi.y);
         const double d0 = g.depthM(box.hi.z), d1 = g.depthM(box.lo.z);
         for (double lon : io::niceTicks(lon0, lon1, 6)) tick({g.x(lon), box.lo.y, box.hi.z}, longitudeText(lon), 0.0, 1.4);
+        axis = 1;
         for (double lat : io::niceTicks(lat0, lat1, 5)) tick({box.hi.x, g.y(lat), box.hi.z}, latitudeText(lat), 2.2, 0.0);
+        axis = 2;
         for (double d : io::niceTicks(d0, d1, 4)) tick({box.hi.x, box.lo.y, g.z(d)}, numberText(d) + " m", 2.6, 0.0);
         sub += "; " + longitudeText(lon0) + "\u2013" + longitudeText(lon1) + ", " + latitudeText(lat0) + "\u2013" +
                latitudeText(lat1) + ", " + numberText(std::round(d0)) + "\u2013" + numberText(std::round(d1)) + " m";
+    } else if (subject.patientLps) {
+        // Patient LPS in mm: the letters at the ends of the three edges first (each its own
+        // axis, so that none is thinned away), then the ticks in mm.
+        const dvec3 ends[3][2] = {{{box.lo.x, box.lo.y, box.hi.z}, {box.hi.x, box.lo.y, box.hi.z}},
+                                  {{box.hi.x, box.lo.y, box.hi.z}, {box.hi.x, box.hi.y, box.hi.z}},
+                                  {{box.hi.x, box.lo.y, box.lo.z}, {box.hi.x, box.lo.y, box.hi.z}}};
+        const char* letters[3][2] = {{"R", "L"}, {"A", "P"}, {"I", "S"}};
+        // Each letter 1.3 label heights beyond its end of the edge, along the edge as drawn
+        // (none for an edge seen end on).
+        for (int a = 0; a < 3; ++a)
+            for (int e = 0; e < 2; ++e) {
+                axis = 10 + 2 * a + e;
+                dvec2 p, q;
+                if (!project(ends[a][e], p) || !project(ends[a][1 - e], q) || glm::length(p - q) < 1.0) continue;
+                const dvec2 out = glm::normalize(p - q) * 1.3;
+                spec.labels.push_back({p, letters[a][e], out.x, out.y, axis});
+            }
+        axis = 0;
+        for (double x : io::niceTicks(box.lo.x, box.hi.x, 5)) tick({x, box.lo.y, box.hi.z}, numberText(x, 4) + " mm", 0.0, 1.4);
+        axis = 1;
+        for (double y : io::niceTicks(box.lo.y, box.hi.y, 5)) tick({box.hi.x, y, box.hi.z}, numberText(y, 4) + " mm", 2.6, 0.0);
+        axis = 2;
+        for (double z : io::niceTicks(box.lo.z, box.hi.z, 4)) tick({box.hi.x, box.lo.y, z}, numberText(z, 4) + " mm", 3.0, 0.0);
+        sub += "; patient LPS, mm";
     } else {
         for (double x : io::niceTicks(box.lo.x, box.hi.x, 5)) tick({x, box.lo.y, box.hi.z}, "x " + numberText(x, 4), 0.0, 1.4);
+        axis = 1;
         for (double y : io::niceTicks(box.lo.y, box.hi.y, 5)) tick({box.hi.x, y, box.hi.z}, "y " + numberText(y, 4), 2.2, 0.0);
+        axis = 2;
         for (double z : io::niceTicks(box.lo.z, box.hi.z, 4)) tick({box.hi.x, box.lo.y, z}, "z " + numberText(z, 4), 2.6, 0.0);
     }
-    // The caption first: a long subtitle is cut at the right.
-    spec.subtitle = f.caption.empty() ? sub : f.caption + (sub.empty() ? "" : "; " + sub);
+    // The caption (an animation frame's date) or else the time step first: a subtitle too long
+    // for the figure drops its last parts (io::composeFigure).
+    const std::string& first = f.caption.empty() ? subject.time : f.caption;
+    spec.subtitle = first.empty() ? sub : first + (sub.empty() ? "" : "; " + sub);
 
     if (f.scaleBar) {
         // World units per plot pixel across the view at the look-at point.

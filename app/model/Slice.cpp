@@ -245,10 +245,11 @@ io::FigureSpec sliceFigureSpec(const SliceSpec& a, const ScalarField& f, const S
     const dvec3 R = v.screenRight(), U = v.screenUp();
     const dvec2 mid = 0.5 * (lo + hi);
     if (f.patientLps) {
-        spec.labels.push_back({{hi.x, mid.y}, patientLetter(R), 0.9, 0.0});
-        spec.labels.push_back({{lo.x, mid.y}, patientLetter(-R), -0.9, 0.0});
-        spec.labels.push_back({{mid.x, lo.y}, patientLetter(U), 0.0, -0.9});
-        spec.labels.push_back({{mid.x, hi.y}, patientLetter(-U), 0.0, 0.9});
+        // Each letter its own axis: none is thinned away for another.
+        spec.labels.push_back({{hi.x, mid.y}, patientLetter(R), 0.9, 0.0, 10});
+        spec.labels.push_back({{lo.x, mid.y}, patientLetter(-R), -0.9, 0.0, 11});
+        spec.labels.push_back({{mid.x, lo.y}, patientLetter(U), 0.0, -0.9, 12});
+        spec.labels.push_back({{mid.x, hi.y}, patientLetter(-U), 0.0, 0.9, 13});
     } else {
         const int aR = worldAxisOf(R), aU = worldAxisOf(U);
         const dvec3 tl = v.world(v.gridMin.x, v.gridMin.y), br = v.world(v.gridMax.x, v.gridMax.y);
@@ -257,11 +258,11 @@ io::FigureSpec sliceFigureSpec(const SliceSpec& a, const ScalarField& f, const S
         const AxisTicks xt = axisTicks(f, aR, r0, r1, 6), yt = axisTicks(f, aU, u0, u1, 5);
         for (std::size_t i = 0; i < xt.world.size(); ++i) {
             const double px = offset.x + v.gridMin.x + 0.5 + (xt.world[i] - tl[aR]) * R[aR] / v.pixelSize;
-            spec.labels.push_back({{px, hi.y}, xt.text[i], 0.0, 1.0});
+            spec.labels.push_back({{px, hi.y}, xt.text[i], 0.0, 1.0, 0});
         }
         for (std::size_t i = 0; i < yt.world.size(); ++i) {
             const double py = offset.y + v.gridMin.y + 0.5 + (tl[aU] - yt.world[i]) * U[aU] / v.pixelSize;
-            spec.labels.push_back({{lo.x, py}, yt.text[i], -(0.5 * labelWidth(yt.text[i]) + 0.6), 0.0});
+            spec.labels.push_back({{lo.x, py}, yt.text[i], -(0.5 * labelWidth(yt.text[i]) + 0.6), 0.0, 1});
         }
         // A map (a depth slice of a geographic grid): its coastlines, clipped to the grid.
         if (f.geographic.valid && sliceNormalAxis(v.plane) == 2 && a.figure.coastline != "none") {
@@ -313,7 +314,8 @@ io::FigureSpec sliceFigureSpec(const SliceSpec& a, const ScalarField& f, const S
         spec.low = c.low;
         spec.high = c.high;
     }
-    spec.subtitle = sub;
+    const std::string time = timeText(f);
+    spec.subtitle = time.empty() ? sub : time + "; " + sub;
     return spec;
 }
 

@@ -77,6 +77,11 @@ std::string longitudeText(double lon);
 std::string latitudeText(double lat);
 
 
+/// The time step a field was read at, as a figure's subtitle tells it: its date ("1982-01-16
+/// 00:00:00") when the time axis has one, else "time step N of M"; "" when the input has no
+/// time (from the reader's note, io/src/netcdf/NetcdfLayout.cpp's selectTime).
+std::string timeText(const ScalarField& field);
+
 /// The extension of `path`, lower case, with its dot ("" when none).
 std::string lowerExtension(const std::string& path);
 /// A figure is written as PNG or TIFF (.png, .tif, .tiff, any case); EXR holds linear data, no
@@ -101,6 +106,8 @@ struct FigureSubject {
     std::optional<Box3> gridBounds;
     double iso = 0.0;
     std::string lengthUnit;  ///< "km" on geographic grids, "m" for cities, else "" (world units)
+    bool patientLps = false;  ///< world is patient LPS in mm: ticks in mm and the patient's letters
+    std::string time;         ///< timeText of the field ("" without time)
 };
 FigureSubject figureSubject(const Surface& s, const std::string& input);
 
@@ -109,8 +116,10 @@ FigureSubject figureSubject(const Surface& s, const std::string& input);
 /// geographic field (negative below it), else world z.
 std::pair<double, double> gridHeightRange(const ScalarField& grid);
 
-/// Title, subtitle (variable, iso value, colour variable, region), colour bar, the labelled
-/// bounding box (longitude, latitude and depth on geographic grids, world x, y, z otherwise)
+/// Title, subtitle (caption or time step, variable, iso value, colour variable, region), colour
+/// bar (a bar over heights below the sea surface reads depth, positive down), the labelled
+/// bounding box (longitude, latitude and depth on geographic grids, mm and the patient's
+/// letters L/R, A/P, S/I on patient volumes, world x, y, z otherwise)
 /// as seen by `camera` (whose image is the plot) and, with `scale_bar`, a scale bar measured
 /// at the look-at point's distance (exact for an orthographic camera). On a geographic field,
 /// the coastlines (`coastline`) on the sea surface (or the top of the grid read when it lies

@@ -1,0 +1,250 @@
+// The figure-text test (issue 27): every kind of figure the CLI makes (render --figure of an
+// ocean field, a CT volume, a city, a molecule and analytic fields; slice --figure of a volume
+// and of a 2-D map; the frames of an animation) is composed with OCTRACE_TEST_FIGURE_TEXT set,
+// so that io::composeFigure appends the inked box of each text element (each rasterised on its
+// own by FreeType) and the colour bar's box. The test fails when two of them overlap or one
+// leaves the image, and checks what the text says where the issue found it wrong.
+#include "CliRunner.h"
+#include "TimeSeries.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <regex>
+
+using namespace octrace::testcli;
+
+namespace {
+
+struct TextBox {
+    std::string role, text;
+    bool graphic = false;
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+struct FigureText {
+    int width = 0, height = 0;
+    std::vector<TextBox> boxes;
+    /// The texts of a role ("axis 2", "bar label", ...).
+    std::vector<std::string> texts(const std::string& role) const {
+        std::vector<std::string> out;
+        for (const TextBox& b : boxes)
+            if (b.role == role) out.push_back(b.text);
+        return out;
+    }
+};
+
+/// The figures one command composed: one JSON line each (io/src/figure/Figure.cpp, appendTextBoxes).
+std::vector<FigureText> readFigureText(const std::string& path) {
+    std::vector<FigureText> out;
+    std::istringstream lines(slurp(path));
+    const std::regex head("\"width\": ([0-9]+), \"height\": ([0-9]+)");
+    const std::regex box(
+        "\\{\"role\": \"([^\"]*)\", \"text\": \"((?:[^\"\\\\]|\\\\.)*)\", \"graphic\": (true|false), \"box\": \\[(-?[0-9]+), (-?[0-9]+), "
+        "(-?[0-9]+), (-?[0-9]+)\\]\\}");
+    for (std::string line; std::getline(lines, line);) {
+        FigureText f;
+        std::smatch m;
+        if (!std::regex_search(line, m, head)) continue;
+        f.width = std::stoi(m[1]), f.height = std::stoi(m[2]);
+        for (auto it = std::sregex_iterator(line.begin(), line.end(), box); it != std::sregex_iterator(); ++it) {
+            const std::smatch& b = *it;
+            f.boxes.push_back({b[1], b[2], b[3] == "true", std::stoi(b[4]), std::stoi(b[5]), std::stoi(b[6]), std::stoi(b[7])});
+        }
+        out.push_back(f);
+    }
+    return out;
+}
+
+/// Fails (naming `what`) when a text leaves the figure or two elements (not two graphics) overlap.
+void expectNoCollision(const FigureText& f, const std::string& what) {
+    ASSERT_FALSE(f.boxes.empty()) << what;
+    for (std::size_t i = 0; i < f.boxes.size(); ++i) {
+        const TextBox& a = f.boxes[i];
+        EXPECT_TRUE(a.x0 >= 0 && a.y0 >= 0 && a.x1 <= f.width && a.y1 <= f.height)
+            << what << ": '" << a.text << "' (" << a.role << ") at [" << a.x0 << "," << a.y0 << "," << a.x1 << "," << a.y1
+            << ") leaves the " << f.width << "x" << f.height << " figure";
+        for (std::size_t j = 0; j < i; ++j) {
+            const TextBox& b = f.boxes[j];
+            if (a.graphic && b.graphic) continue;
+            const bool overlap = a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+            EXPECT_FALSE(overlap) << what << ": '" << a.text << "' (" << a.role << ") overlaps '" << b.text << "' (" << b.role << ")";
+        }
+    }
+}
+
+/// Runs `args` with the text hook on; returns the figures it composed (expects at least one).
+std::vector<FigureText> figuresOf(const std::vector<std::string>& args) {
+    Scratch s;
+    const std::string path = s.path("text.jsonl");
+    ::setenv("OCTRACE_TEST_FIGURE_TEXT", path.c_str(), 1);
+    const Result r = run(args);
+    ::unsetenv("OCTRACE_TEST_FIGURE_TEXT");
+    EXPECT_EQ(r.code, 0) << r.err;
+    std::vector<FigureText> out = readFigureText(path);
+    EXPECT_FALSE(out.empty()) << "no figure text recorded";
+    return out;
+}
+
+bool contains(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
+
+std::string joined(const std::vector<std::string>& v) {
+    std::string out;
+    for (const auto& s : v) out += (out.empty() ? "" : " | ") + s;
+    return out;
+}
+
+const char* kLevitus = "ocean/levitus_climatology.cdf";
+
+}  // namespace
+
+TEST(FigureText, AnOrthographicTopViewOfAnOceanSlabKeepsItsLabelsApart) {
+    if (!haveShared(kLevitus)) GTEST_SKIP() << "shared data absent: " << sharedData(kLevitus);
+    Scratch s;
+    // Looking straight down: the depth edge is seen end on, every depth tick at one point.
+    for (const std::string size : {"480x360", "800x600"}) {
+        const auto figs = figuresOf({"render", sharedData(kLevitus), "--var", "TEMP", "--iso", "10", "--region", "120,260,0,65",
+                                     "--depth", "6", "--projection", "ortho", "--camera-pos", "0,0,100000", "--look-at", "0,0,0",
+                                     "--up", "0,1,0", "--colormap", "thermal", "--figure", "--size", size, "-o", s.path("top.png")});
+        ASSERT_EQ(figs.size(), 1u);
+        expectNoCollision(figs[0], "top view " + size);
+        EXPECT_GE(figs[0].texts("axis 0").size(), 3u) << joined(figs[0].texts("axis 0"));
+        EXPECT_GE(figs[0].texts("axis 1").size(), 3u) << joined(figs[0].texts("axis 1"));
+        // The bar of a surface below the sea surface coloured by height reads depth.
+        EXPECT_EQ(joined(figs[0].texts("bar label")), "depth (m)");
+    }
+}
+
+TEST(FigureText, TheSoundSpeedColourBarLabelIsWholeAndTheDefaultViewFits) {
+    if (!haveShared(kLevitus)) GTEST_SKIP() << "shared data absent: " << sharedData(kLevitus);
+    Scratch s;
+    for (const std::string size : {"480x360", "1200x900"}) {
+        const auto figs = figuresOf({"render", sharedData(kLevitus), "--var", "SALT", "--iso", "34.5", "--colour-by", "sound_speed",
+                                     "--region", "120,260,0,65", "--depth", "6", "--floor", "--figure", "--size", size, "-o",
+                                     s.path("ss.png")});
+        ASSERT_EQ(figs.size(), 1u);
+        expectNoCollision(figs[0], "sound speed " + size);
+        const std::string label = joined(figs[0].texts("bar label"));
+        EXPECT_TRUE(label == "sound_speed (m/s)" || label == "sound_speed | (m/s)" || label == "sound_speed | (m s-1)" ||
+                    label == "sound_speed (m s-1)")
+            << label;
+        EXPECT_GE(figs[0].texts("bar tick").size(), 3u);
+    }
+}
+
+TEST(FigureText, TheSubtitleGivesTheTimeStepOfTheInput) {
+    Scratch s;
+    const std::string nc = s.path("monthly.nc");
+    writeTimeSeries(nc);
+    const auto figs = figuresOf({"render", nc, "--var", "TEMP", "--iso", "0.8", "--depth", "5", "--time", "1", "--figure", "--size",
+                                 "640x480", "-o", s.path("t.png")});
+    ASSERT_EQ(figs.size(), 1u);
+    expectNoCollision(figs[0], "time step");
+    const std::string sub = joined(figs[0].texts("subtitle"));
+    EXPECT_EQ(sub.rfind("2000-02-01", 0), 0u) << sub;
+    const auto slice = figuresOf({"slice", nc, "--var", "TEMP", "--time", "2", "--plane", "z", "--at", "300", "--figure", "-o",
+                                  s.path("ts.png")});
+    ASSERT_EQ(slice.size(), 1u);
+    EXPECT_EQ(joined(slice[0].texts("subtitle")).rfind("2000-03-01", 0), 0u) << joined(slice[0].texts("subtitle"));
+}
+
+TEST(FigureText, AnimationFramesCarryTheirDateAndKeepTheirTextApart) {
+    Scratch s;
+    const std::string nc = s.path("monthly.nc");
+    writeTimeSeries(nc);
+    const auto figs = figuresOf({"animate", nc, "--var", "TEMP", "--iso", "0.8", "--depth", "5", "--time", "all", "--size", "401x301",
+                                 "--figure", "--title", "shrinking", "--frames", s.path("frames"), "-o", s.path("a.mp4")});
+    ASSERT_EQ(figs.size(), 3u);
+    // Frames are composed in parallel: their lines come in any order.
+    std::vector<std::string> subtitles;
+    for (std::size_t i = 0; i < figs.size(); ++i) {
+        expectNoCollision(figs[i], "frame " + std::to_string(i));
+        subtitles.push_back(joined(figs[i].texts("subtitle")));
+    }
+    std::sort(subtitles.begin(), subtitles.end());
+    const char* dates[] = {"2000-01-01", "2000-02-01", "2000-03-01"};
+    for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(subtitles[i].rfind(dates[i], 0), 0u) << subtitles[i];
+}
+
+TEST(FigureText, ACtFigureHasMillimetreTicksAndThePatientsLetters) {
+    if (!haveShared("medical/lidc2_chest_ct.nrrd")) GTEST_SKIP() << "shared data absent";
+    Scratch s;
+    for (const std::string size : {"480x360", "1000x800"}) {
+        const auto figs = figuresOf({"render", sharedData("medical/lidc2_chest_ct.nrrd"), "--iso", "100", "--depth", "7", "--figure",
+                                     "--size", size, "-o", s.path("ct.png")});
+        ASSERT_EQ(figs.size(), 1u);
+        expectNoCollision(figs[0], "CT " + size);
+        std::string letters;
+        for (const TextBox& b : figs[0].boxes)
+            if (b.text.size() == 1) letters += b.text;
+        for (char c : std::string("LRAPSI")) EXPECT_NE(letters.find(c), std::string::npos) << c << " missing from " << letters;
+        for (const char* axis : {"axis 0", "axis 1", "axis 2"}) {
+            const auto ticks = figs[0].texts(axis);
+            EXPECT_GE(ticks.size(), 2u) << axis;
+            for (const auto& t : ticks) EXPECT_NE(t.find(" mm"), std::string::npos) << t;
+        }
+    }
+    // A slice of the volume: its letters and scale bar apart.
+    const auto slice = figuresOf({"slice", sharedData("medical/lidc2_chest_ct.nrrd"), "--plane", "axial", "--figure", "--size",
+                                  "480x360", "-o", s.path("ax.png")});
+    ASSERT_EQ(slice.size(), 1u);
+    expectNoCollision(slice[0], "CT slice");
+}
+
+TEST(FigureText, CityMoleculeAndAnalyticFiguresKeepTheirTextApart) {
+    Scratch s;
+    std::vector<std::vector<std::string>> cases = {
+        {"render", std::string(OCTRACE_TEST_DATA) + "/city/cube.city.json", "--depth", "6"},
+        {"render", "analytic:torus:33", "--iso", "0", "--depth", "6", "--colormap", "viridis"},
+        {"render", "analytic:sphere", "--iso", "0", "--depth", "6"},
+    };
+    if (haveShared("molecule/4HHB.pdb")) cases.push_back({"render", sharedData("molecule/4HHB.pdb"), "--depth", "7"});
+    if (haveShared("city/delft.json")) cases.push_back({"render", sharedData("city/delft.json"), "--depth", "7", "--scale-bar"});
+    for (auto args : cases) {
+        for (const std::string size : {"320x240", "800x600"}) {
+            std::vector<std::string> a = args;
+            for (const char* x : {"--figure", "--size"}) a.push_back(x);
+            a.push_back(size);
+            a.push_back("-o");
+            a.push_back(s.path("f.png"));
+            const auto figs = figuresOf(a);
+            ASSERT_EQ(figs.size(), 1u) << args[1];
+            expectNoCollision(figs[0], args[1] + " " + size);
+        }
+    }
+}
+
+TEST(FigureText, SliceFiguresOfAVolumeAndOfAMapKeepTheirTextApart) {
+    if (!haveShared(kLevitus) || !haveShared("ocean/etopo20.cdf")) GTEST_SKIP() << "shared data absent";
+    Scratch s;
+    const std::vector<std::vector<std::string>> cases = {
+        {"slice", sharedData(kLevitus), "--var", "TEMP", "--plane", "z", "--at", "0"},
+        {"slice", sharedData(kLevitus), "--var", "sound_speed", "--plane", "x", "--at", "180", "--region", "120,260,-60,65"},
+        {"slice", sharedData("ocean/etopo20.cdf")},
+    };
+    for (const auto& args : cases)
+        for (const std::string size : {"480x360", "1200x1000"}) {
+            std::vector<std::string> a = args;
+            for (const std::string x : {std::string("--figure"), std::string("--size"), size, std::string("-o"), s.path("s.png")})
+                a.push_back(x);
+            const auto figs = figuresOf(a);
+            ASSERT_EQ(figs.size(), 1u);
+            expectNoCollision(figs[0], args[1] + " " + args.back() + " " + size);
+        }
+}
+
+TEST(FigureText, TheSeaFloorDoesNotWidenTheIsosurfacesColourRange) {
+    if (!haveShared(kLevitus)) GTEST_SKIP() << "shared data absent: " << sharedData(kLevitus);
+    Scratch s;
+    std::vector<std::string> args = {"render", sharedData(kLevitus), "--var", "TEMP", "--iso", "10", "--region", "120,260,0,65",
+                                     "--depth", "6", "--colormap", "thermal", "--figure", "--size", "800x600", "-o", s.path("f.png")};
+    const auto plain = figuresOf(args);
+    args.push_back("--floor");
+    const auto floor = figuresOf(args);
+    ASSERT_EQ(plain.size(), 1u);
+    ASSERT_EQ(floor.size(), 1u);
+    expectNoCollision(floor[0], "with --floor");
+    // The 10 degree isotherm lies in the upper ~700 m; the floor reaches 5000 m.
+    const auto ticks = plain[0].texts("bar tick");
+    ASSERT_GE(ticks.size(), 3u);
+    EXPECT_LT(std::stod(ticks.back()), 1500.0) << joined(ticks);
+    EXPECT_EQ(joined(floor[0].texts("bar tick")), joined(ticks));
+}
