@@ -140,6 +140,11 @@ TEST(FigureText, TheSubtitleGivesTheTimeStepOfTheInput) {
     expectNoCollision(figs[0], "time step");
     const std::string sub = joined(figs[0].texts("subtitle"));
     EXPECT_EQ(sub.rfind("2000-02-01", 0), 0u) << sub;
+    // No --time: the first step, said as such.
+    const auto first = figuresOf({"render", nc, "--var", "TEMP", "--iso", "0.8", "--depth", "5", "--figure", "--size", "640x480", "-o",
+                                  s.path("t0.png")});
+    ASSERT_EQ(first.size(), 1u);
+    EXPECT_EQ(joined(first[0].texts("subtitle")).rfind("2000-01-01", 0), 0u) << joined(first[0].texts("subtitle"));
     const auto slice = figuresOf({"slice", nc, "--var", "TEMP", "--time", "2", "--plane", "z", "--at", "300", "--figure", "-o",
                                   s.path("ts.png")});
     ASSERT_EQ(slice.size(), 1u);
