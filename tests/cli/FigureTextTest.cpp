@@ -200,6 +200,7 @@ TEST(FigureText, CityMoleculeAndAnalyticFiguresKeepTheirTextApart) {
         {"render", std::string(OCTRACE_TEST_DATA) + "/city/cube.city.json", "--depth", "6"},
         {"render", "analytic:torus:33", "--iso", "0", "--depth", "6", "--colormap", "viridis"},
         {"render", "analytic:sphere", "--iso", "0", "--depth", "6"},
+        {"render", "random:200", "--depth", "7"},
     };
     if (haveShared("molecule/4HHB.pdb")) cases.push_back({"render", sharedData("molecule/4HHB.pdb"), "--depth", "7"});
     if (haveShared("city/delft.json")) cases.push_back({"render", sharedData("city/delft.json"), "--depth", "7", "--scale-bar"});
