@@ -200,7 +200,10 @@ std::vector<SeriesVolume> splitVolumes(const std::vector<DicomHeader>& headers) 
         }
     }
     std::vector<SeriesVolume> volumes;
-    for (auto& [key, images] : groupBy(headers, all, used)) {
+    for (auto& group : groupBy(headers, all, used)) {
+        // Named, not a structured binding: clang before 16 cannot capture one in the lambda below.
+        const std::vector<std::string>& key = group.first;
+        const std::vector<SliceRef>& images = group.second;
         std::string label;
         for (std::size_t i = 0; i < used.size(); ++i)
             label += (i ? ", " : "") + std::string(volumeAttributeName(used[i])) + " " + (key[i].empty() ? "(none)" : key[i]);

@@ -245,13 +245,20 @@ bool CurvilinearGrid::detectFold() const {
     return r > 0.3 && r < 3.0;
 }
 
+namespace {
+// The requested region as west, east (unwrapped past west), south, north, degrees.
+void regionBox(const FieldRequest& req, double& w, double& e, double& s, double& n) {
+    w = req.region[0];
+    e = req.region[1] <= w ? req.region[1] + 360.0 : req.region[1];
+    s = req.region[2];
+    n = req.region[3];
+}
+}  // namespace
+
 CurvilinearGrid::Lattice CurvilinearGrid::lattice(const std::string& path, const FieldRequest& req, int samples) const {
     double w, e, s, n;
     if (req.hasRegion) {
-        w = req.region[0];
-        e = req.region[1] <= w ? req.region[1] + 360.0 : req.region[1];
-        s = req.region[2];
-        n = req.region[3];
+        regionBox(req, w, e, s, n);
     } else {
         // Unwrap around the centre point; a grid that goes round (or nearly) gets the whole circle.
         const double ref = lon_[(ny / 2) * nx + nx / 2];
@@ -313,10 +320,7 @@ CurvilinearGrid::PlaneLattice CurvilinearGrid::planeLattice(const std::string& p
                                                             int samples) const {
     double w, e, s, n;
     if (req.hasRegion) {
-        w = req.region[0];
-        e = req.region[1] <= w ? req.region[1] + 360.0 : req.region[1];
-        s = req.region[2];
-        n = req.region[3];
+        regionBox(req, w, e, s, n);
     } else {  // the source's latitudes on the pole's side, the whole circle
         const auto [lo, hi] = std::minmax_element(lat_.begin(), lat_.end());
         w = -180.0, e = 180.0;
