@@ -314,7 +314,7 @@ io::FigureSpec sliceFigureSpec(const SliceSpec& a, const ScalarField& f, const S
         spec.low = c.low;
         spec.high = c.high;
     }
-    const std::string time = timeText(f);
+    const std::string& time = f.timeLabel;
     spec.subtitle = time.empty() ? sub : time + "; " + sub;
     return spec;
 }
@@ -347,19 +347,28 @@ SliceResult renderSlice(const ScalarField& field, const SliceSpec& a) {
                                         : slicePositionOfIndex(field, plane, a.index.value_or(field.dims[sliceGridAxis(field, plane)] / 2));
     checkGeographicAt(field, a, plane, position);
     // A figure: the slice fills the plot that its layout leaves (`size` or `print_size` is the
-    // whole figure), less bands around it for the letters, ticks and scale bar.
+    // whole figure), less bands around it for the letters, ticks and scale bar. The layout is
+    // made again for the room the text measures (fitFigureLayout), from a first sampling.
     int width = a.width, height = a.height;
+    auto plotFor = [&](const io::FigureLayout& l) {
+        const Bands b = figureBands(field, a.figure.scaleBar);
+        const double lp = l.labelPx;
+        r.offset = dvec2(double(std::lround(b.left * lp)), double(std::lround(b.top * lp)));
+        width = l.plotW - int(r.offset.x) - int(std::lround(b.right * lp));
+        height = l.plotH - int(r.offset.y) - int(std::lround(b.bottom * lp));
+        if (width < 16 || height < 16)
+            throw UsageError(param(opt::figure.key) + ": " + std::to_string(l.width) + "x" + std::to_string(l.height) + " pixels at " +
+                             std::to_string(l.dpi) + " dpi leave no room for the slice (make it larger or lower the dpi)");
+    };
     if (a.figure.enabled) {
         r.layout = figureLayout(a.figure, a.width ? a.width : 1200, a.height ? a.height : 1000, true);
-        const Bands b = figureBands(field, a.figure.scaleBar);
-        const double lp = r.layout->labelPx;
-        r.offset = dvec2(double(std::lround(b.left * lp)), double(std::lround(b.top * lp)));
-        width = r.layout->plotW - int(r.offset.x) - int(std::lround(b.right * lp));
-        height = r.layout->plotH - int(r.offset.y) - int(std::lround(b.bottom * lp));
-        if (width < 16 || height < 16)
-            throw UsageError(param(opt::figure.key) + ": " + std::to_string(r.layout->width) + "x" + std::to_string(r.layout->height) +
-                             " pixels at " + std::to_string(r.layout->dpi) +
-                             " dpi leave no room for the slice (make it larger or lower the dpi)");
+        r.layout = fitFigureLayout(*r.layout, [&](const io::FigureLayout& l) {
+            plotFor(l);
+            const SliceView view = makeSliceView(field, plane, position, width, height);
+            const SliceValues values = sampleSlice(field, view, a.threads);
+            return sliceFigureSpec(a, field, view, chooseColouring(a, field, values).colouring, r.offset);
+        });
+        plotFor(*r.layout);
     }
     r.view = makeSliceView(field, plane, position, width, height);
     const SliceView& view = r.view;

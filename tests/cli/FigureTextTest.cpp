@@ -20,8 +20,16 @@ struct TextBox {
     bool graphic = false;
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
+struct AxisInfo {
+    std::string role;
+    int candidates = 0;
+    double span = 0.0;
+};
 struct FigureText {
     int width = 0, height = 0;
+    int plot[4] = {0, 0, 0, 0};  ///< the plot's box [x0, x1) x [y0, y1) as x0, y0, x1, y1
+    double labelPx = 0.0;
+    std::vector<AxisInfo> axes;
     std::vector<TextBox> boxes;
     /// The texts of a role ("axis 2", "bar label", ...).
     std::vector<std::string> texts(const std::string& role) const {
@@ -32,11 +40,19 @@ struct FigureText {
     }
 };
 
+std::string joined(const std::vector<std::string>& v) {
+    std::string out;
+    for (const auto& s : v) out += (out.empty() ? "" : " | ") + s;
+    return out;
+}
+
 /// The figures one command composed: one JSON line each (io/src/figure/Figure.cpp, appendTextBoxes).
 std::vector<FigureText> readFigureText(const std::string& path) {
     std::vector<FigureText> out;
     std::istringstream lines(slurp(path));
-    const std::regex head("\"width\": ([0-9]+), \"height\": ([0-9]+)");
+    const std::regex head("\"width\": ([0-9]+), \"height\": ([0-9]+), \"plot\": \\[(-?[0-9]+), (-?[0-9]+), (-?[0-9]+), "
+                          "(-?[0-9]+)\\], \"labelPx\": ([0-9.eE+-]+)");
+    const std::regex axis("\\{\"axis\": \"([^\"]*)\", \"candidates\": ([0-9]+), \"span\": ([0-9.eE+-]+)\\}");
     const std::regex box(
         "\\{\"role\": \"([^\"]*)\", \"text\": \"((?:[^\"\\\\]|\\\\.)*)\", \"graphic\": (true|false), \"box\": \\[(-?[0-9]+), (-?[0-9]+), "
         "(-?[0-9]+), (-?[0-9]+)\\]\\}");
@@ -45,6 +61,10 @@ std::vector<FigureText> readFigureText(const std::string& path) {
         std::smatch m;
         if (!std::regex_search(line, m, head)) continue;
         f.width = std::stoi(m[1]), f.height = std::stoi(m[2]);
+        for (int i = 0; i < 4; ++i) f.plot[i] = std::stoi(m[std::size_t(3 + i)]);
+        f.labelPx = std::stod(m[7]);
+        for (auto it = std::sregex_iterator(line.begin(), line.end(), axis); it != std::sregex_iterator(); ++it)
+            f.axes.push_back({(*it)[1], std::stoi((*it)[2]), std::stod((*it)[3])});
         for (auto it = std::sregex_iterator(line.begin(), line.end(), box); it != std::sregex_iterator(); ++it) {
             const std::smatch& b = *it;
             f.boxes.push_back({b[1], b[2], b[3] == "true", std::stoi(b[4]), std::stoi(b[5]), std::stoi(b[6]), std::stoi(b[7])});
@@ -54,9 +74,23 @@ std::vector<FigureText> readFigureText(const std::string& path) {
     return out;
 }
 
-/// Fails (naming `what`) when a text leaves the figure or two elements (not two graphics) overlap.
+/// Fails (naming `what`) when a text leaves the figure or two elements (not two graphics)
+/// overlap, when an axis whose labels' points spread over 3 label heights or more keeps fewer
+/// than 3 of them (or one seen end on keeps any), or when a patient letter touches the plot.
 void expectNoCollision(const FigureText& f, const std::string& what) {
     ASSERT_FALSE(f.boxes.empty()) << what;
+    ASSERT_GT(f.labelPx, 0.0) << what;
+    for (const AxisInfo& a : f.axes) {
+        const std::size_t drawn = f.texts(a.role).size();
+        if (a.candidates >= 2 && a.span < 0.5 * f.labelPx) EXPECT_EQ(drawn, 0u) << what << ": " << a.role << " is seen end on";
+        else if (a.span >= 3.0 * f.labelPx && a.candidates >= 3)
+            EXPECT_GE(drawn, 3u) << what << ": " << a.role << " keeps " << joined(f.texts(a.role)) << " of " << a.candidates << " over "
+                                 << a.span << " px";
+    }
+    for (const TextBox& b : f.boxes)
+        if (b.role == "letter")
+            EXPECT_FALSE(b.x0 < f.plot[2] && f.plot[0] < b.x1 && b.y0 < f.plot[3] && f.plot[1] < b.y1)
+                << what << ": the letter " << b.text << " lies over the plot";
     for (std::size_t i = 0; i < f.boxes.size(); ++i) {
         const TextBox& a = f.boxes[i];
         EXPECT_TRUE(a.x0 >= 0 && a.y0 >= 0 && a.x1 <= f.width && a.y1 <= f.height)
@@ -85,12 +119,6 @@ std::vector<FigureText> figuresOf(const std::vector<std::string>& args) {
 }
 
 bool contains(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
-
-std::string joined(const std::vector<std::string>& v) {
-    std::string out;
-    for (const auto& s : v) out += (out.empty() ? "" : " | ") + s;
-    return out;
-}
 
 const char* kLevitus = "ocean/levitus_climatology.cdf";
 
@@ -145,6 +173,11 @@ TEST(FigureText, TheSubtitleGivesTheTimeStepOfTheInput) {
                                   s.path("t0.png")});
     ASSERT_EQ(first.size(), 1u);
     EXPECT_EQ(joined(first[0].texts("subtitle")).rfind("2000-01-01", 0), 0u) << joined(first[0].texts("subtitle"));
+    // A date: the step nearest to it (the reader's ScalarField::timeLabel, whatever its note says).
+    const auto dated = figuresOf({"render", nc, "--var", "TEMP", "--iso", "0.8", "--depth", "5", "--time", "2000-02-25", "--figure",
+                                  "--size", "640x480", "-o", s.path("td.png")});
+    ASSERT_EQ(dated.size(), 1u);
+    EXPECT_EQ(joined(dated[0].texts("subtitle")).rfind("2000-03-01", 0), 0u) << joined(dated[0].texts("subtitle"));
     const auto slice = figuresOf({"slice", nc, "--var", "TEMP", "--time", "2", "--plane", "z", "--at", "300", "--figure", "-o",
                                   s.path("ts.png")});
     ASSERT_EQ(slice.size(), 1u);
@@ -177,13 +210,22 @@ TEST(FigureText, ACtFigureHasMillimetreTicksAndThePatientsLetters) {
                                      "--size", size, "-o", s.path("ct.png")});
         ASSERT_EQ(figs.size(), 1u);
         expectNoCollision(figs[0], "CT " + size);
+        // The patient's letters outside the plot (expectNoCollision), each at the middle of a side.
+        const FigureText& f = figs[0];
         std::string letters;
-        for (const TextBox& b : figs[0].boxes)
-            if (b.text.size() == 1) letters += b.text;
-        for (char c : std::string("LRAPSI")) EXPECT_NE(letters.find(c), std::string::npos) << c << " missing from " << letters;
+        for (const TextBox& b : f.boxes) {
+            if (b.role != "letter") continue;
+            letters += b.text;
+            EXPECT_NE(std::string("RLAPSI").find(b.text), std::string::npos) << b.text;
+            const double cx = 0.5 * (b.x0 + b.x1), cy = 0.5 * (b.y0 + b.y1);
+            const double midX = 0.5 * (f.plot[0] + f.plot[2]), midY = 0.5 * (f.plot[1] + f.plot[3]);
+            const bool side = std::abs(cx - midX) < 0.5 * f.labelPx || std::abs(cy - midY) < 0.5 * f.labelPx;
+            EXPECT_TRUE(side) << b.text << " at " << cx << "," << cy << ", not at the middle of a side of the plot " << f.plot[0] << ","
+                              << f.plot[1] << "," << f.plot[2] << "," << f.plot[3];
+        }
+        EXPECT_GE(letters.size(), 2u) << letters;
         for (const char* axis : {"axis 0", "axis 1", "axis 2"}) {
             const auto ticks = figs[0].texts(axis);
-            EXPECT_GE(ticks.size(), 2u) << axis;
             for (const auto& t : ticks) EXPECT_NE(t.find(" mm"), std::string::npos) << t;
         }
     }
@@ -214,6 +256,10 @@ TEST(FigureText, CityMoleculeAndAnalyticFiguresKeepTheirTextApart) {
             const auto figs = figuresOf(a);
             ASSERT_EQ(figs.size(), 1u) << args[1];
             expectNoCollision(figs[0], args[1] + " " + size);
+            // Ticks a reader reads at a glance: no exponents (a city's projected metres count
+            // from the box's corner instead).
+            for (const TextBox& b : figs[0].boxes)
+                if (b.role.rfind("axis", 0) == 0) EXPECT_EQ(b.text.find("e+"), std::string::npos) << args[1] << ": " << b.text;
         }
     }
 }

@@ -187,11 +187,115 @@ std::string utf8(const std::vector<char32_t>& cps) {
     return out;
 }
 
-/// A text and where its baseline's left end would go.
+/// A text and where it goes: its baseline's left end (x, baseline) at font size `px`; with
+/// `centred`, the text is centred on (cx, cy) instead, at whatever size it is set.
 struct Candidate {
     std::string text;
     double x = 0.0, baseline = 0.0;
+    bool centred = false;
+    double cx = 0.0, cy = 0.0;
 };
+
+/// Line heights (pixels) of the title and of 9 pt text.
+double titleLine(const FigureLayout& l) { return std::round(1.3 * l.titlePx); }
+double labelLine(const FigureLayout& l) { return std::round(1.3 * l.labelPx); }
+/// The outer margin and the gap between neighbours.
+int outerMargin(double labelPx) { return int(std::lround(0.8 * labelPx)); }
+int gapOf(double labelPx) { return std::max(1, int(std::lround(0.3 * labelPx))); }
+
+/// `text` split into lines no wider than `room` pixels at the font's current size: at whole
+/// "; " or ", " parts first, then at spaces; a word wider than the room stays whole.
+std::vector<std::string> wrapped(Font& font, const std::string& text, double room) {
+    std::vector<std::string> lines;
+    if (text.empty()) return lines;
+    // Pieces: parts ending in their separator; a part wider than the room split at its spaces.
+    std::vector<std::string> pieces;
+    std::size_t start = 0;
+    for (;;) {
+        const std::size_t a = text.find("; ", start), b = text.find(", ", start);
+        const std::size_t cut = std::min(a, b);
+        const std::string part = cut == std::string::npos ? text.substr(start) : text.substr(start, cut + 2 - start);
+        if (font.width(part) <= room) {
+            pieces.push_back(part);
+        } else {
+            std::size_t w = 0;
+            for (;;) {
+                const std::size_t sp = part.find(' ', w);
+                pieces.push_back(sp == std::string::npos ? part.substr(w) : part.substr(w, sp + 1 - w));
+                if (sp == std::string::npos) break;
+                w = sp + 1;
+            }
+        }
+        if (cut == std::string::npos) break;
+        start = cut + 2;
+    }
+    auto trimmed = [](std::string t) {
+        while (!t.empty() && t.back() == ' ') t.pop_back();
+        return t;
+    };
+    std::string line;
+    for (const std::string& piece : pieces) {
+        if (!line.empty() && font.width(trimmed(line + piece)) > room) {
+            lines.push_back(trimmed(line));
+            line.clear();
+        }
+        line += piece;
+    }
+    if (!trimmed(line).empty()) lines.push_back(trimmed(line));
+    return lines;
+}
+
+/// The colour bar's label as lines: one when it is no wider than `room`, else split before its
+/// units (" (") or at its last space.
+std::vector<std::string> barLabelLines(Font& font, const std::string& label, double room) {
+    if (label.empty()) return {};
+    if (font.width(label) <= room) return {label};
+    std::size_t cut = label.rfind(" (");
+    if (cut == std::string::npos) cut = label.rfind(' ');
+    if (cut == std::string::npos || cut == 0) return {label};
+    return {label.substr(0, cut), label.substr(cut + 1)};
+}
+
+/// The bar's tick values (round values of what it reads) and their step.
+std::vector<double> barTicks(const FigureSpec& spec, double& step) {
+    const double lo = spec.barPositiveDown ? -spec.high : spec.low, hi = spec.barPositiveDown ? -spec.low : spec.high;
+    // About 5 round values; more when those leave fewer than 3 on a short range.
+    std::vector<double> ticks;
+    for (int count = 5; count <= 20 && ticks.size() < 3; count *= 2) ticks = niceTicks(lo, hi, count);
+    step = ticks.size() > 1 ? ticks[1] - ticks[0] : std::max(1e-12, hi - lo);
+    return ticks;
+}
+
+bool hasBar(const FigureSpec& spec) { return !spec.colormap.empty() || spec.greyRamp; }
+
+/// The ink box of a tick label of the box at its place (figure pixels), at label size.
+InkBox labelBox(Font& font, const FigureLabel& lab, const FigureLayout& l) {
+    const dvec2 p = font.centred(lab.text, l.plotX + lab.at.x + lab.dx * l.labelPx, l.plotY + lab.at.y + lab.dy * l.labelPx);
+    return font.draw(nullptr, lab.text, p.x, p.y);
+}
+
+/// The labels of each axis, in order of first appearance, and how far apart their points lie.
+struct AxisLabels {
+    int axis = 0;
+    std::vector<const FigureLabel*> labels;
+    double span = 0.0;
+    bool endOn(double labelPx) const;
+};
+std::vector<AxisLabels> axesOf(const FigureSpec& spec) {
+    std::vector<AxisLabels> out;
+    for (const FigureLabel& lab : spec.labels) {
+        auto it = std::find_if(out.begin(), out.end(), [&](const AxisLabels& a) { return a.axis == lab.axis; });
+        if (it == out.end()) it = out.insert(out.end(), AxisLabels{lab.axis, {}, 0.0});
+        for (const FigureLabel* o : it->labels) it->span = std::max(it->span, glm::length(o->at - lab.at));
+        it->labels.push_back(&lab);
+    }
+    return out;
+}
+
+/// An axis whose labels' points lie within this many label heights is an edge seen end on: its
+/// labels would all say different things at one place, and none is drawn.
+constexpr double kEndOnSpan = 0.5;
+bool AxisLabels::endOn(double labelPx) const { return labels.size() >= 2 && span < kEndOnSpan * labelPx; }
 
 /// Places the figure's texts one after another from their ink boxes (measured with FreeType
 /// before anything is drawn), each where it keeps a small gap to everything placed before and
@@ -202,6 +306,8 @@ public:
         : font_(font), canvas_(canvas), l_(l), gap_(std::max(1, int(std::lround(0.15 * l.labelPx)))) {}
 
     const std::vector<FigureTextBox>& placed() const { return placed_; }
+    /// Whether `b` lies inside the figure, clear of everything placed.
+    bool isFree(const InkBox& b) const { return free(b); }
 
     /// A drawn shape that text keeps clear of.
     void graphic(const std::string& role, const InkBox& b) {
@@ -209,51 +315,67 @@ public:
         placed_.push_back({role, "", b.x0, b.y0, b.x1, b.y1, true});
     }
 
-    /// `text` at (x, baseline), at most `room` pixels wide: whole, else without its last "; " or
-    /// ", " parts, else cut, and then ended with an ellipsis.
-    void placeFitted(const std::string& role, const std::string& text, double x, double baseline, double room) {
-        draw(role, fitted(text, x, baseline, x + room), x, baseline);
-    }
-
-    /// The colour bar's label above the bar (layout `l_`), right of the plot and inside the
-    /// right margin `m`: on one line at the bar, else moved left, else in two lines split
-    /// before its units, else abbreviated.
-    void placeBarLabel(const std::string& label, double m) {
-        if (label.empty()) return;
-        const double right = l_.width - m, left = l_.plotX + l_.plotW + 0.5 * l_.labelPx;
-        const double baseline = l_.barY - 0.8 * l_.labelPx, lineStep = 1.25 * l_.labelPx;
-        auto at = [&](const std::string& t) { return std::max(left, std::min(double(l_.barX), right - font_.width(t))); };
-        auto fits = [&](const std::vector<Candidate>& lines) {
-            for (const Candidate& c : lines) {
-                const InkBox b = font_.draw(nullptr, c.text, c.x, c.baseline);
-                if (!free(b) || b.x0 < left || b.x1 > right) return false;
-            }
-            return true;
-        };
-        std::vector<std::vector<Candidate>> tries{{{label, at(label), baseline}}};
-        std::size_t cut = label.rfind(" (");
-        if (cut == std::string::npos) cut = label.rfind(' ');
-        if (cut != std::string::npos && cut > 0) {
-            const std::string a = label.substr(0, cut), b = label.substr(cut + 1);
-            tries.push_back({{a, at(a), baseline - lineStep}, {b, at(b), baseline}});
+    /// `lines` of text from the baseline `baseline` down, `step` apart, at size `px`, each from `x`
+    /// and at most `room` wide; when there are more than `most` lines, the last one kept ends in an
+    /// ellipsis.
+    void placeLines(const std::string& role, std::vector<std::string> lines, std::size_t most, double px, double x, double baseline,
+                    double step, double room) {
+        font_.size(px);
+        if (lines.size() > most) {
+            lines.resize(most);
+            if (!lines.empty()) lines.back() = fitted(lines.back() + "\u2026", x, baseline, x + room, true);
         }
-        for (const auto& lines : tries)
-            if (fits(lines)) {
-                for (const Candidate& c : lines) draw("bar label", c.text, c.x, c.baseline);
-                return;
-            }
-        draw("bar label", fitted(label, left, baseline, right), left, baseline);
+        for (std::size_t i = 0; i < lines.size(); ++i) {
+            const double b = baseline + double(i) * step;
+            draw(role, fitted(lines[i], x, b, x + room, false), x, b);
+        }
     }
 
-    /// Labels of one kind (an axis's ticks): all of them if none collides, else every k-th
-    /// (the smallest k, at least 3 labels kept when there are 3), else each that fits, in order.
-    /// With `clamp`, a label that would leave the figure is moved inside it first.
-    void placeThinned(const std::string& role, const std::vector<Candidate>& labels, bool clamp) {
+    /// Labels of one kind (an axis's ticks) at size `px`: all of them if none collides, else every
+    /// k-th (the smallest k, at least `least` kept), else the same at 85% and 70% of the size,
+    /// else each that fits, in order. With `clamp`, a label that would leave the figure is moved
+    /// inside it first.
+    void placeThinned(const std::string& role, const std::vector<Candidate>& labels, bool clamp, double px, std::size_t least) {
         const std::size_t n = labels.size();
         if (n == 0) return;
-        std::vector<Candidate> at = labels;
-        std::vector<InkBox> box(n);
-        for (std::size_t i = 0; i < n; ++i) {
+        least = std::min(least, n);
+        std::vector<Candidate> at;
+        std::vector<InkBox> box;
+        for (double scale : {1.0, 0.85, 0.7}) {
+            measure(labels, clamp, px * scale, at, box);
+            for (std::size_t k = 1; k <= n; ++k)
+                for (std::size_t first = 0; first < k; ++first) {
+                    std::vector<std::size_t> keep;
+                    for (std::size_t i = first; i < n; i += k) keep.push_back(i);
+                    if (keep.size() < least) continue;
+                    bool ok = true;
+                    for (std::size_t a = 0; a < keep.size() && ok; ++a) {
+                        ok = free(box[keep[a]]);
+                        for (std::size_t b = 0; b < a && ok; ++b) ok = !box[keep[a]].near(box[keep[b]], gap_);
+                    }
+                    if (!ok) continue;
+                    for (std::size_t i : keep) draw(role, at[i].text, at[i].x, at[i].baseline);
+                    return;
+                }
+        }
+        for (std::size_t i = 0; i < n; ++i)
+            if (free(box[i])) draw(role, at[i].text, at[i].x, at[i].baseline);
+    }
+
+private:
+    /// Where `labels` go at size `px` and their ink, moved inside the figure with `clamp`;
+    /// leaves the font at that size.
+    void measure(const std::vector<Candidate>& labels, bool clamp, double px, std::vector<Candidate>& at, std::vector<InkBox>& box) {
+        font_.size(px);
+        at = labels;
+        box.assign(labels.size(), InkBox{});
+        for (std::size_t i = 0; i < at.size(); ++i) {
+            if (at[i].centred) {
+                const dvec2 p = font_.centred(at[i].text, at[i].cx, at[i].cy);
+                at[i].x = p.x, at[i].baseline = p.y;
+            } else {
+                at[i].baseline = at[i].cy + font_.capHeight() / 2.0;
+            }
             box[i] = font_.draw(nullptr, at[i].text, at[i].x, at[i].baseline);
             if (clamp) {
                 const int dx = box[i].x0 < 0 ? -box[i].x0 : box[i].x1 > l_.width ? l_.width - box[i].x1 : 0;
@@ -262,26 +384,7 @@ public:
                 at[i].x += dx, at[i].baseline += dy;
             }
         }
-        const std::size_t least = std::min<std::size_t>(3, n);
-        for (std::size_t k = 1; k <= n; ++k)
-            for (std::size_t first = 0; first < k; ++first) {
-                std::vector<std::size_t> keep;
-                for (std::size_t i = first; i < n; i += k) keep.push_back(i);
-                if (keep.size() < least) continue;
-                bool ok = true;
-                for (std::size_t a = 0; a < keep.size() && ok; ++a) {
-                    ok = free(box[keep[a]]);
-                    for (std::size_t b = 0; b < a && ok; ++b) ok = !box[keep[a]].near(box[keep[b]], gap_);
-                }
-                if (!ok) continue;
-                for (std::size_t i : keep) draw(role, at[i].text, at[i].x, at[i].baseline);
-                return;
-            }
-        for (std::size_t i = 0; i < n; ++i)
-            if (free(box[i])) draw(role, at[i].text, at[i].x, at[i].baseline);
     }
-
-private:
     bool free(const InkBox& b) const {
         if (!b.inside(l_.width, l_.height)) return false;
         for (const InkBox& t : taken_)
@@ -294,21 +397,13 @@ private:
         taken_.push_back(b);
         placed_.push_back({role, text, b.x0, b.y0, b.x1, b.y1, false});
     }
-    /// `text`, or the most of it (whole "; " or ", " parts, else code points; then an ellipsis) whose ink
-    /// from (x, baseline) ends before `right`.
-    std::string fitted(const std::string& text, double x, double baseline, double right) {
+    /// `text`, or the most of it (code points; then an ellipsis) whose ink from (x, baseline)
+    /// ends before `right`; `ellipsis`: `text` already ends in one.
+    std::string fitted(const std::string& text, double x, double baseline, double right, bool ellipsis) {
         auto fits = [&](const std::string& t) { return font_.draw(nullptr, t, x, baseline).x1 <= right; };
         if (fits(text)) return text;
-        // Whole parts first (cut at the last "; " or ", "), then code points; an ellipsis says so.
-        std::string t = text;
-        for (;;) {
-            const std::size_t a = t.rfind("; "), b = t.rfind(", ");
-            const std::size_t cut = a == std::string::npos ? b : b == std::string::npos ? a : std::max(a, b);
-            if (cut == std::string::npos || cut == 0) break;
-            t = t.substr(0, cut);
-            if (fits(t + "\u2026")) return t + "\u2026";
-        }
-        std::vector<char32_t> cps = codePoints(t);
+        std::vector<char32_t> cps = codePoints(text);
+        if (ellipsis && !cps.empty()) cps.pop_back();
         while (!cps.empty()) {
             cps.pop_back();
             while (!cps.empty() && (cps.back() == U' ' || cps.back() == U',' || cps.back() == U';')) cps.pop_back();
@@ -337,10 +432,17 @@ std::string jsonEscaped(const std::string& s) {
     return out;
 }
 
-/// One JSON line: the figure's size and its boxes (OCTRACE_TEST_FIGURE_TEXT).
-void appendTextBoxes(const std::string& path, const FigureLayout& l, const std::vector<FigureTextBox>& boxes) {
+/// One JSON line: the figure's size, its plot, the label size, each axis's candidates and the
+/// boxes (OCTRACE_TEST_FIGURE_TEXT).
+void appendTextBoxes(const std::string& path, const FigureLayout& l, const FigureSpec& spec, const std::vector<FigureTextBox>& boxes) {
     std::ostringstream s;
-    s << "{\"width\": " << l.width << ", \"height\": " << l.height << ", \"boxes\": [";
+    s << "{\"width\": " << l.width << ", \"height\": " << l.height << ", \"plot\": [" << l.plotX << ", " << l.plotY << ", "
+      << l.plotX + l.plotW << ", " << l.plotY + l.plotH << "], \"labelPx\": " << l.labelPx << ", \"axes\": [";
+    const std::vector<AxisLabels> axes = axesOf(spec);
+    for (std::size_t i = 0; i < axes.size(); ++i)
+        s << (i ? ", " : "") << "{\"axis\": \"axis " << axes[i].axis << "\", \"candidates\": " << axes[i].labels.size()
+          << ", \"span\": " << axes[i].span << "}";
+    s << "], \"boxes\": [";
     for (std::size_t i = 0; i < boxes.size(); ++i) {
         const FigureTextBox& b = boxes[i];
         s << (i ? ", " : "") << "{\"role\": \"" << jsonEscaped(b.role) << "\", \"text\": \"" << jsonEscaped(b.text)
@@ -353,6 +455,9 @@ void appendTextBoxes(const std::string& path, const FigureLayout& l, const std::
     std::ofstream out(path, std::ios::app);
     out << s.str();
 }
+
+/// Subtitle and title lines at most (more end in an ellipsis).
+constexpr int kMostTitleLines = 2, kMostSubtitleLines = 3;
 
 }  // namespace
 
@@ -387,20 +492,25 @@ double scaleBarLength(double worldPerPixel, int plotWidth) {
     return p;
 }
 
-FigureLayout layoutFigure(int width, int height, int dpi, bool colourBar) {
+FigureLayout layoutFigure(int width, int height, int dpi, bool colourBar, const FigureRoom& room) {
     FigureLayout l;
     l.width = width;
     l.height = height;
     l.dpi = dpi;
     l.labelPx = kLabelPoints * dpi / 72.0;
     l.titlePx = kTitlePoints * dpi / 72.0;
-    const int m = int(std::lround(0.8 * l.labelPx));
-    l.plotX = m;
-    l.plotY = m + int(std::lround(1.5 * l.titlePx + 1.5 * l.labelPx));
-    // The panel leaves room left of the bar for tick labels on the box's right edges.
-    const int panel = colourBar ? int(std::lround(12.0 * l.labelPx)) : 0;
-    l.plotW = width - l.plotX - m - panel;
-    l.plotH = height - l.plotY - m;
+    l.room = room;
+    const int m = outerMargin(l.labelPx), g = gapOf(l.labelPx);
+    const int letter = room.letter > 0 ? room.letter + 2 * g : 0;
+    const int band = m + int(room.titleLines * titleLine(l) + room.subtitleLines * labelLine(l));
+    l.plotX = m + room.left + letter;
+    l.plotY = band + g + room.top + letter;
+    const int right = room.right + letter;
+    // The panel: a gap, the bar, its ticks and their labels, the margin (estimated for short
+    // labels until measured).
+    const int panel = !colourBar ? m : room.panel > 0 ? room.panel : int(std::lround(6.5 * l.labelPx));
+    l.plotW = width - l.plotX - right - panel;
+    l.plotH = height - l.plotY - m - room.bottom - letter;
     if (l.plotW < 16 || l.plotH < 16) {
         std::ostringstream s;
         s << "figure: " << width << "x" << height << " pixels at " << dpi
@@ -409,11 +519,57 @@ FigureLayout layoutFigure(int width, int height, int dpi, bool colourBar) {
     }
     if (colourBar) {
         l.barW = int(std::lround(1.2 * l.labelPx));
-        l.barX = l.plotX + l.plotW + int(std::lround(4.2 * l.labelPx));
-        l.barY = l.plotY + int(std::lround(2.0 * l.labelPx));
-        l.barH = std::max(8, l.plotH - int(std::lround(3.0 * l.labelPx)));
+        l.barX = l.plotX + l.plotW + right + int(std::lround(0.8 * l.labelPx));
+        // Below its label, with room for half a tick label above the bar's top.
+        l.barY = l.plotY + int(std::lround(room.barLabelLines * labelLine(l) + 0.6 * l.labelPx));
+        l.barH = std::max(8, l.plotY + l.plotH - int(std::lround(0.5 * l.labelPx)) - l.barY);
     }
     return l;
+}
+
+FigureRoom figureRoom(const FigureSpec& spec, const FigureLayout& l) {
+    FigureRoom r;
+    Font font(figureFontPath());
+    const int m = outerMargin(l.labelPx), g = gapOf(l.labelPx);
+    const double across = l.width - 2.0 * m;
+    font.size(l.titlePx);
+    r.titleLines = std::min<int>(kMostTitleLines, int(wrapped(font, spec.title, across).size()));
+    font.size(l.labelPx);
+    r.subtitleLines = std::min<int>(kMostSubtitleLines, int(wrapped(font, spec.subtitle, across).size()));
+    // Tick labels beyond the plot (those of an edge seen end on are not drawn).
+    const double most = 8.0 * l.labelPx;
+    for (const AxisLabels& axis : axesOf(spec)) {
+        if (axis.endOn(l.labelPx)) continue;
+        for (const FigureLabel* lab : axis.labels) {
+            const InkBox b = labelBox(font, *lab, l);
+            if (b.empty()) continue;
+            auto grow = [&](int& side, double beyond) {
+                if (beyond > 0.0) side = std::max(side, int(std::ceil(std::min(beyond, most))) + g);
+            };
+            grow(r.left, l.plotX - b.x0);
+            grow(r.top, l.plotY - b.y0);
+            grow(r.right, b.x1 - (l.plotX + l.plotW));
+            grow(r.bottom, b.y1 - (l.plotY + l.plotH));
+        }
+    }
+    for (const std::string& letter : spec.sideLetters)
+        if (!letter.empty()) {
+            const InkBox b = font.draw(nullptr, letter, 0.0, 0.0);
+            r.letter = std::max({r.letter, b.x1 - b.x0, b.y1 - b.y0});
+        }
+    // The colour bar's panel: its ticks' labels and its label above it.
+    if (hasBar(spec)) {
+        double step = 1.0, widest = 0.0;
+        for (double v : barTicks(spec, step)) widest = std::max(widest, font.width(tickText(v, step)));
+        const double lead = std::round(0.8 * l.labelPx), barW = std::round(1.2 * l.labelPx);
+        const double ticks = lead + barW + 1.0 + 0.6 * l.labelPx + widest + m;
+        const std::vector<std::string> lines = barLabelLines(font, spec.barLabel, std::max(ticks - lead - m, l.width / 5.0));
+        double label = 0.0;
+        for (const std::string& t : lines) label = std::max(label, lead + font.width(t) + m);
+        r.panel = int(std::ceil(std::max(ticks, label)));
+        r.barLabelLines = int(lines.size());
+    }
+    return r;
 }
 
 Frame composeFigure(const Frame& plot, const FigureSpec& spec, const FigureLayout& l, std::vector<std::uint8_t>* overlay,
@@ -448,16 +604,20 @@ Frame composeFigure(const Frame& plot, const FigureSpec& spec, const FigureLayou
     }
 
     // The text in order of precedence, each placed where it overlaps nothing placed before:
-    // title and subtitle, the colour bar with its label and ticks, the scale bar, the axes.
-    const double m = 0.8 * l.labelPx;
+    // title and subtitle, the colour bar with its label and ticks, the patient's letters, the
+    // axes, the scale bar.
+    const int m = outerMargin(l.labelPx), g = gapOf(l.labelPx);
+    const double across = l.width - 2.0 * m;
     font.size(l.titlePx);
-    if (!spec.title.empty()) text.placeFitted("title", spec.title, l.plotX, m + font.capHeight(), l.width - m - l.plotX);
+    text.placeLines("title", wrapped(font, spec.title, across), std::size_t(l.room.titleLines), l.titlePx, m, m + 0.95 * l.titlePx,
+                    titleLine(l), across);
     font.size(l.labelPx);
-    if (!spec.subtitle.empty())
-        text.placeFitted("subtitle", spec.subtitle, l.plotX, m + 1.5 * l.titlePx + font.capHeight() * 0.5, l.width - m - l.plotX);
+    const double subTop = m + l.room.titleLines * titleLine(l);
+    text.placeLines("subtitle", wrapped(font, spec.subtitle, across), std::size_t(l.room.subtitleLines), l.labelPx, m,
+                    subTop + 0.95 * l.labelPx, labelLine(l), across);
 
     // Colour bar: each row the map's colour for its value, high at the top, a frame around.
-    if ((!spec.colormap.empty() || spec.greyRamp) && l.barW > 0) {
+    if (hasBar(spec) && l.barW > 0) {
         for (int r = 0; r < l.barH; ++r) {
             const float t = 1.0f - (float(r) + 0.5f) / float(l.barH);
             const float grey = srgb8ToLinear(std::uint8_t(std::lround((spec.invertedGrey ? 1.0f - t : t) * 255.0f)));
@@ -471,51 +631,74 @@ Frame composeFigure(const Frame& plot, const FigureSpec& spec, const FigureLayou
         canvas.line({x0 - e, y0 - e}, {x0 - e, y1}, 1.0, kLineInk);
         canvas.line({x1, y0 - e}, {x1, y1}, 1.0, kLineInk);
         text.graphic("colour bar", InkBox{l.barX - 2, l.barY - 2, l.barX + l.barW + 2, l.barY + l.barH + 2});
-        text.placeBarLabel(spec.barLabel, m);
+        // The label above the bar, in the lines the room made for it, moved left if it would
+        // leave the figure.
+        const std::vector<std::string> lines = barLabelLines(font, spec.barLabel, std::max(l.width - m - double(l.barX), l.width / 5.0));
+        double widest = 0.0;
+        for (const std::string& t : lines) widest = std::max(widest, font.width(t));
+        const double labelX = std::max(double(l.plotX + l.plotW), std::min(double(l.barX), l.width - m - widest));
+        text.placeLines("bar label", lines, std::size_t(std::max(1, l.room.barLabelLines)), l.labelPx, labelX, l.plotY + 0.95 * l.labelPx,
+                        labelLine(l), l.width - m - labelX);
         // Ticks: round values of what the bar reads (heights, or depths positive down).
+        double step = 1.0;
+        const std::vector<double> ticks = barTicks(spec, step);
         const double lo = spec.barPositiveDown ? -spec.high : spec.low, hi = spec.barPositiveDown ? -spec.low : spec.high;
-        // About 5 round values; more when those leave fewer than 3 on a short range.
-        std::vector<double> ticks;
-        for (int count = 5; count <= 20 && ticks.size() < 3; count *= 2) ticks = niceTicks(lo, hi, count);
-        const double step = ticks.size() > 1 ? ticks[1] - ticks[0] : std::max(1e-12, hi - lo);
         std::vector<Candidate> labels;
         for (double v : ticks) {
             const double u = (v - lo) / (hi - lo);  // 0 at the reading's low end
             const double y = l.barY + (spec.barPositiveDown ? u : 1.0 - u) * l.barH;
             const double xs = l.barX + l.barW + 1.0;
             canvas.line({xs, y}, {xs + 0.4 * l.labelPx, y}, lineWidth, kLineInk);
-            labels.push_back({tickText(v, step), xs + 0.6 * l.labelPx, y + font.capHeight() / 2.0});
+            labels.push_back({tickText(v, step), xs + 0.6 * l.labelPx, 0.0, false, 0.0, y});
         }
-        text.placeThinned("bar tick", labels, false);
+        text.placeThinned("bar tick", labels, false, l.labelPx, 3);
     }
 
-    // Scale bar: a bar with end ticks in the plot's lower left corner, its length above it.
-    if (spec.scaleBarPx > 0.0) {
-        const double x0 = l.plotX + 1.2 * l.labelPx, y = l.plotY + l.plotH - 1.2 * l.labelPx;
-        const double x1 = x0 + spec.scaleBarPx, tick = 0.4 * l.labelPx, w = 2.0 * lineWidth;
-        canvas.line({x0, y}, {x1, y}, w, kLineInk);
-        canvas.line({x0, y - tick}, {x0, y + tick}, w, kLineInk);
-        canvas.line({x1, y - tick}, {x1, y + tick}, w, kLineInk);
-        const dvec2 p = font.centred(spec.scaleBarLabel, 0.5 * (x0 + x1), y - tick - 0.8 * l.labelPx);
-        text.placeThinned("scale bar", {{spec.scaleBarLabel, p.x, p.y}}, true);
+    // The patient's letters outside the plot at the middle of each side, beyond its tick labels.
+    if (l.room.letter > 0) {
+        const double half = 0.5 * l.room.letter, midX = l.plotX + 0.5 * l.plotW, midY = l.plotY + 0.5 * l.plotH;
+        const dvec2 at[4] = {{l.plotX - l.room.left - g - half, midY},
+                             {midX, l.plotY - l.room.top - g - half},
+                             {l.plotX + l.plotW + l.room.right + g + half, midY},
+                             {midX, l.plotY + l.plotH + l.room.bottom + g + half}};
+        for (int side = 0; side < 4; ++side)
+            if (!spec.sideLetters[std::size_t(side)].empty())
+                text.placeThinned("letter", {{spec.sideLetters[std::size_t(side)], 0.0, 0.0, true, at[side].x, at[side].y}}, true,
+                                  l.labelPx, 1);
     }
 
-    // Tick labels on the bounding box, axis by axis.
-    std::vector<int> axes;
-    for (const FigureLabel& lab : spec.labels)
-        if (std::find(axes.begin(), axes.end(), lab.axis) == axes.end()) axes.push_back(lab.axis);
-    for (int axis : axes) {
+    // Tick labels on the bounding box, axis by axis; none on an edge seen end on.
+    for (const AxisLabels& axis : axesOf(spec)) {
+        if (axis.endOn(l.labelPx)) continue;
         std::vector<Candidate> labels;
-        for (const FigureLabel& lab : spec.labels)
-            if (lab.axis == axis) {
-                const dvec2 p = font.centred(lab.text, origin.x + lab.at.x + lab.dx * l.labelPx, origin.y + lab.at.y + lab.dy * l.labelPx);
-                labels.push_back({lab.text, p.x, p.y});
-            }
-        text.placeThinned("axis " + std::to_string(axis), labels, true);
+        for (const FigureLabel* lab : axis.labels)
+            labels.push_back({lab->text, 0.0, 0.0, true, origin.x + lab->at.x + lab->dx * l.labelPx, origin.y + lab->at.y + lab->dy * l.labelPx});
+        text.placeThinned("axis " + std::to_string(axis.axis), labels, true, l.labelPx, 3);
+    }
+
+    // Scale bar: a bar with end ticks in the plot's lower left corner, its length above it;
+    // in the lower right corner where tick labels take the left one, else none.
+    if (spec.scaleBarPx > 0.0) {
+        const double y = l.plotY + l.plotH - 1.2 * l.labelPx, tick = 0.4 * l.labelPx, w = 2.0 * lineWidth;
+        font.size(l.labelPx);
+        for (double x0 : {l.plotX + 1.2 * l.labelPx, l.plotX + l.plotW - 1.2 * l.labelPx - spec.scaleBarPx}) {
+            const double x1 = x0 + spec.scaleBarPx;
+            const dvec2 p = font.centred(spec.scaleBarLabel, 0.5 * (x0 + x1), y - tick - 0.8 * l.labelPx);
+            const InkBox label = font.draw(nullptr, spec.scaleBarLabel, p.x, p.y);
+            const InkBox bar{int(std::floor(x0 - w)), int(std::floor(y - tick - w)), int(std::ceil(x1 + w)), int(std::ceil(y + tick + w))};
+            if (!text.isFree(label) || !text.isFree(bar)) continue;
+            canvas.line({x0, y}, {x1, y}, w, kLineInk);
+            canvas.line({x0, y - tick}, {x0, y + tick}, w, kLineInk);
+            canvas.line({x1, y - tick}, {x1, y + tick}, w, kLineInk);
+            text.graphic("scale bar line", bar);
+            text.placeThinned("scale bar", {{spec.scaleBarLabel, 0.0, 0.0, true, 0.5 * (x0 + x1), y - tick - 0.8 * l.labelPx}}, false,
+                              l.labelPx, 1);
+            break;
+        }
     }
 
     if (textOut) *textOut = text.placed();
-    if (const char* path = std::getenv("OCTRACE_TEST_FIGURE_TEXT"); path && *path) appendTextBoxes(path, l, text.placed());
+    if (const char* path = std::getenv("OCTRACE_TEST_FIGURE_TEXT"); path && *path) appendTextBoxes(path, l, spec, text.placed());
     return f;
 }
 

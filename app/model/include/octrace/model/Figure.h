@@ -4,6 +4,7 @@
 /// bounding box and a scale bar, from the surface, its colours and the camera. What `octrace
 /// render --figure`, `octrace slice --figure` and the studio's export share.
 #include "octrace/model/OptionTable.h"
+#include "octrace/model/Render.h"
 #include "octrace/model/Surface.h"
 
 #include "octrace/io/Coastline.h"
@@ -12,6 +13,7 @@
 #include "octrace/render/Frame.h"
 #include "octrace/render/RenderSettings.h"
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -77,11 +79,6 @@ std::string longitudeText(double lon);
 std::string latitudeText(double lat);
 
 
-/// The time step a field was read at, as a figure's subtitle tells it: its date ("1982-01-16
-/// 00:00:00") when the time axis has one, else "time step N of M"; "" when the input has no
-/// time (from the reader's note, io/src/netcdf/NetcdfLayout.cpp's selectTime).
-std::string timeText(const ScalarField& field);
-
 /// The extension of `path`, lower case, with its dot ("" when none).
 std::string lowerExtension(const std::string& path);
 /// A figure is written as PNG or TIFF (.png, .tif, .tiff, any case); EXR holds linear data, no
@@ -92,6 +89,13 @@ void checkFigureFormat(const std::string& output);
 /// The figure's layout: print size x dpi pixels, else `width` x `height` (`size`) for the
 /// whole figure. Throws UsageError when that leaves no room for the plot.
 io::FigureLayout figureLayout(const FigureSettings& f, int width, int height, bool colourBar);
+
+/// The layout, from `first` (figureLayout: the same size, dpi and colour bar), whose margins
+/// hold the figure's text as io::figureRoom measures it: `specFor(layout)` makes the figure's
+/// spec for a plot of that layout (its camera framed for the plot's size). The room found for
+/// one layout makes the next; the margins only grow, and a few rounds settle them.
+/// @throws UsageError as io::layoutFigure when the text leaves no room for the plot.
+io::FigureLayout fitFigureLayout(const io::FigureLayout& first, const std::function<io::FigureSpec(const io::FigureLayout&)>& specFor);
 
 /// Whether the figure of a surface coloured by `a` has a colour bar (a colour map or `colour_by`).
 bool figureHasColourBar(const model::SurfaceSpec& a);
@@ -107,9 +111,15 @@ struct FigureSubject {
     double iso = 0.0;
     std::string lengthUnit;  ///< "km" on geographic grids, "m" for cities, else "" (world units)
     bool patientLps = false;  ///< world is patient LPS in mm: ticks in mm and the patient's letters
-    std::string time;         ///< timeText of the field ("" without time)
+    std::string time;         ///< the field's ScalarField::timeLabel ("" without time)
 };
 FigureSubject figureSubject(const Surface& s, const std::string& input);
+
+/// fitFigureLayout for a 3-D figure of `tree` (figureSpec without coastlines, which do not
+/// change the text), its camera frameCamera(`view` at the plot's size, `bounds`).
+io::FigureLayout fitFigureLayout(const io::FigureLayout& first, const FigureSettings& f, const FigureSubject& subject, const Octree& tree,
+                                 const RenderSettings& rs, const RenderSpec& view, const Box3& bounds);
+
 
 /// The heights a grid spans, bottom and top, in the units a colour bar of height uses and
 /// `colour_range` takes for a surface coloured by height: metres above the sea surface on a
