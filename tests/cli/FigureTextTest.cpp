@@ -229,6 +229,15 @@ TEST(FigureText, ACtFigureHasMillimetreTicksAndThePatientsLetters) {
             for (const auto& t : ticks) EXPECT_NE(t.find(" mm"), std::string::npos) << t;
         }
     }
+    // A DICOM CT series: the iso value in HU, the letters of an anterior-ish view.
+    if (haveShared("medical/d2n_ct_gantrytilt_4slices")) {
+        const auto dicom = figuresOf({"render", sharedData("medical/d2n_ct_gantrytilt_4slices"), "--iso", "-900", "--figure", "--size",
+                                      "640x480", "-o", s.path("hu.png")});
+        ASSERT_EQ(dicom.size(), 1u);
+        expectNoCollision(dicom[0], "DICOM CT");
+        EXPECT_EQ(joined(dicom[0].texts("subtitle")).rfind("CT = -900 HU", 0), 0u) << joined(dicom[0].texts("subtitle"));
+        EXPECT_EQ(joined(dicom[0].texts("letter")), "R | S | L | I");
+    }
     // A slice of the volume: its letters and scale bar apart.
     const auto slice = figuresOf({"slice", sharedData("medical/lidc2_chest_ct.nrrd"), "--plane", "axial", "--figure", "--size",
                                   "480x360", "-o", s.path("ax.png")});
