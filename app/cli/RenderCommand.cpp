@@ -329,11 +329,16 @@ int runRender(const std::vector<std::string>& args) {
     checkMemoryBudget(a.input + ": " + rendering + " beside the field and the octree",
                       frameBytes + tree.bytes() + field.values.capacity() * sizeof(float) + field.valid.capacity(), budget);
 
-    // Camera: framing the surface (not the whole grid) unless told otherwise.
+    // Camera: framing the surface (not the whole grid) unless told otherwise; a figure's plot
+    // first takes the size its text leaves.
     const Box3 bounds = tree.occupiedBounds();
-    const Camera cam = model::frameCamera(a, bounds);
-
     const RenderSettings rs = model::renderSettings(a, surface, a);
+    if (figureLayoutUsed) {
+        figureLayoutUsed = model::fitFigureLayout(*figureLayoutUsed, a.figure, figureSubject(surface, a.input), tree, rs, a, bounds);
+        a.width = figureLayoutUsed->plotW;
+        a.height = figureLayoutUsed->plotH;
+    }
+    const Camera cam = model::frameCamera(a, bounds);
     if (a.shadows.value_or(false) && !Shader(tree, cam, rs).shadows())
         log::warning("--shadows on: the octree is shaded by its baked light, which has its own shadows "
                      "(--bake-shadows); give --lighting dynamic for shadow rays towards --light");

@@ -186,6 +186,16 @@ AnimationPlan planAnimation(const AnimationSpec& spec, const AnimationHooks& hoo
     plan.height = r.height;
     if (spec.figure.enabled) {
         plan.figureLayout = figureLayout(spec.figure, r.width, r.height, figureHasColourBar(surface));
+        // The margins the first frame's text needs (fitFigureLayout), from its surface built
+        // once more here; the other frames' text is laid out in the same margins.
+        SurfaceSpec first = surface;
+        first.request.time = plan.frames.front().time;
+        first.request.volume = plan.frames.front().volume;
+        const Surface built = buildSurface(first);
+        const RenderSettings rs = renderSettings(first, built, r);
+        FigureSettings settings = spec.figure;
+        settings.caption = plan.frames.front().caption;
+        plan.figureLayout = fitFigureLayout(*plan.figureLayout, settings, figureSubject(built, first.input), built.tree, rs, r, plan.bounds);
         plan.spec.render.width = plan.figureLayout->plotW;
         plan.spec.render.height = plan.figureLayout->plotH;
         plan.width = plan.figureLayout->width;

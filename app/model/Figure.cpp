@@ -13,6 +13,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <mutex>
 #include <sstream>
@@ -94,6 +95,47 @@ void coastlinesIn3d(const io::Coastlines& coast, const GeoAxes& g, const Box3& b
     }
 }
 
+/// Round tick values over [lo, hi], about `count` of them and at least 3 when the range has any,
+/// none within 15% of the range from `skip` (a vertical edge's end at the top corner, where the
+/// horizontal edges' labels are).
+std::vector<double> ticksOf(double lo, double hi, int count, double skip = std::numeric_limits<double>::quiet_NaN()) {
+    std::vector<double> t;
+    for (int c = count; c <= count * 8 && t.size() < 3; c *= 2) {
+        t = io::niceTicks(lo, hi, c);
+        std::erase_if(t, [&](double v) { return std::abs(v - skip) < 0.15 * std::abs(hi - lo); });
+    }
+    return t;
+}
+
+/// The patient's letters for the plot's sides (left, top, right, bottom): for each side, the
+/// end of the LPS axis whose direction on the screen points most nearly that way (R/L on x,
+/// A/P on y, I/S on z); none where no axis points within 60 degrees of it.
+std::array<std::string, 4> patientLetters(const Projector& project, const Box3& box) {
+    std::array<std::string, 4> out;
+    const dvec3 c = box.centre();
+    const double reach = 0.25 * glm::length(box.hi - box.lo);
+    dvec2 pc;
+    if (!(reach > 0.0) || !project(c, pc)) return out;
+    const char* names[3][2] = {{"R", "L"}, {"A", "P"}, {"I", "S"}};
+    std::array<dvec2, 3> dir{};
+    for (int a = 0; a < 3; ++a) {
+        dvec3 e(0.0);
+        e[a] = reach;
+        dvec2 p;
+        if (project(c + e, p) && glm::length(p - pc) > 1e-6) dir[std::size_t(a)] = glm::normalize(p - pc);
+    }
+    const dvec2 sides[4] = {{-1.0, 0.0}, {0.0, -1.0}, {1.0, 0.0}, {0.0, 1.0}};  // plot pixels: y down
+    for (int side = 0; side < 4; ++side) {
+        double best = 0.5;
+        for (int a = 0; a < 3; ++a)
+            for (int sign : {-1, 1}) {
+                const double d = double(sign) * glm::dot(dir[std::size_t(a)], sides[side]);
+                if (d > best) best = d, out[std::size_t(side)] = names[a][sign > 0 ? 1 : 0];
+            }
+    }
+    return out;
+}
+
 }  // namespace
 
 std::string numberText(double v, int precision) {
@@ -153,6 +195,8 @@ FigureSubject figureSubject(const Surface& s, const std::string& input) {
     if (!s.field.values.empty()) out.gridBounds = s.field.worldBounds();
     out.iso = s.iso;
     out.lengthUnit = s.field.geographic.valid ? "km" : io::isCityInput(input) ? "m" : "";
+    out.patientLps = s.field.patientLps;
+    out.time = s.field.timeLabel;
     return out;
 }
 
@@ -263,6 +307,35 @@ void writeFigure(const Frame& plot, const FigureSettings& f, const io::FigureLay
     io::writeImage(io::composeFigure(plot, spec, layout), path, options);
 }
 
+io::FigureLayout fitFigureLayout(const io::FigureLayout& first, const std::function<io::FigureSpec(const io::FigureLayout&)>& specFor) {
+    io::FigureLayout l = first;
+    io::FigureRoom room;
+    for (int round = 0; round < 4; ++round) {
+        io::FigureRoom next = io::figureRoom(specFor(l), l);
+        if (round > 0) {
+            // Grow only: a smaller plot frames its box a little differently.
+            next.left = std::max(next.left, room.left), next.top = std::max(next.top, room.top);
+            next.right = std::max(next.right, room.right), next.bottom = std::max(next.bottom, room.bottom);
+            next.letter = std::max(next.letter, room.letter), next.panel = std::max(next.panel, room.panel);
+            if (next == room) break;
+        }
+        room = next;
+        l = io::layoutFigure(l.width, l.height, l.dpi, l.barW > 0, room);
+    }
+    return l;
+}
+
+io::FigureLayout fitFigureLayout(const io::FigureLayout& first, const FigureSettings& f, const FigureSubject& subject, const Octree& tree,
+                                 const RenderSettings& rs, const RenderSpec& view, const Box3& bounds) {
+    FigureSettings text = f;
+    text.coastline = "none";
+    return fitFigureLayout(first, [&](const io::FigureLayout& l) {
+        RenderSpec sized = view;
+        sized.width = l.plotW, sized.height = l.plotH;
+        return figureSpec(Frame(), text, subject, tree, frameCamera(sized, bounds), rs);
+    });
+}
+
 io::FigureLayout figureLayout(const FigureSettings& f, int width, int height, bool colourBar) {
     const int dpi = f.dpi ? f.dpi : kDefaultDpi;
     if (f.printInches) {
@@ -300,7 +373,9 @@ io::FigureSpec figureSpec(const Frame& plot, const FigureSettings& f, const Figu
             const GeoAxes g{geographic};
             spec.low = -g.depthM(z0);
             spec.high = -g.depthM(z1);
-            spec.barLabel = "height (m)";
+            // Below the sea surface throughout: the bar reads depth, positive down.
+            spec.barPositiveDown = spec.high <= 0.0;
+            spec.barLabel = spec.barPositiveDown ? "depth (m)" : "height (m)";
         } else {
             spec.low = z0;
             spec.high = z1;
@@ -333,36 +408,74 @@ io::FigureSpec figureSpec(const Frame& plot, const FigureSettings& f, const Figu
 
     // Ticks on three edges that meet at the south-east corner of the top: along x at y = lo,
     // along y at x = hi, along z at (hi, lo).
+    int axis = 0;  // the axis the next ticks belong to (their labels are thinned together)
     auto tick = [&](const dvec3& p, const std::string& text, double dx, double dy) {
         dvec2 at;
-        if (project(p, at)) spec.labels.push_back({at, text, dx, dy});
+        if (project(p, at)) spec.labels.push_back({at, text, dx, dy, axis});
     };
     if (geographic.valid && geographic.polar()) {
         // The polar plane: ticks in km along x and y, the latitudes covered in the subtitle.
         const GeoAxes g{geographic};
         const io::LonLatBox ll = lonLatBox(geographic, box);
         const double d0 = g.depthM(box.hi.z), d1 = g.depthM(box.lo.z);
-        for (double x : io::niceTicks(box.lo.x, box.hi.x, 5)) tick({x, box.lo.y, box.hi.z}, numberText(x) + " km", 0.0, 1.4);
-        for (double y : io::niceTicks(box.lo.y, box.hi.y, 5)) tick({box.hi.x, y, box.hi.z}, numberText(y) + " km", 2.2, 0.0);
-        for (double d : io::niceTicks(d0, d1, 4)) tick({box.hi.x, box.lo.y, g.z(d)}, numberText(d) + " m", 2.6, 0.0);
+        for (double x : ticksOf(box.lo.x, box.hi.x, 5)) tick({x, box.lo.y, box.hi.z}, numberText(x) + " km", 0.0, 1.4);
+        axis = 1;
+        for (double y : ticksOf(box.lo.y, box.hi.y, 5)) tick({box.hi.x, y, box.hi.z}, numberText(y) + " km", 2.2, 0.0);
+        axis = 2;
+        for (double d : ticksOf(d0, d1, 4, d0)) tick({box.hi.x, box.lo.y, g.z(d)}, numberText(d) + " m", 2.6, 0.0);
         sub += "; polar stereographic, " + latitudeText(ll.latMin) + "\u2013" + latitudeText(ll.latMax) + ", " +
                numberText(std::round(d0)) + "\u2013" + numberText(std::round(d1)) + " m";
     } else if (geographic.valid) {
         const GeoAxes g{geographic};
         const double lon0 = g.lon(box.lo.x), lon1 = g.lon(box.hi.x), lat0 = g.lat(box.lo.y), lat1 = g.lat(box.hi.y);
         const double d0 = g.depthM(box.hi.z), d1 = g.depthM(box.lo.z);
-        for (double lon : io::niceTicks(lon0, lon1, 6)) tick({g.x(lon), box.lo.y, box.hi.z}, longitudeText(lon), 0.0, 1.4);
-        for (double lat : io::niceTicks(lat0, lat1, 5)) tick({box.hi.x, g.y(lat), box.hi.z}, latitudeText(lat), 2.2, 0.0);
-        for (double d : io::niceTicks(d0, d1, 4)) tick({box.hi.x, box.lo.y, g.z(d)}, numberText(d) + " m", 2.6, 0.0);
+        for (double lon : ticksOf(lon0, lon1, 6)) tick({g.x(lon), box.lo.y, box.hi.z}, longitudeText(lon), 0.0, 1.4);
+        axis = 1;
+        for (double lat : ticksOf(lat0, lat1, 5)) tick({box.hi.x, g.y(lat), box.hi.z}, latitudeText(lat), 2.2, 0.0);
+        axis = 2;
+        for (double d : ticksOf(d0, d1, 4, d0)) tick({box.hi.x, box.lo.y, g.z(d)}, numberText(d) + " m", 2.6, 0.0);
         sub += "; " + longitudeText(lon0) + "\u2013" + longitudeText(lon1) + ", " + latitudeText(lat0) + "\u2013" +
                latitudeText(lat1) + ", " + numberText(std::round(d0)) + "\u2013" + numberText(std::round(d1)) + " m";
+    } else if (subject.patientLps) {
+        // Patient LPS in mm; the patient's letters go outside the plot, one a side (io).
+        spec.sideLetters = patientLetters(project, box);
+        for (double x : ticksOf(box.lo.x, box.hi.x, 5)) tick({x, box.lo.y, box.hi.z}, numberText(x, 4) + " mm", 0.0, 1.4);
+        axis = 1;
+        for (double y : ticksOf(box.lo.y, box.hi.y, 5)) tick({box.hi.x, y, box.hi.z}, numberText(y, 4) + " mm", 2.6, 0.0);
+        axis = 2;
+        for (double z : ticksOf(box.lo.z, box.hi.z, 4, box.hi.z)) tick({box.hi.x, box.lo.y, z}, numberText(z, 4) + " mm", 3.0, 0.0);
+        sub += "; patient LPS, mm";
     } else {
-        for (double x : io::niceTicks(box.lo.x, box.hi.x, 5)) tick({x, box.lo.y, box.hi.z}, "x " + numberText(x, 4), 0.0, 1.4);
-        for (double y : io::niceTicks(box.lo.y, box.hi.y, 5)) tick({box.hi.x, y, box.hi.z}, "y " + numberText(y, 4), 2.2, 0.0);
-        for (double z : io::niceTicks(box.lo.z, box.hi.z, 4)) tick({box.hi.x, box.lo.y, z}, "z " + numberText(z, 4), 2.6, 0.0);
+        // World coordinates: metres for a city (km over 5 km), else the field's own units. Where
+        // they are large beside the box (a city's projected metres), ticks count from its low
+        // corner, told in the subtitle.
+        const bool metres = subject.lengthUnit == "m";
+        std::string from;
+        auto axisTicks = [&](int a, int count, const std::function<dvec3(double)>& at, double dx, double dy) {
+            axis = a;
+            const double lo = box.lo[a], hi = box.hi[a];
+            const double unit = metres && hi - lo >= 5000.0 ? 1000.0 : 1.0;
+            // The corner: the low end rounded down to a round step of the box's span.
+            const std::vector<double> span = io::niceTicks(0.0, (hi - lo) / unit, count);
+            const double step = span.size() > 1 ? (span[1] - span[0]) * unit : 1.0;
+            const bool offset = std::max(std::abs(lo), std::abs(hi)) >= 1e4;
+            const double base = offset ? std::floor(lo / step) * step : 0.0;
+            const std::string name = metres ? "" : std::string(1, char('x' + a)) + " ";
+            const std::string suffix = !metres ? "" : unit > 1.0 ? " km" : " m";
+            const double skip = a == 2 ? (hi - base) / unit : std::numeric_limits<double>::quiet_NaN();  // the top corner
+            for (double v : ticksOf((lo - base) / unit, (hi - base) / unit, count, skip))
+                tick(at(base + v * unit), name + (offset && v > 0.0 ? "+" : "") + numberText(v, 4) + suffix, dx, dy);
+            if (offset) from += std::string(from.empty() ? "" : ", ") + char('x' + a) + " " + numberText(base, 12);
+        };
+        axisTicks(0, 5, [&](double x) { return dvec3(x, box.lo.y, box.hi.z); }, 0.0, 1.4);
+        axisTicks(1, 5, [&](double y) { return dvec3(box.hi.x, y, box.hi.z); }, 2.2, 0.0);
+        axisTicks(2, 4, [&](double z) { return dvec3(box.hi.x, box.lo.y, z); }, 2.6, 0.0);
+        if (!from.empty()) sub += "; ticks from " + from + (metres ? " m" : "");
     }
-    // The caption first: a long subtitle is cut at the right.
-    spec.subtitle = f.caption.empty() ? sub : f.caption + (sub.empty() ? "" : "; " + sub);
+    // The caption (an animation frame's date) or else the time step first: a subtitle too long
+    // for the figure drops its last parts (io::composeFigure).
+    const std::string& first = f.caption.empty() ? subject.time : f.caption;
+    spec.subtitle = first.empty() ? sub : first + (sub.empty() ? "" : "; " + sub);
 
     if (f.scaleBar) {
         // World units per plot pixel across the view at the look-at point.

@@ -239,10 +239,11 @@ io::FigureSpec sliceFigureSpec(const SliceSpec& a, const ScalarField& f, const S
     const dvec3 R = v.screenRight(), U = v.screenUp();
     const dvec2 mid = 0.5 * (lo + hi);
     if (f.patientLps) {
-        spec.labels.push_back({{hi.x, mid.y}, sliceDirectionName(f, R), 0.9, 0.0});
-        spec.labels.push_back({{lo.x, mid.y}, sliceDirectionName(f, -R), -0.9, 0.0});
-        spec.labels.push_back({{mid.x, lo.y}, sliceDirectionName(f, U), 0.0, -0.9});
-        spec.labels.push_back({{mid.x, hi.y}, sliceDirectionName(f, -U), 0.0, 0.9});
+        // Each letter its own axis: none is thinned away for another.
+        spec.labels.push_back({{hi.x, mid.y}, sliceDirectionName(f, R), 0.9, 0.0, 10});
+        spec.labels.push_back({{lo.x, mid.y}, sliceDirectionName(f, -R), -0.9, 0.0, 11});
+        spec.labels.push_back({{mid.x, lo.y}, sliceDirectionName(f, U), 0.0, -0.9, 12});
+        spec.labels.push_back({{mid.x, hi.y}, sliceDirectionName(f, -U), 0.0, 0.9, 13});
     } else {
         const int aR = worldAxisOf(R), aU = worldAxisOf(U);
         const dvec3 tl = v.world(v.gridMin.x, v.gridMin.y), br = v.world(v.gridMax.x, v.gridMax.y);
@@ -251,11 +252,11 @@ io::FigureSpec sliceFigureSpec(const SliceSpec& a, const ScalarField& f, const S
         const AxisTicks xt = axisTicks(f, aR, r0, r1, 6), yt = axisTicks(f, aU, u0, u1, 5);
         for (std::size_t i = 0; i < xt.world.size(); ++i) {
             const double px = offset.x + v.gridMin.x + 0.5 + (xt.world[i] - tl[aR]) * R[aR] / v.pixelSize;
-            spec.labels.push_back({{px, hi.y}, xt.text[i], 0.0, 1.0});
+            spec.labels.push_back({{px, hi.y}, xt.text[i], 0.0, 1.0, 0});
         }
         for (std::size_t i = 0; i < yt.world.size(); ++i) {
             const double py = offset.y + v.gridMin.y + 0.5 + (tl[aU] - yt.world[i]) * U[aU] / v.pixelSize;
-            spec.labels.push_back({{lo.x, py}, yt.text[i], -(0.5 * labelWidth(yt.text[i]) + 0.6), 0.0});
+            spec.labels.push_back({{lo.x, py}, yt.text[i], -(0.5 * labelWidth(yt.text[i]) + 0.6), 0.0, 1});
         }
         // A map (a depth slice of a geographic grid): its coastlines, clipped to the grid.
         if (f.geographic.valid && sliceNormalAxis(v.plane) == 2 && a.figure.coastline != "none") {
@@ -307,7 +308,8 @@ io::FigureSpec sliceFigureSpec(const SliceSpec& a, const ScalarField& f, const S
         spec.low = c.low;
         spec.high = c.high;
     }
-    spec.subtitle = sub;
+    const std::string& time = f.timeLabel;
+    spec.subtitle = time.empty() ? sub : time + "; " + sub;
     return spec;
 }
 
@@ -360,19 +362,28 @@ SliceResult renderSlice(const ScalarField& field, const SliceSpec& a) {
                                         : slicePositionOfIndex(field, plane, a.index.value_or(field.dims[sliceGridAxis(field, plane)] / 2));
     checkGeographicAt(field, a, plane, position);
     // A figure: the slice fills the plot that its layout leaves (`size` or `print_size` is the
-    // whole figure), less bands around it for the letters, ticks and scale bar.
+    // whole figure), less bands around it for the letters, ticks and scale bar. The layout is
+    // made again for the room the text measures (fitFigureLayout), from a first sampling.
     int width = a.width, height = a.height;
+    auto plotFor = [&](const io::FigureLayout& l) {
+        const Bands b = figureBands(field, a.figure.scaleBar);
+        const double lp = l.labelPx;
+        r.offset = dvec2(double(std::lround(b.left * lp)), double(std::lround(b.top * lp)));
+        width = l.plotW - int(r.offset.x) - int(std::lround(b.right * lp));
+        height = l.plotH - int(r.offset.y) - int(std::lround(b.bottom * lp));
+        if (width < 16 || height < 16)
+            throw UsageError(param(opt::figure.key) + ": " + std::to_string(l.width) + "x" + std::to_string(l.height) + " pixels at " +
+                             std::to_string(l.dpi) + " dpi leave no room for the slice (make it larger or lower the dpi)");
+    };
     if (a.figure.enabled) {
         r.layout = figureLayout(a.figure, a.width ? a.width : 1200, a.height ? a.height : 1000, true);
-        const Bands b = figureBands(field, a.figure.scaleBar);
-        const double lp = r.layout->labelPx;
-        r.offset = dvec2(double(std::lround(b.left * lp)), double(std::lround(b.top * lp)));
-        width = r.layout->plotW - int(r.offset.x) - int(std::lround(b.right * lp));
-        height = r.layout->plotH - int(r.offset.y) - int(std::lround(b.bottom * lp));
-        if (width < 16 || height < 16)
-            throw UsageError(param(opt::figure.key) + ": " + std::to_string(r.layout->width) + "x" + std::to_string(r.layout->height) +
-                             " pixels at " + std::to_string(r.layout->dpi) +
-                             " dpi leave no room for the slice (make it larger or lower the dpi)");
+        r.layout = fitFigureLayout(*r.layout, [&](const io::FigureLayout& l) {
+            plotFor(l);
+            const SliceView view = makeSliceView(field, plane, position, width, height);
+            const SliceValues values = sampleSlice(field, view, a.threads);
+            return sliceFigureSpec(a, field, view, chooseColouring(a, field, values).colouring, r.offset);
+        });
+        plotFor(*r.layout);
     }
     r.view = makeSliceView(field, plane, position, width, height);
     const SliceView& view = r.view;

@@ -311,14 +311,17 @@ void Engine::exportFigure(const StudioState& state, const QString& path, int wid
                                  ": each side must be 1.." + std::to_string(kMaxExportSide) + " pixels");
             if (state.figure) model::checkFigureFormat(path.toStdString());
             // The figure's layout first: the plot is the part of the image that is rendered.
-            const std::optional<io::FigureLayout> layout = figureLayoutFor(state, width, height);
+            std::optional<io::FigureLayout> layout = figureLayoutFor(state, width, height);
             const std::uint64_t bytes = Frame::bytesFor(width, height) * (layout ? 2 : 1) + std::uint64_t(width) * std::uint64_t(height) * 24;
             checkMemoryBudget("exporting " + std::to_string(width) + "x" + std::to_string(height), bytes,
                               defaultMemoryBudget());
-            Camera cam = exportCamera(state, tree->occupiedBounds(), width, height);
+            const RenderSettings rs = renderSettingsFor(state, state.transparent, window, inverted);
+            const Box3 bounds = tree->occupiedBounds();
+            // The margins the figure's text needs, as render --figure fits them.
+            if (layout) layout = model::fitFigureLayout(*layout, figureArgs(state), subject, *tree, rs, renderSpec(state, width, height), bounds);
+            Camera cam = layout ? cameraFor(state, bounds, layout->plotW, layout->plotH) : cameraFor(state, bounds, width, height);
             cam.validate();
             Frame frame;
-            const RenderSettings rs = renderSettingsFor(state, state.transparent, window, inverted);
             const RenderStats st = model::renderFrame(*tree, cam, rs, state.renderer, frame);
             if (layout) model::writeFigure(frame, figureArgs(state), *layout, subject, *tree, cam, rs, path.toStdString());
             else writeFigure(frame, path.toStdString(), state.transparent);

@@ -397,8 +397,14 @@ Image renderShell(const Shell& sh, const Settings& surfaceSettings, const Settin
         [&] {
             if (multires) std::call_once(*sh.summaries, [&] { sh.surface->tree.computeSummaries(); });
             const Box3 bounds = s.tree.occupiedBounds();
-            const Camera cam = model::frameCamera(view, bounds);
             const RenderSettings rs = model::renderSettings(spec, s, view);
+            if (layout) {
+                // The plot takes the size the figure's text leaves.
+                layout = model::fitFigureLayout(*layout, figure, model::figureSubject(s, spec.input), s.tree, rs, view, bounds);
+                view.width = layout->plotW;
+                view.height = layout->plotH;
+            }
+            const Camera cam = model::frameCamera(view, bounds);
             Frame frame = FramePool::instance().take(view.width, view.height);
             const RenderStats st = model::renderFrame(s.tree, cam, rs, view.renderer, frame);
             model::FrameRecord record = model::frameRecord(spec.input, s, cam, rs, st, view.renderer, bounds);

@@ -19,6 +19,7 @@ ScalarField ScalarField::copy() const {
     f.dims = dims, f.origin = origin, f.spacing = spacing, f.direction = direction, f.coords = coords;
     f.values = values, f.valid = valid;
     f.window = window, f.invertedGrey = invertedGrey, f.patientLps = patientLps, f.planar = planar, f.geographic = geographic;
+    f.timeLabel = timeLabel;
     f.notes = notes;
     return f;
 }

@@ -5,6 +5,7 @@
 #include "octrace/util/Error.h"
 
 #include <algorithm>
+#include <climits>
 #include <cctype>
 #include <cmath>
 #include <limits>
@@ -103,7 +104,19 @@ Albedo::Albedo(const Octree& tree, const RenderSettings& settings)
         return;
     }
     ivec3 lo, hi;
-    tree.occupiedCells(lo, hi);
+    if (tree.voxelMaterials().empty()) {
+        tree.occupiedCells(lo, hi);
+    } else {
+        // With a sea floor (Layers.h) the map spans the isosurface's layers only: the floor is
+        // drawn in its own colour, and its depth range would flatten the surface's colours.
+        lo = ivec3(INT_MAX), hi = ivec3(INT_MIN);
+        tree.forEachLeaf([&](const ivec3& cell, int shift, std::uint32_t v) {
+            if (tree.material(v) != VoxelMaterial::Surface) return;
+            lo = glm::min(lo, cell);
+            hi = glm::max(hi, cell + ((1 << shift) - 1));
+        });
+        if (lo.z > hi.z) tree.occupiedCells(lo, hi);  // no isosurface voxel: the floor's range
+    }
     hLo_ = float(lo.z);
     hHi_ = float(std::max(hi.z, lo.z) + 1);
 }

@@ -9,7 +9,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <climits>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <mutex>
 #include <sstream>
 
 namespace octrace::io {
@@ -43,6 +47,23 @@ std::vector<char32_t> codePoints(const std::string& s) {
     }
     return out;
 }
+
+/// Pixels [x0, x1) x [y0, y1); empty until a pixel is added.
+struct InkBox {
+    int x0 = INT32_MAX, y0 = INT32_MAX, x1 = INT32_MIN, y1 = INT32_MIN;
+    bool empty() const { return x0 >= x1 || y0 >= y1; }
+    void add(int x, int y) {
+        x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x + 1), y1 = std::max(y1, y + 1);
+    }
+    /// Whether the boxes come closer than `gap` pixels.
+    bool near(const InkBox& o, int gap) const {
+        return !empty() && !o.empty() && x0 < o.x1 + gap && o.x0 < x1 + gap && y0 < o.y1 + gap && o.y0 < y1 + gap;
+    }
+    bool inside(int w, int h) const { return empty() || (x0 >= 0 && y0 >= 0 && x1 <= w && y1 <= h); }
+    InkBox moved(int dx, int dy) const {
+        return empty() ? *this : InkBox{x0 + dx, y0 + dy, x1 + dx, y1 + dy};
+    }
+};
 
 /// The figure being drawn: the frame, which pixels carry overlay, and linear blending.
 struct Canvas {
@@ -106,8 +127,10 @@ public:
         if (FT_Load_Char(face_, 'H', FT_LOAD_DEFAULT)) return 0.0;
         return double(face_->glyph->metrics.height) / 64.0;
     }
-    /// Draws `text` with its baseline's left end at (x, baseline).
-    void draw(Canvas& c, const std::string& text, double x, double baseline, vec3 ink) {
+    /// Draws `text` with its baseline's left end at (x, baseline) on `c` (measures only when
+    /// null) and returns its inked pixels: every glyph pixel FreeType covers, in or out of the figure.
+    InkBox draw(Canvas* c, const std::string& text, double x, double baseline, vec3 ink = vec3(0.0f)) {
+        InkBox box;
         double pen = x;
         for (char32_t cp : codePoints(text)) {
             if (FT_Load_Char(face_, cp, FT_LOAD_RENDER)) continue;
@@ -117,14 +140,19 @@ public:
             for (unsigned r = 0; r < bm.rows; ++r)
                 for (unsigned col = 0; col < bm.width; ++col) {
                     const unsigned char v = bm.buffer[std::ptrdiff_t(r) * bm.pitch + col];
-                    if (v) c.blend(left + int(col), top + int(r), float(v) / 255.0f, ink);
+                    if (!v) continue;
+                    box.add(left + int(col), top + int(r));
+                    if (c) c->blend(left + int(col), top + int(r), float(v) / 255.0f, ink);
                 }
             pen += double(g->advance.x) / 64.0;
         }
+        return box;
     }
-    /// Draws `text` centred on (cx, cy) (the capitals' middle).
+    /// The baseline's left end that centres `text` on (cx, cy) (the capitals' middle).
+    dvec2 centred(const std::string& text, double cx, double cy) { return {cx - width(text) / 2.0, cy + capHeight() / 2.0}; }
     void drawCentred(Canvas& c, const std::string& text, double cx, double cy, vec3 ink) {
-        draw(c, text, cx - width(text) / 2.0, cy + capHeight() / 2.0, ink);
+        const dvec2 p = centred(text, cx, cy);
+        draw(&c, text, p.x, p.y, ink);
     }
 
 private:
@@ -140,6 +168,296 @@ std::string tickText(double v, double step) {
     s << (std::abs(v) < step * 1e-9 ? 0.0 : v);
     return s.str();
 }
+
+/// Code points back to UTF-8.
+std::string utf8(const std::vector<char32_t>& cps) {
+    std::string out;
+    for (char32_t c : cps) {
+        if (c < 0x80) {
+            out += char(c);
+        } else if (c < 0x800) {
+            out += char(0xC0 | (c >> 6)), out += char(0x80 | (c & 0x3F));
+        } else if (c < 0x10000) {
+            out += char(0xE0 | (c >> 12)), out += char(0x80 | ((c >> 6) & 0x3F)), out += char(0x80 | (c & 0x3F));
+        } else {
+            out += char(0xF0 | (c >> 18)), out += char(0x80 | ((c >> 12) & 0x3F)), out += char(0x80 | ((c >> 6) & 0x3F));
+            out += char(0x80 | (c & 0x3F));
+        }
+    }
+    return out;
+}
+
+/// A text and where it goes: its baseline's left end (x, baseline) at font size `px`; with
+/// `centred`, the text is centred on (cx, cy) instead, at whatever size it is set.
+struct Candidate {
+    std::string text;
+    double x = 0.0, baseline = 0.0;
+    bool centred = false;
+    double cx = 0.0, cy = 0.0;
+};
+
+/// Line heights (pixels) of the title and of 9 pt text.
+double titleLine(const FigureLayout& l) { return std::round(1.3 * l.titlePx); }
+double labelLine(const FigureLayout& l) { return std::round(1.3 * l.labelPx); }
+/// The outer margin and the gap between neighbours.
+int outerMargin(double labelPx) { return int(std::lround(0.8 * labelPx)); }
+int gapOf(double labelPx) { return std::max(1, int(std::lround(0.3 * labelPx))); }
+
+/// `text` split into lines no wider than `room` pixels at the font's current size: at whole
+/// "; " or ", " parts first, then at spaces; a word wider than the room stays whole.
+std::vector<std::string> wrapped(Font& font, const std::string& text, double room) {
+    std::vector<std::string> lines;
+    if (text.empty()) return lines;
+    // Pieces: parts ending in their separator; a part wider than the room split at its spaces.
+    std::vector<std::string> pieces;
+    std::size_t start = 0;
+    for (;;) {
+        const std::size_t a = text.find("; ", start), b = text.find(", ", start);
+        const std::size_t cut = std::min(a, b);
+        const std::string part = cut == std::string::npos ? text.substr(start) : text.substr(start, cut + 2 - start);
+        if (font.width(part) <= room) {
+            pieces.push_back(part);
+        } else {
+            std::size_t w = 0;
+            for (;;) {
+                const std::size_t sp = part.find(' ', w);
+                pieces.push_back(sp == std::string::npos ? part.substr(w) : part.substr(w, sp + 1 - w));
+                if (sp == std::string::npos) break;
+                w = sp + 1;
+            }
+        }
+        if (cut == std::string::npos) break;
+        start = cut + 2;
+    }
+    auto trimmed = [](std::string t) {
+        while (!t.empty() && t.back() == ' ') t.pop_back();
+        return t;
+    };
+    std::string line;
+    for (const std::string& piece : pieces) {
+        if (!line.empty() && font.width(trimmed(line + piece)) > room) {
+            lines.push_back(trimmed(line));
+            line.clear();
+        }
+        line += piece;
+    }
+    if (!trimmed(line).empty()) lines.push_back(trimmed(line));
+    return lines;
+}
+
+/// The colour bar's label as lines: one when it is no wider than `room`, else split before its
+/// units (" (") or at its last space.
+std::vector<std::string> barLabelLines(Font& font, const std::string& label, double room) {
+    if (label.empty()) return {};
+    if (font.width(label) <= room) return {label};
+    std::size_t cut = label.rfind(" (");
+    if (cut == std::string::npos) cut = label.rfind(' ');
+    if (cut == std::string::npos || cut == 0) return {label};
+    return {label.substr(0, cut), label.substr(cut + 1)};
+}
+
+/// The bar's tick values (round values of what it reads) and their step.
+std::vector<double> barTicks(const FigureSpec& spec, double& step) {
+    const double lo = spec.barPositiveDown ? -spec.high : spec.low, hi = spec.barPositiveDown ? -spec.low : spec.high;
+    // About 5 round values; more when those leave fewer than 3 on a short range.
+    std::vector<double> ticks;
+    for (int count = 5; count <= 20 && ticks.size() < 3; count *= 2) ticks = niceTicks(lo, hi, count);
+    step = ticks.size() > 1 ? ticks[1] - ticks[0] : std::max(1e-12, hi - lo);
+    return ticks;
+}
+
+bool hasBar(const FigureSpec& spec) { return !spec.colormap.empty() || spec.greyRamp; }
+
+/// The ink box of a tick label of the box at its place (figure pixels), at label size.
+InkBox labelBox(Font& font, const FigureLabel& lab, const FigureLayout& l) {
+    const dvec2 p = font.centred(lab.text, l.plotX + lab.at.x + lab.dx * l.labelPx, l.plotY + lab.at.y + lab.dy * l.labelPx);
+    return font.draw(nullptr, lab.text, p.x, p.y);
+}
+
+/// The labels of each axis, in order of first appearance, and how far apart their points lie.
+struct AxisLabels {
+    int axis = 0;
+    std::vector<const FigureLabel*> labels;
+    double span = 0.0;
+    bool endOn(double labelPx) const;
+};
+std::vector<AxisLabels> axesOf(const FigureSpec& spec) {
+    std::vector<AxisLabels> out;
+    for (const FigureLabel& lab : spec.labels) {
+        auto it = std::find_if(out.begin(), out.end(), [&](const AxisLabels& a) { return a.axis == lab.axis; });
+        if (it == out.end()) it = out.insert(out.end(), AxisLabels{lab.axis, {}, 0.0});
+        for (const FigureLabel* o : it->labels) it->span = std::max(it->span, glm::length(o->at - lab.at));
+        it->labels.push_back(&lab);
+    }
+    return out;
+}
+
+/// An axis whose labels' points lie within this many label heights is an edge seen end on: its
+/// labels would all say different things at one place, and none is drawn.
+constexpr double kEndOnSpan = 0.5;
+bool AxisLabels::endOn(double labelPx) const { return labels.size() >= 2 && span < kEndOnSpan * labelPx; }
+
+/// Places the figure's texts one after another from their ink boxes (measured with FreeType
+/// before anything is drawn), each where it keeps a small gap to everything placed before and
+/// stays inside the figure, and keeps what it placed.
+class TextLayout {
+public:
+    TextLayout(Font& font, Canvas& canvas, const FigureLayout& l)
+        : font_(font), canvas_(canvas), l_(l), gap_(std::max(1, int(std::lround(0.15 * l.labelPx)))) {}
+
+    const std::vector<FigureTextBox>& placed() const { return placed_; }
+    /// Whether `b` lies inside the figure, clear of everything placed.
+    bool isFree(const InkBox& b) const { return free(b); }
+
+    /// A drawn shape that text keeps clear of.
+    void graphic(const std::string& role, const InkBox& b) {
+        taken_.push_back(b);
+        placed_.push_back({role, "", b.x0, b.y0, b.x1, b.y1, true});
+    }
+
+    /// `lines` of text from the baseline `baseline` down, `step` apart, at size `px`, each from `x`
+    /// and at most `room` wide; when there are more than `most` lines, the last one kept ends in an
+    /// ellipsis.
+    void placeLines(const std::string& role, std::vector<std::string> lines, std::size_t most, double px, double x, double baseline,
+                    double step, double room) {
+        font_.size(px);
+        if (lines.size() > most) {
+            lines.resize(most);
+            if (!lines.empty()) lines.back() = fitted(lines.back() + "\u2026", x, baseline, x + room, true);
+        }
+        for (std::size_t i = 0; i < lines.size(); ++i) {
+            const double b = baseline + double(i) * step;
+            draw(role, fitted(lines[i], x, b, x + room, false), x, b);
+        }
+    }
+
+    /// Labels of one kind (an axis's ticks) at size `px`: all of them if none collides, else every
+    /// k-th (the smallest k, at least `least` kept), else the same at 85% and 70% of the size,
+    /// else each that fits, in order. With `clamp`, a label that would leave the figure is moved
+    /// inside it first.
+    void placeThinned(const std::string& role, const std::vector<Candidate>& labels, bool clamp, double px, std::size_t least) {
+        const std::size_t n = labels.size();
+        if (n == 0) return;
+        least = std::min(least, n);
+        std::vector<Candidate> at;
+        std::vector<InkBox> box;
+        for (double scale : {1.0, 0.85, 0.7}) {
+            measure(labels, clamp, px * scale, at, box);
+            for (std::size_t k = 1; k <= n; ++k)
+                for (std::size_t first = 0; first < k; ++first) {
+                    std::vector<std::size_t> keep;
+                    for (std::size_t i = first; i < n; i += k) keep.push_back(i);
+                    if (keep.size() < least) continue;
+                    bool ok = true;
+                    for (std::size_t a = 0; a < keep.size() && ok; ++a) {
+                        ok = free(box[keep[a]]);
+                        for (std::size_t b = 0; b < a && ok; ++b) ok = !box[keep[a]].near(box[keep[b]], gap_);
+                    }
+                    if (!ok) continue;
+                    for (std::size_t i : keep) draw(role, at[i].text, at[i].x, at[i].baseline);
+                    return;
+                }
+        }
+        for (std::size_t i = 0; i < n; ++i)
+            if (free(box[i])) draw(role, at[i].text, at[i].x, at[i].baseline);
+    }
+
+private:
+    /// Where `labels` go at size `px` and their ink, moved inside the figure with `clamp`;
+    /// leaves the font at that size.
+    void measure(const std::vector<Candidate>& labels, bool clamp, double px, std::vector<Candidate>& at, std::vector<InkBox>& box) {
+        font_.size(px);
+        at = labels;
+        box.assign(labels.size(), InkBox{});
+        for (std::size_t i = 0; i < at.size(); ++i) {
+            if (at[i].centred) {
+                const dvec2 p = font_.centred(at[i].text, at[i].cx, at[i].cy);
+                at[i].x = p.x, at[i].baseline = p.y;
+            } else {
+                at[i].baseline = at[i].cy + font_.capHeight() / 2.0;
+            }
+            box[i] = font_.draw(nullptr, at[i].text, at[i].x, at[i].baseline);
+            if (clamp) {
+                const int dx = box[i].x0 < 0 ? -box[i].x0 : box[i].x1 > l_.width ? l_.width - box[i].x1 : 0;
+                const int dy = box[i].y0 < 0 ? -box[i].y0 : box[i].y1 > l_.height ? l_.height - box[i].y1 : 0;
+                box[i] = box[i].moved(dx, dy);
+                at[i].x += dx, at[i].baseline += dy;
+            }
+        }
+    }
+    bool free(const InkBox& b) const {
+        if (!b.inside(l_.width, l_.height)) return false;
+        for (const InkBox& t : taken_)
+            if (b.near(t, gap_)) return false;
+        return true;
+    }
+    void draw(const std::string& role, const std::string& text, double x, double baseline) {
+        if (text.empty()) return;
+        const InkBox b = font_.draw(&canvas_, text, x, baseline, kInk);
+        taken_.push_back(b);
+        placed_.push_back({role, text, b.x0, b.y0, b.x1, b.y1, false});
+    }
+    /// `text`, or the most of it (code points; then an ellipsis) whose ink from (x, baseline)
+    /// ends before `right`; `ellipsis`: `text` already ends in one.
+    std::string fitted(const std::string& text, double x, double baseline, double right, bool ellipsis) {
+        auto fits = [&](const std::string& t) { return font_.draw(nullptr, t, x, baseline).x1 <= right; };
+        if (fits(text)) return text;
+        std::vector<char32_t> cps = codePoints(text);
+        if (ellipsis && !cps.empty()) cps.pop_back();
+        while (!cps.empty()) {
+            cps.pop_back();
+            while (!cps.empty() && (cps.back() == U' ' || cps.back() == U',' || cps.back() == U';')) cps.pop_back();
+            const std::string e = utf8(cps) + "\u2026";
+            if (fits(e)) return e;
+        }
+        return {};
+    }
+
+    Font& font_;
+    Canvas& canvas_;
+    const FigureLayout& l_;
+    int gap_;
+    std::vector<InkBox> taken_;
+    std::vector<FigureTextBox> placed_;
+};
+
+/// JSON string contents.
+std::string jsonEscaped(const std::string& s) {
+    std::string out;
+    for (char c : s) {
+        if (c == '"' || c == '\\') out += '\\', out += c;
+        else if (static_cast<unsigned char>(c) < 0x20) out += ' ';
+        else out += c;
+    }
+    return out;
+}
+
+/// One JSON line: the figure's size, its plot, the label size, each axis's candidates and the
+/// boxes (OCTRACE_TEST_FIGURE_TEXT).
+void appendTextBoxes(const std::string& path, const FigureLayout& l, const FigureSpec& spec, const std::vector<FigureTextBox>& boxes) {
+    std::ostringstream s;
+    s << "{\"width\": " << l.width << ", \"height\": " << l.height << ", \"plot\": [" << l.plotX << ", " << l.plotY << ", "
+      << l.plotX + l.plotW << ", " << l.plotY + l.plotH << "], \"labelPx\": " << l.labelPx << ", \"axes\": [";
+    const std::vector<AxisLabels> axes = axesOf(spec);
+    for (std::size_t i = 0; i < axes.size(); ++i)
+        s << (i ? ", " : "") << "{\"axis\": \"axis " << axes[i].axis << "\", \"candidates\": " << axes[i].labels.size()
+          << ", \"span\": " << axes[i].span << "}";
+    s << "], \"boxes\": [";
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+        const FigureTextBox& b = boxes[i];
+        s << (i ? ", " : "") << "{\"role\": \"" << jsonEscaped(b.role) << "\", \"text\": \"" << jsonEscaped(b.text)
+          << "\", \"graphic\": " << (b.graphic ? "true" : "false") << ", \"box\": [" << b.x0 << ", " << b.y0 << ", " << b.x1
+          << ", " << b.y1 << "]}";
+    }
+    s << "]}\n";
+    static std::mutex mutex;  // an animation composes its frames in parallel
+    std::lock_guard<std::mutex> lock(mutex);
+    std::ofstream out(path, std::ios::app);
+    out << s.str();
+}
+
+/// Subtitle and title lines at most (more end in an ellipsis).
+constexpr int kMostTitleLines = 2, kMostSubtitleLines = 3;
 
 }  // namespace
 
@@ -174,20 +492,25 @@ double scaleBarLength(double worldPerPixel, int plotWidth) {
     return p;
 }
 
-FigureLayout layoutFigure(int width, int height, int dpi, bool colourBar) {
+FigureLayout layoutFigure(int width, int height, int dpi, bool colourBar, const FigureRoom& room) {
     FigureLayout l;
     l.width = width;
     l.height = height;
     l.dpi = dpi;
     l.labelPx = kLabelPoints * dpi / 72.0;
     l.titlePx = kTitlePoints * dpi / 72.0;
-    const int m = int(std::lround(0.8 * l.labelPx));
-    l.plotX = m;
-    l.plotY = m + int(std::lround(1.5 * l.titlePx + 1.5 * l.labelPx));
-    // The panel leaves room left of the bar for tick labels on the box's right edges.
-    const int panel = colourBar ? int(std::lround(12.0 * l.labelPx)) : 0;
-    l.plotW = width - l.plotX - m - panel;
-    l.plotH = height - l.plotY - m;
+    l.room = room;
+    const int m = outerMargin(l.labelPx), g = gapOf(l.labelPx);
+    const int letter = room.letter > 0 ? room.letter + 2 * g : 0;
+    const int band = m + int(room.titleLines * titleLine(l) + room.subtitleLines * labelLine(l));
+    l.plotX = m + room.left + letter;
+    l.plotY = band + g + room.top + letter;
+    const int right = room.right + letter;
+    // The panel: a gap, the bar, its ticks and their labels, the margin (estimated for short
+    // labels until measured).
+    const int panel = !colourBar ? m : room.panel > 0 ? room.panel : int(std::lround(6.5 * l.labelPx));
+    l.plotW = width - l.plotX - right - panel;
+    l.plotH = height - l.plotY - m - room.bottom - letter;
     if (l.plotW < 16 || l.plotH < 16) {
         std::ostringstream s;
         s << "figure: " << width << "x" << height << " pixels at " << dpi
@@ -196,14 +519,61 @@ FigureLayout layoutFigure(int width, int height, int dpi, bool colourBar) {
     }
     if (colourBar) {
         l.barW = int(std::lround(1.2 * l.labelPx));
-        l.barX = l.plotX + l.plotW + int(std::lround(4.2 * l.labelPx));
-        l.barY = l.plotY + int(std::lround(2.0 * l.labelPx));
-        l.barH = std::max(8, l.plotH - int(std::lround(3.0 * l.labelPx)));
+        l.barX = l.plotX + l.plotW + right + int(std::lround(0.8 * l.labelPx));
+        // Below its label, with room for half a tick label above the bar's top.
+        l.barY = l.plotY + int(std::lround(room.barLabelLines * labelLine(l) + 0.6 * l.labelPx));
+        l.barH = std::max(8, l.plotY + l.plotH - int(std::lround(0.5 * l.labelPx)) - l.barY);
     }
     return l;
 }
 
-Frame composeFigure(const Frame& plot, const FigureSpec& spec, const FigureLayout& l, std::vector<std::uint8_t>* overlay) {
+FigureRoom figureRoom(const FigureSpec& spec, const FigureLayout& l) {
+    FigureRoom r;
+    Font font(figureFontPath());
+    const int m = outerMargin(l.labelPx), g = gapOf(l.labelPx);
+    const double across = l.width - 2.0 * m;
+    font.size(l.titlePx);
+    r.titleLines = std::min<int>(kMostTitleLines, int(wrapped(font, spec.title, across).size()));
+    font.size(l.labelPx);
+    r.subtitleLines = std::min<int>(kMostSubtitleLines, int(wrapped(font, spec.subtitle, across).size()));
+    // Tick labels beyond the plot (those of an edge seen end on are not drawn).
+    const double most = 8.0 * l.labelPx;
+    for (const AxisLabels& axis : axesOf(spec)) {
+        if (axis.endOn(l.labelPx)) continue;
+        for (const FigureLabel* lab : axis.labels) {
+            const InkBox b = labelBox(font, *lab, l);
+            if (b.empty()) continue;
+            auto grow = [&](int& side, double beyond) {
+                if (beyond > 0.0) side = std::max(side, int(std::ceil(std::min(beyond, most))) + g);
+            };
+            grow(r.left, l.plotX - b.x0);
+            grow(r.top, l.plotY - b.y0);
+            grow(r.right, b.x1 - (l.plotX + l.plotW));
+            grow(r.bottom, b.y1 - (l.plotY + l.plotH));
+        }
+    }
+    for (const std::string& letter : spec.sideLetters)
+        if (!letter.empty()) {
+            const InkBox b = font.draw(nullptr, letter, 0.0, 0.0);
+            r.letter = std::max({r.letter, b.x1 - b.x0, b.y1 - b.y0});
+        }
+    // The colour bar's panel: its ticks' labels and its label above it.
+    if (hasBar(spec)) {
+        double step = 1.0, widest = 0.0;
+        for (double v : barTicks(spec, step)) widest = std::max(widest, font.width(tickText(v, step)));
+        const double lead = std::round(0.8 * l.labelPx), barW = std::round(1.2 * l.labelPx);
+        const double ticks = lead + barW + 1.0 + 0.6 * l.labelPx + widest + m;
+        const std::vector<std::string> lines = barLabelLines(font, spec.barLabel, std::max(ticks - lead - m, l.width / 5.0));
+        double label = 0.0;
+        for (const std::string& t : lines) label = std::max(label, lead + font.width(t) + m);
+        r.panel = int(std::ceil(std::max(ticks, label)));
+        r.barLabelLines = int(lines.size());
+    }
+    return r;
+}
+
+Frame composeFigure(const Frame& plot, const FigureSpec& spec, const FigureLayout& l, std::vector<std::uint8_t>* overlay,
+                    std::vector<FigureTextBox>* textOut) {
     if (plot.width != l.plotW || plot.height != l.plotH)
         throw UsageError("figure: the plot is " + std::to_string(plot.width) + "x" + std::to_string(plot.height) +
                          ", the layout's plot area " + std::to_string(l.plotW) + "x" + std::to_string(l.plotH));
@@ -219,40 +589,35 @@ Frame composeFigure(const Frame& plot, const FigureSpec& spec, const FigureLayou
     Canvas canvas{f, overlay};
     Font font(figureFontPath());
     const double lineWidth = std::max(1.0, l.dpi / 110.0);
+    TextLayout text(font, canvas, l);
 
-    // Box edges and labelled ticks, in plot pixels.
+    // Box edges, coastlines and tick marks, in plot pixels.
     const dvec2 origin(l.plotX, l.plotY);
     const double coastWidth = std::max(1.0, l.dpi / 160.0);
     for (const auto& line : spec.coastlines)
         for (std::size_t i = 1; i < line.size(); ++i) canvas.line(origin + line[i - 1], origin + line[i], coastWidth, kCoastInk);
     for (const auto& [a, b] : spec.lines) canvas.line(origin + a, origin + b, lineWidth, kLineInk);
-    font.size(l.labelPx);
     for (const FigureLabel& lab : spec.labels) {
         const dvec2 p = origin + lab.at;
         canvas.fill(int(std::floor(p.x - lineWidth)), int(std::floor(p.y - lineWidth)), int(std::lround(2 * lineWidth)) + 1,
                     int(std::lround(2 * lineWidth)) + 1, kLineInk);
-        font.drawCentred(canvas, lab.text, p.x + lab.dx * l.labelPx, p.y + lab.dy * l.labelPx, kInk);
     }
 
-    // Scale bar: a bar with end ticks in the plot's lower left corner, its length above it.
-    if (spec.scaleBarPx > 0.0) {
-        const double x0 = l.plotX + 1.2 * l.labelPx, y = l.plotY + l.plotH - 1.2 * l.labelPx;
-        const double x1 = x0 + spec.scaleBarPx, tick = 0.4 * l.labelPx, w = 2.0 * lineWidth;
-        canvas.line({x0, y}, {x1, y}, w, kLineInk);
-        canvas.line({x0, y - tick}, {x0, y + tick}, w, kLineInk);
-        canvas.line({x1, y - tick}, {x1, y + tick}, w, kLineInk);
-        font.drawCentred(canvas, spec.scaleBarLabel, 0.5 * (x0 + x1), y - tick - 0.8 * l.labelPx, kInk);
-    }
-
-    // Title and subtitle.
-    const double m = 0.8 * l.labelPx;
+    // The text in order of precedence, each placed where it overlaps nothing placed before:
+    // title and subtitle, the colour bar with its label and ticks, the patient's letters, the
+    // axes, the scale bar.
+    const int m = outerMargin(l.labelPx), g = gapOf(l.labelPx);
+    const double across = l.width - 2.0 * m;
     font.size(l.titlePx);
-    if (!spec.title.empty()) font.draw(canvas, spec.title, l.plotX, m + font.capHeight(), kInk);
+    text.placeLines("title", wrapped(font, spec.title, across), std::size_t(l.room.titleLines), l.titlePx, m, m + 0.95 * l.titlePx,
+                    titleLine(l), across);
     font.size(l.labelPx);
-    if (!spec.subtitle.empty()) font.draw(canvas, spec.subtitle, l.plotX, m + 1.5 * l.titlePx + font.capHeight() * 0.5, kInk);
+    const double subTop = m + l.room.titleLines * titleLine(l);
+    text.placeLines("subtitle", wrapped(font, spec.subtitle, across), std::size_t(l.room.subtitleLines), l.labelPx, m,
+                    subTop + 0.95 * l.labelPx, labelLine(l), across);
 
     // Colour bar: each row the map's colour for its value, high at the top, a frame around.
-    if ((!spec.colormap.empty() || spec.greyRamp) && l.barW > 0) {
+    if (hasBar(spec) && l.barW > 0) {
         for (int r = 0; r < l.barH; ++r) {
             const float t = 1.0f - (float(r) + 0.5f) / float(l.barH);
             const float grey = srgb8ToLinear(std::uint8_t(std::lround((spec.invertedGrey ? 1.0f - t : t) * 255.0f)));
@@ -265,16 +630,75 @@ Frame composeFigure(const Frame& plot, const FigureSpec& spec, const FigureLayou
         canvas.line({x0 - e, y1}, {x1, y1}, 1.0, kLineInk);
         canvas.line({x0 - e, y0 - e}, {x0 - e, y1}, 1.0, kLineInk);
         canvas.line({x1, y0 - e}, {x1, y1}, 1.0, kLineInk);
-        font.draw(canvas, spec.barLabel, l.barX, l.barY - 0.8 * l.labelPx, kInk);
-        const std::vector<double> ticks = niceTicks(spec.low, spec.high, 5);
-        const double step = ticks.size() > 1 ? ticks[1] - ticks[0] : std::max(1e-12, spec.high - spec.low);
+        text.graphic("colour bar", InkBox{l.barX - 2, l.barY - 2, l.barX + l.barW + 2, l.barY + l.barH + 2});
+        // The label above the bar, in the lines the room made for it, moved left if it would
+        // leave the figure.
+        const std::vector<std::string> lines = barLabelLines(font, spec.barLabel, std::max(l.width - m - double(l.barX), l.width / 5.0));
+        double widest = 0.0;
+        for (const std::string& t : lines) widest = std::max(widest, font.width(t));
+        const double labelX = std::max(double(l.plotX + l.plotW), std::min(double(l.barX), l.width - m - widest));
+        text.placeLines("bar label", lines, std::size_t(std::max(1, l.room.barLabelLines)), l.labelPx, labelX, l.plotY + 0.95 * l.labelPx,
+                        labelLine(l), l.width - m - labelX);
+        // Ticks: round values of what the bar reads (heights, or depths positive down).
+        double step = 1.0;
+        const std::vector<double> ticks = barTicks(spec, step);
+        const double lo = spec.barPositiveDown ? -spec.high : spec.low, hi = spec.barPositiveDown ? -spec.low : spec.high;
+        std::vector<Candidate> labels;
         for (double v : ticks) {
-            const double y = l.barY + (1.0 - (v - spec.low) / (spec.high - spec.low)) * l.barH;
+            const double u = (v - lo) / (hi - lo);  // 0 at the reading's low end
+            const double y = l.barY + (spec.barPositiveDown ? u : 1.0 - u) * l.barH;
             const double xs = l.barX + l.barW + 1.0;
             canvas.line({xs, y}, {xs + 0.4 * l.labelPx, y}, lineWidth, kLineInk);
-            font.draw(canvas, tickText(v, step), xs + 0.6 * l.labelPx, y + font.capHeight() / 2.0, kInk);
+            labels.push_back({tickText(v, step), xs + 0.6 * l.labelPx, 0.0, false, 0.0, y});
+        }
+        text.placeThinned("bar tick", labels, false, l.labelPx, 3);
+    }
+
+    // The patient's letters outside the plot at the middle of each side, beyond its tick labels.
+    if (l.room.letter > 0) {
+        const double half = 0.5 * l.room.letter, midX = l.plotX + 0.5 * l.plotW, midY = l.plotY + 0.5 * l.plotH;
+        const dvec2 at[4] = {{l.plotX - l.room.left - g - half, midY},
+                             {midX, l.plotY - l.room.top - g - half},
+                             {l.plotX + l.plotW + l.room.right + g + half, midY},
+                             {midX, l.plotY + l.plotH + l.room.bottom + g + half}};
+        for (int side = 0; side < 4; ++side)
+            if (!spec.sideLetters[std::size_t(side)].empty())
+                text.placeThinned("letter", {{spec.sideLetters[std::size_t(side)], 0.0, 0.0, true, at[side].x, at[side].y}}, true,
+                                  l.labelPx, 1);
+    }
+
+    // Tick labels on the bounding box, axis by axis; none on an edge seen end on.
+    for (const AxisLabels& axis : axesOf(spec)) {
+        if (axis.endOn(l.labelPx)) continue;
+        std::vector<Candidate> labels;
+        for (const FigureLabel* lab : axis.labels)
+            labels.push_back({lab->text, 0.0, 0.0, true, origin.x + lab->at.x + lab->dx * l.labelPx, origin.y + lab->at.y + lab->dy * l.labelPx});
+        text.placeThinned("axis " + std::to_string(axis.axis), labels, true, l.labelPx, 3);
+    }
+
+    // Scale bar: a bar with end ticks in the plot's lower left corner, its length above it;
+    // in the lower right corner where tick labels take the left one, else none.
+    if (spec.scaleBarPx > 0.0) {
+        const double y = l.plotY + l.plotH - 1.2 * l.labelPx, tick = 0.4 * l.labelPx, w = 2.0 * lineWidth;
+        font.size(l.labelPx);
+        for (double x0 : {l.plotX + 1.2 * l.labelPx, l.plotX + l.plotW - 1.2 * l.labelPx - spec.scaleBarPx}) {
+            const double x1 = x0 + spec.scaleBarPx;
+            const dvec2 p = font.centred(spec.scaleBarLabel, 0.5 * (x0 + x1), y - tick - 0.8 * l.labelPx);
+            const InkBox label = font.draw(nullptr, spec.scaleBarLabel, p.x, p.y);
+            const InkBox bar{int(std::floor(x0 - w)), int(std::floor(y - tick - w)), int(std::ceil(x1 + w)), int(std::ceil(y + tick + w))};
+            if (!text.isFree(label) || !text.isFree(bar)) continue;
+            canvas.line({x0, y}, {x1, y}, w, kLineInk);
+            canvas.line({x0, y - tick}, {x0, y + tick}, w, kLineInk);
+            canvas.line({x1, y - tick}, {x1, y + tick}, w, kLineInk);
+            text.graphic("scale bar line", bar);
+            text.placeThinned("scale bar", {{spec.scaleBarLabel, 0.0, 0.0, true, 0.5 * (x0 + x1), y - tick - 0.8 * l.labelPx}}, false,
+                              l.labelPx, 1);
+            break;
         }
     }
+
+    if (textOut) *textOut = text.placed();
+    if (const char* path = std::getenv("OCTRACE_TEST_FIGURE_TEXT"); path && *path) appendTextBoxes(path, l, spec, text.placed());
     return f;
 }
 

@@ -20,26 +20,39 @@ namespace {
 
 bool isDigits(const std::string& s) { return !s.empty() && s.find_first_not_of("0123456789") == std::string::npos; }
 
-std::string sayTime(const AxisInfo& axis, std::size_t index) {
+/// The date of step `index` and its calendar's name; empty when the axis tells no date.
+std::pair<std::string, std::string> stepDate(const AxisInfo& axis, std::size_t index) {
     if (index >= axis.values.size() || !isTimeUnits(axis.units)) return {};
     try {
         TimeUnits u = parseTimeUnits(axis.units, axis.calendar, axis.name);
-        return " (" + formatDate(decodeTime(u, axis.values[index])) + ", calendar " + u.calendarName + ")";
+        return {formatDate(decodeTime(u, axis.values[index])), u.calendarName};
     } catch (const Error&) {
         return {};
     }
 }
 
+std::string sayTime(const AxisInfo& axis, std::size_t index) {
+    const auto [date, calendar] = stepDate(axis, index);
+    return date.empty() ? std::string() : " (" + date + ", calendar " + calendar + ")";
+}
+
+/// What a figure's subtitle says of step `index`: its date, else "time step N of M".
+std::string timeLabel(const AxisInfo& axis, std::size_t index) {
+    const std::string date = stepDate(axis, index).first;
+    return date.empty() ? "time step " + std::to_string(index) + " of " + std::to_string(axis.size) : date;
+}
+
 // The step of a time dimension that `req.time` asks for: an index, or the step nearest to a date
 // in the axis's calendar. Adds a note (and, for the default first step, a warning).
 std::size_t selectTime(const std::string& path, const VariableInfo& var, const AxisInfo& axis, const FieldRequest& req,
-                       std::vector<std::string>& notes) {
+                       std::vector<std::string>& notes, std::string& label) {
     const std::string what = path + ": variable '" + var.shortName + "': dimension '" + axis.name + "' (time)";
     if (req.time.empty()) {
         std::string msg = "dimension '" + axis.name + "' (time): first of " + std::to_string(axis.size) +
                           " steps used" + sayTime(axis, 0) + "; choose one with `time`";
         if (axis.size > 1) log::warning(path + ": variable '" + var.shortName + "': " + msg);
         notes.push_back(msg);
+        label = timeLabel(axis, 0);
         return 0;
     }
     if (isDigits(req.time)) {
@@ -49,6 +62,7 @@ std::size_t selectTime(const std::string& path, const VariableInfo& var, const A
             throw InputError(what + " has " + std::to_string(axis.size) + " step(s), indices 0.." +
                              std::to_string(axis.size - 1) + "; `time` " + req.time + " is beyond them");
         notes.push_back("time step " + std::to_string(n) + " of " + std::to_string(axis.size) + sayTime(axis, n));
+        label = timeLabel(axis, n);
         return n;
     }
     DateTime date = parseIsoDate(req.time, "`time`");
@@ -69,6 +83,7 @@ std::size_t selectTime(const std::string& path, const VariableInfo& var, const A
         log::warning(path + ": variable '" + var.shortName + "': " + msg);
     }
     notes.push_back(msg);
+    label = timeLabel(axis, best);
     return best;
 }
 
@@ -271,7 +286,7 @@ Layout layoutFor(const std::string& path, const CfSource& file, const VariableIn
     for (std::size_t d = 0; d < var.dimSizes.size(); ++d) {
         if (std::find(spatial.begin(), spatial.end(), d) != spatial.end()) continue;
         if (cls[d].role == AxisRole::Time && !timeChosen && (var.dimSizes[d] > 1 || !req.time.empty())) {
-            L.fixedIndex[d] = selectTime(path, var, info[d], req, L.notes);
+            L.fixedIndex[d] = selectTime(path, var, info[d], req, L.notes, L.timeLabel);
             timeChosen = true;
         } else if (var.dimSizes[d] > 1) {
             std::string msg = "dimension '" + var.dimNames[d] + "' (" + roleName(cls[d].role) + "): first of " +

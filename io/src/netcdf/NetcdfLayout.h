@@ -29,6 +29,7 @@ struct Layout {
     std::array<AxisSelection, 3> axes;
     std::vector<std::uint64_t> fixedIndex;  ///< per dimension: the index read along a non-spatial one
     std::vector<std::string> notes;
+    std::string timeLabel;  ///< the time step read (ScalarField::timeLabel); empty without time
     std::string warning;  ///< said by shapeField once the grid is known to be sound (e.g. index axes)
     bool geographic = false;
     // Geographic grids only, per output sample along y and z:

@@ -191,6 +191,7 @@ ScalarField readVariable(const std::string& path, const CfSource& file, const Va
     readSamples(file, var, L, file.rules(var), f);
     if (!var.longName.empty()) f.notes.push_back(var.shortName + ": " + var.longName);
     f.notes.insert(f.notes.end(), L.notes.begin(), L.notes.end());
+    f.timeLabel = L.timeLabel;
     return finish(path, std::move(f), req);
 }
 

@@ -147,6 +147,7 @@ ScalarField deriveSoundSpeed(const std::string& path, const CfSource& file, cons
         f.notes.push_back(std::to_string(outside) + " sample(s) outside -2.5..40 degC or 0..42 salinity, beyond the "
                                                     "equation's published range (computed all the same)");
     f.notes.insert(f.notes.end(), L.notes.begin(), L.notes.end());
+    f.timeLabel = L.timeLabel;
     return f;
 }
 

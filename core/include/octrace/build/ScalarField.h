@@ -94,6 +94,11 @@ public:
     };
     Geographic geographic;
 
+    /// The time step read, as a figure's subtitle tells it: its date ("1982-01-16 00:00:00")
+    /// when the time axis has one, else "time step N of M"; empty when the input has no time
+    /// (set by the NetCDF/Zarr reader where it selects the step).
+    std::string timeLabel;
+
     /// Notes for `info` and stats (e.g. "geographic: lon0=150 lat0=35, vertical scale 30").
     std::vector<std::string> notes;
 

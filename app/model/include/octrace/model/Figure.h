@@ -4,6 +4,7 @@
 /// bounding box and a scale bar, from the surface, its colours and the camera. What `octrace
 /// render --figure`, `octrace slice --figure` and the studio's export share.
 #include "octrace/model/OptionTable.h"
+#include "octrace/model/Render.h"
 #include "octrace/model/Surface.h"
 
 #include "octrace/io/Coastline.h"
@@ -12,6 +13,7 @@
 #include "octrace/render/Frame.h"
 #include "octrace/render/RenderSettings.h"
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -88,6 +90,13 @@ void checkFigureFormat(const std::string& output);
 /// whole figure. Throws UsageError when that leaves no room for the plot.
 io::FigureLayout figureLayout(const FigureSettings& f, int width, int height, bool colourBar);
 
+/// The layout, from `first` (figureLayout: the same size, dpi and colour bar), whose margins
+/// hold the figure's text as io::figureRoom measures it: `specFor(layout)` makes the figure's
+/// spec for a plot of that layout (its camera framed for the plot's size). The room found for
+/// one layout makes the next; the margins only grow, and a few rounds settle them.
+/// @throws UsageError as io::layoutFigure when the text leaves no room for the plot.
+io::FigureLayout fitFigureLayout(const io::FigureLayout& first, const std::function<io::FigureSpec(const io::FigureLayout&)>& specFor);
+
 /// Whether the figure of a surface coloured by `a` has a colour bar (a colour map or `colour_by`).
 bool figureHasColourBar(const model::SurfaceSpec& a);
 
@@ -101,16 +110,26 @@ struct FigureSubject {
     std::optional<Box3> gridBounds;
     double iso = 0.0;
     std::string lengthUnit;  ///< "km" on geographic grids, "m" for cities, else "" (world units)
+    bool patientLps = false;  ///< world is patient LPS in mm: ticks in mm and the patient's letters
+    std::string time;         ///< the field's ScalarField::timeLabel ("" without time)
 };
 FigureSubject figureSubject(const Surface& s, const std::string& input);
+
+/// fitFigureLayout for a 3-D figure of `tree` (figureSpec without coastlines, which do not
+/// change the text), its camera frameCamera(`view` at the plot's size, `bounds`).
+io::FigureLayout fitFigureLayout(const io::FigureLayout& first, const FigureSettings& f, const FigureSubject& subject, const Octree& tree,
+                                 const RenderSettings& rs, const RenderSpec& view, const Box3& bounds);
+
 
 /// The heights a grid spans, bottom and top, in the units a colour bar of height uses and
 /// `colour_range` takes for a surface coloured by height: metres above the sea surface on a
 /// geographic field (negative below it), else world z.
 std::pair<double, double> gridHeightRange(const ScalarField& grid);
 
-/// Title, subtitle (variable, iso value, colour variable, region), colour bar, the labelled
-/// bounding box (longitude, latitude and depth on geographic grids, world x, y, z otherwise)
+/// Title, subtitle (caption or time step, variable, iso value, colour variable, region), colour
+/// bar (a bar over heights below the sea surface reads depth, positive down), the labelled
+/// bounding box (longitude, latitude and depth on geographic grids, mm and the patient's
+/// letters L/R, A/P, S/I on patient volumes, world x, y, z otherwise)
 /// as seen by `camera` (whose image is the plot) and, with `scale_bar`, a scale bar measured
 /// at the look-at point's distance (exact for an orthographic camera). On a geographic field,
 /// the coastlines (`coastline`) on the sea surface (or the top of the grid read when it lies
