@@ -319,7 +319,8 @@ int runRender(const std::vector<std::string>& args) {
     const std::string rendering = "rendering " + std::to_string(a.width) + "x" + std::to_string(a.height);
     checkMemoryBudget(a.input + ": " + rendering, frameBytes, budget);
 
-    // Load and build.
+    // Load and build (with corner values when the frame is smooth: surfaceModeFor).
+    if (!a.surface) a.surface = model::surfaceModeFor(std::nullopt, a.renderer);
     Surface surface = buildSurface(a);
     const ScalarField& field = surface.field;
     const BuildReport& report = surface.report;
