@@ -197,8 +197,8 @@ TEST(OctreeFile, EveryTruncationIsDetected) {
 
 TEST(OctreeFile, RefusesAFutureVersionAndOtherFiles) {
     auto bytes = io::encodeOctreeFile(smallTree());
-    bytes[8] = 3;  // version, little-endian, right after the 8-byte signature
-    EXPECT_THROW_WITH(io::decodeOctreeFile(bytes, "new.oct"), FileError, "new.oct: written by a newer octrace (octree file format version 3; this octrace reads versions 1 to 2)");
+    bytes[8] = 4;  // version, little-endian, right after the 8-byte signature
+    EXPECT_THROW_WITH(io::decodeOctreeFile(bytes, "new.oct"), FileError, "new.oct: written by a newer octrace (octree file format version 4; this octrace reads versions 1 to 3)");
     const std::string text = "CDF\x01 not an octree";
     std::vector<std::uint8_t> other(text.begin(), text.end());
     EXPECT_THROW(io::decodeOctreeFile(other, "x.oct"), FormatNotSupported);
