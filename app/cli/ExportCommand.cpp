@@ -88,6 +88,7 @@ int runExport(const std::vector<std::string>& args) {
     }
     if (a.level > a.depth) throw UsageError("--level " + std::to_string(a.level) + " is deeper than --depth " + std::to_string(a.depth));
 
+    if (!a.surface) a.surface = SurfaceMode::Voxel;  // surfels are the voxels: no corner values needed
     Surface surface = buildSurface(a);
     Octree& tree = surface.tree;
     const int level = a.level < 0 ? tree.depth : a.level;

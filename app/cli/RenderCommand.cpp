@@ -319,8 +319,13 @@ int runRender(const std::vector<std::string>& args) {
     const std::string rendering = "rendering " + std::to_string(a.width) + "x" + std::to_string(a.height);
     checkMemoryBudget(a.input + ": " + rendering, frameBytes, budget);
 
-    // Load and build.
+    // Load and build (with corner values when the frame is smooth: surfaceModeFor).
+    const bool smoothAsked = a.surface == SurfaceMode::Smooth;
+    if (!a.surface) a.surface = model::surfaceModeFor(std::nullopt, a.renderer);
     Surface surface = buildSurface(a);
+    if (smoothAsked && surface.tree.corners().empty())
+        log::warning(a.input + ": drawn as voxels: --surface smooth needs corner values, which cities, molecules, --cut and "
+                     "octree files written without them (format version 1 or 2) do not have");
     const ScalarField& field = surface.field;
     const BuildReport& report = surface.report;
     Octree& tree = surface.tree;

@@ -80,6 +80,7 @@ void addExtendDownOption(OptionParser& p, SurfaceArgs& a) { p.add(settingOption(
 
 void addFormOptions(OptionParser& p, SurfaceArgs& a) {
     p.add(settingOption(model::opt::form, into(a)));
+    p.add(settingOption(model::opt::surface, into(a)));
     addInsideOption(p, a, "volume form");
     p.add(settingOption(model::opt::cut, into(a)));
     p.add(settingOption(model::opt::clip, into(a)));

@@ -232,6 +232,7 @@ AnimationImage renderAnimationFrame(const AnimationPlan& plan, std::size_t i, co
     spec.request.volume = f.volume;
     spec.colourMin = plan.colourMin;
     spec.colourMax = plan.colourMax;
+    if (!spec.surface) spec.surface = surfaceModeFor(std::nullopt, plan.spec.render.renderer);
     const Surface surface = buildSurface(spec, hooks);
     const RenderSettings rs = renderSettings(spec, surface, plan.spec.render);
     AnimationImage out;

@@ -16,7 +16,7 @@ namespace {
 
 constexpr std::array kOptions{
     &opt::depth,           &opt::iso,         &opt::variable,         &opt::time,        &opt::series,      &opt::volume,
-    &opt::form,            &opt::inside,      &opt::threads,          &opt::maxMemory,   &opt::verticalScale,
+    &opt::form,            &opt::surface, &opt::inside,      &opt::threads,          &opt::maxMemory,   &opt::verticalScale,
     &opt::terrainDepth,    &opt::crs,         &opt::heightAttr,       &opt::baseAttr,    &opt::dem,         &opt::texture,
     &opt::cut,             &opt::renderer,    &opt::fov,              &opt::orthoHeight, &opt::projection,
     &opt::lod,             &opt::level,       &opt::colourCoherence,  &opt::colourFillBackground,

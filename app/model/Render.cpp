@@ -71,7 +71,13 @@ RenderSettings renderSettings(const SurfaceSpec& surfaceSpec, const Surface& sur
     rs.coherence = spec.coherence;
     rs.detail = spec.detail;
     rs.spheres = spec.spheres;
+    rs.surface = surfaceModeFor(surfaceSpec.surface, spec.renderer);
     return rs;
+}
+
+SurfaceMode surfaceModeFor(const std::optional<SurfaceMode>& given, const std::string& renderer) {
+    if (given) return *given;
+    return makeRenderer(resolveRendererName(renderer).renderer)->paperRenderer() ? SurfaceMode::Voxel : SurfaceMode::Smooth;
 }
 
 RenderStats renderFrame(const Octree& tree, const Camera& camera, const RenderSettings& settings,
@@ -207,6 +213,9 @@ Stats frameStats(const FrameRecord& r) {
     js.set("octree_nodes", std::uint64_t(tree.nodes().size()));
     js.set("octree_bytes", std::uint64_t(tree.bytes()));
     js.set("bytes_per_voxel", tree.bytesPerVoxel());
+    // What was drawn (smooth only where the octree has corner values) and what it costs.
+    js.set("surface", std::string(rs.surface == SurfaceMode::Smooth && !tree.corners().empty() ? "smooth" : "voxel"));
+    js.set("corner_bytes_per_voxel", tree.corners().empty() ? 0.0 : double(sizeof(std::uint64_t)));
     js.set("peak_rss_bytes_after_build", r.peakRssAfterBuild);
     addCameraStats(js, cam, r.bounds);
     if (r.multiResolution) {

@@ -151,6 +151,9 @@ const std::unordered_map<std::string_view, Entry>& setters() {
             s.form = parseChoice(opt::form, v) == "volume" ? OctreeForm::Volume : OctreeForm::Shell;
             s.formGiven = true;
         }));
+        m.emplace(opt::surface.key, surface([](const std::string& v, SurfaceSpec& s) {
+            s.surface = parseChoice(opt::surface, v) == "smooth" ? SurfaceMode::Smooth : SurfaceMode::Voxel;
+        }));
         m.emplace(opt::inside.key, surface([](const std::string& v, SurfaceSpec& s) {
             s.insideBelow = parseChoice(opt::inside, v) == "below";
             s.formGiven = true;

@@ -283,6 +283,9 @@ void buildFromField(const SurfaceSpec& a, Surface& s, const BuildHooks& hooks) {
     bo.insideBelow = a.insideBelow;
     chooseWindow(a, s);
     bo.voxelValues = s.window.valid();
+    // Smooth surfaces need the corner values; a molecule's distance field keeps its voxels (its
+    // spheres are the geometry, docs/dev/smooth-surfaces.md).
+    bo.corners = a.surface.value_or(SurfaceMode::Smooth) == SurfaceMode::Smooth && !s.spheres;
     s.tree = buildOctree(s.field, bo, &s.report);
     s.tree.setMetadata(octree_key::kSource, sourceDescription(a.input, s.field));
     finishSurface(a, s);

@@ -22,13 +22,14 @@ struct Entry {
     Voxel voxel;
     float value;
     std::uint8_t material;
+    std::uint64_t corners;  // 0: none (Octree::corners)
 };
 
 void collect(const Octree& t, std::vector<Entry>& out) {
     const float nan = std::numeric_limits<float>::quiet_NaN();
     t.forEachVoxel([&](const ivec3& c, std::uint32_t v) {
         out.push_back({mortonCode(c, t.depth), t.voxels()[v], t.voxelValues().empty() ? nan : t.voxelValues()[v],
-                       std::uint8_t(t.material(v))});
+                       std::uint8_t(t.material(v)), t.corners().empty() ? 0 : t.corners()[v]});
     });
 }
 
@@ -127,17 +128,22 @@ Octree mergeShells(const Octree& top, const Octree& under) {
     std::vector<Voxel> voxels;
     std::vector<float> voxelValues;
     std::vector<std::uint8_t> voxelMaterials;
+    std::vector<std::uint64_t> corners;
     voxels.reserve(all.size());
+    // Smooth surfaces: the voxels of the one with corners keep them, the others draw as boxes.
+    const bool withCorners = !top.corners().empty() || !under.corners().empty();
     const bool values = !top.voxelValues().empty() || !under.voxelValues().empty();
     const bool materials = !top.voxelMaterials().empty() || !under.voxelMaterials().empty();
     for (const Entry& e : all) {
         voxels.push_back(e.voxel);
         if (values) voxelValues.push_back(e.value);
         if (materials) voxelMaterials.push_back(e.material);
+        if (withCorners) corners.push_back(e.corners);
     }
     out.setTopology(std::move(nodes), std::move(voxels));
     out.setVoxelValues(std::move(voxelValues));
     out.setVoxelMaterials(std::move(voxelMaterials));
+    out.setCorners(std::move(corners));
     out.validate();
     return out;
 }

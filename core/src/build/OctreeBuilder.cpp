@@ -795,6 +795,24 @@ void sampleVoxelValues(Octree& tree, const ScalarField& field, const SampleGrid&
     tree.setVoxelValues(std::move(values));
 }
 
+/// BuildOptions::corners: the corners each voxel was classified by (FieldSampler::corner).
+void sampleCorners(Octree& tree, const ScalarField& field, const SampleGrid& grid, float isoF, int threads) {
+    std::vector<ivec3> cells(tree.voxels().size());
+    tree.forEachVoxel([&](const ivec3& c, std::uint32_t i) { cells[i] = c; });
+    const FieldSampler sampler(field, grid.samples, tree.cubeOrigin, tree.voxelSize(), tree.depth);
+    std::vector<std::uint64_t> codes(cells.size(), 0);
+    constexpr std::size_t kChunk = 4096;
+    parallelFor((cells.size() + kChunk - 1) / kChunk, threads, [&](std::size_t chunk) {
+        const std::size_t end = std::min(cells.size(), (chunk + 1) * kChunk);
+        for (std::size_t i = chunk * kChunk; i < end; ++i) {
+            float v[8];
+            for (int q = 0; q < 8; ++q) v[q] = sampler.corner(cells[i] + ivec3((q >> 2) & 1, (q >> 1) & 1, q & 1));
+            codes[i] = encodeCorners(v, isoF);
+        }
+    });
+    tree.setCorners(std::move(codes));
+}
+
 }  // namespace
 
 std::vector<BuildMemoryEstimate> estimateBuildMemory(const ScalarField& field, double iso, int maxDepth, int threads) {
@@ -837,6 +855,7 @@ Octree buildOctree(const ScalarField& field, const BuildOptions& options, BuildR
     }
     buildInto(tree, field, grid, isoF, options.threads, options, guard ? &*guard : nullptr);
     if (options.voxelValues) sampleVoxelValues(tree, field, grid, isoF, options.threads);
+    if (options.corners && tree.form == OctreeForm::Shell) sampleCorners(tree, field, grid, isoF, options.threads);
     if (report) {
         report->buildMs = timer.ms();
         report->boundaryVoxels = tree.form == OctreeForm::Volume ? countVoxels(tree).boundary : tree.voxels().size();

@@ -65,6 +65,7 @@ void checkAttributes(const VoxelAttributes& a, std::size_t voxels) {
     checkLength("voxel values", a.voxelValues.size(), voxels);
     checkLength("baked light", a.baked.size(), voxels);
     checkLength("voxel materials", a.voxelMaterials.size(), voxels);
+    checkLength("corner values", a.corners.size(), voxels);
 }
 
 template <class T>
@@ -73,11 +74,32 @@ void keepIfLength(std::vector<T>& v, std::size_t n) {
 }
 }  // namespace
 
+std::uint64_t encodeCorners(const float values[8], float iso) {
+    double diff[8], m = 0.0;
+    for (int q = 0; q < 8; ++q) {
+        diff[q] = double(values[q]) - double(iso);
+        m = std::max(m, std::abs(diff[q]));
+    }
+    if (!(m > 0.0) || !std::isfinite(m)) return 0;
+    std::uint64_t code = 0;
+    for (int q = 0; q < 8; ++q) {
+        long v = std::lround(127.0 * diff[q] / m);
+        if (diff[q] < 0.0 && v == 0) v = -1;  // the corner's side is kept exactly
+        code |= std::uint64_t(std::uint8_t(std::int8_t(v))) << (8 * q);
+    }
+    return code;
+}
+
+void decodeCorners(std::uint64_t code, double d[8]) {
+    for (int q = 0; q < 8; ++q) d[q] = double(std::int8_t(std::uint8_t(code >> (8 * q)))) / 127.0;
+}
+
 std::size_t Octree::bytes() const {
     const VoxelAttributes& a = attributes_;
     return nodes_.capacity() * sizeof(OctreeNode) + voxels_.capacity() * sizeof(Voxel) +
            summaries_.capacity() * sizeof(NodeSummary) + a.colours.capacity() * sizeof(std::uint32_t) +
-           a.voxelValues.capacity() * sizeof(float) + a.baked.capacity() + a.voxelMaterials.capacity();
+           a.voxelValues.capacity() * sizeof(float) + a.baked.capacity() + a.voxelMaterials.capacity() +
+           a.corners.capacity() * sizeof(std::uint64_t);
 }
 
 void Octree::setTopology(std::vector<OctreeNode> nodes, std::vector<Voxel> voxels) {
@@ -90,6 +112,7 @@ void Octree::setTopology(std::vector<OctreeNode> nodes, std::vector<Voxel> voxel
     keepIfLength(attributes_.voxelValues, n);
     keepIfLength(attributes_.baked, n);
     keepIfLength(attributes_.voxelMaterials, n);
+    keepIfLength(attributes_.corners, n);
     summaries_ = std::vector<NodeSummary>{};
 }
 
@@ -116,6 +139,11 @@ void Octree::setVoxelMaterials(std::vector<std::uint8_t> materials) {
 void Octree::setAttributes(VoxelAttributes attributes) {
     checkAttributes(attributes, voxels_.size());
     attributes_ = std::move(attributes);
+}
+
+void Octree::setCorners(std::vector<std::uint64_t> corners) {
+    checkLength("corner values", corners.size(), voxels_.size());
+    attributes_.corners = std::move(corners);
 }
 
 VoxelAttributes Octree::takeAttributes() { return std::exchange(attributes_, VoxelAttributes{}); }

@@ -6,6 +6,7 @@
 #include "octrace/render/DiscreteTraversal.h"
 #include "octrace/render/Renderer.h"
 #include "octrace/render/Shading.h"
+#include "octrace/render/SmoothSurface.h"
 #include "octrace/util/Parallel.h"
 #include "octrace/util/Timer.h"
 
@@ -16,12 +17,33 @@
 
 namespace octrace::detail {
 
+/// The shared hit path of smooth surfaces (SmoothSurface.h), for every ray caster: the hit a
+/// renderer proposes (the first boundary voxel on the pixel's ray) is tested against the field's
+/// interpolant; a ray that passes it goes on with the discrete traversal under the same test
+/// (from the root: the passed voxel is tested again and passed again, the traversal is exact).
+/// The proposed hit unchanged when the frame draws voxels, and when it is smooth already (the
+/// reference renderer runs its own test in its own traversal).
+inline TraversalHit surfaceHit(const SmoothSurface& smooth, const TraversalHit& proposed, const PixelRays& rays, int x, int y,
+                               const dvec3& dir, TraversalCounters& counters, const LodCut* cut = nullptr) {
+    if (!smooth.active() || !proposed.hit() || proposed.smooth) return proposed;
+    SmoothSurface::RayState ray{rays.world(x, y, dir)};
+    TraversalHit hit = proposed;
+    if (smooth.test(ray, hit)) return hit;
+    ray.side = -1;
+    const VoxelFilter filter = smooth.filter(ray);
+    return traverseDiscrete(smooth.tree(), rays.quantized(x, y, dir), counters, cut, &filter);
+}
+
 /// Writes every field of pixel (x, y) from its primary ray's hit (or miss): flags, hit id,
 /// colour (or the background) and depth, and counts the pixel and the hit; a renderer that
 /// writes every pixel this way needs no clear (Frame::reshape). Every ray caster shades
 /// through this, so equal hits give equal pixels.
-inline void writePixelHit(Frame& frame, int x, int y, const TraversalHit& hit, const Shader& shader,
-                          const PixelRays& rays, const dvec3& dir, const RenderSettings& settings, RenderStats& st) {
+/// The hit goes through surfaceHit first (with `counters` and `cut` for the traversal it may
+/// go on with).
+inline void writePixelHit(Frame& frame, int x, int y, const TraversalHit& proposed, const Shader& shader,
+                          const PixelRays& rays, const dvec3& dir, const RenderSettings& settings, RenderStats& st,
+                          TraversalCounters& counters, const LodCut* cut = nullptr) {
+    const TraversalHit hit = surfaceHit(shader.smooth(), proposed, rays, x, y, dir, counters, cut);
     const std::size_t p = frame.pixel(x, y);
     ++st.pixels;
     frame.flags[p] = Frame::kTraced;
@@ -40,10 +62,11 @@ inline void writePixelHit(Frame& frame, int x, int y, const TraversalHit& hit, c
 constexpr int kPerPixelTile = 32;
 
 /// Renders tile by tile (in parallel); each pixel is traced on its own by `trace`, which maps
-/// a ray in octree space to a hit. Counters are kept per tile and summed in tile order.
+/// a ray in octree space to a hit. Counters are kept per tile and summed in tile order. `cut`:
+/// the multi-resolution cut `trace` honours, for the shared hit path (surfaceHit).
 template <class Trace>
 RenderStats renderPerPixel(const std::string& name, const Octree& tree, const Camera& camera,
-                           const RenderSettings& settings, Frame& frame, const Trace& trace) {
+                           const RenderSettings& settings, Frame& frame, const Trace& trace, const LodCut* cut = nullptr) {
     camera.validate();
     Timer timer;
     frame.reshape(camera.width, camera.height);  // every pixel is written below
@@ -64,7 +87,7 @@ RenderStats renderPerPixel(const std::string& name, const Octree& tree, const Ca
                 const TraversalHit hit = trace(rays, x, y, dir, counters, meets);
                 if (meets) ++st.rays;
                 ++st.raysFull;
-                writePixelHit(frame, x, y, hit, shader, rays, dir, settings, st);
+                writePixelHit(frame, x, y, hit, shader, rays, dir, settings, st, counters, cut);
             }
         st.nodesVisited = counters.nodes;
     });

@@ -8,6 +8,7 @@
 #include "octrace/render/ReferenceTraversal.h"
 #include "octrace/render/Renderer.h"
 #include "octrace/render/Shading.h"
+#include "octrace/render/SmoothSurface.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Parallel.h"
 #include "octrace/util/Timer.h"
@@ -24,18 +25,24 @@ public:
     RenderStats render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
                        Frame& frame) const override {
         const LodCut cut(tree, camera, settings.detail.lodPixels, settings.detail.level);
+        // Smooth surfaces: the reference's own test (a float64 march, SmoothSurface.h) inside its
+        // own traversal, independent of the fast renderers' shared hit path.
+        const SmoothSurface smooth(tree, settings);
         return detail::renderPerPixel(name(), tree, camera, settings, frame,
                               [&](const detail::PixelRays& rays, int x, int y, const dvec3& d, TraversalCounters& c, bool& meets) {
                                   QuantizedRay q = rays.quantized(x, y, d);
                                   ReferenceRay r = quantized_ ? referenceRayFromQuantized(q)
                                                               : referenceRayUnquantized(rays.originOS(x, y), d);
-                                  TraversalHit hit = traverseReference(tree, r, c, &cut);
+                                  SmoothSurface::RayState ray{rays.world(x, y, d)};
+                                  const VoxelFilter filter = smooth.filter(ray, true);
+                                  TraversalHit hit = traverseReference(tree, r, c, &cut, &filter);
                                   // The unquantized ray can graze a cube face from inside where
                                   // its quantized twin is rounded onto the face (outside): it
                                   // meets the cube when it hits, so that hits <= rays holds.
                                   meets = q.meetsCube || hit.hit();
                                   return hit;
-                              });
+                              },
+                              &cut);
     }
     RendererTraits traits() const override {
         RendererTraits t;

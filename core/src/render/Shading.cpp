@@ -140,7 +140,7 @@ vec3 Albedo::at(std::uint32_t voxel, float zCells) const {
 }
 
 Shader::Shader(const Octree& tree, const Camera& camera, const RenderSettings& settings)
-    : tree_(tree), settings_(settings), albedo_(tree, settings) {
+    : tree_(tree), settings_(settings), albedo_(tree, settings), smooth_(tree, settings) {
     dvec3 right, up, back;
     camera.basis(right, up, back);
     dvec3 l = settings.lightCamera;
@@ -152,8 +152,11 @@ Shader::Shader(const Octree& tree, const Camera& camera, const RenderSettings& s
 }
 
 vec4 Shader::shade(std::uint32_t voxel, const ivec3& cell, int leafShift, std::uint64_t* shadowRays) const {
+    return shadeNormal(voxel, cell, baked_ ? vec3(0.0f) : decodeNormal(tree_.voxels()[voxel].normal), shadowRays, leafShift);
+}
+
+vec4 Shader::shadeNormal(std::uint32_t voxel, const ivec3& cell, vec3 n, std::uint64_t* shadowRays, int leafShift) const {
     if (baked_) return vec4(albedo_.at(voxel, float(cell.z) + 0.5f) * (float((*baked_)[voxel]) * (1.0f / 255.0f)), 1.0f);
-    const vec3 n = decodeNormal(tree_.voxels()[voxel].normal);
     float lambert = std::abs(glm::dot(n, light_));
     if (shadows_ && lambert > 0.0f) {
         std::uint64_t rays = 0;
@@ -177,6 +180,7 @@ vec4 Shader::shadeLambert(std::uint32_t voxel, float zCells, float lambert) cons
 float Shader::distance(const Ray& ray, const ivec3& cell) const { return distanceToBox(ray, tree_.voxelBox(cell)); }
 
 float Shader::distance(const Ray& ray, const TraversalHit& hit) const {
+    if (hit.smooth) return float(hit.distance);
     if (!hit.nodeHit() && hit.leafShift == 0) return distance(ray, hit.cell);
     const int level = hit.nodeHit() ? hit.level : tree_.depth - hit.leafShift;
     const double side = tree_.cubeSide / double(1u << level);

@@ -121,6 +121,7 @@ struct Flattened {
     std::vector<std::uint32_t> normals;
     std::vector<std::uint8_t> baked;  // Octree::baked() in the same order, when it has some
     std::vector<std::uint8_t> colours;  // per voxel, in the order of `normals`: 4 bytes (packColour, little endian)
+    std::vector<std::uint64_t> corners;  // Octree::corners() in the same order, when it has some
     bool anyTerm = false;
 };
 
@@ -143,6 +144,7 @@ Flattened flatten(const Octree& tree) {
                 if (l == tree.depth - 1) {
                     f.normals.push_back(tree.voxels()[slot].normal);
                     if (!tree.baked().empty()) f.baked.push_back(tree.baked()[slot]);
+                    if (!tree.corners().empty()) f.corners.push_back(tree.corners()[slot]);
                     if (tree.hasColours())
                         for (int b = 0; b < 4; ++b) f.colours.push_back(std::uint8_t(tree.colours()[slot] >> (8 * b)));
                 } else {
@@ -436,14 +438,16 @@ std::vector<std::uint8_t> encodeOctreeFile(const Octree& tree, int zstdLevel) {
     if (!tree.baked().empty() && tree.form != OctreeForm::Shell) throw Error("baked light is kept in the shell form only");
     Writer w;
     w.raw(kMagic, sizeof kMagic);
-    w.u32(f.baked.empty() ? 1 : 2);  // version 1 readers know no 'LITE' chunk
+    // Version 1 readers know no 'LITE' chunk, version 2 readers no 'CRNR'.
+    w.u32(!f.corners.empty() ? 3 : f.baked.empty() ? 1 : 2);
     w.u32(0);  // header length, patched below
     const std::size_t headerStart = w.bytes.size();
     const bool withTerms = tree.form == OctreeForm::Volume;
     w.u8(std::uint8_t(tree.form));
     w.u8(std::uint8_t(tree.depth));
     w.u16(tree.insideBelow ? 1 : 0);
-    w.u32(2 + (withTerms ? 1 : 0) + (f.colours.empty() ? 0 : 1) + (tree.crs().empty() ? 0 : 1) + (f.baked.empty() ? 0 : 1));
+    w.u32(2 + (withTerms ? 1 : 0) + (f.colours.empty() ? 0 : 1) + (tree.crs().empty() ? 0 : 1) + (f.baked.empty() ? 0 : 1) +
+          (f.corners.empty() ? 0 : 1));
     w.u64(tree.nodes().size());
     w.u64(tree.voxels().size());
     for (int a = 0; a < 3; ++a) w.f64(tree.cubeOrigin[a]);
@@ -462,6 +466,13 @@ std::vector<std::uint8_t> encodeOctreeFile(const Octree& tree, int zstdLevel) {
     if (!f.colours.empty()) putChunk(w, "COLR", f.colours, zstdLevel);
     if (!tree.crs().empty()) putChunk(w, "CRS ", std::vector<std::uint8_t>(tree.crs().begin(), tree.crs().end()), zstdLevel);
     if (!f.baked.empty()) putChunk(w, "LITE", f.baked, zstdLevel);
+    if (!f.corners.empty()) {
+        // Smooth surfaces: 8 byte planes, corner q's byte of every voxel in plane q.
+        std::vector<std::uint8_t> planes(8 * f.corners.size());
+        for (std::size_t i = 0; i < f.corners.size(); ++i)
+            for (int q = 0; q < 8; ++q) planes[std::size_t(q) * f.corners.size() + i] = std::uint8_t(f.corners[i] >> (8 * q));
+        putChunk(w, "CRNR", planes, zstdLevel);
+    }
     return std::move(w.bytes);
 }
 
@@ -473,7 +484,7 @@ Octree decodeOctreeFile(std::span<const std::uint8_t> bytes, const std::string& 
     // Which chunks: TREE and NORM once each, TERM once in the volume form only; COLR, CRS and
     // (version 2) LITE at most once.
     const RawChunk *treeChunk = nullptr, *termChunk = nullptr, *normChunk = nullptr, *colrChunk = nullptr, *crsChunk = nullptr,
-                   *liteChunk = nullptr;
+                   *liteChunk = nullptr, *crnrChunk = nullptr;
     for (const RawChunk& c : chunks) {
         const RawChunk** slot = c.tag == "TREE"                          ? &treeChunk
                                 : c.tag == "TERM"                        ? &termChunk
@@ -481,6 +492,7 @@ Octree decodeOctreeFile(std::span<const std::uint8_t> bytes, const std::string& 
                                 : c.tag == "COLR"                        ? &colrChunk
                                 : c.tag == "CRS "                        ? &crsChunk
                                 : c.tag == "LITE" && info.version >= 2 ? &liteChunk
+                                : c.tag == "CRNR" && info.version >= 3 ? &crnrChunk
                                                                          : nullptr;
         if (!slot) throw FileError(name + ": unknown chunk '" + c.tag + "'");
         if (*slot) throw FileError(name + ": chunk '" + c.tag + "' appears twice");
@@ -495,11 +507,14 @@ Octree decodeOctreeFile(std::span<const std::uint8_t> bytes, const std::string& 
     if (treeChunk->rawBytes != info.nodes || (termChunk && termChunk->rawBytes != info.nodes) || normChunk->rawBytes != 4 * info.voxels)
         throw FileError(name + ": chunk sizes do not match the header's " + std::to_string(info.nodes) + " nodes and " +
                         std::to_string(info.voxels) + " voxels");
+    if (crnrChunk && (info.form != OctreeForm::Shell || crnrChunk->rawBytes != 8 * info.voxels))
+        throw FileError(name + ": chunk 'CRNR' holds " + std::to_string(crnrChunk->rawBytes) + " bytes, not 8 for each of the " +
+                        std::to_string(info.voxels) + " voxels of a shell octree");
     if (colrChunk && colrChunk->rawBytes != 4 * info.voxels)
         throw FileError(name + ": chunk 'COLR' holds " + std::to_string(colrChunk->rawBytes) + " bytes, not 4 for each of the " +
                         std::to_string(info.voxels) + " voxels");
     if (crsChunk && crsChunk->rawBytes > 65536) throw FileError(name + ": chunk 'CRS ' is absurdly long");
-    const std::uint64_t need = info.nodes * (sizeof(OctreeNode) + 2) + info.voxels * (sizeof(Voxel) + 8 + (colrChunk ? 4 : 0));
+    const std::uint64_t need = info.nodes * (sizeof(OctreeNode) + 2) + info.voxels * (sizeof(Voxel) + 8 + (colrChunk ? 4 : 0) + (crnrChunk ? 16 : 0));
     checkMemoryBudget(name + ": reading an octree of " + std::to_string(info.nodes) + " nodes and " +
                           std::to_string(info.voxels) + " voxels",
                       need, memoryBudget);
@@ -552,6 +567,14 @@ Octree decodeOctreeFile(std::span<const std::uint8_t> bytes, const std::string& 
     const std::vector<std::uint32_t> normals = decodeNormals(normalPlanes, voxelMortonCodes(tree));
     for (std::size_t i = 0; i < normals.size(); ++i) tree.setVoxelNormal(std::uint32_t(i), normals[i]);
     tree.setBaked(std::move(baked));  // its length was checked against the header's above
+    if (crnrChunk) {
+        const std::vector<std::uint8_t> planes = inflate(*crnrChunk, name);
+        const std::size_t n = tree.voxels().size();
+        std::vector<std::uint64_t> corners(n, 0);
+        for (int q = 0; q < 8; ++q)
+            for (std::size_t i = 0; i < n; ++i) corners[i] |= std::uint64_t(planes[std::size_t(q) * n + i]) << (8 * q);
+        tree.setCorners(std::move(corners));
+    }
     if (colrChunk) {
         // Written in breadth-first order, which is the order of the decoded voxels.
         const std::vector<std::uint8_t> c = inflate(*colrChunk, name);

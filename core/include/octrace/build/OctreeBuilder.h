@@ -41,6 +41,11 @@ struct BuildOptions {
     /// or at the centre where that point is masked or outside the grid. What a display window
     /// colours by: the tissue under the surface rather than the iso value itself.
     bool voxelValues = false;
+    /// Also fill Octree::corners(): per boundary voxel the trilinear field at its 8 corners, the
+    /// values it was classified by, relative to the iso value and quantized (encodeCorners,
+    /// render/SmoothSurface.h), for smooth surfaces. Shell form only (the volume form's caps have
+    /// no crossing to find): ignored for the volume form. 8 bytes per voxel.
+    bool corners = false;
     /// buildOctree only: the shell (boundary voxels) or the volume form (the solid bounded by
     /// the isosurface, interior kept: build/Volume.h).
     OctreeForm form = OctreeForm::Shell;

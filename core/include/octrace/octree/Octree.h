@@ -99,6 +99,14 @@ vec3 unpackColour(std::uint32_t packed);
 std::uint32_t encodeNormal(vec3 n);
 vec3 decodeNormal(std::uint32_t code);
 
+/// Smooth surfaces (render/SmoothSurface.h, VoxelAttributes::corners): the 8 corner values of
+/// a voxel (corner q = 4x + 2y + z, as child indices) relative to `iso`, in 8 signed bytes: (value - iso) / max |value - iso| x 127, rounded, a corner below iso never
+/// rounded up to 0 (so the sides of the corners are kept exactly; the surface inside the voxel
+/// does not depend on the scale). Byte q is bits 8q .. 8q+7. 0 only when every corner equals iso.
+std::uint64_t encodeCorners(const float values[8], float iso);
+/// The scaled corner values in [-1, 1] (all 0 for the code 0).
+void decodeCorners(std::uint64_t code, double d[8]);
+
 /// Well-known keys of Octree::metadata(): what the octree was made from, for info and stats.
 /// Other keys may be set freely (they are carried by emptyCopy and copy like these).
 namespace octree_key {
@@ -134,6 +142,11 @@ struct VoxelAttributes {
     /// The voxel's material (values of VoxelMaterial); empty = every voxel
     /// VoxelMaterial::Surface (and in octree files). Shading.h colours by it.
     std::vector<std::uint8_t> voxelMaterials;
+    /// Smooth surfaces (render/SmoothSurface.h): per voxel the field's values at its 8 corners
+    /// relative to the iso value, quantized (encodeCorners); code 0 = none (drawn as a voxel,
+    /// e.g. a floor voxel merged in). Empty: every voxel is drawn as its box (mesh-derived
+    /// scenes, volume forms, octree files of format version 1 and 2).
+    std::vector<std::uint64_t> corners;
 };
 
 /// Ordered, so that listings and comparisons of the metadata are stable.
@@ -181,6 +194,7 @@ public:
     const std::vector<float>& voxelValues() const { return attributes_.voxelValues; }
     const std::vector<std::uint8_t>& baked() const { return attributes_.baked; }
     const std::vector<std::uint8_t>& voxelMaterials() const { return attributes_.voxelMaterials; }
+    const std::vector<std::uint64_t>& corners() const { return attributes_.corners; }
     bool hasColours() const { return !attributes_.colours.empty(); }
     VoxelMaterial material(std::uint32_t voxel) const {
         return attributes_.voxelMaterials.empty() ? VoxelMaterial::Surface : VoxelMaterial(attributes_.voxelMaterials[voxel]);
@@ -192,7 +206,8 @@ public:
     void setVoxelValues(std::vector<float> values);
     void setBaked(std::vector<std::uint8_t> baked);
     void setVoxelMaterials(std::vector<std::uint8_t> materials);
-    /// All four at once, checked as the setters do (nothing is set when one is refused).
+    void setCorners(std::vector<std::uint64_t> corners);
+    /// All of them at once, checked as the setters do (nothing is set when one is refused).
     void setAttributes(VoxelAttributes attributes);
     /// Moves the attributes out, leaving none: for an operation that edits them in place and
     /// hands them back with setAttributes (no copy of buffers that may be large).

@@ -56,9 +56,20 @@ struct TraversalHit {
     int leafShift = 0;             ///< voxel hits: the leaf's side is 2^leafShift voxels (> 0: a coarse leaf, Octree.h)
     std::uint32_t node = kNoHit;   ///< multi-resolution: the inner node drawn instead of a voxel
     int level = 0;                 ///< the node's level (node hits only)
+    /// Smooth surfaces (SmoothSurface.h): the hit lies on the field's interpolant inside the
+    /// voxel, at `distance` along the unit world ray, with the unit normal `normal` (towards
+    /// lower values). False: the voxel's box is the hit.
+    bool smooth = false;
+    double distance = 0.0;
+    vec3 normal{0.0f};
     bool hit() const { return voxel != kNoHit; }
     bool nodeHit() const { return node != kNoHit; }
 };
+
+/// Decides whether a voxel the traversal reaches is its hit (true) or is passed (false), and may
+/// fill in the hit's smooth part; called once per reached voxel, in visiting order, never for a
+/// node drawn whole by a cut. The smooth surfaces' test (SmoothSurface.h).
+using VoxelFilter = std::function<bool(TraversalHit&)>;
 
 struct TraversalCounters {
     std::uint64_t nodes = 0;           ///< inner nodes whose state byte was computed
@@ -69,8 +80,9 @@ class LodCut;
 
 /// The discrete integer traversal. Thread-safe. With a cut (Lod.h), it stops at the first
 /// crossed non-empty node the cut says to stop at and returns it as a node hit.
+/// With a filter, a voxel it refuses is passed and the traversal goes on behind it.
 TraversalHit traverseDiscrete(const Octree& tree, const QuantizedRay& ray, TraversalCounters& counters,
-                              const LodCut* cut = nullptr);
+                              const LodCut* cut = nullptr, const VoxelFilter* filter = nullptr);
 
 /// Same traversal, reporting every state byte it computes (sign pattern, byte in original
 /// child numbering, before masking with the node's children). For tests.

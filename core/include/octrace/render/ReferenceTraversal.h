@@ -30,8 +30,9 @@ ReferenceRay referenceRayFromQuantized(const QuantizedRay& q);
 ReferenceRay referenceRayUnquantized(const dvec3& originOS, const dvec3& directionOS);
 
 /// Thread-safe. counters.nodes counts the nodes whose children were tested. With a cut
-/// (Lod.h), stops where it says, as the discrete traversal does.
+/// (Lod.h), stops where it says, as the discrete traversal does. With a filter, a voxel it
+/// refuses is passed and the traversal goes on behind it (as traverseDiscrete).
 TraversalHit traverseReference(const Octree& tree, const ReferenceRay& ray, TraversalCounters& counters,
-                               const LodCut* cut = nullptr);
+                               const LodCut* cut = nullptr, const VoxelFilter* filter = nullptr);
 
 }  // namespace octrace

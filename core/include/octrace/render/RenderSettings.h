@@ -3,6 +3,7 @@
 #include "octrace/build/ScalarField.h"
 #include "octrace/util/Math.h"
 
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
@@ -54,6 +55,12 @@ struct SphereShading {
     int bounces = 2;
 };
 
+/// How a boundary voxel is drawn (render/SmoothSurface.h): as its box (Voxel: the papers'
+/// renderers and every octree without corner values), or where the camera ray crosses the
+/// trilinear interpolant of the field's values at the voxel's corners (Smooth), shaded by the
+/// interpolant's gradient there; a ray that passes a boundary voxel without crossing goes on.
+enum class SurfaceMode : std::uint8_t { Voxel = 0, Smooth = 1 };
+
 /// The settings of one frame. The shared part (threads, colours, light, background, shadows)
 /// is read by every renderer; each group after it by the renderers whose traits say so.
 struct RenderSettings {
@@ -101,6 +108,9 @@ struct RenderSettings {
     /// not reach gets the ambient term only (Shader::shade); inner nodes drawn whole by
     /// multi-resolution are not shadowed.
     std::optional<bool> shadows;
+    /// Read by every voxel renderer, through the shared hit path (SmoothSurface.h). Smooth on an
+    /// octree without corner values (Octree::corners()) draws voxels.
+    SurfaceMode surface = SurfaceMode::Voxel;
 };
 
 }  // namespace octrace

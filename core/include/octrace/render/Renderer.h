@@ -35,6 +35,10 @@ struct RendererTraits {
     bool trajectoryCoherence = false;
     /// CoherenceSettings::miss (the approximate linear and area).
     bool missCoherence = false;
+    /// One of the papers' renderers (full, linear, area and their variants, direct, samet,
+    /// beam): the front ends draw voxels with it unless smooth surfaces are asked for
+    /// (RenderSettings::surface), so that the reproductions' images and tables stay as they were.
+    bool paper = false;
 };
 
 class Renderer {
@@ -49,6 +53,7 @@ public:
     bool colourCoherence() const { return traits().colourCoherence; }
     bool trajectoryCoherence() const { return traits().trajectoryCoherence; }
     bool missCoherence() const { return traits().missCoherence; }
+    bool paperRenderer() const { return traits().paper; }
     /// Renders into `frame` (resized to the camera's size). Deterministic: the result does not
     /// depend on settings.threads. Thread-safe for distinct frames.
     virtual RenderStats render(const Octree& octree, const Camera& camera, const RenderSettings& settings,

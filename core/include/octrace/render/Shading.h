@@ -6,6 +6,7 @@
 #include "octrace/render/Camera.h"
 #include "octrace/render/DiscreteTraversal.h"
 #include "octrace/render/RenderSettings.h"
+#include "octrace/render/SmoothSurface.h"
 
 #include <string>
 #include <vector>
@@ -86,15 +87,21 @@ public:
     float distance(const Ray& ray, const ivec3& cell) const;
     /// An inner node drawn whole (multi-resolution): its summary's normal and mean height.
     vec4 shadeNode(std::uint32_t node) const;
-    /// Either kind of hit.
+    /// Any kind of hit; a smooth one (SmoothSurface.h) is lit by its own normal, else as shade().
     vec4 shade(const TraversalHit& hit, std::uint64_t* shadowRays = nullptr) const {
-        return hit.nodeHit() ? shadeNode(hit.node) : shade(hit.voxel, hit.cell, hit.leafShift, shadowRays);
+        if (hit.nodeHit()) return shadeNode(hit.node);
+        if (hit.smooth) return shadeNormal(hit.voxel, hit.cell, hit.normal, shadowRays);
+        return shade(hit.voxel, hit.cell, hit.leafShift, shadowRays);
     }
+    /// The frame's smooth-surface test (RenderSettings::surface), for the shared hit path.
+    const SmoothSurface& smooth() const { return smooth_; }
     /// Whether shade() traces shadow rays.
     bool shadows() const { return shadows_; }
+    /// Where the ray enters the hit's box, or a smooth hit's own distance.
     float distance(const Ray& ray, const TraversalHit& hit) const;
 
 private:
+    vec4 shadeNormal(std::uint32_t voxel, const ivec3& cell, vec3 n, std::uint64_t* shadowRays, int leafShift = 0) const;
     vec4 shadeLambert(std::uint32_t voxel, float zCells, float lambert) const;
     float distanceToBox(const Ray& ray, const Box3& b) const;
     const Octree& tree_;
@@ -103,6 +110,7 @@ private:
     Albedo albedo_;
     const std::vector<std::uint8_t>* baked_ = nullptr;  // RenderSettings::baked and the octree has it
     bool shadows_ = false;  // RenderSettings::shadows, dynamic shading of a shell octree
+    SmoothSurface smooth_;
 };
 
 }  // namespace octrace

@@ -192,6 +192,7 @@ private:
         const dvec3 L = lo - gen_.eye(), H = hi - gen_.eye();
         bool shaded = false;
         vec4 colour{};
+        const bool smooth = shader_.smooth().active() && node == kNoHit && leafShift == 0;
         for (int y = r.y0; y <= r.y1; ++y)
             for (int x = r.x0; x <= r.x1; ++x) {
                 const std::size_t i = local(x, y);
@@ -221,21 +222,37 @@ private:
                     if (!inside) continue;
                 }
                 if (tmin > tmax || tmax < 0.0) continue;
+                const std::size_t p = frame_.pixel(x, y);
+                if (smooth) {
+                    // Smooth surfaces (SmoothSurface.h): the pixel shows the voxel only where its
+                    // ray crosses the field's interpolant in it; else what lies behind stays.
+                    TraversalHit h;
+                    h.voxel = voxel;
+                    h.cell = cell;
+                    SmoothSurface::RayState ray{Ray{gen_.origin(x, y), glm::normalize(gen_.direction(x, y))}};
+                    if (!shader_.smooth().test(ray, h)) continue;
+                    writeSplat(p, i, shader_.shade(h, &st.secondaryRays), float(h.distance), voxel);
+                    ++st.voxelsSplatted;
+                    continue;
+                }
                 if (!shaded) {
                     colour = node == kNoHit ? shader_.shade(voxel, cell, leafShift, &st.secondaryRays) : shader_.shadeNode(node);
                     shaded = true;
                     ++st.voxelsSplatted;
                 }
-                const std::size_t p = frame_.pixel(x, y);
-                frame_.rgba[p] = colour;
-                frame_.depth[p] = float(std::max(tmin, 0.0) * glm::length(gen_.direction(x, y)));
-                frame_.hitId[p] = voxel;
-                frame_.flags[p] = Frame::kSplatted;
-                if (f2b_) {
-                    covered_[i] = 1;
-                    ++coveredCount_;
-                }
+                writeSplat(p, i, colour, float(std::max(tmin, 0.0) * glm::length(gen_.direction(x, y))), voxel);
             }
+    }
+
+    void writeSplat(std::size_t p, std::size_t i, const vec4& colour, float depth, std::uint32_t voxel) {
+        frame_.rgba[p] = colour;
+        frame_.depth[p] = depth;
+        frame_.hitId[p] = voxel;
+        frame_.flags[p] = Frame::kSplatted;
+        if (f2b_) {
+            covered_[i] = 1;
+            ++coveredCount_;
+        }
     }
 
     const Octree& tree_;

@@ -11,6 +11,7 @@ public:
     RendererTraits traits() const override {
         RendererTraits t;
         t.tracesRays = false;
+        t.paper = true;
         return t;
     }
     RenderStats render(const Octree& tree, const Camera& camera, const RenderSettings& settings,

@@ -622,6 +622,7 @@ public:
         t.levelOfDetail = false;
         t.drawsSpheres = true;
         t.drawsVoxels = tracer_ != SphereTracer::BruteForce;  // the brute-force oracle: spheres only
+        t.paper = true;
         return t;
     }
     RenderStats render(const Octree& tree, const Camera& camera, const RenderSettings& settings, Frame& frame) const override {

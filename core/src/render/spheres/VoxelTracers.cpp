@@ -436,7 +436,7 @@ RenderStats renderBeams(const std::string& name, const Octree& tree, const Camer
         for (int j = 0; j < h; ++j)
             for (int i = 0; i < w; ++i)
                 writePixelHit(frame, x0 + i, y0 + j, hits[std::size_t(j) * std::size_t(w) + std::size_t(i)], shader, rays,
-                              rays.direction(x0 + i, y0 + j), settings, st);
+                              rays.direction(x0 + i, y0 + j), settings, st, counters);
         st.nodesVisited = counters.nodes;
     });
     return RenderStats::total(name, tileStats, timer.ms());

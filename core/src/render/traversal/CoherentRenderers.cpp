@@ -12,6 +12,7 @@
 // partners were both traced and their 8-bit colours agree within the tolerance. Miss coherence
 // (approximate linear and area) takes a common-path pixel whose partners both missed as a miss.
 #include "render/traversal/CoherentRenderers.h"
+#include "render/PerPixel.h"
 #include "render/traversal/PixelRays.h"
 
 #include "octrace/render/DiscreteTraversal.h"
@@ -104,6 +105,7 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
         ++st.raysFull;
         hit = traverseDiscrete(c.tree, q, counters, &c.cut);
     }
+    hit = surfaceHit(c.shader.smooth(), hit, c.rays, x, y, dir, counters, &c.cut);
     f.flags[p] = flags;
     if (!hit.hit()) {
         f.rgba[p] = c.settings.background;

@@ -15,6 +15,7 @@ public:
         t.colourCoherence = true;
         t.trajectoryCoherence = pattern_ != Pattern::Full;
         t.missCoherence = pattern_ != Pattern::Full && !exact_;  // never the exact variants
+        t.paper = true;
         return t;
     }
     RenderStats render(const Octree& tree, const Camera& camera, const RenderSettings& settings,

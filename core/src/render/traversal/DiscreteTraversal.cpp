@@ -205,6 +205,7 @@ public:
     }
 
     void setCut(const LodCut* cut) { cut_ = cut && cut->active() ? cut : nullptr; }
+    void setFilter(const VoxelFilter* filter) { filter_ = filter && *filter ? filter : nullptr; }
 
     /// Guided mode: frames on this path above `guideLevel` become lazy where they can.
     void guide(const BranchNode* b) { guide_ = b; }
@@ -254,6 +255,10 @@ public:
                 }
                 result.voxel = coarseLeaf ? tree_.nodes()[slot].firstChild : slot;
                 result.leafShift = tree_.depth - n.level - 1;
+                if (filter_ && !(*filter_)(result)) {
+                    result = TraversalHit{};  // passed: go on behind it
+                    continue;
+                }
                 return result;
             }
             if (nd.termMask & (1u << c)) continue;  // interior terms: volume form, not drawn by this shell renderer
@@ -350,6 +355,7 @@ private:
     RayConsts k_{};
     const BranchNode* guide_ = nullptr;
     const LodCut* cut_ = nullptr;
+    const VoxelFilter* filter_ = nullptr;
     bool onPathWork_ = false;
     NodeState stack_[Octree::kMaxDepth + 1];
     int sp_ = -1;
@@ -357,10 +363,12 @@ private:
 
 template <bool kObserve>
 TraversalHit traverse(const Octree& tree, const QuantizedRay& r, TraversalCounters& counters,
-                      const std::function<void(unsigned, unsigned)>* observe, const LodCut* cut = nullptr) {
+                      const std::function<void(unsigned, unsigned)>* observe, const LodCut* cut = nullptr,
+                      const VoxelFilter* filter = nullptr) {
     if (!r.meetsCube || tree.nodes().empty()) return TraversalHit{};  // before setting up the engine
     Engine<kObserve> e(tree, r, counters, observe);
     e.setCut(cut);
+    e.setFilter(filter);
     if (!e.startAtRoot()) return TraversalHit{};
     return e.run();
 }
@@ -457,8 +465,8 @@ QuantizedRay quantizeRay(const dvec3& o, const dvec3& d) {
 }
 
 TraversalHit traverseDiscrete(const Octree& tree, const QuantizedRay& ray, TraversalCounters& counters,
-                              const LodCut* cut) {
-    return traverse<false>(tree, ray, counters, nullptr, cut);
+                              const LodCut* cut, const VoxelFilter* filter) {
+    return traverse<false>(tree, ray, counters, nullptr, cut, filter);
 }
 
 TraversalHit traverseDiscreteObserved(const Octree& tree, const QuantizedRay& ray, TraversalCounters& counters,

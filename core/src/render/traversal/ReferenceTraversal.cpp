@@ -57,6 +57,14 @@ struct Walker {
     TraversalCounters& counters;
     long double voxelSize;
     const LodCut* cut;
+    const VoxelFilter* filter;
+
+    /// The filter's verdict on a reached voxel; a refused one leaves no trace in `hit`.
+    bool accepts(TraversalHit& hit) const {
+        if (!filter || (*filter)(hit)) return true;
+        hit = TraversalHit{};
+        return false;
+    }
 
     bool visit(std::uint32_t node, int level, const long double lo[3], TraversalHit& hit) {
         ++counters.nodes;
@@ -87,7 +95,8 @@ struct Walker {
             if (level == tree.depth - 1) {
                 hit.voxel = k.slot;
                 for (int a = 0; a < 3; ++a) hit.cell[a] = int(std::lround(k.lo[a] / voxelSize));
-                return true;
+                if (accepts(hit)) return true;
+                continue;
             }
             if (nd.termMask & (1u << k.child)) {
                 if (tree.form != OctreeForm::Shell) continue;  // interior term: not drawn
@@ -95,7 +104,8 @@ struct Walker {
                 hit.voxel = tree.nodes()[k.slot].firstChild;
                 for (int a = 0; a < 3; ++a) hit.cell[a] = int(std::lround(k.lo[a] / voxelSize));
                 hit.leafShift = tree.depth - level - 1;
-                return true;
+                if (accepts(hit)) return true;
+                continue;
             }
             if (cut) {
                 ivec3 cell;
@@ -153,13 +163,14 @@ ReferenceRay referenceRayUnquantized(const dvec3& o, const dvec3& d) {
 }
 
 TraversalHit traverseReference(const Octree& tree, const ReferenceRay& ray, TraversalCounters& counters,
-                               const LodCut* cut) {
+                               const LodCut* cut, const VoxelFilter* filter) {
     TraversalHit hit;
     if (!ray.valid || tree.nodes().empty()) return hit;
     const long double lo[3] = {0, 0, 0};
     Param start;
     if (!boxInterval(ray, lo, kL, start)) return hit;
-    Walker w{tree, ray, counters, std::ldexp(1.0L, N - tree.depth), cut && cut->active() ? cut : nullptr};
+    Walker w{tree, ray, counters, std::ldexp(1.0L, N - tree.depth), cut && cut->active() ? cut : nullptr,
+             filter && *filter ? filter : nullptr};
     w.visit(0, 0, lo, hit);
     return hit;
 }

@@ -16,9 +16,10 @@
 
 namespace octrace::io {
 
-/// The newest format version this build reads. It writes version 1, or version 2 when the
-/// octree has baked light (chunk 'LITE', which version 1 readers do not know).
-inline constexpr std::uint32_t kOctreeFileVersion = 2;
+/// The newest format version this build reads. It writes version 1, version 2 when the octree
+/// has baked light (chunk 'LITE', which version 1 readers do not know), or version 3 when it has
+/// corner values for smooth surfaces (chunk 'CRNR', which version 2 readers do not know).
+inline constexpr std::uint32_t kOctreeFileVersion = 3;
 
 /// What the header and the chunk table of a file say (octrace info).
 struct OctreeFileInfo {

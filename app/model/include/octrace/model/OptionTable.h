@@ -117,6 +117,14 @@ inline constexpr Option form{.key = "form", .kind = OptionKind::Choice, .flag = 
     .help = "octree form: the isosurface's boundary voxels (shell), or the solid it bounds with its interior and caps where "
             "the grid ends (volume)",
     .commands = "render export build animate"};
+inline constexpr Option surface{.key = "surface", .kind = OptionKind::Choice, .flag = "surface", .argument = "voxel|smooth",
+    .defaultText = "smooth for field inputs, except with the papers' renderers (full, linear, area and their variants, "
+                   "direct, samet, beam), which draw voxel",
+    .choices = "voxel|smooth",
+    .help = "how a boundary voxel is drawn: its box, or where the ray crosses the trilinear interpolant of the field's "
+            "values at its corners, lit by the field's gradient (8 more bytes per voxel; cities, molecules, cuts and "
+            "octree files without corner values draw voxel)",
+    .commands = "render export build animate"};
 inline constexpr Option inside{.key = "inside", .kind = OptionKind::Choice, .flag = "inside", .argument = "above|below",
     .choices = "above|below", .help = "volume form: the solid is where the value is >= iso (above) or < iso (below)",
     .commands = "render export build csg animate"};

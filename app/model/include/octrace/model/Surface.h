@@ -60,6 +60,9 @@ struct SurfaceSpec {
     OctreeForm form = OctreeForm::Shell;  // --form
     bool insideBelow = false;             // --inside below
     bool formGiven = false;               // --form or --inside given
+    /// --surface; unset: surfaceModeFor's default (smooth, voxel with the papers' renderers). A
+    /// build stores corner values (BuildOptions::corners) unless it is voxel.
+    std::optional<SurfaceMode> surface;
     bool keepVolume = false;  // set by the command: buildSurface keeps a volume octree as it is (build, csg)
     std::vector<SolidArgument> cuts;  // --cut, in order (SolidSpec.h: relief:FILE is read once the field is)
     bool clip = false;        // --clip: keep the inside of the cuts instead
@@ -85,6 +88,10 @@ void requireHounsfield(const ScalarField& f, const std::string& input, const std
 /// @throws InputError as quantityIn, and when the converted MIN is not below MAX.
 std::pair<float, float> colourRangeIn(const Quantity& min, const Quantity& max, const std::string& units,
                                       const std::string& subject);
+/// The surface mode a frame of `renderer` (a name or an alias) draws: `given`, else voxel for
+/// the papers' renderers (RendererTraits::paper) and smooth for the others. Smooth draws voxel
+/// where the octree has no corner values (SmoothSurface.h).
+SurfaceMode surfaceModeFor(const std::optional<SurfaceMode>& given, const std::string& renderer);
 /// The memory budget in bytes: spec.maxMemory, or the default share of physical memory.
 std::uint64_t memoryBudget(const SurfaceSpec& a);
 /// The first setting of `request` that chooses part of a field, as a message names it

@@ -1,0 +1,176 @@
+// Smooth surfaces (render/SmoothSurface.h): the corner codes, the fast renderers against the
+// smooth reference (its own float64 march) on several scenes and cameras, and the surface they
+// find against the analytic one.
+#include "RenderTestUtil.h"
+
+#include "octrace/build/AnalyticField.h"
+#include "octrace/build/OctreeBuilder.h"
+#include "octrace/render/Renderer.h"
+#include "octrace/render/SmoothSurface.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+using namespace octrace;
+using namespace octrace::test;
+
+namespace {
+
+Octree smoothTree(const std::string& field, int n, int depth, std::uint32_t seed = 1) {
+    BuildOptions o;
+    o.depth = depth;
+    o.iso = 0.0;
+    o.corners = true;
+    return buildShellOctree(makeAnalyticField(field, n, seed), o);
+}
+
+const Octree& smoothSphere() {
+    static const Octree t = smoothTree("sphere", 33, 7);
+    return t;
+}
+const Octree& smoothTorus() {
+    static const Octree t = smoothTree("torus", 33, 6);
+    return t;
+}
+const Octree& smoothNoise() {
+    static const Octree t = smoothTree("noise", 65, 8, 7);
+    return t;
+}
+
+RenderSettings smoothSettings() {
+    RenderSettings s;
+    s.surface = SurfaceMode::Smooth;
+    return s;
+}
+
+// The exact fast ray casters: every voxel renderer that traces rays but the references (the
+// unquantized one traces another line) and the approximate linear and area (miss coherence and
+// the start at the branch node change pixels by design, smooth or not: coherence.md).
+std::vector<std::string> fastRayCasters() {
+    std::vector<std::string> out;
+    for (const std::string& n : rendererNames()) {
+        const auto r = makeRenderer(n);
+        if (r->drawsVoxels() && r->tracesRays() && !r->missCoherence() && n.rfind("reference", 0) != 0) out.push_back(n);
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST(SmoothSurface, CornerCodesKeepEachCornersSideAndTheRatios) {
+    const float v[8] = {-3.0f, 1.0f, 0.001f, -0.0001f, 0.0f, 2.5f, -1.5f, 3.0f};
+    double d[8];
+    decodeCorners(encodeCorners(v, 0.0f), d);
+    for (int q = 0; q < 8; ++q) {
+        EXPECT_EQ(d[q] >= 0.0, v[q] >= 0.0f) << "corner " << q;
+        // Half a step of rounding; a step where a corner just below the iso value is kept below.
+        EXPECT_NEAR(d[q], v[q] / 3.0, (v[q] < 0.0f && v[q] > -1.5f / 127.0f * 3.0f ? 1.0 : 0.5) / 127.0 + 1e-12) << "corner " << q;
+    }
+    // Scale-free: the same field times 1000 and shifted by the iso value codes alike.
+    float w[8];
+    for (int q = 0; q < 8; ++q) w[q] = v[q] * 1000.0f + 20.0f;
+    EXPECT_EQ(encodeCorners(v, 0.0f), encodeCorners(w, 20.0f));
+    const float flat[8] = {1, 1, 1, 1, 1, 1, 1, 1};
+    EXPECT_EQ(encodeCorners(flat, 1.0f), 0u);
+}
+
+TEST(SmoothSurface, FastRenderersFindTheReferencesCellAndDepth) {
+    // Same hit cell per pixel as the smooth reference, depth within 1e-3 of a voxel.
+    const std::pair<std::string, const Octree*> trees[] = {
+        {"sphere", &smoothSphere()}, {"torus", &smoothTorus()}, {"noise", &smoothNoise()}};
+    const RenderSettings s = smoothSettings();
+    for (const auto& [treeName, tree] : trees) {
+        ASSERT_FALSE(tree->corners().empty());
+        const double tolerance = 1e-3 * tree->voxelSize();
+        for (const NamedCamera& nc : allTestCameras(*tree)) {
+            Frame ref;
+            render("reference", *tree, nc.camera, ref, s);
+            for (const std::string& name : fastRayCasters()) {
+                SCOPED_TRACE(treeName + ", camera " + nc.name + ", " + name);
+                Frame f;
+                render(name, *tree, nc.camera, f, s);
+                std::size_t cells = 0, depths = 0, hits = 0;
+                double worst = 0.0;
+                for (std::size_t p = 0; p < f.hitId.size(); ++p) {
+                    if (f.hitId[p] != ref.hitId[p]) {
+                        ++cells;
+                        continue;
+                    }
+                    if (f.hitId[p] == kNoHit) continue;
+                    ++hits;
+                    const double e = std::abs(double(f.depth[p]) - double(ref.depth[p]));
+                    worst = std::max(worst, e);
+                    if (!(e <= tolerance)) ++depths;
+                }
+                EXPECT_EQ(cells, 0u) << "pixels whose hit voxel differs from the reference's";
+                EXPECT_EQ(depths, 0u) << "pixels whose depth differs by more than 1e-3 voxel; worst " << worst / tree->voxelSize()
+                                      << " voxel";
+                if (nc.name == "framing") {
+                    EXPECT_GT(hits, f.hitId.size() / 20);  // not vacuous
+                }
+            }
+        }
+    }
+}
+
+TEST(SmoothSurface, ObjectOrderRenderersAgreeWithTheRayCasters) {
+    // direct and direct-f2b test each voxel on its own (no side carried from the voxel before):
+    // they may differ only where a crossing lies on a face shared by two boundary voxels.
+    const RenderSettings s = smoothSettings();
+    const Octree& tree = smoothSphere();
+    const Camera cam = Camera::framing(cubeOf(tree), 120, 90);
+    Frame full;
+    render("full", tree, cam, full, s);
+    for (const char* name : {"direct", "direct-f2b"}) {
+        Frame f;
+        render(name, tree, cam, f, s);
+        std::size_t differ = 0;
+        for (std::size_t p = 0; p < f.hitId.size(); ++p) differ += f.hitId[p] != full.hitId[p];
+        EXPECT_LE(differ, f.hitId.size() / 200) << name;
+    }
+}
+
+TEST(SmoothSurface, HitsLieOnTheAnalyticSphereFarCloserThanVoxelBoxes) {
+    // The sphere field 0.7 - |p| on 33 samples over [-1,1]^3 (spacing 1/16), at depth 7 (voxel
+    // 1/64): the smooth hit points lie on the interpolant, within a small part of a sample
+    // spacing of the sphere; the voxel boxes' entry points lie up to a voxel diagonal off.
+    const Octree& tree = smoothSphere();
+    const Camera cam = makeCamera({2.1, -2.7, 1.6}, {0, 0, 0}, {0, 0, 1}, 30, 160, 120);
+    const RayGenerator gen(cam);
+    auto radiusErrors = [&](SurfaceMode mode) {
+        RenderSettings s;
+        s.surface = mode;
+        Frame f;
+        render("full", tree, cam, f, s);
+        std::vector<double> e;
+        for (int y = 0; y < f.height; ++y)
+            for (int x = 0; x < f.width; ++x) {
+                const std::size_t p = f.pixel(x, y);
+                if (f.hitId[p] == kNoHit) continue;
+                const dvec3 point = gen.origin(x, y) + double(f.depth[p]) * glm::normalize(gen.direction(x, y));
+                e.push_back(std::abs(glm::length(point) - 0.7));
+            }
+        std::sort(e.begin(), e.end());
+        return e;
+    };
+    const std::vector<double> smooth = radiusErrors(SurfaceMode::Smooth), voxel = radiusErrors(SurfaceMode::Voxel);
+    ASSERT_GT(smooth.size(), 1000u);
+    const double spacing = 2.0 / 32.0;
+    const double p99Smooth = smooth[smooth.size() * 99 / 100], p99Voxel = voxel[voxel.size() * 99 / 100];
+    EXPECT_LT(p99Smooth, 0.05 * spacing) << "voxel mode: " << p99Voxel;
+    EXPECT_LT(p99Smooth * 5.0, p99Voxel);
+}
+
+TEST(SmoothSurface, VoxelModeAndOctreesWithoutCornersDrawBoxes) {
+    // Without corners (or with surface = voxel) a frame is the voxel frame, bit for bit.
+    const Octree& tree = smoothSphere();
+    const Camera cam = Camera::framing(cubeOf(tree), 96, 72);
+    Frame a, b, c;
+    render("full", sphereTree(), cam, a, smoothSettings());  // the same field without corners
+    render("full", sphereTree(), cam, b);
+    render("full", tree, cam, c);  // corners, but surface = voxel
+    EXPECT_TRUE(diffFrames(a, b).identical());
+    EXPECT_TRUE(diffFrames(c, b).identical());
+}
