@@ -397,7 +397,7 @@ Image renderShell(const Shell& sh, const Settings& surfaceSettings, const Settin
         [&] {
             if (multires) std::call_once(*sh.summaries, [&] { sh.surface->tree.computeSummaries(); });
             const Box3 bounds = s.tree.occupiedBounds();
-            const Camera cam = model::frameCamera(view, bounds);
+            const Camera cam = model::frameCamera(view, bounds, model::sceneView(s.field));
             const RenderSettings rs = model::renderSettings(spec, s, view);
             Frame frame = FramePool::instance().take(view.width, view.height);
             const RenderStats st = model::renderFrame(s.tree, cam, rs, view.renderer, frame);
@@ -464,7 +464,7 @@ nb::dict cameraSettings(const Camera& c);
 nb::dict moveCamera(const Shell& sh, const Settings& renderSettings, const std::string& move, double a, double b, int viewHeight) {
     model::RenderSpec view;
     applySettings(renderSettings, {.render = &view});
-    Camera c = model::frameCamera(view, sh.surface->tree.occupiedBounds());
+    Camera c = model::frameCamera(view, sh.surface->tree.occupiedBounds(), model::sceneView(sh.surface->field));
     if (move == "orbit") model::orbit(c, a, b);
     else if (move == "pan") model::pan(c, a, b, viewHeight);
     else if (move == "dolly") model::dolly(c, a);
