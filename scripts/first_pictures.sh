@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The first picture each input gives with no options (issue 27), for docs/user/first-pictures.md:
 # renders each shared data input with `octrace render INPUT -o OUT.png` and nothing else (the CT
-# presets add only --iso), writes a 400-pixel-wide copy as docs/user/images/first/NAME-LABEL.png,
+# presets add only --iso; Levitus only --var TEMP, which a file of several 3-D variables needs),
+# writes a 400-pixel-wide copy as docs/user/images/first/NAME-LABEL.png,
 # and lists what `octrace info` says `--depth auto` picks for every shared data file.
 #
 #   scripts/first_pictures.sh LABEL [OCTRACE] [WRITE_DICOM]
@@ -10,7 +11,8 @@
 # (the CT series writer, bench/WriteDicomSeries.cpp) to build/octrace_write_dicom. The chest CT
 # is written as a CT series in HU (RescaleSlope 8, RescaleIntercept -1000, as bench/table1.py)
 # with the soft-tissue window 40/400 stored in the file, as the issue's CT had. Needs
-# /usr/bin/python3 with PIL (Debian python3-pil) for the small copies.
+# /usr/bin/python3 with PIL (Debian python3-pil) for the small copies. ONLY="NAME ..." renders
+# only those pictures (the molecule at depth auto 10 needs about 10 GiB and minutes).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 LABEL="${1:?usage: first_pictures.sh LABEL [OCTRACE] [WRITE_DICOM]}"
@@ -24,9 +26,10 @@ mkdir -p "$OUT"
 
 "$WRITE_DICOM" "$DATA/medical/lidc2_chest_ct.nrrd" "$TMP/ct" --modality CT --rescale 8,-1000 --window 40,400 >/dev/null
 
-render() {  # NAME INPUT [OPTIONS...]
+render() {  # NAME INPUT [OPTIONS...]; ONLY="NAME ..." renders those alone
   local name="$1" input="$2"
   shift 2
+  if [ -n "${ONLY:-}" ] && [[ " $ONLY " != *" $name "* ]]; then return; fi
   echo "== $name: octrace render $(basename "$input") $* -o $name.png" >&2
   "$OCTRACE" render "$input" "$@" -o "$TMP/$name.png" 2>&1 | sed 's/^/   /' >&2
   /usr/bin/python3 - "$TMP/$name.png" "$OUT/$name-$LABEL.png" <<'PY'
@@ -42,6 +45,7 @@ render levitus "$DATA/ocean/levitus_climatology.cdf" --var TEMP  # several 3-D v
 render ct-skin "$TMP/ct" --iso skin
 render ct-bone "$TMP/ct" --iso bone
 render mr "$DATA/medical/d2n_mr_sag_4slices_anatomical"
+render mr-emri "$DATA/medical/emri_small.dcm"
 render delft "$DATA/city/delft.json"
 render molecule "$DATA/molecule/4HHB.pdb"
 
@@ -55,6 +59,7 @@ if [ "$LABEL" = after ]; then
     else
       line="refused: $(printf '%s\n' "$out" | tail -1 | sed "s|$DATA/||g")"
     fi
+    line="${line//$DATA\//}"
     echo "| \`$rel\` | ${line//|/\\|} |"
   done
 fi

@@ -138,8 +138,9 @@ ScalarField loadField(const std::string& input, const io::FieldRequest& req, int
 namespace {
 
 /// The line of `info` that says what `depth` auto picks.
-std::string autoDepthLine(const DepthChoice& c, const std::string& indent) {
-    return indent + "depth auto: " + std::to_string(c.depth) + " (" + c.reason + "; before the `max_memory` cap, which depends on `iso`)\n";
+std::string autoDepthLine(const DepthChoice& c, const std::string& indent, bool field) {
+    return indent + "depth auto: " + std::to_string(c.depth) + " (" + c.reason + "; before the `max_memory` cap" +
+           (field ? ", which depends on `iso`" : "") + ")\n";
 }
 
 /// At the default view of render (the options table's size and field of view).
@@ -160,12 +161,12 @@ std::string describe(const std::string& input, const io::FieldRequest& req, cons
         std::string text = io::describeCityInput(input, city);
         io::CityRequest request = city;
         request.maxSamples = io::latticeSamplesForDepth(Octree::kMaxDepth);  // as `depth` auto reads it
-        return text + autoDepthLine(defaultViewDepth(io::readCityModel(input, request).bounds(), "m"), "  ");
+        return text + autoDepthLine(defaultViewDepth(io::readCityModel(input, request).bounds(), "m"), "  ", false);
     }
     if (isSphereInput(input)) {
         if (const char* given = fieldOptionGiven(req)) throw UsageError(std::string(given) + " does not apply to the sphere scene " + input);
         const SphereSet set = loadSpheres(input, req.memoryBudget);
-        return describeSpheres(input, set) + autoDepthLine(defaultViewDepth(set.bounds(), set.units), "  ");
+        return describeSpheres(input, set) + autoDepthLine(defaultViewDepth(set.bounds(), set.units), "  ", false);
     }
     if (!isAnalytic(input)) {
         std::string text = io::describeInput(input, req);
@@ -182,7 +183,7 @@ std::string describe(const std::string& input, const io::FieldRequest& req, cons
                 }
             }
             const DepthChoice c = depthForField(loadField(input, first, int(opt::depth.defaultValue)));
-            text += autoDepthLine({c.depth, c.reason + which}, "");
+            text += autoDepthLine({c.depth, c.reason + which}, "", true);
         } catch (const UsageError&) {
             throw;
         } catch (const Error& e) {
@@ -198,7 +199,7 @@ std::string describe(const std::string& input, const io::FieldRequest& req, cons
       << hi << "]\n  dims: " << f.dims.x << " x " << f.dims.y << " x " << f.dims.z << "\n  spacing: " << f.spacing.x
       << ", " << f.spacing.y << ", " << f.spacing.z << "\n  origin: " << f.origin.x << ", " << f.origin.y << ", "
       << f.origin.z << "\n  world bounds: [" << b.lo.x << ", " << b.hi.x << "] x [" << b.lo.y << ", " << b.hi.y
-      << "] x [" << b.lo.z << ", " << b.hi.z << "]\n" << autoDepthLine(depthForField(f), "  ");
+      << "] x [" << b.lo.z << ", " << b.hi.z << "]\n" << autoDepthLine(depthForField(f), "  ", true);
     return s.str();
 }
 

@@ -49,13 +49,18 @@ bool checkRenderSpec(const SurfaceSpec& surface, const RenderSpec& spec, const s
 }
 
 SceneView sceneView(const ScalarField& field) {
-    return field.geographic.valid ? SceneView::NorthUp : field.patientLps ? SceneView::Anterior : SceneView::Oblique;
+    if (field.geographic.valid) return SceneView::NorthUp;
+    if (!field.patientLps) return SceneView::Oblique;
+    if (field.sampleCount() == 0) return SceneView::Anterior;
+    const dvec3 e = field.worldBounds().size();
+    return e.x < 0.25 * std::max({e.x, e.y, e.z}) ? SceneView::Lateral : SceneView::Anterior;
 }
 
 dvec3 viewDirection(SceneView view) {
     switch (view) {
     case SceneView::NorthUp: return {0.0, -std::cos(glm::radians(35.0)), std::sin(glm::radians(35.0))};
     case SceneView::Anterior: return {0.0, -1.0, 0.0};  // LPS: anterior is -y
+    case SceneView::Lateral: return {1.0, 0.0, 0.0};    // the patient's left is +x
     case SceneView::Oblique: break;
     }
     return Camera::obliqueDirection();

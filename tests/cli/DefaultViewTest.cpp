@@ -177,7 +177,7 @@ TEST(DefaultView, InfoListsTheDepthAutoWouldPick) {
     // Levitus: 1 degree = 111.2 km along x and y; the cube's side is 360 degrees at the equator.
     const Result ocean = run({"info", sharedData("ocean/levitus_climatology.cdf")});
     ASSERT_EQ(ocean.code, 0) << ocean.err;
-    EXPECT_TRUE(has(ocean.out, "depth auto: 9 (voxel 77.96 km <= median sample spacing 111.2 km along x")) << ocean.out;
+    EXPECT_TRUE(has(ocean.out, "depth auto: 9 (voxel 77.97 km <= median sample spacing 111.2 km along x")) << ocean.out;
     const Result molecule = run({"info", sharedData("molecule/4HHB.pdb")});
     ASSERT_EQ(molecule.code, 0) << molecule.err;
     EXPECT_TRUE(std::regex_search(molecule.out, std::regex("depth auto: [0-9]+ \\(voxel .* one pixel of the view"))) << molecule.out;
@@ -261,6 +261,18 @@ TEST(DefaultView, APatientVolumeIsSeenFromTheFrontSuperiorUpAndACtPresetHasItsTi
                               "-o", s.path("white.exr")});
     ASSERT_EQ(white.code, 0) << white.err;
     EXPECT_NEAR(pixelMeans(s.path("white.exr")).miss.r, 1.0, 1e-3);
+}
+
+TEST(DefaultView, AFewSagittalSlicesAreSeenFromThePatientsLeft) {
+    if (!haveShared("medical/d2n_mr_sag_4slices_anatomical")) GTEST_SKIP() << "shared data absent";
+    Scratch s;
+    const Result r = run({"render", sharedData("medical/d2n_mr_sag_4slices_anatomical"), "--depth", "6", "--size", "96x72",
+                          "--stats", s.path("st.json"), "-o", s.path("a.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const std::string js = slurp(s.path("st.json"));
+    const dvec3 towards = glm::normalize(statVector(js, "camera_pos") - statVector(js, "look_at"));
+    EXPECT_NEAR(towards.x, 1.0, 1e-9) << js;
+    EXPECT_TRUE(has(js, "\"up\": \"0,0,1\"")) << js;
 }
 
 TEST(DefaultView, AFieldWithoutColoursIsColouredByAColourMapNotOneColour) {

@@ -2,6 +2,7 @@
 #include "octrace/build/AnalyticField.h"
 #include "octrace/build/AutoDepth.h"
 #include "octrace/render/Camera.h"
+#include "octrace/util/Error.h"
 
 #include <gtest/gtest.h>
 

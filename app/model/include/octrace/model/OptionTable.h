@@ -239,7 +239,8 @@ inline constexpr Option renderer{.key = "renderer", .kind = OptionKind::Text, .f
 inline constexpr Option cameraPos{.key = "camera_pos", .kind = OptionKind::Text, .flag = "camera-pos", .argument = "X,Y,Z",
     .session = "camera.position",
     .defaultText = "framing the surface's box tightly: geographic fields north up from the south and above, patient "
-                   "volumes from the front (anterior, superior up), others from the south-east and above",
+                   "volumes from the front (anterior, superior up; a thin sagittal slab from the patient's left), others "
+                   "from the south-east and above",
     .help = "camera position, world units", .commands = "render animate"};
 inline constexpr Option lookAt{.key = "look_at", .kind = OptionKind::Text, .flag = "look-at", .argument = "X,Y,Z",
     .session = "camera.look_at",

@@ -57,9 +57,12 @@ bool checkRenderSpec(const SurfaceSpec& surface, const RenderSpec& spec, const s
 /// Where the default camera looks at a surface from (up is +z in every case): a geographic field
 /// north up, from the south and 35 degrees above; a patient volume (LPS) from the front, the
 /// anterior view with superior up and the patient's right on the image's left (radiology's
-/// convention); anything else from the south-east and above (Camera::obliqueDirection).
-enum class SceneView { Oblique, NorthUp, Anterior };
-/// The view of a field: NorthUp for a geographic grid, Anterior for a patient volume, else Oblique.
+/// convention), or, when the volume is a thin left-right slab (a few sagittal slices, whose
+/// anterior view is an edge), from the patient's left, anterior on the image's left (the
+/// sagittal convention); anything else from the south-east and above (Camera::obliqueDirection).
+enum class SceneView { Oblique, NorthUp, Anterior, Lateral };
+/// The view of a field: NorthUp for a geographic grid; for a patient volume Lateral when its
+/// grid's left-right extent is under a quarter of its largest, else Anterior; else Oblique.
 SceneView sceneView(const ScalarField& field);
 /// The direction from the look-at point towards the default camera of `view`.
 dvec3 viewDirection(SceneView view);
