@@ -266,7 +266,7 @@ TEST(DefaultView, APatientVolumeIsSeenFromTheFrontSuperiorUpAndACtPresetHasItsTi
 TEST(DefaultView, AFewSagittalSlicesAreSeenFromThePatientsLeft) {
     if (!haveShared("medical/d2n_mr_sag_4slices_anatomical")) GTEST_SKIP() << "shared data absent";
     Scratch s;
-    const Result r = run({"render", sharedData("medical/d2n_mr_sag_4slices_anatomical"), "--depth", "6", "--size", "96x72",
+    const Result r = run({"render", sharedData("medical/d2n_mr_sag_4slices_anatomical"), "--depth", "8", "--size", "96x72",
                           "--stats", s.path("st.json"), "-o", s.path("a.png")});
     ASSERT_EQ(r.code, 0) << r.err;
     const std::string js = slurp(s.path("st.json"));

@@ -132,14 +132,30 @@ Camera Camera::fit(const Box3& box, int width, int height, double fovYDegrees, d
     double d = std::max(leastDistance(xs, tanH), leastDistance(ys, tanV));
     if (!(d > 0.0) || !std::isfinite(d)) d = 1.0;
     // At that distance the sideways offsets allowed along an axis form an interval (a point for
-    // the limiting axis): its middle centres the projection.
+    // the limiting axis). Within it, the offset whose projection reaches as far to one side as
+    // to the other: the sum of the two extreme projections falls as the offset grows, so
+    // bisection finds it.
     const auto centredOffset = [&](const double* s, double t) {
         double lo = -std::numeric_limits<double>::infinity(), hi = -lo;
         for (int k = 0; k < 8; ++k) {
             lo = std::max(lo, s[k] - t * (d - zs[k]));
             hi = std::min(hi, s[k] + t * (d - zs[k]));
         }
-        return lo <= hi ? 0.5 * (lo + hi) : 0.0;
+        if (!(lo <= hi)) return 0.0;
+        const auto lopsided = [&](double a) {
+            double most = -std::numeric_limits<double>::infinity(), least = -most;
+            for (int k = 0; k < 8; ++k) {
+                const double p = (s[k] - a) / std::max(d - zs[k], 1e-300);
+                most = std::max(most, p);
+                least = std::min(least, p);
+            }
+            return most + least;
+        };
+        for (int i = 0; i < 100 && hi - lo > 1e-12 * std::max(1.0, std::abs(lo) + std::abs(hi)); ++i) {
+            const double mid = 0.5 * (lo + hi);
+            (lopsided(mid) > 0.0 ? lo : hi) = mid;
+        }
+        return 0.5 * (lo + hi);
     };
     const double a = centredOffset(xs, tanH), b = centredOffset(ys, tanV);
     c.lookAt = centre + a * right + b * trueUp;
