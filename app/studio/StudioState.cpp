@@ -123,7 +123,7 @@ RenderSettings renderSettingsFor(const StudioState& state, bool transparent, con
     look.window = window;
     look.invertedGrey = invertedGrey;
     model::RenderSpec spec = renderSpec(state, 1, 1);
-    if (transparent) spec.background.a = 0.0f;
+    if (transparent) spec.background->a = 0.0f;
     return model::renderSettings(surfaceArgs(state), look, spec);
 }
 
