@@ -55,10 +55,13 @@ private:
     }
     /// Opens `input` and waits for its first exact frame.
     void open(const QString& input) {
-        QSignalSpy frames(window_, &MainWindow::frameShown);
+        // Built first: a frame of the input before (a change just made) may still be on its way.
+        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
         QSignalSpy failed(&window_->engine(), &Engine::failed);
         window_->openInput(input);
-        QVERIFY2(frames.wait(kWaitMs), failed.isEmpty() ? "no frame" : qPrintable(failed.first().first().toString()));
+        QVERIFY2(built.wait(kWaitMs), failed.isEmpty() ? "not built" : qPrintable(failed.first().first().toString()));
+        QSignalSpy frames(window_, &MainWindow::frameShown);
+        QVERIFY(frames.wait(kWaitMs));
     }
     /// Runs `change` and waits until its surface is built and drawn.
     void changeAndWait(const std::function<void()>& change) {
@@ -269,9 +272,24 @@ private slots:
         find<QToolButton>("stepPlay")->click();
         QVERIFY(!steps()->playing());
         QTRY_VERIFY_WITH_TIMEOUT(!window_->engine().building(), kWaitMs);
-        // Left on July for the picture, with the region of the North Atlantic's upper ocean.
+        // Left on July for the picture: the subtropical gyre's upper 1000 m, over its sea floor.
         changeAndWait([&] { find<QSlider>("stepSlider")->setValue(2); });
         if (!screenshots_.isEmpty()) {
+            {
+                const QSignalBlocker quiet(ocean());
+                find<QDoubleSpinBox>("regionWest")->setValue(280.0);
+                find<QDoubleSpinBox>("regionEast")->setValue(345.0);
+                find<QDoubleSpinBox>("regionSouth")->setValue(5.0);
+                find<QDoubleSpinBox>("regionNorth")->setValue(55.0);
+            }
+            changeAndWait([&] { find<QCheckBox>("regionCheck")->setChecked(true); });
+            {
+                const QSignalBlocker quiet(ocean());
+                find<QDoubleSpinBox>("depthFrom")->setValue(0.0);
+                find<QDoubleSpinBox>("depthTo")->setValue(1000.0);
+            }
+            changeAndWait([&] { find<QCheckBox>("depthRangeCheck")->setChecked(true); });
+            changeAndWait([&] { find<QCheckBox>("floor")->setChecked(true); });
             changeAndWait([&] { find<QSpinBox>("depthSpin")->setValue(8); });
             auto* colormap = find<QComboBox>("colormapCombo");
             colormap->setCurrentIndex(colormap->findText(QStringLiteral("viridis")));

@@ -58,6 +58,9 @@ inline bool saveScreenshot(QMainWindow* window, const QString& scratch, const QS
     }
     for (auto* label : window->statusBar()->findChildren<QLabel*>())
         if (label->text().contains(scratch)) label->clear();
+    // An input made in the scratch folder (the Input panel's label): its file name.
+    for (auto* label : window->findChildren<QLabel*>())
+        if (label->text().contains(scratch)) label->setText(label->text().remove(scratch + QLatin1Char('/')));
     return window->grab().save(file);
 }
 
