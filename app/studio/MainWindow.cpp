@@ -166,13 +166,13 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     connect(&engine_, &Engine::surfaceBuilt, this, &MainWindow::onSurfaceBuilt);
     connect(&engine_, &Engine::frameReady, this, &MainWindow::onFrame);
     connect(&engine_, &Engine::failed, this, [this](const QString& m) {
-        stepPending_ = false;
+        stepAbandoned();
         progress_->hide();
         cancelButton_->setEnabled(engine_.building());
         showMessage(m, true);
     });
     connect(&engine_, &Engine::cancelled, this, [this] {
-        stepPending_ = false;
+        stepAbandoned();
         progress_->hide();
         cancelButton_->setEnabled(false);
         if (engine_.tree()) {  // the controls show the surface that stays

@@ -135,6 +135,8 @@ private:
     void stepChosen(int index);
     /// The step of the time axis that the state reads (0 when not given as an index).
     int currentStep() const;
+    /// A step's read or build failed or was cancelled: Play stops, the slider shows the step on screen.
+    void stepAbandoned();
     /// After a change of colour map or window: builds again when the display window changes,
     /// else renders.
     void colouringChanged();

@@ -42,6 +42,14 @@ int MainWindow::currentStep() const {
     return 0;
 }
 
+void MainWindow::stepAbandoned() {
+    if (!stepPending_) return;
+    stepPending_ = false;
+    stepSlider_->setPlaying(false);
+    stepSlider_->showStep(currentStep());
+    timeEdit_->setText(QString::fromStdString(state_.time));
+}
+
 void MainWindow::showStepsAndOcean() {
     const InputInfo& in = engine_.info();
     stepLabel_->setText(in.volumeSteps ? tr("Volume") : tr("Time step"));

@@ -261,6 +261,18 @@ private slots:
         QVERIFY(differingPixels(january, july) > 1000);  // the warm water reaches further north in July
     }
 
+    void cancellingAStepKeepsTheStepOnScreen() {
+        const auto before = window_->engine().tree();
+        QSignalSpy cancelled(&window_->engine(), &Engine::cancelled);
+        find<QSlider>("stepSlider")->setValue(3);
+        window_->engine().cancel();  // as the Cancel button (Esc) does, before the read is done
+        QCOMPARE(cancelled.count(), 1);
+        QCOMPARE(window_->engine().tree(), before);
+        QCOMPARE(window_->state().time, std::string("2"));
+        QCOMPARE(steps()->step(), 2);  // the slider shows the step on screen again
+        QCOMPARE(window_->findChild<QLabel*>(QStringLiteral("stepName"))->text(), QStringLiteral("step 2: 2001-07-15"));
+    }
+
     void playAdvancesThroughTheSteps() {
         QSignalSpy chosen(steps(), &StepSlider::stepChosen);
         find<QToolButton>("stepPlay")->click();
