@@ -1,10 +1,15 @@
 #!/usr/bin/env bash
-# Regenerates the screenshots of docs/user/studio.md: runs the studio's QTest under Xvfb with
-# OCTRACE_STUDIO_SCREENSHOTS pointing at docs/user/images (the test saves the window there at
-# the steps it drives). Needs a build with the studio (scripts/build.sh).
+# Regenerates the screenshots of docs/user/studio.md: runs the studio's QTests under Xvfb with
+# OCTRACE_STUDIO_SCREENSHOTS pointing at docs/user/images (the tests save the window there at
+# the steps they drive). Needs a build with the studio (scripts/build.sh). With arguments, only
+# those test executables (e.g. octrace_studioocean_tests).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 mkdir -p "$ROOT/docs/user/images"
-ninja -C "$ROOT/build" octrace_studio_tests octrace
+TESTS=("$@")
+[ ${#TESTS[@]} -gt 0 ] || TESTS=(octrace_studio_tests octrace_studioocean_tests)
+ninja -C "$ROOT/build" "${TESTS[@]}" octrace
 cd "$ROOT"  # the window shows the input as given: data_samples/torus.nrrd
-OCTRACE_STUDIO_SCREENSHOTS="$ROOT/docs/user/images" xvfb-run -a -s "-screen 0 1920x1200x24" build/tests/octrace_studio_tests
+for t in "${TESTS[@]}"; do
+  OCTRACE_STUDIO_SCREENSHOTS="$ROOT/docs/user/images" xvfb-run -a -s "-screen 0 1920x1200x24" "build/tests/$t"
+done

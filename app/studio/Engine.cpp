@@ -10,6 +10,7 @@
 #include "octrace/io/CityReader.h"
 #include "octrace/io/FieldReader.h"
 #include "octrace/io/ImageWriter.h"
+#include "octrace/io/TimeAxis.h"
 #include "octrace/render/ImageCompare.h"
 #include "octrace/render/Renderer.h"
 #include "octrace/util/Error.h"
@@ -40,6 +41,42 @@ std::vector<double> histogramOf(const ScalarField& f, double lo, double hi) {
 
 // Core and io name parameters by key (util/Parameter.h); the studio says its controls' labels.
 QString errorText(const std::exception& e) { return QString::fromStdString(model::sayForStudio(e.what())); }
+
+/// What the window shows of a geographic field read: the lon/lat box and depths it spans.
+void describeGeographic(const ScalarField& f, InputInfo& info) {
+    const ScalarField::Geographic& g = f.geographic;
+    info.geographic = g.valid;
+    if (!g.valid) return;
+    info.polar = g.polar();
+    info.verticalScale = g.verticalScale;
+    const Box3 b = f.worldBounds();
+    constexpr double kDegrees = 180.0 / 3.14159265358979323846;
+    const double r = ScalarField::Geographic::kEarthRadiusKm;
+    if (!g.polar()) {
+        // The inverse of the contract's mapping (ScalarField.h).
+        const double cosLat0 = std::cos(g.lat0 / kDegrees);
+        info.lonLat[0] = g.lon0 + b.lo.x / (r * cosLat0) * kDegrees;
+        info.lonLat[1] = g.lon0 + b.hi.x / (r * cosLat0) * kDegrees;
+        info.lonLat[2] = g.lat0 + b.lo.y / r * kDegrees;
+        info.lonLat[3] = g.lat0 + b.hi.y / r * kDegrees;
+    }
+    info.depths[0] = -b.hi.z / g.verticalScale * 1000.0;
+    info.depths[1] = -b.lo.z / g.verticalScale * 1000.0;
+}
+
+/// The steps of the input's time axis, named for the step slider.
+void describeSteps(const std::string& input, const io::FieldRequest& request, InputInfo& info) {
+    const io::TimeAxis axis = io::readTimeAxis(input, request);
+    info.volumeSteps = axis.volumes;
+    for (std::size_t i = 0; i < axis.size; ++i) {
+        QString name = axis.volumes ? QStringLiteral("volume %1").arg(i) : QStringLiteral("step %1").arg(i);
+        if (axis.volumes && i < axis.labels.size() && !axis.labels[i].empty())
+            name += QStringLiteral(": ") + QString::fromStdString(axis.labels[i]);
+        else if (axis.dated() && i < axis.dates.size())
+            name += QStringLiteral(": ") + QString::fromStdString(axis.dates[i]);
+        info.steps << name;
+    }
+}
 
 /// The preview level while the camera moves: two levels above the voxels, at least 1.
 int previewLevel(int depth) { return std::max(1, depth - 2); }
@@ -109,6 +146,7 @@ void Engine::open(const StudioState& state) {
                     base_.reset();
                     sliceField_.reset();
                     setSurface(tree, *surface, subject, tree->depth);
+                    valuesColormap_.clear();
                     emit inputLoaded();
                     emit surfaceBuilt();
                 });
@@ -117,6 +155,11 @@ void Engine::open(const StudioState& state) {
             if (state.input.rfind("analytic:", 0) != 0) {
                 io::InputChoices choices = io::listInputChoices(state.input);
                 for (const auto& v : choices.variables) info.variables << QString::fromStdString(v);
+                // Several variables and none chosen: the first, which the Variable box then shows.
+                if (a.request.variable.empty() && choices.variables.size() > 1) {
+                    a.request.variable = choices.variables.front();
+                    info.variableChosen = QString::fromStdString(a.request.variable);
+                }
                 int n = 0;
                 for (const auto& s : choices.series)
                     info.series << QStringLiteral("%1: %2 (%3, %4x%5x%6)")
@@ -134,6 +177,8 @@ void Engine::open(const StudioState& state) {
             auto base = std::make_shared<model::Surface>();
             model::readSurfaceField(a, *base);
             if (stop) throw CancelledError("cancelled");
+            if (state.input.rfind("analytic:", 0) != 0) describeSteps(state.input, a.request, info);
+            describeGeographic(base->field, info);
             auto [lo, hi] = base->field.validRange();
             info.variable = QString::fromStdString(base->field.name);
             info.units = QString::fromStdString(base->field.units);
@@ -144,13 +189,15 @@ void Engine::open(const StudioState& state) {
             if (base->field.patientLps && !base->field.window.valid()) info.percentileWindow = model::quantileWindow(base->field, 0.01, 0.99);
             auto sliceField = std::make_shared<const ScalarField>(base->field.copy());
             if (stop) throw CancelledError("cancelled");
-            handBack(gen, [this, info, base, sliceField, state] {
+            StudioState read = state;
+            read.variable = a.request.variable;
+            handBack(gen, [this, info, base, sliceField, read] {
                 info_ = info;
                 base_ = base;
                 sliceField_ = sliceField;
                 tree_.reset();
                 emit inputLoaded();
-                startBuild(state);
+                startBuild(read);
             });
         });
     });
@@ -222,9 +269,15 @@ void Engine::startBuild(const StudioState& state) {
             surface->tree.computeSummaries();
             // The subject now: the field goes back to `base` when this job ends.
             model::FigureSubject subject = model::figureSubject(*surface, state.input);
+            // The colour map the CLI takes for voxel values (`colour_by`) when none is chosen.
+            model::SurfaceSpec uncoloured = surfaceArgs(state);
+            uncoloured.colormap.clear();
+            RenderSettings values;
+            model::applyColour(uncoloured, *surface, values);
             auto tree = std::make_shared<const Octree>(std::move(surface->tree));
-            handBack(gen, [this, tree, surface, subject = std::move(subject), depth = state.depth] {
+            handBack(gen, [this, tree, surface, subject = std::move(subject), depth = state.depth, map = values.colormap] {
                 setSurface(tree, *surface, subject, depth);
+                valuesColormap_ = map;
                 emit surfaceBuilt();
             });
         });
@@ -304,6 +357,7 @@ void Engine::exportFigure(const StudioState& state, const QString& path, int wid
     }
     emit progress(tr("Exporting %1x%2").arg(width).arg(height), -1.0);
     exportWorker_.post([this, tree, state, path, width, height, window = window_, inverted = invertedGrey_,
+                        valuesColormap = valuesColormap_,
                         subject = subject_](const std::atomic<bool>&) {
         try {
             if (width < 1 || height < 1 || width > kMaxExportSide || height > kMaxExportSide)
@@ -315,7 +369,7 @@ void Engine::exportFigure(const StudioState& state, const QString& path, int wid
             const std::uint64_t bytes = Frame::bytesFor(width, height) * (layout ? 2 : 1) + std::uint64_t(width) * std::uint64_t(height) * 24;
             checkMemoryBudget("exporting " + std::to_string(width) + "x" + std::to_string(height), bytes,
                               defaultMemoryBudget());
-            const RenderSettings rs = renderSettingsFor(state, state.transparent, window, inverted);
+            const RenderSettings rs = renderSettingsFor(state, state.transparent, window, inverted, valuesColormap);
             const Box3 bounds = tree->occupiedBounds();
             // The margins the figure's text needs, as render --figure fits them.
             if (layout) layout = model::fitFigureLayout(*layout, figureArgs(state), subject, *tree, rs, renderSpec(state, width, height), bounds);

@@ -27,6 +27,9 @@ namespace octrace::studio {
 struct InputInfo {
     QString input, variable, units;
     QStringList variables;    ///< 3-D variables of a NetCDF file (empty for other formats)
+    /// The variable read when none was asked for and the file has several (the first listed,
+    /// where the CLI asks for --var): the window's state then names it; else empty.
+    QString variableChosen;
     QStringList series;       ///< DICOM series as "N: description (modality, size)"
     int seriesRead = -1;      ///< the index in `series` of the series read (-1: not DICOM)
     bool octreeFile = false;  ///< a .oct input: no field, the iso value and depth are fixed
@@ -36,6 +39,18 @@ struct InputInfo {
     /// A patient volume without a stored window: its 1st to 99th percentile (model::quantileWindow),
     /// the slice panes' automatic window; computed with the read, off the GUI thread.
     ValueWindow percentileWindow;
+    /// A geographic grid (NetCDF longitude, latitude, depth): the ocean controls apply. With the
+    /// lon/lat mapping, the field read spans lonLat (LON0, LON1, LAT0, LAT1 in degrees); its
+    /// levels span depths (metres, positive down) at verticalScale.
+    bool geographic = false, polar = false;
+    double lonLat[4] = {0.0, 0.0, 0.0, 0.0}, depths[2] = {0.0, 0.0};
+    double verticalScale = 0.0;
+    /// The steps of the input's time axis (io::readTimeAxis with the request read): a NetCDF
+    /// variable's time steps (`time`), or the volumes of a 4-D series (`volume`, volumeSteps),
+    /// each as the step slider names it (its date, or what tells the volume apart); fewer than
+    /// two: nothing to step through.
+    QStringList steps;
+    bool volumeSteps = false;
 };
 
 /// One pane's rendered frame.
@@ -99,7 +114,7 @@ public:
     bool invertedGrey() const { return invertedGrey_; }
     /// The render settings of `state` for the current surface.
     RenderSettings settingsFor(const StudioState& state, bool transparent) const {
-        return renderSettingsFor(state, transparent, window_, invertedGrey_);
+        return renderSettingsFor(state, transparent, window_, invertedGrey_, valuesColormap_);
     }
 
 signals:
@@ -126,6 +141,7 @@ private:
     std::shared_ptr<const ScalarField> sliceField_;
     ValueWindow window_;
     bool invertedGrey_ = false;
+    std::string valuesColormap_;  // model::applyColour's colour map of the voxel values (colour_by)
     std::shared_ptr<const Octree> tree_;
     double iso_ = 0.0;
     int depth_ = 0;

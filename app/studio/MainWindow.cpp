@@ -8,6 +8,7 @@
 #include "Session.h"
 #include "SidePanel.h"
 #include "SliceViews.h"
+#include "StepSlider.h"
 #include "SurfelView.h"
 #include "ViewInput.h"
 
@@ -176,11 +177,13 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     connect(&engine_, &Engine::surfaceBuilt, this, &MainWindow::onSurfaceBuilt);
     connect(&engine_, &Engine::frameReady, this, &MainWindow::onFrame);
     connect(&engine_, &Engine::failed, this, [this](const QString& m) {
+        stepAbandoned();
         progress_->hide();
         cancelButton_->setEnabled(engine_.building());
         showMessage(m, true);
     });
     connect(&engine_, &Engine::cancelled, this, [this] {
+        stepAbandoned();
         progress_->hide();
         cancelButton_->setEnabled(false);
         if (engine_.tree()) {  // the controls show the surface that stays
@@ -348,6 +351,7 @@ QWidget* MainWindow::buildControls() {
     });
     inputForm->addRow(tr("Series"), seriesCombo_);
     layout->addWidget(inputBox);
+    buildStepAndOceanControls(inputForm, layout);
 
     auto* surfBox = new QGroupBox(tr("Surface"), w);
     auto* surfForm = new QFormLayout(surfBox);
@@ -767,6 +771,7 @@ void MainWindow::openInput(const QString& input) {
     s.variable.clear();
     s.time.clear();
     s.series.clear();
+    s.settings.clear();
     s.iso.reset();
     s.cameraSet = false;
     addRecent(input);
@@ -887,8 +892,10 @@ void MainWindow::onInputLoaded() {
     // The input read is now the state's; until then a failed read left the state alone.
     state_.input = pending_.input;
     state_.variable = pending_.variable;
+    if (state_.variable.empty()) state_.variable = engine_.info().variableChosen.toStdString();
     state_.time = pending_.time;
     state_.series = pending_.series;
+    state_.settings = pending_.settings;
     state_.iso = pending_.iso;
     state_.cameraSet = pending_.cameraSet;
     state_.position = pending_.position;
@@ -929,6 +936,7 @@ void MainWindow::onInputLoaded() {
                                        : QStringLiteral("%1 .. %2 %3").arg(in.minimum).arg(in.maximum).arg(in.units));
     histogram_->setHistogram(in.histogram, in.minimum, in.maximum);
     updating_ = false;
+    showStepsAndOcean();
     showMessage(tr("Read %1: %2 [%3 .. %4] %5").arg(in.input, in.variable).arg(in.minimum).arg(in.maximum).arg(in.units));
 }
 
@@ -1046,6 +1054,10 @@ void MainWindow::onFrame(const FrameResult& r) {
         views_[i]->setOverlay(i == 1 && !r.difference.isNull() ? tr("difference |left - right| x4\n") + text : text);
     }
     showCrosshair();
+    if (!r.preview && stepPending_ && !engine_.building()) {
+        stepPending_ = false;
+        stepSlider_->stepShown();  // playing: the next step follows
+    }
     if (!r.preview) emit frameShown();
 }
 

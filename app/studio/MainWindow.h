@@ -33,6 +33,8 @@ namespace octrace::studio {
 
 class HistogramView;
 class SliceViews;
+class OceanPanel;
+class StepSlider;
 class ViewInput;
 class RenderView;
 class SurfelView;
@@ -125,6 +127,19 @@ private:
     void setCut(const QString& spec);
     void showCut();
     void connectNavigation(ViewInput* input);
+    // The ocean controls and the step slider (MainWindowSteps.cpp).
+    /// Makes the step slider (a row of the Input panel) and the ocean panel, and connects them.
+    void buildStepAndOceanControls(QFormLayout* inputForm, QLayout* panel);
+    /// After an input is read: the steps of its time axis, the ocean panel for a geographic field.
+    void showStepsAndOcean();
+    /// A text setting (StudioState::settings) edited: checked, then read, built or drawn again.
+    void settingEdited(const QString& key, const QString& text);
+    /// Reads step `index` of the time axis (`time`, or `volume` of a 4-D series).
+    void stepChosen(int index);
+    /// The step of the time axis that the state reads (0 when not given as an index).
+    int currentStep() const;
+    /// A step's read or build failed or was cancelled: Play stops, the slider shows the step on screen.
+    void stepAbandoned();
     /// After a change of colour map or window: builds again when the display window changes,
     /// else renders.
     void colouringChanged();
@@ -159,6 +174,10 @@ private:
     // The controls made from bindings() (addBoundControls), named by the option's key.
     std::vector<std::pair<const Binding*, QWidget*>> boundControls_;
     QLineEdit* timeEdit_ = nullptr;
+    StepSlider* stepSlider_ = nullptr;
+    QLabel* stepLabel_ = nullptr;
+    OceanPanel* oceanPanel_ = nullptr;
+    bool stepPending_ = false;  // a step asked for by the slider is being read or built
     QSlider* isoSlider_ = nullptr;
     QDoubleSpinBox *isoSpin_ = nullptr, *fovSpin_ = nullptr, *lightSpin_[3] = {nullptr, nullptr, nullptr};
     QSpinBox* depthSpin_ = nullptr;

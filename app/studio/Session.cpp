@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace octrace::studio {
 namespace {
@@ -184,13 +185,25 @@ QByteArray sessionJson(const StudioState& s) {
     QJsonObject exportSettings{{"transparent", s.transparent},
                                {member(model::opt::title), QString::fromStdString(s.title)}};
     // The bound settings (StudioState.h), each under its group and member of the table.
-    const std::map<QString, QJsonObject*> groups{{"surface", &surface}, {"renderers", &renderers}, {"camera", &camera},
+    const std::map<QString, QJsonObject*> groups{{"input", &input}, {"surface", &surface}, {"renderers", &renderers}, {"camera", &camera},
                                                  {"shading", &shading}, {"export", &exportSettings}};
     for (const Binding& b : bindings()) {
         const QString path = QString::fromLatin1(b.option->session);
         const qsizetype dot = path.indexOf(QLatin1Char('.'));
         QJsonObject* group = groups.at(path.left(dot));
         std::visit([&](auto m) { group->insert(path.mid(dot + 1), QJsonValue(s.*m)); }, b.member);
+    }
+    // The text settings (StudioState::settings): those given, under their table members, as
+    // the table's kind says (a Flag true, a number a number, else the text).
+    for (const model::Option* o : textSettings()) {
+        const auto given = s.settings.find(o->key);
+        if (given == s.settings.end()) continue;
+        const QString path = QString::fromLatin1(o->session);
+        const qsizetype dot = path.indexOf(QLatin1Char('.'));
+        QJsonValue value = QString::fromStdString(given->second);
+        if (o->kind == model::OptionKind::Flag) value = true;
+        else if (o->kind == model::OptionKind::Integer || o->kind == model::OptionKind::Number) value = std::stod(given->second);
+        groups.at(path.left(dot))->insert(path.mid(dot + 1), value);
     }
     QJsonObject root{{kFormatKey, kFormatVersion}, {"input", input},     {"surface", surface}, {"renderers", renderers},
                      {"camera", camera},           {"shading", shading}, {"export", exportSettings}};
@@ -230,6 +243,34 @@ StudioState parseSession(const QByteArray& json, const QString& baseFolder) {
                 else group.setting(*b.option, s.*m);
             },
             b.member);
+    }
+
+    // The text settings, each checked as the CLI checks its flag.
+    for (const model::Option* o : textSettings()) {
+        const std::string path = o->session, member = model::sessionMember(*o);
+        const Reader group = root.object(path.substr(0, path.find('.')).c_str());
+        std::string text;
+        if (o->kind == model::OptionKind::Flag) {
+            bool on = false;
+            group.flag(member.c_str(), on);
+            if (on) text = "on";
+        } else if (o->kind == model::OptionKind::Integer || o->kind == model::OptionKind::Number) {
+            if (!group.has(member.c_str())) continue;
+            double v = 0.0;
+            group.setting(*o, v);
+            char buf[64];
+            std::snprintf(buf, sizeof buf, "%.17g", v);
+            text = buf;
+        } else {
+            group.text(member.c_str(), text);
+        }
+        if (text.empty()) continue;
+        try {
+            checkSetting(*o, text);
+        } catch (const UsageError& e) {
+            group.fail(member.c_str(), QString::fromStdString(e.what()));
+        }
+        s.settings[o->key] = text;
     }
 
     const Reader surface = root.object("surface");

@@ -1,6 +1,7 @@
 #include "StudioState.h"
 
 #include "octrace/model/Input.h"
+#include "octrace/model/Settings.h"
 #include "octrace/model/Surface.h"
 
 #include "octrace/io/CityReader.h"
@@ -44,6 +45,23 @@ std::span<const Binding> bindings() {
     return table;
 }
 
+std::span<const model::Option* const> textSettings() {
+    static const model::Option* const table[] = {&model::opt::region,   &model::opt::depthRange, &model::opt::verticalScale,
+                                                 &model::opt::mapProjection, &model::opt::volume, &model::opt::colourBy,
+                                                 &model::opt::floor};
+    return table;
+}
+
+SettingEffect settingEffect(const model::Option& o) {
+    if (model::settingPart(o) == model::SettingPart::Request) return SettingEffect::Reload;
+    return model::shadingSetting(o) ? SettingEffect::Render : SettingEffect::Rebuild;
+}
+
+void checkSetting(const model::Option& o, const std::string& text) {
+    model::SurfaceSpec scratch;
+    model::applySetting(o, text, {.surface = &scratch});
+}
+
 bool colourGiven(const StudioState& state) { return state.colour != StudioState().colour; }
 
 model::RenderSpec renderSpec(const StudioState& state, int width, int height) {
@@ -78,6 +96,8 @@ model::SurfaceSpec surfaceArgs(const StudioState& state) {
     a.request.variable = state.variable;
     a.request.time = state.time;
     a.request.series = state.series;
+    for (const auto& [key, text] : state.settings)
+        if (const model::Option* o = model::findOption(key)) model::applySetting(*o, text, {.surface = &a});
     a.iso = state.iso;
     a.depth = state.depth;
     a.colour = state.colour;
@@ -118,13 +138,16 @@ Camera exportCamera(const StudioState& state, const Box3& surfaceBounds, int wid
     return cameraFor(state, surfaceBounds, width, height);
 }
 
-RenderSettings renderSettingsFor(const StudioState& state, bool transparent, const ValueWindow& window, bool invertedGrey) {
+RenderSettings renderSettingsFor(const StudioState& state, bool transparent, const ValueWindow& window, bool invertedGrey,
+                                 const std::string& valuesColormap) {
     model::Surface look;  // what the settings read of the surface built: its display window
     look.window = window;
     look.invertedGrey = invertedGrey;
     model::RenderSpec spec = renderSpec(state, 1, 1);
     if (transparent) spec.background->a = 0.0f;
-    return model::renderSettings(surfaceArgs(state), look, spec);
+    RenderSettings rs = model::renderSettings(surfaceArgs(state), look, spec);
+    if (rs.colormap.empty()) rs.colormap = valuesColormap;
+    return rs;
 }
 
 std::vector<std::string> renderArguments(const StudioState& state, const Camera& camera, double iso,
@@ -133,6 +156,12 @@ std::vector<std::string> renderArguments(const StudioState& state, const Camera&
     if (!state.variable.empty()) args.insert(args.end(), {"--var", state.variable});
     if (!state.time.empty()) args.insert(args.end(), {"--time", state.time});
     if (!state.series.empty()) args.insert(args.end(), {"--series", state.series});
+    for (const auto& [key, text] : state.settings) {
+        const model::Option* o = model::findOption(key);
+        if (!o) continue;
+        args.push_back(std::string("--") + o->flag);
+        if (o->kind != model::OptionKind::Flag) args.push_back(text);
+    }
     // An octree file fixes the iso value and the depth; a city model has no iso value.
     if (!model::isOctreeInput(state.input) && !io::isCityInput(state.input)) args.insert(args.end(), {"--iso", number(iso)});
     if (!model::isOctreeInput(state.input)) args.insert(args.end(), {"--depth", std::to_string(state.depth)});

@@ -12,6 +12,7 @@
 #include "octrace/render/RenderSettings.h"
 #include "octrace/util/Math.h"
 
+#include <map>
 #include <optional>
 #include <span>
 #include <variant>
@@ -26,6 +27,10 @@ struct StudioState {
     std::string variable;  ///< empty: the file's only 3-D variable
     std::string time;      ///< NetCDF time step (index or ISO date); empty: the first
     std::string series;    ///< DICOM series; empty: the largest
+    /// The settings of textSettings() that are given, by option key, as the CLI takes their
+    /// text ("region" -> "-80,0,0,60", "volume" -> "2", a Flag as "on"); absent: the table's
+    /// default. They land in the specs through model::applySetting, as the CLI's flags do.
+    std::map<std::string, std::string> settings;
     // Surface.
     std::optional<double> iso;  ///< empty: the middle of the valid range
     int depth = int(model::opt::depth.defaultValue);
@@ -92,6 +97,17 @@ struct Binding {
 /// Every bound setting, in the order the Rendering panel shows its controls.
 std::span<const Binding> bindings();
 
+/// The settings StudioState::settings holds as text: what to read of an ocean field (`region`,
+/// `depth_range`, `vertical_scale`, `map_projection`), the volume of a 4-D series (`volume`) and
+/// the surface's `colour_by` and `floor`. Sessions keep each under its table member.
+std::span<const model::Option* const> textSettings();
+/// What a change of a setting asks for, from where model::applySetting puts it: a new read
+/// (what to read), a new build (the surface), or a new frame (shading only).
+enum class SettingEffect { Render, Rebuild, Reload };
+SettingEffect settingEffect(const model::Option& o);
+/// Checks `text` for option `o` as model::applySetting parses it. @throws UsageError naming `o.key`.
+void checkSetting(const model::Option& o, const std::string& text);
+
 /// The split view's right pane as the OpenGL surfel view instead of a CPU renderer.
 inline constexpr const char* kOpenGlPane = "opengl";
 
@@ -116,9 +132,10 @@ model::SurfaceSpec surfaceArgs(const StudioState& state);
 
 /// The render settings of `state` (the CLI's conversion of the same options) for a surface
 /// whose display window the build chose (`window`, `invertedGrey`: model::Surface's);
-/// `transparent` makes the background's alpha 0.
+/// `transparent` makes the background's alpha 0. `valuesColormap`: the colour map that
+/// model::applyColour takes for the surface's voxel values (`colour_by`) when none is chosen.
 RenderSettings renderSettingsFor(const StudioState& state, bool transparent, const ValueWindow& window = {},
-                                 bool invertedGrey = false);
+                                 bool invertedGrey = false, const std::string& valuesColormap = {});
 
 /// The figure options of `state` (render --figure, --title, --dpi, --scale-bar).
 model::FigureSettings figureArgs(const StudioState& state);

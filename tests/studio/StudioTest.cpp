@@ -49,50 +49,14 @@
 
 #include <functional>
 
+#include "StudioTestSupport.h"
+
 using octrace::studio::Engine;
 using octrace::studio::FrameResult;
 using octrace::studio::MainWindow;
 using octrace::studio::RenderView;
 
-namespace {
-
-constexpr int kWaitMs = 60000;  // generous: a loaded CI machine; the steps take well under a second each
-
-/// Runs `octrace COMMAND ARGS`; returns its exit code (stderr shown on failure).
-int runOctrace(const QString& command, const QStringList& args) {
-    QProcess p;
-    p.setProgram(QStringLiteral(OCTRACE_BINARY));
-    p.setArguments(QStringList{command} + args + QStringList{QStringLiteral("--quiet")});
-    p.start();
-    if (!p.waitForFinished(kWaitMs)) return -1;
-    if (p.exitCode() != 0) qWarning("octrace %s: %s", qPrintable(command), p.readAllStandardError().constData());
-    return p.exitCode();
-}
-
-/// Runs `octrace render ARGS`.
-int runCli(const QStringList& args) { return runOctrace(QStringLiteral("render"), args); }
-
-/// Number of pixels whose RGBA differ (-1 when the sizes differ or a file is unreadable).
-qint64 differingPixels(const QString& a, const QString& b) {
-    QImage ia(a), ib(b);
-    if (ia.isNull() || ib.isNull() || ia.size() != ib.size()) return -1;
-    ia = ia.convertToFormat(QImage::Format_RGBA8888);
-    ib = ib.convertToFormat(QImage::Format_RGBA8888);
-    qint64 n = 0;
-    for (int y = 0; y < ia.height(); ++y)
-        for (int x = 0; x < ia.width(); ++x) n += ia.pixel(x, y) != ib.pixel(x, y);
-    return n;
-}
-
-/// Pixels that are not the background's colour.
-qint64 surfacePixels(const QImage& img, QRgb background) {
-    qint64 n = 0;
-    for (int y = 0; y < img.height(); ++y)
-        for (int x = 0; x < img.width(); ++x) n += (img.pixel(x, y) & 0xFFFFFF) != (background & 0xFFFFFF);
-    return n;
-}
-
-}  // namespace
+using namespace octrace::studio::test;
 
 class StudioTest : public QObject {
     Q_OBJECT
@@ -102,19 +66,7 @@ private:
     QString screenshots_;
 
     void screenshot(const QString& name) {
-        if (screenshots_.isEmpty()) return;
-        // The lines about the test's own files (exports, sessions in its scratch folder) are
-        // left out of the pictures: a user's window names their files.
-        if (auto* messages = window_->findChild<QPlainTextEdit*>()) {
-            QStringList lines = messages->toPlainText().split(QLatin1Char('\n'));
-            lines.removeIf([&](const QString& l) { return l.contains(tmp_.path()); });
-            messages->setPlainText(lines.join(QLatin1Char('\n')));
-            messages->moveCursor(QTextCursor::End);
-            messages->ensureCursorVisible();
-        }
-        for (auto* label : window_->statusBar()->findChildren<QLabel*>())
-            if (label->text().contains(tmp_.path())) label->clear();
-        QVERIFY(window_->grab().save(screenshots_ + QLatin1Char('/') + name));
+        if (!screenshots_.isEmpty()) QVERIFY(saveScreenshot(window_, tmp_.path(), screenshots_ + QLatin1Char('/') + name));
     }
     /// Waits for the next exact frame on screen.
     void waitFrame() {
@@ -1469,8 +1421,16 @@ private slots:
                 } else {
                     QFAIL(qPrintable(QStringLiteral("no studio control for '%1' (label '%2')").arg(key, QLatin1String(o->label))));
                 }
-                QVERIFY2(o->minOpen ? (lo > o->min && lo <= o->min + step) : lo == o->min, qPrintable(key));
-                QVERIFY2(o->maxOpen ? (hi < o->max && hi >= o->max - step) : hi == o->max, qPrintable(key));
+                // An unbounded end (`vertical_scale`'s maximum) is a spin box's largest value.
+                constexpr double kUnboundedControl = 1e9;
+                QVERIFY2(!std::isfinite(o->min) ? lo <= -kUnboundedControl
+                         : o->minOpen           ? (lo > o->min && lo <= o->min + step)
+                                                : lo == o->min,
+                         qPrintable(key));
+                QVERIFY2(!std::isfinite(o->max) ? hi >= kUnboundedControl
+                         : o->maxOpen           ? (hi < o->max && hi >= o->max - step)
+                                                : hi == o->max,
+                         qPrintable(key));
                 ++widgets;
             }
             if (*o->session) {

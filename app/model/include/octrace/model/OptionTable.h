@@ -113,7 +113,7 @@ inline constexpr Option series{.key = "series", .kind = OptionKind::Text, .flag 
     .help = "DICOM series to read: its UID, its number in `octrace info`'s list or its description",
     .commands = "render export build slice info"};
 inline constexpr Option volume{.key = "volume", .kind = OptionKind::Integer, .flag = "volume", .argument = "N",
-    .defaultValue = 0, .defaultText = "0, with a note naming how many there are",
+    .session = "input.volume", .defaultValue = 0, .defaultText = "0, with a note naming how many there are",
     .min = 0, .max = 100000,
     .help = "volume of a multi-volume DICOM series (time points, echoes, cardiac phases, diffusion directions, magnitude "
             "and phase: `octrace info` lists them) or of a 4-D NIfTI image, 0-based like `time`",
@@ -142,7 +142,7 @@ inline constexpr Option maxMemory{.key = "max_memory", .kind = OptionKind::Text,
             "or N% of the physical memory; a larger job is refused up front",
     .commands = "render export build csg slice info animate"};
 inline constexpr Option verticalScale{.key = "vertical_scale", .kind = OptionKind::Number, .flag = "vertical-scale",
-    .argument = "S", .defaultText = "depth extent = 1/4 of the larger horizontal extent", .min = 0, .minOpen = true,
+    .argument = "S", .session = "input.vertical_scale", .label = "Vertical scale", .defaultText = "depth extent = 1/4 of the larger horizontal extent", .min = 0, .minOpen = true,
     .help = "vertical exaggeration of depth, NetCDF only", .commands = "render export build slice info animate"};
 inline constexpr Option terrainDepth{.key = "terrain_depth", .kind = OptionKind::Integer, .flag = "terrain-depth",
     .argument = "N", .defaultText = "`depth`", .min = 1, .max = Octree::kMaxDepth,
@@ -180,13 +180,13 @@ inline constexpr Option extendDown{.key = "extend_down", .kind = OptionKind::Fla
             "so that a finer sea floor (`cut` relief:FILE) bounds the water instead of the grid's own",
     .commands = "render export build csg animate"};
 inline constexpr Option region{.key = "region", .kind = OptionKind::Text, .flag = "region", .argument = "LON0,LON1,LAT0,LAT1",
-    .defaultText = "the whole grid", .help = "geographic subregion in degrees, NetCDF only",
+    .session = "input.region", .label = "Region", .defaultText = "the whole grid", .help = "geographic subregion in degrees, NetCDF only",
     .commands = "render export build csg slice info animate"};
 inline constexpr Option depthRange{.key = "depth_range", .kind = OptionKind::Text, .flag = "depth-range", .argument = "Z0,Z1",
-    .defaultText = "every level", .help = "depth levels from Z0 to Z1 metres (positive down), NetCDF only",
+    .session = "input.depth_range", .label = "Depth range", .defaultText = "every level", .help = "depth levels from Z0 to Z1 metres (positive down), NetCDF only",
     .commands = "render export build slice info animate"};
 inline constexpr Option mapProjection{.key = "map_projection", .kind = OptionKind::Choice, .flag = "map-projection",
-    .argument = "auto|lonlat|polar", .choices = "auto|lonlat|polar",
+    .argument = "auto|lonlat|polar", .session = "input.map_projection", .label = "Map projection", .choices = "auto|lonlat|polar",
     .help = "horizontal mapping of a geographic grid: polar stereographic (true scale at 71 degrees) or longitude x "
             "cos(latitude); auto is polar when the region lies in one hemisphere and reaches 75 degrees or beyond, "
             "NetCDF only",
@@ -217,7 +217,7 @@ inline constexpr Option window{.key = "window", .kind = OptionKind::Text, .flag 
     .session = "shading.window", .label = "CT window", .defaultText = "the window stored in a DICOM file",
     .help = "grey by a display window (a CT preset, a centre and width, or none)", .commands = "render export slice animate"};
 inline constexpr Option colourBy{.key = "colour_by", .kind = OptionKind::Text, .flag = "colour-by", .argument = "VAR",
-    .defaultText = "none", .help = "colour the isosurface by a second variable of the same file, sampled at each voxel",
+    .session = "surface.colour_by", .label = "Colour by", .defaultText = "none", .help = "colour the isosurface by a second variable of the same file, sampled at each voxel",
     .commands = "render export animate"};
 inline constexpr Option colourRange{.key = "colour_range", .kind = OptionKind::Text, .flag = "colour-range",
     .argument = "MIN,MAX", .defaultText = "the range of what is coloured",
@@ -237,7 +237,8 @@ inline constexpr Option background{.key = "background", .kind = OptionKind::Text
 inline constexpr Option light{.key = "light", .kind = OptionKind::Text, .flag = "light", .argument = "X,Y,Z",
     .session = "shading.light", .defaultText = "0.4,0.6,1",
     .help = "direction towards the light in camera space, x right, y up, z to the viewer", .commands = "render animate"};
-inline constexpr Option floor{.key = "floor", .kind = OptionKind::Flag, .flag = "floor",
+inline constexpr Option floor{.key = "floor", .kind = OptionKind::Flag, .flag = "floor", .session = "surface.floor",
+    .label = "Sea floor and land",
     .help = "also draw the sea floor and land where the variable is masked, under the isosurface", .commands = "render export animate"};
 
 // Rendering.

@@ -1,0 +1,349 @@
+// QTest of the studio's ocean controls and step slider, driving the real window under Xvfb:
+// region, depth range, vertical scale, sea floor and colour-by on the Levitus atlas give the
+// image the CLI gives with the same options (pixel for pixel: the studio's export against
+// `octrace render` of the command line it gives); the step slider reads a NetCDF time step or a
+// volume of the XA10 4-D fMRI series as `--time N` / `--volume N` does, and Play advances.
+// With OCTRACE_STUDIO_SCREENSHOTS=DIR set, screenshots of the window go to DIR.
+#include "Engine.h"
+#include "MainWindow.h"
+#include "OceanPanel.h"
+#include "RenderView.h"
+#include "Session.h"
+#include "StepSlider.h"
+
+#include "octrace/util/Error.h"
+
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QLabel>
+#include <QPlainTextEdit>
+#include <QSignalSpy>
+#include <QSlider>
+#include <QSpinBox>
+#include <QStandardPaths>
+#include <QStatusBar>
+#include <QTemporaryDir>
+#include <QToolButton>
+#include <QtTest>
+
+#include "StudioTestSupport.h"
+
+using namespace octrace::studio::test;
+using octrace::studio::Engine;
+using octrace::studio::MainWindow;
+using octrace::studio::OceanPanel;
+using octrace::studio::StepSlider;
+
+namespace {
+
+const QString kLevitus = QStringLiteral(OCTRACE_SHARED_DATA "/ocean/levitus_climatology.cdf");
+const QString kFmri = QStringLiteral(OCTRACE_SHARED_DATA "/medical/siemens_xa10_fmri_4d");
+
+}  // namespace
+
+class StudioOceanTest : public QObject {
+    Q_OBJECT
+private:
+    MainWindow* window_ = nullptr;
+    QTemporaryDir tmp_;
+    QString screenshots_;
+    int exports_ = 0;
+
+    void screenshot(const QString& name) {
+        if (!screenshots_.isEmpty()) QVERIFY(saveScreenshot(window_, tmp_.path(), screenshots_ + QLatin1Char('/') + name));
+    }
+    /// Opens `input` and waits for its first exact frame.
+    void open(const QString& input) {
+        // Built first: a frame of the input before (a change just made) may still be on its way.
+        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
+        QSignalSpy failed(&window_->engine(), &Engine::failed);
+        window_->openInput(input);
+        QVERIFY2(built.wait(kWaitMs), failed.isEmpty() ? "not built" : qPrintable(failed.first().first().toString()));
+        QSignalSpy frames(window_, &MainWindow::frameShown);
+        QVERIFY(frames.wait(kWaitMs));
+    }
+    /// Runs `change` and waits until its surface is built and drawn.
+    void changeAndWait(const std::function<void()>& change) {
+        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
+        QSignalSpy failed(&window_->engine(), &Engine::failed);
+        change();
+        QVERIFY2(built.wait(kWaitMs), qPrintable(messages().right(600)));
+        QVERIFY2(failed.isEmpty(), failed.isEmpty() ? "" : qPrintable(failed.first().first().toString()));
+        QSignalSpy frames(window_, &MainWindow::frameShown);
+        QVERIFY(frames.wait(kWaitMs));
+    }
+    /// Exports at width x height and renders the studio's own command line with the CLI: the
+    /// two PNG files must be equal pixel for pixel. Returns the studio's file.
+    QString exportEqualsCli(int width = 480, int height = 360) {
+        const QString stem = tmp_.filePath(QStringLiteral("export%1").arg(++exports_));
+        const QString studioPng = stem + QStringLiteral("-studio.png"), cliPng = stem + QStringLiteral("-cli.png");
+        QSignalSpy exported(&window_->engine(), &Engine::exported);
+        window_->exportFigure(studioPng, width, height, false);
+        if (!exported.wait(kWaitMs)) return {};
+        const QStringList args = window_->commandLine(cliPng, width, height);
+        if (runCli(args) != 0) return {};
+        const qint64 differing = differingPixels(studioPng, cliPng);
+        if (differing != 0) {
+            qWarning("%lld pixels differ from: octrace render %s", differing, qPrintable(args.join(' ')));
+            return {};
+        }
+        const QImage img(studioPng);
+        if (surfacePixels(img, img.pixel(0, 0)) < width * height / 50) return {};  // the surface is in the picture
+        return studioPng;
+    }
+    QString messages() const {
+        auto* m = window_->findChild<QPlainTextEdit*>();
+        return m ? m->toPlainText() : QString();
+    }
+    template <class T>
+    T* find(const char* name) const {
+        return window_->findChild<T*>(QLatin1String(name));
+    }
+    OceanPanel* ocean() const { return window_->findChild<OceanPanel*>(); }
+    StepSlider* steps() const { return window_->findChild<StepSlider*>(); }
+    /// Writes the Levitus time series of tests/data/netcdf/make_levitus_seasons.py (too large to commit).
+    QString seasons() {
+        const QString out = tmp_.filePath(QStringLiteral("levitus_seasons.nc"));
+        if (QFileInfo::exists(out)) return out;
+        QProcess p;
+        p.start(QStringLiteral(OCTRACE_TEST_PYTHON),
+                {QStringLiteral(OCTRACE_TEST_DATA "/netcdf/make_levitus_seasons.py"), kLevitus, out});
+        if (!p.waitForFinished(kWaitMs) || p.exitCode() != 0) {
+            qWarning("make_levitus_seasons.py: %s", p.readAllStandardError().constData());
+            return {};
+        }
+        return out;
+    }
+
+private slots:
+    void initTestCase() {
+        QStandardPaths::setTestModeEnabled(true);
+        QVERIFY(tmp_.isValid());
+        if (!QFileInfo::exists(kLevitus)) QSKIP("the shared data (OCTRACE_SHARED_DATA) is absent");
+        screenshots_ = qEnvironmentVariable("OCTRACE_STUDIO_SCREENSHOTS");
+        window_ = new MainWindow;
+        window_->resize(1200, 860);
+        window_->show();
+        QVERIFY(QTest::qWaitForWindowExposed(window_));
+        // Small octrees: the comparisons do not need more, and the machine is shared.
+        find<QSpinBox>("depthSpin")->setValue(6);
+    }
+
+    void oceanPanelShowsForGeographicFieldsOnly() {
+        open(QStringLiteral(OCTRACE_SAMPLES "/torus.nrrd"));
+        QVERIFY(!ocean()->isVisible());
+        QVERIFY(!steps()->isVisible());  // one volume: nothing to step through
+        open(kLevitus);
+        QVERIFY(ocean()->isVisible());
+        QVERIFY(!steps()->isVisible());  // the atlas is annual: no time axis
+        // Without a region the boxes show what was read: the whole grid.
+        QCOMPARE(find<QDoubleSpinBox>("regionWest")->value(), 20.5);
+        QCOMPARE(find<QDoubleSpinBox>("regionEast")->value(), 379.5);
+        QCOMPARE(find<QDoubleSpinBox>("regionSouth")->value(), -89.5);
+        QCOMPARE(find<QDoubleSpinBox>("regionNorth")->value(), 89.5);
+        QVERIFY(!find<QDoubleSpinBox>("regionWest")->isEnabled());
+        QCOMPARE(find<QDoubleSpinBox>("depthTo")->value(), 5000.0);
+        QVERIFY(find<QCheckBox>("verticalScaleAuto")->isChecked());
+    }
+
+    void regionAndDepthRangeGiveTheClisImage() {
+        auto* iso = find<QDoubleSpinBox>("isoSpin");
+        changeAndWait([&] { iso->setValue(10.0); });
+        const auto whole = window_->engine().tree()->occupiedBounds();
+        // The North Atlantic, as --region 280,360,0,65: the world is that box, framed anew.
+        {
+            const QSignalBlocker quiet(ocean());  // four boxes, then one read when the region is on
+            find<QDoubleSpinBox>("regionWest")->setValue(280.0);
+            find<QDoubleSpinBox>("regionEast")->setValue(360.0);
+            find<QDoubleSpinBox>("regionSouth")->setValue(0.0);
+            find<QDoubleSpinBox>("regionNorth")->setValue(65.0);
+        }
+        changeAndWait([&] { find<QCheckBox>("regionCheck")->setChecked(true); });
+        QVERIFY(window_->commandLine(QStringLiteral("x.png"), 10, 10).join(' ').contains(QStringLiteral("--region 280,360,0,65")));
+        const auto region = window_->engine().tree()->occupiedBounds();
+        QVERIFY(region.hi.x - region.lo.x < 0.5 * (whole.hi.x - whole.lo.x));
+        QCOMPARE(window_->engine().iso(), 10.0);  // the iso value stays
+        QVERIFY(find<QDoubleSpinBox>("regionWest")->isEnabled());
+        QVERIFY(!exportEqualsCli().isEmpty());
+        // The upper 1000 m, as --depth-range 0,1000.
+        {
+            const QSignalBlocker quiet(ocean());
+            find<QDoubleSpinBox>("depthFrom")->setValue(0.0);
+            find<QDoubleSpinBox>("depthTo")->setValue(1000.0);
+        }
+        changeAndWait([&] { find<QCheckBox>("depthRangeCheck")->setChecked(true); });
+        QVERIFY(window_->state().settings.at("depth_range") == "0,1000");
+        QVERIFY(!exportEqualsCli().isEmpty());
+    }
+
+    void verticalScaleFloorAndColourByGiveTheClisImage() {
+        // A vertical scale of its own, as --vertical-scale 1500 (the default makes the upper 1000 m a quarter of the width).
+        {
+            const QSignalBlocker quiet(ocean());
+            find<QDoubleSpinBox>("vertical_scale")->setValue(1500.0);
+        }
+        changeAndWait([&] { find<QCheckBox>("verticalScaleAuto")->setChecked(false); });
+        QCOMPARE(window_->state().settings.at("vertical_scale"), std::string("1500"));
+        QVERIFY(!exportEqualsCli().isEmpty());
+        // The sea floor and land under the surface (--floor): a build, not a read.
+        QSignalSpy reads(&window_->engine(), &Engine::inputLoaded);
+        changeAndWait([&] { find<QCheckBox>("floor")->setChecked(true); });
+        QCOMPARE(reads.count(), 0);
+        const QString floor = exportEqualsCli();
+        QVERIFY(!floor.isEmpty());
+        // Coloured by salinity (--colour-by SALT): the colour map of that variable.
+        auto* colourBy = find<QComboBox>("colour_by");
+        QVERIFY(colourBy->findText(QStringLiteral("SALT")) > 0);
+        QCOMPARE(colourBy->findText(QStringLiteral("TEMP")), -1);  // the variable drawn is not offered
+        changeAndWait([&] {
+            colourBy->setCurrentIndex(colourBy->findText(QStringLiteral("SALT")));
+            emit colourBy->activated(colourBy->currentIndex());
+        });
+        QVERIFY(window_->commandLine(QStringLiteral("x.png"), 10, 10).join(' ').contains(QStringLiteral("--colour-by SALT")));
+        const QString salt = exportEqualsCli();
+        QVERIFY(!salt.isEmpty());
+        QVERIFY(differingPixels(floor, salt) > 1000);  // the colours changed
+        // As a figure with its colour bar.
+        window_->setFigure(true, QStringLiteral("Salinity on the 10 degC surface"), 100, true);
+        QVERIFY(!exportEqualsCli(800, 600).isEmpty());
+        window_->setFigure(false, QString(), 100, false);
+    }
+
+    void aBadRegionIsRefusedAndTheFieldStays() {
+        const std::string before = window_->state().settings.at("region");
+        QSignalSpy reads(&window_->engine(), &Engine::inputLoaded);
+        {
+            const QSignalBlocker quiet(ocean());
+            find<QDoubleSpinBox>("regionSouth")->setValue(70.0);  // the south edge north of the north edge
+        }
+        find<QDoubleSpinBox>("regionNorth")->setValue(10.0);  // 280,360,70,10: refused
+        QCOMPARE(window_->state().settings.at("region"), before);
+        QCOMPARE(reads.count(), 0);
+        QCOMPARE(find<QDoubleSpinBox>("regionSouth")->value(), 0.0);  // the boxes show the region in use
+        for (auto* box : window_->findChildren<QWidget*>(QStringLiteral("errorBox"))) box->close();
+    }
+
+    void sessionKeepsTheOceanSettings() {
+        const QString path = tmp_.filePath(QStringLiteral("ocean.json"));
+        QVERIFY(window_->saveSessionTo(path));
+        const auto s = octrace::studio::loadSession(path);
+        QCOMPARE(s.settings, window_->state().settings);
+        QCOMPARE(s.settings.at("floor"), std::string("on"));
+        QCOMPARE(s.settings.at("colour_by"), std::string("SALT"));
+        // A region the CLI refuses is refused in a session too, naming the member.
+        try {
+            octrace::studio::parseSession(R"({"octrace_studio_session": 1, "input": {"region": "0,10,50,40"}})");
+            QFAIL("a region with LAT0 > LAT1 was accepted");
+        } catch (const octrace::InputError& e) {
+            QVERIFY2(QString::fromStdString(e.what()).startsWith(QStringLiteral("input.region: ")), e.what());
+        }
+    }
+
+    void timeSliderReadsTheStepAsTheCli() {
+        const QString nc = seasons();
+        QVERIFY(!nc.isEmpty());
+        open(nc);
+        QVERIFY(ocean()->isVisible());
+        QVERIFY(steps()->isVisible());
+        QCOMPARE(steps()->count(), 4);
+        QCOMPARE(window_->findChild<QLabel*>(QStringLiteral("stepName"))->text(), QStringLiteral("step 0: 2001-01-15"));
+        changeAndWait([&] { find<QDoubleSpinBox>("isoSpin")->setValue(20.0); });
+        const QString january = exportEqualsCli();
+        QVERIFY(!january.isEmpty());
+        // July, by the slider: the time step read is the CLI's --time 2.
+        changeAndWait([&] { find<QSlider>("stepSlider")->setValue(2); });
+        QCOMPARE(window_->state().time, std::string("2"));
+        QCOMPARE(window_->findChild<QLabel*>(QStringLiteral("stepName"))->text(), QStringLiteral("step 2: 2001-07-15"));
+        QCOMPARE(window_->engine().iso(), 20.0);
+        const QString july = exportEqualsCli();
+        QVERIFY(!july.isEmpty());
+        QVERIFY(differingPixels(january, july) > 1000);  // the warm water reaches further north in July
+    }
+
+    void cancellingAStepKeepsTheStepOnScreen() {
+        const auto before = window_->engine().tree();
+        QSignalSpy cancelled(&window_->engine(), &Engine::cancelled);
+        find<QSlider>("stepSlider")->setValue(3);
+        window_->engine().cancel();  // as the Cancel button (Esc) does, before the read is done
+        QCOMPARE(cancelled.count(), 1);
+        QCOMPARE(window_->engine().tree(), before);
+        QCOMPARE(window_->state().time, std::string("2"));
+        QCOMPARE(steps()->step(), 2);  // the slider shows the step on screen again
+        QCOMPARE(window_->findChild<QLabel*>(QStringLiteral("stepName"))->text(), QStringLiteral("step 2: 2001-07-15"));
+    }
+
+    void playAdvancesThroughTheSteps() {
+        QSignalSpy chosen(steps(), &StepSlider::stepChosen);
+        find<QToolButton>("stepPlay")->click();
+        QVERIFY(steps()->playing());
+        // Each step is read and drawn before the next is asked for: 2 -> 3 -> 0 (looping).
+        QTRY_VERIFY_WITH_TIMEOUT(chosen.count() >= 2, kWaitMs);
+        QCOMPARE(chosen.at(0).first().toInt(), 3);
+        QCOMPARE(chosen.at(1).first().toInt(), 0);
+        find<QToolButton>("stepPlay")->click();
+        QVERIFY(!steps()->playing());
+        QTRY_VERIFY_WITH_TIMEOUT(!window_->engine().building(), kWaitMs);
+        // Left on July for the picture: the subtropical gyre's upper 1000 m, over its sea floor.
+        changeAndWait([&] { find<QSlider>("stepSlider")->setValue(2); });
+        if (!screenshots_.isEmpty()) {
+            {
+                const QSignalBlocker quiet(ocean());
+                find<QDoubleSpinBox>("regionWest")->setValue(280.0);
+                find<QDoubleSpinBox>("regionEast")->setValue(345.0);
+                find<QDoubleSpinBox>("regionSouth")->setValue(5.0);
+                find<QDoubleSpinBox>("regionNorth")->setValue(55.0);
+            }
+            changeAndWait([&] { find<QCheckBox>("regionCheck")->setChecked(true); });
+            {
+                const QSignalBlocker quiet(ocean());
+                find<QDoubleSpinBox>("depthFrom")->setValue(0.0);
+                find<QDoubleSpinBox>("depthTo")->setValue(1000.0);
+            }
+            changeAndWait([&] { find<QCheckBox>("depthRangeCheck")->setChecked(true); });
+            changeAndWait([&] { find<QCheckBox>("floor")->setChecked(true); });
+            changeAndWait([&] { find<QSpinBox>("depthSpin")->setValue(8); });
+            auto* colormap = find<QComboBox>("colormapCombo");
+            colormap->setCurrentIndex(colormap->findText(QStringLiteral("viridis")));
+            QSignalSpy frames(window_, &MainWindow::frameShown);
+            QVERIFY(frames.wait(kWaitMs));
+            screenshot(QStringLiteral("studio-ocean.png"));
+            colormap->setCurrentIndex(0);
+            changeAndWait([&] { find<QSpinBox>("depthSpin")->setValue(6); });
+        }
+    }
+
+    void volumeSelectorReadsTheVolumeAsTheCli() {
+        if (!QFileInfo::exists(kFmri)) QSKIP("the XA10 fMRI series is absent");
+        open(kFmri);
+        QVERIFY(!ocean()->isVisible());
+        QVERIFY(steps()->isVisible());
+        QCOMPARE(steps()->count(), 4);
+        QCOMPARE(window_->findChild<QLabel*>(QStringLiteral("stepName"))->text(), QStringLiteral("volume 0: temporal position 1"));
+        const QString first = exportEqualsCli();
+        QVERIFY(!first.isEmpty());
+        // Volume 3 by the index box: the CLI's --volume 3.
+        changeAndWait([&] { find<QSpinBox>("stepIndex")->setValue(3); });
+        QCOMPARE(window_->state().settings.at("volume"), std::string("3"));
+        QVERIFY(window_->commandLine(QStringLiteral("x.png"), 10, 10).join(' ').contains(QStringLiteral("--volume 3")));
+        QCOMPARE(window_->findChild<QLabel*>(QStringLiteral("stepName"))->text(), QStringLiteral("volume 3: temporal position 4"));
+        const QString last = exportEqualsCli();
+        QVERIFY(!last.isEmpty());
+        QVERIFY(differingPixels(first, last) > 0);  // another time point, another surface
+        // Cine: Play goes on from volume 3 to 0, 1, ...
+        QSignalSpy chosen(steps(), &StepSlider::stepChosen);
+        steps()->setPlaying(true);
+        QTRY_VERIFY_WITH_TIMEOUT(chosen.count() >= 2, kWaitMs);
+        QCOMPARE(chosen.at(0).first().toInt(), 0);
+        QCOMPARE(chosen.at(1).first().toInt(), 1);
+        steps()->setPlaying(false);
+        QTRY_VERIFY_WITH_TIMEOUT(!window_->engine().building(), kWaitMs);
+        changeAndWait([&] { find<QSpinBox>("stepIndex")->setValue(2); });
+        screenshot(QStringLiteral("studio-volumes.png"));
+    }
+
+    void cleanupTestCase() { delete window_; }
+};
+
+QTEST_MAIN(StudioOceanTest)
+#include "StudioOceanTest.moc"
