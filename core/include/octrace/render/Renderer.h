@@ -35,6 +35,8 @@ struct RendererTraits {
     bool trajectoryCoherence = false;
     /// CoherenceSettings::miss (the approximate linear and area).
     bool missCoherence = false;
+    /// RenderSettings::tileSize (the tile renderer).
+    bool tiled = false;
 };
 
 class Renderer {
@@ -49,6 +51,7 @@ public:
     bool colourCoherence() const { return traits().colourCoherence; }
     bool trajectoryCoherence() const { return traits().trajectoryCoherence; }
     bool missCoherence() const { return traits().missCoherence; }
+    bool tiled() const { return traits().tiled; }
     /// Renders into `frame` (resized to the camera's size). Deterministic: the result does not
     /// depend on settings.threads. Thread-safe for distinct frames.
     virtual RenderStats render(const Octree& octree, const Camera& camera, const RenderSettings& settings,

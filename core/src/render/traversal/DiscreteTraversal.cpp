@@ -504,6 +504,18 @@ BranchNode branchNode(const Octree& tree, const ivec3& a, const ivec3& b, int up
     return bn;
 }
 
+TraversalHit traverseFromNode(const Octree& tree, const QuantizedRay& ray, std::uint32_t node, int level,
+                              const ivec3& cell, TraversalCounters& counters) {
+    if (!ray.meetsCube) return TraversalHit{};
+    i64 m0, u0, v0;
+    mirroredOrigin(ray, cell, level, m0, u0, v0);
+    // The state byte leaves out the tests that follow from the node being crossed: check it.
+    if (!boxCrossed(ray, ray.dU == 0, ray.dV == 0, m0, u0, v0, i64(1) << (N - level))) return TraversalHit{};
+    Engine<false> e(tree, ray, counters, nullptr);
+    e.start(node, level, m0, u0, v0);
+    return e.run();
+}
+
 TraversalHit traverseFromBranch(const Octree& tree, const QuantizedRay& ray, const BranchNode& branch,
                                 TraversalCounters& counters, bool& fellBack) {
     fellBack = true;
