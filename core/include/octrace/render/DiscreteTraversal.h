@@ -90,6 +90,17 @@ bool rayCrossesCell(const QuantizedRay& ray, const ivec3& cell, int level);
 TraversalHit traverseFromNode(const Octree& tree, const QuantizedRay& ray, std::uint32_t node, int level,
                               const ivec3& cell, TraversalCounters& counters);
 
+/// An inner node to start a traversal from: its index in Octree::nodes(), level and cell.
+struct StartNode {
+    std::uint32_t node = 0;
+    int level = 0;
+    ivec3 cell{0};
+};
+/// traverseFromNode on each of `count` nodes in turn until one gives a hit (one set-up for
+/// all). The caller orders the nodes so that this is the ray's first hit among them.
+TraversalHit traverseFromNodes(const Octree& tree, const QuantizedRay& ray, const StartNode* nodes, std::size_t count,
+                               TraversalCounters& counters);
+
 /// Samet's neighbour finding on the voxel octree (renderer samet): the ray goes leaf to leaf,
 /// from the leaf holding its first point; at each leaf its exit point, the neighbour of equal
 /// size across the exit face, edge or corner (climb the root-to-leaf path to the common

@@ -25,9 +25,7 @@ constexpr int N = Octree::kIntBits;
 
 /// A frontier node: an inner node of the tree that may hold a voxel some ray of the tile visits.
 struct FrontierNode {
-    std::uint32_t node;
-    int level;
-    ivec3 cell;
+    StartNode start;
     int x0, x1, y0, y1;  ///< the pixels whose rays can visit a cell of the node (step 4)
 };
 
@@ -129,17 +127,17 @@ void refineFrontier(const Octree& tree, const TileFrustum& f, unsigned s, std::s
         next.clear();
         bool refined = false;
         for (const FrontierNode& fn : list) {
-            const OctreeNode& nd = tree.nodes()[fn.node];
-            if (fn.level >= tree.depth - 1 || (shell && (nd.termMask & nd.childMask))) {
+            const OctreeNode& nd = tree.nodes()[fn.start.node];
+            if (fn.start.level >= tree.depth - 1 || (shell && (nd.termMask & nd.childMask))) {
                 next.push_back(fn);
                 continue;
             }
             refined = true;
             for (unsigned c : order) {
                 if (!(nd.childMask & (1u << c)) || (nd.termMask & (1u << c))) continue;  // empty, or an interior term (volume form)
-                const ivec3 cell = fn.cell * 2 + ivec3(int(c >> 2), int((c >> 1) & 1), int(c & 1));
-                if (f.meets(cell, fn.level + 1))
-                    next.push_back({nd.firstChild + childRank(nd.childMask, c), fn.level + 1, cell, 0, 0, 0, 0});
+                const ivec3 cell = fn.start.cell * 2 + ivec3(int(c >> 2), int((c >> 1) & 1), int(c & 1));
+                if (f.meets(cell, fn.start.level + 1))
+                    next.push_back({{nd.firstChild + childRank(nd.childMask, c), fn.start.level + 1, cell}, 0, 0, 0, 0});
             }
             if (next.size() > cap) return;  // keep the coarser list
         }
@@ -152,8 +150,8 @@ void refineFrontier(const Octree& tree, const TileFrustum& f, unsigned s, std::s
 /// bounding rectangle of its corners' projections, a hundredth of a pixel wider; every pixel
 /// when a corner is not in front of a perspective eye (or a projection is out of range).
 void pixelRect(const Octree& tree, const RayGenerator& gen, const TileFrustum& f, FrontierNode& fn, int w, int h) {
-    const double side = std::ldexp(1.0, N - fn.level), k = tree.cubeSide / std::ldexp(1.0, N);
-    const dvec3 lo = dvec3(fn.cell) * side - dvec3(f.pad) - f.apex;
+    const double side = std::ldexp(1.0, N - fn.start.level), k = tree.cubeSide / std::ldexp(1.0, N);
+    const dvec3 lo = dvec3(fn.start.cell) * side - dvec3(f.pad) - f.apex;
     const double s = side + 2.0 * f.pad;
     double xl = std::numeric_limits<double>::infinity(), xh = -xl, yl = xl, yh = -xl;
     bool all = false;
@@ -210,7 +208,7 @@ void fillBackground(Frame& frame, const PixelRays& rays, const RenderSettings& s
 void filterFrontier(const TileFrustum& f, const std::vector<FrontierNode>& from, std::vector<FrontierNode>& list) {
     list.clear();
     for (const FrontierNode& fn : from)
-        if (f.meets(fn.cell, fn.level)) list.push_back(fn);
+        if (f.meets(fn.start.cell, fn.start.level)) list.push_back(fn);
 }
 
 RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
@@ -235,15 +233,16 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
     const int tilesX = (camera.width + T - 1) / T, tilesY = (camera.height + T - 1) / T;
     // Frontier size: enough nodes to cut the empty space out, few enough that a ray that
     // misses them all does not test too many boxes.
-    const std::size_t cap = std::size_t(std::max(8, T * T / 2));
+    const std::size_t cap = std::size_t(std::max(8, T * T / 4));
     std::vector<RenderStats> tileStats(std::size_t(tilesX) * std::size_t(tilesY));
     // Tiles in groups of G x G: the group's frontier (a larger cap) is where each tile's
     // refinement starts, so the coarse levels are walked once per group.
     constexpr int G = 4;
     const int groupsX = (tilesX + G - 1) / G, groupsY = (tilesY + G - 1) / G;
-    const std::vector<FrontierNode> root{{0, 0, ivec3(0), 0, 0, 0, 0}};
+    const std::vector<FrontierNode> root{{StartNode{}, 0, 0, 0, 0}};
     parallelFor(std::size_t(groupsX) * std::size_t(groupsY), settings.threads, [&](std::size_t g) {
         std::vector<FrontierNode> group, list, next;
+        std::vector<StartNode> starts;
         const int gx = int(g % std::size_t(groupsX)), gy = int(g / std::size_t(groupsX));
         const int gx0 = gx * G * T, gy0 = gy * G * T;
         const int gx1 = std::min(gx0 + G * T, camera.width), gy1 = std::min(gy0 + G * T, camera.height);
@@ -271,6 +270,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                 if (fn.x1 >= x0 && fn.x0 < x1 && fn.y1 >= y0 && fn.y0 < y1) list[kept++] = fn;
             }
             list.resize(kept);
+            if (starts.size() < kept) starts.resize(kept);
             if (list.empty()) {
                 // Step 5: no ray of the tile visits a boundary voxel.
                 for (int y = y0; y < y1; ++y) fillBackground(frame, rays, settings, y, x0, x1, st);
@@ -294,11 +294,10 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                             hit = traverseDiscrete(tree, q, counters);
                         } else {
                             ++st.raysCommonPath;
-                            for (const FrontierNode& fn : list) {
-                                if (x < fn.x0 || x > fn.x1 || y < fn.y0 || y > fn.y1) continue;
-                                hit = traverseFromNode(tree, q, fn.node, fn.level, fn.cell, counters);
-                                if (hit.hit()) break;
-                            }
+                            std::size_t n = 0;
+                            for (const FrontierNode& fn : list)
+                                if (x >= fn.x0 && x <= fn.x1 && y >= fn.y0 && y <= fn.y1) starts[n++] = fn.start;
+                            hit = traverseFromNodes(tree, q, starts.data(), n, counters);
                         }
                     }
                     writePixelHit(frame, x, y, hit, shader, rays, dir, settings, st);
