@@ -272,7 +272,7 @@ inline constexpr Option branchUp{.key = "branch_up", .kind = OptionKind::Integer
     .commands = "render", .renderers = &Renderer::trajectoryCoherence,
     .renderersSaid = "linear and area and their variants"};
 inline constexpr Option tileSize{.key = "tile_size", .kind = OptionKind::Integer, .flag = "tile-size", .argument = "N",
-    .session = "renderers.tile_size", .label = "Tile size", .defaultValue = 8, .min = 1, .max = 64, .unit = "pixels",
+    .defaultValue = 8, .min = 1, .max = 64, .unit = "pixels",
     .help = "side of the square screen tiles whose rays the tile renderer bounds together (an exact pre-pass per tile); "
             "the image does not depend on it",
     .commands = "render", .renderers = &Renderer::tiled, .renderersSaid = "tile"};
