@@ -72,7 +72,7 @@ OptionParser makeParser(RenderArgs& a) {
     addColourOptions(p, a);
     addLayerOptions(p, a);
     for (const model::Option* o : {&model::opt::colourCoherence, &model::opt::colourFillBackground, &model::opt::colourTolerance,
-                                   &model::opt::branchUp, &model::opt::missCoherence})
+                                   &model::opt::branchUp, &model::opt::missCoherence, &model::opt::tileSize})
         p.add(settingOption(*o, into));
     addGeographicOptions(p, a.request);
     addCityOptions(p, a);

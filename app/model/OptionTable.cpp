@@ -20,7 +20,7 @@ constexpr std::array kOptions{
     &opt::terrainDepth,    &opt::crs,         &opt::heightAttr,       &opt::baseAttr,    &opt::dem,         &opt::texture,
     &opt::cut,             &opt::renderer,    &opt::fov,              &opt::orthoHeight, &opt::projection,
     &opt::lod,             &opt::level,       &opt::colourCoherence,  &opt::colourFillBackground,
-    &opt::colourTolerance, &opt::branchUp,    &opt::missCoherence,    &opt::repeat,      &opt::width,
+    &opt::colourTolerance, &opt::branchUp,    &opt::tileSize, &opt::missCoherence,    &opt::repeat,      &opt::width,
     &opt::height,          &opt::octree,      &opt::leafObjects,      &opt::samples,     &opt::bounces,
     &opt::ambient,         &opt::lighting,    &opt::shadows,          &opt::bakeAo,      &opt::bakeAoDistance,
     &opt::bakeShadows,     &opt::dpi, &opt::bakeLight, &opt::colourRange, &opt::maskedColour, &opt::floorColour, &opt::background, &opt::light, &opt::cameraPos, &opt::lookAt, &opt::up, &opt::verify, &opt::baseline, &opt::figure, &opt::title, &opt::caption, &opt::printSize, &opt::scaleBar, &opt::coastline,         &opt::plane, &opt::at, &opt::format, &opt::ascii, &opt::index,            &opt::compression, &opt::sampleCount,

@@ -109,6 +109,7 @@ RenderSettings renderSettings(const SurfaceSpec& surfaceSpec, const Surface& sur
     applyLighting(surfaceSpec, rs);
     rs.coherence = spec.coherence;
     rs.detail = spec.detail;
+    rs.tileSize = spec.tileSize;
     rs.spheres = spec.spheres;
     rs.surface = surfaceModeFor(surfaceSpec.surface, spec.renderer);
     return rs;
@@ -232,6 +233,7 @@ Stats frameStats(const FrameRecord& r) {
     js.set("miss_filled", st.missFilled);
     if (r.colourCoherence) js.set("colour_tolerance", double(rs.coherence.colourTolerance));
     js.set("branch_up", rs.coherence.branchUp);
+    if (st.renderer == "tile") js.set("tile_size", rs.tileSize);
     js.set("miss_coherence", std::string(rs.coherence.miss ? "on" : "off"));
     js.set("nodes_visited", st.nodesVisited);
     js.set("nodes_per_ray", st.rays ? double(st.nodesVisited) / double(st.rays) : 0.0);

@@ -263,6 +263,7 @@ const std::unordered_map<std::string_view, Entry>& setters() {
         m.emplace(opt::colourTolerance.key, render([](const std::string& v, RenderSpec& r) {
             r.coherence.colourTolerance = float(parseNumber(opt::colourTolerance, v));
         }));
+        m.emplace(opt::tileSize.key, render([](const std::string& v, RenderSpec& r) { r.tileSize = parseInteger(opt::tileSize, v); }));
         m.emplace(opt::branchUp.key, render([](const std::string& v, RenderSpec& r) { r.coherence.branchUp = parseInteger(opt::branchUp, v); }));
         m.emplace(opt::missCoherence.key, render([](const std::string& v, RenderSpec& r) {
             r.coherence.miss = parseChoice(opt::missCoherence, v) == "on";

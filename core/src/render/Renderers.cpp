@@ -2,6 +2,7 @@
 #include "render/direct/DirectRenderer.h"
 #include "render/PerPixel.h"
 #include "render/traversal/PixelRays.h"
+#include "render/traversal/TileRenderer.h"
 #include "render/spheres/SphereRenderers.h"
 #include "octrace/render/DiscreteTraversal.h"
 #include "octrace/render/Lod.h"
@@ -84,7 +85,7 @@ int renderProgressive(const Renderer& renderer, const Octree& tree, const Camera
 }
 
 std::vector<std::string> rendererNames() {
-    return {"full", "linear", "area", "linear-exact", "area-exact", "reference", "reference-unquantized", "direct", "direct-f2b", "samet", "beam"};
+    return {"full", "tile", "linear", "area", "linear-exact", "area-exact", "reference", "reference-unquantized", "direct", "direct-f2b", "samet", "beam"};
 }
 
 std::vector<std::string> rendererMenuNames() {
@@ -131,6 +132,7 @@ std::string voxelRenderersThat(bool (Renderer::*honours)() const) {
 std::unique_ptr<Renderer> makeRenderer(const std::string& name) {
     using detail::DiscreteRenderer;
     if (name == "full") return std::make_unique<DiscreteRenderer>(DiscreteRenderer::Pattern::Full, false);
+    if (name == "tile") return std::make_unique<detail::TileRenderer>();
     if (name == "linear") return std::make_unique<DiscreteRenderer>(DiscreteRenderer::Pattern::Linear, false);
     if (name == "area") return std::make_unique<DiscreteRenderer>(DiscreteRenderer::Pattern::Area, false);
     if (name == "linear-exact") return std::make_unique<DiscreteRenderer>(DiscreteRenderer::Pattern::Linear, true);

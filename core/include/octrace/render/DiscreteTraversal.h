@@ -94,6 +94,25 @@ TraversalHit traverseDiscreteObserved(const Octree& tree, const QuantizedRay& ra
 /// under the same semantics (half-open mirrored cells, in front of the eye). Thread-safe.
 bool rayCrossesCell(const QuantizedRay& ray, const ivec3& cell, int level);
 
+/// The discrete traversal restricted to one inner node (original cell coordinates `cell` at
+/// `level`, node index `node` of Octree::nodes(), level < the tree's depth): the first boundary
+/// voxel of the node's subtree in the ray's visiting order, exactly as traverseDiscrete orders
+/// them; no hit when the ray does not cross the node or finds nothing in it. The tile renderer
+/// starts its rays here (docs/dev/tile-renderer.md). Thread-safe.
+TraversalHit traverseFromNode(const Octree& tree, const QuantizedRay& ray, std::uint32_t node, int level,
+                              const ivec3& cell, TraversalCounters& counters);
+
+/// An inner node to start a traversal from: its index in Octree::nodes(), level and cell.
+struct StartNode {
+    std::uint32_t node = 0;
+    int level = 0;
+    ivec3 cell{0};
+};
+/// traverseFromNode on each of `count` nodes in turn until one gives a hit (one set-up for
+/// all). The caller orders the nodes so that this is the ray's first hit among them.
+TraversalHit traverseFromNodes(const Octree& tree, const QuantizedRay& ray, const StartNode* nodes, std::size_t count,
+                               TraversalCounters& counters);
+
 /// Samet's neighbour finding on the voxel octree (renderer samet): the ray goes leaf to leaf,
 /// from the leaf holding its first point; at each leaf its exit point, the neighbour of equal
 /// size across the exit face, edge or corner (climb the root-to-leaf path to the common

@@ -96,6 +96,8 @@ struct RenderSettings {
     /// What the discrete ray casters read (RendererTraits::colourCoherence, trajectoryCoherence,
     /// missCoherence); the other renderers ignore it.
     CoherenceSettings coherence;
+    /// The tile renderer's tile side in pixels (its exact pre-pass bounds each tile's rays).
+    int tileSize = 8;
     /// What the multi-resolution renderers read (RendererTraits::levelOfDetail); the others
     /// throw UsageError when asked for a cut.
     DetailSettings detail;

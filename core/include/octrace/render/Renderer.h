@@ -39,6 +39,8 @@ struct RendererTraits {
     /// beam): the front ends draw voxels with it unless smooth surfaces are asked for
     /// (RenderSettings::surface), so that the reproductions' images and tables stay as they were.
     bool paper = false;
+    /// RenderSettings::tileSize (the tile renderer).
+    bool tiled = false;
 };
 
 class Renderer {
@@ -54,6 +56,7 @@ public:
     bool trajectoryCoherence() const { return traits().trajectoryCoherence; }
     bool missCoherence() const { return traits().missCoherence; }
     bool paperRenderer() const { return traits().paper; }
+    bool tiled() const { return traits().tiled; }
     /// Renders into `frame` (resized to the camera's size). Deterministic: the result does not
     /// depend on settings.threads. Thread-safe for distinct frames.
     virtual RenderStats render(const Octree& octree, const Camera& camera, const RenderSettings& settings,

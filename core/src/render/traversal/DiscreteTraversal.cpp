@@ -512,6 +512,30 @@ BranchNode branchNode(const Octree& tree, const ivec3& a, const ivec3& b, int up
     return bn;
 }
 
+TraversalHit traverseFromNodes(const Octree& tree, const QuantizedRay& ray, const StartNode* nodes, std::size_t count,
+                               TraversalCounters& counters) {
+    if (!ray.meetsCube || count == 0) return TraversalHit{};
+    Engine<false> e(tree, ray, counters, nullptr);
+    const i64 cU = ray.dU == 0, cV = ray.dV == 0;
+    for (std::size_t i = 0; i < count; ++i) {
+        const StartNode& n = nodes[i];
+        i64 m0, u0, v0;
+        mirroredOrigin(ray, n.cell, n.level, m0, u0, v0);
+        // The state byte leaves out the tests that follow from the node being crossed: check it.
+        if (!boxCrossed(ray, cU, cV, m0, u0, v0, i64(1) << (N - n.level))) continue;
+        e.start(n.node, n.level, m0, u0, v0);
+        const TraversalHit hit = e.run();
+        if (hit.hit()) return hit;
+    }
+    return TraversalHit{};
+}
+
+TraversalHit traverseFromNode(const Octree& tree, const QuantizedRay& ray, std::uint32_t node, int level,
+                              const ivec3& cell, TraversalCounters& counters) {
+    const StartNode n{node, level, cell};
+    return traverseFromNodes(tree, ray, &n, 1, counters);
+}
+
 TraversalHit traverseFromBranch(const Octree& tree, const QuantizedRay& ray, const BranchNode& branch,
                                 TraversalCounters& counters, bool& fellBack) {
     fellBack = true;

@@ -296,6 +296,11 @@ inline constexpr Option branchUp{.key = "branch_up", .kind = OptionKind::Integer
             "differ from full traversal, at some speed",
     .commands = "render", .renderers = &Renderer::trajectoryCoherence,
     .renderersSaid = "linear and area and their variants"};
+inline constexpr Option tileSize{.key = "tile_size", .kind = OptionKind::Integer, .flag = "tile-size", .argument = "N",
+    .defaultValue = 8, .min = 1, .max = 64, .unit = "pixels",
+    .help = "side of the square screen tiles whose rays the tile renderer bounds together (an exact pre-pass per tile); "
+            "the image does not depend on it",
+    .commands = "render", .renderers = &Renderer::tiled, .renderersSaid = "tile"};
 inline constexpr Option missCoherence{.key = "miss_coherence", .kind = OptionKind::Choice, .flag = "miss-coherence",
     .argument = "on|off", .session = "renderers.miss_coherence", .label = "Miss coherence", .defaultValue = 0,
     .choices = "on|off",

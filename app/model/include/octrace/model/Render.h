@@ -44,6 +44,7 @@ struct RenderSpec {
     // What only some renderers read (their traits say which).
     CoherenceSettings coherence = tableCoherence();
     DetailSettings detail;  ///< `lod`, `level`
+    int tileSize = int(opt::tileSize.defaultValue);  ///< `tile_size`
     SphereShading spheres = tableSphereShading();
 };
 

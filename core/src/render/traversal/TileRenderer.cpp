@@ -1,0 +1,311 @@
+// The tile renderer: an exact conservative pre-pass per screen tile, then each ray traced from
+// the tile's frontier nodes instead of the root. Exactness argument: docs/dev/tile-renderer.md
+// (the numbered steps there are cited below).
+#include "render/traversal/TileRenderer.h"
+#include "render/PerPixel.h"
+#include "render/traversal/PixelRays.h"
+
+#include "octrace/render/DiscreteTraversal.h"
+#include "octrace/render/Lod.h"
+#include "octrace/render/Shading.h"
+#include "octrace/util/Parallel.h"
+#include "octrace/util/Timer.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace octrace::detail {
+namespace {
+
+constexpr int N = Octree::kIntBits;
+
+/// A frontier node: an inner node of the tree that may hold a voxel some ray of the tile visits.
+struct FrontierNode {
+    StartNode start;
+    int x0, x1, y0, y1;  ///< the pixels whose rays can visit a cell of the node (step 4)
+};
+
+/// children sorted by popcount(c ^ s) per sign pattern s: front to back for every ray of
+/// that sign pattern (step 3).
+struct ChildOrder {
+    std::array<std::array<std::uint8_t, 8>, 8> order{};
+    ChildOrder() {
+        for (unsigned s = 0; s < 8; ++s) {
+            std::array<std::uint8_t, 8> o{0, 1, 2, 3, 4, 5, 6, 7};
+            std::stable_sort(o.begin(), o.end(),
+                             [s](std::uint8_t a, std::uint8_t b) { return std::popcount(a ^ s) < std::popcount(b ^ s); });
+            order[s] = o;
+        }
+    }
+};
+const ChildOrder& childOrder() {
+    static const ChildOrder c;
+    return c;
+}
+
+/// The union of a tile's rays as five half-spaces g_i . (p - apex) + h_i >= 0 in octree space
+/// (step 1), and the conservative test of a node box against it (step 2).
+struct TileFrustum {
+    dvec3 apex;
+    std::array<dvec3, 5> g;
+    std::array<double, 5> h{};
+    double pad = 0.0;  ///< how far every box is widened on each side: 2 x the quantization bound
+    // Per form and level: h_i + |g_i|_1 (half side + pad), the most the form gains from a box's
+    // centre to a corner of the widened box.
+    std::array<std::array<double, Octree::kMaxDepth + 1>, 5> reach{};
+
+    void prepare() {
+        for (int i = 0; i < 5; ++i) {
+            const dvec3& gi = g[std::size_t(i)];
+            for (int level = 0; level <= Octree::kMaxDepth; ++level)
+                reach[std::size_t(i)][std::size_t(level)] =
+                    h[std::size_t(i)] + (std::abs(gi.x) + std::abs(gi.y) + std::abs(gi.z)) * (double(1 << (N - level)) * 0.5 + pad);
+        }
+    }
+
+    /// False only if no point of the box widened by `pad` satisfies all five: then no
+    /// quantized ray of the tile visits a cell of the box.
+    bool meets(const ivec3& cell, int level) const {
+        const double side = double(1 << (N - level));
+        const dvec3 c = (dvec3(cell) + 0.5) * side - apex;
+        for (std::size_t i = 0; i < 5; ++i)
+            if (glm::dot(g[i], c) + reach[i][std::size_t(level)] < 0.0) return false;
+        return true;
+    }
+};
+
+TileFrustum tileFrustum(const Octree& tree, const RayGenerator& gen, const PixelRays& rays, int x0, int y0, int x1,
+                        int y1, bool widen) {
+    TileFrustum f;
+    const dvec3 right = gen.right(), up = gen.up(), back = gen.back();
+    f.apex = tree.toOctreeSpace(gen.eye());
+    // The extent of the tile's pixels across right and up: per unit of depth (perspective: the
+    // directions' slopes) or in octree units (orthographic: the origins' offsets), over every
+    // row and column of the tile (the computed values, not an interpolation of the corners).
+    double xl = std::numeric_limits<double>::infinity(), xh = -xl, yl = xl, yh = -xl;
+    for (int x = x0; x < x1; ++x) {
+        const double sx = gen.orthographic() ? glm::dot(rays.originOS(x, y0) - f.apex, right)
+                                             : glm::dot(gen.direction(x, y0), right) / -glm::dot(gen.direction(x, y0), back);
+        xl = std::min(xl, sx);
+        xh = std::max(xh, sx);
+    }
+    for (int y = y0; y < y1; ++y) {
+        const double sy = gen.orthographic() ? glm::dot(rays.originOS(x0, y) - f.apex, up)
+                                             : glm::dot(gen.direction(x0, y), up) / -glm::dot(gen.direction(x0, y), back);
+        yl = std::min(yl, sy);
+        yh = std::max(yh, sy);
+    }
+    if (gen.orthographic()) {
+        f.g = {right, -right, up, -up, -back};
+        f.h = {-xl, xh, -yl, yh, 0.0};
+    } else {
+        f.g = {right + xl * back, -right - xh * back, up + yl * back, -up - yh * back, -back};
+    }
+    // Step 2: a quantized ray's points lie within 2^-11 lattice units of its exact ray (or of
+    // its origin); the directions and the forms above carry rounding errors relative to the
+    // distances involved, far below 1e-9 of the farthest point of the cube from the apex.
+    const double far = glm::length(f.apex - dvec3(0.5 * std::ldexp(1.0, N))) + std::ldexp(1.0, N);
+    f.pad = widen ? 2.0 * (std::ldexp(1.0, -10) + 1e-9 * far) : 0.0;
+    f.prepare();
+    return f;
+}
+
+/// Step 3: the tile's frontier, front to back for sign pattern s: from `list` (the root, or the
+/// frontier of a larger tile holding this one, filtered by this tile's frustum), each node
+/// replaced by its non-empty children that meet the frustum (level by level), as long as the
+/// list stays within `cap` nodes; nodes at depth-1 and nodes with a coarse leaf stay whole.
+void refineFrontier(const Octree& tree, const TileFrustum& f, unsigned s, std::size_t cap, std::vector<FrontierNode>& list,
+                    std::vector<FrontierNode>& next) {
+    if (list.empty()) return;
+    const auto& order = childOrder().order[s];
+    const bool shell = tree.form == OctreeForm::Shell;
+    for (;;) {
+        next.clear();
+        bool refined = false;
+        for (const FrontierNode& fn : list) {
+            const OctreeNode& nd = tree.nodes()[fn.start.node];
+            if (fn.start.level >= tree.depth - 1 || (shell && (nd.termMask & nd.childMask))) {
+                next.push_back(fn);
+                continue;
+            }
+            refined = true;
+            for (unsigned c : order) {
+                if (!(nd.childMask & (1u << c)) || (nd.termMask & (1u << c))) continue;  // empty, or an interior term (volume form)
+                const ivec3 cell = fn.start.cell * 2 + ivec3(int(c >> 2), int((c >> 1) & 1), int(c & 1));
+                if (f.meets(cell, fn.start.level + 1))
+                    next.push_back({{nd.firstChild + childRank(nd.childMask, c), fn.start.level + 1, cell}, 0, 0, 0, 0});
+            }
+            if (next.size() > cap) return;  // keep the coarser list
+        }
+        list.swap(next);
+        if (!refined || list.empty()) return;
+    }
+}
+
+/// Step 4: the pixels of the image whose exact rays meet the node's box widened by the pad: the
+/// bounding rectangle of its corners' projections, a hundredth of a pixel wider; every pixel
+/// when a corner is not in front of a perspective eye (or a projection is out of range).
+void pixelRect(const Octree& tree, const RayGenerator& gen, const TileFrustum& f, FrontierNode& fn, int w, int h) {
+    const double side = std::ldexp(1.0, N - fn.start.level), k = tree.cubeSide / std::ldexp(1.0, N);
+    const dvec3 lo = dvec3(fn.start.cell) * side - dvec3(f.pad) - f.apex;
+    const double s = side + 2.0 * f.pad;
+    double xl = std::numeric_limits<double>::infinity(), xh = -xl, yl = xl, yh = -xl;
+    bool all = false;
+    for (int c = 0; c < 8 && !all; ++c) {
+        const dvec3 rel = (lo + dvec3((c & 4) ? s : 0.0, (c & 2) ? s : 0.0, (c & 1) ? s : 0.0)) * k;
+        const double cx = glm::dot(rel, gen.right()), cy = glm::dot(rel, gen.up()), cz = glm::dot(rel, gen.back());
+        if (!gen.orthographic() && !(cz < -1e-9 * glm::length(rel))) {
+            all = true;
+            break;
+        }
+        double px, py;
+        gen.toPixel(cx, cy, cz, px, py);
+        if (!(std::abs(px) < 1e7 && std::abs(py) < 1e7)) all = true;
+        xl = std::min(xl, px);
+        xh = std::max(xh, px);
+        yl = std::min(yl, py);
+        yh = std::max(yh, py);
+    }
+    if (all) {
+        fn.x0 = fn.y0 = 0;
+        fn.x1 = w - 1;
+        fn.y1 = h - 1;
+        return;
+    }
+    // Pixel x has its centre at x + 0.5.
+    constexpr double m = 0.01;
+    fn.x0 = int(std::max(std::ceil(xl - m - 0.5), -1.0));
+    fn.x1 = int(std::min(std::floor(xh + m - 0.5), double(w)));
+    fn.y0 = int(std::max(std::ceil(yl - m - 0.5), -1.0));
+    fn.y1 = int(std::min(std::floor(yh + m - 0.5), double(h)));
+}
+
+}  // namespace
+
+/// Pixels x0 .. x1-1 of row y as background, as writePixelHit writes a miss, counting the rays
+/// that meet the cube (certain inside the cube's inner outline, quantized between it and the
+/// outline, none outside).
+void fillBackground(Frame& frame, const PixelRays& rays, const RenderSettings& settings, int y, int x0, int x1,
+                    RenderStats& st) {
+    const std::size_t p = frame.pixel(x0, y), n = std::size_t(x1 - x0);
+    std::fill_n(frame.flags.data() + p, n, std::uint8_t(Frame::kTraced));
+    std::fill_n(frame.rgba.data() + p, n, settings.background);
+    std::fill_n(frame.depth.data() + p, n, std::numeric_limits<float>::infinity());
+    std::fill_n(frame.hitId.data() + p, n, kNoHit);
+    st.pixels += n;
+    st.raysFull += n;
+    const auto [innerLo, innerHi] = rays.cubeInnerSpan(y);
+    const auto [cubeLo, cubeHi] = rays.cubeSpan(y);
+    for (int x = std::max(x0, cubeLo); x < x1 && x <= cubeHi; ++x)
+        if ((x >= innerLo && x <= innerHi) || rays.meetsCube(x, y)) ++st.rays;
+}
+
+/// The nodes of `from` (in order) that meet the frustum `f`, into `list`.
+void filterFrontier(const TileFrustum& f, const std::vector<FrontierNode>& from, std::vector<FrontierNode>& list) {
+    list.clear();
+    for (const FrontierNode& fn : from)
+        if (f.meets(fn.start.cell, fn.start.level)) list.push_back(fn);
+}
+
+RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
+                                 Frame& frame) const {
+    const LodCut cut(tree, camera, settings.detail.lodPixels, settings.detail.level);
+    if (cut.active()) {
+        // A multi-resolution cut draws nodes whole: the full traversal with the cut, per pixel.
+        return renderPerPixel(name(), tree, camera, settings, frame,
+                              [&](const PixelRays& rays, int x, int y, const dvec3& d, TraversalCounters& c, bool& meets) {
+                                  const QuantizedRay q = rays.quantized(x, y, d);
+                                  meets = q.meetsCube;
+                                  return traverseDiscrete(tree, q, c, &cut);
+                              });
+    }
+    camera.validate();
+    Timer timer;
+    frame.reshape(camera.width, camera.height);  // every pixel is written below
+    const Shader shader(tree, camera, settings);
+    const PixelRays rays(tree, camera);
+    const RayGenerator gen(camera);
+    const int T = std::max(settings.tileSize, 1);
+    const int tilesX = (camera.width + T - 1) / T, tilesY = (camera.height + T - 1) / T;
+    // Frontier size: enough nodes to cut the empty space out, few enough that a ray that
+    // misses them all does not test too many boxes.
+    const std::size_t cap = std::size_t(std::max(8, T * T / 4));
+    std::vector<RenderStats> tileStats(std::size_t(tilesX) * std::size_t(tilesY));
+    // Tiles in groups of G x G: the group's frontier (a larger cap) is where each tile's
+    // refinement starts, so the coarse levels are walked once per group.
+    constexpr int G = 4;
+    const int groupsX = (tilesX + G - 1) / G, groupsY = (tilesY + G - 1) / G;
+    const std::vector<FrontierNode> root{{StartNode{}, 0, 0, 0, 0}};
+    parallelFor(std::size_t(groupsX) * std::size_t(groupsY), settings.threads, [&](std::size_t g) {
+        std::vector<FrontierNode> group, list, next;
+        std::vector<StartNode> starts;
+        const int gx = int(g % std::size_t(groupsX)), gy = int(g / std::size_t(groupsX));
+        const int gx0 = gx * G * T, gy0 = gy * G * T;
+        const int gx1 = std::min(gx0 + G * T, camera.width), gy1 = std::min(gy0 + G * T, camera.height);
+        // The sign pattern of the group's middle ray orders the frontiers.
+        const dvec3 mid = gen.direction((gx0 + gx1) / 2, (gy0 + gy1) / 2);
+        const unsigned s = (mid.x < 0.0 ? 4u : 0u) | (mid.y < 0.0 ? 2u : 0u) | (mid.z < 0.0 ? 1u : 0u);
+        if (!tree.nodes().empty()) {
+            const TileFrustum gf = tileFrustum(tree, gen, rays, gx0, gy0, gx1, gy1, widen_);
+            filterFrontier(gf, root, group);
+            refineFrontier(tree, gf, s, G * G * cap, group, next);
+        }
+        for (int ty = gy * G; ty < std::min((gy + 1) * G, tilesY); ++ty)
+            for (int tx = gx * G; tx < std::min((gx + 1) * G, tilesX); ++tx) {
+            RenderStats& st = tileStats[std::size_t(ty) * std::size_t(tilesX) + std::size_t(tx)];
+            TraversalCounters counters;
+            const int x0 = tx * T, y0 = ty * T;
+            const int x1 = std::min(x0 + T, camera.width), y1 = std::min(y0 + T, camera.height);
+            const TileFrustum fr = tileFrustum(tree, gen, rays, x0, y0, x1, y1, widen_);
+            filterFrontier(fr, group, list);
+            refineFrontier(tree, fr, s, cap, list, next);
+            // Step 4: the nodes whose rectangle misses the tile are dropped.
+            std::size_t kept = 0;
+            for (FrontierNode& fn : list) {
+                pixelRect(tree, gen, fr, fn, camera.width, camera.height);
+                if (fn.x1 >= x0 && fn.x0 < x1 && fn.y1 >= y0 && fn.y0 < y1) list[kept++] = fn;
+            }
+            list.resize(kept);
+            if (starts.size() < kept) starts.resize(kept);
+            if (list.empty()) {
+                // Step 5: no ray of the tile visits a boundary voxel.
+                for (int y = y0; y < y1; ++y) fillBackground(frame, rays, settings, y, x0, x1, st);
+                st.nodesVisited = counters.nodes;
+                continue;
+            }
+            for (int y = y0; y < y1; ++y)
+                for (int x = x0; x < x1; ++x) {
+                    const dvec3 dir = gen.direction(x, y);
+                    TraversalHit hit;
+                    if (!rays.mayHitSurface(x, y)) {
+                        // Step 5: nothing the ray can visit holds a boundary voxel.
+                        if (rays.mayMeetCube(x, y) && rays.meetsCube(x, y)) ++st.rays;
+                        ++st.raysFull;
+                    } else {
+                        const QuantizedRay q = rays.quantized(x, y, dir);
+                        if (q.meetsCube) ++st.rays;
+                        if (q.sign != s) {
+                            // Another sign pattern: the frontier's order may not be this ray's.
+                            ++st.raysFull;
+                            hit = traverseDiscrete(tree, q, counters);
+                        } else {
+                            ++st.raysCommonPath;
+                            std::size_t n = 0;
+                            for (const FrontierNode& fn : list)
+                                if (x >= fn.x0 && x <= fn.x1 && y >= fn.y0 && y <= fn.y1) starts[n++] = fn.start;
+                            hit = traverseFromNodes(tree, q, starts.data(), n, counters);
+                        }
+                    }
+                    writePixelHit(frame, x, y, hit, shader, rays, dir, settings, st);
+                }
+            st.nodesVisited = counters.nodes;
+        }
+    });
+    return RenderStats::total(name(), tileStats, timer.ms());
+}
+
+}  // namespace octrace::detail

@@ -1,0 +1,55 @@
+// The tile renderer on the real data through the CLI: `--verify` finds 0 mismatched pixels and
+// the PNG bytes equal `full`'s, for 1 and 2 threads and two tile sizes, on the Levitus isotherm
+// (default framing and Table 1's camera), the chest CT and the Delft city (per-region depth:
+// coarse leaves). Skipped without ../shared/data.
+#include "CliRunner.h"
+
+using namespace octrace::testcli;
+
+namespace {
+
+void expectTileEqualsFull(const std::string& name, std::vector<std::string> scene) {
+    SCOPED_TRACE(name);
+    Scratch s;
+    scene.insert(scene.end(), {"--size", "400x300", "--quiet"});
+    std::vector<std::string> full = scene;
+    full.insert(full.end(), {"--renderer", "full", "--threads", "2", "-o", s.path("full.png")});
+    Result r = run(full);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const std::string fullPng = slurp(s.path("full.png"));
+    ASSERT_FALSE(fullPng.empty());
+    for (const char* threads : {"1", "2"})
+        for (const char* tile : {"8", "5"}) {
+            SCOPED_TRACE(std::string("threads ") + threads + ", tile " + tile);
+            std::vector<std::string> args = scene;
+            args.insert(args.end(), {"--renderer", "tile", "--tile-size", tile, "--threads", threads, "--verify",
+                                     "--stats", s.path("tile.json"), "-o", s.path("tile.png")});
+            r = run(args);
+            ASSERT_EQ(r.code, 0) << r.err;
+            const std::string js = slurp(s.path("tile.json"));
+            EXPECT_NE(js.find("\"mismatched_pixels\": 0,"), std::string::npos) << js;
+            EXPECT_NE(js.find(std::string("\"tile_size\": ") + tile), std::string::npos) << js;
+            EXPECT_TRUE(slurp(s.path("tile.png")) == fullPng);
+        }
+}
+
+}  // namespace
+
+TEST(TileRendererCli, EqualsFullOnTheLevitusIsothermAtTheDefaultFramingAndTable1sCamera) {
+    const std::string lev = sharedData("ocean/levitus_climatology.cdf");
+    if (!haveShared("ocean/levitus_climatology.cdf")) GTEST_SKIP() << "shared data absent: " << lev;
+    const std::vector<std::string> scene{"render", lev, "--var", "TEMP", "--iso", "10", "--region", "120,180,10,60",
+                                         "--depth", "8"};
+    expectTileEqualsFull("default framing", scene);
+    std::vector<std::string> table1 = scene;
+    table1.insert(table1.end(), {"--camera-pos", "7738.087169,-14069.2494,9870.868124", "--look-at", "0,0,-681.068925",
+                                 "--up", "0,0,1", "--fov", "30"});
+    expectTileEqualsFull("Table 1 camera", table1);
+}
+
+TEST(TileRendererCli, EqualsFullOnTheChestCtAndTheCity) {
+    if (!haveShared("medical/lidc2_chest_ct.nrrd") || !haveShared("city/delft.json"))
+        GTEST_SKIP() << "shared data absent: " << sharedData("medical");
+    expectTileEqualsFull("chest CT", {"render", sharedData("medical/lidc2_chest_ct.nrrd"), "--iso", "100", "--depth", "8"});
+    expectTileEqualsFull("Delft", {"render", sharedData("city/delft.json"), "--depth", "9", "--terrain-depth", "7"});
+}

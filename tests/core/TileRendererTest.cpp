@@ -1,0 +1,156 @@
+// The tile renderer (docs/dev/tile-renderer.md) is exact: for every scene of the renderer tests,
+// at cameras in general position, on the lattice, inside the cube, grazing and orthographic, for
+// several tile sizes and thread counts, its frame equals `full`'s bit for bit and its hits are
+// the reference's; and on a scene built to defeat a conservative bound that ignores the ray's
+// quantization (a wall one voxel thick just beside a tile's last column of rays), the widened
+// pre-pass still sees what `full` sees while the unwidened one does not.
+#include "octrace/build/AnalyticField.h"
+#include "octrace/build/OctreeBuilder.h"
+#include "octrace/render/Renderer.h"
+#include "render/traversal/TileRenderer.h"
+#include "RenderTestUtil.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace octrace;
+using namespace octrace::test;
+
+namespace {
+
+struct NamedTree {
+    std::string name;
+    const Octree* tree;
+};
+
+const Octree& volumeTree() {  // volume form: interior terms the shell renderers skip
+    static const Octree t = buildOctree(makeAnalyticField("torus", 33), {6, 0.0, 0});
+    return t;
+}
+
+/// Thin rods (radius 0.012, a voxel and a half at depth 8) in several directions, between
+/// the pixel rays of any tile: what a bound that misses a sliver of a tile's rays gets wrong.
+const Octree& rodsTree() {
+    static const Octree t = buildShellOctree(
+        sampleFunction("rods", ivec3(129), dvec3(-1.0), dvec3(2.0 / 128), [](const dvec3& p) {
+            double v = -1.0;
+            for (int i = 0; i < 7; ++i) {
+                const double a = 0.31 * i - 0.9, b = 0.23 * i - 0.7;
+                v = std::max(v, 0.012 - std::hypot(p.x - a, p.z - 0.4 * b));       // along y
+                v = std::max(v, 0.012 - std::hypot(p.y - b, p.z + 0.5 * a));       // along x
+                v = std::max(v, 0.012 - std::hypot(p.x - p.y - 0.2 * a, p.z - b)); // diagonal in x, y
+            }
+            return float(v);
+        }),
+        {8, 0.0, 0});
+    return t;
+}
+
+std::vector<NamedTree> trees() {
+    return {{"sphere", &sphereTree()}, {"torus", &torusTree()}, {"noise", &noiseTree()},
+            {"volume torus", &volumeTree()}, {"rods", &rodsTree()}};
+}
+
+/// The shared cameras, plus a grazing view along a cube face, views from inside the cube and
+/// orthographic views (one framed, one whose view plane cuts the cube).
+std::vector<NamedCamera> cameras(const Octree& t) {
+    std::vector<NamedCamera> c = allTestCameras(t);
+    const Box3 cube = cubeOf(t);
+    c.push_back({"grazing the top face", makeCamera({-3.0, -2.5, 1.0}, {1.0, 1.0, 0.999}, {0, 0, 1}, 40, 97, 61)});
+    c.push_back({"inside, looking down", makeCamera({0.1, 0.05, 0.6}, {0.12, 0.1, -1.0}, {0, 1, 0}, 100, 80, 60)});
+    Camera ortho = Camera::framing(cube, 90, 70);
+    ortho.projection = Camera::Projection::Orthographic;
+    ortho.frameOrthographic(cube);
+    c.push_back({"orthographic", ortho});
+    Camera cut = makeCamera({0.2, -0.1, 0.3}, {-0.4, 0.5, -0.2}, {0, 0, 1}, 30, 77, 59);
+    cut.projection = Camera::Projection::Orthographic;
+    cut.orthoHeight = 1.1;
+    c.push_back({"orthographic, view plane inside", cut});
+    return c;
+}
+
+RenderStats draw(const Renderer& r, const Octree& t, const Camera& c, Frame& f, int threads, int tile = 8) {
+    RenderSettings s;
+    s.threads = threads;
+    s.tileSize = tile;
+    return r.render(t, c, s, f);
+}
+
+}  // namespace
+
+TEST(TileRenderer, EqualsFullBitForBitAndTheReferenceVoxelForVoxelOnEveryScene) {
+    const auto full = makeRenderer("full"), tile = makeRenderer("tile"), reference = makeRenderer("reference");
+    long hits = 0, startedBelowRoot = 0;
+    for (const NamedTree& nt : trees())
+        for (const NamedCamera& nc : cameras(*nt.tree)) {
+            Frame ff, rf;
+            const RenderStats fs = draw(*full, *nt.tree, nc.camera, ff, 2);
+            draw(*reference, *nt.tree, nc.camera, rf, 2);
+            for (int tileSize : {1, 3, 8, 16}) {
+                for (int threads : {1, 2, 7}) {
+                    SCOPED_TRACE(nt.name + ", " + nc.name + ", tile " + std::to_string(tileSize) + ", threads " +
+                                 std::to_string(threads));
+                    Frame tf;
+                    const RenderStats ts = draw(*tile, *nt.tree, nc.camera, tf, threads, tileSize);
+                    const FrameDiff toFull = diffFrames(tf, ff);
+                    EXPECT_TRUE(toFull.identical()) << toFull.first;
+                    std::size_t offReference = 0;
+                    for (std::size_t i = 0; i < tf.hitId.size(); ++i) offReference += tf.hitId[i] != rf.hitId[i];
+                    EXPECT_EQ(offReference, 0u);
+                    EXPECT_EQ(ts.rays, fs.rays);
+                    EXPECT_EQ(ts.hits, fs.hits);
+                    EXPECT_EQ(ts.pixels, fs.pixels);
+                    EXPECT_EQ(ts.raysFull + ts.raysCommonPath, ts.pixels);
+                    hits += long(ts.hits);
+                    startedBelowRoot += long(ts.raysCommonPath);
+                }
+            }
+        }
+    EXPECT_GT(hits, 0);
+    EXPECT_GT(startedBelowRoot, 0);
+}
+
+TEST(TileRenderer, VisitsFewerNodesThanFullOnTheFramedSurface) {
+    const Octree& t = noiseTree();
+    const Camera cam = Camera::framing(t.occupiedBounds(), 160, 120);
+    Frame a, b;
+    const RenderStats fs = draw(*makeRenderer("full"), t, cam, a, 2);
+    const RenderStats ts = draw(*makeRenderer("tile"), t, cam, b, 2);
+    EXPECT_TRUE(diffFrames(a, b).identical());
+    EXPECT_LT(ts.nodesVisited, fs.nodesVisited);
+}
+
+/// A wall one voxel thick (depth 7, the voxels [X, X + v) with X the cube's middle plane
+/// x = 0) seen edge-on by an orthographic camera whose pixel column 31 has its exact ray a
+/// quarter of the fixed point's unit (2^-14 lattice units) left of the wall: the ray misses
+/// the wall, its quantized twin is rounded onto x = X and visits it. Column 31 is the last of
+/// its 8-pixel tile, so the tile's exact frustum stops short of every node holding the wall.
+TEST(TileRenderer, SeesAWallThatOnlyTheQuantizedRayOfATilesLastColumnMeets) {
+    const double v = 2.0 / 128;
+    const Octree t = buildShellOctree(sampleFunction("wall", ivec3(129), dvec3(-1.0), dvec3(v), [v](const dvec3& p) {
+                                          return float(std::min(p.x + 20.0 * v, 0.5 * v - p.x));  // boundary at x in [0, v)
+                                      }),
+                                      {7, 0.0, 0});
+    ASSERT_EQ(t.cubeSide, 2.0);  // octree units per world unit: 2^13, a power of two, so the rays below are exact
+    const double eyeX = 1.0 / 64 - std::ldexp(1.0, -27);  // column 31's origin: x = -2^-27 world = -2^-14 lattice
+    Camera cam = makeCamera({eyeX, 0.0, 3.0}, {eyeX, 0.0, 0.0}, {0, 1, 0}, 30, 64, 64);
+    cam.projection = Camera::Projection::Orthographic;
+    cam.orthoHeight = 2.0;
+    Frame ff, tf, unwidened;
+    draw(*makeRenderer("full"), t, cam, ff, 2);
+    long wall = 0;
+    for (int y = 0; y < 64; ++y) wall += ff.hitId[ff.pixel(31, y)] != kNoHit;
+    ASSERT_GT(wall, 32) << "the scene does not put the wall on column 31's quantized rays";
+    for (int tileSize : {8, 4, 2, 1}) {
+        SCOPED_TRACE("tile " + std::to_string(tileSize));
+        draw(*makeRenderer("tile"), t, cam, tf, 2, tileSize);
+        const FrameDiff d = diffFrames(tf, ff);
+        EXPECT_TRUE(d.identical()) << d.first;
+    }
+    // Without the widening the pre-pass culls the wall's nodes for the tile of columns 24-31.
+    draw(detail::TileRenderer(false), t, cam, unwidened, 2);
+    long lost = 0;
+    for (int y = 0; y < 64; ++y) lost += unwidened.hitId[unwidened.pixel(31, y)] != ff.hitId[ff.pixel(31, y)];
+    EXPECT_EQ(lost, wall);
+}
