@@ -74,7 +74,7 @@ TEST(Antialias, EveryExactRendererGivesTheReferencesAveragedFrameByteForByte) {
                 Frame ref;
                 const RenderStats rs = renderAntialiased(*makeRenderer("reference"), *tree, nc.camera, s, ref);
                 EXPECT_EQ(rs.pixels, std::uint64_t(nc.camera.width) * std::uint64_t(nc.camera.height));
-                for (const char* name : {"full", "linear-exact", "area-exact", "direct", "direct-f2b", "beam", "samet"}) {
+                for (const char* name : {"full", "tile", "linear-exact", "area-exact", "direct", "direct-f2b", "beam", "samet"}) {
                     SCOPED_TRACE(name);
                     Frame f;
                     RenderSettings threads = s;
