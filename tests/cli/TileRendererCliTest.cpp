@@ -1,7 +1,9 @@
 // The tile renderer on the real data through the CLI: `--verify` finds 0 mismatched pixels and
 // the PNG bytes equal `full`'s, for 1 and 2 threads and two tile sizes, on the Levitus isotherm
 // (default framing and Table 1's camera), the chest CT and the Delft city (per-region depth:
-// coarse leaves). Skipped without ../shared/data.
+// coarse leaves); the fields with voxel and with smooth surfaces (`--surface` given to both:
+// tile, not a paper renderer, draws smooth surfaces of fields by default, full voxels).
+// Skipped without ../shared/data.
 #include "CliRunner.h"
 
 using namespace octrace::testcli;
@@ -40,16 +42,23 @@ TEST(TileRendererCli, EqualsFullOnTheLevitusIsothermAtTheDefaultFramingAndTable1
     if (!haveShared("ocean/levitus_climatology.cdf")) GTEST_SKIP() << "shared data absent: " << lev;
     const std::vector<std::string> scene{"render", lev, "--var", "TEMP", "--iso", "10", "--region", "120,180,10,60",
                                          "--depth", "8"};
-    expectTileEqualsFull("default framing", scene);
     std::vector<std::string> table1 = scene;
     table1.insert(table1.end(), {"--camera-pos", "7738.087169,-14069.2494,9870.868124", "--look-at", "0,0,-681.068925",
                                  "--up", "0,0,1", "--fov", "30"});
-    expectTileEqualsFull("Table 1 camera", table1);
+    for (const std::string surface : {"voxel", "smooth"}) {
+        std::vector<std::string> a = scene, b = table1;
+        a.insert(a.end(), {"--surface", surface});
+        b.insert(b.end(), {"--surface", surface});
+        expectTileEqualsFull("default framing, " + surface, a);
+        expectTileEqualsFull("Table 1 camera, " + surface, b);
+    }
 }
 
 TEST(TileRendererCli, EqualsFullOnTheChestCtAndTheCity) {
     if (!haveShared("medical/lidc2_chest_ct.nrrd") || !haveShared("city/delft.json"))
         GTEST_SKIP() << "shared data absent: " << sharedData("medical");
-    expectTileEqualsFull("chest CT", {"render", sharedData("medical/lidc2_chest_ct.nrrd"), "--iso", "100", "--depth", "8"});
+    for (const std::string surface : {"voxel", "smooth"})
+        expectTileEqualsFull("chest CT, " + surface,
+                             {"render", sharedData("medical/lidc2_chest_ct.nrrd"), "--iso", "100", "--depth", "8", "--surface", surface});
     expectTileEqualsFull("Delft", {"render", sharedData("city/delft.json"), "--depth", "9", "--terrain-depth", "7"});
 }

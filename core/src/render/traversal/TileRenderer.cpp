@@ -300,7 +300,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                             hit = traverseFromNodes(tree, q, starts.data(), n, counters);
                         }
                     }
-                    writePixelHit(frame, x, y, hit, shader, rays, dir, settings, st);
+                    writePixelHit(frame, x, y, hit, shader, rays, dir, settings, st, counters);
                 }
             st.nodesVisited = counters.nodes;
         }
