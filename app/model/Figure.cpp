@@ -320,7 +320,14 @@ io::FigureLayout fitFigureLayout(const io::FigureLayout& first, const std::funct
             if (next == room) break;
         }
         room = next;
-        l = io::layoutFigure(l.width, l.height, l.dpi, l.barW > 0, room);
+        try {
+            l = io::layoutFigure(l.width, l.height, l.dpi, l.barW > 0, room);
+        } catch (const UsageError&) {
+            // The room the text asks for leaves no plot (a small figure): keep the last layout
+            // that has one (at first, figureLayout's); its text is thinned and shortened to fit
+            // (io::composeFigure).
+            break;
+        }
     }
     return l;
 }

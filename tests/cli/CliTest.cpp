@@ -227,9 +227,9 @@ TEST(Cli, RefusalsNameTheRenderersThatHonourTheOption) {
     EXPECT_NE(r.err.find("(use full, linear, area, linear-exact or area-exact)"), std::string::npos) << r.err;
     r = run({"render", "analytic:sphere", "-o", s.path("x.png"), "--renderer", "beam", "--level", "3"});
     EXPECT_EQ(r.code, 2);
-    EXPECT_NE(r.err.find("(use full, reference, reference-unquantized, direct or direct-f2b)"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("(use full, tile, reference, reference-unquantized, direct or direct-f2b)"), std::string::npos) << r.err;
     const Result h = run({"render", "--help"});
-    EXPECT_NE(h.out.find("renderers full, reference, reference-unquantized, direct or direct-f2b"), std::string::npos);
+    EXPECT_NE(h.out.find("renderers full, tile, reference, reference-unquantized, direct or direct-f2b"), std::string::npos);
 }
 
 TEST(Cli, ColourOptionsWithoutColourCoherenceAreToldToChangeNothing) {
