@@ -142,8 +142,7 @@ const std::unordered_map<std::string_view, Entry>& setters() {
             }
         }));
         m.emplace(opt::depth.key, surface([](const std::string& v, SurfaceSpec& s) {
-            if (v == "auto") s.depth.reset();
-            else s.depth = parseInteger(opt::depth, v);
+            s.depth = parseInteger(opt::depth, v);
             s.depthGiven = true;
         }));
         const auto threads = [](const std::string& v, auto& s) { s.threads = parseInteger(opt::threads, v); };

@@ -144,7 +144,7 @@ RenderSettings renderSettingsFor(const StudioState& state, bool transparent, con
     look.window = window;
     look.invertedGrey = invertedGrey;
     model::RenderSpec spec = renderSpec(state, 1, 1);
-    if (transparent) spec.background->a = 0.0f;
+    if (transparent) spec.background.a = 0.0f;
     RenderSettings rs = model::renderSettings(surfaceArgs(state), look, spec);
     if (rs.colormap.empty()) rs.colormap = valuesColormap;
     return rs;
