@@ -63,8 +63,8 @@ TEST(FigureCli, HasThePrintSizeTimesTheDpiAndItsPlotIsThePlainRender) {
             for (int c = 0; c < 3; ++c) eq = eq && fig.at(plot[0] + x, plot[1] + y, c) == plain.at(x, y, c);
             same += eq;
         }
-    // (The default framing fills 92 % of the plot with the surface's box: its edges and labels
-    // cover a few percent of it.)
+    // (The box's edges and its labels, which the figure's fitted margins may bring inside the
+    // plot's edge, cover a few percent of it.)
     EXPECT_GT(double(same), 0.9 * plain.width * plain.height);
     EXPECT_LT(double(same), double(plain.width) * plain.height);  // the box is drawn
 }
