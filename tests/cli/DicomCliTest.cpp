@@ -60,3 +60,41 @@ TEST(DicomCli, SeriesIsAUsageErrorForAnalyticInputs) {
     Result r = run({"render", "analytic:sphere:9", "--series", "1", "-o", "/tmp/never.png"});
     EXPECT_EQ(r.code, 2) << r.err;
 }
+
+// A multi-echo and a diffusion series of classic MR files (tests/data/dicom/two_echoes,
+// two_bvalues: two volumes of 3 slices): `info` lists the volumes by echo or b-value, the default
+// is volume 0 with a note, and `--volume N` slices each volume: the same image as the slice of a
+// folder holding only that volume's files.
+TEST(DicomCli, InfoListsEchoesAndBValuesAndVolumeChoosesEach) {
+    struct Case {
+        const char* folder;
+        const char* prefix;
+        const char* labels[2];
+    };
+    for (const Case& c : {Case{"/dicom/two_echoes", "echo", {"echo 1", "echo 2"}}, Case{"/dicom/two_bvalues", "b", {"b-value 0", "b-value 1000"}}}) {
+        SCOPED_TRACE(c.folder);
+        const std::string folder = std::string(OCTRACE_TEST_DATA) + c.folder;
+        Result info = run({"info", folder});
+        ASSERT_EQ(info.code, 0) << info.err;
+        for (int v = 0; v < 2; ++v)
+            EXPECT_NE(info.out.find("volume " + std::to_string(v) + ": " + c.labels[v] + ", 3 slices"), std::string::npos) << info.out;
+        Scratch s;
+        for (int v = 0; v < 2; ++v) {
+            const std::string alone = s.path("alone" + std::to_string(v));
+            std::filesystem::create_directories(alone);
+            for (int k = 1; k <= 3; ++k) {
+                const std::string name = c.prefix + std::to_string(v + 1) + "_s" + std::to_string(k) + ".dcm";
+                std::filesystem::copy_file(folder + "/" + name, alone + "/" + name);
+            }
+            const std::string picked = s.path("picked" + std::to_string(v) + ".png"), reference = s.path("alone" + std::to_string(v) + ".png");
+            Result r = run({"slice", folder, "--volume", std::to_string(v), "--window", "500,1000", "-o", picked});
+            ASSERT_EQ(r.code, 0) << r.err;
+            ASSERT_EQ(run({"slice", alone, "--window", "500,1000", "-o", reference}).code, 0);
+            EXPECT_EQ(slurp(picked), slurp(reference)) << "volume " << v;
+        }
+        EXPECT_NE(slurp(s.path("picked0.png")), slurp(s.path("picked1.png")));  // two volumes, two images
+        Result defaulted = run({"slice", folder, "-o", s.path("default.png")});
+        ASSERT_EQ(defaulted.code, 0) << defaulted.err;
+        EXPECT_NE(defaulted.err.find("volume 0"), std::string::npos) << defaulted.err;
+    }
+}

@@ -487,3 +487,39 @@ TEST(DicomReader, VolumesWithoutTheSameSlicesAreRefusedNamingTheVolume) {
     EXPECT_EQ(one.dims, ivec3(64, 64, 6));
     EXPECT_EQ(io::DicomReader::listVolumes(dir.file("")).size(), 1u);
 }
+
+// Classic MR files whose volumes are told apart by EchoNumbers (a multi-echo series) or by
+// DiffusionBValue (a diffusion series), without a temporal position: two volumes of 3 slices
+// (tests/data/dicom/make_volume_corpus.py writes them from the XA10 slices of two time points).
+// listVolumes and info name what tells them apart, and each volume read is that echo's or
+// b-value's slices alone: the same voxels as a folder holding only its files.
+TEST(DicomReader, EchoesAndBValuesAreVolumesNamedByWhatTellsThemApart) {
+    struct Case {
+        const char* folder;
+        const char* prefix;  // the files of volume v: PREFIX<v+1>_s<k>.dcm
+        std::vector<std::string> labels;
+    };
+    for (const Case& c : {Case{"dicom/two_echoes", "echo", {"echo 1", "echo 2"}},
+                          Case{"dicom/two_bvalues", "b", {"b-value 0", "b-value 1000"}}}) {
+        SCOPED_TRACE(c.folder);
+        const std::string folder = test::testData(c.folder);
+        EXPECT_EQ(io::DicomReader::listVolumes(folder), c.labels);
+        const std::string text = io::DicomReader::describe(folder, {}, 0, 1);
+        EXPECT_NE(text.find("2 volumes)"), std::string::npos) << text;
+        EXPECT_NE(text.find("volume 0: " + c.labels[0] + ", 3 slices"), std::string::npos) << text;
+        EXPECT_NE(text.find("volume 1: " + c.labels[1] + ", 3 slices"), std::string::npos) << text;
+        EXPECT_NE(text.find("chosen: series 1, volume 1"), std::string::npos) << text;
+        const ScalarField v0 = io::DicomReader::read(folder, {}, 0, 0), v1 = io::DicomReader::read(folder, {}, 0, 1);
+        EXPECT_EQ(v0.dims, ivec3(64, 64, 3));
+        EXPECT_FALSE(v0.values == v1.values);  // two time points' samples: not the same volume twice
+        for (int v = 0; v < 2; ++v) {
+            test::TempDir alone;
+            for (int k = 1; k <= 3; ++k) {
+                const std::string name = c.prefix + std::to_string(v + 1) + "_s" + std::to_string(k) + ".dcm";
+                std::filesystem::copy_file(folder + "/" + name, alone.file(name));
+            }
+            expectSameVoxels(io::DicomReader::read(alone.file("")), v ? v1 : v0, c.labels[std::size_t(v)].c_str());
+        }
+        EXPECT_THROW_WITH(io::DicomReader::read(folder, {}, 0, 2), InputError, "holds 2 volumes, 0..1 (0: " + c.labels[0]);
+    }
+}

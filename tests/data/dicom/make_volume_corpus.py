@@ -9,13 +9,18 @@ at the positions the NIfTI's sform gives (RAS turned into DICOM's LPS). Two time
 - invalid_volume_slice_counts/: time point 1 has all 6 slices, time point 2 only slices 3..6;
 - invalid_volume_missing_slice/: time point 2 lacks slice 3 (its other 5 slices are there);
 
-and the fuzz_dicom seed two_time_points.dcm (two slices of each time point).
+and the fuzz_dicom seed two_time_points.dcm (two slices of each time point). The valid
+fixtures of tests/data/dicom take the first 3 slices of time points 1 and 2 as two volumes told
+apart by other attributes, with no TemporalPositionIdentifier:
+
+- two_echoes/: EchoNumbers 1 and 2 (EchoTime 10 and 30 ms), as a multi-echo series;
+- two_bvalues/: DiffusionBValue 0 and 1000 (FD), as a diffusion series.
 
 Run once from this folder with the shared data beside the checkout; the outputs are committed."""
 import os
 import struct
 
-from make_fixtures import INVALID, MR_IMAGE, SEEDS, SEPARATOR, SHARED, ds, fresh, image, write
+from make_fixtures import HERE, INVALID, MR_IMAGE, SEEDS, SEPARATOR, SHARED, ds, fresh, image, write
 
 NIFTI = os.path.join(SHARED, "siemens_xa10_fmri_4d", "reference_dcm2niix.nii")
 SERIES = "1.2.826.0.1.3680043.9.7777.90"
@@ -39,7 +44,9 @@ def lps(ras):
     return (-ras[0], -ras[1], ras[2])
 
 
-def write_volume(folder, dims, srow, samples, t, slices):
+def write_volume(folder, dims, srow, samples, t, slices, key=None, name="t%d_s%d.dcm"):
+    """Slices `slices` of time point t; `key`: the elements that tell the volume apart
+    (default: TemporalPositionIdentifier t + 1)."""
     nx, ny, nz, _ = dims
     column = [[srow[r][a] for r in range(3)] for a in range(3)]  # RAS step along i, j, k
     length = [sum(c * c for c in column[a]) ** 0.5 for a in range(2)]
@@ -52,10 +59,10 @@ def write_volume(folder, dims, srow, samples, t, slices):
         extra = {
             (0x0020, 0x0032): ("DS", ds(*origin)),
             (0x0020, 0x0037): ("DS", ds(*row_dir, *col_dir)),
-            (0x0020, 0x0100): ("IS", str(t + 1)),  # TemporalPositionIdentifier
             (0x0028, 0x0030): ("DS", ds(length[1], length[0])),  # between rows, between columns
         }
-        write(os.path.join(folder, "t%d_s%d.dcm" % (t + 1, k + 1)),
+        extra.update(key if key is not None else {(0x0020, 0x0100): ("IS", str(t + 1))})  # TemporalPositionIdentifier
+        write(os.path.join(folder, name % (t + 1, k + 1)),
               image(SERIES, "MR", ny, nx, pixels, extra=extra, description="xa10 fmri slices"), MR_IMAGE)
 
 
@@ -72,6 +79,15 @@ def main():
     with open(os.path.join(SEEDS, "two_time_points.dcm"), "wb") as f:
         f.write(SEPARATOR.join(open(os.path.join(d, name), "rb").read()
                                for name in ["t1_s1.dcm", "t1_s2.dcm", "t2_s1.dcm", "t2_s2.dcm"]))
+
+    # Two echoes and two b-values (volumes of classic files without a temporal position).
+    d = fresh(os.path.join(HERE, "two_echoes"))
+    for t, (echo, te) in enumerate([(1, 10), (2, 30)]):
+        write_volume(d, dims, srow, samples, t, range(3), {(0x0018, 0x0086): ("IS", str(echo)), (0x0018, 0x0081): ("DS", ds(te))},
+                     "echo%d_s%d.dcm")
+    d = fresh(os.path.join(HERE, "two_bvalues"))
+    for t, b in enumerate([0, 1000]):
+        write_volume(d, dims, srow, samples, t, range(3), {(0x0018, 0x9087): ("FD", struct.pack("<d", b))}, "b%d_s%d.dcm")
 
 
 if __name__ == "__main__":
