@@ -19,18 +19,6 @@
 namespace octrace::model {
 namespace {
 
-/// `at` in world units along the plane's normal axis (geographic grids: depth, longitude,
-/// latitude; a longitude in -180..180 or 0..360 alike, as `region` takes it: the grid is
-/// unwrapped within half a turn of lon0, so the longitude is taken there).
-double worldPosition(const ScalarField& f, SlicePlane plane, double at) {
-    if (!f.geographic.valid) return at;
-    const GeoAxes g{f.geographic};
-    const int n = sliceNormalAxis(plane);
-    if (n != 2 && f.geographic.polar()) return at;  // the polar plane's x and y: world km
-    if (n == 0) return g.x(f.geographic.lon0 + std::remainder(at - f.geographic.lon0, 360.0));
-    return n == 2 ? g.z(at) : g.y(at);
-}
-
 /// Refuses `at` off a geographic grid in the user's terms, degrees east or north and metres of
 /// depth, before makeSliceView would in world kilometres (on other grids world units are the
 /// file's own, and its message says them). The same range: slicePositionRange.
@@ -106,19 +94,6 @@ double singleImagePosition(const ScalarField& f, const SliceSpec& a, SlicePlane 
                          param(opt::at.key) + " " + numberText(*a.at) + " is off it (there is one slice); leave " +
                          param(opt::at.key) + " out");
     return ownPosition;
-}
-
-/// The plane's position as the user reads it: "z = 12.5 mm", "500 m depth", "150°E".
-std::string positionText(const ScalarField& f, const SliceView& v) {
-    const int n = sliceNormalAxis(v.plane);
-    if (f.geographic.valid) {
-        const GeoAxes g{f.geographic};
-        if (n != 2 && f.geographic.polar()) return std::string(1, char('x' + n)) + " = " + numberText(v.position, 5) + " km";
-        return n == 2 ? numberText(g.depthM(v.position), 5) + " m depth"
-               : n == 0 ? longitudeText(g.lon(v.position))
-                        : latitudeText(g.lat(v.position));
-    }
-    return std::string(1, char('x' + n)) + " = " + numberText(v.position, 5) + (f.patientLps ? " mm" : "");
 }
 
 SliceColour chooseColouring(const SliceSpec& a, const ScalarField& f, const SliceValues& values) {
@@ -291,11 +266,11 @@ io::FigureSpec sliceFigureSpec(const SliceSpec& a, const ScalarField& f, const S
     const std::string units = f.units.empty() ? "" : " (" + f.units + ")";
     spec.barLabel = f.name + units;
     const bool surfaceMap = f.planar && (!f.geographic.valid || GeoAxes{f.geographic}.depthM(v.position) == 0.0);
-    std::string sub = f.patientLps                  ? f.name + ", " + slicePlaneName(v.plane) + " at " + positionText(f, v)
+    std::string sub = f.patientLps                  ? f.name + ", " + slicePlaneName(v.plane) + " at " + slicePositionText(f, v)
                       : surfaceMap                   ? f.name  // a map: no plane to place
-                      : !f.geographic.valid          ? f.name + ", " + slicePlaneName(v.plane) + " plane at " + positionText(f, v)
-                      : sliceNormalAxis(v.plane) == 2 ? f.name + " at " + positionText(f, v)
-                                                      : f.name + ", section at " + positionText(f, v);
+                      : !f.geographic.valid          ? f.name + ", " + slicePlaneName(v.plane) + " plane at " + slicePositionText(f, v)
+                      : sliceNormalAxis(v.plane) == 2 ? f.name + " at " + slicePositionText(f, v)
+                                                      : f.name + ", section at " + slicePositionText(f, v);
     if (c.window.valid()) {
         spec.greyRamp = true;
         spec.invertedGrey = c.invertedGrey;
@@ -336,6 +311,43 @@ ValueWindow quantileWindow(const ScalarField& f, double lowFraction, double high
     return {0.5 * (lo + hi), std::max(hi - lo, 1e-30)};
 }
 
+double sliceWorldOfAt(const ScalarField& f, SlicePlane plane, double at) {
+    // A longitude in -180..180 or 0..360 alike, as `region` takes it: the grid is unwrapped
+    // within half a turn of lon0, so the longitude is taken there.
+    if (!f.geographic.valid) return at;
+    const GeoAxes g{f.geographic};
+    const int n = sliceNormalAxis(plane);
+    if (n != 2 && f.geographic.polar()) return at;  // the polar plane's x and y: world km
+    if (n == 0) return g.x(f.geographic.lon0 + std::remainder(at - f.geographic.lon0, 360.0));
+    return n == 2 ? g.z(at) : g.y(at);
+}
+
+double sliceAtOfWorld(const ScalarField& f, SlicePlane plane, double world) {
+    if (!f.geographic.valid) return world;
+    const GeoAxes g{f.geographic};
+    const int n = sliceNormalAxis(plane);
+    if (n != 2 && f.geographic.polar()) return world;
+    return n == 0 ? g.lon(world) : n == 1 ? g.lat(world) : g.depthM(world);
+}
+
+std::pair<double, double> sliceAtRange(const ScalarField& f, SlicePlane plane) {
+    const auto [lo, hi] = slicePositionRange(f, plane);
+    const double a = sliceAtOfWorld(f, plane, lo), b = sliceAtOfWorld(f, plane, hi);
+    return {std::min(a, b), std::max(a, b)};
+}
+
+std::string slicePositionText(const ScalarField& f, const SliceView& v) {
+    const int n = sliceNormalAxis(v.plane);
+    if (f.geographic.valid) {
+        const GeoAxes g{f.geographic};
+        if (n != 2 && f.geographic.polar()) return std::string(1, char('x' + n)) + " = " + numberText(v.position, 5) + " km";
+        return n == 2 ? numberText(g.depthM(v.position), 5) + " m depth"
+               : n == 0 ? longitudeText(g.lon(v.position))
+                        : latitudeText(g.lat(v.position));
+    }
+    return std::string(1, char('x' + n)) + " = " + numberText(v.position, 5) + (f.patientLps ? " mm" : "");
+}
+
 std::uint64_t memoryBudget(const SliceSpec& spec) { return spec.maxMemory ? spec.maxMemory : defaultMemoryBudget(); }
 
 void checkSliceSpec(const SliceSpec& a) {
@@ -358,7 +370,7 @@ SliceResult renderSlice(const ScalarField& field, const SliceSpec& a) {
         throw InputError(a.input + ": " + param(opt::plane.key) + " " + slicePlaneName(plane) + ": '" + field.name +
                          "' is a 2-D field (a map): only its z plane, the map itself, can be drawn; leave " + param(opt::plane.key) + " out");
     const double position = singleImage ? singleImagePosition(field, a, plane)
-                            : a.at      ? worldPosition(field, plane, *a.at)
+                            : a.at      ? sliceWorldOfAt(field, plane, *a.at)
                                         : slicePositionOfIndex(field, plane, a.index.value_or(field.dims[sliceGridAxis(field, plane)] / 2));
     checkGeographicAt(field, a, plane, position);
     // A figure: the slice fills the plot that its layout leaves (`size` or `print_size` is the
@@ -414,7 +426,7 @@ std::string sliceSummary(const ScalarField& field, const SliceResult& r, const s
     const SliceView& view = r.view;
     const SliceColouring& c = r.colour.colouring;
     std::ostringstream s;
-    s << output << ": " << slicePlaneName(view.plane) << " slice of " << field.name << " at " << positionText(field, view) << " (sample "
+    s << output << ": " << slicePlaneName(view.plane) << " slice of " << field.name << " at " << slicePositionText(field, view) << " (sample "
       << numberText(view.gridIndex, 4) << " of " << field.dims[view.gridAxis] << " along grid axis " << view.gridAxis << "), "
       << view.width << "x" << view.height << " pixels of " << numberText(view.pixelSize, 4) << (field.patientLps ? " mm" : "") << ", ";
     if (c.window.valid())

@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <utility>
 
 namespace octrace::studio {
 namespace {
@@ -76,6 +77,14 @@ void describeSteps(const std::string& input, const io::FieldRequest& request, In
             name += QStringLiteral(": ") + QString::fromStdString(axis.dates[i]);
         info.steps << name;
     }
+}
+
+/// Moves `field`'s samples to a shared owner (SampleBuffer.h), so that copies share them: the
+/// builds read them in place instead of a second copy of the field.
+void shareSamples(ScalarField& field) {
+    if (field.values.borrowed()) return;
+    auto owner = std::make_shared<const std::vector<float>>(std::move(field.values.vector()));
+    field.values = SampleBuffer::borrow(owner->data(), owner->size(), owner);
 }
 
 /// The preview level while the camera moves: two levels above the voxels, at least 1.
@@ -187,7 +196,9 @@ void Engine::open(const StudioState& state) {
             info.histogram = histogramOf(base->field, lo, hi);
             info.fileWindow = base->field.window;
             if (base->field.patientLps && !base->field.window.valid()) info.percentileWindow = model::quantileWindow(base->field, 0.01, 0.99);
-            auto sliceField = std::make_shared<const ScalarField>(base->field.copy());
+            // One field: the slice panes read the one the builds copy their samples from.
+            shareSamples(base->field);
+            std::shared_ptr<const ScalarField> sliceField(base, &base->field);
             if (stop) throw CancelledError("cancelled");
             StudioState read = state;
             read.variable = a.request.variable;
@@ -246,15 +257,12 @@ void Engine::startBuild(const StudioState& state) {
     building_ = true;
     emit progress(tr("Building the octree"), 0.0);
     buildWorker_.post([this, base = base_, state, gen](const std::atomic<bool>& stop) {
-        // The field is lent to this build (jobs run one at a time) and given back whatever happens.
+        // The build's field shares the samples of the one read (which the slice panes read on
+        // the GUI thread meanwhile: neither writes it); only its small members and its validity
+        // mask (a byte a sample, less than the read needed) are copied for the build's time.
         auto surface = std::make_shared<model::Surface>();
-        surface->field = std::move(base->field);
+        surface->field = std::as_const(base->field).copy();
         surface->spheres = base->spheres;
-        struct GiveBack {
-            model::Surface& from;
-            model::Surface& to;
-            ~GiveBack() { to.field = std::move(from.field); }
-        } giveBack{*surface, *base};
         runBuildJob(gen, [&] {
             model::BuildHooks hooks;
             int shown = -1;  // percent last sent: one queued signal per percent at most

@@ -106,8 +106,8 @@ public:
     double iso() const { return iso_; }
     int depth() const { return depth_; }
     bool hasField() const { return bool(base_); }
-    /// A copy of the field read, for the slice panes (SliceViews.h): the build borrows base_'s
-    /// own; null for inputs without a field (octree files, city models).
+    /// The field read, for the slice panes (SliceViews.h): the one the builds share their samples
+    /// with (no second copy of them); null for inputs without a field (octree files, city models).
     std::shared_ptr<const ScalarField> field() const { return sliceField_; }
     /// The display window the build chose (model::Surface::window), and its inversion.
     const ValueWindow& window() const { return window_; }
@@ -137,7 +137,7 @@ private:
     void handBack(unsigned gen, std::function<void()> then);
 
     InputInfo info_;
-    std::shared_ptr<model::Surface> base_;  // holds the field read (lent to one build at a time)
+    std::shared_ptr<model::Surface> base_;  // holds the field read (its samples shared with each build)
     std::shared_ptr<const ScalarField> sliceField_;
     ValueWindow window_;
     bool invertedGrey_ = false;

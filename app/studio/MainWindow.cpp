@@ -119,8 +119,18 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     // The 3-D views alone, or in the four-up layout with the slice panes.
     slices_ = new SliceViews(splitter, engine_, this);
     setCentralWidget(slices_);
-    connect(slices_, &SliceViews::cursorChanged, this, &MainWindow::showCrosshair);
+    slices_->setReadArguments([this] {
+        QStringList a;
+        for (const std::string& s : inputArguments(state_, "slice")) a << QString::fromStdString(s);
+        return a;
+    });
+    connect(slices_, &SliceViews::cursorChanged, this, [this] {
+        keepSlices();
+        showCrosshair();
+    });
+    connect(slices_, &SliceViews::windowChanged, this, &MainWindow::keepSlices);
     connect(slices_, &SliceViews::layoutChanged, this, [this] {
+        keepSlices();
         showCrosshair();
         exactTimer_.start();  // the 3-D view's size changed
     });
@@ -177,12 +187,14 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     connect(&engine_, &Engine::surfaceBuilt, this, &MainWindow::onSurfaceBuilt);
     connect(&engine_, &Engine::frameReady, this, &MainWindow::onFrame);
     connect(&engine_, &Engine::failed, this, [this](const QString& m) {
+        restoreSlices_ = false;
         stepAbandoned();
         progress_->hide();
         cancelButton_->setEnabled(engine_.building());
         showMessage(m, true);
     });
     connect(&engine_, &Engine::cancelled, this, [this] {
+        restoreSlices_ = false;
         stepAbandoned();
         progress_->hide();
         cancelButton_->setEnabled(false);
@@ -809,12 +821,31 @@ bool MainWindow::openSession(const QString& path) {
     }
     state_ = s;
     showState();
+    // The layout now; the crosshair, positions and window once the input is read (a session
+    // without an input keeps the panes as they are).
+    restoreSlices_ = !state_.input.empty();
+    slices_->setFourUp(s.fourUp);
+    state_.crosshair = s.crosshair;
+    state_.sliceAt = s.sliceAt;
+    state_.sliceWindow = s.sliceWindow;
     showMessage(tr("Opened session %1").arg(path));
     if (!state_.input.empty()) {
         addRecent(QString::fromStdString(state_.input));
         load(state_);
     }
     return true;
+}
+
+void MainWindow::keepSlices() {
+    if (restoreSlices_) return;  // a session's panes are still to be shown
+    state_.fourUp = slices_->fourUp();
+    state_.crosshair.reset();
+    state_.sliceAt = {};
+    if (engine_.field()) {
+        state_.crosshair = slices_->cursor();
+        for (int i = 0; i < 3; ++i) state_.sliceAt[std::size_t(i)] = slices_->at(i);
+    }
+    state_.sliceWindow = slices_->windowText();
 }
 
 void MainWindow::showState() {
@@ -938,6 +969,18 @@ void MainWindow::onInputLoaded() {
     updating_ = false;
     showStepsAndOcean();
     showMessage(tr("Read %1: %2 [%3 .. %4] %5").arg(in.input, in.variable).arg(in.minimum).arg(in.maximum).arg(in.units));
+    if (restoreSlices_) {
+        // The session's crosshair, slice positions and window, on the field it names.
+        restoreSlices_ = false;
+        const StudioState saved = state_;
+        if (saved.crosshair) slices_->setCursor(*saved.crosshair);
+        for (int i = 0; i < 3; ++i)
+            if (const auto& at = saved.sliceAt[std::size_t(i)]) slices_->setAt(i, *at);
+        if (!slices_->setWindowText(saved.sliceWindow))
+            showMessage(tr("The session's slice window %1 does not apply to %2: the automatic window")
+                            .arg(QString::fromStdString(saved.sliceWindow), in.input));
+        keepSlices();
+    }
 }
 
 void MainWindow::onSurfaceBuilt() {

@@ -151,9 +151,12 @@ private:
     void updateSurfelView();
     /// Shows the slice panes' crosshair in the main 3-D view (four-up layout only).
     void showCrosshair();
+    /// The state's layout, crosshair, slice positions and window from the slice panes.
+    void keepSlices();
 
     StudioState state_;
     StudioState pending_;  // what load() is reading
+    bool restoreSlices_ = false;  // a session's crosshair, positions and window wait for its input
     Engine engine_;
     RenderView* views_[2] = {nullptr, nullptr};
     QStackedWidget* secondPane_ = nullptr;

@@ -18,6 +18,7 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 
+#include <array>
 #include <map>
 #include <optional>
 #include <type_traits>
@@ -29,7 +30,10 @@
 namespace octrace::studio {
 namespace {
 
-constexpr int kFormatVersion = 1;
+/// Version 2 added the `layout` group (four-up, crosshair, slice positions and window);
+/// version 1 files open as before (the layout as a new window has it).
+constexpr int kFormatVersion = 2;
+constexpr int kOldestFormatVersion = 1;
 const char* kFormatKey = "octrace_studio_session";
 
 QJsonArray array(const dvec3& v) { return {v.x, v.y, v.z}; }
@@ -100,6 +104,21 @@ public:
             if (e.toDouble() < lo || e.toDouble() > hi)
                 fail(key, QStringLiteral("%1 is outside [%2, %3]").arg(e.toDouble()).arg(lo).arg(hi));
             out.push_back(e.toDouble());
+        }
+        return out;
+    }
+    /// An array of n members, each a finite number or null (unset).
+    template <std::size_t N>
+    std::array<std::optional<double>, N> optionalNumbers(const char* key) const {
+        const QJsonValue v = o_.value(QLatin1String(key));
+        const QString what = QStringLiteral("must be an array of %1 numbers or nulls").arg(N);
+        if (!v.isArray() || std::size_t(v.toArray().size()) != N) fail(key, what);
+        std::array<std::optional<double>, N> out;
+        for (std::size_t i = 0; i < N; ++i) {
+            const QJsonValue e = v.toArray().at(qsizetype(i));
+            if (e.isNull()) continue;
+            if (!e.isDouble() || !std::isfinite(e.toDouble())) fail(key, what);
+            out[i] = e.toDouble();
         }
         return out;
     }
@@ -205,8 +224,13 @@ QByteArray sessionJson(const StudioState& s) {
         else if (o->kind == model::OptionKind::Integer || o->kind == model::OptionKind::Number) value = std::stod(given->second);
         groups.at(path.left(dot))->insert(path.mid(dot + 1), value);
     }
+    QJsonObject layout{{"four_up", s.fourUp}, {"slice_window", QString::fromStdString(s.sliceWindow)}};
+    if (s.crosshair) layout.insert("crosshair", QJsonArray{s.crosshair->x, s.crosshair->y, s.crosshair->z});
+    QJsonArray at;
+    for (const auto& a : s.sliceAt) at.append(a ? QJsonValue(*a) : QJsonValue());
+    layout.insert("slice_at", at);
     QJsonObject root{{kFormatKey, kFormatVersion}, {"input", input},     {"surface", surface}, {"renderers", renderers},
-                     {"camera", camera},           {"shading", shading}, {"export", exportSettings}};
+                     {"camera", camera},           {"shading", shading}, {"export", exportSettings}, {"layout", layout}};
     return QJsonDocument(root).toJson(QJsonDocument::Indented);
 }
 
@@ -220,8 +244,11 @@ StudioState parseSession(const QByteArray& json, const QString& baseFolder) {
     if (!root.has(kFormatKey)) throw InputError(std::string("not a session file: no '") + kFormatKey + "' member");
     int version = 0;
     root.integer(kFormatKey, version, 1, 1000000);
-    if (version != kFormatVersion)
-        root.fail(kFormatKey, QStringLiteral("format version %1 is not supported (this studio reads %2)").arg(version).arg(kFormatVersion));
+    if (version < kOldestFormatVersion || version > kFormatVersion)
+        root.fail(kFormatKey, QStringLiteral("format version %1 is not supported (this studio reads %2 to %3)")
+                                  .arg(version)
+                                  .arg(kOldestFormatVersion)
+                                  .arg(kFormatVersion));
 
     StudioState s;
     const Reader input = root.object("input");
@@ -341,6 +368,26 @@ StudioState parseSession(const QByteArray& json, const QString& baseFolder) {
     const Reader exportSettings = root.object("export");
     exportSettings.flag("transparent", s.transparent);
     exportSettings.text(model::sessionMember(model::opt::title).c_str(), s.title);
+
+    // Version 2: the layout and the slice panes (absent: the 3-D view alone, the middle sample).
+    const Reader layout = root.object("layout");
+    layout.flag("four_up", s.fourUp);
+    if (layout.has("crosshair")) {
+        // Sample indices, as the CLI's `index` counts them (its range from the table).
+        const auto c = layout.numbers("crosshair", 3, model::opt::index.min, model::opt::index.max);
+        for (double v : c)
+            if (v != std::floor(v)) layout.fail("crosshair", QStringLiteral("%1 is not a whole number").arg(v));
+        s.crosshair = ivec3(int(c[0]), int(c[1]), int(c[2]));
+    }
+    if (layout.has("slice_at")) s.sliceAt = layout.optionalNumbers<3>("slice_at");
+    layout.text("slice_window", s.sliceWindow);
+    if (!s.sliceWindow.empty()) {
+        try {
+            if (model::displayWindow(s.sliceWindow).width <= 0.0) throw UsageError("not a window");
+        } catch (const UsageError& e) {
+            layout.fail("slice_window", QString::fromStdString(e.what()));
+        }
+    }
     return s;
 }
 

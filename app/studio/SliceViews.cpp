@@ -5,11 +5,13 @@
 #include "octrace/build/CtPresets.h"
 #include "octrace/io/Figure.h"
 #include "octrace/model/OptionTable.h"
+#include "octrace/model/Surface.h"
 #include "octrace/util/Error.h"
 
 #include <QAction>
 #include <QActionGroup>
 #include <QComboBox>
+#include <QDoubleSpinBox>
 #include <QGridLayout>
 #include <QHBoxLayout>
 #include <QLabel>
@@ -48,8 +50,11 @@ SliceViews::SliceViews(QWidget* threeD, Engine& engine, QWidget* parent) : QWidg
     outer->setContentsMargins(0, 0, 0, 0);
     outer->setSpacing(2);
     bar_ = new QWidget(this);
-    auto* barLayout = new QHBoxLayout(bar_);
-    barLayout->setContentsMargins(4, 2, 4, 2);
+    auto* barRows = new QVBoxLayout(bar_);
+    barRows->setContentsMargins(4, 2, 4, 2);
+    barRows->setSpacing(2);
+    auto* barLayout = new QHBoxLayout;
+    barRows->addLayout(barLayout);
     barLayout->addWidget(new QLabel(tr("Window"), bar_));
     windowCombo_ = new QComboBox(bar_);
     windowCombo_->setObjectName(QStringLiteral("sliceWindowCombo"));
@@ -69,6 +74,25 @@ SliceViews::SliceViews(QWidget* threeD, Engine& engine, QWidget* parent) : QWidg
     windowLabel_ = new QLabel(bar_);
     windowLabel_->setObjectName(QStringLiteral("sliceWindowLabel"));
     barLayout->addWidget(windowLabel_, 1);
+    // Each pane's position as the CLI's `at` takes it (its help from the options table; the
+    // range is the grid's): an ocean field's depth, latitude and longitude, else mm or world units.
+    auto* atRow = new QHBoxLayout;
+    barRows->addLayout(atRow);
+    for (int i = 0; i < 3; ++i) {
+        atLabels_[std::size_t(i)] = new QLabel(bar_);
+        auto* box = atBoxes_[std::size_t(i)] = new QDoubleSpinBox(bar_);
+        box->setObjectName(QStringLiteral("sliceAt%1").arg(i));
+        box->setDecimals(4);
+        box->setKeyboardTracking(false);  // a typed number is taken on Enter, not at each keystroke
+        box->setFocusPolicy(Qt::StrongFocus);
+        box->setToolTip(QString::fromLatin1(model::opt::at.help));
+        connect(box, &QDoubleSpinBox::valueChanged, this, [this, i](double v) {
+            if (!updating_) setAt(i, v);
+        });
+        atRow->addWidget(atLabels_[std::size_t(i)]);
+        atRow->addWidget(box);
+    }
+    atRow->addStretch(1);
     outer->addWidget(bar_);
 
     auto* grid = grid_ = new QGridLayout;
@@ -155,6 +179,7 @@ void SliceViews::setFourUp(bool on) {
 void SliceViews::setField(std::shared_ptr<const ScalarField> field, const QString& input) {
     field_ = std::move(field);
     input_ = input;
+    at_ = {};
     probe_ = {};
     probeLabel_->clear();
     window_ = autoWindow_ = {};
@@ -179,8 +204,10 @@ void SliceViews::setField(std::shared_ptr<const ScalarField> field, const QStrin
     windowCombo_->setCurrentIndex(0);
     updating_ = false;
     updateWindowControls();
+    updateAtBoxes();
     renderPanes();
     emit cursorChanged();
+    emit windowChanged();
 }
 
 void SliceViews::updateWindowControls() {
@@ -214,6 +241,45 @@ void SliceViews::choosePreset(const QString& name) {
     updating_ = false;
     updateWindowControls();
     renderPanes();
+    emit windowChanged();
+}
+
+std::string SliceViews::windowText() const {
+    if (!window_.valid()) return {};
+    if (windowCombo_->currentData().toInt() == kCustom)
+        return (exact(window_.centre) + QLatin1Char(',') + exact(window_.width)).toStdString();
+    return windowName_;
+}
+
+bool SliceViews::setWindowText(const std::string& text) {
+    if (!field_ || !field_->patientLps) return text.empty();
+    const QString t = QString::fromStdString(text);
+    if (t.isEmpty() || ctWindowPreset(text)) {
+        if (!t.isEmpty() && field_->units != "HU") return false;  // the presets are in HU, as the CLI says
+        choosePreset(t);
+        return true;
+    }
+    ValueWindow w;
+    try {
+        w = model::displayWindow(text);  // "C,W", as `window` takes it
+    } catch (const UsageError&) {
+        return false;
+    }
+    if (!w.valid()) return false;
+    setCustomWindow(w);
+    return true;
+}
+
+void SliceViews::setCustomWindow(ValueWindow w) {
+    window_ = w;
+    windowName_.clear();
+    windowSource_ = tr("dragged");
+    updating_ = true;
+    windowCombo_->setCurrentIndex(windowCombo_->findData(kCustom));
+    updating_ = false;
+    updateWindowControls();
+    renderPanes();
+    emit windowChanged();
 }
 
 void SliceViews::dragWindow(int dx, int dy) {
@@ -222,15 +288,7 @@ void SliceViews::dragWindow(int dx, int dy) {
     // a drag across 500 pixels sweeps the volume's range.
     const auto [lo, hi] = field_->validRange();
     const double perPixel = std::max(double(hi) - double(lo), 1e-30) / 500.0;
-    window_.width = std::max(window_.width + dx * perPixel, perPixel);
-    window_.centre -= dy * perPixel;
-    windowName_.clear();
-    windowSource_ = tr("dragged");
-    updating_ = true;
-    windowCombo_->setCurrentIndex(windowCombo_->findData(kCustom));
-    updating_ = false;
-    updateWindowControls();
-    renderPanes();
+    setCustomWindow({window_.centre - dy * perPixel, std::max(window_.width + dx * perPixel, perPixel)});
 }
 
 ivec3 SliceViews::nearestSample(const dvec3& p) const {
@@ -240,13 +298,83 @@ ivec3 SliceViews::nearestSample(const dvec3& p) const {
     return out;
 }
 
-void SliceViews::setCursor(ivec3 ijk) {
+void SliceViews::setCursor(ivec3 ijk) { moveCursor(ijk, false); }
+
+void SliceViews::moveCursor(ivec3 ijk, bool keepAt) {
     if (!field_) return;
     for (int a = 0; a < 3; ++a) ijk[a] = std::clamp(ijk[a], 0, field_->dims[a] - 1);
-    if (ijk == cursor_) return;
+    if (ijk == cursor_ && !keepAt) return;
+    // A pane moved by a sample (wheel, keys, a click elsewhere) is at that sample again.
+    if (!keepAt)
+        for (int i = 0; i < 3; ++i) {
+            const int axis = sliceGridAxis(*field_, panes_[std::size_t(i)]->plane());
+            if (ijk[axis] != cursor_[axis]) at_[std::size_t(i)].reset();
+        }
     cursor_ = ijk;
+    updateAtBoxes();
     renderPanes();
     emit cursorChanged();
+}
+
+void SliceViews::setAt(int i, double at) {
+    if (!field_) return;
+    const SlicePlane plane = panes_[std::size_t(i)]->plane();
+    const auto [lo, hi] = slicePositionRange(*field_, plane);
+    double world = model::sliceWorldOfAt(*field_, plane, at);
+    if (world < lo || world > hi) {  // beyond the grid (the CLI refuses it): its edge
+        world = std::clamp(world, lo, hi);
+        at = model::sliceAtOfWorld(*field_, plane, world);
+    }
+    at_[std::size_t(i)] = at;
+    dvec3 p = field_->worldFromGrid(cursor_.x, cursor_.y, cursor_.z);
+    p[sliceNormalAxis(plane)] = world;
+    ivec3 c = cursor_;
+    const int axis = sliceGridAxis(*field_, plane);
+    c[axis] = nearestSample(p)[axis];
+    moveCursor(c, true);
+}
+
+dvec3 SliceViews::crosshairWorld() const {
+    dvec3 w = field_->worldFromGrid(cursor_.x, cursor_.y, cursor_.z);
+    for (int i = 0; i < 3; ++i)
+        if (const auto& a = at_[std::size_t(i)]) {
+            const SlicePlane plane = panes_[std::size_t(i)]->plane();
+            w[sliceNormalAxis(plane)] = model::sliceWorldOfAt(*field_, plane, *a);
+        }
+    return w;
+}
+
+void SliceViews::updateAtBoxes() {
+    updating_ = true;
+    for (int i = 0; i < 3; ++i) {
+        QDoubleSpinBox* box = atBoxes_[std::size_t(i)];
+        QLabel* label = atLabels_[std::size_t(i)];
+        box->setEnabled(bool(field_));
+        if (!field_) continue;
+        const SlicePlane plane = panes_[std::size_t(i)]->plane();
+        const int n = sliceNormalAxis(plane);
+        const auto [lo, hi] = model::sliceAtRange(*field_, plane);
+        const bool geographic = field_->geographic.valid, polar = geographic && field_->geographic.polar() && n != 2;
+        QString name = QString::fromLatin1(slicePlaneName(plane)), suffix;
+        if (geographic && !polar) {
+            constexpr const char* names[3] = {"longitude", "latitude", "depth"};
+            name = QString::fromLatin1(names[n]);
+            suffix = n == 2 ? QStringLiteral(" m") : n == 1 ? QStringLiteral(" \u00b0N") : QStringLiteral(" \u00b0E");
+        } else if (polar) {
+            suffix = QStringLiteral(" km");
+        } else if (field_->patientLps) {
+            suffix = QStringLiteral(" mm");
+        }
+        label->setText(name);
+        box->setSuffix(suffix);
+        box->setRange(lo, hi);
+        box->setSingleStep(std::max((hi - lo) / std::max(1, field_->dims[sliceGridAxis(*field_, plane)] - 1), 1e-4));
+        // The `at` given (in the grid's own longitudes), else the crosshair's sample.
+        const double world = at_[std::size_t(i)] ? model::sliceWorldOfAt(*field_, plane, *at_[std::size_t(i)])
+                                                 : slicePositionOfIndex(*field_, plane, sliceIndex(i));
+        box->setValue(model::sliceAtOfWorld(*field_, plane, world));
+    }
+    updating_ = false;
 }
 
 int SliceViews::sliceIndex(int pane) const {
@@ -266,7 +394,8 @@ model::SliceSpec SliceViews::specFor(int i) const {
     model::SliceSpec s;
     s.input = input_.toStdString();
     s.plane = p->plane();
-    s.index = sliceIndex(i);
+    if (at_[std::size_t(i)]) s.at = at_[std::size_t(i)];
+    else s.index = sliceIndex(i);
     const QSize size = p->imageSize();
     s.width = size.width();
     s.height = size.height();
@@ -279,8 +408,11 @@ model::SliceSpec SliceViews::specFor(int i) const {
 
 QStringList SliceViews::commandLine(int i, const QString& output) const {
     const model::SliceSpec s = specFor(i);
-    QStringList a{input_, QStringLiteral("--plane"), QString::fromLatin1(slicePlaneName(*s.plane)), QStringLiteral("--index"),
-                  QString::number(*s.index), QStringLiteral("--size"), QStringLiteral("%1x%2").arg(s.width).arg(s.height)};
+    QStringList a = readArguments_ ? readArguments_() : QStringList{input_};
+    a << QStringLiteral("--plane") << QString::fromLatin1(slicePlaneName(*s.plane));
+    if (s.at) a << QStringLiteral("--at") << exact(*s.at);
+    else a << QStringLiteral("--index") << QString::number(*s.index);
+    a << QStringLiteral("--size") << QStringLiteral("%1x%2").arg(s.width).arg(s.height);
     if (window_.valid()) a << QStringLiteral("--window") << QString::fromStdString(s.windowName);
     a << QStringLiteral("-o") << output;
     return a;
@@ -314,11 +446,13 @@ void SliceViews::renderPane(int i) {
                 c.scaleBarLabel = QStringLiteral("%1 mm").arg(text(length));
             }
         }
-        const dvec3 d = field_->worldFromGrid(cursor_.x, cursor_.y, cursor_.z) - v.topLeft;
+        const dvec3 d = crosshairWorld() - v.topLeft;
         const double ps2 = v.pixelSize * v.pixelSize;
         c.crosshair = QPointF(glm::dot(d, v.right) / ps2 + 0.5, glm::dot(d, v.down) / ps2 + 0.5);
         const int n = field_->dims[v.gridAxis];
-        c.caption = QStringLiteral("%1  %2 / %3").arg(QString::fromLatin1(slicePlaneName(v.plane))).arg(sliceIndex(i)).arg(n - 1);
+        c.caption = at_[std::size_t(i)] ? QStringLiteral("%1  %2").arg(QString::fromLatin1(slicePlaneName(v.plane)),
+                                                                        QString::fromStdString(model::slicePositionText(*field_, v)))
+                                        : QStringLiteral("%1  %2 / %3").arg(QString::fromLatin1(slicePlaneName(v.plane))).arg(sliceIndex(i)).arg(n - 1);
         p->setContent(std::move(c));
     } catch (const std::exception& e) {
         p->setMessage(QString::fromStdString(model::sayForStudio(e.what())));
@@ -368,7 +502,7 @@ bool SliceViews::pickSurface(QPointF px) {
 
 std::optional<QPointF> SliceViews::crosshairIn(const Camera& camera) const {
     if (!field_) return std::nullopt;
-    const dvec3 w = field_->worldFromGrid(cursor_.x, cursor_.y, cursor_.z);
+    const dvec3 w = crosshairWorld();
     const RayGenerator rays(camera);
     const dvec3 d = w - rays.eye();
     const double cz = glm::dot(d, rays.back());

@@ -17,12 +17,14 @@
 #include <QWidget>
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <optional>
 
 class QAction;
 class QActionGroup;
 class QComboBox;
+class QDoubleSpinBox;
 class QGridLayout;
 class QLabel;
 class QToolButton;
@@ -52,11 +54,27 @@ public:
     int sliceIndex(int pane) const;
     /// Moves pane `pane`'s slice by `slices` samples (clamped to the grid).
     void step(int pane, int slices);
+    /// Where pane `pane`'s slice lies when placed by its position box (the CLI's `at`, in the
+    /// user's terms: model::sliceWorldOfAt; on an ocean grid the depth in metres, the latitude,
+    /// the longitude); unset: at the crosshair's sample (`index`).
+    std::optional<double> at(int pane) const { return at_[std::size_t(pane)]; }
+    /// Places pane `pane`'s slice at `at` (clamped to the grid, model::sliceAtRange) and the
+    /// crosshair at the sample nearest to it; moving the slice by a sample again (wheel, keys,
+    /// a click in another pane) goes back to samples.
+    void setAt(int pane, double at);
     /// The window in use (invalid: a colour map, off patient volumes) and where it comes from.
     ValueWindow window() const { return window_; }
     QString windowSource() const { return windowSource_; }
     /// A preset (CtPresets.h), or "" for the automatic window.
     void choosePreset(const QString& name);
+    /// The window as a session keeps it: "" automatic, a preset's name, or "C,W" (dragged).
+    std::string windowText() const;
+    /// Sets the window from windowText()'s form; false when `text` is none of them.
+    bool setWindowText(const std::string& text);
+
+    /// The CLI's arguments that read the field the studio read (model: inputArguments for
+    /// `slice`): INPUT and its --var, --time, --series, --region, ...
+    void setReadArguments(std::function<QStringList()> arguments) { readArguments_ = std::move(arguments); }
 
     /// Picks the surface point under `devicePixel` of the last exact 3-D frame and moves the
     /// crosshair to the sample nearest to it. False when nothing was hit there.
@@ -80,7 +98,9 @@ public:
     QStringList commandLine(int pane, const QString& output) const;
 
 signals:
+    /// The crosshair or a pane's position moved.
     void cursorChanged();
+    void windowChanged();
     void layoutChanged(bool fourUp);
 
 private:
@@ -90,8 +110,15 @@ private:
     void updateWindowControls();
     model::SliceSpec specFor(int pane) const;
     void dragWindow(int dx, int dy);
+    /// A window of the user's own (dragged, or a session's "C,W").
+    void setCustomWindow(ValueWindow w);
     /// The sample nearest to world point `p`, clamped to the grid.
     ivec3 nearestSample(const dvec3& p) const;
+    /// The crosshair's world point: the sample, moved onto the planes placed by `at`.
+    dvec3 crosshairWorld() const;
+    /// Moves the crosshair; the panes whose slice it moves lose their `at`.
+    void moveCursor(ivec3 ijk, bool keepAt);
+    void updateAtBoxes();
 
     Engine& engine_;
     std::shared_ptr<const ScalarField> field_;
@@ -107,6 +134,10 @@ private:
     QComboBox* windowCombo_;
     QToolButton* windowLevelButton_;
     QLabel *windowLabel_, *probeLabel_;
+    std::array<QLabel*, 3> atLabels_{};
+    std::array<QDoubleSpinBox*, 3> atBoxes_{};
+    std::array<std::optional<double>, 3> at_;
+    std::function<QStringList()> readArguments_;
     QActionGroup* layoutGroup_;
     QAction *threeDOnly_, *fourUpAction_;
     Probe probe_;

@@ -150,18 +150,23 @@ RenderSettings renderSettingsFor(const StudioState& state, bool transparent, con
     return rs;
 }
 
-std::vector<std::string> renderArguments(const StudioState& state, const Camera& camera, double iso,
-                                         const std::string& output, int width, int height) {
+std::vector<std::string> inputArguments(const StudioState& state, std::string_view command) {
     std::vector<std::string> args{state.input};
     if (!state.variable.empty()) args.insert(args.end(), {"--var", state.variable});
     if (!state.time.empty()) args.insert(args.end(), {"--time", state.time});
     if (!state.series.empty()) args.insert(args.end(), {"--series", state.series});
     for (const auto& [key, text] : state.settings) {
         const model::Option* o = model::findOption(key);
-        if (!o) continue;
+        if (!o || !o->takenBy(command)) continue;
         args.push_back(std::string("--") + o->flag);
         if (o->kind != model::OptionKind::Flag) args.push_back(text);
     }
+    return args;
+}
+
+std::vector<std::string> renderArguments(const StudioState& state, const Camera& camera, double iso,
+                                         const std::string& output, int width, int height) {
+    std::vector<std::string> args = inputArguments(state, "render");
     // An octree file fixes the iso value and the depth; a city model has no iso value.
     if (!model::isOctreeInput(state.input) && !io::isCityInput(state.input)) args.insert(args.end(), {"--iso", number(iso)});
     if (!model::isOctreeInput(state.input)) args.insert(args.end(), {"--depth", std::to_string(state.depth)});

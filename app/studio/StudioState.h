@@ -12,11 +12,13 @@
 #include "octrace/render/RenderSettings.h"
 #include "octrace/util/Math.h"
 
+#include <array>
 #include <map>
 #include <optional>
 #include <span>
 #include <variant>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace octrace::studio {
@@ -78,6 +80,14 @@ struct StudioState {
     std::string title;
     int dpi = model::kDefaultDpi;
     bool scaleBar = false;
+    // Layout (View > Four-Up Layout) and the slice panes (SliceViews.h): the crosshair's sample
+    // (i, j, k; unset: the middle sample, as the CLI's `index`), each pane's `at` when placed
+    // by its position box (axial/z, coronal/y, sagittal/x; the user's terms, as the CLI's
+    // `at`), and the slices' window ("" automatic, a CT preset's name, or "C,W").
+    bool fourUp = false;
+    std::optional<ivec3> crosshair;
+    std::array<std::optional<double>, 3> sliceAt;
+    std::string sliceWindow;
 };
 
 /// A setting of the options table held in a plain member of StudioState: sessions read and
@@ -145,6 +155,11 @@ std::optional<io::FigureLayout> figureLayoutFor(const StudioState& state, int wi
 /// The camera of an export of width x height: cameraFor at the size of the image rendered (the
 /// figure's plot, or the whole).
 Camera exportCamera(const StudioState& state, const Box3& surfaceBounds, int width, int height);
+
+/// The input and what to read of it as `octrace COMMAND` takes them: INPUT, then --var,
+/// --time, --series and the text settings given that COMMAND takes (Option::takenBy), so that
+/// `render` and `slice` read the field the studio read.
+std::vector<std::string> inputArguments(const StudioState& state, std::string_view command);
 
 /// `octrace render` arguments (without the program and command names) that draw what the studio
 /// exports for `state` at width x height with `camera` (exportCamera): input options, surface,

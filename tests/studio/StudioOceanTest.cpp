@@ -9,6 +9,7 @@
 #include "OceanPanel.h"
 #include "RenderView.h"
 #include "Session.h"
+#include "SliceViews.h"
 #include "StepSlider.h"
 
 #include "octrace/util/Error.h"
@@ -238,6 +239,83 @@ private slots:
         } catch (const octrace::InputError& e) {
             QVERIFY2(QString::fromStdString(e.what()).startsWith(QStringLiteral("input.region: ")), e.what());
         }
+    }
+
+    void slicePanesCutAtADepthAndAlongSectionsAsTheCli() {
+        // The four-up panes on the ocean field read (the North Atlantic, upper 1000 m): a map at
+        // a depth (z) and sections along a parallel (y) and a meridian (x), each placed by its
+        // position box as the CLI's --at, and drawn pixel for pixel as `octrace slice` draws the
+        // pane's command line (which reads the same region and depths).
+        auto* slices = window_->slices();
+        slices->setFourUp(true);
+        QTRY_VERIFY(slices->pane(0)->isVisible() && slices->pane(0)->hasSlice());
+        QCOMPARE(slices->pane(0)->plane(), octrace::SlicePlane::Z);
+        QCOMPARE(slices->pane(1)->plane(), octrace::SlicePlane::Y);
+        QCOMPARE(slices->pane(2)->plane(), octrace::SlicePlane::X);
+        auto* depth = find<QDoubleSpinBox>("sliceAt0");
+        auto* latitude = find<QDoubleSpinBox>("sliceAt1");
+        auto* longitude = find<QDoubleSpinBox>("sliceAt2");
+        QVERIFY(depth && latitude && longitude && depth->isVisible());
+        // The boxes span the grid read and half a step beyond (as --at takes it): the levels of
+        // 0 .. 1000 m (the next one, 1200 m, is not read), 0 .. 65 N, 280 .. 360 E.
+        const QString ranges = QStringLiteral("depth %1..%2, latitude %3..%4, longitude %5..%6")
+                                   .arg(depth->minimum()).arg(depth->maximum()).arg(latitude->minimum()).arg(latitude->maximum())
+                                   .arg(longitude->minimum()).arg(longitude->maximum());
+        QVERIFY2(depth->minimum() <= 0.0 && depth->maximum() >= 1000.0 && depth->maximum() <= 1100.0, qPrintable(ranges));
+        QVERIFY2(latitude->minimum() <= 0.5 && latitude->maximum() >= 64.5 && latitude->maximum() <= 65.5, qPrintable(ranges));
+        QVERIFY2(longitude->minimum() <= 280.5 && longitude->maximum() >= 359.5, qPrintable(ranges));
+        QVERIFY(depth->toolTip().contains(QStringLiteral("depth in metres")));  // the option's help
+        // 450 m: between the levels of 400 and 500 m.
+        depth->setValue(450.0);
+        QVERIFY(slices->at(0) == 450.0);
+        const QString command = slices->commandLine(0, QStringLiteral("x.png")).join(QLatin1Char(' '));
+        QVERIFY2(command.contains(QStringLiteral("--plane z --at 450 ")), qPrintable(command));
+        QVERIFY2(command.contains(QStringLiteral("--var TEMP")) && command.contains(QStringLiteral("--region 280,360,0,65")) &&
+                     command.contains(QStringLiteral("--depth-range 0,1000")) && !command.contains(QStringLiteral("--floor")),
+                 qPrintable(command));
+        QVERIFY(slices->pane(0)->content().caption.contains(QStringLiteral("450 m depth")));
+        QCOMPARE(paneDiffersFromCli(*slices, 0, tmp_.path(), QStringLiteral("depth450")), 0);
+        const QImage at450 = slices->pane(0)->image();
+        // A section along 30 N, and one along 30 W (330 E; the CLI takes -30 alike).
+        latitude->setValue(30.0);
+        QCOMPARE(paneDiffersFromCli(*slices, 1, tmp_.path(), QStringLiteral("lat30")), 0);
+        longitude->setValue(330.0);
+        QCOMPARE(paneDiffersFromCli(*slices, 2, tmp_.path(), QStringLiteral("lon330")), 0);
+        QVERIFY(slices->at(0) == 450.0);  // placing the sections leaves the map at its depth
+        QCOMPARE(slices->pane(0)->image(), at450);
+        screenshot(QStringLiteral("studio-ocean-slices.png"));
+        // The wheel goes on by samples from the nearest level: --index again.
+        slices->step(0, 1);
+        QVERIFY(!slices->at(0));
+        QVERIFY(slices->commandLine(0, QStringLiteral("x.png")).contains(QStringLiteral("--index")));
+        QCOMPARE(paneDiffersFromCli(*slices, 0, tmp_.path(), QStringLiteral("depthIndex")), 0);
+        QVERIFY(slices->at(1) == 30.0 && slices->at(2) == 330.0);
+        slices->setFourUp(false);
+    }
+
+    void engineKeepsOneCopyOfTheField() {
+        // The slice panes' field is the one read, whose samples each build shares (no second
+        // copy of the field beside the budget the read was checked against): a build, and
+        // another after a new iso value, leave the samples where the read put them.
+        Engine engine;
+        octrace::studio::StudioState s;
+        s.input = kLevitus.toStdString();
+        s.variable = "TEMP";
+        s.depth = 5;
+        QSignalSpy built(&engine, &Engine::surfaceBuilt);
+        engine.open(s);
+        QVERIFY(built.wait(kWaitMs));
+        const auto field = engine.field();
+        QVERIFY(field && field->values.borrowed());
+        const float* samples = field->values.data();
+        const auto tree = engine.tree();
+        s.iso = 12.0;
+        engine.rebuild(s);
+        QVERIFY(built.wait(kWaitMs));
+        QVERIFY(engine.tree() != tree);  // built again, from the same samples
+        QCOMPARE(engine.field(), field);
+        QCOMPARE(engine.field()->values.data(), samples);
+        QCOMPARE(engine.iso(), 12.0);
     }
 
     void timeSliderReadsTheStepAsTheCli() {

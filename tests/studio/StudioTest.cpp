@@ -800,7 +800,7 @@ private slots:
 
         // Missing and broken files: a message, and the state stays as it was.
         const QByteArray current = octrace::studio::sessionJson(window_->state());
-        for (const QByteArray& bad : {QByteArray("{ not json"), QByteArray("[1, 2]"), QByteArray("{\"octrace_studio_session\": 2}"),
+        for (const QByteArray& bad : {QByteArray("{ not json"), QByteArray("[1, 2]"), QByteArray("{\"octrace_studio_session\": 3}"),
                                       QByteArray("{\"octrace_studio_session\": 1, \"surface\": {\"depth\": 99}}")}) {
             QFile f(tmp_.filePath(QStringLiteral("bad.json")));
             QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
@@ -977,20 +977,8 @@ private slots:
         return slices->fourUp();
     }
 
-    /// Runs `octrace slice ARGS`.
-    static int runSlice(const QStringList& args) { return runOctrace(QStringLiteral("slice"), args); }
-
     /// Pane `i`'s image and the CLI's `slice` of the pane's own command line: 0 differing pixels.
-    void paneEqualsCli(int i, const QString& stem) {
-        auto* slices = window_->slices();
-        const QString studioPng = tmp_.filePath(stem + QStringLiteral("-pane.png"));
-        const QString cliPng = tmp_.filePath(stem + QStringLiteral("-cli.png"));
-        const QImage shown = slices->pane(i)->image();
-        QCOMPARE(shown.size(), slices->pane(i)->imageSize());
-        QVERIFY(shown.save(studioPng));
-        QCOMPARE(runSlice(slices->commandLine(i, cliPng)), 0);
-        QCOMPARE(differingPixels(studioPng, cliPng), 0);
-    }
+    void paneEqualsCli(int i, const QString& stem) { QCOMPARE(paneDiffersFromCli(*window_->slices(), i, tmp_.path(), stem), 0); }
 
     void fourUpLayoutShowsTheThreeSlices() {
         if (!openChestFourUp()) QSKIP("needs ../shared/data/medical/lidc2_chest_ct.nrrd");
@@ -1225,6 +1213,58 @@ private slots:
         }
     }
 
+    void sessionKeepsTheLayoutCrosshairAndWindow() {
+        if (!openChestFourUp()) QSKIP("needs ../shared/data/medical/lidc2_chest_ct.nrrd");
+        auto* slices = window_->slices();
+        const auto field = window_->engine().field();
+        // A crosshair off the middle, the sagittal slice between two samples (placed by its
+        // position box, the CLI's --at), a window dragged to 60/120.
+        slices->setCursor(octrace::ivec3(100, 140, 50));
+        const auto [lo, hi] = octrace::model::sliceAtRange(*field, octrace::SlicePlane::Sagittal);
+        const double x = lo + 0.3137 * (hi - lo);
+        slices->setAt(2, x);
+        QVERIFY(slices->setWindowText("60,120"));
+        const octrace::ivec3 cursor = slices->cursor();
+        QCOMPARE(cursor.y, 140);
+        const QString path = tmp_.filePath(QStringLiteral("layout.json"));
+        QVERIFY(window_->saveSessionTo(path));
+        const auto saved = octrace::studio::loadSession(path);
+        QVERIFY(saved.fourUp);
+        QVERIFY(saved.crosshair == cursor);
+        QVERIFY(saved.sliceAt[2] == x);
+        QVERIFY(!saved.sliceAt[0] && !saved.sliceAt[1]);
+        QCOMPARE(saved.sliceWindow, std::string("60,120"));
+        QFile file(path);
+        QVERIFY(file.open(QIODevice::ReadOnly));
+        const QByteArray json = file.readAll();  // the input as an absolute path
+        const QImage sagittal = slices->pane(2)->image();
+        // Elsewhere: the 3-D view alone, the middle sample, the automatic window.
+        window_->findChild<QAction*>(QStringLiteral("layout3d"))->trigger();
+        slices->setCursor(octrace::ivec3(128, 128, 66));
+        slices->choosePreset(QString());
+        QVERIFY(!window_->state().fourUp);
+        // Opened: the layout at once; the input is read again, then the crosshair, the sagittal
+        // position and the window come back as saved.
+        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
+        QVERIFY(window_->openSession(path));
+        QVERIFY(slices->fourUp());
+        QVERIFY(built.wait(kWaitMs));
+        QCOMPARE(slices->cursor(), cursor);
+        QVERIFY(slices->at(2) == x);
+        QVERIFY(!slices->at(0) && !slices->at(1));
+        QCOMPARE(slices->window().centre, 60.0);
+        QCOMPARE(slices->window().width, 120.0);
+        QCOMPARE(octrace::studio::sessionJson(window_->state()), json);
+        QCOMPARE(slices->pane(2)->image(), sagittal);
+        QVERIFY(slices->commandLine(2, QStringLiteral("x.png")).contains(QStringLiteral("--at")));
+        paneEqualsCli(2, QStringLiteral("restored"));
+        // A session of format version 1 (no layout) opens with the panes as a new window has them.
+        const auto old = octrace::studio::parseSession(R"({"octrace_studio_session": 1, "input": {"path": "/x/a.nrrd"}})");
+        QVERIFY(!old.fourUp && !old.crosshair && !old.sliceAt[0] && old.sliceWindow.empty());
+        slices->setCursor(octrace::ivec3(128, 128, 66));
+        slices->choosePreset(QString());
+    }
+
     void clickOnTheSurfaceMovesTheSlicesThere() {
         if (!openChestFourUp()) QSKIP("needs ../shared/data/medical/lidc2_chest_ct.nrrd");
         auto* slices = window_->slices();
@@ -1299,6 +1339,17 @@ private slots:
         row("not json", "{", "JSON error");
         row("no version", "{}", "no 'octrace_studio_session' member");
         row("version", R"({"octrace_studio_session": 3})", "format version 3");
+        row("four_up", R"({"octrace_studio_session": 2, "layout": {"four_up": 1}})", "layout.four_up: must be true or false");
+        row("crosshair fraction", R"({"octrace_studio_session": 2, "layout": {"crosshair": [1.5, 2, 3]}})",
+            "layout.crosshair: 1.5 is not a whole number");
+        row("crosshair negative", R"({"octrace_studio_session": 2, "layout": {"crosshair": [-1, 2, 3]}})",
+            "layout.crosshair: -1 is outside");
+        row("crosshair short", R"({"octrace_studio_session": 2, "layout": {"crosshair": [1, 2]}})",
+            "layout.crosshair: must be an array of 3 numbers");
+        row("slice_at", R"({"octrace_studio_session": 2, "layout": {"slice_at": [1, "x", null]}})",
+            "layout.slice_at: must be an array of 3 numbers or nulls");
+        row("slice_window", R"({"octrace_studio_session": 2, "layout": {"slice_window": "wide"}})", "layout.slice_window: ");
+        row("slice_window none", R"({"octrace_studio_session": 2, "layout": {"slice_window": "none"}})", "layout.slice_window: ");
         row("input type", R"({"octrace_studio_session": 1, "input": {"path": 5}})", "input.path: must be a string");
         row("depth", R"({"octrace_studio_session": 1, "surface": {"depth": 0}})", "surface.depth: 0 is outside");
         row("depth fraction", R"({"octrace_studio_session": 1, "surface": {"depth": 7.5}})", "surface.depth: 7.5 is not a whole number");
@@ -1346,6 +1397,21 @@ private slots:
         } catch (const octrace::InputError& e) {
             QVERIFY2(QString::fromStdString(e.what()).contains(message), e.what());
         }
+    }
+
+    void sessionParserReadsTheLayout() {
+        const auto s = octrace::studio::parseSession(
+            R"({"octrace_studio_session": 2, "layout": {"four_up": true, "crosshair": [3, 4, 5], "slice_at": [450.5, null, -30],
+                "slice_window": "bone"}})");
+        QVERIFY(s.fourUp);
+        QVERIFY(s.crosshair == octrace::ivec3(3, 4, 5));
+        QVERIFY(s.sliceAt[0] == 450.5 && !s.sliceAt[1] && s.sliceAt[2] == -30.0);
+        QCOMPARE(s.sliceWindow, std::string("bone"));
+        // Written and read back as it was; a version 1 session has none of it.
+        QCOMPARE(octrace::studio::sessionJson(octrace::studio::parseSession(octrace::studio::sessionJson(s))), octrace::studio::sessionJson(s));
+        QVERIFY(octrace::studio::sessionJson(s).contains("\"octrace_studio_session\": 2"));
+        const auto old = octrace::studio::parseSession(R"({"octrace_studio_session": 1})");
+        QVERIFY(!old.fourUp && !old.crosshair && !old.sliceAt[2] && old.sliceWindow.empty());
     }
 
     void sessionParserKeepsDefaultsAndResolvesRelativeInputs() {

@@ -1,6 +1,8 @@
 #pragma once
 // What the studio's QTests share: running the CLI on the command line the studio gives, and
 // comparing PNG files pixel by pixel.
+#include "SliceViews.h"
+
 #include <QImage>
 #include <QLabel>
 #include <QMainWindow>
@@ -27,6 +29,25 @@ inline int runOctrace(const QString& command, const QStringList& args) {
 
 /// Runs `octrace render ARGS`.
 inline int runCli(const QStringList& args) { return runOctrace(QStringLiteral("render"), args); }
+
+/// Runs `octrace slice ARGS`.
+inline int runSlice(const QStringList& args) { return runOctrace(QStringLiteral("slice"), args); }
+
+inline qint64 differingPixels(const QString& a, const QString& b);
+
+/// Pane `i`'s image against the CLI's `slice` of the pane's own command line, both saved in
+/// `folder` under `stem`: the number of differing pixels (-1: a size differs or the CLI failed).
+inline qint64 paneDiffersFromCli(const SliceViews& slices, int i, const QString& folder, const QString& stem) {
+    const QString studioPng = folder + QLatin1Char('/') + stem + QStringLiteral("-pane.png");
+    const QString cliPng = folder + QLatin1Char('/') + stem + QStringLiteral("-cli.png");
+    const QImage shown = slices.pane(i)->image();
+    if (shown.size() != slices.pane(i)->imageSize() || !shown.save(studioPng)) return -1;
+    const QStringList args = slices.commandLine(i, cliPng);
+    if (runSlice(args) != 0) return -1;
+    const qint64 n = differingPixels(studioPng, cliPng);
+    if (n != 0) qWarning("%lld pixels differ from: octrace slice %s", n, qPrintable(args.join(' ')));
+    return n;
+}
 
 /// Number of pixels whose RGBA differ (-1 when the sizes differ or a file is unreadable).
 inline qint64 differingPixels(const QString& a, const QString& b) {

@@ -409,7 +409,8 @@ def session_seeds():
     out("fuzz_session", "analytic.json", b'{"octrace_studio_session": 1, "input": {"path": "analytic:gyroid:33", "time": "1990-07-15"}, "surface": {"iso": null}}')
     out("fuzz_session", "ocean.json", b'{"octrace_studio_session": 1, "input": {"path": "/data/ocean/levitus.cdf", "variable": "TEMP", "time": "3"}, "surface": {"iso": 10.5, "depth": 9}}')
     out("fuzz_session", "broken_types.json", b'{"octrace_studio_session": 1, "camera": {"position": [1, 2], "up": "z"}, "export": {"width": 1e9}}')
-    out("fuzz_session", "version2.json", b'{"octrace_studio_session": 2}')
+    out("fuzz_session", "version3.json", b'{"octrace_studio_session": 3}')
+    out("fuzz_session", "layout.json", b'{"octrace_studio_session": 2, "layout": {"four_up": true, "crosshair": [3, 4, 5], "slice_at": [450.5, null, -30], "slice_window": "40,400"}}')
     out("fuzz_session", "truncated.json", full[:200])
 
 

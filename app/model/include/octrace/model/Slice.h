@@ -21,6 +21,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 
 namespace octrace::model {
 
@@ -89,6 +90,17 @@ struct SliceResult {
 /// InputError (the plane outside the grid, a preset on a field not in HU), LimitError (over the
 /// budget).
 SliceResult renderSlice(const ScalarField& field, const SliceSpec& spec);
+
+/// `at` (SliceSpec::at, in the user's terms: world units, mm for patient volumes; on a
+/// geographic grid metres of depth for z, degrees east for x, north for y) as the world
+/// coordinate along the plane's normal, and back. A longitude in -180..180 or 0..360 alike.
+double sliceWorldOfAt(const ScalarField& field, SlicePlane plane, double at);
+double sliceAtOfWorld(const ScalarField& field, SlicePlane plane, double world);
+/// The `at` values a plane can take on `field` (slicePositionRange in the user's terms), low
+/// to high (depths: the surface first).
+std::pair<double, double> sliceAtRange(const ScalarField& field, SlicePlane plane);
+/// The plane's position as summaries and captions say it: "z = 12.5 mm", "500 m depth", "150°E".
+std::string slicePositionText(const ScalarField& field, const SliceView& view);
 
 /// How a slice's figure labels screen direction `d` (a signed world axis, SliceView.h): the
 /// patient letter of a patient volume (L, R, P, A, S, I), else "+x", "-y", ...
