@@ -7,7 +7,7 @@
 // frame showing it); this tool only drives the window and writes what it measured as JSON.
 //
 // Usage: octrace_studio_latency INPUT --iso V --depth D --renderer NAME --size WxH
-//            [--moves N] [--step-px P] [--interval-ms T] [--rounds R] --out FILE.json
+//            [--moves N] [--step-px P] [--interval-ms T] [--rounds R] [--screenshot FILE.png] --out FILE.json
 #include "MainWindow.h"
 #include "RenderView.h"
 
@@ -63,7 +63,7 @@ void postMouse(RenderView* view, QEvent::Type type, QPoint at, Qt::MouseButton b
 int main(int argc, char** argv) {
     QApplication app(argc, argv);
     const QStringList args = QApplication::arguments();
-    QString input, renderer = QStringLiteral("full"), out;
+    QString input, renderer = QStringLiteral("full"), out, screenshot;
     double iso = 0.0;
     int depth = 9, moves = 120, stepPx = 4, intervalMs = 16, rounds = 3, width = 1280, height = 800;
     bool isoSet = false;
@@ -81,6 +81,7 @@ int main(int argc, char** argv) {
         else if (a == QLatin1String("--interval-ms")) intervalMs = next().toInt();
         else if (a == QLatin1String("--rounds")) rounds = next().toInt();
         else if (a == QLatin1String("--out")) out = next();
+        else if (a == QLatin1String("--screenshot")) screenshot = next();
         else if (a == QLatin1String("--size")) {
             const QStringList wh = next().split(QLatin1Char('x'));
             if (wh.size() != 2) fail("--size WxH");
@@ -169,6 +170,7 @@ int main(int argc, char** argv) {
         pause.exec();
     }
 
+    if (!screenshot.isEmpty() && !w.grab().save(screenshot)) fail("cannot write " + screenshot);
     QJsonArray samples;
     for (const auto& s : w.latency().samples())
         samples.append(QJsonObject{{"input", s.input == LatencyMeter::Input::Move ? "move" : "release"}, {"preview", s.preview}, {"ms", s.ms}});
