@@ -155,16 +155,18 @@ def write_outputs(raw, out):
          "octree (`--leaf-objects` default), octrace's default framing, 1600x1200, 1, 4 and 16 rays per",
          "pixel, primary rays only (`--bounces 0 --shadows off`). Each time is the fastest of %d renders," % repeat,
          "beam and samet alternating in one process (`--baseline samet`), %d threads; the machine is" % threads,
-         "shared, so read the ratios. `rays` = primary rays meeting the scene cube; `tests` = the beam's",
-         "ray-sphere tests; `load` = 1-minute load average before / after the process.\n",
+         "shared, so read the ratios. `rays` = primary rays meeting the scene cube, `rays hitting` the share",
+         "of them that hit an atom; `tests` = the beam's ray-sphere tests; `load` = 1-minute load average",
+         "before / after the process. Why the water box stays under the target: `docs/dev/spheres.md`",
+         "(\"On molecules\").\n",
          "![time against rays](molecules.png)\n",
          "In the plot each molecule's three points are 1, 4 and 16 rays per pixel, left to right.\n",
          caption + "\n",
-         "| molecule | atoms | rays per pixel | rays | beam ms | samet ms | samet / beam | tests per ray (beam) | load | mismatched (400x300, vs reference / brute force) |",
-         "|---|---|---|---|---|---|---|---|---|---|"]
+         "| molecule | atoms | rays per pixel | rays | rays hitting | beam ms | samet ms | samet / beam | tests per ray (beam) | load | mismatched (400x300, vs reference / brute force) |",
+         "|---|---|---|---|---|---|---|---|---|---|---|"]
     for rec, s, t, c in rows:
-        L.append("| %s | %s | %d | %s | %.0f | %.0f | %.2fx | %.2f | %.2f / %.2f | %d / %d |" % (
-            rec["description"], format(rec["spheres"], ","), s, format(t["rays"], ","), t["render_ms"],
+        L.append("| %s | %s | %d | %s | %.0f%% | %.0f | %.0f | %.2fx | %.2f | %.2f / %.2f | %d / %d |" % (
+            rec["description"], format(rec["spheres"], ","), s, format(t["rays"], ","), 100.0 * t["hits"] / max(t["rays"], 1), t["render_ms"],
             t["baseline_render_ms"], t["speedup_over_baseline"], t["intersections"] / max(t["rays"], 1),
             t["load_avg_1min"][0], t["load_avg_1min"][1], c["mismatched_pixels"], c["mismatched_pixels_brute_force"]))
     L += ["", "## Against the target\n"]
