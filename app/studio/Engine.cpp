@@ -291,8 +291,8 @@ void Engine::requestFrame(const FrameRequest& request) {
     // flag says (it is read between panes), so cancelling only threw the finished frame away.
     // With the mouse moving faster than previews render (a 60 Hz mouse, previews of 20 ms and
     // more), every preview was thrown away and nothing was painted until the button was released
-    // (bench/studio_latency.py measured moves waiting 0.5 to 1 s). The waiting request is still
-    // replaced by the newest.
+    // (bench/studio_latency.py, before this change: no preview painted during a 60 Hz orbit of
+    // CT bone at depth 9). The waiting request is still replaced by the newest.
     renderWorker_.post([this, tree, request](const std::atomic<bool>& stop) {
         try {
             FrameResult out;
