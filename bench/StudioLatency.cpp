@@ -148,18 +148,24 @@ int main(int argc, char** argv) {
     for (int round = 0; round < rounds; ++round) {
         QPoint at = centre - QPoint(moves * stepPx / 2, 0);
         postMouse(view, QEvent::MouseButtonPress, at, Qt::LeftButton, Qt::LeftButton);
-        QElapsedTimer clock;
-        clock.start();
-        for (int m = 1; m <= moves; ++m) {
-            // Each move at its own time on the schedule, whatever the GUI thread did meanwhile.
-            while (clock.elapsed() < qint64(m) * intervalMs) {
-                QApplication::processEvents(QEventLoop::AllEvents, 1);
-                std::this_thread::sleep_for(std::chrono::microseconds(200));
-            }
+        // The moves from a precise timer, the GUI thread idle in its event loop between them (as
+        // under a real mouse); a tick that comes late, the GUI thread being busy, posts late.
+        QTimer ticks;
+        ticks.setTimerType(Qt::PreciseTimer);
+        ticks.setInterval(intervalMs);
+        QEventLoop orbit;
+        int m = 0;
+        QObject::connect(&ticks, &QTimer::timeout, [&] {
             at += QPoint(stepPx, 0);
             postMouse(view, QEvent::MouseMove, at, Qt::NoButton, Qt::LeftButton);
-        }
-        postMouse(view, QEvent::MouseButtonRelease, at, Qt::LeftButton, Qt::NoButton);
+            if (++m == moves) {
+                ticks.stop();
+                postMouse(view, QEvent::MouseButtonRelease, at, Qt::LeftButton, Qt::NoButton);
+                orbit.quit();
+            }
+        });
+        ticks.start();
+        orbit.exec();
         waitUntil([&] {
             const auto& s = w.latency().samples();
             return !failure.isEmpty() || (w.latency().unanswered() == 0 && !s.empty() && s.back().input == LatencyMeter::Input::Finish);
