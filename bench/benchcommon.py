@@ -3,6 +3,7 @@ common command-line options (octrace binary, data folder) with the raw-JSON fold
 import argparse
 import json
 import os
+import subprocess
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -25,3 +26,17 @@ def raw_dir(name):
     d = os.path.join(ROOT, "docs", "benchmarks", name)
     os.makedirs(d, exist_ok=True)
     return d
+
+
+def run_recording_load(cmd, stats):
+    """Runs CMD (which writes the JSON file STATS) and adds to that JSON the 1-minute load
+    average before and after the run ("load_avg_1min"); returns the JSON."""
+    load0 = os.getloadavg()[0]
+    subprocess.run(cmd, check=True)
+    load1 = os.getloadavg()[0]
+    st = load(stats)
+    st["load_avg_1min"] = [round(load0, 2), round(load1, 2)]
+    with open(stats, "w") as f:
+        json.dump(st, f, indent=2)
+        f.write("\n")
+    return st

@@ -108,7 +108,7 @@ def _pyplot():
 
 
 # One colour per scene, one line style and marker per tracer.
-SCENE_COLOURS = ["#c0392b", "#1f5fb4", "#2e8b57", "#8e44ad"]
+SCENE_COLOURS = ["#c0392b", "#1f5fb4", "#2e8b57", "#8e44ad", "#d35400", "#5d6d7e"]
 TRACER_STYLES = {"beam": ("-", "o"), "Samet": ("--", "s")}
 
 

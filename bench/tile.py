@@ -20,7 +20,6 @@ Usage: bench/tile.py [--octrace PATH] [--data DIR] [--repeat R] [--scenes K,...]
 """
 import json
 import os
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -48,15 +47,7 @@ def render(args, scene, camera, threads, tag, outdir):
             "-o", os.path.join(args.tmp, tag + ".png")]
     if threads == 1:
         cmd.append("--verify")
-    load0 = os.getloadavg()[0]
-    subprocess.run(cmd, check=True)
-    load1 = os.getloadavg()[0]
-    st = benchcommon.load(stats)
-    st["load_avg_1min"] = [round(load0, 2), round(load1, 2)]
-    with open(stats, "w") as f:
-        json.dump(st, f, indent=2)
-        f.write("\n")
-    return st
+    return benchcommon.run_recording_load(cmd, stats)
 
 
 def main():

@@ -70,6 +70,7 @@ struct FrameResult {
     QImage difference;         ///< |a - b| amplified, when asked for
     int level = -1;            ///< octree level drawn (preview), -1 = the voxels
     Camera camera;             ///< the camera of the frames (a preview's: half the size)
+    std::uint64_t inputSerial = 0;  ///< the request's (LatencyMeter.h)
 };
 
 struct FrameRequest {
@@ -78,6 +79,7 @@ struct FrameRequest {
     RenderSettings settings;
     bool preview = false;
     bool difference = false;
+    std::uint64_t inputSerial = 0;  ///< the latest input the frame shows (LatencyMeter.h), 0: none
 };
 
 class Engine : public QObject {

@@ -109,6 +109,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
         if (i == 0) splitter->insertWidget(0, views_[i]);
         else secondPane_->addWidget(views_[i]);
         connectNavigation(views_[i]->input());
+        if (i == 0) connect(views_[i], &RenderView::painted, this, &MainWindow::framePainted);
         connect(views_[i], &RenderView::resized, this, [this] { exactTimer_.start(); });
     }
     surfelView_ = new SurfelView(secondPane_);
@@ -167,7 +168,13 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     cancelButton_->setToolTip(tr("Stop reading or building (Esc)"));
     cancelButton_->setShortcut(Qt::Key_Escape);
     connect(cancelButton_, &QPushButton::clicked, this, [this] { engine_.cancel(); });
+    latencyLabel_ = new QLabel(this);
+    latencyLabel_->setObjectName(QStringLiteral("latencyLabel"));
+    latencyLabel_->setToolTip(tr("Input to paint: from the mouse or key event that moved the camera to the end of "
+                                 "painting the first frame that shows it (the longest wait among the events that "
+                                 "frame answered)"));
     statusBar()->addWidget(statusLabel_, 1);
+    statusBar()->addPermanentWidget(latencyLabel_);
     statusBar()->addPermanentWidget(progress_);
     statusBar()->addPermanentWidget(cancelButton_);
 
@@ -231,21 +238,25 @@ MainWindow::~MainWindow() {
 
 void MainWindow::connectNavigation(ViewInput* input) {
     connect(input, &ViewInput::orbitBy, this, [this](double yaw, double pitch) {
+        latency_.input(LatencyMeter::Input::Move);
         Camera c = viewCamera();
         orbit(c, yaw, pitch);
         cameraMoved(c);
     });
     connect(input, &ViewInput::panBy, this, [this](double dx, double dy, int viewHeight) {
+        latency_.input(LatencyMeter::Input::Move);
         Camera c = viewCamera();
         pan(c, dx, dy, viewHeight);
         cameraMoved(c);
     });
     connect(input, &ViewInput::dollyBy, this, [this](double f) {
+        latency_.input(LatencyMeter::Input::Move);
         Camera c = viewCamera();
         dolly(c, f);
         cameraMoved(c);
     });
     connect(input, &ViewInput::interactionFinished, this, [this] {
+        latency_.input(LatencyMeter::Input::Finish);
         exactTimer_.stop();
         requestRender(false);
     });
@@ -1086,6 +1097,7 @@ void MainWindow::requestRender(bool preview) {
     r.settings = engine_.settingsFor(state_, false);
     r.preview = preview;
     r.difference = state_.split && differenceAction_->isChecked();
+    r.inputSerial = latency_.latest();
     engine_.requestFrame(r);
 }
 
@@ -1093,15 +1105,23 @@ void MainWindow::onFrame(const FrameResult& r) {
     for (std::size_t i = 0; i < r.panes.size() && i < 2; ++i) {
         QString text = statsText(r.panes[i], r.fullMs, r.preview, r.level);
         if (r.panes.size() == 2 && !r.preview) text += tr("\n%1 mismatching pixels").arg(r.mismatching);
-        views_[i]->setImage(i == 1 && !r.difference.isNull() ? r.difference : r.panes[i].image);
+        views_[i]->setImage(i == 1 && !r.difference.isNull() ? r.difference : r.panes[i].image, i == 0 ? r.inputSerial : 0);
         views_[i]->setOverlay(i == 1 && !r.difference.isNull() ? tr("difference |left - right| x4\n") + text : text);
     }
+    shownPreview_ = r.preview;
     showCrosshair();
     if (!r.preview && stepPending_ && !engine_.building()) {
         stepPending_ = false;
         stepSlider_->stepShown();  // playing: the next step follows
     }
     if (!r.preview) emit frameShown();
+}
+
+void MainWindow::framePainted(std::uint64_t serial) {
+    const auto ms = latency_.painted(serial, shownPreview_);
+    if (!ms) return;
+    latencyLabel_->setText(tr("input to paint %1 ms%2").arg(*ms, 0, 'f', 0).arg(shownPreview_ ? tr(" (preview)") : QString()));
+    emit inputAnswered(*ms, shownPreview_);
 }
 
 void MainWindow::showCrosshair() {

@@ -3,6 +3,7 @@
 // (split view) in the middle, progress and Cancel in the status bar. Every control writes
 // StudioState; the Engine does the work off the GUI thread.
 #include "Engine.h"
+#include "LatencyMeter.h"
 #include "StudioState.h"
 
 #include "octrace/render/Surfels.h"
@@ -74,10 +75,15 @@ public:
     SliceViews* slices() const { return slices_; }
     /// The camera of pane views at their current size.
     Camera viewCamera() const;
+    /// Input-to-paint latency of the camera moves in the main view (LatencyMeter.h).
+    const LatencyMeter& latency() const { return latency_; }
+    LatencyMeter& latency() { return latency_; }
 
 signals:
     /// A frame (exact, not a preview) is on screen.
     void frameShown();
+    /// The main view painted a frame that answered camera inputs; `ms`: the longest wait among them.
+    void inputAnswered(double ms, bool preview);
 
 protected:
     void dragEnterEvent(QDragEnterEvent*) override;
@@ -127,6 +133,8 @@ private:
     void setCut(const QString& spec);
     void showCut();
     void connectNavigation(ViewInput* input);
+    /// The main view painted the frame of inputs up to `serial`: their latencies, in the status bar.
+    void framePainted(std::uint64_t serial);
     // The ocean controls and the step slider (MainWindowSteps.cpp).
     /// Makes the step slider (a row of the Input panel) and the ocean panel, and connects them.
     void buildStepAndOceanControls(QFormLayout* inputForm, QLayout* panel);
@@ -193,6 +201,9 @@ private:
     QString exportPath_ = QStringLiteral("figure.png");  // the export dialog's file: the last one exported
     bool updating_ = false;  // controls being set from the state: no feedback
     unsigned frameSerial_ = 0;
+    LatencyMeter latency_;
+    QLabel* latencyLabel_ = nullptr;
+    bool shownPreview_ = false;  // the frame last given to the main view is a preview
 };
 
 }  // namespace octrace::studio

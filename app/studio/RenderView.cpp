@@ -2,6 +2,8 @@
 
 #include <QPainter>
 
+#include <utility>
+
 namespace octrace::studio {
 
 RenderView::RenderView(QWidget* parent) : QWidget(parent), input_(new ViewInput(this)) {
@@ -10,8 +12,9 @@ RenderView::RenderView(QWidget* parent) : QWidget(parent), input_(new ViewInput(
     setAttribute(Qt::WA_OpaquePaintEvent);
 }
 
-void RenderView::setImage(const QImage& image) {
+void RenderView::setImage(const QImage& image, std::uint64_t inputSerial) {
     image_ = image;
+    if (inputSerial) unpaintedSerial_ = inputSerial;
     update();
 }
 
@@ -58,6 +61,8 @@ void RenderView::paintEvent(QPaintEvent*) {
         p.setPen(QPen(palette().color(QPalette::Highlight), 2));
         p.drawRect(rect().adjusted(1, 1, -1, -1));
     }
+    p.end();
+    if (const std::uint64_t s = std::exchange(unpaintedSerial_, 0)) emit painted(s);
 }
 
 void RenderView::resizeEvent(QResizeEvent*) { emit resized(); }

@@ -8,6 +8,7 @@
 #include <QString>
 #include <QWidget>
 
+#include <cstdint>
 #include <optional>
 
 namespace octrace::studio {
@@ -16,7 +17,9 @@ class RenderView : public QWidget {
     Q_OBJECT
 public:
     explicit RenderView(QWidget* parent = nullptr);
-    void setImage(const QImage& image);
+    /// Shows `image`; a non-zero `inputSerial` (LatencyMeter.h) is handed to painted() once the
+    /// image is painted.
+    void setImage(const QImage& image, std::uint64_t inputSerial = 0);
     void setOverlay(const QString& text);
     /// A crosshair mark at `pos` (logical pixels; none: hidden): the slice panes' crosshair.
     void setMarker(std::optional<QPointF> pos);
@@ -28,6 +31,8 @@ public:
 
 signals:
     void resized();
+    /// An image given with `inputSerial` has been painted (the end of paintEvent).
+    void painted(std::uint64_t inputSerial);
 
 protected:
     void paintEvent(QPaintEvent*) override;
@@ -37,6 +42,7 @@ private:
     QImage image_;
     QString overlay_;
     std::optional<QPointF> marker_;
+    std::uint64_t unpaintedSerial_ = 0;
     ViewInput* input_;
 };
 

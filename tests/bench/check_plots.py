@@ -1,13 +1,13 @@
 #!/usr/bin/python3
 """CTest BenchPlots.*: the benchmark plots are redrawn from the committed raw JSON alone.
 
-For bench/figure5.py and bench/figure5_2d.py: `--plot-only` into a temporary folder must exit 0
+For bench/figure5.py, bench/figure5_2d.py and bench/molecules.py: `--plot-only` into a temporary folder must exit 0
 and write a PNG whose plot shows both scenes' colours and whose caption band holds text, and a
 Markdown identical to the committed one (the committed page is what its committed JSON gives).
 A raw folder without its JSON must be refused, naming the missing file.
 Runs with the interpreter that has matplotlib (Debian's python3-matplotlib: /usr/bin/python3).
 
-Usage: check_plots.py figure5|figure5_2d"""
+Usage: check_plots.py figure5|figure5_2d|molecules"""
 import os
 import shutil
 import subprocess
@@ -19,7 +19,8 @@ BENCH = os.path.join(ROOT, "bench")
 DOCS = os.path.join(ROOT, "docs", "benchmarks")
 # script, its raw folder, the page it writes, the raw JSON whose absence must be refused
 CASES = {"figure5": ("figure5.py", "figure5", "figure5", "sphereflake_s4.json"),
-         "figure5_2d": ("figure5_2d.py", "figure5-2d", "figure5-2d", "figure5_2d.json")}
+         "figure5_2d": ("figure5_2d.py", "figure5-2d", "figure5-2d", "figure5_2d.json"),
+         "molecules": ("molecules.py", "molecules", "molecules", "4hhb_s4.json")}
 SCENE_COLOURS = ["#c0392b", "#1f5fb4"]  # bench/benchplot.py's first two
 
 

@@ -47,6 +47,8 @@
 #include <QTemporaryDir>
 #include <QtTest>
 
+#include <algorithm>
+#include <chrono>
 #include <functional>
 
 #include "StudioTestSupport.h"
@@ -257,6 +259,54 @@ private slots:
         QVERIFY(glm::length(zoomed.position - zoomed.lookAt) > glm::length(orbited.position - orbited.lookAt));
         waitFrame();
         screenshot(QStringLiteral("studio-orbit.png"));
+    }
+
+    void latencyMeterAnswersEachInputOnce() {
+        using Input = octrace::studio::LatencyMeter::Input;
+        using namespace std::chrono_literals;
+        octrace::studio::LatencyMeter m;
+        const auto t0 = octrace::studio::LatencyMeter::Clock::now();
+        QVERIFY(!m.painted(0, false, t0));  // a frame of no input answers nothing
+        const auto a = m.input(Input::Move, t0);
+        const auto b = m.input(Input::Move, t0 + 10ms);
+        QCOMPARE(*m.painted(a, true, t0 + 30ms), 30.0);  // the frame requested after a, before b
+        QCOMPARE(m.unanswered(), std::size_t(1));
+        const auto c = m.input(Input::Finish, t0 + 40ms);
+        QCOMPARE(m.latest(), c);
+        QCOMPARE(*m.painted(c, false, t0 + 100ms), 90.0);  // b's wait, the longer of b and c
+        QVERIFY(!m.painted(c, false, t0 + 120ms));         // painted again: nothing new
+        QCOMPARE(m.samples().size(), std::size_t(3));
+        QCOMPARE(m.samples()[0].ms, 30.0);
+        QVERIFY(m.samples()[0].preview && !m.samples()[1].preview);
+        QCOMPARE(m.samples()[1].ms, 90.0);
+        QCOMPARE(m.samples()[2].ms, 60.0);
+        QVERIFY(m.samples()[2].input == Input::Finish);
+        QCOMPARE(b, a + 1);
+    }
+
+    void measuresInputToPaintLatency() {
+        using Input = octrace::studio::LatencyMeter::Input;
+        RenderView* view = window_->view(0);
+        window_->latency().clear();
+        QSignalSpy answered(window_, &MainWindow::inputAnswered);
+        const QPoint c = view->rect().center();
+        QTest::mousePress(view, Qt::LeftButton, Qt::NoModifier, c);
+        for (int i = 1; i <= 3; ++i) {
+            const QPointF at(c + QPoint(10 * i, 0));
+            QMouseEvent move(QEvent::MouseMove, at, view->mapToGlobal(at), Qt::NoButton, Qt::LeftButton, Qt::NoModifier);
+            QApplication::sendEvent(view, &move);
+        }
+        QTest::mouseRelease(view, Qt::LeftButton, Qt::NoModifier, c + QPoint(30, 0));
+        // Three moves and the release, each answered once by a painted frame; the release by an exact one.
+        QTRY_VERIFY_WITH_TIMEOUT(window_->latency().unanswered() == 0 && !window_->latency().samples().empty(), kWaitMs);
+        const auto& s = window_->latency().samples();
+        QCOMPARE(s.size(), std::size_t(4));
+        QCOMPARE(std::count_if(s.begin(), s.end(), [](const auto& x) { return x.input == Input::Move; }), 3);
+        QVERIFY(s.back().input == Input::Finish && !s.back().preview);
+        for (const auto& x : s) QVERIFY(x.ms > 0.0 && x.ms < kWaitMs);
+        QVERIFY(!answered.isEmpty());
+        auto* label = window_->findChild<QLabel*>(QStringLiteral("latencyLabel"));
+        QVERIFY(label && label->text().startsWith(QStringLiteral("input to paint ")));
     }
 
     void splitViewComparesTwoRenderers() {
