@@ -12,7 +12,9 @@ Usage: bench/peers.py [--octrace PATH] [--data DIR] [--python /usr/bin/python3] 
                       [--scenes levitus_T,levitus_S]
 
 * octrace: `octrace render ... --renderer full --threads N --repeat 3 --stats` for N = 1, 2;
-  render_ms = the fastest of the 3 renders (build excluded, reported separately).
+  render_ms = the fastest of the 3 renders (build excluded, reported separately). `full` draws
+  the boundary voxels' boxes (`--surface voxel`, the papers' renderers' default); the same with
+  `--surface smooth` (the field's trilinear interpolant, docs/dev/smooth-surfaces.md) is run too.
 * VTK (python3-vtk9, xvfb): flying edges on the field, then VTK's OpenGL renderer on Mesa's
   llvmpipe (a CPU rasterizer) under Xvfb; two fields: the NetCDF samples themselves ("native")
   and the field octrace classifies, the trilinear field at the corners of its depth-N voxel
@@ -23,6 +25,10 @@ Usage: bench/peers.py [--octrace PATH] [--data DIR] [--python /usr/bin/python3] 
   N CPUs with taskset, as pyopenvdb has no thread setting), written as .vdb and drawn by
   `vdb_render` with `-cpus N`; render time = vdb_render's own ray-tracing time
   (`-v`), the fastest of 3 runs. bench/peers/vdb_peer.py.
+* Normals (needs VTK): the normal each program shades every pixel with, octrace's (voxel and
+  smooth: six frames lit from six camera-space directions, --ambient 0 --colour 1,1,1, EXR) against
+  VTK's (the flying-edges mesh coloured by its interpolated point normals), and the angle between
+  them over the pixels both draw as surface. bench/peers/normals.py.
 The Python helpers run under Debian's /usr/bin/python3 (the interpreter the Debian modules are
 installed for), whatever interpreter runs this script. A peer that is not installed is skipped,
 and peers.md says which and why.
@@ -110,12 +116,17 @@ def detect(python):
     return have, versions
 
 
-def octrace_cmd(octrace, scene, data, depth, threads, stats, png, verbose=False):
+SURFACES = ("voxel", "smooth")
+# Camera-space light directions of the normals step (bench/peers/normals.py).
+NORMAL_LIGHTS = [(1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 1, 0), (1, 0, 1), (0, 1, 1)]
+
+
+def octrace_cmd(octrace, scene, data, depth, threads, stats, png, surface="voxel", repeat=OCTRACE_REPEAT, extra=()):
     return [octrace, "render", os.path.join(data, scene["input"]), "--var", scene["var"], "--iso", str(scene["iso"]),
             "--region", scene["region"], "--depth", str(depth), "--size", scene["size"],
             "--camera-pos", scene["camera_pos"], "--look-at", scene["look_at"], "--up", scene["up"],
-            "--fov", str(scene["fov"]), "--renderer", "full", "--threads", str(threads),
-            "--repeat", str(OCTRACE_REPEAT), "--stats", stats, "-o", png, "--verbose" if verbose else "--quiet"]
+            "--fov", str(scene["fov"]), "--renderer", "full", "--surface", surface, "--threads", str(threads),
+            "--repeat", str(repeat), "--stats", stats, "-o", png, "--quiet", *extra]
 
 
 def hfov_for_vdb(vfov_deg, width, height):
@@ -154,6 +165,44 @@ def run_vtk(args, scene_name, scene, spec, sr, images, outdir, tmp):
             log("%s vtk %s threads %d: extract %.1f ms, render %.1f ms (%d triangles)" % (
                 scene_name, grid, n, r["extract_ms"], r["render_ms"], r["triangles"]))
         images["vtk_" + grid] = {"png": out_png, "background": [255, 255, 255]}
+
+
+def run_helper(args, tmp, helper, job, out_json):
+    """Runs bench/peers/HELPER JOB.json OUT.json under the peers' Python; returns OUT's JSON."""
+    job_path = os.path.join(tmp, "job.json")
+    with open(job_path, "w") as f:
+        json.dump(job, f)
+    run([args.python, os.path.join(HERE, helper), job_path, out_json])
+    with open(out_json) as f:
+        return json.load(f)
+
+
+def run_normals(args, scene_name, scene, spec, sr, outdir, tmp):
+    """The normals step: octrace's shading normals in both surface modes against VTK's."""
+    w, h = [int(v) for v in scene["size"].split("x")]
+    exrs = {}
+    for surface in SURFACES:
+        exrs[surface] = []
+        for k, light in enumerate(NORMAL_LIGHTS):
+            exr = os.path.join(tmp, "%s_normals_%s_%d.exr" % (scene_name, surface, k))
+            run(octrace_cmd(args.octrace, scene, args.data, args.depth, 2, exr + ".json", exr, surface, 1,
+                            ("--ambient", "0", "--colour", "1,1,1", "--light", ",".join(map(str, light)))))
+            exrs[surface].append(exr)
+    pngs = {}
+    for grid in ("native", "lattice"):
+        spec_path = os.path.join(tmp, "spec.json")
+        with open(spec_path, "w") as f:
+            json.dump(dict(spec, grid=grid, threads=2, normals=True), f)
+        pngs[grid] = os.path.join(tmp, "%s_vtk_%s_normals.png" % (scene_name, grid))
+        run(["xvfb-run", "-a", "-s", "-screen 0 %dx%dx24" % (w, h), args.python, os.path.join(HERE, "vtk_peer.py"),
+             spec_path, os.path.join(tmp, "vtk_normals.json"), pngs[grid]])
+    job = {"camera_pos": scene["camera_pos"], "look_at": scene["look_at"], "up": scene["up"], "lights": NORMAL_LIGHTS,
+           "octrace": exrs, "vtk": pngs, "thumb_dir": outdir, "prefix": scene_name, "thumb_width": 480}
+    out = os.path.join(outdir, "%s_normals.json" % scene_name)
+    sr["normals"] = run_helper(args, tmp, "normals.py", job, out)
+    sr["normals"]["json"] = os.path.basename(out)
+    for key, v in sr["normals"]["pairs"].items():
+        log("%s normals %s: mean %.2f deg over %d pixels" % (scene_name, key, v["mean_deg"], v["pixels_both"]))
 
 
 def parse_vdb_trace_ms(stdout):
@@ -251,14 +300,18 @@ def main():
         results.append(sr)
 
         # ---- octrace ----
-        oct_png = os.path.join(tmp, scene_name + "_octrace.png")
-        for n in THREADS:
-            stats = os.path.join(outdir, "%s_octrace_threads%d.json" % (scene_name, n))
-            p, wall = run(octrace_cmd(args.octrace, scene, args.data, args.depth, n, stats, oct_png))
-            with open(stats) as f:
-                s = json.load(f)
-            sr["runs"]["octrace_threads%d" % n] = s
-            log("%s octrace threads %d: render %.1f ms, build %.1f ms" % (scene_name, n, s["render_ms"], s["build_ms"]))
+        oct_png = {}
+        for surface in SURFACES:
+            oct_png[surface] = os.path.join(tmp, "%s_octrace_%s.png" % (scene_name, surface))
+            key = "octrace" if surface == "voxel" else "octrace_smooth"
+            for n in THREADS:
+                stats = os.path.join(outdir, "%s_%s_threads%d.json" % (scene_name, key, n))
+                p, wall = run(octrace_cmd(args.octrace, scene, args.data, args.depth, n, stats, oct_png[surface], surface))
+                with open(stats) as f:
+                    s = json.load(f)
+                sr["runs"]["%s_threads%d" % (key, n)] = s
+                log("%s octrace %s threads %d: render %.1f ms, build %.1f ms" % (
+                    scene_name, surface, n, s["render_ms"], s["build_ms"]))
         s1 = sr["runs"]["octrace_threads1"]
         m = re.search(r"vertical scale ([0-9.eE+-]+)", s1.get("geographic", ""))
         octrace_vscale = float(m.group(1)) if m else None
@@ -266,7 +319,8 @@ def main():
         spec = {"input": input_path, "var": scene["var"], "iso": scene["iso"], "region": scene["region"],
                 "depth": args.depth, "size": scene["size"], "camera_pos": scene["camera_pos"],
                 "look_at": scene["look_at"], "up": scene["up"], "fov": scene["fov"], "frames": VTK_FRAMES}
-        images = {"octrace": {"png": oct_png, "background": [255, 255, 255]}}
+        images = {"octrace": {"png": oct_png["voxel"], "background": [255, 255, 255]},
+                  "octrace_smooth": {"png": oct_png["smooth"], "background": [255, 255, 255]}}
 
         for peer, fn in (("vtk", run_vtk), ("openvdb", run_vdb)):
             if not have[peer][0]:
@@ -278,6 +332,12 @@ def main():
                 short = msg[0] if len(msg) == 1 else "%s ... %s" % (msg[0], msg[-1])
                 failed.setdefault(peer, []).append("%s: %s" % (scene_name, short))
                 log("%s %s FAILED: %s" % (scene_name, peer, e))
+        if have["vtk"][0]:
+            try:
+                run_normals(args, scene_name, scene, spec, sr, outdir, tmp)
+            except Exception as e:
+                failed.setdefault("normals", []).append("%s: %s" % (scene_name, str(e).strip().splitlines()[0]))
+                log("%s normals FAILED: %s" % (scene_name, e))
         if "vtk_lattice_threads1" in sr["runs"]:
             lat = sr["runs"]["vtk_lattice_threads1"]
             sr["field_check"] = {
@@ -290,13 +350,8 @@ def main():
         if have["vtk"][0] or have["openvdb"][0]:
             job = {"reference": "octrace", "images": images, "thumb_dir": outdir, "prefix": scene_name,
                    "thumb_width": 480}
-            job_path = os.path.join(tmp, "job.json")
-            with open(job_path, "w") as f:
-                json.dump(job, f)
             img_json = os.path.join(outdir, "%s_images.json" % scene_name)
-            run([args.python, os.path.join(HERE, "images.py"), job_path, img_json])
-            with open(img_json) as f:
-                im = json.load(f)
+            im = run_helper(args, tmp, "images.py", job, img_json)
             for v in im["images"].values():  # relative paths in the committed JSON
                 for k in ("png", "thumb", "maskdiff"):
                     if k in v:
@@ -305,7 +360,7 @@ def main():
                 json.dump(im, f, indent=2)
             sr["images"] = im
         else:
-            shutil.copy(oct_png, os.path.join(outdir, scene_name + "_octrace_full.png"))
+            shutil.copy(oct_png["voxel"], os.path.join(outdir, scene_name + "_octrace_full.png"))
             sr["octrace_full_png"] = scene_name + "_octrace_full.png"
 
     total_s = time.perf_counter() - t_start
@@ -376,6 +431,15 @@ def write_md(results, info, have, failed):
             o = oct_by_n[n]
             a("| octrace `full` | %s boundary voxels, depth %d | %d | %s (build) | **%s** | 1 | 1 |" % (
                 format(o["boundary_voxels"], ","), o["depth"], n, fmt_ms(o["build_ms"]), fmt_ms(o["render_ms"])))
+        for n in THREADS:
+            r = R.get("octrace_smooth_threads%d" % n)
+            if r:
+                o = oct_by_n[n]
+                a("| octrace `full --surface smooth` | the same voxels' trilinear interpolant (%s bytes per voxel) | %d | "
+                  "%s (build) | %s | %s | %s |" % (
+                      fmt_ratio(r["bytes_per_voxel"]), n, fmt_ms(r["build_ms"]), fmt_ms(r["render_ms"]),
+                      fmt_ratio(r["render_ms"] / o["render_ms"]),
+                      fmt_ratio((r["build_ms"] + r["render_ms"]) / (o["build_ms"] + o["render_ms"]))))
         for grid, label in (("native", "NetCDF samples"), ("lattice", "octrace's depth-%d lattice" % o1["depth"])):
             for n in THREADS:
                 r = R.get("vtk_%s_threads%d" % (grid, n))
@@ -440,8 +504,9 @@ def write_md(results, info, have, failed):
             a("No peer image to compare with; octrace's frame: ![octrace](peers/%s)\n" % sr["octrace_full_png"])
         im = sr.get("images")
         if im:
-            names = [k for k in ("octrace", "vtk_native", "vtk_lattice", "openvdb") if k in im["images"]]
-            titles = {"octrace": "octrace (full, depth %d)" % o1["depth"], "vtk_native": "VTK, NetCDF samples",
+            names = [k for k in ("octrace", "octrace_smooth", "vtk_native", "vtk_lattice", "openvdb") if k in im["images"]]
+            titles = {"octrace": "octrace (full, depth %d)" % o1["depth"],
+                      "octrace_smooth": "octrace (full --surface smooth)", "vtk_native": "VTK, NetCDF samples",
                       "vtk_lattice": "VTK, octrace's lattice", "openvdb": "OpenVDB vdb_render"}
             x0, y0, x1, y1 = im["crop"]
             a("Images (each program's own %dx%d frame, all cropped to the same window x %d..%d, y %d..%d and scaled "
@@ -457,12 +522,19 @@ def write_md(results, info, have, failed):
                 e = im["images"][k]
                 if k == "octrace":
                     cells.append("%s surface pixels" % format(e["foreground_pixels"], ","))
+                elif k == "octrace_smooth":
+                    v = e["vs_reference"]
+                    cells.append("![%s mask difference](peers/%s)<br>agreement with voxel %.3f (%s only voxel, %s only smooth)" % (
+                        k, e["maskdiff"], v["agreement"], format(v["only_reference"], ","), format(v["only_this"], ",")))
                 else:
                     v = e["vs_reference"]
                     cells.append("![%s mask difference](peers/%s)<br>agreement %.3f (%s only octrace, %s only peer)" % (
                         k, e["maskdiff"], v["agreement"], format(v["only_reference"], ","), format(v["only_this"], ",")))
             a("| " + " | ".join(cells) + " |")
             a("")
+        nm = sr.get("normals")
+        if nm:
+            write_normals_md(a, nm)
 
     a("## How each program was driven\n")
     a("* **octrace**: `octrace render INPUT --var V --iso I --region R --depth 9 --size 1600x1200 --camera-pos ... "
@@ -521,7 +593,7 @@ def write_md(results, info, have, failed):
     a("")
     a("## Reading the numbers\n")
     a("* The programs do not draw the same representation. octrace ray-casts the boundary voxels (blocky "
-      "at one voxel); VTK rasterizes a smooth triangle mesh, whose cost grows with its triangles, and the "
+      "at one voxel; with `--surface smooth` the trilinear interpolant of the field inside them); VTK rasterizes a smooth triangle mesh, whose cost grows with its triangles, and the "
       "native mesh has a few thousand because the NetCDF grid is coarse; vdb_render ray-marches a narrow-band "
       "level set with the same voxel size as octrace. Only the lattice rows are at octrace's resolution.")
     a("* llvmpipe is a CPU rasterizer: the same two cores do all the work in every row. On a GPU, VTK's "
@@ -531,6 +603,41 @@ def write_md(results, info, have, failed):
       "preparation is only the mesh-to-level-set conversion (the mesh is VTK's lattice extraction).")
     with open(os.path.join(ROOT, "docs", "benchmarks", "peers.md"), "w") as f:
         f.write("\n".join(L) + "\n")
+
+
+def write_normals_md(a, nm):
+    """The normals step's table and images (bench/peers/normals.py)."""
+    grids = [g for g in ("native", "lattice") if "vtk_" + g in nm["maps"]]
+    modes = [m for m in SURFACES if "octrace_" + m in nm["maps"]]
+    glabel = {"native": "VTK, NetCDF samples", "lattice": "VTK, octrace's lattice"}
+    a("Normals: the angle between the normal octrace shades a pixel with and the one VTK shades it with (its "
+      "flying-edges mesh's point normals, interpolated per pixel as Phong shading does), over the pixels both draw "
+      "as surface, in degrees: mean (median, 90th percentile) and the pixels compared. `voxel`: the boundary "
+      "voxel's stored normal (the field's gradient at the voxel, octahedral code); `smooth`: the gradient of the "
+      "trilinear interpolant at the hit. How: bench/peers/normals.py; raw: [`peers/%s`](peers/%s).\n" % (
+          nm["json"], nm["json"]))
+    a("| octrace | " + " | ".join(glabel[g] for g in grids) + " |")
+    a("|---|" + "---|" * len(grids))
+    for m in modes:
+        cells = []
+        for g in grids:
+            v = nm["pairs"]["%s_vs_%s" % (m, g)]
+            cells.append("**%.2f** (%.2f, %.2f), %s px" % (v["mean_deg"], v["median_deg"], v["p90_deg"],
+                                                           format(v["pixels_both"], ",")))
+        a("| `%s` | %s |" % (m, " | ".join(cells)))
+    a("")
+    names = ["octrace_" + m for m in modes] + ["vtk_" + g for g in grids]
+    title = dict({"octrace_" + m: "octrace `%s`" % m for m in modes}, **{"vtk_" + g: glabel[g] for g in grids})
+    a("Normal maps (camera space as RGB = (n + 1) / 2, turned towards the viewer; same crop for all), and under "
+      "octrace's, the angle to VTK's on the lattice (white 0 degrees, black %g or more; red: only one program "
+      "draws the pixel).\n" % nm["angle_black_deg"])
+    a("| " + " | ".join(title[k] for k in names) + " |")
+    a("|" + "---|" * len(names))
+    a("| " + " | ".join("![%s normals](peers/%s)" % (k, nm["maps"][k]["thumb"]) for k in names) + " |")
+    if "lattice" in grids:
+        a("| " + " | ".join(("![angle](peers/%s)" % nm["pairs"]["%s_vs_lattice" % k[8:]]["thumb"])
+                            if k.startswith("octrace_") else "" for k in names) + " |")
+    a("")
 
 
 def first(results, run, key):

@@ -56,6 +56,13 @@ PENDING = {"V": "isosurface V (sound speed: ocean issue)", "city": "city 7-9 .. 
            "molecule": "molecule (paper B issue)"}
 
 
+def use_scratch(args, tmp):
+    """Sets the folder scene_input writes DICOM series into (created) and forgets what it wrote."""
+    args.written = set()
+    args.tmp = tmp
+    os.makedirs(tmp, exist_ok=True)
+
+
 def scene_input(args, scene):
     """The path octrace renders: the data file, or the DICOM series written from it (write_dicom)."""
     source = os.path.join(args.data, scene["input"])

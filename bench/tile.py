@@ -59,9 +59,7 @@ def main():
     ap.add_argument("--from-raw", action="store_true", help="write the table from the raw JSON only")
     ap.add_argument("--write-dicom", default=os.path.join(benchcommon.ROOT, "build", "octrace_write_dicom"))
     args = ap.parse_args()
-    args.written = set()
-    args.tmp = "/tmp/octrace-tile"
-    os.makedirs(args.tmp, exist_ok=True)
+    table1.use_scratch(args, "/tmp/octrace-tile")
     outdir = benchcommon.raw_dir("tile")
     scenes = {s["key"]: s for s in table1.table1_scenes()}
     framing = benchcommon.load(os.path.join(benchcommon.ROOT, "bench", "scenes", "default_framing.json"))["scenes"]

@@ -18,13 +18,13 @@ two surface modes). Writes the JSON and prints it.
 import argparse
 import json
 import os
-import struct
 import subprocess
 import sys
 import tempfile
-import zlib
 
 import numpy as np
+
+from exr import read_exr
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SPACING = 0.5
@@ -62,54 +62,12 @@ def write_nrrd(path, f):
 
 
 def read_exr_z(path):
-    """The Z channel of an OpenEXR scanline file (no or ZIP/ZIPS compression), as float32 rows."""
-    b = open(path, "rb").read()
-    assert b[:4] == b"\x76\x2f\x31\x01", "not an OpenEXR file"
-    p, attrs = 8, {}
-    while b[p] != 0:
-        name_end = b.index(b"\0", p)
-        type_end = b.index(b"\0", name_end + 1)
-        size = struct.unpack_from("<i", b, type_end + 1)[0]
-        attrs[b[p:name_end].decode()] = b[type_end + 5:type_end + 5 + size]
-        p = type_end + 5 + size
-    p += 1
-    chans, q, cl = [], 0, attrs["channels"]
-    while cl[q] != 0:
-        e = cl.index(b"\0", q)
-        chans.append((cl[q:e].decode(), struct.unpack_from("<i", cl, e + 1)[0]))
-        q = e + 17
-    xmin, ymin, xmax, ymax = struct.unpack("<4i", attrs["dataWindow"])
-    w, h = xmax - xmin + 1, ymax - ymin + 1
-    comp = attrs["compression"][0]
-    lines = {0: 1, 2: 1, 3: 16}[comp]
-    nchunks = (h + lines - 1) // lines
-    offsets = struct.unpack_from(f"<{nchunks}Q", b, p)
-    size_of = {1: 2, 2: 4, 0: 4}
-    z = np.zeros((h, w), dtype=np.float32)
-    for off in offsets:
-        y, n = struct.unpack_from("<ii", b, off)
-        data = b[off + 8:off + 8 + n]
-        rows = min(lines, ymax + 1 - y)
-        raw = sum(size_of[t] for _, t in chans) * w * rows
-        if comp != 0 and n < raw:
-            raw_t = np.frombuffer(zlib.decompress(data), dtype=np.uint8).astype(np.int64)
-            # Undo the predictor: t[i] = t[i-1] + t[i] - 128 (mod 256).
-            t = ((raw_t[0] + np.cumsum(np.concatenate(([0], raw_t[1:] - 128)))) % 256).astype(np.uint8)
-            half = (len(t) + 1) // 2
-            data = np.empty(len(t), dtype=np.uint8)
-            data[0::2], data[1::2] = t[:half], t[half:]
-            data = data.tobytes()
-        pos = 0
-        for r in range(rows):
-            for name, typ in sorted(chans):
-                k = size_of[typ] * w
-                if name == "Z":
-                    z[y - ymin + r] = np.frombuffer(data[pos:pos + k], dtype="<f4" if typ == 2 else "<f2")
-                pos += k
-    return z
+    """The Z channel of an OpenEXR file as float32 rows."""
+    return read_exr(path, ("Z",))["Z"]
 
 
-def analytic_depth(spheres):
+def camera_rays():
+    """The eye and the unit direction of every pixel's ray, rows from the top."""
     c = CAMERA
     eye = np.array(c["pos"])
     back = eye - np.array(c["look"])
@@ -124,14 +82,184 @@ def analytic_depth(spheres):
     SX, SY = np.meshgrid(xs, ys)
     d = SX[..., None] * right + SY[..., None] * up - back
     d /= np.linalg.norm(d, axis=-1, keepdims=True)
-    depth = np.full(SX.shape, np.inf)
+    return eye, d
+
+
+def sphere_span(eye, d, centre, r):
+    """Entry and exit distance of each ray through the sphere (NaN where it misses)."""
+    oc = eye - np.array(centre)
+    bq = (d * oc).sum(-1)
+    disc = bq * bq - (oc @ oc - r * r)
+    root = np.sqrt(np.where(disc >= 0, disc, np.nan))
+    return -bq - root, -bq + root
+
+
+def analytic_depth(spheres):
+    eye, d = camera_rays()
+    depth = np.full(d.shape[:2], np.inf)
     for centre, r in spheres:
-        oc = eye - np.array(centre)
-        bq = (d * oc).sum(-1)
-        disc = bq * bq - (oc @ oc - r * r)
-        t = -bq - np.sqrt(np.where(disc >= 0, disc, np.nan))
-        depth = np.where((disc >= 0) & (t > 0) & (t < depth), t, depth)
+        t, _ = sphere_span(eye, d, centre, r)
+        depth = np.where(np.isfinite(t) & (t > 0) & (t < depth), t, depth)
     return depth
+
+
+# ---- Where the depth error comes from (the "breakdown" of each field) ----
+# Two more casters of the same rays, in float64 numpy, independent of octrace:
+#   "interpolant": the trilinear interpolant of the samples themselves (no octree, no
+#     quantization): what an exact renderer of the sampled field draws; its error against the
+#     spheres is the sampling's, not the renderer's;
+#   "quantized corners": the same with, in each voxel of octrace's lattice, the trilinear
+#     interpolant of its 8 corner values quantized as encodeCorners does (Octree.cpp): what the
+#     renderer is asked to draw from its 8 bytes per voxel.
+# Both march each ray in steps of MARCH_STEP world units through a shell around each sphere
+# (from radius r + 0.1 to r - 0.3: the interpolant of this concave field lies inside the sphere
+# by less than 0.1) and bisect the first step that ends inside (value >= 0) to 1e-9.
+MARCH_STEP = 0.001
+
+
+def trilinear_at(values, origin, step, p):
+    """Trilinear interpolation of the grid `values` (indexed [x, y, z], point i at origin + i
+    step) at the points p[..., 3], clamped to the grid's cells."""
+    g = (p - origin) / step
+    i0 = np.clip(np.floor(g).astype(np.int64), 0, np.array(values.shape) - 2)
+    t = g - i0
+    out = 0.0
+    for q in range(8):
+        o = ((q >> 2) & 1, (q >> 1) & 1, q & 1)
+        w = 1.0
+        for a in range(3):
+            w = w * (t[..., a] if o[a] else 1.0 - t[..., a])
+        out = out + w * values[i0[..., 0] + o[0], i0[..., 1] + o[1], i0[..., 2] + o[2]]
+    return out
+
+
+def lattice_values(f, origin, side, depth):
+    """The field's trilinear values at the corners of the depth-`depth` voxel lattice of the cube
+    (origin, side), in float32 as the builder's FieldSampler::corner gives them."""
+    n = (1 << depth) + 1
+    out = f.astype(np.float64)
+    for a in range(3):
+        g = np.clip((origin[a] + np.arange(n) * side / (1 << depth)) / SPACING, 0, N - 1)
+        i0 = np.minimum(np.floor(g).astype(np.int64), N - 2)
+        t = g - i0
+        shape = [1, 1, 1]
+        shape[a] = n
+        t = t.reshape(shape)
+        out = np.take(out, i0, axis=a) * (1 - t) + np.take(out, i0 + 1, axis=a) * t
+    return out.astype(np.float32)
+
+
+def quantized_at(lattice, origin, voxel, p):
+    """The interpolant octrace draws: in the voxel holding p, the trilinear interpolant of its 8
+    corner values minus the iso value (0), quantized as encodeCorners (scaled by the largest
+    magnitude to +-127, rounded half away from zero, a negative corner never 0)."""
+    g = (p - origin) / voxel
+    v0 = np.clip(np.floor(g).astype(np.int64), 0, lattice.shape[0] - 2)
+    u = g - v0
+    corners = [lattice[v0[..., 0] + ((q >> 2) & 1), v0[..., 1] + ((q >> 1) & 1), v0[..., 2] + (q & 1)].astype(np.float64)
+               for q in range(8)]
+    m = np.max(np.abs(corners), axis=0)
+    m = np.where(m > 0, m, 1.0)
+    out = 0.0
+    for q, c in enumerate(corners):
+        x = 127.0 * c / m
+        k = np.sign(x) * np.floor(np.abs(x) + 0.5)
+        k = np.where((c < 0) & (k == 0), -1.0, k)
+        w = 1.0
+        for a, bit in enumerate(((q >> 2) & 1, (q >> 1) & 1, q & 1)):
+            w = w * (u[..., a] if bit else 1.0 - u[..., a])
+        out = out + w * k
+    return out
+
+
+def march_depth(spheres, value):
+    """The distance along each pixel's ray to the first point where value(p) >= 0 in a shell
+    around one of the spheres (inf: none)."""
+    eye, d = camera_rays()
+    D = d.reshape(-1, 3)
+    depth = np.full(len(D), np.inf)
+    for centre, r in spheres:
+        a, b = sphere_span(eye, D, centre, r + 0.1)
+        inner, _ = sphere_span(eye, D, centre, r - 0.3)
+        b = np.where(np.isfinite(inner), inner, b)
+        idx = np.nonzero(np.isfinite(a) & (b > 0))[0]
+        a, b, Di = np.maximum(a[idx], 0.0), b[idx], D[idx]
+        lo, hi = a.copy(), np.full(len(idx), np.nan)
+        live = np.arange(len(idx))
+        k = 0
+        while len(live):
+            k += 1
+            t = np.minimum(a[live] + k * MARCH_STEP, b[live])
+            inside = value(eye + t[:, None] * Di[live]) >= 0
+            hi[live[inside]] = t[inside]
+            lo[live[~inside]] = t[~inside]
+            live = live[~inside & (t < b[live])]
+        found = np.nonzero(np.isfinite(hi))[0]
+        lo, hi = lo[found], hi[found]
+        for _ in range(40):
+            mid = 0.5 * (lo + hi)
+            inside = value(eye + mid[:, None] * Di[found]) >= 0
+            hi = np.where(inside, mid, hi)
+            lo = np.where(inside, lo, mid)
+        cell = idx[found]
+        depth[cell] = np.minimum(depth[cell], hi)
+    return depth.reshape(d.shape[:2])
+
+
+def breakdown(spheres, f, truth, rendered, reference, stats):
+    """Splits the smooth renderer's depth error (docs/dev/smooth-surfaces.md, Measurements)."""
+    origin = np.array([float(v) for v in str(stats["cube_origin"]).split(",")])
+    side, depth = float(stats["cube_side"]), int(stats["depth"])
+    voxel = side / (1 << depth)
+    samples = f.astype(np.float64)
+    interp = march_depth(spheres, lambda p: trilinear_at(samples, np.zeros(3), SPACING, p))
+    lattice = lattice_values(f, origin, side, depth)
+    quant = march_depth(spheres, lambda p: quantized_at(lattice, origin, voxel, p))
+    hit_t = np.isfinite(truth)
+
+    def errors(z, against):
+        both = np.isfinite(z) & np.isfinite(against) & hit_t
+        return np.abs(z[both] - against[both]) / SPACING
+
+    def summary(z):
+        e = errors(z, truth)
+        both = np.isfinite(z) & hit_t
+        return {"pixels_hit": int(np.isfinite(z).sum()),
+                "depth_error_median_spacings": float(np.median(e)),
+                "depth_error_p99_spacings": float(np.percentile(e, 99)),
+                "silhouette_iou": float(both.sum() / (np.isfinite(z) | hit_t).sum()),
+                "pixels_over_1_spacing": int((e > 1).sum()),
+                "pixels_over_0.2_spacing": int((e > 0.2).sum())}
+
+    def agreement(z, other):
+        e = errors(z, other) * SPACING / voxel
+        return {"pixels_compared": int(len(e)), "pixels_hit_differently": int((np.isfinite(z) != np.isfinite(other)).sum()),
+                "depth_difference_p99_voxels": float(np.percentile(e, 99)),
+                "depth_difference_max_voxels": float(e.max()),
+                "pixels_over_1e-3_voxel": int((e > 1e-3).sum())}
+
+    # The pixels the renderer gets wrong by more than the target: what the interpolant of the
+    # samples does there.
+    with np.errstate(invalid="ignore"):  # inf - inf where neither hits
+        e_r = np.abs(rendered - truth) / SPACING
+        e_i = np.abs(interp - truth) / SPACING
+    bad = np.isfinite(rendered) & hit_t & (e_r > 0.2)
+    return {
+        "voxel_size": voxel, "march_step": MARCH_STEP,
+        "interpolant_of_the_samples": summary(interp),
+        "quantized_corners": summary(quant),
+        "renderer": summary(rendered),
+        "renderer_vs_quantized_corners": agreement(rendered, quant),
+        "reference_vs_quantized_corners": agreement(reference, quant),
+        "quantized_corners_vs_interpolant": agreement(quant, interp),
+        "renderer_over_0.2": {
+            "pixels": int(bad.sum()),
+            "interpolant_also_over_0.2": int((bad & (e_i > 0.2)).sum()),
+            "interpolant_also_over_0.1": int((bad & (e_i > 0.1)).sum()),
+            "renderer_on_another_surface": int((bad & (e_r > 1)).sum()),
+            "interpolant_on_another_surface": int((bad & (e_i > 1)).sum()),
+        },
+    }
 
 
 def render(octrace, field, out, surface, extra=(), repeat=1):
@@ -171,16 +299,21 @@ def main():
             truth = analytic_depth(spheres)
             entry = {"spheres": [{"centre": c, "radius": r} for c, r in spheres], "modes": {}}
             field = os.path.join(tmp, name.replace(" ", "_") + ".nrrd")
-            write_nrrd(field, sphere_field(spheres))
+            f = sphere_field(spheres)
+            write_nrrd(field, f)
             runs = [("voxel", "voxel", ()), ("smooth", "smooth", ()),
                     ("smooth reference", "smooth", ("--renderer", "reference"))]
+            depths = {}
             for label, surface, extra in runs:
                 out = os.path.join(tmp, label.replace(" ", "_") + ".exr")
                 st = render(args.octrace, field, out, surface, extra)
-                m = measure(read_exr_z(out), truth)
+                depths[label] = read_exr_z(out).astype(np.float64)
+                m = measure(depths[label], truth)
                 m.update(renderer=st.get("renderer"), depth=st.get("depth"), bytes_per_voxel=st.get("bytes_per_voxel"),
                          boundary_voxels=st.get("boundary_voxels"))
                 entry["modes"][label] = m
+                stats = st
+            entry["breakdown"] = breakdown(spheres, f, truth, depths["smooth"], depths["smooth reference"], stats)
             result["fields"][name] = entry
         # Cost per frame: the default renderer, each mode's fastest of `repeat`, alternated.
         field = os.path.join(tmp, "spheres.nrrd")

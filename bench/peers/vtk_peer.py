@@ -15,6 +15,12 @@ diffuse 0.85, no specular, colour --colour (default 0.85,0.62,0.35), white backg
 normals by vtkPolyDataNormals on the final world-space mesh (counted in the extraction time).
 Camera: position, focal point, view up and view angle (VTK's view angle is vertical, as octrace's
 --fov); clipping range from ResetCameraClippingRange.
+
+With "normals": true in SPEC (bench/peers.py, normals step), the same mesh at the same camera is
+drawn once, unlit, coloured by its point normals as direct RGB scalars (255 (n + 1) / 2): OpenGL
+interpolates them across each triangle as it interpolates the normal for Phong shading, so
+normalize(2 rgb / 255 - 1) is the normal VTK shades each pixel with (to 8 bits a component);
+black background. No times are measured then.
 """
 import json
 import os
@@ -79,12 +85,25 @@ def main():
     light.SetFocalPoint(0, 0, 0)
     light.SetPositional(False)
     ren.AddLight(light)
+    normals_only = bool(spec.get("normals"))
+    if normals_only:
+        n = ns.vtk_to_numpy(mesh.GetPointData().GetNormals()).astype(np.float64)
+        rgb = ns.numpy_to_vtk(np.clip(np.rint((n + 1.0) * 127.5), 0, 255).astype(np.uint8), deep=1)
+        rgb.SetName("normal_rgb")
+        mesh.GetPointData().SetScalars(rgb)
+        ren.SetBackground(0, 0, 0)
     mapper = vtk.vtkPolyDataMapper()
     mapper.SetInputData(mesh)
-    mapper.ScalarVisibilityOff()
+    if normals_only:
+        mapper.ScalarVisibilityOn()
+        mapper.SetScalarModeToUsePointData()
+        mapper.SetColorModeToDirectScalars()
+    else:
+        mapper.ScalarVisibilityOff()
     actor = vtk.vtkActor()
     actor.SetMapper(mapper)
     prop = actor.GetProperty()
+    prop.SetLighting(not normals_only)
     prop.SetColor(*vec(spec.get("colour", "0.85,0.62,0.35")))
     prop.SetAmbient(0.15)
     prop.SetDiffuse(0.85)
@@ -112,15 +131,16 @@ def main():
         if "OpenGL version string" in line:
             res["gl_version"] = line.split(":", 1)[1].strip()
     times = []
-    for _ in range(int(spec.get("frames", 7))):
+    for _ in range(0 if normals_only else int(spec.get("frames", 7))):
         cam.Modified()
         t = time.perf_counter()
         rw.Render()
         rw.WaitForCompletion()
         times.append((time.perf_counter() - t) * 1e3)
     res["frame_ms"] = times
-    res["render_ms"] = statistics.median(times)
-    res["render_ms_min"] = min(times)
+    if times:
+        res["render_ms"] = statistics.median(times)
+        res["render_ms_min"] = min(times)
     grab = vtk.vtkWindowToImageFilter()
     grab.SetInput(rw)
     grab.ReadFrontBufferOff()

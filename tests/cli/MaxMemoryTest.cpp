@@ -51,6 +51,24 @@ TEST(MaxMemory, RefusesADepthThatDoesNotFitNamingTheLargestDepthThatDoes) {
     EXPECT_EQ(ok.code, 0) << ok.err;
 }
 
+// Smooth surfaces store 8 bytes of corner values per boundary voxel: the
+// estimate counts them, so a budget that holds the depth-9 octree of voxels refuses its smooth
+// surface, and the voxel surface of the same depth renders within it.
+TEST(MaxMemory, CountsTheCornerValuesOfSmoothSurfaces) {
+    Scratch s;
+    std::uint64_t peak = 0;
+    Result r = runMeasured({"render", "analytic:noise", "--iso", "0", "--depth", "9", "--surface", "smooth", "--max-memory",
+                            "64M", "--size", "64x48", "-o", s.path("n.png")},
+                           peak);
+    expectOneLineRefusal(r, "octrace: error: analytic:noise(seed 1): the octree of 'noise' at depth 9 needs about ");
+    EXPECT_NE(r.err.find(", per-voxel attributes "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("the largest depth that fits is 8 (about "), std::string::npos) << r.err;
+    EXPECT_LT(peak, kSmall);
+    Result ok = run({"render", "analytic:noise", "--iso", "0", "--depth", "9", "--surface", "voxel", "--max-memory", "64M",
+                     "--size", "64x48", "-o", s.path("n.png")});
+    EXPECT_EQ(ok.code, 0) << ok.err;
+}
+
 // A 1024^3 float NRRD whose 4 GiB of data are there (a sparse file): refused from its header
 // and the file's size, before a sample is decoded.
 TEST(MaxMemory, RefusesAFieldTooLargeToReadBeforeAllocatingIt) {

@@ -145,6 +145,41 @@ TEST(BuildMemory, RefusesADepthOverTheBudgetNamingTheLargestDepthThatFits) {
     EXPECT_EQ(0, std::memcmp(withBudget.voxels().data(), without.voxels().data(), without.voxels().size() * sizeof(Voxel)));
 }
 
+// Smooth surfaces store 8 bytes of corner values per boundary voxel (BuildOptions::corners),
+// sampled from a list of the voxels' cells: the estimate counts both, and a budget that holds
+// the voxel octree but not its corners refuses the smooth build and lets the voxel build through.
+TEST(BuildMemory, CountsTheCornerValuesOfSmoothSurfaces) {
+    const ScalarField f = makeAnalyticField("sphere", 65);
+    BuildOptions o;
+    o.depth = 8;
+    o.threads = 2;
+    const auto voxel = estimateBuildMemory(f, o);
+    o.corners = true;
+    const auto smooth = estimateBuildMemory(f, o);
+    ASSERT_EQ(voxel.size(), smooth.size());
+    for (std::size_t i = 0; i < smooth.size(); ++i) {
+        EXPECT_EQ(voxel[i].attributeBytes, 0u);
+        EXPECT_EQ(smooth[i].octreeBytes, voxel[i].octreeBytes);
+        EXPECT_EQ(smooth[i].attributeBytes, std::uint64_t(smooth[i].boundaryVoxels * (8 + 12))) << i;
+    }
+    // Exact to depth 6: the corner bytes of the octree built there.
+    o.depth = 6;
+    const Octree t6 = buildShellOctree(f, o);
+    EXPECT_EQ(smooth[5].attributeBytes, t6.corners().size() * (8 + 12));
+    // The volume form has no corners (the caps have no crossing to find).
+    o.depth = 8;
+    o.form = OctreeForm::Volume;
+    EXPECT_EQ(estimateBuildMemory(f, o).back().attributeBytes, 0u);
+    o.form = OctreeForm::Shell;
+
+    o.memoryBudget = (voxel.back().total() + smooth.back().total()) / 2;
+    const std::string m = limitMessage(f, o);
+    EXPECT_NE(m.find("at depth 8 needs about " + formatBytes(smooth.back().total())), std::string::npos) << m;
+    EXPECT_NE(m.find(", per-voxel attributes " + formatBytes(smooth.back().attributeBytes) + " for about"), std::string::npos) << m;
+    o.corners = false;
+    EXPECT_EQ(limitMessage(f, o), "(no LimitError)");
+}
+
 TEST(BuildMemory, RefusesEveryDepthWhenTheFieldAndItsSamplerAloneDoNotFit) {
     const ScalarField f = makeAnalyticField("torus", 33);
     BuildOptions o;

@@ -268,7 +268,21 @@ struct Shell {
     /// The octree's summaries, computed once for the first multi-resolution frame (frames may be
     /// rendered from several threads at once).
     std::shared_ptr<std::once_flag> summaries = std::make_shared<std::once_flag>();
+    /// Built from a field without `surface`: the renderer, which decides between voxel and smooth
+    /// (model::surfaceModeFor), is only known at each frame, so the corner values smooth frames
+    /// need are not built with the octree but filled once, for the first smooth frame or save().
+    bool cornersLater = false;
+    std::shared_ptr<std::once_flag> corners = std::make_shared<std::once_flag>();
 };
+
+/// Fills the corner values of a surface built without them (Shell::cornersLater), once.
+void fillCornersOnce(const Shell& sh) {
+    if (!sh.cornersLater) return;
+    std::call_once(*sh.corners, [&] {
+        model::Surface& s = *sh.surface;
+        if (s.tree.corners().empty() && !s.field.values.empty() && !s.spheres) fillCorners(s.tree, s.field, sh.spec.threads);
+    });
+}
 
 /// Builds a surface from `field` (or, when null, from `input`: any input of the CLI, a city or an
 /// octree file included) with the surface's settings; `progress(fraction)` as it goes.
@@ -278,6 +292,11 @@ Shell buildShell(const Field* field, const std::string& input, const Settings& s
     sh.spec.colours = true;
     applySettings(settings, {.surface = &sh.spec});
     sh.surface = std::make_shared<model::Surface>();
+    // Without `surface`, no corner values yet (Shell::cornersLater): where later filling them from
+    // the field gives what the build would (a plain shell of the field: no floor merged in, no cuts).
+    model::SurfaceSpec build = sh.spec;
+    sh.cornersLater = !sh.spec.surface && !sh.spec.floor && sh.spec.cuts.empty() && sh.spec.form == OctreeForm::Shell;
+    if (sh.cornersLater) build.surface = SurfaceMode::Voxel;
     std::atomic<bool> cancel{false};
     std::atomic<double> fraction{0.0};
     model::BuildHooks hooks;
@@ -286,14 +305,14 @@ Shell buildShell(const Field* field, const std::string& input, const Settings& s
     interruptible(
         [&] {
             if (!field) {
-                *sh.surface = model::buildSurface(sh.spec, hooks);
+                *sh.surface = model::buildSurface(build, hooks);
                 return;
             }
             // The field is shared: the surface takes a copy of its samples (the builder keeps
             // the field beside the octree, e.g. for colour_by and figures).
             sh.surface->field = field->field->copy();
             sh.surface->loadMs = field->loadMs;
-            model::buildFromField(sh.spec, *sh.surface, hooks);
+            model::buildFromField(build, *sh.surface, hooks);
         },
         cancel, &fraction, progress);
     return sh;
@@ -313,7 +332,12 @@ Shell loadShell(const std::string& path, const Settings& settings) {
 
 void saveShell(const Shell& sh, const std::string& path, int level) {
     std::atomic<bool> cancel{false};
-    interruptible([&] { io::writeOctreeFile(path, sh.surface->tree, level); }, cancel);
+    interruptible(
+        [&] {
+            fillCornersOnce(sh);  // as `octrace build` writes them unless `surface` is voxel
+            io::writeOctreeFile(path, sh.surface->tree, level);
+        },
+        cancel);
 }
 
 // ---- Frames. ----
@@ -398,6 +422,7 @@ Image renderShell(const Shell& sh, const Settings& surfaceSettings, const Settin
             if (multires) std::call_once(*sh.summaries, [&] { sh.surface->tree.computeSummaries(); });
             const Box3 bounds = s.tree.occupiedBounds();
             const RenderSettings rs = model::renderSettings(spec, s, view);
+            if (rs.surface == SurfaceMode::Smooth) fillCornersOnce(sh);
             if (layout) {
                 // The plot takes the size the figure's text leaves.
                 layout = model::fitFigureLayout(*layout, figure, model::figureSubject(s, spec.input), s.tree, rs, view, bounds);

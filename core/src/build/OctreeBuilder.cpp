@@ -692,8 +692,17 @@ int gridDepth(const ScalarField& f, double cubeSide) {
 
 std::uint64_t toBytes(double bytes) { return bytes >= 1.8e19 ? std::numeric_limits<std::uint64_t>::max() : std::uint64_t(bytes); }
 
+/// Bytes per boundary voxel of the attributes `options` asks the build to fill after joining
+/// (BuildMemoryEstimate::attributeBytes).
+double attributeBytesPerVoxel(const BuildOptions& options) {
+    const bool corners = options.corners && options.form == OctreeForm::Shell;
+    if (!corners && !options.voxelValues) return 0.0;
+    return double(sizeof(ivec3)) + (corners ? double(sizeof(std::uint64_t)) : 0.0) +
+           (options.voxelValues ? double(sizeof(float)) : 0.0);
+}
+
 std::vector<BuildMemoryEstimate> estimateWithGrid(const ScalarField& field, const SampleGrid& grid, double iso, float isoF,
-                                                  int maxDepth, int threads) {
+                                                  int maxDepth, int threads, double attributesPerVoxel) {
     // Exact counts up to the probe depth, from octrees that small (a few ms).
     const int probe = std::min(maxDepth, kProbeDepth);
     std::vector<double> voxels(std::size_t(probe) + 1, 0.0), nodes(std::size_t(probe) + 1, 0.0);
@@ -733,6 +742,7 @@ std::vector<BuildMemoryEstimate> estimateWithGrid(const ScalarField& field, cons
         e.boundaryVoxels = v;
         // Subtree buffers (shrunk) and the joined octree exist together while joining.
         e.octreeBytes = toBytes(2.0 * (v * double(sizeof(Voxel)) + n * double(sizeof(OctreeNode) + 1)));
+        e.attributeBytes = toBytes(v * attributesPerVoxel);
     }
     return out;
 }
@@ -758,7 +768,9 @@ void refuseOverBudget(const ScalarField& field, const std::vector<BuildMemoryEst
     }
     s << field.source << ": the octree of '" << field.name << "' at depth " << e.depth << " needs about "
       << formatBytes(e.total()) << " (field " << formatBytes(e.fieldBytes) << ", sampler " << formatBytes(e.samplerBytes)
-      << ", octree " << formatBytes(e.octreeBytes) << " for about " << aboutCount(e.boundaryVoxels)
+      << ", octree " << formatBytes(e.octreeBytes);
+    if (e.attributeBytes) s << ", per-voxel attributes " << formatBytes(e.attributeBytes);
+    s << " for about " << aboutCount(e.boundaryVoxels)
       << " boundary voxels), more than the memory budget of " << formatBytes(budget) << " (`max_memory`); ";
     int fits = 0;
     for (const auto& x : est)
@@ -819,7 +831,14 @@ std::vector<BuildMemoryEstimate> estimateBuildMemory(const ScalarField& field, d
     const float isoF = checkedIso(field, maxDepth, iso);
     emptyTree(field, maxDepth, iso);  // checks the extent
     const SampleGrid grid(field);
-    return estimateWithGrid(field, grid, iso, isoF, maxDepth, threads);
+    return estimateWithGrid(field, grid, iso, isoF, maxDepth, threads, 0.0);
+}
+
+std::vector<BuildMemoryEstimate> estimateBuildMemory(const ScalarField& field, const BuildOptions& options) {
+    const float isoF = checkedIso(field, options.depth, options.iso);
+    emptyTree(field, options.depth, options.iso);  // checks the extent
+    const SampleGrid grid(field);
+    return estimateWithGrid(field, grid, options.iso, isoF, options.depth, options.threads, attributeBytesPerVoxel(options));
 }
 
 Octree buildShellOctree(const ScalarField& field, const BuildOptions& options, BuildReport* report) {
@@ -849,11 +868,12 @@ Octree buildOctree(const ScalarField& field, const BuildOptions& options, BuildR
     const SampleGrid grid(field);
     std::optional<MemoryGuard> guard;
     if (budget) {
-        auto est = estimateWithGrid(field, grid, options.iso, isoF, options.depth, options.threads);
+        auto est = estimateWithGrid(field, grid, options.iso, isoF, options.depth, options.threads, attributeBytesPerVoxel(options));
         refuseOverBudget(field, est, budget);
         guard.emplace(field, options.depth, budget, est.back().fieldBytes + est.back().samplerBytes, est.back().total());
     }
     buildInto(tree, field, grid, isoF, options.threads, options, guard ? &*guard : nullptr);
+    if (guard) guard->allocate(toBytes(double(tree.voxels().size()) * attributeBytesPerVoxel(options)));
     if (options.voxelValues) sampleVoxelValues(tree, field, grid, isoF, options.threads);
     if (options.corners && tree.form == OctreeForm::Shell) sampleCorners(tree, field, grid, isoF, options.threads);
     if (report) {
@@ -868,6 +888,13 @@ void fillVoxelValues(Octree& tree, const ScalarField& field, int threads) {
     field.validate();
     const SampleGrid grid(field);
     sampleVoxelValues(tree, field, grid, float(tree.iso), threads);
+}
+
+void fillCorners(Octree& tree, const ScalarField& field, int threads) {
+    if (tree.form != OctreeForm::Shell) return;
+    field.validate();
+    const SampleGrid grid(field);
+    sampleCorners(tree, field, grid, float(tree.iso), threads);
 }
 
 std::vector<float> sampleAtVoxels(const Octree& tree, const ScalarField& field, int threads) {

@@ -61,7 +61,12 @@ struct BuildMemoryEstimate {
     std::uint64_t samplerBytes = 0;  ///< the builder's NaN-masked copy of the samples, its min/max pyramid, axis tables
     double boundaryVoxels = 0.0;     ///< estimated boundary voxels at this depth
     std::uint64_t octreeBytes = 0;   ///< the subtrees' buffers and the joined octree (both exist while joining)
-    std::uint64_t total() const { return fieldBytes + samplerBytes + octreeBytes; }
+    /// The per-voxel attributes the build fills after joining, as BuildOptions asks for them:
+    /// corner values (8 bytes a voxel), voxel values (4 bytes), and the list of the voxels'
+    /// cells they are sampled at (12 bytes, while filling). Counted on top of octreeBytes,
+    /// although the join's second copy is gone by then (errs on the high side).
+    std::uint64_t attributeBytes = 0;
+    std::uint64_t total() const { return fieldBytes + samplerBytes + octreeBytes + attributeBytes; }
 };
 
 /// Estimates the peak memory of buildShellOctree(field, {depth, iso}) for every depth
@@ -76,6 +81,11 @@ struct BuildMemoryEstimate {
 /// Throws as buildShellOctree (depth or iso out of range, empty grid); a surface that only
 /// appears deeper than depth 6 counts as one voxel there. Thread-safe.
 std::vector<BuildMemoryEstimate> estimateBuildMemory(const ScalarField& field, double iso, int maxDepth, int threads = 0);
+/// The same for the build `options` describes: depths 1..options.depth at options.iso with
+/// options.threads, counting the per-voxel attributes it asks for (BuildOptions::corners in
+/// the shell form, BuildOptions::voxelValues) in attributeBytes, as buildOctree's own check of
+/// BuildOptions::memoryBudget does.
+std::vector<BuildMemoryEstimate> estimateBuildMemory(const ScalarField& field, const BuildOptions& options);
 
 struct BuildReport {
     double buildMs = 0.0;
@@ -99,6 +109,11 @@ std::vector<float> sampleAtVoxels(const Octree& tree, const ScalarField& field, 
 /// (csg/Csg.h) the cut faces get the field's value where they are. The field must pass
 /// validate() (else FileError). Thread-safe; `threads` as BuildOptions::threads.
 void fillVoxelValues(Octree& tree, const ScalarField& field, int threads = 0);
+/// Fills Octree::corners() from `field` as BuildOptions::corners does, for an octree built from
+/// that field at its iso value without them (a shell: the volume form keeps none). For a
+/// surface whose drawing is decided after the build (the Python module's, docs/dev/smooth-surfaces.md).
+/// The field must pass validate() (else FileError). Thread-safe; `threads` as BuildOptions::threads.
+void fillCorners(Octree& tree, const ScalarField& field, int threads = 0);
 /// As buildShellOctree, in the form options.form. The volume form, built top-down from the
 /// same min/max pyramid (no dense array either; interior octants become terms at the highest
 /// level the pyramid proves them interior): a cell whose 8 corners are inside the solid
