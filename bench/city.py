@@ -54,7 +54,7 @@ def main():
             for depth in depths:
                 stats = os.path.join(tmp, "stats.json")
                 cmd = [args.bin, "render", os.path.join(args.data, rel)] + extra + [
-                    "--depth", str(depth), "--size", "160x120", "--threads", str(args.threads), "--quiet",
+                    "--depth", str(depth), "--renderer", "full", "--size", "160x120", "--threads", str(args.threads), "--quiet",
                     "--stats", stats, "-o", os.path.join(tmp, "frame.png")]
                 rss = run(cmd)
                 with open(stats) as f:

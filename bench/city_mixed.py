@@ -89,7 +89,7 @@ def main():
             if terrain:
                 opts += ["--terrain-depth", str(terrain)]
             cmd = [args.bin, "render", os.path.join(args.data, rel)] + opts + [
-                "--size", "160x120", "--threads", str(args.threads), "--quiet", "--stats", stats,
+                "--renderer", "full", "--size", "160x120", "--threads", str(args.threads), "--quiet", "--stats", stats,
                 "-o", os.path.join(tmp, "frame.png")]
             rss = run(cmd)
             with open(stats) as f:
@@ -98,7 +98,7 @@ def main():
             res["terrain_depth"] = terrain or depth
             res["peak_rss_bytes"] = rss
             shown = ["octrace", "render", "../shared/data/" + rel] + [
-                "LYON_GROUND.vrt" if o == dem else o for o in opts] + cmd[len(cmd) - 9:-4] + [
+                "LYON_GROUND.vrt" if o == dem else o for o in opts] + cmd[len(cmd) - 11:-4] + [
                 "--stats", "STATS.json", "-o", "FRAME.png"]
             res["command"] = " ".join(shown)
             name = "%s_d%d_t%d.json" % (scene.replace("+", "_"), depth, terrain or depth)

@@ -24,7 +24,7 @@ PAPER = {7: (107632, 2.52, 1.73), 8: (434982, 2.84, 1.95), 9: (1751387, 3.21, 2.
 
 def render(octrace, data, depth, size, extra, stats_path, out_path):
     cmd = [octrace, "render", data, "--var", "TEMP", "--iso", "10", "--region", "120,180,10,60",
-           "--depth", str(depth), "--size", size, "-o", out_path, "--stats", stats_path, "--quiet"] + extra
+           "--depth", str(depth), "--renderer", "full", "--size", size, "-o", out_path, "--stats", stats_path, "--quiet"] + extra
     subprocess.run(cmd, check=True)
     with open(stats_path) as f:
         return json.load(f)

@@ -46,7 +46,7 @@ def main():
             for r in range(args.rounds):
                 for mode in ("dynamic", "baked"):
                     stats = os.path.join(outdir, "%s_%s_round%d.json" % (tag, mode, r + 1))
-                    subprocess.run([args.octrace, "render", oct_path, "--lighting", mode, "--size", scene["size"],
+                    subprocess.run([args.octrace, "render", oct_path, "--lighting", mode, "--renderer", "full", "--size", scene["size"],
                                     "--camera-pos", scene["camera_pos"], "--look-at", scene["look_at"], "--up", scene["up"],
                                     "--fov", str(scene["fov"]), "--threads", "1", "--repeat", str(args.repeat), "--quiet",
                                     "--stats", stats, "-o", os.path.join(tmp, tag + "_" + mode + ".png")], check=True)

@@ -50,7 +50,7 @@ def main():
         for source in ("oct", "field"):
             stats = os.path.join(outdir, "T_d9_shell_%s_round%d.json" % (source, r + 1))
             inp = [os.path.join(tmp, "T_d9_shell.oct")] if source == "oct" else field + ["--depth", "9"]
-            subprocess.run([args.octrace, "render"] + inp + ["--size", "16x12", "--threads", "1", "--quiet", "--stats",
+            subprocess.run([args.octrace, "render"] + inp + ["--renderer", "full", "--size", "16x12", "--threads", "1", "--quiet", "--stats",
                                                              stats, "-o", os.path.join(tmp, "x.png")], check=True)
             js = load(stats)
             if source == "oct":

@@ -11,8 +11,9 @@ TEST(AntialiasCli, SamplesSmoothTheSilhouetteOfAVoxelSceneAndVerifyStaysExact) {
     Scratch s;
     // One colour (not the default colour map by height), so that a blend with the black
     // background is darker than any shaded surface pixel.
+    // Voxel surfaces, which beam (below) draws too.
     const std::vector<std::string> base{"render", "analytic:torus", "--depth", "6", "--size", "160x120", "--background", "0,0,0",
-                                        "--colour", "0.85,0.62,0.35"};
+                                        "--colour", "0.85,0.62,0.35", "--surface", "voxel"};
     auto draw = [&](const std::string& out, const std::vector<std::string>& extra) {
         std::vector<std::string> a = base;
         a.insert(a.end(), extra.begin(), extra.end());

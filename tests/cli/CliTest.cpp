@@ -234,8 +234,9 @@ TEST(Cli, RefusalsNameTheRenderersThatHonourTheOption) {
 
 TEST(Cli, ColourOptionsWithoutColourCoherenceAreToldToChangeNothing) {
     Scratch s;
-    Result r = run({"render", "analytic:sphere", "--iso", "0", "--depth", "5", "--size", "64x48", "--colour-tolerance", "5",
-                    "--colour-fill-background", "-o", s.path("a.png")});
+    // full: a discrete ray caster, which reads them with --colour-coherence (tile, the default, never).
+    Result r = run({"render", "analytic:sphere", "--iso", "0", "--depth", "5", "--size", "64x48", "--renderer", "full",
+                    "--colour-tolerance", "5", "--colour-fill-background", "-o", s.path("a.png")});
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.err.find("--colour-tolerance has no effect without --colour-coherence"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("--colour-fill-background has no effect without --colour-coherence"), std::string::npos) << r.err;
@@ -270,7 +271,7 @@ TEST(Cli, BranchUpIsRecordedWarnedAboutWhereUselessAndRangeChecked) {
     r = run({"render", "analytic:sphere", "--iso", "0", "--depth", "5", "--size", "64x48", "--branch-up", "1", "-o",
              s.path("b.png")});
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.err.find("--branch-up has no effect on renderer full"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--branch-up has no effect on renderer tile"), std::string::npos) << r.err;
     r = run({"render", "analytic:sphere", "--renderer", "linear", "--branch-up", "-1", "-o", s.path("c.png")});
     EXPECT_EQ(r.code, 2);
     EXPECT_NE(r.err.find("--branch-up"), std::string::npos) << r.err;

@@ -188,7 +188,7 @@ TEST(OptionTable, TheCliNamesItsFlagsInCoreErrors) {
     EXPECT_EQ(r.err.find('`'), std::string::npos) << r.err;
     r = run({"render", "analytic:sphere", "--iso", "0", "--depth", "4", "--size", "16x16", "--branch-up", "2", "-o", s.path("b.png")});
     EXPECT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.err.find("--branch-up has no effect on renderer full (only on linear and area and their variants)"), std::string::npos)
+    EXPECT_NE(r.err.find("--branch-up has no effect on renderer tile (only on linear and area and their variants)"), std::string::npos)
         << r.err;
 }
 

@@ -48,7 +48,7 @@ def test_values_are_checked_by_the_table(shell):
 
 
 def test_a_setting_the_renderer_ignores_warns(shell):
-    with pytest.warns(octrace.OctraceWarning, match="'branch_up' has no effect on renderer full"):
+    with pytest.warns(octrace.OctraceWarning, match="'branch_up' has no effect on renderer tile"):
         shell.render(size=(16, 16), branch_up=2)
     with pytest.warns(octrace.OctraceWarning, match="'colour_tolerance' has no effect without 'colour_coherence'"):
         shell.render(size=(16, 16), renderer="area", colour_tolerance=4)

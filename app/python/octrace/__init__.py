@@ -268,7 +268,7 @@ class Surface:
         given = _settings.settings(merged, view_keys | _settings.keys((), shading=True), "render")
         render_settings = [(k, t) for k, t in given if k in view_keys]
         surface_settings = [(k, t) for k, t in given if k not in view_keys]
-        _settings.warn_unused([k for k, _ in given], dict(render_settings).get("renderer", "full"))
+        _settings.warn_unused([k for k, _ in given], dict(render_settings).get("renderer", _settings.default_text("renderer")))
         try:
             frame = _octrace.render(self._shell, surface_settings, render_settings)
         finally:

@@ -36,6 +36,11 @@ def default(key):
     return _TABLE[key]["default_value"]
 
 
+def default_text(key):
+    """The table's default of a setting as its help says it (a text setting's default value)."""
+    return _TABLE[key]["default"]
+
+
 def _scalar(key, value):
     if isinstance(value, bool):
         raise _octrace.UsageError(f"'{key}': expected a value, got {value!r}")

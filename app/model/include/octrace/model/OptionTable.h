@@ -231,7 +231,7 @@ inline constexpr Option floor{.key = "floor", .kind = OptionKind::Flag, .flag = 
 
 // Rendering.
 inline constexpr Option renderer{.key = "renderer", .kind = OptionKind::Text, .flag = "renderer", .argument = "NAME",
-    .session = "renderers.main", .label = "Renderer", .defaultText = "full",
+    .session = "renderers.main", .label = "Renderer", .defaultText = "tile",
     .help = "renderer; samet and beam (paper B) draw sphere scenes and voxel octrees alike", .commands = "render animate"};
 inline constexpr Option cameraPos{.key = "camera_pos", .kind = OptionKind::Text, .flag = "camera-pos", .argument = "X,Y,Z",
     .session = "camera.position", .defaultText = "framing the surface from south-east, above",
