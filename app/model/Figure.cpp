@@ -333,13 +333,13 @@ io::FigureLayout fitFigureLayout(const io::FigureLayout& first, const std::funct
 }
 
 io::FigureLayout fitFigureLayout(const io::FigureLayout& first, const FigureSettings& f, const FigureSubject& subject, const Octree& tree,
-                                 const RenderSettings& rs, const RenderSpec& view, const Box3& bounds) {
+                                 const RenderSettings& rs, const RenderSpec& view, const Box3& bounds, SceneView sceneView) {
     FigureSettings text = f;
     text.coastline = "none";
     return fitFigureLayout(first, [&](const io::FigureLayout& l) {
         RenderSpec sized = view;
         sized.width = l.plotW, sized.height = l.plotH;
-        return figureSpec(Frame(), text, subject, tree, frameCamera(sized, bounds), rs);
+        return figureSpec(Frame(), text, subject, tree, frameCamera(sized, bounds, sceneView), rs);
     });
 }
 
