@@ -8,6 +8,7 @@
 #include FT_FREETYPE_H
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <climits>
 #include <cstdlib>
@@ -297,13 +298,50 @@ std::vector<AxisLabels> axesOf(const FigureSpec& spec) {
 constexpr double kEndOnSpan = 0.5;
 bool AxisLabels::endOn(double labelPx) const { return labels.size() >= 2 && span < kEndOnSpan * labelPx; }
 
+/// The subsets of `size` of 0..n-1 (sorted), the most evenly spread first: by their smallest
+/// step between neighbours, then by the span they cover; none when every k-th already gives
+/// them (size < 3, or n <= size) or there are too many to try (n > 16).
+std::vector<std::vector<std::size_t>> spreadSubsets(std::size_t n, std::size_t size) {
+    std::vector<std::vector<std::size_t>> out;
+    if (size < 3 || n <= size || n > 16) return out;
+    for (std::uint32_t mask = 0; mask < (1u << n); ++mask) {
+        if (std::size_t(std::popcount(mask)) != size) continue;
+        std::vector<std::size_t> keep;
+        for (std::size_t i = 0; i < n; ++i)
+            if (mask & (1u << i)) keep.push_back(i);
+        out.push_back(std::move(keep));
+    }
+    const auto smallestStep = [](const std::vector<std::size_t>& k) {
+        std::size_t m = k.back() - k.front();
+        for (std::size_t i = 1; i < k.size(); ++i) m = std::min(m, k[i] - k[i - 1]);
+        return m;
+    };
+    std::stable_sort(out.begin(), out.end(), [&](const auto& a, const auto& b) {
+        const std::size_t sa = smallestStep(a), sb = smallestStep(b);
+        if (sa != sb) return sa > sb;
+        return a.back() - a.front() > b.back() - b.front();
+    });
+    return out;
+}
+
 /// Places the figure's texts one after another from their ink boxes (measured with FreeType
 /// before anything is drawn), each where it keeps a small gap to everything placed before and
 /// stays inside the figure, and keeps what it placed.
 class TextLayout {
 public:
     TextLayout(Font& font, Canvas& canvas, const FigureLayout& l)
-        : font_(font), canvas_(canvas), l_(l), gap_(std::max(1, int(std::lround(0.15 * l.labelPx)))) {}
+        : font_(font), canvas_(&canvas), l_(l), gap_(std::max(1, int(std::lround(0.15 * l.labelPx)))) {}
+
+    /// A copy that places as this one would from here on but draws nothing: to try an order.
+    TextLayout trial() const {
+        TextLayout t = *this;
+        t.canvas_ = nullptr;
+        return t;
+    }
+    /// How many texts of `role` were placed.
+    std::size_t count(const std::string& role) const {
+        return std::size_t(std::count_if(placed_.begin(), placed_.end(), [&](const FigureTextBox& b) { return b.role == role; }));
+    }
 
     const std::vector<FigureTextBox>& placed() const { return placed_; }
     /// Whether `b` lies inside the figure, clear of everything placed.
@@ -332,29 +370,41 @@ public:
     }
 
     /// Labels of one kind (an axis's ticks) at size `px`: all of them if none collides, else every
-    /// k-th (the smallest k, at least `least` kept), else the same at 85% and 70% of the size,
-    /// else each that fits, in order. With `clamp`, a label that would leave the figure is moved
-    /// inside it first.
+    /// k-th (the smallest k, at least `least` kept), else `least` of them as evenly spread as
+    /// fit (every k-th cannot keep 3 of 4: only 4 or 2), else the same at 85% and 70% of the
+    /// size, else each that fits, in order. With `clamp`, a label that would leave the figure is
+    /// moved inside it first.
     void placeThinned(const std::string& role, const std::vector<Candidate>& labels, bool clamp, double px, std::size_t least) {
         const std::size_t n = labels.size();
         if (n == 0) return;
         least = std::min(least, n);
         std::vector<Candidate> at;
         std::vector<InkBox> box;
+        const auto fits = [&](const std::vector<std::size_t>& keep) {
+            for (std::size_t a = 0; a < keep.size(); ++a) {
+                if (!free(box[keep[a]])) return false;
+                for (std::size_t b = 0; b < a; ++b)
+                    if (box[keep[a]].near(box[keep[b]], gap_)) return false;
+            }
+            return true;
+        };
+        const auto place = [&](const std::vector<std::size_t>& keep) {
+            for (std::size_t i : keep) draw(role, at[i].text, at[i].x, at[i].baseline);
+        };
+        const std::vector<std::vector<std::size_t>> spread = spreadSubsets(n, least);
         for (double scale : {1.0, 0.85, 0.7}) {
             measure(labels, clamp, px * scale, at, box);
             for (std::size_t k = 1; k <= n; ++k)
                 for (std::size_t first = 0; first < k; ++first) {
                     std::vector<std::size_t> keep;
                     for (std::size_t i = first; i < n; i += k) keep.push_back(i);
-                    if (keep.size() < least) continue;
-                    bool ok = true;
-                    for (std::size_t a = 0; a < keep.size() && ok; ++a) {
-                        ok = free(box[keep[a]]);
-                        for (std::size_t b = 0; b < a && ok; ++b) ok = !box[keep[a]].near(box[keep[b]], gap_);
-                    }
-                    if (!ok) continue;
-                    for (std::size_t i : keep) draw(role, at[i].text, at[i].x, at[i].baseline);
+                    if (keep.size() < least || !fits(keep)) continue;
+                    place(keep);
+                    return;
+                }
+            for (const std::vector<std::size_t>& keep : spread)
+                if (fits(keep)) {
+                    place(keep);
                     return;
                 }
         }
@@ -393,7 +443,7 @@ private:
     }
     void draw(const std::string& role, const std::string& text, double x, double baseline) {
         if (text.empty()) return;
-        const InkBox b = font_.draw(&canvas_, text, x, baseline, kInk);
+        const InkBox b = font_.draw(canvas_, text, x, baseline, kInk);
         taken_.push_back(b);
         placed_.push_back({role, text, b.x0, b.y0, b.x1, b.y1, false});
     }
@@ -414,7 +464,7 @@ private:
     }
 
     Font& font_;
-    Canvas& canvas_;
+    Canvas* canvas_;  ///< null: a trial, nothing drawn
     const FigureLayout& l_;
     int gap_;
     std::vector<InkBox> taken_;
@@ -667,14 +717,34 @@ Frame composeFigure(const Frame& plot, const FigureSpec& spec, const FigureLayou
                                   l.labelPx, 1);
     }
 
-    // Tick labels on the bounding box, axis by axis; none on an edge seen end on.
-    for (const AxisLabels& axis : axesOf(spec)) {
-        if (axis.endOn(l.labelPx)) continue;
+    // Tick labels on the bounding box, axis by axis; none on an edge seen end on. The axes are
+    // placed in the first order (x, y, z, then the others) in which the most of them keep 3
+    // labels (all, with fewer candidates): an edge foreshortened by the perspective may need the
+    // room that a long one, placed later, can give up.
+    std::vector<AxisLabels> axes;
+    for (const AxisLabels& axis : axesOf(spec))
+        if (!axis.endOn(l.labelPx)) axes.push_back(axis);
+    const auto candidates = [&](const AxisLabels& axis) {
         std::vector<Candidate> labels;
         for (const FigureLabel* lab : axis.labels)
             labels.push_back({lab->text, 0.0, 0.0, true, origin.x + lab->at.x + lab->dx * l.labelPx, origin.y + lab->at.y + lab->dy * l.labelPx});
-        text.placeThinned("axis " + std::to_string(axis.axis), labels, true, l.labelPx, 3);
-    }
+        return labels;
+    };
+    constexpr std::size_t kLeastTicks = 3;
+    std::vector<std::size_t> order(axes.size()), best;
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::size_t bestKept = 0;
+    do {
+        TextLayout trial = text.trial();
+        std::size_t kept = 0;
+        for (std::size_t i : order) {
+            const std::string role = "axis " + std::to_string(axes[i].axis);
+            trial.placeThinned(role, candidates(axes[i]), true, l.labelPx, kLeastTicks);
+            kept += trial.count(role) >= std::min(kLeastTicks, axes[i].labels.size());
+        }
+        if (best.empty() || kept > bestKept) best = order, bestKept = kept;
+    } while (bestKept < axes.size() && std::next_permutation(order.begin(), order.end()));
+    for (std::size_t i : best) text.placeThinned("axis " + std::to_string(axes[i].axis), candidates(axes[i]), true, l.labelPx, kLeastTicks);
 
     // Scale bar: a bar with end ticks in the plot's lower left corner, its length above it;
     // in the lower right corner where tick labels take the left one, else none.
