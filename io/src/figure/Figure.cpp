@@ -16,6 +16,7 @@
 #include <fstream>
 #include <mutex>
 #include <sstream>
+#include <utility>
 
 namespace octrace::io {
 namespace {
@@ -275,18 +276,24 @@ InkBox labelBox(Font& font, const FigureLabel& lab, const FigureLayout& l) {
     return font.draw(nullptr, lab.text, p.x, p.y);
 }
 
-/// The labels of each axis, in order of first appearance, and how far apart their points lie.
+/// The labels of each axis on each of its places (FigureLabel::edge), in order of first
+/// appearance, and how far apart their points lie.
 struct AxisLabels {
-    int axis = 0;
+    int axis = 0, edge = 0;
     std::vector<const FigureLabel*> labels;
     double span = 0.0;
     bool endOn(double labelPx) const;
+    /// The widest ink of its labels along the line through its two farthest points, at the
+    /// smallest size they are set in (pixels).
+    double extent(Font& font, double labelPx) const;
+    /// Whether `count` of its labels can lie apart along its span at the smallest size.
+    bool roomFor(std::size_t count, Font& font, double labelPx) const;
 };
 std::vector<AxisLabels> axesOf(const FigureSpec& spec) {
     std::vector<AxisLabels> out;
     for (const FigureLabel& lab : spec.labels) {
-        auto it = std::find_if(out.begin(), out.end(), [&](const AxisLabels& a) { return a.axis == lab.axis; });
-        if (it == out.end()) it = out.insert(out.end(), AxisLabels{lab.axis, {}, 0.0});
+        auto it = std::find_if(out.begin(), out.end(), [&](const AxisLabels& a) { return a.axis == lab.axis && a.edge == lab.edge; });
+        if (it == out.end()) it = out.insert(out.end(), AxisLabels{lab.axis, lab.edge, {}, 0.0});
         for (const FigureLabel* o : it->labels) it->span = std::max(it->span, glm::length(o->at - lab.at));
         it->labels.push_back(&lab);
     }
@@ -297,6 +304,29 @@ std::vector<AxisLabels> axesOf(const FigureSpec& spec) {
 /// labels would all say different things at one place, and none is drawn.
 constexpr double kEndOnSpan = 0.5;
 bool AxisLabels::endOn(double labelPx) const { return labels.size() >= 2 && span < kEndOnSpan * labelPx; }
+
+/// Labels that collide are set at these sizes (of the label size), in turn.
+constexpr double kLabelScales[] = {1.0, 0.85, 0.7};
+/// The gap kept between texts (pixels).
+int textGap(double labelPx) { return std::max(1, int(std::lround(0.15 * labelPx))); }
+
+double AxisLabels::extent(Font& font, double labelPx) const {
+    dvec2 u(0.0);
+    for (const FigureLabel* a : labels)
+        for (const FigureLabel* b : labels)
+            if (glm::length(b->at - a->at) >= span && span > 0.0) u = (b->at - a->at) / span;
+    font.size(labelPx * kLabelScales[std::size(kLabelScales) - 1]);
+    double widest = 0.0;
+    for (const FigureLabel* lab : labels) {
+        const InkBox b = font.draw(nullptr, lab->text, 0.0, 0.0);
+        if (!b.empty()) widest = std::max(widest, (b.x1 - b.x0) * std::abs(u.x) + (b.y1 - b.y0) * std::abs(u.y));
+    }
+    return widest;
+}
+
+bool AxisLabels::roomFor(std::size_t count, Font& font, double labelPx) const {
+    return labels.size() >= count && span >= double(count - 1) * (extent(font, labelPx) + textGap(labelPx));
+}
 
 /// The subsets of `size` of 0..n-1 (sorted), the most evenly spread first: by their smallest
 /// step between neighbours, then by the span they cover; none when every k-th already gives
@@ -330,7 +360,7 @@ std::vector<std::vector<std::size_t>> spreadSubsets(std::size_t n, std::size_t s
 class TextLayout {
 public:
     TextLayout(Font& font, Canvas& canvas, const FigureLayout& l)
-        : font_(font), canvas_(&canvas), l_(l), gap_(std::max(1, int(std::lround(0.15 * l.labelPx)))) {}
+        : font_(font), canvas_(&canvas), l_(l), gap_(textGap(l.labelPx)) {}
 
     /// A copy that places as this one would from here on but draws nothing: to try an order.
     TextLayout trial() const {
@@ -392,7 +422,7 @@ public:
             for (std::size_t i : keep) draw(role, at[i].text, at[i].x, at[i].baseline);
         };
         const std::vector<std::vector<std::size_t>> spread = spreadSubsets(n, least);
-        for (double scale : {1.0, 0.85, 0.7}) {
+        for (double scale : kLabelScales) {
             measure(labels, clamp, px * scale, at, box);
             for (std::size_t k = 1; k <= n; ++k)
                 for (std::size_t first = 0; first < k; ++first) {
@@ -482,16 +512,24 @@ std::string jsonEscaped(const std::string& s) {
     return out;
 }
 
-/// One JSON line: the figure's size, its plot, the label size, each axis's candidates and the
-/// boxes (OCTRACE_TEST_FIGURE_TEXT).
-void appendTextBoxes(const std::string& path, const FigureLayout& l, const FigureSpec& spec, const std::vector<FigureTextBox>& boxes) {
+/// One JSON line: the figure's size, its plot, the label size, each axis's place drawn (or its
+/// preferred one when none is) with its candidates, the span and the widest label extent along
+/// it (smallest size) of each of its places not seen end on, and the boxes
+/// (OCTRACE_TEST_FIGURE_TEXT).
+void appendTextBoxes(const std::string& path, const FigureLayout& l, const std::vector<AxisLabels>& axes,
+                     const std::vector<AxisLabels>& groups, Font& font, const std::vector<FigureTextBox>& boxes) {
     std::ostringstream s;
     s << "{\"width\": " << l.width << ", \"height\": " << l.height << ", \"plot\": [" << l.plotX << ", " << l.plotY << ", "
       << l.plotX + l.plotW << ", " << l.plotY + l.plotH << "], \"labelPx\": " << l.labelPx << ", \"axes\": [";
-    const std::vector<AxisLabels> axes = axesOf(spec);
-    for (std::size_t i = 0; i < axes.size(); ++i)
-        s << (i ? ", " : "") << "{\"axis\": \"axis " << axes[i].axis << "\", \"candidates\": " << axes[i].labels.size()
-          << ", \"span\": " << axes[i].span << "}";
+    for (std::size_t i = 0; i < axes.size(); ++i) {
+        s << (i ? ", " : "") << "{\"axis\": \"axis " << axes[i].axis << "\", \"edge\": " << axes[i].edge
+          << ", \"candidates\": " << axes[i].labels.size() << ", \"span\": " << axes[i].span << ", \"places\": [";
+        const char* sep = "";
+        for (const AxisLabels& g : groups)
+            if (g.axis == axes[i].axis && !g.endOn(l.labelPx))
+                s << std::exchange(sep, ", ") << "[" << g.span << ", " << g.extent(font, l.labelPx) << "]";
+        s << "]}";
+    }
     s << "], \"boxes\": [";
     for (std::size_t i = 0; i < boxes.size(); ++i) {
         const FigureTextBox& b = boxes[i];
@@ -516,6 +554,12 @@ std::string figureFontPath() {
                           "/usr/share/fonts/dejavu/DejaVuSans.ttf", "/usr/local/share/fonts/DejaVuSans.ttf"})
         if (std::filesystem::exists(p)) return p;
     return {};
+}
+
+double labelWidthEstimate(const std::string& text) {
+    int n = 0;
+    for (unsigned char ch : text) n += (ch & 0xC0) != 0x80;
+    return 0.6 * n;
 }
 
 std::vector<double> niceTicks(double lo, double hi, int count) {
@@ -586,10 +630,11 @@ FigureRoom figureRoom(const FigureSpec& spec, const FigureLayout& l) {
     r.titleLines = std::min<int>(kMostTitleLines, int(wrapped(font, spec.title, across).size()));
     font.size(l.labelPx);
     r.subtitleLines = std::min<int>(kMostSubtitleLines, int(wrapped(font, spec.subtitle, across).size()));
-    // Tick labels beyond the plot (those of an edge seen end on are not drawn).
+    // Tick labels beyond the plot (those of an edge seen end on are not drawn); an axis's other
+    // places are moved inside the figure when one is drawn.
     const double most = 8.0 * l.labelPx;
     for (const AxisLabels& axis : axesOf(spec)) {
-        if (axis.endOn(l.labelPx)) continue;
+        if (axis.edge != 0 || axis.endOn(l.labelPx)) continue;
         for (const FigureLabel* lab : axis.labels) {
             const InkBox b = labelBox(font, *lab, l);
             if (b.empty()) continue;
@@ -647,11 +692,6 @@ Frame composeFigure(const Frame& plot, const FigureSpec& spec, const FigureLayou
     for (const auto& line : spec.coastlines)
         for (std::size_t i = 1; i < line.size(); ++i) canvas.line(origin + line[i - 1], origin + line[i], coastWidth, kCoastInk);
     for (const auto& [a, b] : spec.lines) canvas.line(origin + a, origin + b, lineWidth, kLineInk);
-    for (const FigureLabel& lab : spec.labels) {
-        const dvec2 p = origin + lab.at;
-        canvas.fill(int(std::floor(p.x - lineWidth)), int(std::floor(p.y - lineWidth)), int(std::lround(2 * lineWidth)) + 1,
-                    int(std::lround(2 * lineWidth)) + 1, kLineInk);
-    }
 
     // The text in order of precedence, each placed where it overlaps nothing placed before:
     // title and subtitle, the colour bar with its label and ticks, the patient's letters, the
@@ -720,10 +760,19 @@ Frame composeFigure(const Frame& plot, const FigureSpec& spec, const FigureLayou
     // Tick labels on the bounding box, axis by axis; none on an edge seen end on. The axes are
     // placed in the first order (x, y, z, then the others) in which the most of them keep 3
     // labels (all, with fewer candidates): an edge foreshortened by the perspective may need the
-    // room that a long one, placed later, can give up.
-    std::vector<AxisLabels> axes;
-    for (const AxisLabels& axis : axesOf(spec))
-        if (!axis.endOn(l.labelPx)) axes.push_back(axis);
+    // room that a long one, placed later, can give up. Each axis goes on its preferred place
+    // (edge 0) if it keeps 3 there, else on the first of its other places (other box edges)
+    // where it does, else on the one where it keeps the most.
+    std::vector<AxisLabels> groups = axesOf(spec), axes;
+    for (const AxisLabels& g : groups)
+        if (g.edge == 0 && !g.endOn(l.labelPx)) axes.push_back(g);
+    const auto places = [&](const AxisLabels& axis) {
+        std::vector<const AxisLabels*> out;
+        for (const AxisLabels& g : groups)
+            if (g.axis == axis.axis && !g.endOn(l.labelPx)) out.push_back(&g);
+        std::stable_sort(out.begin(), out.end(), [](const AxisLabels* a, const AxisLabels* b) { return a->edge < b->edge; });
+        return out;
+    };
     const auto candidates = [&](const AxisLabels& axis) {
         std::vector<Candidate> labels;
         for (const FigureLabel* lab : axis.labels)
@@ -731,20 +780,63 @@ Frame composeFigure(const Frame& plot, const FigureSpec& spec, const FigureLayou
         return labels;
     };
     constexpr std::size_t kLeastTicks = 3;
+    // Places the axes in `order` on `layout`, choosing each one's place; returns the places and
+    // counts the axes that kept 3 in `kept`.
+    const auto placeAxes = [&](TextLayout& layout, const std::vector<std::size_t>& order, std::size_t& kept) {
+        std::vector<const AxisLabels*> chosen;
+        kept = 0;
+        for (std::size_t i : order) {
+            const std::string role = "axis " + std::to_string(axes[i].axis);
+            const AxisLabels* pick = nullptr;
+            std::size_t most = 0;
+            for (const AxisLabels* place : places(axes[i])) {
+                TextLayout t = layout.trial();
+                t.placeThinned(role, candidates(*place), true, l.labelPx, kLeastTicks);
+                if (!pick || t.count(role) > most) pick = place, most = t.count(role);
+                if (most >= std::min(kLeastTicks, place->labels.size())) break;
+            }
+            // An axis too short for 3 labels on each of its places (docs/dev/figures.md) keeps 2
+            // where they fit, as evenly spread as they can be.
+            std::size_t least = kLeastTicks;
+            const std::vector<const AxisLabels*> all = places(axes[i]);
+            if (most < std::min(kLeastTicks, pick->labels.size()) &&
+                std::none_of(all.begin(), all.end(), [&](const AxisLabels* p) { return p->roomFor(kLeastTicks, font, l.labelPx); })) {
+                least = 2;
+                pick = nullptr, most = 0;
+                for (const AxisLabels* place : all) {
+                    TextLayout t = layout.trial();
+                    t.placeThinned(role, candidates(*place), true, l.labelPx, least);
+                    if (!pick || t.count(role) > most) pick = place, most = t.count(role);
+                }
+            }
+            layout.placeThinned(role, candidates(*pick), true, l.labelPx, least);
+            kept += most >= std::min(least, pick->labels.size());
+            chosen.push_back(pick);
+        }
+        return chosen;
+    };
     std::vector<std::size_t> order(axes.size()), best;
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::size_t bestKept = 0;
     do {
         TextLayout trial = text.trial();
         std::size_t kept = 0;
-        for (std::size_t i : order) {
-            const std::string role = "axis " + std::to_string(axes[i].axis);
-            trial.placeThinned(role, candidates(axes[i]), true, l.labelPx, kLeastTicks);
-            kept += trial.count(role) >= std::min(kLeastTicks, axes[i].labels.size());
-        }
+        placeAxes(trial, order, kept);
         if (best.empty() || kept > bestKept) best = order, bestKept = kept;
     } while (bestKept < axes.size() && std::next_permutation(order.begin(), order.end()));
-    for (std::size_t i : best) text.placeThinned("axis " + std::to_string(axes[i].axis), candidates(axes[i]), true, l.labelPx, kLeastTicks);
+    std::size_t kept = 0;
+    std::vector<AxisLabels> drawn;  // each axis's place drawn, else its preferred one
+    for (const AxisLabels* place : placeAxes(text, best, kept)) drawn.push_back(*place);
+    for (const AxisLabels& g : groups)
+        if (g.edge == 0 && std::none_of(drawn.begin(), drawn.end(), [&](const AxisLabels& d) { return d.axis == g.axis; }))
+            drawn.push_back(g);
+    // The tick marks of the places drawn (and of an edge seen end on).
+    for (const AxisLabels& place : drawn)
+        for (const FigureLabel* lab : place.labels) {
+            const dvec2 p = origin + lab->at;
+            canvas.fill(int(std::floor(p.x - lineWidth)), int(std::floor(p.y - lineWidth)), int(std::lround(2 * lineWidth)) + 1,
+                        int(std::lround(2 * lineWidth)) + 1, kLineInk);
+        }
 
     // Scale bar: a bar with end ticks in the plot's lower left corner, its length above it;
     // in the lower right corner where tick labels take the left one, else none.
@@ -768,7 +860,7 @@ Frame composeFigure(const Frame& plot, const FigureSpec& spec, const FigureLayou
     }
 
     if (textOut) *textOut = text.placed();
-    if (const char* path = std::getenv("OCTRACE_TEST_FIGURE_TEXT"); path && *path) appendTextBoxes(path, l, spec, text.placed());
+    if (const char* path = std::getenv("OCTRACE_TEST_FIGURE_TEXT"); path && *path) appendTextBoxes(path, l, drawn, groups, font, text.placed());
     return f;
 }
 
