@@ -86,7 +86,7 @@ int runExport(const std::vector<std::string>& args) {
             throw UsageError("-o " + a.output + ": unknown point-cloud format '" + ext + "' (use .ply, or --format ply)");
         a.format = "ply";
     }
-    if (a.level > a.depth) throw UsageError("--level " + std::to_string(a.level) + " is deeper than --depth " + std::to_string(a.depth));
+    if (a.depth && a.level > *a.depth) throw UsageError("--level " + std::to_string(a.level) + " is deeper than --depth " + std::to_string(*a.depth));
 
     if (!a.surface) a.surface = SurfaceMode::Voxel;  // surfels are the voxels: no corner values needed
     Surface surface = buildSurface(a);

@@ -192,7 +192,7 @@ int renderObjectOctree(const RenderArgs& a) {
     const Camera cam = model::frameCamera(a, bounds);
     RenderSettings rs;
     rs.threads = a.threads;
-    rs.background = displayToLinear(a.background);
+    rs.background = displayToLinear(a.background.value_or(vec4(1.0f)));
     if (a.light) rs.lightCamera = *a.light;
     rs.spheres.samples = a.spheres.samples;
     rs.spheres.bounces = a.spheres.bounces;
@@ -314,6 +314,10 @@ int runRender(const std::vector<std::string>& args) {
         a.width = figureLayoutUsed->plotW;
         a.height = figureLayoutUsed->plotH;
     }
+    // `depth` auto aims a geometry input's voxels at a pixel of this view.
+    a.viewWidth = a.width;
+    a.viewHeight = a.height;
+    a.viewFov = a.fov;
     const std::uint64_t budget = memoryBudget(a);
     const std::uint64_t frameBytes = outputFrameBytes(a) + (figureLayoutUsed ? Frame::bytesFor(figureLayoutUsed->width, figureLayoutUsed->height) : 0);
     const std::string rendering = "rendering " + std::to_string(a.width) + "x" + std::to_string(a.height);
@@ -337,13 +341,14 @@ int runRender(const std::vector<std::string>& args) {
     // Camera: framing the surface (not the whole grid) unless told otherwise; a figure's plot
     // first takes the size its text leaves.
     const Box3 bounds = tree.occupiedBounds();
+    const model::SceneView view = model::sceneView(field);
     const RenderSettings rs = model::renderSettings(a, surface, a);
     if (figureLayoutUsed) {
-        figureLayoutUsed = model::fitFigureLayout(*figureLayoutUsed, a.figure, figureSubject(surface, a.input), tree, rs, a, bounds);
+        figureLayoutUsed = model::fitFigureLayout(*figureLayoutUsed, a.figure, figureSubject(surface, a.input), tree, rs, a, bounds, view);
         a.width = figureLayoutUsed->plotW;
         a.height = figureLayoutUsed->plotH;
     }
-    const Camera cam = model::frameCamera(a, bounds);
+    const Camera cam = model::frameCamera(a, bounds, view);
     if (a.shadows.value_or(false) && !Shader(tree, cam, rs).shadows())
         log::warning("--shadows on: the octree is shaded by its baked light, which has its own shadows "
                      "(--bake-shadows); give --lighting dynamic for shadow rays towards --light");

@@ -133,8 +133,16 @@ AnimationPlan planAnimation(const AnimationSpec& spec, const AnimationHooks& hoo
     progress(0.0);
     request.time = plan.frames.front().time;
     request.volume = plan.frames.front().volume;
-    const ScalarField grid = loadField(surface.input, request, surface.depth);
+    const ScalarField grid = loadField(surface.input, request, readDepth(surface));
     plan.bounds = grid.worldBounds();
+    plan.view = sceneView(grid);
+    // `depth` auto: chosen once from the grid every step shares, so that the frames compare
+    // (the build's memory check still refuses a step that would not fit).
+    if (!surface.depth) {
+        const DepthChoice c = depthForField(grid);
+        surface.depth = c.depth;
+        plan.notes.push_back(param("depth") + " auto: " + std::to_string(c.depth) + ", " + c.reason);
+    }
     progress(1.0);
     // The file's display window, as the first step gives it, greys every frame: each volume of
     // a DICOM series may carry its own, and the frames would not compare.
@@ -158,7 +166,7 @@ AnimationPlan planAnimation(const AnimationSpec& spec, const AnimationHooks& hoo
         for (std::size_t k = 0; k < plan.frames.size(); ++k) {
             colour.time = plan.frames[k].time;
             colour.volume = plan.frames[k].volume;
-            const auto [vlo, vhi] = loadField(surface.input, colour, surface.depth).validRange();
+            const auto [vlo, vhi] = loadField(surface.input, colour, readDepth(surface)).validRange();
             lo = std::min(lo, vlo);
             hi = std::max(hi, vhi);
             progress(2.0 + double(k));
@@ -195,12 +203,15 @@ AnimationPlan planAnimation(const AnimationSpec& spec, const AnimationHooks& hoo
         const RenderSettings rs = renderSettings(first, built, r);
         FigureSettings settings = spec.figure;
         settings.caption = plan.frames.front().caption;
-        plan.figureLayout = fitFigureLayout(*plan.figureLayout, settings, figureSubject(built, first.input), built.tree, rs, r, plan.bounds);
+        plan.figureLayout = fitFigureLayout(*plan.figureLayout, settings, figureSubject(built, first.input), built.tree, rs, r, plan.bounds, plan.view);
         plan.spec.render.width = plan.figureLayout->plotW;
         plan.spec.render.height = plan.figureLayout->plotH;
         plan.width = plan.figureLayout->width;
         plan.height = plan.figureLayout->height;
     }
+    surface.viewWidth = plan.spec.render.width;
+    surface.viewHeight = plan.spec.render.height;
+    surface.viewFov = plan.spec.render.fov;
     animationCamera(plan, 0);  // refuses a camera the spec cannot place before any frame is drawn
     return plan;
 }
@@ -208,7 +219,7 @@ AnimationPlan planAnimation(const AnimationSpec& spec, const AnimationHooks& hoo
 Camera animationCamera(const AnimationPlan& plan, std::size_t i) {
     if (i >= plan.frames.size())
         throw UsageError("animation frame " + std::to_string(i) + " of " + std::to_string(plan.frames.size()));
-    Camera cam = frameCamera(plan.spec.render, plan.bounds);
+    Camera cam = frameCamera(plan.spec.render, plan.bounds, plan.view);
     const double angle = glm::radians(plan.frames[i].orbitDegrees);
     if (angle != 0.0) {
         const dvec3 axis = glm::normalize(cam.up);

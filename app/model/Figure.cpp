@@ -136,6 +136,68 @@ std::array<std::string, 4> patientLetters(const Projector& project, const Box3& 
     return out;
 }
 
+/// The ticks of each axis (the labels of spec.labels, at the world points `at`, each on one
+/// edge along its axis) also on the axis's three other parallel box edges (FigureLabel::edge
+/// 1, 2, 3, those whose middle projects farthest from the box's centre first: the outer
+/// ones), each moved off its edge the way that points away from the box (across both faces
+/// that meet there) looks in the picture, as ParaView's cube axes choose among the edges.
+/// io::composeFigure draws one edge per axis.
+void alternativeEdges(io::FigureSpec& spec, const std::vector<dvec3>& at, const Box3& box, const Projector& project) {
+    dvec2 centre(0.0);
+    for (int c = 0; c < 8; ++c) {
+        dvec2 p;
+        if (!project(dvec3((c & 4) ? box.hi.x : box.lo.x, (c & 2) ? box.hi.y : box.lo.y, (c & 1) ? box.hi.z : box.lo.z), p))
+            return;  // the camera inside or behind the box: its edges have no outside
+        centre += p / 8.0;
+    }
+    const std::size_t given = spec.labels.size();
+    for (int a = 0; a < 3; ++a) {
+        std::vector<std::size_t> of;
+        for (std::size_t i = 0; i < given; ++i)
+            if (spec.labels[i].axis == a && spec.labels[i].edge == 0) of.push_back(i);
+        if (of.empty()) continue;
+        const int b = (a + 1) % 3, c = (a + 2) % 3;
+        // The other edges: the corners of the box's face across the axis, but the given one.
+        struct Edge {
+            dvec3 corner, out;  // the edge's point at the axis's low end; away from the box
+            double reach = 0.0;
+        };
+        std::vector<Edge> edges;
+        const dvec3& p0 = at[of.front()];
+        for (int k = 0; k < 4; ++k) {
+            dvec3 q(0.0), out(0.0);
+            q[a] = box.lo[a];
+            q[b] = (k & 1) ? box.hi[b] : box.lo[b];
+            q[c] = (k & 2) ? box.hi[c] : box.lo[c];
+            if (q[b] == p0[b] && q[c] == p0[c]) continue;
+            // Away from the box, across both faces that meet at the edge (a 20th of the box).
+            out[b] = ((k & 1) ? 0.05 : -0.05) * (box.hi[b] - box.lo[b]);
+            out[c] = ((k & 2) ? 0.05 : -0.05) * (box.hi[c] - box.lo[c]);
+            dvec3 r = q;
+            r[a] = box.hi[a];
+            dvec2 pq, pr;
+            if (!project(q, pq) || !project(r, pr)) continue;
+            edges.push_back({q, out, glm::length(0.5 * (pq + pr) - centre)});
+        }
+        std::stable_sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.reach > y.reach; });
+        for (std::size_t k = 0; k < edges.size(); ++k)
+            for (std::size_t i : of) {
+                dvec3 p = edges[k].corner;
+                p[a] = at[i][a];
+                io::FigureLabel lab = spec.labels[i];
+                dvec2 beyond;
+                if (!project(p, lab.at) || !project(p + edges[k].out, beyond) || glm::length(beyond - lab.at) < 1e-9) continue;
+                // The label's centre off the edge, the way away from the box looks: half its
+                // extent that way and a gap.
+                const dvec2 n = glm::normalize(beyond - lab.at);
+                const double off = 0.5 * io::labelWidthEstimate(lab.text) * std::abs(n.x) + 0.5 * std::abs(n.y) + 0.9;
+                lab.dx = n.x * off, lab.dy = n.y * off;
+                lab.edge = int(k) + 1;
+                spec.labels.push_back(lab);
+            }
+    }
+}
+
 }  // namespace
 
 std::string numberText(double v, int precision) {
@@ -333,13 +395,13 @@ io::FigureLayout fitFigureLayout(const io::FigureLayout& first, const std::funct
 }
 
 io::FigureLayout fitFigureLayout(const io::FigureLayout& first, const FigureSettings& f, const FigureSubject& subject, const Octree& tree,
-                                 const RenderSettings& rs, const RenderSpec& view, const Box3& bounds) {
+                                 const RenderSettings& rs, const RenderSpec& view, const Box3& bounds, SceneView sceneView) {
     FigureSettings text = f;
     text.coastline = "none";
     return fitFigureLayout(first, [&](const io::FigureLayout& l) {
         RenderSpec sized = view;
         sized.width = l.plotW, sized.height = l.plotH;
-        return figureSpec(Frame(), text, subject, tree, frameCamera(sized, bounds), rs);
+        return figureSpec(Frame(), text, subject, tree, frameCamera(sized, bounds, sceneView), rs);
     });
 }
 
@@ -416,9 +478,12 @@ io::FigureSpec figureSpec(const Frame& plot, const FigureSettings& f, const Figu
     // Ticks on three edges that meet at the south-east corner of the top: along x at y = lo,
     // along y at x = hi, along z at (hi, lo).
     int axis = 0;  // the axis the next ticks belong to (their labels are thinned together)
+    std::vector<dvec3> tickAt;  // the world point of each label, to move it to the other edges
     auto tick = [&](const dvec3& p, const std::string& text, double dx, double dy) {
         dvec2 at;
-        if (project(p, at)) spec.labels.push_back({at, text, dx, dy, axis});
+        if (!project(p, at)) return;
+        spec.labels.push_back({at, text, dx, dy, axis});
+        tickAt.push_back(p);
     };
     if (geographic.valid && geographic.polar()) {
         // The polar plane: ticks in km along x and y, the latitudes covered in the subtitle.
@@ -479,6 +544,7 @@ io::FigureSpec figureSpec(const Frame& plot, const FigureSettings& f, const Figu
         axisTicks(2, 4, [&](double z) { return dvec3(box.hi.x, box.lo.y, z); }, 2.6, 0.0);
         if (!from.empty()) sub += "; ticks from " + from + (metres ? " m" : "");
     }
+    alternativeEdges(spec, tickAt, box, project);
     // The caption (an animation frame's date) or else the time step first: a subtitle too long
     // for the figure drops its last parts (io::composeFigure).
     const std::string& first = f.caption.empty() ? subject.time : f.caption;

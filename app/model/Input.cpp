@@ -11,6 +11,7 @@
 #include "octrace/util/Memory.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <cerrno>
 #include <cstdlib>
 #include <cctype>
@@ -104,16 +105,20 @@ bool isOctreeInput(const std::string& input) {
 
 Octree loadOctree(const std::string& input, std::uint64_t memoryBudget) { return io::readOctreeFile(input, memoryBudget); }
 
+ScalarField sphereField(const std::string& input, std::shared_ptr<const SphereSet> set, const io::FieldRequest& req, int depth,
+                        std::shared_ptr<const SphereSet>* spheres) {
+    if (req.hasRegion) throw UsageError("`region` applies to geographic NetCDF inputs, not to " + input);
+    if (!req.series.empty()) throw UsageError("`series` applies to DICOM inputs, not to " + input);
+    ScalarField f = sphereDistanceField(*set, (1 << std::min(depth, 12)) + 5, req.memoryBudget);
+    if (spheres) *spheres = std::move(set);
+    if (!req.variable.empty() && req.variable != f.name)
+        throw InputError(input + ": no variable '" + req.variable + "' (it has: " + f.name + ")");
+    return f;
+}
+
 ScalarField loadField(const std::string& input, const io::FieldRequest& req, int depth, std::shared_ptr<const SphereSet>* spheres) {
     if (isSphereInput(input)) {
-        if (req.hasRegion) throw UsageError("`region` applies to geographic NetCDF inputs, not to " + input);
-        if (!req.series.empty()) throw UsageError("`series` applies to DICOM inputs, not to " + input);
-        auto set = std::make_shared<const SphereSet>(loadSpheres(input, req.memoryBudget));
-        ScalarField f = sphereDistanceField(*set, (1 << std::min(depth, 12)) + 5, req.memoryBudget);
-        if (spheres) *spheres = std::move(set);
-        if (!req.variable.empty() && req.variable != f.name)
-            throw InputError(input + ": no variable '" + req.variable + "' (it has: " + f.name + ")");
-        return f;
+        return sphereField(input, std::make_shared<const SphereSet>(loadSpheres(input, req.memoryBudget)), req, depth, spheres);
     }
     if (!isAnalytic(input)) {
         io::FieldRequest at = req;  // a curvilinear grid is resampled at the octree's resolution
@@ -130,6 +135,21 @@ ScalarField loadField(const std::string& input, const io::FieldRequest& req, int
     return f;
 }
 
+namespace {
+
+/// The line of `info` that says what `depth` auto picks.
+std::string autoDepthLine(const DepthChoice& c, const std::string& indent, bool field) {
+    return indent + "depth auto: " + std::to_string(c.depth) + " (" + c.reason + "; before the `max_memory` cap" +
+           (field ? ", which depends on `iso`" : "") + ")\n";
+}
+
+/// At the default view of render (the options table's size and field of view).
+DepthChoice defaultViewDepth(const Box3& bounds, const std::string& unit) {
+    return viewDepth(bounds, int(opt::width.defaultValue), int(opt::height.defaultValue), opt::fov.defaultValue, unit);
+}
+
+}  // namespace
+
 std::string describe(const std::string& input, const io::FieldRequest& req, const io::CityRequest& city) {
     if (isOctreeInput(input)) {
         if (const char* given = fieldOptionGiven(req))
@@ -137,12 +157,40 @@ std::string describe(const std::string& input, const io::FieldRequest& req, cons
                              " (its field was fixed when it was built)");
         return io::describeOctreeFile(input, req.memoryBudget);
     }
-    if (io::isCityInput(input)) return io::describeCityInput(input, city);
+    if (io::isCityInput(input)) {
+        std::string text = io::describeCityInput(input, city);
+        io::CityRequest request = city;
+        request.maxSamples = io::latticeSamplesForDepth(Octree::kMaxDepth);  // as `depth` auto reads it
+        return text + autoDepthLine(defaultViewDepth(io::readCityModel(input, request).bounds(), "m"), "  ", false);
+    }
     if (isSphereInput(input)) {
         if (const char* given = fieldOptionGiven(req)) throw UsageError(std::string(given) + " does not apply to the sphere scene " + input);
-        return describeSpheres(input, loadSpheres(input, req.memoryBudget));
+        const SphereSet set = loadSpheres(input, req.memoryBudget);
+        return describeSpheres(input, set) + autoDepthLine(defaultViewDepth(set.bounds(), set.units), "  ", false);
     }
-    if (!isAnalytic(input)) return io::describeInput(input, req);
+    if (!isAnalytic(input)) {
+        std::string text = io::describeInput(input, req);
+        // The field as render reads it by default; of a file of several 3-D variables (which
+        // render asks `var` for), the first one, whose grid the text above describes.
+        try {
+            io::FieldRequest first = req;
+            std::string which;
+            if (first.variable.empty() && !std::filesystem::is_directory(input)) {
+                const std::vector<std::string> vars = io::listInputChoices(input).variables;
+                if (vars.size() > 1) {
+                    first.variable = vars.front();
+                    which = " of " + vars.front();
+                }
+            }
+            const DepthChoice c = depthForField(loadField(input, first, int(opt::depth.defaultValue)));
+            text += autoDepthLine({c.depth, c.reason + which}, "", true);
+        } catch (const UsageError&) {
+            throw;
+        } catch (const Error& e) {
+            text += "depth auto: not chosen, the field was not read (" + std::string(e.what()) + ")\n";
+        }
+        return text;
+    }
     ScalarField f = analytic(input, req.memoryBudget);
     auto [lo, hi] = f.validRange();
     Box3 b = f.worldBounds();
@@ -151,7 +199,7 @@ std::string describe(const std::string& input, const io::FieldRequest& req, cons
       << hi << "]\n  dims: " << f.dims.x << " x " << f.dims.y << " x " << f.dims.z << "\n  spacing: " << f.spacing.x
       << ", " << f.spacing.y << ", " << f.spacing.z << "\n  origin: " << f.origin.x << ", " << f.origin.y << ", "
       << f.origin.z << "\n  world bounds: [" << b.lo.x << ", " << b.hi.x << "] x [" << b.lo.y << ", " << b.hi.y
-      << "] x [" << b.lo.z << ", " << b.hi.z << "]\n";
+      << "] x [" << b.lo.z << ", " << b.hi.z << "]\n" << autoDepthLine(depthForField(f), "  ", true);
     return s.str();
 }
 

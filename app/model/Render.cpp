@@ -7,6 +7,7 @@
 #include "octrace/util/Parameter.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <sstream>
 
@@ -29,10 +30,12 @@ SphereShading tableSphereShading() {
 
 bool checkRenderSpec(const SurfaceSpec& surface, const RenderSpec& spec, const std::string& baseline) {
     if (spec.orthoHeight && !spec.ortho) throw UsageError(param(opt::orthoHeight.key) + " needs " + param(opt::projection.key) + " ortho");
-    if (spec.detail.level > surface.depth)
+    if (surface.depth && spec.detail.level > *surface.depth)
         throw UsageError(param(opt::level.key) + " " + std::to_string(spec.detail.level) + " is deeper than " + param(opt::depth.key) +
-                         " " + std::to_string(surface.depth));
-    const bool multires = spec.detail.lodPixels > 0.0 || (spec.detail.level >= 0 && spec.detail.level < surface.depth);
+                         " " + std::to_string(*surface.depth));
+    // `depth` auto: a `level` is taken as a cut (the renderer draws a level at or below the
+    // octree's depth as its voxels).
+    const bool multires = spec.detail.lodPixels > 0.0 || (spec.detail.level >= 0 && spec.detail.level < surface.depth.value_or(Octree::kMaxDepth));
     const RendererName chosen = resolveRendererName(spec.renderer);
     if (spec.coherence.colour && !makeRenderer(chosen.renderer)->colourCoherence())
         throw UsageError(param(opt::colourCoherence.key) + ": renderer " + spec.renderer + " does not fill pixels by colour (use " +
@@ -45,12 +48,31 @@ bool checkRenderSpec(const SurfaceSpec& surface, const RenderSpec& spec, const s
     return multires;
 }
 
-Camera frameCamera(const RenderSpec& spec, const Box3& bounds) {
-    Camera cam = Camera::framing(bounds, spec.width, spec.height, spec.fov);
+SceneView sceneView(const ScalarField& field) {
+    if (field.geographic.valid) return SceneView::NorthUp;
+    if (!field.patientLps) return SceneView::Oblique;
+    if (field.sampleCount() == 0) return SceneView::Anterior;
+    const dvec3 e = field.worldBounds().size();
+    return e.x < 0.25 * std::max({e.x, e.y, e.z}) ? SceneView::Lateral : SceneView::Anterior;
+}
+
+dvec3 viewDirection(SceneView view) {
+    switch (view) {
+    case SceneView::NorthUp: return {0.0, -std::cos(glm::radians(35.0)), std::sin(glm::radians(35.0))};
+    case SceneView::Anterior: return {0.0, -1.0, 0.0};  // LPS: anterior is -y
+    case SceneView::Lateral: return {1.0, 0.0, 0.0};    // the patient's left is +x
+    case SceneView::Oblique: break;
+    }
+    return Camera::obliqueDirection();
+}
+
+Camera frameCamera(const RenderSpec& spec, const Box3& bounds, SceneView view) {
+    const Camera framed = Camera::fit(bounds, spec.width, spec.height, spec.fov, viewDirection(view), dvec3(0.0, 0.0, 1.0));
+    Camera cam = framed;
     if (spec.lookAt) cam.lookAt = *spec.lookAt;
     if (spec.up) cam.up = *spec.up;
     if (spec.cameraPos) cam.position = *spec.cameraPos;
-    else if (spec.lookAt) cam.position = cam.lookAt + (Camera::framing(bounds, spec.width, spec.height, spec.fov).position - bounds.centre());
+    else if (spec.lookAt) cam.position = cam.lookAt + (framed.position - framed.lookAt);
     if (spec.ortho) {
         cam.validate();
         cam.frameOrthographic(bounds);
@@ -61,11 +83,28 @@ Camera frameCamera(const RenderSpec& spec, const Box3& bounds) {
     return cam;
 }
 
+vec4 contrastingBackground(const Octree& tree, const RenderSettings& settings) {
+    const vec4 white(1.0f), slate = displayToLinear(vec4(0.32f, 0.34f, 0.43f, 1.0f));
+    if (tree.voxels().empty()) return white;
+    const Albedo albedo(tree, settings);
+    const auto luminance = [](vec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
+    double sum = 0.0;
+    std::size_t n = 0;
+    tree.forEachVoxel([&](const ivec3& cell, std::uint32_t v) {
+        sum += luminance(albedo.at(v, float(cell.z) + 0.5f));
+        ++n;
+    });
+    const double y = n ? sum / double(n) : 1.0;
+    const double yWhite = 1.0, ySlate = luminance(vec3(slate));
+    const auto contrast = [](double a, double b) { return (std::max(a, b) + 0.05) / (std::min(a, b) + 0.05); };
+    return contrast(y, yWhite) >= contrast(y, ySlate) ? white : slate;
+}
+
 RenderSettings renderSettings(const SurfaceSpec& surfaceSpec, const Surface& surface, const RenderSpec& spec) {
     RenderSettings rs;
     rs.threads = surfaceSpec.threads;
-    rs.background = displayToLinear(spec.background);
     applyColour(surfaceSpec, surface, rs);
+    rs.background = spec.background ? displayToLinear(*spec.background) : contrastingBackground(surface.tree, rs);
     if (spec.light) rs.lightCamera = *spec.light;
     applyLighting(surfaceSpec, rs);
     rs.coherence = spec.coherence;

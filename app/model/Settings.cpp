@@ -142,7 +142,8 @@ const std::unordered_map<std::string_view, Entry>& setters() {
             }
         }));
         m.emplace(opt::depth.key, surface([](const std::string& v, SurfaceSpec& s) {
-            s.depth = parseInteger(opt::depth, v);
+            if (v == "auto") s.depth.reset();
+            else s.depth = parseInteger(opt::depth, v);
             s.depthGiven = true;
         }));
         const auto threads = [](const std::string& v, auto& s) { s.threads = parseInteger(opt::threads, v); };

@@ -147,12 +147,6 @@ const char* patientLetter(const dvec3& d) {
 int worldAxisOf(const dvec3& d) { return std::abs(d.x) > 0.5 ? 0 : std::abs(d.y) > 0.5 ? 1 : 2; }
 
 
-/// Rough width of a label in label heights (DejaVu Sans: about 0.6 of the height a character).
-double labelWidth(const std::string& text) {
-    int n = 0;
-    for (unsigned char ch : text) n += (ch & 0xC0) != 0x80;
-    return 0.6 * n;
-}
 
 /// Bands (label heights) between the plot's edges and the slice: left, top, right, bottom.
 struct Bands {
@@ -231,7 +225,7 @@ io::FigureSpec sliceFigureSpec(const SliceSpec& a, const ScalarField& f, const S
         }
         for (std::size_t i = 0; i < yt.world.size(); ++i) {
             const double py = offset.y + v.gridMin.y + 0.5 + (tl[aU] - yt.world[i]) * U[aU] / v.pixelSize;
-            spec.labels.push_back({{lo.x, py}, yt.text[i], -(0.5 * labelWidth(yt.text[i]) + 0.6), 0.0, 1});
+            spec.labels.push_back({{lo.x, py}, yt.text[i], -(0.5 * io::labelWidthEstimate(yt.text[i]) + 0.6), 0.0, 1});
         }
         // A map (a depth slice of a geographic grid): its coastlines, clipped to the grid.
         if (f.geographic.valid && sliceNormalAxis(v.plane) == 2 && a.figure.coastline != "none") {

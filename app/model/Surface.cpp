@@ -2,6 +2,7 @@
 
 #include "octrace/model/Figure.h"
 #include "octrace/model/Input.h"
+#include "octrace/model/Render.h"
 #include "octrace/model/SolidSpec.h"
 
 #include "octrace/build/CityVoxelizer.h"
@@ -9,6 +10,7 @@
 #include "octrace/build/Volume.h"
 #include "octrace/csg/Csg.h"
 #include "octrace/io/CityReader.h"
+#include "octrace/render/Camera.h"
 #include "octrace/render/Shading.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Log.h"
@@ -16,6 +18,7 @@
 #include "octrace/util/Parameter.h"
 #include "octrace/util/Timer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -59,6 +62,11 @@ void chooseWindow(const SurfaceSpec& a, Surface& s) {
         if (ctWindowPreset(a.windowName)) requireHounsfield(s.field, a.input, "`window` " + a.windowName);
         s.window = a.window;
         s.windowSource = "`window` " + a.windowName;
+    } else if (!a.colourGiven && a.colormap.empty() && a.colourBy.empty() && s.field.window.valid() && !a.isoPreset.empty()) {
+        // A CT preset has its tissue's colour (defaultLook): a file's window (often 40/400,
+        // soft tissue) would grey a skin surface at -500 HU nearly black.
+        log::info("`iso` " + a.isoPreset + ": coloured as " + a.isoPreset + " (`window` with a preset or the file's " +
+                  numberText(s.field.window.centre) + "," + numberText(s.field.window.width) + " greys it instead)");
     } else if (!a.colourGiven && a.colormap.empty() && a.colourBy.empty() && s.field.window.valid()) {
         s.window = s.field.window;
         s.windowSource = "the file's display window";
@@ -139,18 +147,24 @@ void buildCitySurface(const SurfaceSpec& a, Surface& s) {
     if (given)
         throw UsageError(std::string(given) + " does not apply to the city input " + a.input +
                          " (its buildings and terrain are voxelized as surfaces)");
-    if (a.terrainDepth > a.depth)
-        throw UsageError("`terrain_depth` " + std::to_string(a.terrainDepth) + " is deeper than `depth` " + std::to_string(a.depth) +
+    if (a.depth && a.terrainDepth > *a.depth)
+        throw UsageError("`terrain_depth` " + std::to_string(a.terrainDepth) + " is deeper than `depth` " + std::to_string(*a.depth) +
                          " (the terrain goes to the shallower depth, the buildings to `depth`)");
     Timer t;
     io::CityRequest request = a.city;
-    // The octree resolves the terrain no finer than its depth.
-    request.maxSamples = (1 << std::min(a.terrainDepth > 0 ? a.terrainDepth : a.depth, 12)) + 1;
+    // The octree resolves the terrain no finer than its depth (auto: not known before the model's box).
+    request.maxSamples = (1 << std::min(a.terrainDepth > 0 ? a.terrainDepth : a.depth.value_or(12), 12)) + 1;
     const CityModel model = io::readCityModel(a.input, request);
     s.loadMs = t.ms();
     for (const auto& n : model.notes) log::warning(n);
+    // The voxelizer's peak is its octree: about 4^depth boundary voxels over a box's faces, a
+    // generous 64 bytes each with the colours and the node pool.
+    s.depth = chooseGeometryDepth(a, model.bounds(), "m", [](int d) { return 64.0 * std::pow(4.0, d); });
+    if (a.terrainDepth > s.depth.depth)
+        throw UsageError("`terrain_depth` " + std::to_string(a.terrainDepth) + " is deeper than `depth` auto " +
+                         std::to_string(s.depth.depth) + " (give `depth` as a number)");
     CityBuildOptions o;
-    o.depth = a.depth;
+    o.depth = s.depth.depth;
     o.threads = a.threads;
     o.terrainDepth = a.terrainDepth;
     s.tree = voxelizeCity(model, o, &s.report);
@@ -173,7 +187,7 @@ std::string sourceDescription(const std::string& input, const ScalarField& f) {
 ScalarField loadColourBy(const SurfaceSpec& a, const io::FieldRequest& request, const ScalarField& field) {
     io::FieldRequest second = request;
     second.variable = a.colourBy;
-    ScalarField by = loadField(a.input, second, a.depth);
+    ScalarField by = loadField(a.input, second, readDepth(a));
     if (by.dims != field.dims || by.origin != field.origin || by.spacing != field.spacing || by.coords != field.coords ||
         by.direction != field.direction)
         throw InputError(a.input + ": `colour_by` " + a.colourBy + " is not on the grid of '" + field.name +
@@ -230,8 +244,75 @@ void readSurfaceField(const SurfaceSpec& a, Surface& s) {
     io::FieldRequest request = a.request;
     request.memoryBudget = memoryBudget(a);
     Timer t;
-    s.field = loadField(a.input, request, a.depth, &s.spheres);
+    if (isSphereInput(a.input) && !a.depth) {
+        // Auto: the spheres' box gives the depth, which gives the distance field's samples.
+        auto set = std::make_shared<const SphereSet>(loadSpheres(a.input, request.memoryBudget));
+        // The distance field (2^d + 5 samples a side) and the builder's copy and pyramid of it:
+        // about 10 bytes a sample.
+        s.depth = chooseGeometryDepth(a, set->bounds(), set->units,
+                                      [](int d) { return 10.0 * std::pow(std::ldexp(1.0, d) + 5.0, 3.0); });
+        s.field = sphereField(a.input, std::move(set), request, s.depth.depth, &s.spheres);
+    } else {
+        s.field = loadField(a.input, request, readDepth(a), &s.spheres);
+    }
     s.loadMs = t.ms();
+}
+
+int readDepth(const SurfaceSpec& a) { return a.depth.value_or(int(opt::depth.defaultValue)); }
+
+namespace {
+
+void sayAutoDepth(const DepthChoice& c, const std::string& cap) {
+    log::info("`depth` auto: " + std::to_string(c.depth) + ", " + c.reason + cap + " (give `depth` N for another)");
+}
+
+}  // namespace
+
+DepthChoice chooseDepth(const SurfaceSpec& a, const ScalarField& field, double iso) {
+    if (a.depth) return {*a.depth, "given"};
+    DepthChoice c = depthForField(field);
+    const std::uint64_t budget = memoryBudget(a);
+    const std::vector<BuildMemoryEstimate> est = estimateBuildMemory(field, iso, c.depth, a.threads);
+    std::string cap;
+    int d = c.depth;
+    while (d > 1 && est[std::size_t(d - 1)].total() > budget) --d;
+    if (d < c.depth) {
+        cap = "; capped at " + std::to_string(d) + " by `max_memory` " + formatBytes(budget) + " (depth " +
+              std::to_string(c.depth) + " would need about " + formatBytes(est[std::size_t(c.depth - 1)].total()) + ")";
+        c.reason += cap;
+        c.depth = d;
+    }
+    sayAutoDepth(c, "");
+    return c;
+}
+
+DepthChoice viewDepth(const Box3& bounds, int width, int height, double fov, const std::string& unit) {
+    const dvec3 e = bounds.size();
+    const double side = std::max({e.x, e.y, e.z});
+    if (!(side > 0.0) || !std::isfinite(side)) return {int(opt::depth.defaultValue), "the box has no extent"};
+    RenderSpec defaultView;
+    defaultView.width = width;
+    defaultView.height = height;
+    defaultView.fov = fov;
+    DepthChoice c = depthForPixel(side, frameCamera(defaultView, bounds).pixelFootprint(), unit);
+    c.reason += " at " + std::to_string(width) + "x" + std::to_string(height);
+    return c;
+}
+
+DepthChoice chooseGeometryDepth(const SurfaceSpec& a, const Box3& bounds, const std::string& unit,
+                                const std::function<double(int)>& bytesAtDepth) {
+    if (a.depth) return {*a.depth, "given"};
+    DepthChoice c = viewDepth(bounds, a.viewWidth, a.viewHeight, a.viewFov, unit);
+    const std::uint64_t budget = memoryBudget(a);
+    int d = c.depth;
+    while (d > 1 && bytesAtDepth(d) > double(budget)) --d;
+    if (d < c.depth) {
+        c.reason += "; capped at " + std::to_string(d) + " by `max_memory` " + formatBytes(budget) + " (depth " +
+                    std::to_string(c.depth) + " would need about " + formatBytes(std::uint64_t(bytesAtDepth(c.depth))) + ")";
+        c.depth = d;
+    }
+    sayAutoDepth(c, "");
+    return c;
 }
 
 void buildFromField(const SurfaceSpec& a, Surface& s, const BuildHooks& hooks) {
@@ -272,8 +353,10 @@ void buildFromField(const SurfaceSpec& a, Surface& s, const BuildHooks& hooks) {
         if (a.extendDown) extendColumnsDown(*colourBy);
     }
 
+    // A sphere input's depth was chosen with its distance field (readSurfaceField).
+    if (!s.spheres || a.depth || s.depth.depth == 0) s.depth = chooseDepth(a, s.field, s.iso);
     BuildOptions bo;
-    bo.depth = a.depth;
+    bo.depth = s.depth.depth;
     bo.iso = s.iso;
     bo.threads = a.threads;
     bo.progress = hooks.progress;
@@ -315,9 +398,30 @@ void buildFromField(const SurfaceSpec& a, Surface& s, const BuildHooks& hooks) {
     }
 }
 
+namespace {
+
+/// The look of a surface that no colour setting colours (`colour`, `colormap`, `colour_by`, a
+/// display window, its own per-voxel colours): a CT preset's tissue colour, skin for another
+/// patient volume, else the colour map by height.
+void applyDefaultLook(const SurfaceSpec& a, const Surface& s, RenderSettings& settings) {
+    if (a.colourGiven || !a.colormap.empty() || !a.colourBy.empty() || s.window.valid() || !s.tree.colours().empty() ||
+        !s.tree.voxelValues().empty())
+        return;
+    if (const CtIsoPreset* p = findCtIsoPreset(a.isoPreset)) {
+        settings.colour = vec3(displayToLinear(vec4(p->colour, 1.0f)));
+    } else if (s.field.patientLps) {
+        settings.colour = vec3(displayToLinear(vec4(findCtIsoPreset("skin")->colour, 1.0f)));
+    } else {
+        settings.colormap = kHeightColormap;
+    }
+}
+
+}  // namespace
+
 void applyColour(const SurfaceSpec& a, const Surface& s, RenderSettings& settings) {
     settings.colour = vec3(displayToLinear(vec4(a.colour, 1.0f)));
     settings.colormap = a.colormap;
+    applyDefaultLook(a, s, settings);
     settings.voxelColours = !a.colourGiven;
     settings.window = s.window;
     settings.invertedGrey = s.invertedGrey;

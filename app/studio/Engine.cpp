@@ -149,13 +149,13 @@ void Engine::open(const StudioState& state) {
                 info.variable = QString::fromStdString(surface->tree.fieldName());
                 info.units = QString::fromStdString(surface->tree.fieldUnits());
                 info.minimum = info.maximum = surface->iso;
-                auto tree = std::make_shared<const Octree>(std::move(surface->tree));
-                handBack(gen, [this, info, tree, surface, subject = model::figureSubject(*surface, state.input)] {
+                handBack(gen, [this, info, surface = std::shared_ptr<const model::Surface>(surface),
+                               subject = model::figureSubject(*surface, state.input),
+                               depthAuto = !state.depth && !model::isOctreeInput(state.input)] {
                     info_ = info;
                     base_.reset();
                     sliceField_.reset();
-                    setSurface(tree, *surface, subject, tree->depth);
-                    valuesColormap_.clear();
+                    setSurface(surface, subject, depthAuto);
                     emit inputLoaded();
                     emit surfaceBuilt();
                 });
@@ -206,7 +206,7 @@ void Engine::open(const StudioState& state) {
                 info_ = info;
                 base_ = base;
                 sliceField_ = sliceField;
-                tree_.reset();
+                surface_.reset();
                 emit inputLoaded();
                 startBuild(read);
             });
@@ -242,13 +242,12 @@ void Engine::rebuild(const StudioState& state) {
     startBuild(state);
 }
 
-void Engine::setSurface(std::shared_ptr<const Octree> tree, const model::Surface& look, model::FigureSubject subject, int depth) {
-    tree_ = std::move(tree);
-    window_ = look.window;
-    invertedGrey_ = look.invertedGrey;
+void Engine::setSurface(std::shared_ptr<const model::Surface> surface, model::FigureSubject subject, bool depthAuto) {
+    surface_ = std::move(surface);
     iso_ = subject.iso;
     subject_ = std::move(subject);
-    depth_ = depth;
+    depth_ = surface_->tree.depth;
+    depthAuto_ = depthAuto;
     building_ = false;
 }
 
@@ -275,25 +274,48 @@ void Engine::startBuild(const StudioState& state) {
             hooks.cancelled = [&stop] { return stop.load(); };
             model::buildFromField(surfaceArgs(state), *surface, hooks);
             surface->tree.computeSummaries();
-            // The subject now: the field goes back to `base` when this job ends.
+            // The subject now. The surface kept has the field's grid and kind without its
+            // samples and mask (`base` keeps them), which is what its look and framing read
+            // (model::renderSettings, model::sceneView), as render reads them of its field.
             model::FigureSubject subject = model::figureSubject(*surface, state.input);
-            // The colour map the CLI takes for voxel values (`colour_by`) when none is chosen.
-            model::SurfaceSpec uncoloured = surfaceArgs(state);
-            uncoloured.colormap.clear();
-            RenderSettings values;
-            model::applyColour(uncoloured, *surface, values);
-            auto tree = std::make_shared<const Octree>(std::move(surface->tree));
-            handBack(gen, [this, tree, surface, subject = std::move(subject), depth = state.depth, map = values.colormap] {
-                setSurface(tree, *surface, subject, depth);
-                valuesColormap_ = map;
+            surface->field.values = SampleBuffer();
+            surface->field.valid.clear();
+            handBack(gen, [this, surface = std::shared_ptr<const model::Surface>(surface), subject = std::move(subject),
+                           depthAuto = !state.depth] {
+                setSurface(surface, subject, depthAuto);
                 emit surfaceBuilt();
             });
         });
     });
 }
 
+namespace {
+Engine::ExportView exportViewOf(const StudioState& state, const model::Surface& surface, const model::FigureSubject& subject,
+                                const RenderSettings& rs, int width, int height) {
+    Engine::ExportView out;
+    out.layout = figureLayoutFor(state, width, height);
+    const Box3 bounds = surface.tree.occupiedBounds();
+    const model::SceneView view = model::sceneView(surface.field);
+    if (out.layout)
+        out.layout = model::fitFigureLayout(*out.layout, figureArgs(state), subject, surface.tree, rs, renderSpec(state, width, height),
+                                            bounds, view);
+    out.camera = out.layout ? cameraFor(state, bounds, view, out.layout->plotW, out.layout->plotH) : cameraFor(state, bounds, view, width, height);
+    return out;
+}
+}  // namespace
+
+Engine::ExportView Engine::exportView(const StudioState& state, int width, int height) const {
+    if (!surface_) throw UsageError("nothing to export: open an input first");
+    return exportViewOf(state, *surface_, subject_, settingsFor(state, state.transparent), width, height);
+}
+
+RenderSettings Engine::settingsFor(const StudioState& state, bool transparent) const {
+    if (surface_) return renderSettingsFor(state, transparent, *surface_);
+    return renderSettingsFor(state, transparent, model::Surface());
+}
+
 void Engine::requestFrame(const FrameRequest& request) {
-    auto tree = tree_;
+    auto tree = this->tree();
     if (!tree || request.renderers.empty()) return;
     // A preview does not cancel the frame being rendered: a render runs to its end whatever the
     // flag says (it is read between panes), so cancelling only threw the finished frame away.
@@ -365,30 +387,29 @@ void Engine::requestFrame(const FrameRequest& request) {
 }
 
 void Engine::exportFigure(const StudioState& state, const QString& path, int width, int height) {
-    auto tree = tree_;
-    if (!tree) {
+    auto surface = surface_;
+    if (!surface) {
         emit failed(tr("Nothing to export: open an input first"));
         return;
     }
     emit progress(tr("Exporting %1x%2").arg(width).arg(height), -1.0);
-    exportWorker_.post([this, tree, state, path, width, height, window = window_, inverted = invertedGrey_,
-                        valuesColormap = valuesColormap_,
-                        subject = subject_](const std::atomic<bool>&) {
+    exportWorker_.post([this, surface, state, path, width, height, subject = subject_](const std::atomic<bool>&) {
+        const Octree* tree = &surface->tree;
         try {
             if (width < 1 || height < 1 || width > kMaxExportSide || height > kMaxExportSide)
                 throw UsageError("export size " + std::to_string(width) + "x" + std::to_string(height) +
                                  ": each side must be 1.." + std::to_string(kMaxExportSide) + " pixels");
             if (state.figure) model::checkFigureFormat(path.toStdString());
             // The figure's layout first: the plot is the part of the image that is rendered.
-            std::optional<io::FigureLayout> layout = figureLayoutFor(state, width, height);
-            const std::uint64_t bytes = Frame::bytesFor(width, height) * (layout ? 2 : 1) + std::uint64_t(width) * std::uint64_t(height) * 24;
+            const std::optional<io::FigureLayout> first = figureLayoutFor(state, width, height);
+            const std::uint64_t bytes = Frame::bytesFor(width, height) * (first ? 2 : 1) + std::uint64_t(width) * std::uint64_t(height) * 24;
             checkMemoryBudget("exporting " + std::to_string(width) + "x" + std::to_string(height), bytes,
                               defaultMemoryBudget());
-            const RenderSettings rs = renderSettingsFor(state, state.transparent, window, inverted, valuesColormap);
-            const Box3 bounds = tree->occupiedBounds();
+            const RenderSettings rs = renderSettingsFor(state, state.transparent, *surface);
             // The margins the figure's text needs, as render --figure fits them.
-            if (layout) layout = model::fitFigureLayout(*layout, figureArgs(state), subject, *tree, rs, renderSpec(state, width, height), bounds);
-            Camera cam = layout ? cameraFor(state, bounds, layout->plotW, layout->plotH) : cameraFor(state, bounds, width, height);
+            const ExportView v = exportViewOf(state, *surface, subject, rs, width, height);
+            const std::optional<io::FigureLayout>& layout = v.layout;
+            Camera cam = v.camera;
             cam.validate();
             Frame frame;
             const RenderStats st = model::renderFrame(*tree, cam, rs, state.renderer, frame);

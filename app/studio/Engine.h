@@ -104,20 +104,35 @@ public:
     void exportFigure(const StudioState& state, const QString& path, int width, int height);
 
     const InputInfo& info() const { return info_; }
-    std::shared_ptr<const Octree> tree() const { return tree_; }
+    /// The surface built, its octree and what the default look reads (its display window, its
+    /// field's kind and grid, without the samples, which stay with the field read); null before
+    /// the first build.
+    std::shared_ptr<const model::Surface> surface() const { return surface_; }
+    /// The surface's octree (part of surface()), or null.
+    std::shared_ptr<const Octree> tree() const { return surface_ ? std::shared_ptr<const Octree>(surface_, &surface_->tree) : nullptr; }
+    /// How the default camera sees the surface (model::sceneView of its field), as render does.
+    model::SceneView view() const { return surface_ ? model::sceneView(surface_->field) : model::SceneView::Oblique; }
     double iso() const { return iso_; }
     int depth() const { return depth_; }
+    /// The `depth` setting the surface was built with: unset when auto chose depth().
+    std::optional<int> depthSetting() const { return depthAuto_ ? std::nullopt : std::optional<int>(depth_); }
     bool hasField() const { return bool(base_); }
     /// The field read, for the slice panes (SliceViews.h): the one the builds share their samples
     /// with (no second copy of them); null for inputs without a field (octree files, city models).
     std::shared_ptr<const ScalarField> field() const { return sliceField_; }
-    /// The display window the build chose (model::Surface::window), and its inversion.
-    const ValueWindow& window() const { return window_; }
-    bool invertedGrey() const { return invertedGrey_; }
-    /// The render settings of `state` for the current surface.
-    RenderSettings settingsFor(const StudioState& state, bool transparent) const {
-        return renderSettingsFor(state, transparent, window_, invertedGrey_, valuesColormap_);
-    }
+    /// The display window the build chose (model::Surface::window).
+    ValueWindow window() const { return surface_ ? surface_->window : ValueWindow{}; }
+    /// The render settings of `state` for the current surface (renderSettingsFor).
+    RenderSettings settingsFor(const StudioState& state, bool transparent) const;
+    /// What an export of `state` at width x height renders: the figure's layout with margins
+    /// fitted to its text (as render --figure fits them; none without state.figure) and the
+    /// camera at the size of the plot (or the whole image), cameraFor. Throws UsageError as
+    /// figureLayoutFor; needs a surface.
+    struct ExportView {
+        std::optional<io::FigureLayout> layout;
+        Camera camera;
+    };
+    ExportView exportView(const StudioState& state, int width, int height) const;
 
 signals:
     /// fraction in [0,1], or < 0 when unknown.
@@ -131,7 +146,7 @@ signals:
 
 private:
     void startBuild(const StudioState& state);
-    void setSurface(std::shared_ptr<const Octree> tree, const model::Surface& look, model::FigureSubject subject, int depth);
+    void setSurface(std::shared_ptr<const model::Surface> surface, model::FigureSubject subject, bool depthAuto);
     /// Runs `work` (a build job's body, on the worker) and hands a cancellation or an error
     /// back to the GUI thread (cancelled / failed) while `gen` is still the current build.
     void runBuildJob(unsigned gen, const std::function<void()>& work);
@@ -141,12 +156,10 @@ private:
     InputInfo info_;
     std::shared_ptr<model::Surface> base_;  // holds the field read (its samples shared with each build)
     std::shared_ptr<const ScalarField> sliceField_;
-    ValueWindow window_;
-    bool invertedGrey_ = false;
-    std::string valuesColormap_;  // model::applyColour's colour map of the voxel values (colour_by)
-    std::shared_ptr<const Octree> tree_;
+    std::shared_ptr<const model::Surface> surface_;
     double iso_ = 0.0;
     int depth_ = 0;
+    bool depthAuto_ = false;
     model::FigureSubject subject_;  // what an exported figure says about the data
     bool building_ = false;
     unsigned generation_ = 0;  // the open/build whose results still count

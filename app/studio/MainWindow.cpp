@@ -207,11 +207,8 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
         cancelButton_->setEnabled(false);
         if (engine_.tree()) {  // the controls show the surface that stays
             state_.iso = engine_.iso();
-            state_.depth = engine_.depth();
             setIsoControls(engine_.iso());
-            updating_ = true;
-            depthSpin_->setValue(engine_.depth());
-            updating_ = false;
+            showBuiltDepth();
         }
         showMessage(tr("Cancelled; the previous surface stays"));
     });
@@ -418,14 +415,29 @@ QWidget* MainWindow::buildControls() {
     depthSpin_ = new QSpinBox(surfBox);
     depthSpin_->setObjectName(QStringLiteral("depthSpin"));
     configure(depthSpin_, model::opt::depth);
-    depthSpin_->setValue(state_.depth);
+    depthSpin_->setValue(state_.depth.value_or(int(model::opt::depth.defaultValue)));
     depthSpin_->setKeyboardTracking(false);
+    depthAutoCheck_ = new QCheckBox(tr("auto"), surfBox);
+    depthAutoCheck_->setObjectName(QStringLiteral("depthAuto"));
+    depthAutoCheck_->setToolTip(QString::fromStdString(model::sayForStudio(model::opt::depth.defaultText)));
+    depthAutoCheck_->setChecked(!state_.depth);
     connect(depthSpin_, &QSpinBox::valueChanged, this, [this](int d) {
         if (updating_) return;
-        state_.depth = d;
+        state_.depth = d;  // a depth picked: no longer auto
+        updating_ = true;
+        depthAutoCheck_->setChecked(false);
+        updating_ = false;
         scheduleBuild();
     });
-    surfForm->addRow(tr("Depth"), depthSpin_);
+    connect(depthAutoCheck_, &QCheckBox::toggled, this, [this](bool on) {
+        if (updating_) return;
+        state_.depth = on ? std::nullopt : std::optional<int>(depthSpin_->value());
+        scheduleBuild();
+    });
+    auto* depthRow = new QHBoxLayout;
+    depthRow->addWidget(depthSpin_, 1);
+    depthRow->addWidget(depthAutoCheck_);
+    surfForm->addRow(tr("Depth"), depthRow);
     layout->addWidget(surfBox);
     layout->addWidget(buildCutControls(w));
 
@@ -861,7 +873,8 @@ void MainWindow::keepSlices() {
 
 void MainWindow::showState() {
     updating_ = true;
-    depthSpin_->setValue(state_.depth);
+    if (state_.depth) depthSpin_->setValue(*state_.depth);
+    depthAutoCheck_->setChecked(!state_.depth);
     rendererCombo_->setCurrentText(QString::fromStdString(state_.renderer));
     secondCombo_->setCurrentText(QString::fromStdString(state_.secondRenderer));
     fovSpin_->setValue(state_.fov);
@@ -974,6 +987,7 @@ void MainWindow::onInputLoaded() {
             model->item(i)->setToolTip(inside ? QString() : tr("outside the values read, %1 .. %2 HU").arg(in.minimum).arg(in.maximum));
         }
     depthSpin_->setEnabled(!in.octreeFile);
+    depthAutoCheck_->setEnabled(!in.octreeFile);
     rangeLabel_->setText(in.octreeFile ? tr("fixed by the octree file")
                                        : QStringLiteral("%1 .. %2 %3").arg(in.minimum).arg(in.maximum).arg(in.units));
     histogram_->setHistogram(in.histogram, in.minimum, in.maximum);
@@ -998,17 +1012,22 @@ void MainWindow::onSurfaceBuilt() {
     progress_->hide();
     cancelButton_->setEnabled(false);
     state_.iso = engine_.iso();
-    state_.depth = engine_.depth();
     setIsoControls(engine_.iso());
-    updating_ = true;
-    depthSpin_->setValue(engine_.depth());
-    updating_ = false;
+    showBuiltDepth();
     const auto tree = engine_.tree();
     showMessage(tr("Surface at %1: %2 boundary voxels at depth %3")
                     .arg(engine_.iso())
                     .arg(tree->boundaryVoxels())
                     .arg(tree->depth));
     requestRender(false);
+}
+
+void MainWindow::showBuiltDepth() {
+    state_.depth = engine_.depthSetting();
+    updating_ = true;
+    depthSpin_->setValue(engine_.depth());
+    depthAutoCheck_->setChecked(!state_.depth);
+    updating_ = false;
 }
 
 void MainWindow::setIsoControls(double iso) {
@@ -1035,7 +1054,7 @@ QSize MainWindow::paneSize() const { return views_[0]->size() * views_[0]->devic
 Camera MainWindow::viewCamera() const {
     const QSize s = paneSize();
     auto tree = engine_.tree();
-    return cameraFor(state_, tree ? tree->occupiedBounds() : Box3{dvec3(-1.0), dvec3(1.0)}, std::max(1, s.width()),
+    return cameraFor(state_, tree ? tree->occupiedBounds() : Box3{dvec3(-1.0), dvec3(1.0)}, engine_.view(), std::max(1, s.width()),
                      std::max(1, s.height()));
 }
 
@@ -1075,7 +1094,7 @@ void MainWindow::updateSurfelView() {
         surfelView_->setSurfels(surfels_);
     }
     const qreal dpr = surfelView_->devicePixelRatioF();
-    surfelView_->setView(cameraFor(state_, tree->occupiedBounds(), std::max(1, int(surfelView_->width() * dpr)),
+    surfelView_->setView(cameraFor(state_, tree->occupiedBounds(), engine_.view(), std::max(1, int(surfelView_->width() * dpr)),
                                    std::max(1, int(surfelView_->height() * dpr))),
                          rs);
 }
@@ -1134,12 +1153,16 @@ void MainWindow::showCrosshair() {
 QStringList MainWindow::commandLine(const QString& output, int width, int height) const {
     auto tree = engine_.tree();
     StudioState s = state_;
+    // `depth` auto: the depth it chose for the surface shown (a city's or a sphere scene's
+    // depends on the view's size, which the studio's build takes from the table's default).
+    if (!s.depth && tree) s.depth = engine_.depth();
     const Box3 bounds = tree ? tree->occupiedBounds() : Box3{dvec3(-1.0), dvec3(1.0)};
     Camera cam;
     try {
-        cam = exportCamera(s, bounds, width, height);
+        if (tree) cam = engine_.exportView(s, width, height).camera;  // the export's, its figure fitted to its text
+        else cam = cameraFor(s, bounds, engine_.view(), width, height);
     } catch (const UsageError&) {
-        cam = cameraFor(s, bounds, width, height);  // a figure too small for its text: the CLI says so too
+        cam = cameraFor(s, bounds, engine_.view(), width, height);  // a figure too small for its text: the CLI says so too
     }
     QStringList out;
     for (const auto& a : renderArguments(s, cam, engine_.iso(), output.toStdString(), width, height)) out << QString::fromStdString(a);

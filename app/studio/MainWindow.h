@@ -99,6 +99,9 @@ private:
     void onSurfaceBuilt();
     void onFrame(const FrameResult& r);
     void setIsoControls(double iso);
+    /// The depth controls after a build or a cancel: the engine's surface's depth, and whether
+    /// auto chose it (the state's depth as the surface was built).
+    void showBuiltDepth();
     void isoEdited(double iso);
     void scheduleBuild();
     void requestRender(bool preview);
@@ -192,6 +195,7 @@ private:
     QSlider* isoSlider_ = nullptr;
     QDoubleSpinBox *isoSpin_ = nullptr, *fovSpin_ = nullptr, *lightSpin_[3] = {nullptr, nullptr, nullptr};
     QSpinBox* depthSpin_ = nullptr;
+    QCheckBox* depthAutoCheck_ = nullptr;  ///< `depth` auto: the spin box shows what it chose
     QProgressBar* progress_ = nullptr;
     QPushButton* cancelButton_ = nullptr;
     QPlainTextEdit* messages_ = nullptr;

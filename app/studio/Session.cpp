@@ -46,6 +46,8 @@ public:
     Reader(const QJsonObject& o, QString path) : o_(o), path_(std::move(path)) {}
 
     bool has(const char* key) const { return o_.contains(QLatin1String(key)) && !o_.value(QLatin1String(key)).isNull(); }
+    /// Whether `key` holds the string `word`.
+    bool isText(const char* key, const char* word) const { return o_.value(QLatin1String(key)) == QJsonValue(QLatin1String(word)); }
     [[noreturn]] void fail(const char* key, const QString& what) const {
         throw InputError((path_ + QLatin1String(key) + QStringLiteral(": ") + what).toStdString());
     }
@@ -184,6 +186,7 @@ QByteArray sessionJson(const StudioState& s) {
                       {"series", QString::fromStdString(s.series)}};
     const auto member = [](const model::Option& o) { return QString::fromStdString(model::sessionMember(o)); };
     QJsonObject surface{{"iso", s.iso ? QJsonValue(*s.iso) : QJsonValue()},
+                        {member(model::opt::depth), s.depth ? QJsonValue(*s.depth) : QJsonValue("auto")},
                         {"cut", QString::fromStdString(s.cut)},
                         {"clip", s.clip}};
     QJsonObject renderers{{"main", QString::fromStdString(s.renderer)},
@@ -199,8 +202,8 @@ QByteArray sessionJson(const StudioState& s) {
                         {"colour", array(s.colour)},
                         {"colormap", QString::fromStdString(s.colormap)},
                         {"window", QString::fromStdString(s.window)},
-                        {"background", array(s.background)},
                         {member(model::opt::lighting), QString::fromStdString(s.lighting)}};
+    if (s.background) shading.insert("background", array(*s.background));  // absent: contrasting with the surface
     QJsonObject exportSettings{{"transparent", s.transparent},
                                {member(model::opt::title), QString::fromStdString(s.title)}};
     // The bound settings (StudioState.h), each under its group and member of the table.
@@ -302,6 +305,13 @@ StudioState parseSession(const QByteArray& json, const QString& baseFolder) {
 
     const Reader surface = root.object("surface");
     if (surface.has("iso")) s.iso = surface.number("iso", -1e300, 1e300);
+    // `depth`: a number in the table's range, or "auto" (absent: auto, the table's default).
+    const std::string depthMember = model::sessionMember(model::opt::depth);
+    if (surface.has(depthMember.c_str()) && !surface.isText(depthMember.c_str(), "auto")) {
+        int depth = 0;
+        surface.setting(model::opt::depth, depth);
+        s.depth = depth;
+    }
     surface.text("cut", s.cut);
     if (!s.cut.empty()) {
         try {
@@ -360,7 +370,11 @@ StudioState parseSession(const QByteArray& json, const QString& baseFolder) {
         if (!s.colormap.empty() && s.window != "none")
             shading.fail("window", QStringLiteral("a display window and a colour map both colour the surface: give one"));
     }
-    shading.colour("background", s.background);
+    if (shading.has("background")) {
+        vec4 background;
+        shading.colour("background", background);
+        s.background = background;
+    }
     shading.text("lighting", s.lighting);
     if (!s.lighting.empty() && s.lighting != "baked" && s.lighting != "dynamic")
         shading.fail("lighting", QStringLiteral("expected \"\", \"baked\" or \"dynamic\", got '%1'").arg(QString::fromStdString(s.lighting)));

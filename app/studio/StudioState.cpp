@@ -25,7 +25,6 @@ std::string triple(double a, double b, double c) { return number(a) + "," + numb
 std::span<const Binding> bindings() {
     using E = Binding::Effect;
     static const Binding table[] = {
-        {&model::opt::depth, &StudioState::depth, E::Rebuild},
         {&model::opt::colourCoherence, &StudioState::colourCoherence, E::Render, true},
         {&model::opt::colourTolerance, &StudioState::colourTolerance, E::Render, true},
         {&model::opt::colourFillBackground, &StudioState::colourFillsBackground, E::Render, true},
@@ -85,8 +84,8 @@ model::RenderSpec renderSpec(const StudioState& state, int width, int height) {
     return r;
 }
 
-Camera cameraFor(const StudioState& state, const Box3& surfaceBounds, int width, int height) {
-    return model::frameCamera(renderSpec(state, width, height), surfaceBounds);
+Camera cameraFor(const StudioState& state, const Box3& surfaceBounds, model::SceneView view, int width, int height) {
+    return model::frameCamera(renderSpec(state, width, height), surfaceBounds, view);
 }
 
 model::SurfaceSpec surfaceArgs(const StudioState& state) {
@@ -133,21 +132,15 @@ std::optional<io::FigureLayout> figureLayoutFor(const StudioState& state, int wi
     return model::figureLayout(figureArgs(state), width, height, model::figureHasColourBar(surfaceArgs(state)));
 }
 
-Camera exportCamera(const StudioState& state, const Box3& surfaceBounds, int width, int height) {
-    if (const auto layout = figureLayoutFor(state, width, height)) return cameraFor(state, surfaceBounds, layout->plotW, layout->plotH);
-    return cameraFor(state, surfaceBounds, width, height);
-}
+namespace {
+/// The background a transparent export gives the CLI: the state's, else white, with alpha 0.
+vec4 transparentBackground(const StudioState& state) { return vec4(vec3(state.background.value_or(vec4(1.0f))), 0.0f); }
+}  // namespace
 
-RenderSettings renderSettingsFor(const StudioState& state, bool transparent, const ValueWindow& window, bool invertedGrey,
-                                 const std::string& valuesColormap) {
-    model::Surface look;  // what the settings read of the surface built: its display window
-    look.window = window;
-    look.invertedGrey = invertedGrey;
+RenderSettings renderSettingsFor(const StudioState& state, bool transparent, const model::Surface& surface) {
     model::RenderSpec spec = renderSpec(state, 1, 1);
-    if (transparent) spec.background.a = 0.0f;
-    RenderSettings rs = model::renderSettings(surfaceArgs(state), look, spec);
-    if (rs.colormap.empty()) rs.colormap = valuesColormap;
-    return rs;
+    if (transparent) spec.background = transparentBackground(state);
+    return model::renderSettings(surfaceArgs(state), surface, spec);
 }
 
 std::vector<std::string> inputArguments(const StudioState& state, std::string_view command) {
@@ -169,7 +162,7 @@ std::vector<std::string> renderArguments(const StudioState& state, const Camera&
     std::vector<std::string> args = inputArguments(state, "render");
     // An octree file fixes the iso value and the depth; a city model has no iso value.
     if (!model::isOctreeInput(state.input) && !io::isCityInput(state.input)) args.insert(args.end(), {"--iso", number(iso)});
-    if (!model::isOctreeInput(state.input)) args.insert(args.end(), {"--depth", std::to_string(state.depth)});
+    if (!model::isOctreeInput(state.input) && state.depth) args.insert(args.end(), {"--depth", std::to_string(*state.depth)});
     if (!state.cut.empty()) args.insert(args.end(), {"--cut", state.cut});
     if (state.clip && !state.cut.empty()) args.push_back("--clip");
     if (!state.lighting.empty()) args.insert(args.end(), {"--lighting", state.lighting});
@@ -180,13 +173,14 @@ std::vector<std::string> renderArguments(const StudioState& state, const Camera&
         args.insert(args.end(), {"--shadows", "on"});
     }
     if (state.ambient != StudioState().ambient) args.insert(args.end(), {"--ambient", number(state.ambient)});
-    args.insert(args.end(), {"--renderer", state.renderer,
-                             "--size", std::to_string(width) + "x" + std::to_string(height),
-                             "--camera-pos", triple(camera.position.x, camera.position.y, camera.position.z),
-                             "--look-at", triple(camera.lookAt.x, camera.lookAt.y, camera.lookAt.z),
-                             "--up", triple(camera.up.x, camera.up.y, camera.up.z),
-                             "--fov", number(camera.fovYDegrees),
-                             "--light", triple(state.light.x, state.light.y, state.light.z)});
+    args.insert(args.end(), {"--renderer", state.renderer, "--size", std::to_string(width) + "x" + std::to_string(height)});
+    // The camera when the state has its own; else render's default framing, the studio's too
+    // (model::frameCamera at the plot's size as the figure's text leaves it).
+    if (state.cameraSet)
+        args.insert(args.end(), {"--camera-pos", triple(camera.position.x, camera.position.y, camera.position.z),
+                                 "--look-at", triple(camera.lookAt.x, camera.lookAt.y, camera.lookAt.z),
+                                 "--up", triple(camera.up.x, camera.up.y, camera.up.z)});
+    args.insert(args.end(), {"--fov", number(camera.fovYDegrees), "--light", triple(state.light.x, state.light.y, state.light.z)});
     // The coherence options, where they differ from the defaults and the renderer has them.
     const StudioState defaults;
     const RendererName chosen = resolveRendererName(state.renderer);
@@ -203,8 +197,10 @@ std::vector<std::string> renderArguments(const StudioState& state, const Camera&
     if (colourGiven(state)) args.insert(args.end(), {"--colour", triple(state.colour.r, state.colour.g, state.colour.b)});
     if (!state.colormap.empty()) args.insert(args.end(), {"--colormap", state.colormap});
     if (!state.window.empty()) args.insert(args.end(), {"--window", state.window});
-    const vec4& b = state.background;
-    args.insert(args.end(), {"--background", triple(b.r, b.g, b.b) + "," + number(state.transparent ? 0.0 : b.a)});
+    if (state.background || state.transparent) {
+        const vec4 b = state.transparent ? transparentBackground(state) : *state.background;
+        args.insert(args.end(), {"--background", triple(b.r, b.g, b.b) + "," + number(b.a)});
+    }
     if (state.figure) {
         args.insert(args.end(), {"--figure", "--dpi", std::to_string(state.dpi)});
         if (!state.title.empty()) args.insert(args.end(), {"--title", state.title});

@@ -35,7 +35,9 @@ struct StudioState {
     std::map<std::string, std::string> settings;
     // Surface.
     std::optional<double> iso;  ///< empty: the middle of the valid range
-    int depth = int(model::opt::depth.defaultValue);
+    /// `depth`; unset: auto, the table's default, chosen by the build as render chooses it
+    /// (model::chooseDepth, chooseGeometryDepth).
+    std::optional<int> depth;
     // Renderers: the main view's, and the second one of the split view.
     std::string renderer = model::opt::renderer.defaultText;
     std::string secondRenderer = "direct";  ///< a renderer's name, or kOpenGlPane
@@ -58,7 +60,9 @@ struct StudioState {
     /// --window: "" (the file's own display window, if any, unless a colour map is chosen),
     /// "none", or a CT preset (CtPresets.h).
     std::string window;
-    vec4 background{1.0f, 1.0f, 1.0f, 1.0f};  ///< sRGB, alpha
+    /// sRGB, alpha; unset: the CLI's default, the background contrasting with the surface
+    /// (model::contrastingBackground), white behind a transparent export.
+    std::optional<vec4> background;
     // Lighting (the CLI's --ambient, --lighting, --bake-ao, --bake-shadows, --shadows).
     double ambient = model::opt::ambient.defaultValue;  ///< share of light independent of the normal; the light's is 1 - ambient
     /// "" (baked light when the octree has it, else dynamic), "baked" (baked at build when the
@@ -133,28 +137,25 @@ bool colourGiven(const StudioState& state);
 model::RenderSpec renderSpec(const StudioState& state, int width, int height);
 
 /// The camera of `state` at width x height: its own when set, else the CLI's default framing of
-/// `surfaceBounds` (model::frameCamera).
-Camera cameraFor(const StudioState& state, const Box3& surfaceBounds, int width, int height);
+/// `surfaceBounds` seen as `view` says (model::frameCamera; `view` is model::sceneView of the
+/// surface's field, Engine::view()).
+Camera cameraFor(const StudioState& state, const Box3& surfaceBounds, model::SceneView view, int width, int height);
 
 /// The CLI's surface options for `state` (input, variable, time, series, iso, depth, colour,
 /// colour map, display window).
 model::SurfaceSpec surfaceArgs(const StudioState& state);
 
-/// The render settings of `state` (the CLI's conversion of the same options) for a surface
-/// whose display window the build chose (`window`, `invertedGrey`: model::Surface's);
-/// `transparent` makes the background's alpha 0. `valuesColormap`: the colour map that
-/// model::applyColour takes for the surface's voxel values (`colour_by`) when none is chosen.
-RenderSettings renderSettingsFor(const StudioState& state, bool transparent, const ValueWindow& window = {},
-                                 bool invertedGrey = false, const std::string& valuesColormap = {});
+/// The render settings of `state` for `surface`, the surface built (its display window, its
+/// octree's colours and values, its field's kind: what the default look reads), by the CLI's
+/// conversion of the same options (model::renderSettings); `transparent` makes the
+/// background's alpha 0 (white unless state.background is set).
+RenderSettings renderSettingsFor(const StudioState& state, bool transparent, const model::Surface& surface);
 
 /// The figure options of `state` (render --figure, --title, --dpi, --scale-bar).
 model::FigureSettings figureArgs(const StudioState& state);
 /// The figure's layout for an export of width x height (state.figure), else nothing; throws
 /// UsageError as model::figureLayout when the size leaves no room for the plot.
 std::optional<io::FigureLayout> figureLayoutFor(const StudioState& state, int width, int height);
-/// The camera of an export of width x height: cameraFor at the size of the image rendered (the
-/// figure's plot, or the whole).
-Camera exportCamera(const StudioState& state, const Box3& surfaceBounds, int width, int height);
 
 /// The input and what to read of it as `octrace COMMAND` takes them: INPUT, then --var,
 /// --time, --series and the text settings given that COMMAND takes (Option::takenBy), so that
@@ -162,8 +163,10 @@ Camera exportCamera(const StudioState& state, const Box3& surfaceBounds, int wid
 std::vector<std::string> inputArguments(const StudioState& state, std::string_view command);
 
 /// `octrace render` arguments (without the program and command names) that draw what the studio
-/// exports for `state` at width x height with `camera` (exportCamera): input options, surface,
-/// cut, lighting, renderer, camera, shading, size, background, figure, -o `output`. Numbers
+/// exports for `state` at width x height with `camera` (Engine::exportView): input options,
+/// surface, cut, lighting, renderer, camera (its position, look-at point and up vector only when
+/// state.cameraSet: else render's default framing, which the studio's is), shading, size,
+/// background, figure, -o `output`. Numbers
 /// are written with 17 significant digits (exact round trip). `iso` is the value in use (the
 /// state's may be unset).
 std::vector<std::string> renderArguments(const StudioState& state, const Camera& camera, double iso,

@@ -85,10 +85,19 @@ TEST(CliExport, WritesOneSurfelPerBoundaryVoxelOfTheSphere) {
     for (std::size_t i = 0; i < cloud.vertices.size(); ++i)
         EXPECT_NEAR(std::hypot(cloud.at(i, "x"), cloud.at(i, "y"), cloud.at(i, "z")), 0.7, 2.0 / 64.0 * std::sqrt(3.0));
     EXPECT_FLOAT_EQ(float(cloud.at(0, "radius")), float(0.5 * std::sqrt(3.0) * 2.0 / 64.0));
-    // The default colour, 0.85,0.62,0.35 in 8-bit sRGB, opaque.
-    EXPECT_EQ(cloud.at(0, "red"), 217.0);
-    EXPECT_EQ(cloud.at(0, "green"), 158.0);
-    EXPECT_EQ(cloud.at(0, "blue"), 89.0);
+    // The default look of a field without colours: viridis by height, dark purple at the bottom
+    // surfel, yellow at the top; opaque.
+    std::size_t bottom = 0, top = 0;
+    for (std::size_t i = 0; i < cloud.vertices.size(); ++i) {
+        if (cloud.at(i, "z") < cloud.at(bottom, "z")) bottom = i;
+        if (cloud.at(i, "z") > cloud.at(top, "z")) top = i;
+    }
+    EXPECT_LT(cloud.at(bottom, "red"), 100.0);
+    EXPECT_LT(cloud.at(bottom, "green"), 40.0);
+    EXPECT_GT(cloud.at(bottom, "blue"), 60.0);
+    EXPECT_GT(cloud.at(top, "red"), 200.0);
+    EXPECT_GT(cloud.at(top, "green"), 200.0);
+    EXPECT_LT(cloud.at(top, "blue"), 80.0);
     EXPECT_EQ(cloud.at(0, "alpha"), 255.0);
     for (const char* c : {"octrace ", "input: analytic:sphere:33", "variable: sphere", "iso: 0", "depth: 6"})
         EXPECT_TRUE(hasComment(cloud, c)) << c;

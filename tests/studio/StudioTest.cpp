@@ -215,12 +215,31 @@ private slots:
 
     void changesDepth() {
         auto* depth = window_->findChild<QSpinBox*>(QStringLiteral("depthSpin"));
-        QVERIFY(depth);
+        auto* automatic = window_->findChild<QCheckBox*>(QStringLiteral("depthAuto"));
+        QVERIFY(depth && automatic);
+        // Opened with `depth` auto, render's default: the box shows the depth it chose.
+        QVERIFY(automatic->isChecked());
+        QVERIFY(!window_->state().depth);
+        const int chosen = window_->engine().depth();
+        QCOMPARE(depth->value(), chosen);
         QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
-        depth->setValue(7);
+        const int other = chosen == 7 ? 6 : 7;
+        depth->setValue(other);
         QVERIFY(built.wait(kWaitMs));
+        QCOMPARE(window_->engine().tree()->depth, other);
+        QCOMPARE(window_->state().depth, std::optional<int>(other));
+        QVERIFY(!automatic->isChecked());
+        // Back to auto: the same depth as at first.
+        automatic->setChecked(true);
+        QVERIFY(built.wait(kWaitMs));
+        QCOMPARE(window_->engine().tree()->depth, chosen);
+        QVERIFY(!window_->state().depth);
+        QCOMPARE(depth->value(), chosen);
+        if (chosen != 7) {  // the later tests' depth
+            depth->setValue(7);
+            QVERIFY(built.wait(kWaitMs));
+        }
         QCOMPARE(window_->engine().tree()->depth, 7);
-        QCOMPARE(window_->state().depth, 7);
     }
 
     void switchesRenderers() {
@@ -366,10 +385,9 @@ private slots:
         // The splats cover what the CPU renderer draws from the same camera at the same size.
         const QImage splats = gl->grabFramebuffer().convertToFormat(QImage::Format_RGB32);
         octrace::Camera cam = octrace::studio::cameraFor(window_->state(), window_->engine().tree()->occupiedBounds(),
-                                                          splats.width(), splats.height());
+                                                          window_->engine().view(), splats.width(), splats.height());
         octrace::Frame frame;
-        octrace::makeRenderer("full")->render(*window_->engine().tree(), cam,
-                                              octrace::studio::renderSettingsFor(window_->state(), false), frame);
+        octrace::makeRenderer("full")->render(*window_->engine().tree(), cam, window_->engine().settingsFor(window_->state(), false), frame);
         const QImage cpu = octrace::studio::toImage(frame).convertToFormat(QImage::Format_RGB32);
         const QRgb bg = cpu.pixel(0, 0);
         qint64 both = 0, either = 0;
@@ -1471,6 +1489,8 @@ private slots:
         QCOMPARE(s.depth, defaults.depth);
         QCOMPARE(s.renderer, defaults.renderer);
         QVERIFY(!s.iso && !s.cameraSet);
+        // No background: the one contrasting with the surface, as render's default; kept unset.
+        QVERIFY(!s.background && !octrace::studio::parseSession(octrace::studio::sessionJson(s)).background);
         QCOMPARE(octrace::studio::parseSession(octrace::studio::sessionJson(s)).input, s.input);
         const auto a = octrace::studio::parseSession(R"({"octrace_studio_session": 1, "input": {"path": "analytic:torus"}})", QStringLiteral("/base"));
         QCOMPARE(a.input, std::string("analytic:torus"));
@@ -1483,7 +1503,8 @@ private slots:
         const auto c = octrace::studio::parseSession(
             "{\"octrace_studio_session\": 1, \"shading\": {\"colour\": \"tomato\", \"background\": \"#00000080\"}}");
         QCOMPARE(c.colour, octrace::vec3(1.0f, 99.0f / 255.0f, 71.0f / 255.0f));
-        QCOMPARE(c.background, octrace::vec4(0.0f, 0.0f, 0.0f, 128.0f / 255.0f));
+        QVERIFY(c.background);
+        QCOMPARE(*c.background, octrace::vec4(0.0f, 0.0f, 0.0f, 128.0f / 255.0f));
     }
 
     /// The widgets whose settings are in the options table, by key; the export dialog's are

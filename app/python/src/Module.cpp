@@ -421,15 +421,16 @@ Image renderShell(const Shell& sh, const Settings& surfaceSettings, const Settin
         [&] {
             if (multires) std::call_once(*sh.summaries, [&] { sh.surface->tree.computeSummaries(); });
             const Box3 bounds = s.tree.occupiedBounds();
+            const model::SceneView sceneView = model::sceneView(s.field);
             const RenderSettings rs = model::renderSettings(spec, s, view);
             if (rs.surface == SurfaceMode::Smooth) fillCornersOnce(sh);
             if (layout) {
                 // The plot takes the size the figure's text leaves.
-                layout = model::fitFigureLayout(*layout, figure, model::figureSubject(s, spec.input), s.tree, rs, view, bounds);
+                layout = model::fitFigureLayout(*layout, figure, model::figureSubject(s, spec.input), s.tree, rs, view, bounds, sceneView);
                 view.width = layout->plotW;
                 view.height = layout->plotH;
             }
-            const Camera cam = model::frameCamera(view, bounds);
+            const Camera cam = model::frameCamera(view, bounds, sceneView);
             Frame frame = FramePool::instance().take(view.width, view.height);
             const RenderStats st = model::renderFrame(s.tree, cam, rs, view.renderer, frame);
             model::FrameRecord record = model::frameRecord(spec.input, s, cam, rs, st, view.renderer, bounds);
@@ -495,7 +496,7 @@ nb::dict cameraSettings(const Camera& c);
 nb::dict moveCamera(const Shell& sh, const Settings& renderSettings, const std::string& move, double a, double b, int viewHeight) {
     model::RenderSpec view;
     applySettings(renderSettings, {.render = &view});
-    Camera c = model::frameCamera(view, sh.surface->tree.occupiedBounds());
+    Camera c = model::frameCamera(view, sh.surface->tree.occupiedBounds(), model::sceneView(sh.surface->field));
     if (move == "orbit") model::orbit(c, a, b);
     else if (move == "pan") model::pan(c, a, b, viewHeight);
     else if (move == "dolly") model::dolly(c, a);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -99,6 +100,78 @@ Camera Camera::framing(const Box3& box, int width, int height, double fovYDegree
     if (!(dist > 0.0)) dist = 1.0;
     c.position = c.lookAt + back * (dist * 1.08);
     return c;
+}
+
+Camera Camera::fit(const Box3& box, int width, int height, double fovYDegrees, dvec3 towardsViewer, dvec3 up, double fill) {
+    Camera c;
+    c.width = width;
+    c.height = height;
+    c.fovYDegrees = fovYDegrees;
+    c.up = up;
+    const dvec3 centre = box.centre();
+    c.lookAt = centre;
+    c.position = centre + glm::normalize(towardsViewer);
+    dvec3 right, trueUp, back;
+    c.basis(right, trueUp, back);
+    const double tanV = std::tan(glm::radians(fovYDegrees) * 0.5) * fill;
+    const double tanH = tanV * double(width) / double(height);
+    // Corners in camera axes about the centre: x along right, y along up, z towards the viewer.
+    // At eye = centre + a right + b up + d back a corner is in view when |x - a| <= tanH (d - z)
+    // and |y - b| <= tanV (d - z). The least d for each image axis is the mean of the two
+    // largest of z + x / tan and z - x / tan; the larger of the two axes wins.
+    double xs[8], ys[8], zs[8];
+    for (int k = 0; k < 8; ++k) {
+        const dvec3 p((k & 4) ? box.hi.x : box.lo.x, (k & 2) ? box.hi.y : box.lo.y, (k & 1) ? box.hi.z : box.lo.z);
+        const dvec3 o = p - centre;
+        xs[k] = glm::dot(o, right);
+        ys[k] = glm::dot(o, trueUp);
+        zs[k] = glm::dot(o, back);
+    }
+    const auto leastDistance = [&](const double* s, double t) {
+        double plus = -std::numeric_limits<double>::infinity(), minus = plus;
+        for (int k = 0; k < 8; ++k) {
+            plus = std::max(plus, zs[k] + s[k] / t);
+            minus = std::max(minus, zs[k] - s[k] / t);
+        }
+        return 0.5 * (plus + minus);
+    };
+    double d = std::max(leastDistance(xs, tanH), leastDistance(ys, tanV));
+    if (!(d > 0.0) || !std::isfinite(d)) d = 1.0;
+    // At that distance the sideways offsets allowed along an axis form an interval (a point for
+    // the limiting axis). Within it, the offset whose projection reaches as far to one side as
+    // to the other: the sum of the two extreme projections falls as the offset grows, so
+    // bisection finds it.
+    const auto centredOffset = [&](const double* s, double t) {
+        double lo = -std::numeric_limits<double>::infinity(), hi = -lo;
+        for (int k = 0; k < 8; ++k) {
+            lo = std::max(lo, s[k] - t * (d - zs[k]));
+            hi = std::min(hi, s[k] + t * (d - zs[k]));
+        }
+        if (!(lo <= hi)) return 0.0;
+        const auto lopsided = [&](double a) {
+            double most = -std::numeric_limits<double>::infinity(), least = -most;
+            for (int k = 0; k < 8; ++k) {
+                const double p = (s[k] - a) / std::max(d - zs[k], 1e-300);
+                most = std::max(most, p);
+                least = std::min(least, p);
+            }
+            return most + least;
+        };
+        for (int i = 0; i < 100 && hi - lo > 1e-12 * std::max(1.0, std::abs(lo) + std::abs(hi)); ++i) {
+            const double mid = 0.5 * (lo + hi);
+            (lopsided(mid) > 0.0 ? lo : hi) = mid;
+        }
+        return 0.5 * (lo + hi);
+    };
+    const double a = centredOffset(xs, tanH), b = centredOffset(ys, tanV);
+    c.lookAt = centre + a * right + b * trueUp;
+    c.position = c.lookAt + d * back;
+    return c;
+}
+
+double Camera::pixelFootprint() const {
+    if (orthographic()) return orthoHeight / double(height);
+    return 2.0 * glm::length(lookAt - position) * std::tan(glm::radians(fovYDegrees) * 0.5) / double(height);
 }
 
 void Camera::frameOrthographic(const Box3& box) {

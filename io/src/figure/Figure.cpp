@@ -8,6 +8,7 @@
 #include FT_FREETYPE_H
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <climits>
 #include <cstdlib>
@@ -15,6 +16,7 @@
 #include <fstream>
 #include <mutex>
 #include <sstream>
+#include <utility>
 
 namespace octrace::io {
 namespace {
@@ -274,18 +276,24 @@ InkBox labelBox(Font& font, const FigureLabel& lab, const FigureLayout& l) {
     return font.draw(nullptr, lab.text, p.x, p.y);
 }
 
-/// The labels of each axis, in order of first appearance, and how far apart their points lie.
+/// The labels of each axis on each of its places (FigureLabel::edge), in order of first
+/// appearance, and how far apart their points lie.
 struct AxisLabels {
-    int axis = 0;
+    int axis = 0, edge = 0;
     std::vector<const FigureLabel*> labels;
     double span = 0.0;
     bool endOn(double labelPx) const;
+    /// The widest ink of its labels along the line through its two farthest points, at the
+    /// smallest size they are set in (pixels).
+    double extent(Font& font, double labelPx) const;
+    /// Whether `count` of its labels can lie apart along its span at the smallest size.
+    bool roomFor(std::size_t count, Font& font, double labelPx) const;
 };
 std::vector<AxisLabels> axesOf(const FigureSpec& spec) {
     std::vector<AxisLabels> out;
     for (const FigureLabel& lab : spec.labels) {
-        auto it = std::find_if(out.begin(), out.end(), [&](const AxisLabels& a) { return a.axis == lab.axis; });
-        if (it == out.end()) it = out.insert(out.end(), AxisLabels{lab.axis, {}, 0.0});
+        auto it = std::find_if(out.begin(), out.end(), [&](const AxisLabels& a) { return a.axis == lab.axis && a.edge == lab.edge; });
+        if (it == out.end()) it = out.insert(out.end(), AxisLabels{lab.axis, lab.edge, {}, 0.0});
         for (const FigureLabel* o : it->labels) it->span = std::max(it->span, glm::length(o->at - lab.at));
         it->labels.push_back(&lab);
     }
@@ -297,13 +305,73 @@ std::vector<AxisLabels> axesOf(const FigureSpec& spec) {
 constexpr double kEndOnSpan = 0.5;
 bool AxisLabels::endOn(double labelPx) const { return labels.size() >= 2 && span < kEndOnSpan * labelPx; }
 
+/// Labels that collide are set at these sizes (of the label size), in turn.
+constexpr double kLabelScales[] = {1.0, 0.85, 0.7};
+/// The gap kept between texts (pixels).
+int textGap(double labelPx) { return std::max(1, int(std::lround(0.15 * labelPx))); }
+
+double AxisLabels::extent(Font& font, double labelPx) const {
+    dvec2 u(0.0);
+    for (const FigureLabel* a : labels)
+        for (const FigureLabel* b : labels)
+            if (glm::length(b->at - a->at) >= span && span > 0.0) u = (b->at - a->at) / span;
+    font.size(labelPx * kLabelScales[std::size(kLabelScales) - 1]);
+    double widest = 0.0;
+    for (const FigureLabel* lab : labels) {
+        const InkBox b = font.draw(nullptr, lab->text, 0.0, 0.0);
+        if (!b.empty()) widest = std::max(widest, (b.x1 - b.x0) * std::abs(u.x) + (b.y1 - b.y0) * std::abs(u.y));
+    }
+    return widest;
+}
+
+bool AxisLabels::roomFor(std::size_t count, Font& font, double labelPx) const {
+    return labels.size() >= count && span >= double(count - 1) * (extent(font, labelPx) + textGap(labelPx));
+}
+
+/// The subsets of `size` of 0..n-1 (sorted), the most evenly spread first: by their smallest
+/// step between neighbours, then by the span they cover; none when every k-th already gives
+/// them (size < 3, or n <= size) or there are too many to try (n > 16).
+std::vector<std::vector<std::size_t>> spreadSubsets(std::size_t n, std::size_t size) {
+    std::vector<std::vector<std::size_t>> out;
+    if (size < 3 || n <= size || n > 16) return out;
+    for (std::uint32_t mask = 0; mask < (1u << n); ++mask) {
+        if (std::size_t(std::popcount(mask)) != size) continue;
+        std::vector<std::size_t> keep;
+        for (std::size_t i = 0; i < n; ++i)
+            if (mask & (1u << i)) keep.push_back(i);
+        out.push_back(std::move(keep));
+    }
+    const auto smallestStep = [](const std::vector<std::size_t>& k) {
+        std::size_t m = k.back() - k.front();
+        for (std::size_t i = 1; i < k.size(); ++i) m = std::min(m, k[i] - k[i - 1]);
+        return m;
+    };
+    std::stable_sort(out.begin(), out.end(), [&](const auto& a, const auto& b) {
+        const std::size_t sa = smallestStep(a), sb = smallestStep(b);
+        if (sa != sb) return sa > sb;
+        return a.back() - a.front() > b.back() - b.front();
+    });
+    return out;
+}
+
 /// Places the figure's texts one after another from their ink boxes (measured with FreeType
 /// before anything is drawn), each where it keeps a small gap to everything placed before and
 /// stays inside the figure, and keeps what it placed.
 class TextLayout {
 public:
     TextLayout(Font& font, Canvas& canvas, const FigureLayout& l)
-        : font_(font), canvas_(canvas), l_(l), gap_(std::max(1, int(std::lround(0.15 * l.labelPx)))) {}
+        : font_(font), canvas_(&canvas), l_(l), gap_(textGap(l.labelPx)) {}
+
+    /// A copy that places as this one would from here on but draws nothing: to try an order.
+    TextLayout trial() const {
+        TextLayout t = *this;
+        t.canvas_ = nullptr;
+        return t;
+    }
+    /// How many texts of `role` were placed.
+    std::size_t count(const std::string& role) const {
+        return std::size_t(std::count_if(placed_.begin(), placed_.end(), [&](const FigureTextBox& b) { return b.role == role; }));
+    }
 
     const std::vector<FigureTextBox>& placed() const { return placed_; }
     /// Whether `b` lies inside the figure, clear of everything placed.
@@ -332,29 +400,41 @@ public:
     }
 
     /// Labels of one kind (an axis's ticks) at size `px`: all of them if none collides, else every
-    /// k-th (the smallest k, at least `least` kept), else the same at 85% and 70% of the size,
-    /// else each that fits, in order. With `clamp`, a label that would leave the figure is moved
-    /// inside it first.
+    /// k-th (the smallest k, at least `least` kept), else `least` of them as evenly spread as
+    /// fit (every k-th cannot keep 3 of 4: only 4 or 2), else the same at 85% and 70% of the
+    /// size, else each that fits, in order. With `clamp`, a label that would leave the figure is
+    /// moved inside it first.
     void placeThinned(const std::string& role, const std::vector<Candidate>& labels, bool clamp, double px, std::size_t least) {
         const std::size_t n = labels.size();
         if (n == 0) return;
         least = std::min(least, n);
         std::vector<Candidate> at;
         std::vector<InkBox> box;
-        for (double scale : {1.0, 0.85, 0.7}) {
+        const auto fits = [&](const std::vector<std::size_t>& keep) {
+            for (std::size_t a = 0; a < keep.size(); ++a) {
+                if (!free(box[keep[a]])) return false;
+                for (std::size_t b = 0; b < a; ++b)
+                    if (box[keep[a]].near(box[keep[b]], gap_)) return false;
+            }
+            return true;
+        };
+        const auto place = [&](const std::vector<std::size_t>& keep) {
+            for (std::size_t i : keep) draw(role, at[i].text, at[i].x, at[i].baseline);
+        };
+        const std::vector<std::vector<std::size_t>> spread = spreadSubsets(n, least);
+        for (double scale : kLabelScales) {
             measure(labels, clamp, px * scale, at, box);
             for (std::size_t k = 1; k <= n; ++k)
                 for (std::size_t first = 0; first < k; ++first) {
                     std::vector<std::size_t> keep;
                     for (std::size_t i = first; i < n; i += k) keep.push_back(i);
-                    if (keep.size() < least) continue;
-                    bool ok = true;
-                    for (std::size_t a = 0; a < keep.size() && ok; ++a) {
-                        ok = free(box[keep[a]]);
-                        for (std::size_t b = 0; b < a && ok; ++b) ok = !box[keep[a]].near(box[keep[b]], gap_);
-                    }
-                    if (!ok) continue;
-                    for (std::size_t i : keep) draw(role, at[i].text, at[i].x, at[i].baseline);
+                    if (keep.size() < least || !fits(keep)) continue;
+                    place(keep);
+                    return;
+                }
+            for (const std::vector<std::size_t>& keep : spread)
+                if (fits(keep)) {
+                    place(keep);
                     return;
                 }
         }
@@ -393,7 +473,7 @@ private:
     }
     void draw(const std::string& role, const std::string& text, double x, double baseline) {
         if (text.empty()) return;
-        const InkBox b = font_.draw(&canvas_, text, x, baseline, kInk);
+        const InkBox b = font_.draw(canvas_, text, x, baseline, kInk);
         taken_.push_back(b);
         placed_.push_back({role, text, b.x0, b.y0, b.x1, b.y1, false});
     }
@@ -414,7 +494,7 @@ private:
     }
 
     Font& font_;
-    Canvas& canvas_;
+    Canvas* canvas_;  ///< null: a trial, nothing drawn
     const FigureLayout& l_;
     int gap_;
     std::vector<InkBox> taken_;
@@ -432,16 +512,24 @@ std::string jsonEscaped(const std::string& s) {
     return out;
 }
 
-/// One JSON line: the figure's size, its plot, the label size, each axis's candidates and the
-/// boxes (OCTRACE_TEST_FIGURE_TEXT).
-void appendTextBoxes(const std::string& path, const FigureLayout& l, const FigureSpec& spec, const std::vector<FigureTextBox>& boxes) {
+/// One JSON line: the figure's size, its plot, the label size, each axis's place drawn (or its
+/// preferred one when none is) with its candidates, the span and the widest label extent along
+/// it (smallest size) of each of its places not seen end on, and the boxes
+/// (OCTRACE_TEST_FIGURE_TEXT).
+void appendTextBoxes(const std::string& path, const FigureLayout& l, const std::vector<AxisLabels>& axes,
+                     const std::vector<AxisLabels>& groups, Font& font, const std::vector<FigureTextBox>& boxes) {
     std::ostringstream s;
     s << "{\"width\": " << l.width << ", \"height\": " << l.height << ", \"plot\": [" << l.plotX << ", " << l.plotY << ", "
       << l.plotX + l.plotW << ", " << l.plotY + l.plotH << "], \"labelPx\": " << l.labelPx << ", \"axes\": [";
-    const std::vector<AxisLabels> axes = axesOf(spec);
-    for (std::size_t i = 0; i < axes.size(); ++i)
-        s << (i ? ", " : "") << "{\"axis\": \"axis " << axes[i].axis << "\", \"candidates\": " << axes[i].labels.size()
-          << ", \"span\": " << axes[i].span << "}";
+    for (std::size_t i = 0; i < axes.size(); ++i) {
+        s << (i ? ", " : "") << "{\"axis\": \"axis " << axes[i].axis << "\", \"edge\": " << axes[i].edge
+          << ", \"candidates\": " << axes[i].labels.size() << ", \"span\": " << axes[i].span << ", \"places\": [";
+        const char* sep = "";
+        for (const AxisLabels& g : groups)
+            if (g.axis == axes[i].axis && !g.endOn(l.labelPx))
+                s << std::exchange(sep, ", ") << "[" << g.span << ", " << g.extent(font, l.labelPx) << "]";
+        s << "]}";
+    }
     s << "], \"boxes\": [";
     for (std::size_t i = 0; i < boxes.size(); ++i) {
         const FigureTextBox& b = boxes[i];
@@ -466,6 +554,12 @@ std::string figureFontPath() {
                           "/usr/share/fonts/dejavu/DejaVuSans.ttf", "/usr/local/share/fonts/DejaVuSans.ttf"})
         if (std::filesystem::exists(p)) return p;
     return {};
+}
+
+double labelWidthEstimate(const std::string& text) {
+    int n = 0;
+    for (unsigned char ch : text) n += (ch & 0xC0) != 0x80;
+    return 0.6 * n;
 }
 
 std::vector<double> niceTicks(double lo, double hi, int count) {
@@ -536,10 +630,11 @@ FigureRoom figureRoom(const FigureSpec& spec, const FigureLayout& l) {
     r.titleLines = std::min<int>(kMostTitleLines, int(wrapped(font, spec.title, across).size()));
     font.size(l.labelPx);
     r.subtitleLines = std::min<int>(kMostSubtitleLines, int(wrapped(font, spec.subtitle, across).size()));
-    // Tick labels beyond the plot (those of an edge seen end on are not drawn).
+    // Tick labels beyond the plot (those of an edge seen end on are not drawn); an axis's other
+    // places are moved inside the figure when one is drawn.
     const double most = 8.0 * l.labelPx;
     for (const AxisLabels& axis : axesOf(spec)) {
-        if (axis.endOn(l.labelPx)) continue;
+        if (axis.edge != 0 || axis.endOn(l.labelPx)) continue;
         for (const FigureLabel* lab : axis.labels) {
             const InkBox b = labelBox(font, *lab, l);
             if (b.empty()) continue;
@@ -597,11 +692,6 @@ Frame composeFigure(const Frame& plot, const FigureSpec& spec, const FigureLayou
     for (const auto& line : spec.coastlines)
         for (std::size_t i = 1; i < line.size(); ++i) canvas.line(origin + line[i - 1], origin + line[i], coastWidth, kCoastInk);
     for (const auto& [a, b] : spec.lines) canvas.line(origin + a, origin + b, lineWidth, kLineInk);
-    for (const FigureLabel& lab : spec.labels) {
-        const dvec2 p = origin + lab.at;
-        canvas.fill(int(std::floor(p.x - lineWidth)), int(std::floor(p.y - lineWidth)), int(std::lround(2 * lineWidth)) + 1,
-                    int(std::lround(2 * lineWidth)) + 1, kLineInk);
-    }
 
     // The text in order of precedence, each placed where it overlaps nothing placed before:
     // title and subtitle, the colour bar with its label and ticks, the patient's letters, the
@@ -667,14 +757,86 @@ Frame composeFigure(const Frame& plot, const FigureSpec& spec, const FigureLayou
                                   l.labelPx, 1);
     }
 
-    // Tick labels on the bounding box, axis by axis; none on an edge seen end on.
-    for (const AxisLabels& axis : axesOf(spec)) {
-        if (axis.endOn(l.labelPx)) continue;
+    // Tick labels on the bounding box, axis by axis; none on an edge seen end on. The axes are
+    // placed in the first order (x, y, z, then the others) in which the most of them keep 3
+    // labels (all, with fewer candidates): an edge foreshortened by the perspective may need the
+    // room that a long one, placed later, can give up. Each axis goes on its preferred place
+    // (edge 0) if it keeps 3 there, else on the first of its other places (other box edges)
+    // where it does, else on the one where it keeps the most.
+    std::vector<AxisLabels> groups = axesOf(spec), axes;
+    for (const AxisLabels& g : groups)
+        if (g.edge == 0 && !g.endOn(l.labelPx)) axes.push_back(g);
+    const auto places = [&](const AxisLabels& axis) {
+        std::vector<const AxisLabels*> out;
+        for (const AxisLabels& g : groups)
+            if (g.axis == axis.axis && !g.endOn(l.labelPx)) out.push_back(&g);
+        std::stable_sort(out.begin(), out.end(), [](const AxisLabels* a, const AxisLabels* b) { return a->edge < b->edge; });
+        return out;
+    };
+    const auto candidates = [&](const AxisLabels& axis) {
         std::vector<Candidate> labels;
         for (const FigureLabel* lab : axis.labels)
             labels.push_back({lab->text, 0.0, 0.0, true, origin.x + lab->at.x + lab->dx * l.labelPx, origin.y + lab->at.y + lab->dy * l.labelPx});
-        text.placeThinned("axis " + std::to_string(axis.axis), labels, true, l.labelPx, 3);
-    }
+        return labels;
+    };
+    constexpr std::size_t kLeastTicks = 3;
+    // Places the axes in `order` on `layout`, choosing each one's place; returns the places and
+    // counts the axes that kept 3 in `kept`.
+    const auto placeAxes = [&](TextLayout& layout, const std::vector<std::size_t>& order, std::size_t& kept) {
+        std::vector<const AxisLabels*> chosen;
+        kept = 0;
+        for (std::size_t i : order) {
+            const std::string role = "axis " + std::to_string(axes[i].axis);
+            const AxisLabels* pick = nullptr;
+            std::size_t most = 0;
+            for (const AxisLabels* place : places(axes[i])) {
+                TextLayout t = layout.trial();
+                t.placeThinned(role, candidates(*place), true, l.labelPx, kLeastTicks);
+                if (!pick || t.count(role) > most) pick = place, most = t.count(role);
+                if (most >= std::min(kLeastTicks, place->labels.size())) break;
+            }
+            // An axis too short for 3 labels on each of its places (docs/dev/figures.md) keeps 2
+            // where they fit, as evenly spread as they can be.
+            std::size_t least = kLeastTicks;
+            const std::vector<const AxisLabels*> all = places(axes[i]);
+            if (most < std::min(kLeastTicks, pick->labels.size()) &&
+                std::none_of(all.begin(), all.end(), [&](const AxisLabels* p) { return p->roomFor(kLeastTicks, font, l.labelPx); })) {
+                least = 2;
+                pick = nullptr, most = 0;
+                for (const AxisLabels* place : all) {
+                    TextLayout t = layout.trial();
+                    t.placeThinned(role, candidates(*place), true, l.labelPx, least);
+                    if (!pick || t.count(role) > most) pick = place, most = t.count(role);
+                }
+            }
+            layout.placeThinned(role, candidates(*pick), true, l.labelPx, least);
+            kept += most >= std::min(least, pick->labels.size());
+            chosen.push_back(pick);
+        }
+        return chosen;
+    };
+    std::vector<std::size_t> order(axes.size()), best;
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::size_t bestKept = 0;
+    do {
+        TextLayout trial = text.trial();
+        std::size_t kept = 0;
+        placeAxes(trial, order, kept);
+        if (best.empty() || kept > bestKept) best = order, bestKept = kept;
+    } while (bestKept < axes.size() && std::next_permutation(order.begin(), order.end()));
+    std::size_t kept = 0;
+    std::vector<AxisLabels> drawn;  // each axis's place drawn, else its preferred one
+    for (const AxisLabels* place : placeAxes(text, best, kept)) drawn.push_back(*place);
+    for (const AxisLabels& g : groups)
+        if (g.edge == 0 && std::none_of(drawn.begin(), drawn.end(), [&](const AxisLabels& d) { return d.axis == g.axis; }))
+            drawn.push_back(g);
+    // The tick marks of the places drawn (and of an edge seen end on).
+    for (const AxisLabels& place : drawn)
+        for (const FigureLabel* lab : place.labels) {
+            const dvec2 p = origin + lab->at;
+            canvas.fill(int(std::floor(p.x - lineWidth)), int(std::floor(p.y - lineWidth)), int(std::lround(2 * lineWidth)) + 1,
+                        int(std::lround(2 * lineWidth)) + 1, kLineInk);
+        }
 
     // Scale bar: a bar with end ticks in the plot's lower left corner, its length above it;
     // in the lower right corner where tick labels take the left one, else none.
@@ -698,7 +860,7 @@ Frame composeFigure(const Frame& plot, const FigureSpec& spec, const FigureLayou
     }
 
     if (textOut) *textOut = text.placed();
-    if (const char* path = std::getenv("OCTRACE_TEST_FIGURE_TEXT"); path && *path) appendTextBoxes(path, l, spec, text.placed());
+    if (const char* path = std::getenv("OCTRACE_TEST_FIGURE_TEXT"); path && *path) appendTextBoxes(path, l, drawn, groups, font, text.placed());
     return f;
 }
 

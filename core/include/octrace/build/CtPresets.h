@@ -16,17 +16,25 @@ struct CtIsoPreset {
     const char* name;
     double hu;
     const char* what;
+    vec3 colour;  ///< the tissue's colour, sRGB display values: the surface's unless a window greys it
 };
 
 /// --iso presets: skin -500 HU (halfway between air, -1000, and soft tissue, about 0: the air /
 /// skin boundary); bone 300 HU (above contrast-free soft tissue and blood, below which
-/// cancellous bone starts to fall apart into noise).
+/// cancellous bone starts to fall apart into noise). Their colours are those of 3D Slicer's
+/// generic anatomy colour table: skin 177,122,101, bone 241,214,145 (8-bit sRGB).
 inline const std::vector<CtIsoPreset>& ctIsoPresets() {
     static const std::vector<CtIsoPreset> p = {
-        {"skin", -500.0, "the air / skin boundary"},
-        {"bone", 300.0, "cortical and dense cancellous bone"},
+        {"skin", -500.0, "the air / skin boundary", vec3(177.0f, 122.0f, 101.0f) / 255.0f},
+        {"bone", 300.0, "cortical and dense cancellous bone", vec3(241.0f, 214.0f, 145.0f) / 255.0f},
     };
     return p;
+}
+
+inline const CtIsoPreset* findCtIsoPreset(const std::string& name) {
+    for (const auto& p : ctIsoPresets())
+        if (name == p.name) return &p;
+    return nullptr;
 }
 
 struct CtWindowPreset {

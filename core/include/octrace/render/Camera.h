@@ -45,11 +45,24 @@ public:
     /// A camera that frames the box: looking from the south-east-above direction
     /// (the viewer sees the box from +x,-y,+z), with the whole box in view.
     static Camera framing(const Box3& box, int width, int height, double fovYDegrees = 30.0);
+    /// The south-east-above direction of framing(), towards the viewer.
+    static dvec3 obliqueDirection() { return glm::normalize(dvec3(0.55, -1.0, 0.75)); }
+    /// A camera looking along -`towardsViewer` with `up` that frames the box tightly: the
+    /// nearest position at which the 8 corners' projection fits in `fill` of the image's width
+    /// and height, the camera moved sideways (look-at point off the box's centre when the
+    /// perspective makes the projection lopsided) so that the projection is centred and touches
+    /// the limiting pair of sides. `up` must not be parallel to `towardsViewer` (else the camera
+    /// fails validate()).
+    static Camera fit(const Box3& box, int width, int height, double fovYDegrees, dvec3 towardsViewer, dvec3 up,
+                      double fill = 0.92);
     /// Makes this camera orthographic with the window height that shows the whole box from the
     /// current position and direction, and moves the position back along the viewing
     /// direction so that the box lies in front of the ray origins.
     void frameOrthographic(const Box3& box);
     bool orthographic() const { return projection == Projection::Orthographic; }
+    /// World size of one pixel at the look-at point: the height of the view window there (the
+    /// orthographic window) over the image height.
+    double pixelFootprint() const;
 };
 
 /// Generates the primary rays of one camera with the per-frame terms computed once; gives

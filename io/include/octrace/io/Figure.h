@@ -48,7 +48,16 @@ struct FigureLabel {
     /// The axis the label belongs to (ticks of one axis): labels of an axis that would collide
     /// are thinned together, keeping every k-th.
     int axis = 0;
+    /// Which of the axis's places the label belongs to: 0 the preferred one (a box edge), 1, 2,
+    /// ... alternatives (the three parallel box edges), tried in order when the preferred one
+    /// cannot keep 3 of its labels clear of the rest (composeFigure); only one place per axis
+    /// is drawn, with its tick marks.
+    int edge = 0;
 };
+
+/// Rough width of a label in label heights (DejaVu Sans: about 0.6 of the height a character),
+/// to move its centre off a point before the text is measured.
+double labelWidthEstimate(const std::string& text);
 
 /// What a figure shows besides the plot.
 struct FigureSpec {

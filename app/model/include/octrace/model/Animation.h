@@ -82,6 +82,7 @@ struct AnimationPlan {
     /// What the camera frames (unless the spec places it): the world bounds of the grid read,
     /// which every step shares, so that the view does not follow each step's surface.
     Box3 bounds;
+    SceneView view = SceneView::Oblique;  ///< how the grid is seen (sceneView of the grid)
     /// The values (or, coloured by height, the heights in a colour bar's units) mapped onto
     /// the colour map's ends in every frame (NaN: no colour map; see colourRangeSource).
     float colourMin = std::numeric_limits<float>::quiet_NaN(), colourMax = std::numeric_limits<float>::quiet_NaN();

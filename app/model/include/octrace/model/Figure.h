@@ -116,9 +116,10 @@ struct FigureSubject {
 FigureSubject figureSubject(const Surface& s, const std::string& input);
 
 /// fitFigureLayout for a 3-D figure of `tree` (figureSpec without coastlines, which do not
-/// change the text), its camera frameCamera(`view` at the plot's size, `bounds`).
+/// change the text), its camera frameCamera(`view` at the plot's size, `bounds`, `sceneView`).
 io::FigureLayout fitFigureLayout(const io::FigureLayout& first, const FigureSettings& f, const FigureSubject& subject, const Octree& tree,
-                                 const RenderSettings& rs, const RenderSpec& view, const Box3& bounds);
+                                 const RenderSettings& rs, const RenderSpec& view, const Box3& bounds,
+                                 SceneView sceneView = SceneView::Oblique);
 
 
 /// The heights a grid spans, bottom and top, in the units a colour bar of height uses and

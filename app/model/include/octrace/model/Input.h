@@ -17,6 +17,10 @@ namespace octrace::model {
 /// `spheres`, when given, receives a sphere input's spheres (left empty for other inputs).
 ScalarField loadField(const std::string& input, const io::FieldRequest& req, int depth,
                       std::shared_ptr<const SphereSet>* spheres = nullptr);
+/// A sphere scene's signed distance field at `depth` as loadField makes it, from its spheres
+/// `set` (loaded by the caller: `depth` auto needs their box first), which `spheres` receives.
+ScalarField sphereField(const std::string& input, std::shared_ptr<const SphereSet> set, const io::FieldRequest& req, int depth,
+                        std::shared_ptr<const SphereSet>* spheres = nullptr);
 /// Whether INPUT is a sphere scene: "sphereflake:L" (Haines' SphereFlake, L 1..4),
 /// "random:N[:SEED]" (N seeded random spheres, seed default 1) or a molecule file (.pdb,
 /// .ent, .cif, .mmcif).

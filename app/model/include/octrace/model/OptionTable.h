@@ -86,9 +86,15 @@ struct Option {
 // it from these (opt::depth.max), never writes the number again.
 namespace opt {
 // Surface.
-inline constexpr Option depth{.key = "depth", .kind = OptionKind::Integer, .flag = "depth", .argument = "N",
-    .session = "surface.depth", .label = "Depth", .defaultValue = 8, .min = 1, .max = Octree::kMaxDepth,
-    .help = "octree depth, voxels = 2^N per cube edge", .commands = "render export build csg animate"};
+// `depth` takes the word auto, its default; defaultValue is the number where one is needed before
+// the data are read (the studio's first value, a curvilinear grid's lattice under auto).
+inline constexpr Option depth{.key = "depth", .kind = OptionKind::Integer, .flag = "depth", .argument = "N|auto",
+    .session = "surface.depth", .label = "Depth", .defaultValue = 8,
+    .defaultText = "auto: fields, the shallowest depth whose voxel is no larger than the median sample spacing along "
+                   "each axis; cities and sphere scenes, a voxel of about one pixel of the default view; capped by "
+                   "`max_memory`, said on stderr, listed by `octrace info`",
+    .min = 1, .max = Octree::kMaxDepth,
+    .help = "octree depth, voxels = 2^N per cube edge, or auto", .commands = "render export build csg animate"};
 inline constexpr Option iso{.key = "iso", .kind = OptionKind::Text, .flag = "iso", .argument = "VALUE[UNIT]|NAME",
     .session = "surface.iso", .label = "Iso value", .defaultText = "the middle of the variable's valid range",
     .help = "iso value of the surface in the variable's units, or with a unit converted into them by UDUNITS-2 "
@@ -198,10 +204,14 @@ inline constexpr Option bakeLight{.key = "bake_light", .kind = OptionKind::Text,
 
 // Colour.
 inline constexpr Option colour{.key = "colour", .kind = OptionKind::Text, .flag = "colour", .argument = "R,G,B",
-    .session = "shading.colour", .defaultText = "0.85,0.62,0.35; city inputs: per object and texture",
+    .session = "shading.colour",
+    .defaultText = "by the data: a CT preset's tissue colour (`iso` skin, bone), skin for another patient volume, a "
+                   "DICOM file's display window, a city's colours per object and texture, a molecule's per element, "
+                   "else the colour map by height",
     .help = "surface colour: sRGB components in [0,1], #RRGGBB or a CSS colour name (steelblue), also over a city's own colours", .commands = "render export animate"};
 inline constexpr Option colormap{.key = "colormap", .kind = OptionKind::Text, .flag = "colormap", .argument = "NAME",
-    .session = "shading.colormap", .label = "Colour map", .defaultText = "uniform colour",
+    .session = "shading.colormap", .label = "Colour map",
+    .defaultText = "viridis by height where nothing else colours the surface (see `colour`)",
     .help = "colour by a colour map", .commands = "render export slice animate"};
 inline constexpr Option window{.key = "window", .kind = OptionKind::Text, .flag = "window", .argument = "NAME|C,W|none",
     .session = "shading.window", .label = "CT window", .defaultText = "the window stored in a DICOM file",
@@ -220,7 +230,9 @@ inline constexpr Option floorColour{.key = "floor_colour", .kind = OptionKind::T
     .argument = "R,G,B", .defaultText = "0.55,0.5,0.45", .help = "colour of the sea floor and land (`floor`): sRGB in [0,1], #RRGGBB or a CSS colour name",
     .commands = "render export animate"};
 inline constexpr Option background{.key = "background", .kind = OptionKind::Text, .flag = "background",
-    .argument = "R,G,B[,A]", .session = "shading.background", .defaultText = "1,1,1,1",
+    .argument = "R,G,B[,A]", .session = "shading.background",
+    .defaultText = "contrasting with the surface: white, or slate 0.32,0.34,0.43 behind a light surface (sphere scenes in "
+                   "the object octree: white)",
     .help = "background colour: sRGB components in [0,1], #RRGGBB[AA] or a CSS colour name (black)", .commands = "render animate"};
 inline constexpr Option light{.key = "light", .kind = OptionKind::Text, .flag = "light", .argument = "X,Y,Z",
     .session = "shading.light", .defaultText = "0.4,0.6,1",
@@ -234,10 +246,14 @@ inline constexpr Option renderer{.key = "renderer", .kind = OptionKind::Text, .f
     .session = "renderers.main", .label = "Renderer", .defaultText = "tile",
     .help = "renderer; samet and beam (paper B) draw sphere scenes and voxel octrees alike", .commands = "render animate"};
 inline constexpr Option cameraPos{.key = "camera_pos", .kind = OptionKind::Text, .flag = "camera-pos", .argument = "X,Y,Z",
-    .session = "camera.position", .defaultText = "framing the surface from south-east, above",
+    .session = "camera.position",
+    .defaultText = "framing the surface's box tightly: geographic fields north up from the south and above, patient "
+                   "volumes from the front (anterior, superior up; a thin sagittal slab from the patient's left), others "
+                   "from the south-east and above",
     .help = "camera position, world units", .commands = "render animate"};
 inline constexpr Option lookAt{.key = "look_at", .kind = OptionKind::Text, .flag = "look-at", .argument = "X,Y,Z",
-    .session = "camera.look_at", .defaultText = "centre of the surface's bounding box",
+    .session = "camera.look_at",
+    .defaultText = "the framing's: near the centre of the surface's bounding box, where its projection is centred",
     .help = "point the camera looks at", .commands = "render animate"};
 inline constexpr Option up{.key = "up", .kind = OptionKind::Text, .flag = "up", .argument = "X,Y,Z", .session = "camera.up",
     .defaultText = "0,0,1", .help = "camera up direction", .commands = "render animate"};

@@ -38,7 +38,8 @@ struct RenderSpec {
     double fov = opt::fov.defaultValue;   ///< `fov`, degrees
     bool ortho = false;                   ///< `projection` ortho
     std::optional<double> orthoHeight;    ///< `ortho_height`; unset: framing the surface
-    vec4 background{1.0f, 1.0f, 1.0f, 1.0f};  ///< sRGB and alpha as a user gives it
+    /// sRGB and alpha as a user gives it; unset: contrastingBackground of the surface.
+    std::optional<vec4> background;
     std::optional<dvec3> light;               ///< towards the light, camera space; unset: RenderSettings'
     // What only some renderers read (their traits say which).
     CoherenceSettings coherence = tableCoherence();
@@ -54,14 +55,34 @@ struct RenderSpec {
 /// is multi-resolution. @throws UsageError naming the settings by their keys.
 bool checkRenderSpec(const SurfaceSpec& surface, const RenderSpec& spec, const std::string& baseline = "");
 
-/// The camera of `spec`: Camera::framing of `bounds` (the surface's box) at the spec's size and
-/// field of view, then the spec's look-at point, up vector and position over it (a look-at
-/// point alone keeps the framing's offset from the box's centre); an orthographic view is
-/// framed to the box, its window height replaced by `orthoHeight` when given. Validated.
-Camera frameCamera(const RenderSpec& spec, const Box3& bounds);
+/// Where the default camera looks at a surface from (up is +z in every case): a geographic field
+/// north up, from the south and 35 degrees above; a patient volume (LPS) from the front, the
+/// anterior view with superior up and the patient's right on the image's left (radiology's
+/// convention), or, when the volume is a thin left-right slab (a few sagittal slices, whose
+/// anterior view is an edge), from the patient's left, anterior on the image's left (the
+/// sagittal convention); anything else from the south-east and above (Camera::obliqueDirection).
+enum class SceneView { Oblique, NorthUp, Anterior, Lateral };
+/// The view of a field: NorthUp for a geographic grid; for a patient volume Lateral when its
+/// grid's left-right extent is under a quarter of its largest, else Anterior; else Oblique.
+SceneView sceneView(const ScalarField& field);
+/// The direction from the look-at point towards the default camera of `view`.
+dvec3 viewDirection(SceneView view);
+
+/// The camera of `spec`: Camera::fit of `bounds` (the surface's box) seen as `view` says, at
+/// the spec's size and field of view, then the spec's look-at point, up vector and position
+/// over it (a look-at point alone keeps the framing's offset from its look-at point); an
+/// orthographic view is framed to the box, its window height replaced by `orthoHeight` when
+/// given. Validated.
+Camera frameCamera(const RenderSpec& spec, const Box3& bounds, SceneView view = SceneView::Oblique);
+
+/// The background that contrasts most with the surface drawn with `settings` (its colours):
+/// white, or ParaView's slate (sRGB 0.32, 0.34, 0.43) behind a light surface, whichever has the
+/// larger contrast ratio (WCAG's (L1 + 0.05) / (L2 + 0.05)) with the mean relative luminance of
+/// the boundary voxels' albedo (Albedo, Shading.h). Linear RGBA, opaque.
+vec4 contrastingBackground(const Octree& tree, const RenderSettings& settings);
 
 /// The render settings of a surface built from `surfaceSpec` (its colours, display window and
-/// lighting: applyColour, applyLighting) drawn by `spec` (background, light, threads from the
+/// lighting: applyColour, applyLighting) drawn by `spec` (background, else the contrasting one; light, threads from the
 /// surface spec, coherence, detail, sphere shading). The renderer's alias is not applied here:
 /// renderFrame does it, so that one RenderSettings serves a main and a baseline renderer.
 RenderSettings renderSettings(const SurfaceSpec& surfaceSpec, const Surface& surface, const RenderSpec& spec);

@@ -9,6 +9,7 @@
 #include "octrace/model/OptionTable.h"
 #include "octrace/model/SolidSpec.h"
 
+#include "octrace/build/AutoDepth.h"
 #include "octrace/build/CtPresets.h"
 #include "octrace/build/OctreeBuilder.h"
 #include "octrace/build/ScalarField.h"
@@ -43,8 +44,14 @@ struct SurfaceSpec {
     ValueWindow window;
     bool colourGiven = false;  ///< --colour / --color given
     bool colours = false;      ///< the command colours the surface (has the colour options)
-    int depth = int(opt::depth.defaultValue), threads = int(opt::threads.defaultValue);
+    /// `depth`; unset: auto (chooseDepth), the table's default.
+    std::optional<int> depth;
+    int threads = int(opt::threads.defaultValue);
     bool depthGiven = false;  // --depth given (an octree file input fixes the depth)
+    /// The view that `depth` auto aims a geometry input's voxels at (about one pixel of it):
+    /// render's image size and field of view; the table's for the other commands.
+    int viewWidth = int(opt::width.defaultValue), viewHeight = int(opt::height.defaultValue);
+    double viewFov = opt::fov.defaultValue;
     vec3 colour{0.85f, 0.62f, 0.35f};  // sRGB display values, as the user gives them
     std::string colormap;              // empty: uniform colour, or the colour-by variable's default
     std::string colourBy;              // --colour-by: second variable sampled at the voxels
@@ -112,6 +119,8 @@ struct Surface {
     bool invertedGrey = false;
     std::string windowSource;  ///< where the window comes from, for messages and stats
     BakeReport bake;           ///< when lighting was baked here
+    /// The octree's depth and why: `depth` as given, or what auto chose (chooseDepth).
+    DepthChoice depth;
     /// A sphere input's spheres (the field is their distance field): the voxels take their
     /// colours (sphereColoursAtVoxels). Shared, so that a rebuild from the same field keeps them.
     std::shared_ptr<const SphereSet> spheres;
@@ -142,15 +151,39 @@ struct BuildHooks {
 /// buildOctree(), csg() and bakeLighting().
 Surface buildSurface(const SurfaceSpec& a, const BuildHooks& hooks = {});
 
+/// The depth a read needs before the field is known (a curvilinear grid's lattice, readField):
+/// `depth` when given, else the table's number (opt::depth.defaultValue).
+int readDepth(const SurfaceSpec& a);
+/// `depth` for a field input: as given, or auto, the shallowest depth whose voxel is no larger
+/// than the field's median sample spacing along each axis (depthForField), capped by the memory
+/// budget (the deepest whose estimateBuildMemory at `iso` fits it). Said on stderr (log::info)
+/// when auto chose it. Throws as estimateBuildMemory.
+DepthChoice chooseDepth(const SurfaceSpec& a, const ScalarField& field, double iso);
+/// The depth whose voxel is nearest one pixel of the default view (frameCamera, Render.h) of
+/// `bounds` at `width` x `height` and `fov` degrees (depthForPixel), without the memory cap.
+DepthChoice viewDepth(const Box3& bounds, int width, int height, double fov, const std::string& unit);
+/// `depth` for geometry (a city's or a sphere scene's box `bounds`, its cube the box's largest
+/// extent): as given, or auto, the voxel nearest one pixel of the default view of the box at
+/// a's view size and field of view (depthForPixel), capped so that `bytesAtDepth(d)` fits the
+/// memory budget. `unit` names the world unit in the reason. Said on stderr when auto chose it.
+DepthChoice chooseGeometryDepth(const SurfaceSpec& a, const Box3& bounds, const std::string& unit,
+                                const std::function<double(int)>& bytesAtDepth);
+
 /// buildSurface's two steps for a field input (not an octree file or a city), for callers that
 /// build again and again from one read: readSurfaceField reads a.input into s.field (s.loadMs);
 /// buildFromField does the rest from s.field with `hooks`. Throw as buildSurface.
 void readSurfaceField(const SurfaceSpec& a, Surface& s);
 void buildFromField(const SurfaceSpec& a, Surface& s, const BuildHooks& hooks = {});
 
+/// The colour map of a surface coloured by height by default.
+inline constexpr const char* kHeightColormap = "viridis";
+
 /// The colour settings as RenderSettings (linear RGB): colour, colour map (by default, with
 /// voxel values of a second variable, the one for that variable: defaultColormap in
 /// Shading.h), its range, the masked and floor colours, and the surface's display window.
+/// With none of these given and no colours of its own (a city's, a molecule's) nor a display
+/// window, the surface gets its default look: a CT preset's tissue colour (CtPresets.h), skin
+/// for another patient volume, else kHeightColormap by height.
 void applyColour(const SurfaceSpec& a, const Surface& s, RenderSettings& settings);
 /// The lighting settings as RenderSettings: baked light unless dynamic, the ambient share and
 /// the diffuse (1 - ambient), shadows as given.
