@@ -79,8 +79,8 @@ def test_every_renderer_draws_the_same_surface(shell):
 def test_corner_values_are_built_only_for_smooth_frames(tmp_path):
     # Smooth frames need 8 bytes of corner values per boundary voxel. A surface built without
     # `surface` does not know its renderers yet: it gets them with its first smooth frame (a
-    # renderer that is not a paper's), not with the build, so the papers' voxel frames (the
-    # default renderer, full) never pay for them.
+    # renderer that is not a paper's, as the default, tile), not with the build, so the papers'
+    # voxel frames (full, ...) never pay for them.
     axis = np.linspace(-1, 1, 24)
     z, y, x = np.meshgrid(axis, axis, axis, indexing="ij")
     vol = octrace.Volume((0.6 - np.sqrt(x * x + y * y + z * z)).astype(np.float32))
@@ -89,12 +89,12 @@ def test_corner_values_are_built_only_for_smooth_frames(tmp_path):
     smooth = vol.surface(iso=0, depth=5, surface="smooth")
     corners = 8 * later.boundary_voxels
     assert later.nbytes == voxel.nbytes and smooth.nbytes == voxel.nbytes + corners
-    frame = later.render(size=(48, 40))
+    frame = later.render(size=(48, 40), renderer="full")
     assert frame.stats["renderer"] == "full" and frame.stats["surface"] == "voxel"
     assert frame.stats["corner_bytes_per_voxel"] == 0 and later.nbytes == voxel.nbytes
-    assert np.array_equal(np.asarray(frame), np.asarray(voxel.render(size=(48, 40))))
-    tile = later.render(size=(48, 40), renderer="tile")
-    assert tile.stats["surface"] == "smooth" and later.nbytes == smooth.nbytes
+    assert np.array_equal(np.asarray(frame), np.asarray(voxel.render(size=(48, 40), renderer="full")))
+    tile = later.render(size=(48, 40))
+    assert tile.stats["renderer"] == "tile" and tile.stats["surface"] == "smooth" and later.nbytes == smooth.nbytes
     assert np.array_equal(np.asarray(tile), np.asarray(smooth.render(size=(48, 40), renderer="tile")))
     assert voxel.render(size=(48, 40), renderer="tile").stats["surface"] == "voxel" and voxel.nbytes + corners == smooth.nbytes
     # Saved, they are there whatever frames were drawn, as `octrace build` writes them.
