@@ -43,6 +43,13 @@ SlicePlane planeOf(const ScalarField* f, int pane) {
 
 constexpr int kCustom = 1000;  // the window combo's item of a dragged window
 
+/// The same variable on the same grid (dims, spacing, origin, direction, axis positions): another
+/// time step or volume of the input read before, where the slices' places and window still hold.
+bool sameGrid(const ScalarField& a, const ScalarField& b) {
+    return a.name == b.name && a.units == b.units && a.dims == b.dims && a.origin == b.origin && a.spacing == b.spacing &&
+           a.direction == b.direction && a.coords == b.coords && a.patientLps == b.patientLps;
+}
+
 }  // namespace
 
 SliceViews::SliceViews(QWidget* threeD, Engine& engine, QWidget* parent) : QWidget(parent), engine_(engine), threeD_(threeD) {
@@ -177,6 +184,24 @@ void SliceViews::setFourUp(bool on) {
 }
 
 void SliceViews::setField(std::shared_ptr<const ScalarField> field, const QString& input) {
+    // Another time step or volume of the same input (cine): the crosshair, the panes' positions
+    // and a preset or dragged window stay; only the slices are drawn anew.
+    if (field && field_ && input == input_ && sameGrid(*field, *field_)) {
+        field_ = std::move(field);
+        probe_ = {};
+        probeLabel_->clear();
+        if (field_->patientLps) {
+            autoWindow_ = field_->window.valid() ? field_->window : engine_.info().percentileWindow;
+            const bool automatic = windowName_.empty() && windowCombo_->currentData().toInt() != kCustom;
+            if (automatic) window_ = autoWindow_;  // this volume's, as `slice --volume N` chooses it
+        }
+        updateWindowControls();
+        updateAtBoxes();
+        renderPanes();
+        emit cursorChanged();
+        emit windowChanged();
+        return;
+    }
     field_ = std::move(field);
     input_ = input;
     at_ = {};

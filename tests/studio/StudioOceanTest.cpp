@@ -420,6 +420,52 @@ private slots:
         screenshot(QStringLiteral("studio-volumes.png"));
     }
 
+    void steppingTheVolumeKeepsTheSlicePanes() {
+        // Cine over a 4-D series reads each volume anew; the grid stays, so the crosshair, the
+        // panes' positions and the window stay too (they once went back to the middle and to the
+        // automatic window at every volume), and each pane is the CLI's `slice --volume N`.
+        if (!QFileInfo::exists(kFmri)) QSKIP("the XA10 fMRI series is absent");
+        open(kFmri);
+        auto* slices = window_->slices();
+        slices->setFourUp(true);
+        QTRY_VERIFY(slices->pane(0)->isVisible() && slices->pane(0)->hasSlice());
+        const octrace::ivec3 dims = window_->engine().field()->dims;
+        const octrace::ivec3 cursor(dims.x / 4, dims.y * 3 / 4, 1);
+        QVERIFY(cursor != octrace::ivec3(dims.x / 2, dims.y / 2, dims.z / 2));  // not the default
+        slices->setCursor(cursor);
+        QVERIFY(slices->setWindowText("300,500"));  // a window of the user's own (as dragged)
+        const std::string window = slices->windowText();
+        QVERIFY(!window.empty());
+        // The sagittal pane placed by its position box, between two samples.
+        auto* sagittal = find<QDoubleSpinBox>("sliceAt2");
+        QVERIFY(sagittal);
+        const double at = 0.5 * (sagittal->minimum() + sagittal->maximum()) + 0.3;
+        sagittal->setValue(at);
+        QVERIFY(slices->at(2).has_value());
+        const double atSet = *slices->at(2);
+        const octrace::ivec3 kept = slices->cursor();
+        for (int volume : {1, 3}) {
+            changeAndWait([&] { find<QSpinBox>("stepIndex")->setValue(volume); });
+            QCOMPARE(window_->state().settings.at("volume"), std::to_string(volume));
+            QCOMPARE(slices->cursor(), kept);
+            QVERIFY(slices->at(2) && *slices->at(2) == atSet);
+            QCOMPARE(slices->windowText(), window);
+            for (int i = 0; i < 3; ++i) {
+                QVERIFY(slices->commandLine(i, QStringLiteral("x.png")).join(' ').contains(QStringLiteral("--volume %1").arg(volume)));
+                QCOMPARE(paneDiffersFromCli(*slices, i, tmp_.path(), QStringLiteral("volume%1-pane%2").arg(volume).arg(i)), 0);
+            }
+        }
+        // Another input (another grid) starts afresh: the middle and the automatic window.
+        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
+        window_->openInput(QStringLiteral(OCTRACE_SHARED_DATA "/medical/emri_small.dcm"));
+        QVERIFY(built.wait(kWaitMs));
+        const octrace::ivec3 other = window_->engine().field()->dims;
+        QCOMPARE(slices->cursor(), octrace::ivec3(other.x / 2, other.y / 2, other.z / 2));
+        QVERIFY(slices->windowText().empty());
+        QVERIFY(!slices->at(2));
+        slices->setFourUp(false);
+    }
+
     void cleanupTestCase() { delete window_; }
 };
 

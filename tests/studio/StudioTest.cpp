@@ -131,6 +131,18 @@ private:
         action->trigger();  // returns when the dialog has closed
         return opened;
     }
+    /// Opens the torus sample as a user of the repository types it, from the samples' parent
+    /// folder (so the window and its screenshots show that path), unless it is the surface on
+    /// screen already: a test that needs a surface opens it itself, whatever ran before it.
+    void openSample() {
+        QVERIFY(QDir::setCurrent(QStringLiteral(OCTRACE_SAMPLES "/..")));
+        const QString sample = QStringLiteral("data_samples/torus.nrrd");
+        if (window_->state().input == sample.toStdString() && window_->engine().surface()) return;
+        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
+        window_->openInput(sample);
+        QVERIFY(built.wait(kWaitMs));
+        waitFrame();
+    }
     QString messagesText() const {
         auto* messages = window_->findChild<QDockWidget*>(QStringLiteral("messagesDock"))->findChild<QPlainTextEdit*>();
         return messages ? messages->toPlainText() : QString();
@@ -174,17 +186,11 @@ private slots:
     }
 
     void opensSample() {
-        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
-        // From the samples' parent folder, so that the window (and its screenshots) show the
-        // path as a user of the repository would type it.
-        QVERIFY(QDir::setCurrent(QStringLiteral(OCTRACE_SAMPLES "/..")));
-        window_->openInput(QStringLiteral("data_samples/torus.nrrd"));
-        QVERIFY(built.wait(kWaitMs));
+        openSample();
         const auto& info = window_->engine().info();
         QVERIFY(info.maximum > info.minimum);
         QCOMPARE(window_->engine().iso(), 0.5 * (info.minimum + info.maximum));  // the CLI's default
         QVERIFY(window_->engine().tree()->boundaryVoxels() > 0);
-        waitFrame();
         const QImage shown = window_->view(0)->image();
         QCOMPARE(shown.size(), window_->view(0)->size());
         QVERIFY(surfacePixels(shown, shown.pixel(0, 0)) > 1000);
@@ -497,6 +503,7 @@ private slots:
     }
 
     void exportDialogTypedWidthKeepsTheDpiInProportion() {
+        openSample();
         // A width typed into the dialog goes through 1, 10 and 100 on the way to 1000: the dpi
         // follows the width typed, in proportion to the one the dialog opened with, not each
         // keystroke (it once climbed 36 -> 360 -> 1200 dpi and the figure was one giant title).
@@ -544,6 +551,7 @@ private slots:
     }
 
     void exportDialogKeepsTheLastFile() {
+        openSample();
         // The file name (and its folder) of the last export is the dialog's next proposal, not
         // figure.png again.
         QVERIFY(QDir(tmp_.path()).mkpath(QStringLiteral("kept")));
@@ -1126,6 +1134,75 @@ private slots:
         wheel(axial, 120);
         QCOMPARE(slices->sliceIndex(0), n - 1);
         slices->setCursor(octrace::ivec3(128, 128, 66));
+    }
+
+    /// Where world point `w` lies in a pane's image (pixel centres at +0.5), as the pane draws it.
+    static QPointF imagePixelOf(const octrace::SliceView& v, const octrace::dvec3& w) {
+        const octrace::dvec3 d = w - v.topLeft;
+        const double ps2 = v.pixelSize * v.pixelSize;
+        return {glm::dot(d, v.right) / ps2 + 0.5, glm::dot(d, v.down) / ps2 + 0.5};
+    }
+    /// The crosshair: the cursor is `voxel`, the coronal and sagittal slices pass through it, and
+    /// each pane draws its lines there (within half a pixel).
+    void crosshairIsAt(const octrace::ivec3& voxel) {
+        auto* slices = window_->slices();
+        const auto& field = *window_->engine().field();
+        QCOMPARE(slices->cursor(), voxel);
+        for (int i = 0; i < 3; ++i) {
+            QCOMPARE(slices->sliceIndex(i), voxel[octrace::sliceGridAxis(field, slices->pane(i)->plane())]);
+            const auto& content = slices->pane(i)->content();
+            QVERIFY(content.crosshair.has_value());
+            const QPointF expected = imagePixelOf(content.result.view, field.worldFromGrid(voxel.x, voxel.y, voxel.z));
+            const QPointF off = *content.crosshair - expected;
+            QVERIFY2(std::abs(off.x()) <= 0.5 && std::abs(off.y()) <= 0.5,
+                     qPrintable(QStringLiteral("pane %1: crosshair at (%2, %3), the voxel at (%4, %5)")
+                                    .arg(i).arg(content.crosshair->x()).arg(content.crosshair->y()).arg(expected.x()).arg(expected.y())));
+        }
+    }
+
+    void clickInTheAxialPaneMovesTheOtherSlices() {
+        // The crosshair is shared: a left click in the axial pane puts the coronal and sagittal
+        // slices through the voxel clicked (the axial slice stays), and each pane draws its
+        // lines there; a left drag carries them along to the voxel where it ends.
+        if (!openChestFourUp()) QSKIP("needs ../shared/data/medical/lidc2_chest_ct.nrrd");
+        auto* slices = window_->slices();
+        auto* axial = slices->pane(0);
+        const auto& field = *window_->engine().field();
+        const int across = octrace::sliceGridAxis(field, axial->plane());
+        const octrace::ivec3 start = slices->cursor();
+        // The widget point over the centre of voxel `v` of the axial slice.
+        const auto pointOf = [&](const octrace::ivec3& v) {
+            const QPointF px = imagePixelOf(axial->content().result.view, field.worldFromGrid(v.x, v.y, v.z));
+            return axial->widgetPoint(px);
+        };
+        // Mouse events at exact (sub-pixel) points, as a tablet or a scaled screen gives them.
+        const auto send = [&](QEvent::Type type, QPointF at, Qt::MouseButton button, Qt::MouseButtons held) {
+            QMouseEvent e(type, at, axial->mapToGlobal(at), button, held, Qt::NoModifier);
+            QApplication::sendEvent(axial, &e);
+        };
+        octrace::ivec3 clicked = start, dragged = start;
+        for (int a = 0; a < 3; ++a)
+            if (a != across) {
+                clicked[a] = field.dims[a] / 3;
+                dragged[a] = field.dims[a] * 3 / 4;
+            }
+        const int coronal = slices->sliceIndex(1), sagittal = slices->sliceIndex(2);
+        send(QEvent::MouseButtonPress, pointOf(clicked), Qt::LeftButton, Qt::LeftButton);
+        send(QEvent::MouseButtonRelease, pointOf(clicked), Qt::LeftButton, Qt::NoButton);
+        crosshairIsAt(clicked);
+        QVERIFY(slices->sliceIndex(1) != coronal && slices->sliceIndex(2) != sagittal);  // both moved
+        QCOMPARE(slices->sliceIndex(0), start[across]);
+        paneEqualsCli(1, QStringLiteral("clicked-coronal"));
+        paneEqualsCli(2, QStringLiteral("clicked-sagittal"));
+        // A drag from there: the slices follow the pointer to where it is released.
+        const QPointF from = pointOf(clicked), to = pointOf(dragged);
+        send(QEvent::MouseButtonPress, from, Qt::LeftButton, Qt::LeftButton);
+        for (int step = 1; step <= 4; ++step) send(QEvent::MouseMove, from + (to - from) * (step / 4.0), Qt::NoButton, Qt::LeftButton);
+        send(QEvent::MouseButtonRelease, to, Qt::LeftButton, Qt::NoButton);
+        crosshairIsAt(dragged);
+        QCOMPARE(slices->sliceIndex(0), start[across]);
+        paneEqualsCli(2, QStringLiteral("dragged-sagittal"));
+        slices->setCursor(start);
     }
 
     void slicePanesEqualTheCliSlice() {
