@@ -171,13 +171,14 @@ void Engine::open(const StudioState& state) {
                 }
                 int n = 0;
                 for (const auto& s : choices.series)
-                    info.series << QStringLiteral("%1: %2 (%3, %4x%5x%6)")
+                    info.series << QStringLiteral("%1: %2 (%3, %4x%5x%6%7)")
                                        .arg(++n)
                                        .arg(QString::fromStdString(s.description.empty() ? s.uid : s.description))
                                        .arg(QString::fromStdString(s.modality))
                                        .arg(s.columns)
                                        .arg(s.rows)
-                                       .arg(s.slices);
+                                       .arg(s.slices)
+                                       .arg(s.volumes > 1 ? QStringLiteral(", %1 volumes").arg(s.volumes) : QString());
                 // The series the reader takes, for the Series box to show (the default is
                 // the largest, not the first listed).
                 if (!choices.series.empty())

@@ -6,6 +6,7 @@
 #include "CliRunner.h"
 #include "TimeSeries.h"
 
+#include "octrace/io/FieldReader.h"
 #include "octrace/io/TimeAxis.h"
 #include "octrace/io/VideoWriter.h"
 #include "octrace/model/Animation.h"
@@ -15,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -203,6 +205,44 @@ TEST(AnimationPlan, ColoursByHeightOverTheGridInEveryFrame) {
     octrace::Frame ownFrame;
     model::renderFrame(surface.tree, model::animationCamera(plan, 2), ownRs, plan.spec.render.renderer, ownFrame);
     EXPECT_NE(octrace::quantizeSrgb8(ownFrame, 4), framed.rgba8());
+}
+
+// Without `iso`, every frame's surface is at the middle of the first step's valid range, as
+// render would choose it for that step: the XA10 fMRI's volumes have their own ranges (0..1199,
+// 0..1195 for volume 2), and each frame choosing its own would move the surface between frames.
+TEST(AnimationPlan, WithoutAnIsoEveryFrameTakesTheFirstVolumesMiddle) {
+    const std::string folder = sharedData("medical/siemens_xa10_fmri_4d");
+    if (!std::filesystem::exists(folder)) GTEST_SKIP() << "shared data absent: " << folder;
+    auto middle = [&](int volume) {
+        io::FieldRequest r;
+        r.volume = volume;
+        const auto [lo, hi] = io::readField(folder, r).validRange();
+        return 0.5 * (double(lo) + double(hi));
+    };
+    model::AnimationSpec spec;
+    spec.surface.input = folder;
+    spec.surface.depth = 6;
+    const model::AnimationPlan plan = model::planAnimation(spec);
+    ASSERT_EQ(plan.frames.size(), 4u);
+    ASSERT_TRUE(plan.spec.surface.iso.has_value());
+    EXPECT_DOUBLE_EQ(*plan.spec.surface.iso, middle(0));
+    EXPECT_NE(middle(2), middle(0));  // the volumes' own middles differ: the choice matters
+    const bool said = std::any_of(plan.notes.begin(), plan.notes.end(), [](const std::string& n) {
+        return n.find("every frame's surface at the iso value of the first: 599.5, the middle of the range [0, 1199]") != std::string::npos;
+    });
+    EXPECT_TRUE(said) << ::testing::PrintToString(plan.notes);
+    // A given iso stays.
+    spec.surface.iso = 300.0;
+    EXPECT_DOUBLE_EQ(*model::planAnimation(spec).spec.surface.iso, 300.0);
+
+    // The CLI says it once on stderr, and no frame chooses its own.
+    if (!haveFfmpeg()) GTEST_SKIP() << "ffprobe/ffmpeg absent (Debian package ffmpeg, scripts/setup.sh)";
+    Scratch s;
+    const Result r = run({"animate", folder, "--depth", "6", "--size", "64x48", "-o", s.path("fmri.mp4")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("every frame's surface at the iso value of the first: 599.5"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--iso sets another"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("no --iso given"), std::string::npos) << r.err;
 }
 
 TEST(VideoWriter, KeepsEveryFrameWhateverTheCount) {

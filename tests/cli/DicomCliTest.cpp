@@ -98,3 +98,40 @@ TEST(DicomCli, InfoListsEchoesAndBValuesAndVolumeChoosesEach) {
         EXPECT_NE(defaulted.err.find("volume 0"), std::string::npos) << defaulted.err;
     }
 }
+
+// The XA10 fMRI series (four enhanced MR files) and dcm2niix's 4-D NIfTI of it: `info` lists the
+// NIfTI's volumes with their times as it lists the series' volumes with their temporal
+// positions, and the slice of volume v at one position is the same PNG, byte for byte, from
+// either (one window given: the NIfTI has none of its own).
+TEST(DicomCli, TheFourDNiftiListsItsVolumesAndSlicesAsTheDicomSeries) {
+    const std::string folder = sharedData("medical/siemens_xa10_fmri_4d"), nii = folder + "/reference_dcm2niix.nii";
+    if (!std::filesystem::exists(nii)) GTEST_SKIP() << "shared data absent: " << nii;
+    Result dicomInfo = run({"info", folder});
+    ASSERT_EQ(dicomInfo.code, 0) << dicomInfo.err;
+    EXPECT_NE(dicomInfo.out.find("64x64x6, 4 files, 4 volumes)"), std::string::npos) << dicomInfo.out;
+    EXPECT_NE(dicomInfo.out.find("volume 3: temporal position 4, 6 slices\n"), std::string::npos) << dicomInfo.out;
+    Result info = run({"info", nii});
+    ASSERT_EQ(info.code, 0) << info.err;
+    EXPECT_NE(info.out.find("volumes: 4 (choose with --volume, from 0)\n"), std::string::npos) << info.out;
+    for (int v = 0; v < 4; ++v) {
+        const std::string time = v % 2 ? std::to_string(v / 2) + ".5" : std::to_string(v / 2);
+        EXPECT_NE(info.out.find("volume " + std::to_string(v) + ": time " + time + " s, 6 slices\n"), std::string::npos) << info.out;
+    }
+    EXPECT_NE(info.out.find("chosen: volume 0\n"), std::string::npos) << info.out;
+    Scratch s;
+    for (int v : {0, 2}) {
+        const std::string fromDicom = s.path("dicom" + std::to_string(v) + ".png"), fromNifti = s.path("nifti" + std::to_string(v) + ".png");
+        const std::vector<std::string> at = {"--volume", std::to_string(v), "--plane", "axial", "--at", "1.8", "--window", "600,1200", "-o"};
+        std::vector<std::string> a = {"slice", folder}, b = {"slice", nii};
+        a.insert(a.end(), at.begin(), at.end());
+        b.insert(b.end(), at.begin(), at.end());
+        a.push_back(fromDicom);
+        b.push_back(fromNifti);
+        Result r = run(a);
+        ASSERT_EQ(r.code, 0) << r.err;
+        r = run(b);
+        ASSERT_EQ(r.code, 0) << r.err;
+        EXPECT_EQ(slurp(fromDicom), slurp(fromNifti)) << "volume " << v;
+    }
+    EXPECT_NE(slurp(s.path("dicom0.png")), slurp(s.path("dicom2.png")));  // two time points, two images
+}

@@ -457,14 +457,31 @@ TEST(DicomReader, TheXa10FmriSeriesIsFourVolumesEqualToDcm2niixsReference) {
                       "no volume 4: the NIfTI image holds 4 volumes (dim[4]), 0..3");
     // info lists the volumes with what tells them apart.
     const std::string text = io::DicomReader::describe(folder, {}, 0, 2);
-    EXPECT_NE(text.find("4 volumes)"), std::string::npos) << text;
+    // The series line counts the slices of one volume (4 x 6 frames: 64x64x6), then the volumes.
+    EXPECT_NE(text.find("(MR, 'REST1 w SMS PF7-8', 64x64x6, 4 files, 4 volumes)"), std::string::npos) << text;
+    const std::vector<io::DicomSeriesInfo> series = io::DicomReader::listSeries(folder);
+    ASSERT_EQ(series.size(), 1u);
+    EXPECT_EQ(series[0].slices, 6);
+    EXPECT_EQ(series[0].volumes, 4);
     EXPECT_NE(text.find("volume 3: temporal position 4, 6 slices"), std::string::npos) << text;
     EXPECT_NE(text.find("chosen: series 1, volume 2"), std::string::npos) << text;
     // An animation's steps are the volumes.
     const io::TimeAxis axis = io::readTimeAxis(folder);
     EXPECT_TRUE(axis.volumes);
     EXPECT_EQ(axis.size, 4u);
-    EXPECT_EQ(io::readTimeAxis(nii).size, 4u);
+    const io::TimeAxis niftiAxis = io::readTimeAxis(nii);
+    EXPECT_TRUE(niftiAxis.volumes);
+    EXPECT_EQ(niftiAxis.size, 4u);
+    // The NIfTI's volumes are labelled by their time: pixdim[4] 0.5 in seconds (xyzt_units 10),
+    // dcm2niix's RepetitionTime; info lists them as it lists the DICOM series' volumes.
+    const std::vector<std::string> times = {"time 0 s", "time 0.5 s", "time 1 s", "time 1.5 s"};
+    EXPECT_EQ(niftiAxis.labels, times);
+    EXPECT_EQ(io::VolumeReader::volumeLabels(nii, io::VolumeReader::Format::Nifti), times);
+    const std::string niftiText = io::VolumeReader::describe(nii, io::VolumeReader::Format::Nifti, 0, 2);
+    EXPECT_NE(niftiText.find("volumes: 4 (choose with `volume`, from 0)\nvolume 0: time 0 s, 6 slices\n"), std::string::npos)
+        << niftiText;
+    EXPECT_NE(niftiText.find("volume 3: time 1.5 s, 6 slices\nchosen: volume 2\n"), std::string::npos) << niftiText;
+    EXPECT_NE(niftiText.find("note: volume 2 of 4 (NIfTI dim[4]): time 1 s"), std::string::npos) << niftiText;
 }
 
 // Real slices (the XA10 series as dcm2niix wrote it) as classic MR files of two time points

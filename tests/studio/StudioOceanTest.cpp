@@ -394,6 +394,9 @@ private slots:
     void volumeSelectorReadsTheVolumeAsTheCli() {
         if (!QFileInfo::exists(kFmri)) QSKIP("the XA10 fMRI series is absent");
         open(kFmri);
+        // The Series box counts one volume's slices, then the volumes (4 files of 6 frames).
+        const QString seriesText = find<QComboBox>("seriesCombo")->currentText();
+        QVERIFY2(seriesText.endsWith(QStringLiteral("(MR, 64x64x6, 4 volumes)")), qPrintable(seriesText));
         QVERIFY(!ocean()->isVisible());
         QVERIFY(steps()->isVisible());
         QCOMPARE(steps()->count(), 4);

@@ -95,7 +95,6 @@ Scan scan(const std::string& path) {
         Series& series = byUid[h->seriesUid];
         if (series.headers.empty())
             series.info = {h->seriesUid, h->modality, h->description, h->seriesNumber, h->columns, h->rows, 0, 0};
-        series.info.slices += int(h->frames.size());
         series.info.files += 1;
         series.headers.push_back(std::move(*h));
     }
@@ -105,6 +104,8 @@ Scan scan(const std::string& path) {
     for (auto& [uid, series] : byUid) {
         series.volumes = detail::splitVolumes(series.headers);
         series.info.volumes = int(series.volumes.size());
+        for (const detail::SeriesVolume& v : series.volumes)
+            series.info.slices = std::max(series.info.slices, int(v.images.size()));
         s.series.push_back(std::move(series));
     }
     std::stable_sort(s.series.begin(), s.series.end(), [](const Series& a, const Series& b) {
@@ -120,6 +121,12 @@ std::string seriesLine(const DicomSeriesInfo& i) {
       << i.slices << ", " << i.files << " file" << (i.files == 1 ? "" : "s")
       << (i.volumes > 1 ? ", " + std::to_string(i.volumes) + " volumes" : std::string()) << ")";
     return s.str();
+}
+
+std::vector<std::string> volumeLabels(const Series& series) {
+    std::vector<std::string> labels;
+    for (const detail::SeriesVolume& v : series.volumes) labels.push_back(v.label);
+    return labels;
 }
 
 std::size_t chooseScanned(const Scan& s, const std::string& want, const std::string& path) {
@@ -300,9 +307,7 @@ std::vector<std::string> DicomReader::listVolumes(const std::string& path, const
     const Scan s = scan(path);
     const Series& chosen = s.series[chooseScanned(s, series, path)];
     detail::checkVolumesAlike(chosen.headers, chosen.volumes, path);
-    std::vector<std::string> labels;
-    for (const detail::SeriesVolume& v : chosen.volumes) labels.push_back(v.label);
-    return labels;
+    return volumeLabels(chosen);
 }
 
 std::string DicomReader::describe(const std::string& path, const std::string& series, std::uint64_t memoryBudget, int volume) {
@@ -314,9 +319,7 @@ std::string DicomReader::describe(const std::string& path, const std::string& se
     const Series& c = s.series[chosen];
     if (c.volumes.size() > 1) {
         detail::checkVolumesAlike(c.headers, c.volumes, path);
-        out << "volumes: " << c.volumes.size() << " (choose with `volume`, from 0)\n";
-        for (std::size_t v = 0; v < c.volumes.size(); ++v)
-            out << "volume " << v << ": " << c.volumes[v].label << ", " << c.volumes[v].images.size() << " slices\n";
+        out << detail::describeVolumeList(volumeLabels(c), c.volumes.front().images.size());  // alike: checked above
     }
     const ScalarField f = readScanned(s, path, series, memoryBudget, volume, true);  // a single image is described, not refused
     out << "chosen: series " << chosen + 1;

@@ -95,7 +95,7 @@ TimeAxis readTimeAxis(const std::string& path, const FieldRequest& req) {
     // A multi-volume DICOM series or a 4-D NIfTI image: its volumes are the steps.
     std::vector<std::string> labels;
     if (kind == FileKind::Dicom) labels = DicomReader::listVolumes(path, req.series);
-    else if (kind == FileKind::Nifti) labels.resize(VolumeReader::volumeCount(path, VolumeReader::Format::Nifti));
+    else if (kind == FileKind::Nifti) labels = VolumeReader::volumeLabels(path, VolumeReader::Format::Nifti);
     if (labels.size() > 1) {
         axis.name = "volume";
         axis.volumes = true;

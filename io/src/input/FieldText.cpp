@@ -36,4 +36,13 @@ std::string describeVolume(const ScalarField& f) {
     return s.str();
 }
 
+std::string describeVolumeList(const std::vector<std::string>& labels, std::size_t slices) {
+    if (labels.size() <= 1) return {};
+    std::ostringstream s;
+    s << "volumes: " << labels.size() << " (choose with `volume`, from 0)\n";
+    for (std::size_t v = 0; v < labels.size(); ++v)
+        s << "volume " << v << ": " << (labels[v].empty() ? std::string() : labels[v] + ", ") << slices << " slices\n";
+    return s.str();
+}
+
 }  // namespace octrace::io::detail

@@ -96,6 +96,25 @@ vtkNIFTIImageHeader* niftiHeader(vtkNIFTIImageReader* reader, detail::VtkMessage
     return h;
 }
 
+// The volumes of a NIfTI image (dim[4], 1 when 3-D), each labelled by its time when the header
+// gives one: toffset + v * pixdim[4] in xyzt_units' time unit ("time 1.5 s"); else "".
+std::vector<std::string> niftiVolumeLabels(vtkNIFTIImageHeader* h) {
+    const long long volumes = h->GetDim(0) >= 4 ? std::max<long long>(1, h->GetDim(4)) : 1;
+    const char* unit = nullptr;
+    switch (h->GetXYZTUnits() & 0x38) {  // NIFTI_SEC, NIFTI_MSEC, NIFTI_USEC; Hz, ppm, rad/s are not times
+        case 8: unit = "s"; break;
+        case 16: unit = "ms"; break;
+        case 24: unit = "us"; break;
+        default: break;
+    }
+    const double step = h->GetPixDim(4), offset = h->GetTOffset();
+    const bool timed = unit && volumes > 1 && std::isfinite(step) && step > 0.0 && std::isfinite(offset);
+    std::vector<std::string> labels(static_cast<std::size_t>(volumes));
+    if (timed)
+        for (long long v = 0; v < volumes; ++v) labels[std::size_t(v)] = "time " + detail::num(offset + double(v) * step) + " " + unit;
+    return labels;
+}
+
 ScalarField readNifti(const std::string& path, std::uint64_t budget, int volume) {
     vtkNew<vtkNIFTIImageReader> reader;
     detail::VtkMessages messages;
@@ -176,7 +195,9 @@ ScalarField readNifti(const std::string& path, std::uint64_t budget, int volume)
 
     if (volumes > 1) {
         reader->TimeAsVectorOn();
-        f.notes.push_back("volume " + std::to_string(chosen) + " of " + std::to_string(volumes) + " (NIfTI dim[4])");
+        const std::string label = niftiVolumeLabels(h)[std::size_t(chosen)];
+        f.notes.push_back("volume " + std::to_string(chosen) + " of " + std::to_string(volumes) + " (NIfTI dim[4])" +
+                          (label.empty() ? std::string() : ": " + label));
     }
     update(reader, messages, path, "NIfTI");
     std::vector<float> values = detail::scalarsAsFloat(reader->GetOutput(), f.sampleCount() * std::size_t(volumes), path, volumes == 1);
@@ -260,18 +281,21 @@ ScalarField VolumeReader::read(const std::string& path, Format format, std::uint
     }
 }
 
-std::size_t VolumeReader::volumeCount(const std::string& path, Format format) {
-    if (format != Format::Nifti) return 1;
+std::vector<std::string> VolumeReader::volumeLabels(const std::string& path, Format format) {
+    if (format != Format::Nifti) return {""};
     vtkNew<vtkNIFTIImageReader> reader;
     detail::VtkMessages messages;
-    vtkNIFTIImageHeader* h = niftiHeader(reader, messages, path);
-    return h->GetDim(0) >= 4 && h->GetDim(4) > 1 ? std::size_t(h->GetDim(4)) : 1;
+    return niftiVolumeLabels(niftiHeader(reader, messages, path));
 }
 
 std::string VolumeReader::describe(const std::string& path, Format format, std::uint64_t memoryBudget, int volume) {
     const ScalarField f = read(path, format, memoryBudget, volume);
     std::ostringstream s;
-    s << path << "\nformat: " << formatName(format) << "\n" << detail::describeVolume(f);
+    s << path << "\nformat: " << formatName(format) << "\n";
+    const std::vector<std::string> labels = volumeLabels(path, format);
+    if (labels.size() > 1)
+        s << detail::describeVolumeList(labels, std::size_t(f.dims.z)) << "chosen: volume " << (volume < 0 ? 0 : volume) << "\n";
+    s << detail::describeVolume(f);
     return s.str();
 }
 

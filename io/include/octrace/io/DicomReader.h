@@ -19,11 +19,11 @@ struct DicomSeriesInfo {
     std::string description;  ///< SeriesDescription (may be empty)
     int seriesNumber = 0;     ///< SeriesNumber (0 when absent)
     int columns = 0, rows = 0;
-    int slices = 0;           ///< images: frames summed over the files
+    int slices = 0;           ///< images of one volume (of the largest when they differ)
     int files = 0;
     int volumes = 1;          ///< volumes (time points, echoes, ...) at the same slices; see read()
-    /// columns * rows * slices: the measure of "the largest series".
-    double samples() const { return double(columns) * double(rows) * double(slices); }
+    /// columns * rows * slices * volumes: the measure of "the largest series".
+    double samples() const { return double(columns) * double(rows) * double(slices) * double(volumes); }
 };
 
 class DicomReader {

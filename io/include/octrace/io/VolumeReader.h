@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace octrace::io {
 
@@ -38,8 +39,10 @@ public:
     /// there are. Other formats hold one volume and refuse a `volume` (InputError).
     static ScalarField read(const std::string& path, Format format, std::uint64_t memoryBudget = 0, int volume = -1);
 
-    /// Volumes in the file, from its header: dim[4] of a 4-D NIfTI image, else 1.
-    static std::size_t volumeCount(const std::string& path, Format format);
+    /// The volumes in the file, from its header: dim[4] of a 4-D NIfTI image, else one. Each is
+    /// labelled by its time ("time 1.5 s": toffset + v * pixdim[4] in xyzt_units' time unit)
+    /// when the header gives one, else "".
+    static std::vector<std::string> volumeLabels(const std::string& path, Format format);
 
     /// `octrace info` text: format line, then the volume as NrrdReader::describe prints it.
     static std::string describe(const std::string& path, Format format, std::uint64_t memoryBudget = 0, int volume = -1);
