@@ -585,7 +585,7 @@ TEST(DicomReader, EveryVolumeAttributeSplitsASeriesIntoVolumesNamedByIt) {
         {"dicom/two_trigger_times", {"trigger time 0.0", "trigger time 400.0"}, {0, 1}},
         {"dicom/two_acquisitions", {"repeat 1 (acquired 120001.000)", "repeat 2 (acquired 120003.000)"}, {1, 0}},
         {"dicom/two_stacks.dcm", {"stack 1", "stack 2"}, {0, 1}},
-        {"dicom/two_dimension_indices.dcm", {"dimension index 1", "dimension index 2"}, {0, 1}},
+        {"dicom/two_dimension_indices.dcm", {"dimension index 1 (InversionTimes)", "dimension index 2 (InversionTimes)"}, {0, 1}},
         {"dicom/two_gradient_directions.dcm", {"gradient direction 0\\1\\0", "gradient direction 1\\0\\0"}, {0, 1}},
     };
     const std::string nii = test::sharedData("medical/siemens_xa10_fmri_4d/reference_dcm2niix.nii");

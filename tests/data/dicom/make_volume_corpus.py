@@ -11,10 +11,21 @@ at the positions the NIfTI's sform gives (RAS turned into DICOM's LPS). Two time
 
 and the fuzz_dicom seed two_time_points.dcm (two slices of each time point). The valid
 fixtures of tests/data/dicom take the first 3 slices of time points 1 and 2 as two volumes told
-apart by other attributes, with no TemporalPositionIdentifier:
+apart by one other attribute each, with no TemporalPositionIdentifier. Classic MR files:
 
 - two_echoes/: EchoNumbers 1 and 2 (EchoTime 10 and 30 ms), as a multi-echo series;
-- two_bvalues/: DiffusionBValue 0 and 1000 (FD), as a diffusion series.
+- two_bvalues/: DiffusionBValue 0 and 1000 (FD), as a diffusion series;
+- two_image_types/: ImageType ORIGINAL\\PRIMARY\\M\\ND and ...\\P\\ND (magnitude and phase);
+- two_complex_components/: ComplexImageComponent MAGNITUDE and PHASE;
+- two_trigger_times/: TriggerTime 0 and 400 ms (two cardiac phases);
+- two_acquisitions/: only AcquisitionTime (time point 2 acquired first).
+
+One enhanced MR file each (the two volumes' frames interleaved, slice by slice):
+
+- two_stacks.dcm: StackID 1 and 2 at the same positions;
+- two_dimension_indices.dcm: DimensionIndexValues alone (dimensions InStackPositionNumber and
+  InversionTimes), and its 4 x 4 pixel copy as the fuzz_dicom seed two_dimension_indices.dcm;
+- two_gradient_directions.dcm: DiffusionGradientOrientation 0,1,0 and 1,0,0 at b-value 1000.
 
 Run once from this folder with the shared data beside the checkout; the outputs are committed."""
 import os
@@ -40,6 +51,16 @@ def read_nifti(path):
     nx, ny, nz, nt = dim[1:5]
     samples = struct.unpack("<%dh" % (nx * ny * nz * nt), data[offset:offset + 2 * nx * ny * nz * nt])
     return (nx, ny, nz, nt), srow, samples
+
+
+def crop(dims, srow, samples, x0, y0, n):
+    """The n x n pixels from (x0, y0) of every slice and time point, with the sform moved to them."""
+    nx, ny, nz, nt = dims
+    rows = [list(r) for r in srow]
+    for r in range(3):
+        rows[r][3] += x0 * srow[r][0] + y0 * srow[r][1]
+    out = [samples[((s * ny) + y) * nx + x] for s in range(nz * nt) for y in range(y0, y0 + n) for x in range(x0, x0 + n)]
+    return (n, n, nz, nt), rows, out
 
 
 def lps(ras):
@@ -166,11 +187,12 @@ def main():
     # two inversion times (an attribute octrace does not read) told apart only by
     # DimensionIndexValues, whose dimensions are InStackPositionNumber and InversionTimes (in the
     # MR Modifier macro);
-    write_enhanced(os.path.join(HERE, "two_dimension_indices.dcm"), dims, srow, samples,
-                   [(t, k, {**frame_content(in_stack=k + 1, index=(k + 1, t + 1)),
-                            (0x0018, 0x9115): ("SQ", [{(0x0018, 0x9079): ("FD", struct.pack("<d", [100, 1000][t]))}])})
-                    for t, k in interleaved],
-                   [(IN_STACK_POSITION, FRAME_CONTENT), ((0x0018, 0x9079), (0x0018, 0x9115))], SERIES + ".2")
+    inversion_frames = [(t, k, {**frame_content(in_stack=k + 1, index=(k + 1, t + 1)),
+                                (0x0018, 0x9115): ("SQ", [{(0x0018, 0x9079): ("FD", struct.pack("<d", [100, 1000][t]))}])})
+                        for t, k in interleaved]
+    inversion_dimensions = [(IN_STACK_POSITION, FRAME_CONTENT), ((0x0018, 0x9079), (0x0018, 0x9115))]
+    write_enhanced(os.path.join(HERE, "two_dimension_indices.dcm"), dims, srow, samples, inversion_frames,
+                   inversion_dimensions, SERIES + ".2")
     # two diffusion directions of one b-value (MR Diffusion macro: DiffusionBValue 1000 and the
     # DiffusionGradientOrientation in its Diffusion Gradient Direction Sequence).
     directions = [(0.0, 1.0, 0.0), (1.0, 0.0, 0.0)]
@@ -180,6 +202,9 @@ def main():
                        (0x0018, 0x9075): ("CS", "DIRECTIONAL"),
                        (0x0018, 0x9076): ("SQ", [{(0x0018, 0x9089): ("FD", struct.pack("<3d", *directions[t]))}])}])})
                     for t, k in interleaved], [], SERIES + ".3")
+    # A fuzz_dicom seed: the DimensionIndexValues case on 4 x 4 pixels of the phantom's middle.
+    write_enhanced(os.path.join(SEEDS, "two_dimension_indices.dcm"), *crop(dims, srow, samples, 30, 30, 4),
+                   inversion_frames, inversion_dimensions, SERIES + ".2")
 
 
 if __name__ == "__main__":
