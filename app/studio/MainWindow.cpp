@@ -438,6 +438,19 @@ QWidget* MainWindow::buildControls() {
     depthRow->addWidget(depthSpin_, 1);
     depthRow->addWidget(depthAutoCheck_);
     surfForm->addRow(tr("Depth"), depthRow);
+    // `surface` (the options table): auto is the setting unset (smooth, voxel with the papers'
+    // renderers), as the CLI without --surface.
+    surfaceCombo_ = new QComboBox(surfBox);
+    surfaceCombo_->setObjectName(QLatin1String(model::opt::surface.key));
+    configure(surfaceCombo_, model::opt::surface);
+    surfaceCombo_->addItem(tr("auto"), QString());
+    surfaceCombo_->setItemData(0, QString::fromStdString(model::sayForStudio(model::opt::surface.defaultText)), Qt::ToolTipRole);
+    for (const std::string& c : model::opt::surface.choiceList())
+        surfaceCombo_->addItem(QString::fromStdString(c), QString::fromStdString(c));
+    connect(surfaceCombo_, &QComboBox::currentIndexChanged, this, [this] {
+        if (!updating_) settingEdited(QLatin1String(model::opt::surface.key), surfaceCombo_->currentData().toString());
+    });
+    surfForm->addRow(tr(model::opt::surface.label), surfaceCombo_);
     layout->addWidget(surfBox);
     layout->addWidget(buildCutControls(w));
 
@@ -877,6 +890,9 @@ void MainWindow::showState() {
     depthAutoCheck_->setChecked(!state_.depth);
     rendererCombo_->setCurrentText(QString::fromStdString(state_.renderer));
     secondCombo_->setCurrentText(QString::fromStdString(state_.secondRenderer));
+    const auto surface = state_.settings.find(model::opt::surface.key);
+    surfaceCombo_->setCurrentIndex(std::max(
+        0, surfaceCombo_->findData(surface == state_.settings.end() ? QString() : QString::fromStdString(surface->second))));
     fovSpin_->setValue(state_.fov);
     for (int i = 0; i < 3; ++i) lightSpin_[i]->setValue(state_.light[i]);
     ambientSpin_->setValue(state_.ambient);

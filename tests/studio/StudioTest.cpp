@@ -438,6 +438,49 @@ private slots:
         combo->setCurrentText(QStringLiteral("full"));
     }
 
+    void surfaceControlDrawsAsTheCli() {
+        // The `surface` setting: auto (unset) draws smooth with tile and voxel with full, as
+        // render without --surface; voxel or smooth chosen holds for every renderer.
+        openSample();
+        auto* surface = window_->findChild<QComboBox*>(QStringLiteral("surface"));
+        auto* renderer = window_->findChild<QComboBox*>(QStringLiteral("rendererCombo"));
+        QVERIFY(surface && renderer);
+        QCOMPARE(surface->currentIndex(), 0);
+        QVERIFY(!window_->state().settings.count("surface"));
+        renderer->setCurrentText(QStringLiteral("tile"));
+        waitFrame();
+        const QImage autoTile = window_->view(0)->image();
+        exportEqualsCli(QStringLiteral("surface-auto-tile"), 220, 160, false);
+        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
+        surface->setCurrentIndex(surface->findData(QStringLiteral("voxel")));
+        QVERIFY(built.wait(kWaitMs));
+        waitFrame();
+        QCOMPARE(window_->state().settings.at("surface"), std::string("voxel"));
+        QVERIFY(window_->engine().tree()->corners().empty());  // voxel builds no corner values
+        QVERIFY(window_->view(0)->image() != autoTile);
+        QVERIFY(window_->commandLine(QStringLiteral("x.png"), 10, 10).join(QLatin1Char(' ')).contains(QStringLiteral("--surface voxel")));
+        exportEqualsCli(QStringLiteral("surface-voxel-tile"), 220, 160, false);
+        // Smooth with a paper renderer, which draws voxel in auto.
+        surface->setCurrentIndex(surface->findData(QStringLiteral("smooth")));
+        QVERIFY(built.wait(kWaitMs));
+        renderer->setCurrentText(QStringLiteral("full"));
+        waitFrame();
+        QVERIFY(!window_->engine().tree()->corners().empty());
+        exportEqualsCli(QStringLiteral("surface-smooth-full"), 220, 160, false);
+        // A session keeps it.
+        const QString session = tmp_.filePath(QStringLiteral("surface-session.json"));
+        QVERIFY(window_->saveSessionTo(session));
+        surface->setCurrentIndex(0);
+        QVERIFY(built.wait(kWaitMs));
+        QVERIFY(!window_->state().settings.count("surface"));
+        QVERIFY(window_->openSession(session));
+        QVERIFY(built.wait(kWaitMs));
+        QCOMPARE(surface->currentData().toString(), QStringLiteral("smooth"));
+        surface->setCurrentIndex(0);
+        QVERIFY(built.wait(kWaitMs));
+        waitFrame();
+    }
+
     void exportsFigureWithAnnotationsAsTheCli() {
         // A colour map brings the colour bar; title, subtitle, the box with its ticks and the
         // scale bar are the annotations, set at 200 dpi over a 900x640 figure.
