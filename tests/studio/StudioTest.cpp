@@ -783,6 +783,51 @@ private slots:
         waitFrame();
     }
 
+    void sessionSavesAndRestoresTheState() {
+        const QString path = tmp_.filePath(QStringLiteral("session.json"));
+        auto* combo = window_->findChild<QComboBox*>(QStringLiteral("rendererCombo"));
+        auto* colormap = window_->findChild<QComboBox*>(QStringLiteral("colormapCombo"));
+        colormap->setCurrentIndex(1);
+        combo->setCurrentText(QStringLiteral("direct"));
+        waitFrame();
+        screenshot(QStringLiteral("studio-colormap.png"));
+        QVERIFY(window_->saveSessionTo(path));
+        QFile file(path);
+        QVERIFY(file.open(QIODevice::ReadOnly));
+        const QByteArray saved = file.readAll();
+        QVERIFY(saved.contains(QFileInfo(QStringLiteral("data_samples/torus.nrrd")).absoluteFilePath().toUtf8()));
+        QCOMPARE(QFileInfo(path).dir().entryList(QDir::Files | QDir::Hidden).filter(QStringLiteral(".tmp")).size(), 0);
+        // Change things, then open the session: the state comes back, the input is read again.
+        combo->setCurrentText(QStringLiteral("full"));
+        colormap->setCurrentIndex(0);
+        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
+        QSignalSpy failed(&window_->engine(), &Engine::failed);
+        QVERIFY2(window_->openSession(path), saved.constData());
+        QVERIFY2(built.wait(kWaitMs), failed.isEmpty() ? "" : qPrintable(failed.first().at(0).toString()));
+        QCOMPARE(octrace::studio::sessionJson(window_->state()), saved);
+        QCOMPARE(combo->currentText(), QStringLiteral("direct"));
+        QCOMPARE(colormap->currentIndex(), 1);
+        waitFrame();
+        exportEqualsCli(QStringLiteral("session"), 200, 150, false);  // the colour map too
+
+        // Missing and broken files: a message, and the state stays as it was.
+        const QByteArray current = octrace::studio::sessionJson(window_->state());
+        for (const QByteArray& bad : {QByteArray("{ not json"), QByteArray("[1, 2]"), QByteArray("{\"octrace_studio_session\": 3}"),
+                                      QByteArray("{\"octrace_studio_session\": 1, \"surface\": {\"depth\": 99}}")}) {
+            QFile f(tmp_.filePath(QStringLiteral("bad.json")));
+            QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
+            f.write(bad);
+            f.close();
+            QVERIFY(!window_->openSession(f.fileName()));
+            QCOMPARE(octrace::studio::sessionJson(window_->state()), current);
+        }
+        QVERIFY(!window_->openSession(tmp_.filePath(QStringLiteral("missing.json"))));
+        QCOMPARE(octrace::studio::sessionJson(window_->state()), current);
+        for (auto* box : window_->findChildren<QWidget*>(QStringLiteral("errorBox"))) box->close();
+        colormap->setCurrentIndex(0);
+        combo->setCurrentText(QStringLiteral("full"));
+    }
+
     void exportRefusesOversize() {
         QSignalSpy failed(&window_->engine(), &Engine::failed);
         window_->exportFigure(tmp_.filePath(QStringLiteral("huge.png")), octrace::studio::kMaxExportSide + 1, 10, false);
@@ -847,51 +892,6 @@ private slots:
         time->setText(QString());
         emit time->editingFinished();
         for (auto* box : window_->findChildren<QWidget*>(QStringLiteral("errorBox"))) box->close();
-    }
-
-    void sessionSavesAndRestoresTheState() {
-        const QString path = tmp_.filePath(QStringLiteral("session.json"));
-        auto* combo = window_->findChild<QComboBox*>(QStringLiteral("rendererCombo"));
-        auto* colormap = window_->findChild<QComboBox*>(QStringLiteral("colormapCombo"));
-        colormap->setCurrentIndex(1);
-        combo->setCurrentText(QStringLiteral("direct"));
-        waitFrame();
-        screenshot(QStringLiteral("studio-colormap.png"));
-        QVERIFY(window_->saveSessionTo(path));
-        QFile file(path);
-        QVERIFY(file.open(QIODevice::ReadOnly));
-        const QByteArray saved = file.readAll();
-        QVERIFY(saved.contains(QFileInfo(QStringLiteral("data_samples/torus.nrrd")).absoluteFilePath().toUtf8()));
-        QCOMPARE(QFileInfo(path).dir().entryList(QDir::Files | QDir::Hidden).filter(QStringLiteral(".tmp")).size(), 0);
-        // Change things, then open the session: the state comes back, the input is read again.
-        combo->setCurrentText(QStringLiteral("full"));
-        colormap->setCurrentIndex(0);
-        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
-        QSignalSpy failed(&window_->engine(), &Engine::failed);
-        QVERIFY2(window_->openSession(path), saved.constData());
-        QVERIFY2(built.wait(kWaitMs), failed.isEmpty() ? "" : qPrintable(failed.first().at(0).toString()));
-        QCOMPARE(octrace::studio::sessionJson(window_->state()), saved);
-        QCOMPARE(combo->currentText(), QStringLiteral("direct"));
-        QCOMPARE(colormap->currentIndex(), 1);
-        waitFrame();
-        exportEqualsCli(QStringLiteral("session"), 200, 150, false);  // the colour map too
-
-        // Missing and broken files: a message, and the state stays as it was.
-        const QByteArray current = octrace::studio::sessionJson(window_->state());
-        for (const QByteArray& bad : {QByteArray("{ not json"), QByteArray("[1, 2]"), QByteArray("{\"octrace_studio_session\": 3}"),
-                                      QByteArray("{\"octrace_studio_session\": 1, \"surface\": {\"depth\": 99}}")}) {
-            QFile f(tmp_.filePath(QStringLiteral("bad.json")));
-            QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
-            f.write(bad);
-            f.close();
-            QVERIFY(!window_->openSession(f.fileName()));
-            QCOMPARE(octrace::studio::sessionJson(window_->state()), current);
-        }
-        QVERIFY(!window_->openSession(tmp_.filePath(QStringLiteral("missing.json"))));
-        QCOMPARE(octrace::studio::sessionJson(window_->state()), current);
-        for (auto* box : window_->findChildren<QWidget*>(QStringLiteral("errorBox"))) box->close();
-        colormap->setCurrentIndex(0);
-        combo->setCurrentText(QStringLiteral("full"));
     }
 
     void ctWindowPresetGreysLikeTheCli() {
