@@ -335,6 +335,7 @@ QWidget* MainWindow::buildControls() {
     auto* inputBox = new QGroupBox(tr("Input"), w);
     auto* inputForm = new QFormLayout(inputBox);
     inputLabel_ = new QLabel(tr("(none: File > Open, or drop a file here)"), inputBox);
+    inputLabel_->setObjectName(QStringLiteral("inputLabel"));
     inputLabel_->setWordWrap(true);
     inputForm->addRow(inputLabel_);
     variableCombo_ = new QComboBox(inputBox);
@@ -362,6 +363,7 @@ QWidget* MainWindow::buildControls() {
     seriesCombo_ = new QComboBox(inputBox);
     seriesCombo_->setObjectName(QStringLiteral("seriesCombo"));
     seriesCombo_->setToolTip(tr("DICOM series (default: the largest)"));
+    seriesCombo_->setSizeAdjustPolicy(QComboBox::AdjustToContents);  // its size hint: the longest series named
     connect(seriesCombo_, &QComboBox::activated, this, [this](int index) {
         StudioState s = state_;
         s.series = std::to_string(index + 1);
@@ -972,8 +974,12 @@ void MainWindow::onInputLoaded() {
     state_.position = pending_.position;
     state_.lookAt = pending_.lookAt;
     state_.up = pending_.up;
-    inputLabel_->setText(QString::fromStdString(state_.input));
-    setWindowTitle(tr("%1 - octrace studio").arg(QFileInfo(QString::fromStdString(state_.input)).fileName()));
+    // The file's (or DICOM folder's) name, as the title; the path as given in the tooltip.
+    const QString input = QString::fromStdString(state_.input);
+    const QString name = QFileInfo(input).fileName().isEmpty() ? input : QFileInfo(input).fileName();
+    inputLabel_->setText(name);
+    inputLabel_->setToolTip(input);
+    setWindowTitle(tr("%1 - octrace studio").arg(name));
     const InputInfo& in = engine_.info();
     updating_ = true;
     variableCombo_->clear();
@@ -982,6 +988,8 @@ void MainWindow::onInputLoaded() {
     variableCombo_->setEnabled(in.variables.size() > 1);
     seriesCombo_->clear();
     seriesCombo_->addItems(in.series);
+    // As wide as the longest series' name (the side panel widens with it), up to 60 characters.
+    seriesCombo_->setMinimumWidth(std::min(seriesCombo_->sizeHint().width(), 60 * seriesCombo_->fontMetrics().averageCharWidth()));
     seriesCombo_->setCurrentIndex(in.seriesRead);  // the series on screen, not the first listed
     seriesCombo_->setEnabled(in.series.size() > 1);
     timeEdit_->setEnabled(!in.octreeFile);
