@@ -450,8 +450,6 @@ private slots:
         QCOMPARE(surface->currentIndex(), 0);
         QVERIFY(!window_->state().settings.count("surface"));
         renderer->setCurrentText(QStringLiteral("tile"));
-        waitFrame();
-        const QImage autoTile = window_->view(0)->image();
         exportEqualsCli(QStringLiteral("surface-auto-tile"), 220, 160, false);
         QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
         surface->setCurrentIndex(surface->findData(QStringLiteral("voxel")));
@@ -459,9 +457,11 @@ private slots:
         waitFrame();
         QCOMPARE(window_->state().settings.at("surface"), std::string("voxel"));
         QVERIFY(window_->engine().tree()->corners().empty());  // voxel builds no corner values
-        QVERIFY(window_->view(0)->image() != autoTile);
         QVERIFY(window_->commandLine(QStringLiteral("x.png"), 10, 10).join(QLatin1Char(' ')).contains(QStringLiteral("--surface voxel")));
         exportEqualsCli(QStringLiteral("surface-voxel-tile"), 220, 160, false);
+        // (Exports, not the view: a frame of the renderer before may still be on its way.)
+        QVERIFY(differingPixels(tmp_.filePath(QStringLiteral("surface-auto-tile-studio.png")),
+                                tmp_.filePath(QStringLiteral("surface-voxel-tile-studio.png"))) > 100);
         // Smooth with a paper renderer, which draws voxel in auto.
         surface->setCurrentIndex(surface->findData(QStringLiteral("smooth")));
         QVERIFY(built.wait(kWaitMs));
