@@ -10,7 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <limits>
 
 using namespace octrace;
@@ -173,4 +175,48 @@ TEST(SmoothSurface, VoxelModeAndOctreesWithoutCornersDrawBoxes) {
     render("full", tree, cam, c);  // corners, but surface = voxel
     EXPECT_TRUE(diffFrames(a, b).identical());
     EXPECT_TRUE(diffFrames(c, b).identical());
+}
+
+TEST(SmoothSurface, ColouringByHeightFollowsTheHitPointNotTheVoxel) {
+    // Unlit (ambient 1, diffuse 0) and coloured by height with viridis, whose green grows with
+    // its argument: a smooth hit's colour is the map's at the hit's own height, so green grows
+    // with the hit points' height across the picture and varies inside a voxel's pixels (the
+    // voxel's centre would give each voxel one colour and steps between them).
+    const Octree& tree = smoothSphere();
+    const Camera cam = makeCamera({2.1, -2.7, 1.6}, {0, 0, 0}, {0, 0, 1}, 30, 640, 480);  // a voxel ~5 pixels wide
+    const RayGenerator gen(cam);
+    RenderSettings s = smoothSettings();
+    s.colormap = "viridis";
+    s.ambient = 1.0f;
+    s.diffuse = 0.0f;
+    Frame f;
+    render("full", tree, cam, f, s);
+    std::vector<std::pair<double, float>> byHeight;  // (hit z, green)
+    std::map<std::uint32_t, std::pair<float, float>> perVoxel;  // green's range in each voxel
+    std::map<std::uint32_t, int> pixels;
+    for (int y = 0; y < f.height; ++y)
+        for (int x = 0; x < f.width; ++x) {
+            const std::size_t p = f.pixel(x, y);
+            if (f.hitId[p] == kNoHit) continue;
+            const double z = (gen.origin(x, y) + double(f.depth[p]) * glm::normalize(gen.direction(x, y))).z;
+            const float g = f.rgba[p].g;
+            byHeight.emplace_back(z, g);
+            ++pixels[f.hitId[p]];
+            auto [it, fresh] = perVoxel.try_emplace(f.hitId[p], g, g);
+            it->second.first = std::min(it->second.first, g);
+            it->second.second = std::max(it->second.second, g);
+        }
+    ASSERT_GT(byHeight.size(), 1000u);
+    std::sort(byHeight.begin(), byHeight.end());
+    std::size_t descents = 0;
+    for (std::size_t i = 1; i < byHeight.size(); ++i) descents += byHeight[i].second < byHeight[i - 1].second - 1e-5f;
+    EXPECT_EQ(descents, 0u) << "green falls where the hit height rises";
+    std::size_t varying = 0, seen = 0;  // of the voxels drawn in 4 pixels or more
+    for (const auto& [voxel, range] : perVoxel) {
+        if (pixels[voxel] < 4) continue;
+        ++seen;
+        varying += range.second > range.first;
+    }
+    ASSERT_GT(seen, 50u);
+    EXPECT_GT(varying, seen * 3 / 4) << "voxels whose pixels show more than one colour, of " << seen << " drawn in 4 pixels or more";
 }

@@ -155,15 +155,16 @@ vec4 Shader::shade(std::uint32_t voxel, const ivec3& cell, int leafShift, std::u
     return shadeNormal(voxel, cell, baked_ ? vec3(0.0f) : decodeNormal(tree_.voxels()[voxel].normal), shadowRays, leafShift);
 }
 
-vec4 Shader::shadeNormal(std::uint32_t voxel, const ivec3& cell, vec3 n, std::uint64_t* shadowRays, int leafShift) const {
-    if (baked_) return vec4(albedo_.at(voxel, float(cell.z) + 0.5f) * (float((*baked_)[voxel]) * (1.0f / 255.0f)), 1.0f);
+vec4 Shader::shadeNormal(std::uint32_t voxel, const ivec3& cell, vec3 n, std::uint64_t* shadowRays, int leafShift, float zCells) const {
+    if (std::isnan(zCells)) zCells = float(cell.z) + 0.5f;
+    if (baked_) return vec4(albedo_.at(voxel, zCells) * (float((*baked_)[voxel]) * (1.0f / 255.0f)), 1.0f);
     float lambert = std::abs(glm::dot(n, light_));
     if (shadows_ && lambert > 0.0f) {
         std::uint64_t rays = 0;
         if (!detail::ShadowTracer(tree_).seesDirectionalLight(cell, leafShift, dvec3(n), dvec3(light_), rays)) lambert = 0.0f;
         if (shadowRays) *shadowRays += rays;
     }
-    return shadeLambert(voxel, float(cell.z) + 0.5f, lambert);
+    return shadeLambert(voxel, zCells, lambert);
 }
 
 vec4 Shader::shadeNode(std::uint32_t node) const {

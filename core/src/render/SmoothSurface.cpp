@@ -112,6 +112,7 @@ bool SmoothSurface::accept(const RayState& ray, TraversalHit& hit, const double 
     const double len = glm::length(g);
     hit.normal = len > 0.0 && std::isfinite(len) ? vec3(-g / len) : decodeNormal(tree_.voxels()[hit.voxel].normal);
     hit.distance = t0 + u * tree_.voxelSize();
+    hit.zCells = float(double(hit.cell.z) + std::clamp(p.z, 0.0, 1.0));
     hit.smooth = true;
     return true;
 }

@@ -58,10 +58,12 @@ struct TraversalHit {
     int level = 0;                 ///< the node's level (node hits only)
     /// Smooth surfaces (SmoothSurface.h): the hit lies on the field's interpolant inside the
     /// voxel, at `distance` along the unit world ray, with the unit normal `normal` (towards
-    /// lower values). False: the voxel's box is the hit.
+    /// lower values), at height `zCells` (cell space along z: what colouring by height reads).
+    /// False: the voxel's box is the hit.
     bool smooth = false;
     double distance = 0.0;
     vec3 normal{0.0f};
+    float zCells = 0.0f;
     bool hit() const { return voxel != kNoHit; }
     bool nodeHit() const { return node != kNoHit; }
 };

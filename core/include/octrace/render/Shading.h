@@ -8,6 +8,7 @@
 #include "octrace/render/RenderSettings.h"
 #include "octrace/render/SmoothSurface.h"
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -90,7 +91,7 @@ public:
     /// Any kind of hit; a smooth one (SmoothSurface.h) is lit by its own normal, else as shade().
     vec4 shade(const TraversalHit& hit, std::uint64_t* shadowRays = nullptr) const {
         if (hit.nodeHit()) return shadeNode(hit.node);
-        if (hit.smooth) return shadeNormal(hit.voxel, hit.cell, hit.normal, shadowRays);
+        if (hit.smooth) return shadeNormal(hit.voxel, hit.cell, hit.normal, shadowRays, 0, hit.zCells);
         return shade(hit.voxel, hit.cell, hit.leafShift, shadowRays);
     }
     /// The frame's smooth-surface test (RenderSettings::surface), for the shared hit path.
@@ -101,7 +102,9 @@ public:
     float distance(const Ray& ray, const TraversalHit& hit) const;
 
 private:
-    vec4 shadeNormal(std::uint32_t voxel, const ivec3& cell, vec3 n, std::uint64_t* shadowRays, int leafShift = 0) const;
+    /// `zCells`: the height the colour is taken at (colouring by height); NaN: the voxel's centre.
+    vec4 shadeNormal(std::uint32_t voxel, const ivec3& cell, vec3 n, std::uint64_t* shadowRays, int leafShift = 0,
+                     float zCells = std::numeric_limits<float>::quiet_NaN()) const;
     vec4 shadeLambert(std::uint32_t voxel, float zCells, float lambert) const;
     float distanceToBox(const Ray& ray, const Box3& b) const;
     const Octree& tree_;
