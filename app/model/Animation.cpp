@@ -144,16 +144,15 @@ AnimationPlan planAnimation(const AnimationSpec& spec, const AnimationHooks& hoo
         plan.notes.push_back(param("depth") + " auto: " + std::to_string(c.depth) + ", " + c.reason);
     }
     progress(1.0);
-    // No `iso`: the middle of the first step's valid range is every frame's, as render would
-    // choose it for that step alone; each step's own middle would move the surface between
-    // frames for no change of the data at the surface (the volumes of a series differ a little).
+    // No `iso`: the first step's default (defaultIso) is every frame's, as render would choose
+    // it for that step alone; each step's own would move the surface between frames for no
+    // change of the data at the surface (the volumes of a series differ a little).
     if (!surface.iso && surface.isoPreset.empty()) {
-        const auto [lo, hi] = grid.validRange();
-        surface.iso = 0.5 * (double(lo) + double(hi));
+        const auto [iso, why] = defaultIso(grid, surface.input);
+        surface.iso = iso;
         surface.isoUnit.clear();
-        plan.notes.push_back("every frame's surface at the iso value of the first: " + numberText(*surface.iso) +
-                             ", the middle of the range [" + numberText(lo) + ", " + numberText(hi) + "] of '" + grid.name +
-                             "' (" + param("iso") + " sets another)");
+        plan.notes.push_back("every frame's surface at the iso value of the first: " + numberText(iso) + ", " + why + " (" +
+                             param("iso") + " sets another)");
     }
     // The file's display window, as the first step gives it, greys every frame: each volume of
     // a DICOM series may carry its own, and the frames would not compare.

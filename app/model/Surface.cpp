@@ -19,6 +19,7 @@
 #include "octrace/util/Timer.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -45,6 +46,44 @@ ValueWindow parseWindow(const std::string& v) {
 }
 
 }  // namespace
+
+std::pair<double, std::string> defaultIso(const ScalarField& field, const std::string& input) {
+    const auto [lo, hi] = field.validRange();
+    std::ostringstream why;
+    if (field.geographic.valid || input.rfind("analytic:", 0) == 0 || !(hi > lo)) {
+        why << "the middle of the range [" << lo << ", " << hi << "] of '" << field.name << "'";
+        return {0.5 * (double(lo) + double(hi)), why.str()};
+    }
+    // Otsu (1979): the bin edge that maximizes the between-class variance of the histogram.
+    constexpr int kBins = 256;
+    std::array<double, kBins> count{};
+    const double width = (double(hi) - double(lo)) / kBins;
+    for (std::size_t i = 0; i < field.values.size(); ++i) {
+        const float v = field.values[i];
+        if (!field.isValid(i) || !std::isfinite(v)) continue;
+        count[std::size_t(std::clamp(int((double(v) - double(lo)) / width), 0, kBins - 1))] += 1.0;
+    }
+    double total = 0.0, sum = 0.0;
+    for (int b = 0; b < kBins; ++b) {
+        total += count[std::size_t(b)];
+        sum += count[std::size_t(b)] * (b + 0.5);
+    }
+    double below = 0.0, sumBelow = 0.0, best = -1.0;
+    int split = kBins / 2;  // the bins below it are one class
+    for (int b = 1; b < kBins; ++b) {
+        below += count[std::size_t(b - 1)];
+        sumBelow += count[std::size_t(b - 1)] * (b - 0.5);
+        const double above = total - below;
+        if (below <= 0.0 || above <= 0.0) continue;
+        const double d = sumBelow / below - (sum - sumBelow) / above;
+        const double between = below * above * d * d;
+        if (between > best) best = between, split = b;
+    }
+    const double iso = double(lo) + split * width;
+    why << "Otsu's threshold of the valid samples of '" << field.name << "' (range [" << lo << ", " << hi
+        << "]: the value that best splits them in two)";
+    return {iso, why.str()};
+}
 
 void requireHounsfield(const ScalarField& f, const std::string& input, const std::string& option) {
     if (f.units == "HU") return;
@@ -323,7 +362,7 @@ void buildFromField(const SurfaceSpec& a, Surface& s, const BuildHooks& hooks) {
             throw InputError(a.input + ": `extend_down` applies to geographic fields (longitude, latitude, depth)");
         log::info("`extend_down`: " + std::to_string(extendColumnsDown(s.field)) + " masked samples under the water filled");
     }
-    auto [vmin, vmax] = s.field.validRange();
+    (void)s.field.validRange();  // throws for a field with no valid sample
     if (!a.isoPreset.empty()) requireHounsfield(s.field, a.input, "`iso` " + a.isoPreset);
     // A sphere input's field is the signed distance to its spheres: their surface is at 0.
     const bool sphereDistance = isSphereInput(a.input);
@@ -331,7 +370,7 @@ void buildFromField(const SurfaceSpec& a, Surface& s, const BuildHooks& hooks) {
             : a.iso                ? quantityIn({*a.iso, a.isoUnit, numberText(*a.iso) + a.isoUnit}, s.field.units, "`iso`",
                                                 a.input + ": variable '" + s.field.name + "'")
             : sphereDistance       ? 0.0
-                                   : 0.5 * (double(vmin) + double(vmax));
+                                   : defaultIso(s.field, a.input).first;
     if (a.iso && !a.isoUnit.empty()) {
         std::ostringstream m;
         m << "`iso` " << numberText(*a.iso) << a.isoUnit << " is " << numberText(s.iso, 9) << " " << s.field.units
@@ -340,8 +379,7 @@ void buildFromField(const SurfaceSpec& a, Surface& s, const BuildHooks& hooks) {
     }
     if (!a.iso && a.isoPreset.empty() && !sphereDistance) {
         std::ostringstream m;
-        m << "no `iso` given: using " << s.iso << ", the middle of the range [" << vmin << ", " << vmax << "] of '"
-          << s.field.name << "'";
+        m << "no `iso` given: using " << s.iso << ", " << defaultIso(s.field, a.input).second;
         log::info(m.str());
     }
     for (const auto& n : s.field.notes) log::debug(n);

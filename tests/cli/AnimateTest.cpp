@@ -10,6 +10,8 @@
 #include "octrace/io/TimeAxis.h"
 #include "octrace/io/VideoWriter.h"
 #include "octrace/model/Animation.h"
+#include "octrace/model/Figure.h"
+#include "octrace/model/Surface.h"
 #include "octrace/model/Render.h"
 #include "octrace/render/ImageCompare.h"
 #include "octrace/util/Error.h"
@@ -207,17 +209,17 @@ TEST(AnimationPlan, ColoursByHeightOverTheGridInEveryFrame) {
     EXPECT_NE(octrace::quantizeSrgb8(ownFrame, 4), framed.rgba8());
 }
 
-// Without `iso`, every frame's surface is at the middle of the first step's valid range, as
-// render would choose it for that step: the XA10 fMRI's volumes have their own ranges (0..1199,
-// 0..1195 for volume 2), and each frame choosing its own would move the surface between frames.
-TEST(AnimationPlan, WithoutAnIsoEveryFrameTakesTheFirstVolumesMiddle) {
+// Without `iso`, every frame's surface is at the first step's default iso value (Otsu's
+// threshold of an image volume: model::defaultIso), as render would choose it for that step:
+// the XA10 fMRI's volumes have their own samples, and each frame choosing its own would move the
+// surface between frames.
+TEST(AnimationPlan, WithoutAnIsoEveryFrameTakesTheFirstVolumesDefault) {
     const std::string folder = sharedData("medical/siemens_xa10_fmri_4d");
     if (!std::filesystem::exists(folder)) GTEST_SKIP() << "shared data absent: " << folder;
     auto middle = [&](int volume) {
         io::FieldRequest r;
         r.volume = volume;
-        const auto [lo, hi] = io::readField(folder, r).validRange();
-        return 0.5 * (double(lo) + double(hi));
+        return model::defaultIso(io::readField(folder, r), folder).first;
     };
     model::AnimationSpec spec;
     spec.surface.input = folder;
@@ -226,10 +228,10 @@ TEST(AnimationPlan, WithoutAnIsoEveryFrameTakesTheFirstVolumesMiddle) {
     ASSERT_EQ(plan.frames.size(), 4u);
     ASSERT_TRUE(plan.spec.surface.iso.has_value());
     EXPECT_DOUBLE_EQ(*plan.spec.surface.iso, middle(0));
-    EXPECT_NE(middle(2), middle(0));  // the volumes' own middles differ: the choice matters
-    const bool said = std::any_of(plan.notes.begin(), plan.notes.end(), [](const std::string& n) {
-        return n.find("every frame's surface at the iso value of the first: 599.5, the middle of the range [0, 1199]") != std::string::npos;
-    });
+    EXPECT_NE(middle(2), middle(0));  // the volumes' own values differ: the choice matters
+    const std::string first = "every frame's surface at the iso value of the first: " + model::numberText(middle(0)) +
+                              ", Otsu's threshold of the valid samples of 'MR' (range [0, 1199]";
+    const bool said = std::any_of(plan.notes.begin(), plan.notes.end(), [&](const std::string& n) { return n.find(first) != std::string::npos; });
     EXPECT_TRUE(said) << ::testing::PrintToString(plan.notes);
     // A given iso stays.
     spec.surface.iso = 300.0;
@@ -240,7 +242,7 @@ TEST(AnimationPlan, WithoutAnIsoEveryFrameTakesTheFirstVolumesMiddle) {
     Scratch s;
     const Result r = run({"animate", folder, "--depth", "6", "--size", "64x48", "-o", s.path("fmri.mp4")});
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.err.find("every frame's surface at the iso value of the first: 599.5"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(first), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("--iso sets another"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("no --iso given"), std::string::npos) << r.err;
 }

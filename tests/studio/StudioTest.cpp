@@ -17,6 +17,7 @@
 
 #include "OptionWidgets.h"
 #include "octrace/model/OptionTable.h"
+#include "octrace/model/Surface.h"
 #include "octrace/io/DicomSeriesWriter.h"
 #include "octrace/io/FieldReader.h"
 #include "octrace/util/Error.h"
@@ -191,7 +192,8 @@ private slots:
         openSample();
         const auto& info = window_->engine().info();
         QVERIFY(info.maximum > info.minimum);
-        QCOMPARE(window_->engine().iso(), 0.5 * (info.minimum + info.maximum));  // the CLI's default
+        // The CLI's default: Otsu's threshold of an image volume (the NRRD sample) by the model.
+        QCOMPARE(window_->engine().iso(), octrace::model::defaultIso(*window_->engine().field(), window_->state().input).first);
         QVERIFY(window_->engine().tree()->boundaryVoxels() > 0);
         const QImage shown = window_->view(0)->image();
         QCOMPARE(shown.size(), window_->view(0)->size());

@@ -87,6 +87,13 @@ struct SurfaceSpec {
 ValueWindow displayWindow(const std::string& text);
 /// sRGB display colour (as a user picks it) -> linear, alpha unchanged.
 vec4 displayToLinear(vec4 c);
+/// The iso value a surface of `field` (read from `input`) gets when none is given, and why (a
+/// clause for the log: "Otsu's threshold of ..."): for an image volume (any field not on a
+/// longitude/latitude grid and not analytic: CT, MR, NRRD, ...), Otsu's threshold of its valid
+/// samples (256 bins over their range: the value that best splits them into two classes, the
+/// tissue from the background, as a radiologist's first threshold does); else the middle of
+/// the valid range. Throws as ScalarField::validRange.
+std::pair<double, std::string> defaultIso(const ScalarField& field, const std::string& input);
 /// Refuses (InputError) a CT preset (`what`, e.g. "`iso` bone") for a field whose values are not
 /// Hounsfield units.
 void requireHounsfield(const ScalarField& f, const std::string& input, const std::string& what);
