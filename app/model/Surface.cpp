@@ -19,7 +19,6 @@
 #include "octrace/util/Timer.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -54,32 +53,44 @@ std::pair<double, std::string> defaultIso(const ScalarField& field, const std::s
         why << "the middle of the range [" << lo << ", " << hi << "] of '" << field.name << "'";
         return {0.5 * (double(lo) + double(hi)), why.str()};
     }
-    // Otsu (1979): the bin edge that maximizes the between-class variance of the histogram.
+    // Otsu (1979) over the samples between their 0.5th and 99.5th percentiles (the few beyond,
+    // clamped to those ends, would otherwise pull the split towards themselves: one bright
+    // outlier splits off alone). The percentiles from a fine histogram of the whole range.
+    const auto histogram = [&](double from, double to, std::vector<double>& count) {
+        const double width = (to - from) / double(count.size());
+        const int last = int(count.size()) - 1;
+        for (std::size_t i = 0; i < field.values.size(); ++i) {
+            const float v = field.values[i];
+            if (!field.isValid(i) || !std::isfinite(v)) continue;
+            count[std::size_t(std::clamp(int(std::floor((double(v) - from) / width)), 0, last))] += 1.0;
+        }
+        return width;
+    };
+    std::vector<double> fine(4096, 0.0);
+    const double fineWidth = histogram(double(lo), double(hi), fine);
+    double total = 0.0;
+    for (double c : fine) total += c;
+    std::size_t a = 0, b = fine.size() - 1;
+    for (double seen = 0.0; a < fine.size() && seen + fine[a] < 0.005 * total; ++a) seen += fine[a];
+    for (double seen = 0.0; b > a && seen + fine[b] < 0.005 * total; --b) seen += fine[b];
+    const double from = double(lo) + double(a) * fineWidth, to = double(lo) + double(b + 1) * fineWidth;
     constexpr int kBins = 256;
-    std::array<double, kBins> count{};
-    const double width = (double(hi) - double(lo)) / kBins;
-    for (std::size_t i = 0; i < field.values.size(); ++i) {
-        const float v = field.values[i];
-        if (!field.isValid(i) || !std::isfinite(v)) continue;
-        count[std::size_t(std::clamp(int((double(v) - double(lo)) / width), 0, kBins - 1))] += 1.0;
-    }
-    double total = 0.0, sum = 0.0;
-    for (int b = 0; b < kBins; ++b) {
-        total += count[std::size_t(b)];
-        sum += count[std::size_t(b)] * (b + 0.5);
-    }
+    std::vector<double> count(kBins, 0.0);
+    const double width = histogram(from, to, count);
+    double sum = 0.0;
+    for (int k = 0; k < kBins; ++k) sum += count[std::size_t(k)] * (k + 0.5);
     double below = 0.0, sumBelow = 0.0, best = -1.0;
     int split = kBins / 2;  // the bins below it are one class
-    for (int b = 1; b < kBins; ++b) {
-        below += count[std::size_t(b - 1)];
-        sumBelow += count[std::size_t(b - 1)] * (b - 0.5);
+    for (int k = 1; k < kBins; ++k) {
+        below += count[std::size_t(k - 1)];
+        sumBelow += count[std::size_t(k - 1)] * (k - 0.5);
         const double above = total - below;
         if (below <= 0.0 || above <= 0.0) continue;
         const double d = sumBelow / below - (sum - sumBelow) / above;
         const double between = below * above * d * d;
-        if (between > best) best = between, split = b;
+        if (between > best) best = between, split = k;
     }
-    const double iso = double(lo) + split * width;
+    const double iso = from + split * width;
     why << "Otsu's threshold of the valid samples of '" << field.name << "' (range [" << lo << ", " << hi
         << "]: the value that best splits them in two)";
     return {iso, why.str()};

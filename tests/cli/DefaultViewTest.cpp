@@ -285,3 +285,26 @@ TEST(DefaultView, AFieldWithoutColoursIsColouredByAColourMapNotOneColour) {
     ASSERT_EQ(one.code, 0) << one.err;
     EXPECT_LT(pixelMeans(s.path("b.exr")).hueSpread, 0.05);
 }
+
+// The default iso value (model::defaultIso): Otsu's threshold for an image volume, between the
+// two classes of its samples even where a few outliers stretch the range; the middle of the
+// range for a field on a longitude/latitude grid and for an analytic one.
+TEST(DefaultIso, OtsuSplitsAnImageVolumesTwoClassesAndOceanFieldsKeepTheMiddle) {
+    octrace::ScalarField f;
+    f.name = "MR";
+    f.dims = {10, 10, 10};
+    std::vector<float> v(1000);
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = i % 5 == 0 ? 60.0f + float(i % 7) : 10.0f + float(i % 3);  // 80% near 10, 20% near 60
+    v[1] = 0.0f;
+    v[2] = 1000.0f;  // one bright outlier: the middle of the range would be 500
+    f.values = octrace::SampleBuffer(std::move(v));
+    const auto [iso, why] = octrace::model::defaultIso(f, "volume.nrrd");
+    EXPECT_GT(iso, 12.0) << why;
+    EXPECT_LT(iso, 60.0) << why;
+    EXPECT_NE(why.find("Otsu"), std::string::npos) << why;
+    EXPECT_DOUBLE_EQ(octrace::model::defaultIso(f, "analytic:sphere").first, 500.0);
+    f.geographic.valid = true;
+    const auto [middle, said] = octrace::model::defaultIso(f, "ocean.nc");
+    EXPECT_DOUBLE_EQ(middle, 500.0);
+    EXPECT_NE(said.find("the middle of the range [0, 1000]"), std::string::npos) << said;
+}
