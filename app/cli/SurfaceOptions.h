@@ -113,7 +113,8 @@ bool parseCommandLine(const OptionParser& p, const std::vector<std::string>& arg
 
 
 /// Applies --quiet / --verbose to the log and builds with progress on stderr when it is a
-/// terminal: model::buildSurface (the pipeline's first steps), which see.
+/// terminal (reading a DICOM or NIfTI input, then building the octree): model::buildSurface
+/// (the pipeline's first steps), which see.
 Surface buildSurface(const SurfaceArgs& a);
 
 
