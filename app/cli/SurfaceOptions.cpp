@@ -43,6 +43,8 @@ std::function<void(double)> progressPrinter(bool quiet, const char* stage) {
 
 }  // namespace
 
+std::function<void(double)> readProgressPrinter(bool quiet) { return progressPrinter(quiet, "reading"); }
+
 std::string joinNames(const std::vector<std::string>& names) {
     std::string s;
     for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
@@ -53,7 +55,7 @@ Surface buildSurface(const SurfaceArgs& a) {
     if (a.quiet) log::setLevel(log::Level::Error);
     if (a.verbose) log::setLevel(log::Level::Debug);
     model::BuildHooks terminal;
-    terminal.readProgress = progressPrinter(a.quiet, "reading");
+    terminal.readProgress = readProgressPrinter(a.quiet);
     terminal.progress = progressPrinter(a.quiet, "building octree");
     return model::buildSurface(a, terminal);
 }

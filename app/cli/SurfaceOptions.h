@@ -116,6 +116,9 @@ bool parseCommandLine(const OptionParser& p, const std::vector<std::string>& arg
 /// terminal (reading a DICOM or NIfTI input, then building the octree): model::buildSurface
 /// (the pipeline's first steps), which see.
 Surface buildSurface(const SurfaceArgs& a);
+/// The progress of a read on stderr ("octrace: reading N%"), as buildSurface shows it: only
+/// when stderr is a terminal and not `quiet` (else empty), for io::FieldRequest::hooks.
+std::function<void(double)> readProgressPrinter(bool quiet);
 
 
 
