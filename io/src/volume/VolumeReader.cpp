@@ -237,8 +237,14 @@ std::vector<float> readNiftiVolume(const std::string& path, vtkNIFTIImageReader*
     const std::string data = niftiDataFile(path);
     const std::uint64_t typeSize = type.bytes;
     const std::uint64_t plane = std::uint64_t(dims.x) * std::uint64_t(dims.y);
-    const std::uint64_t sliceBytes = plane * typeSize, volumeBytes = sliceBytes * std::uint64_t(dims.z);
-    const std::uint64_t start = std::uint64_t(std::max<long long>(0, h->GetVoxOffset())) + std::uint64_t(chosen) * volumeBytes;
+    const std::uint64_t sliceBytes = saturatingMultiply(plane, typeSize), volumeBytes = saturatingMultiply(sliceBytes, std::uint64_t(dims.z));
+    // Past 2^62 bytes no file holds the data (and the sums below could wrap): refused as cut.
+    constexpr std::uint64_t kNoFileThatLarge = std::uint64_t(1) << 62;
+    const std::uint64_t skipped = saturatingMultiply(std::uint64_t(chosen), volumeBytes);
+    if (volumeBytes >= kNoFileThatLarge || skipped >= kNoFileThatLarge)
+        throw FileError(path + ": NIfTI data truncated: volume " + std::to_string(chosen) + " of " + dimsText(dims) + " x " +
+                        std::to_string(h->GetBitPix()) + " bits would end past 2^62 bytes");
+    const std::uint64_t start = std::uint64_t(std::max<long long>(0, h->GetVoxOffset())) + skipped;
     const std::string which = volumes > 1 ? "volume " + std::to_string(chosen) + " of " + std::to_string(volumes) + ": " : std::string();
     const std::string need = which + dimsText(dims) + " x " + std::to_string(h->GetBitPix()) + " bits from byte " + std::to_string(start) +
                              " need " + std::to_string(start + volumeBytes) + " bytes";
@@ -257,15 +263,23 @@ std::vector<float> readNiftiVolume(const std::string& path, vtkNIFTIImageReader*
     }
     const bool swap = niftiSwapped(path, reader);
     const bool reversed = reader->GetQFac() < 0.0;
-    std::vector<float> values(std::size_t(plane) * std::size_t(dims.z));
+    // The samples grow slice by slice as they are decoded (a header that claims more than a
+    // .gz holds is refused as cut before all of it is allocated), in the file's order; the
+    // slices are reversed at the end when qfac is -1.
+    std::vector<float> values;
+    if (!gzipped) values.reserve(std::size_t(plane) * std::size_t(dims.z));  // the file holds them: checked above
     std::vector<unsigned char> slice(static_cast<std::size_t>(sliceBytes));
     for (int k = 0; k < dims.z; ++k) {
         hooks.checkCancelled(path);
         hooks.report(double(k) / double(dims.z));
         if (!gzReadAll(g.get(), slice.data(), sliceBytes, path)) throw FileError(cut);
-        const int K = reversed ? dims.z - 1 - k : k;
-        type.convert(slice.data(), std::size_t(plane), swap, values.data() + std::size_t(plane) * std::size_t(K));
+        values.resize(std::size_t(plane) * std::size_t(k + 1));
+        type.convert(slice.data(), std::size_t(plane), swap, values.data() + std::size_t(plane) * std::size_t(k));
     }
+    if (reversed)
+        for (int k = 0; k < dims.z / 2; ++k)
+            std::swap_ranges(values.begin() + std::ptrdiff_t(plane * std::uint64_t(k)), values.begin() + std::ptrdiff_t(plane * std::uint64_t(k + 1)),
+                             values.begin() + std::ptrdiff_t(plane * std::uint64_t(dims.z - 1 - k)));
     // The last volume reaches the end of the compressed stream: reading on checks its CRC.
     unsigned char probe = 0;
     if (gzipped && chosen == volumes - 1) gzReadAll(g.get(), &probe, 1, path);
