@@ -162,7 +162,9 @@ void Engine::open(const StudioState& state) {
                 return;
             }
             if (state.input.rfind("analytic:", 0) != 0) {
-                io::InputChoices choices = io::listInputChoices(state.input);
+                // The headers scanned for the Series box: Cancel stops this scan too (its progress
+                // is not shown: the read scans them again, with progress, below).
+                io::InputChoices choices = io::listInputChoices(state.input, {{}, [&stop] { return stop.load(); }});
                 for (const auto& v : choices.variables) info.variables << QString::fromStdString(v);
                 // Several variables and none chosen: the first, which the Variable box then shows.
                 if (a.request.variable.empty() && choices.variables.size() > 1) {

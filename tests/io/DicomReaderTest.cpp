@@ -597,6 +597,12 @@ TEST(DicomReader, ReportsProgressPerFileAndStopsBetweenFilesWhenCancelled) {
         EXPECT_THROW_WITH(io::DicomReader::read(folder, {}, 0, 2, false, stop.hooks()), CancelledError, folder + ": read cancelled");
         EXPECT_EQ(int(stop.reported.size()), k) << "cancelled after " << k << " reports";
     }
+    // Listing the series (the studio's Series box) scans the headers with the same hooks.
+    RecordingHooks listing;
+    EXPECT_EQ(io::listInputChoices(folder, listing.hooks()).series.size(), 1u);
+    EXPECT_EQ(listing.reported.size(), 4u);
+    listing.cancelAfter = 1;
+    EXPECT_THROW(io::listInputChoices(folder, listing.hooks()), CancelledError);
     // Through readField, as the model reads: the request carries the hooks.
     OCTRACE_SHARED_FILE_OR_SKIP(sagittal, "medical/d2n_mr_sag_4slices_anatomical");
     RecordingHooks viaRequest;

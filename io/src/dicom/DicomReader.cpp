@@ -303,9 +303,9 @@ std::size_t DicomReader::chooseSeries(const std::vector<DicomSeriesInfo>& list, 
                      "' (give a UID, an index or a description; series: " + known + ")");
 }
 
-std::vector<DicomSeriesInfo> DicomReader::listSeries(const std::string& path) {
+std::vector<DicomSeriesInfo> DicomReader::listSeries(const std::string& path, const ReadHooks& hooks) {
     std::vector<DicomSeriesInfo> list;
-    for (const Series& s : scan(path).series) list.push_back(s.info);
+    for (const Series& s : scan(path, hooks).series) list.push_back(s.info);
     return list;
 }
 

@@ -79,11 +79,11 @@ std::optional<VolumeReader::Format> volumeFormat(FileKind kind) {
 
 }  // namespace
 
-InputChoices listInputChoices(const std::string& path) {
+InputChoices listInputChoices(const std::string& path, const ReadHooks& hooks) {
     InputChoices c;
     const FileKind kind = kindOf(path);
     if (kind == FileKind::NetCdf || kind == FileKind::Zarr) c.variables = NetcdfReader::volumeVariables(path);
-    if (kind == FileKind::Dicom) c.series = DicomReader::listSeries(path);
+    if (kind == FileKind::Dicom) c.series = DicomReader::listSeries(path, hooks);
     return c;
 }
 

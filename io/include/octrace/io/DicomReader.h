@@ -34,8 +34,9 @@ public:
     /// starting with the DICOM preamble "DICM" at byte 128, or named *.dcm, are read) or a
     /// DICOMDIR (the folder it sits in is searched). Only headers are read.
     /// @throws InputError if `path` does not exist; FileError "no DICOM image" when nothing
-    ///         under it is a DICOM image; FileError for a broken single file.
-    static std::vector<DicomSeriesInfo> listSeries(const std::string& path);
+    ///         under it is a DICOM image; FileError for a broken single file; CancelledError
+    ///         when hooks.cancelled says so (asked before each file; progress is reported too).
+    static std::vector<DicomSeriesInfo> listSeries(const std::string& path, const ReadHooks& hooks = {});
 
     /// The index in `list` (listSeries' order, 0-based) of the series `series` chooses, as
     /// read() chooses it: a SeriesInstanceUID, a 1-based index or a SeriesDescription; empty =
