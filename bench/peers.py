@@ -6,7 +6,8 @@ and the images beside it in docs/benchmarks/peers/), with the ratios peer time /
 Install the peers (Debian bookworm packages, as root):
 
     apt-get update
-    apt-get install -y python3-numpy python3-netcdf4 python3-vtk9 xvfb python3-openvdb libopenvdb-tools
+    apt-get install -y python3-numpy python3-netcdf4 python3-vtk9 xvfb python3-openvdb libopenvdb-tools \
+                       libembree-dev zlib1g-dev g++
 
 Usage: bench/peers.py [--octrace PATH] [--data DIR] [--python /usr/bin/python3] [--depth 9]
                       [--scenes levitus_T,levitus_S]
@@ -14,7 +15,8 @@ Usage: bench/peers.py [--octrace PATH] [--data DIR] [--python /usr/bin/python3] 
 * octrace: `octrace render ... --renderer full --threads N --repeat 3 --stats` for N = 1, 2;
   render_ms = the fastest of the 3 renders (build excluded, reported separately). `full` draws
   the boundary voxels' boxes (`--surface voxel`, the papers' renderers' default); the same with
-  `--surface smooth` (the field's trilinear interpolant, docs/dev/smooth-surfaces.md) is run too.
+  `--surface smooth` (the field's trilinear interpolant, docs/dev/smooth-surfaces.md) is run too,
+  and the default renderer `tile` in both surface modes (smooth is its default for fields).
 * VTK (python3-vtk9, xvfb): flying edges on the field, then VTK's OpenGL renderer on Mesa's
   llvmpipe (a CPU rasterizer) under Xvfb; two fields: the NetCDF samples themselves ("native")
   and the field octrace classifies, the trilinear field at the corners of its depth-N voxel
@@ -25,6 +27,10 @@ Usage: bench/peers.py [--octrace PATH] [--data DIR] [--python /usr/bin/python3] 
   N CPUs with taskset, as pyopenvdb has no thread setting), written as .vdb and drawn by
   `vdb_render` with `-cpus N`; render time = vdb_render's own ray-tracing time
   (`-v`), the fastest of 3 runs. bench/peers/vdb_peer.py.
+* Embree 3 (libembree-dev, needs VTK for the mesh): bench/peers/embree_peer.cpp, compiled here
+  with the system C++ compiler, traces VTK's lattice mesh (dumped by vtk_peer.py) at the same
+  camera with rtcIntersect16 packets of 4x4 pixels (coherent context) over 8x8-pixel tiles on N
+  threads; BVH build (quality high) = preparation; render = the fastest of 7 frames after a first.
 * Normals (needs VTK): the normal each program shades every pixel with, octrace's (voxel and
   smooth: six frames lit from six camera-space directions, --ambient 0 --colour 1,1,1, EXR) against
   VTK's (the flying-edges mesh coloured by its interpolated point normals), and the angle between
@@ -49,7 +55,8 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 HERE = os.path.join(ROOT, "bench", "peers")
-APT = "apt-get install -y python3-numpy python3-netcdf4 python3-vtk9 xvfb python3-openvdb libopenvdb-tools"
+APT = "apt-get install -y python3-numpy python3-netcdf4 python3-vtk9 xvfb python3-openvdb libopenvdb-tools libembree-dev zlib1g-dev g++"
+EMBREE_FRAMES = 7
 THREADS = (1, 2)
 OCTRACE_REPEAT = 3
 VDB_REPEAT = 3
@@ -87,7 +94,7 @@ def detect(python):
     have = {}
     if not os.path.exists(python):
         reason = "%s not found (Debian's python3)" % python
-        return {"vtk": (False, reason), "openvdb": (False, reason)}, {}
+        return {"vtk": (False, reason), "openvdb": (False, reason), "embree": (False, reason)}, {}
     ok_np, why_np = probe(python, "import numpy, netCDF4; print(numpy.__version__, netCDF4.__version__)")
     ok_vtk, why_vtk = probe(python, "import vtk; print(vtk.vtkVersion.GetVTKVersion())")
     ok_vdb, why_vdb = probe(python, "import pyopenvdb as v; print('.'.join(map(str, v.LIBRARY_VERSION)))")
@@ -113,6 +120,20 @@ def detect(python):
     if not vdb_render:
         missing.append("libopenvdb-tools (vdb_render not on PATH)")
     have["openvdb"] = (not missing, "; ".join(missing) if missing else "OpenVDB " + why_vdb)
+    missing = []
+    if not (ok_np and ok_vtk and xvfb):
+        missing.append("VTK, which makes the mesh Embree traces (%s)" % have["vtk"][1])
+    if not os.path.exists("/usr/include/embree3/rtcore.h"):
+        missing.append("libembree-dev (/usr/include/embree3/rtcore.h not found)")
+    if not shutil.which("c++"):
+        missing.append("a C++ compiler (g++) to build bench/peers/embree_peer.cpp")
+    embree_version = None
+    if not missing:
+        with open("/usr/include/embree3/rtcore_config.h") as f:
+            m = re.search(r'RTC_VERSION_STRING "([^"]+)"', f.read())
+            embree_version = m.group(1) if m else "3"
+    versions["embree"] = embree_version
+    have["embree"] = (not missing, "; ".join(missing) if missing else "Embree " + str(embree_version))
     return have, versions
 
 
@@ -121,11 +142,12 @@ SURFACES = ("voxel", "smooth")
 NORMAL_LIGHTS = [(1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 1, 0), (1, 0, 1), (0, 1, 1)]
 
 
-def octrace_cmd(octrace, scene, data, depth, threads, stats, png, surface="voxel", repeat=OCTRACE_REPEAT, extra=()):
+def octrace_cmd(octrace, scene, data, depth, threads, stats, png, surface="voxel", repeat=OCTRACE_REPEAT, extra=(),
+                renderer="full"):
     return [octrace, "render", os.path.join(data, scene["input"]), "--var", scene["var"], "--iso", str(scene["iso"]),
             "--region", scene["region"], "--depth", str(depth), "--size", scene["size"],
             "--camera-pos", scene["camera_pos"], "--look-at", scene["look_at"], "--up", scene["up"],
-            "--fov", str(scene["fov"]), "--renderer", "full", "--surface", surface, "--threads", str(threads),
+            "--fov", str(scene["fov"]), "--renderer", renderer, "--surface", surface, "--threads", str(threads),
             "--repeat", str(repeat), "--stats", stats, "-o", png, "--quiet", *extra]
 
 
@@ -152,8 +174,9 @@ def run_vtk(args, scene_name, scene, spec, sr, images, outdir, tmp):
     for grid in ("native", "lattice"):
         for n in THREADS:
             spec_path = os.path.join(tmp, "spec.json")
+            mesh_out = os.path.join(tmp, "%s_lattice.mesh" % scene_name) if grid == "lattice" and n == THREADS[0] else None
             with open(spec_path, "w") as f:
-                json.dump(dict(spec, grid=grid, threads=n), f)
+                json.dump(dict(spec, grid=grid, threads=n, mesh_out=mesh_out), f)
             out_json = os.path.join(outdir, "%s_vtk_%s_threads%d.json" % (scene_name, grid, n))
             out_png = os.path.join(tmp, "%s_vtk_%s.png" % (scene_name, grid))
             env = dict(os.environ, LP_NUM_THREADS=str(n))
@@ -165,6 +188,32 @@ def run_vtk(args, scene_name, scene, spec, sr, images, outdir, tmp):
             log("%s vtk %s threads %d: extract %.1f ms, render %.1f ms (%d triangles)" % (
                 scene_name, grid, n, r["extract_ms"], r["render_ms"], r["triangles"]))
         images["vtk_" + grid] = {"png": out_png, "background": [255, 255, 255]}
+
+
+def build_embree_peer(tmp):
+    exe = os.path.join(tmp, "embree_peer")
+    run(["c++", "-O3", "-std=c++17", "-o", exe, os.path.join(HERE, "embree_peer.cpp"), "-lembree3", "-lz", "-lpthread"])
+    return exe
+
+
+def run_embree(args, scene_name, scene, spec, sr, images, outdir, tmp):
+    mesh = os.path.join(tmp, "%s_lattice.mesh" % scene_name)
+    if not os.path.exists(mesh):
+        raise RuntimeError("no lattice mesh from the VTK step to trace")
+    exe = os.path.join(tmp, "embree_peer")
+    if not os.path.exists(exe):
+        build_embree_peer(tmp)
+    png = os.path.join(tmp, scene_name + "_embree.png")
+    for n in THREADS:
+        out_json = os.path.join(outdir, "%s_embree_threads%d.json" % (scene_name, n))
+        run([exe, mesh, out_json, png, "--pos", scene["camera_pos"], "--look", scene["look_at"], "--up", scene["up"],
+             "--fov", str(scene["fov"]), "--size", scene["size"], "--threads", str(n), "--frames", str(EMBREE_FRAMES)])
+        with open(out_json) as f:
+            r = json.load(f)
+        sr["runs"]["embree_threads%d" % n] = r
+        log("%s embree threads %d: BVH %.0f ms, render %.1f ms (%d triangles)" % (
+            scene_name, n, r["bvh_build_ms"], r["render_ms"], r["triangles"]))
+    images["embree"] = {"png": png, "background": [255, 255, 255]}
 
 
 def run_helper(args, tmp, helper, job, out_json):
@@ -312,6 +361,17 @@ def main():
                 sr["runs"]["%s_threads%d" % (key, n)] = s
                 log("%s octrace %s threads %d: render %.1f ms, build %.1f ms" % (
                     scene_name, surface, n, s["render_ms"], s["build_ms"]))
+        # The default renderer, tile, in both modes (its smooth is the default look of a field).
+        for surface in SURFACES:
+            key = "octrace_tile" if surface == "voxel" else "octrace_tile_smooth"
+            for n in THREADS:
+                stats = os.path.join(outdir, "%s_%s_threads%d.json" % (scene_name, key, n))
+                run(octrace_cmd(args.octrace, scene, args.data, args.depth, n, stats, os.path.join(tmp, "tile.png"), surface,
+                                renderer="tile"))
+                with open(stats) as f:
+                    sr["runs"]["%s_threads%d" % (key, n)] = json.load(f)
+                log("%s octrace tile %s threads %d: render %.1f ms" % (
+                    scene_name, surface, n, sr["runs"]["%s_threads%d" % (key, n)]["render_ms"]))
         s1 = sr["runs"]["octrace_threads1"]
         m = re.search(r"vertical scale ([0-9.eE+-]+)", s1.get("geographic", ""))
         octrace_vscale = float(m.group(1)) if m else None
@@ -322,7 +382,7 @@ def main():
         images = {"octrace": {"png": oct_png["voxel"], "background": [255, 255, 255]},
                   "octrace_smooth": {"png": oct_png["smooth"], "background": [255, 255, 255]}}
 
-        for peer, fn in (("vtk", run_vtk), ("openvdb", run_vdb)):
+        for peer, fn in (("vtk", run_vtk), ("openvdb", run_vdb), ("embree", run_embree)):
             if not have[peer][0]:
                 continue
             try:
@@ -347,7 +407,7 @@ def main():
                 "peer_cube_origin": lat["cube_origin"], "peer_cube_side": lat["cube_side"]}
 
         # ---- images: thumbnails and mask comparison (need VTK's PNG reader/writer) ----
-        if have["vtk"][0] or have["openvdb"][0]:
+        if have["vtk"][0] or have["openvdb"][0] or have["embree"][0]:
             job = {"reference": "octrace", "images": images, "thumb_dir": outdir, "prefix": scene_name,
                    "thumb_width": 480}
             img_json = os.path.join(outdir, "%s_images.json" % scene_name)
@@ -390,7 +450,7 @@ def main():
 def write_md(results, info, have, failed):
     L = []
     a = L.append
-    a("# Peers: octrace next to VTK and OpenVDB on the same scenes\n")
+    a("# Peers: octrace next to VTK, OpenVDB and Embree on the same scenes\n")
     a("Generated by `bench/peers.py` (do not edit by hand) on %s UTC, %s, %s (%d cores); raw JSON of every" % (
         info["date_utc"], info["octrace"], info["cpu"] or "unknown CPU", info["cores"] or 0))
     a("run and the images in [`peers/`](peers/). Whole run: %.0f s. The machine is a shared VM (load average" % info["total_seconds"])
@@ -440,6 +500,15 @@ def write_md(results, info, have, failed):
                       fmt_ratio(r["bytes_per_voxel"]), n, fmt_ms(r["build_ms"]), fmt_ms(r["render_ms"]),
                       fmt_ratio(r["render_ms"] / o["render_ms"]),
                       fmt_ratio((r["build_ms"] + r["render_ms"]) / (o["build_ms"] + o["render_ms"]))))
+        for key, label, drawn in (("octrace_tile", "octrace `tile` (the default renderer)", "the same boundary voxels (exact: `full`'s image)"),
+                                  ("octrace_tile_smooth", "octrace `tile --surface smooth` (the default look)", "the same voxels' trilinear interpolant")):
+            for n in THREADS:
+                r = R.get("%s_threads%d" % (key, n))
+                if r:
+                    o = oct_by_n[n]
+                    a("| %s | %s | %d | %s (build) | %s | %s | %s |" % (
+                        label, drawn, n, fmt_ms(r["build_ms"]), fmt_ms(r["render_ms"]), fmt_ratio(r["render_ms"] / o["render_ms"]),
+                        fmt_ratio((r["build_ms"] + r["render_ms"]) / (o["build_ms"] + o["render_ms"]))))
         for grid, label in (("native", "NetCDF samples"), ("lattice", "octrace's depth-%d lattice" % o1["depth"])):
             for n in THREADS:
                 r = R.get("vtk_%s_threads%d" % (grid, n))
@@ -461,8 +530,25 @@ def write_md(results, info, have, failed):
                 "" if ls.get("cpus") == n else ", every CPU",
                 fmt_ms(r["render_ms"]), fmt_ratio(r["render_ms"] / o["render_ms"]),
                 fmt_ratio((ls["levelset_ms"] + r["render_ms"]) / (o["build_ms"] + o["render_ms"]))))
+        for n in THREADS:
+            r = R.get("embree_threads%d" % n)
+            if not r:
+                continue
+            o = oct_by_n[n]
+            a("| Embree %s (`rtcIntersect16`, coherent 4x4 packets) | %s triangles, octrace's depth-%d lattice (VTK's mesh) | %d | %s (BVH) | %s | %s | %s |" % (
+                r["embree_version"], format(r["triangles"], ","), o1["depth"], n, fmt_ms(r["bvh_build_ms"]), fmt_ms(r["render_ms"]),
+                fmt_ratio(r["render_ms"] / o["render_ms"]),
+                fmt_ratio((r["bvh_build_ms"] + r["render_ms"]) / (o["build_ms"] + o["render_ms"]))))
         a("")
         extra = []
+        for n in THREADS:
+            t, ts = R.get("octrace_tile_threads%d" % n), R.get("octrace_tile_smooth_threads%d" % n)
+            peers = [(name, R.get(k)) for name, k in (("VTK lattice", "vtk_lattice_threads%d" % n), ("Embree", "embree_threads%d" % n))]
+            if t and ts:
+                extra.append("against the default renderer, %d thread%s: " % (n, "" if n == 1 else "s") + "; ".join(
+                    "%s / `tile` %s, / `tile --surface smooth` %s" % (name, fmt_ratio(r["render_ms"] / t["render_ms"]),
+                                                                        fmt_ratio(r["render_ms"] / ts["render_ms"]))
+                    for name, r in peers if r) + " (above 1: octrace faster)")
         for n in THREADS:
             for grid in ("native", "lattice"):
                 r = R.get("vtk_%s_threads%d" % (grid, n))
@@ -504,10 +590,11 @@ def write_md(results, info, have, failed):
             a("No peer image to compare with; octrace's frame: ![octrace](peers/%s)\n" % sr["octrace_full_png"])
         im = sr.get("images")
         if im:
-            names = [k for k in ("octrace", "octrace_smooth", "vtk_native", "vtk_lattice", "openvdb") if k in im["images"]]
+            names = [k for k in ("octrace", "octrace_smooth", "vtk_native", "vtk_lattice", "openvdb", "embree") if k in im["images"]]
             titles = {"octrace": "octrace (full, depth %d)" % o1["depth"],
                       "octrace_smooth": "octrace (full --surface smooth)", "vtk_native": "VTK, NetCDF samples",
-                      "vtk_lattice": "VTK, octrace's lattice", "openvdb": "OpenVDB vdb_render"}
+                      "vtk_lattice": "VTK, octrace's lattice", "openvdb": "OpenVDB vdb_render",
+                      "embree": "Embree, octrace's lattice"}
             x0, y0, x1, y1 = im["crop"]
             a("Images (each program's own %dx%d frame, all cropped to the same window x %d..%d, y %d..%d and scaled "
               "down; vdb_render's black background shown white). Second row: where each peer's surface covers the "
@@ -540,7 +627,8 @@ def write_md(results, info, have, failed):
     a("* **octrace**: `octrace render INPUT --var V --iso I --region R --depth 9 --size 1600x1200 --camera-pos ... "
       "--look-at ... --up ... --fov ... --renderer full --threads N --repeat %d --stats F.json`; *render* = "
       "`render_ms`, the fastest of the %d renders in the process; *preparation* = `build_ms` (octree build from "
-      "the field)." % (OCTRACE_REPEAT, OCTRACE_REPEAT))
+      "the field). The same with `--renderer tile` (the default renderer, exact: its hits are `full`'s) in "
+      "both surface modes." % (OCTRACE_REPEAT, OCTRACE_REPEAT))
     a("* **Field for the peers** (`bench/peers/field.py`): the NetCDF variable read with `netCDF4`, "
       "`missing_value`/`_FillValue` masked, the region selected and mapped as octrace does (ARCHITECTURE.md, "
       "Coordinates): km, x = R (lon - lon0) cos(lat0), y = R (lat - lat0), z = -depth_km x vertical scale, "
@@ -590,6 +678,13 @@ def write_md(results, info, have, failed):
       "4:3. *Render* = the time vdb_render prints with `-v` for ray-tracing (its `tbb::tick_count`, "
       "excluding reading the .vdb and writing the image), the fastest of %d runs." % (
           results[0]["scene"]["size"] if results else "", ("%.6f" % hf) if hf else "-", VDB_REPEAT))
+    a("* **Embree** (`bench/peers/embree_peer.cpp`, built with `c++ -O3`): VTK's lattice mesh (the same "
+      "triangles and point normals as the VTK lattice rows) in one triangle geometry, BVH built with "
+      "`RTC_BUILD_QUALITY_HIGH` on N Embree threads (*preparation*); primary rays of octrace's pinhole camera "
+      "(vertical fov, pixel centres at +0.5) traced with `rtcIntersect16` as 4x4-pixel packets with "
+      "`RTC_INTERSECT_CONTEXT_FLAG_COHERENT`, 8x8-pixel tiles handed to N `std::thread`s; shaded as VTK's rows "
+      "(camera light, two-sided, interpolated point normals). *Render* = the fastest of %d frames after a "
+      "first, timed in the program around the whole frame." % EMBREE_FRAMES)
     a("")
     a("## Reading the numbers\n")
     a("* The programs do not draw the same representation. octrace ray-casts the boundary voxels (blocky "

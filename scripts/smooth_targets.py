@@ -39,6 +39,10 @@ FIELDS = {
     "small spheres": [((9.0, 9.0, 9.0), 5.0), ((22.5, 10.0, 12.0), 4.2), ((11.0, 22.0, 20.0), 3.1),
                       ((23.0, 23.0, 22.0), 6.0), ((16.2, 16.4, 26.5), 2.3), ((26.0, 6.0, 25.0), 1.7)],
 }
+# A torus about the z axis through TORUS_CENTRE (radii in world units: ring 9, tube 4, i.e. 8
+# samples): a surface that curves two ways (a saddle on its inner side), as the tests' torus.
+# Measured as the spheres are, without the breakdown (whose casters march shells of spheres).
+TORUS_CENTRE, TORUS_RING, TORUS_TUBE = (16.0, 16.0, 16.0), 9.0, 4.0
 CAMERA = dict(pos=(52.0, -30.0, 38.0), look=(16.0, 16.0, 16.0), up=(0.0, 0.0, 1.0), fov=30.0, w=640, h=480)
 
 
@@ -49,6 +53,38 @@ def sphere_field(spheres):
     for (cx, cy, cz), r in spheres:
         f = np.maximum(f, r - np.sqrt((X - cx) ** 2 + (Y - cy) ** 2 + (Z - cz) ** 2))
     return f.astype(np.float32)
+
+
+def torus_distance(p):
+    """Signed distance of the points p[..., 3] to the torus, positive inside (the field)."""
+    q = p - np.array(TORUS_CENTRE)
+    ring = np.sqrt(q[..., 0] ** 2 + q[..., 1] ** 2) - TORUS_RING
+    return TORUS_TUBE - np.sqrt(ring ** 2 + q[..., 2] ** 2)
+
+
+def torus_field():
+    x = np.arange(N) * SPACING
+    X, Y, Z = np.meshgrid(x, x, x, indexing="ij")
+    return torus_distance(np.stack([X, Y, Z], axis=-1)).astype(np.float32)
+
+
+def torus_depth():
+    """The analytic ray cast of the torus: sphere tracing of its exact distance function, to 1e-10
+    (inf where a ray misses)."""
+    eye, d = camera_rays()
+    D = d.reshape(-1, 3)
+    t = np.zeros(len(D))
+    depth = np.full(len(D), np.inf)
+    live = np.arange(len(D))
+    for _ in range(100000):
+        if not len(live):
+            break
+        dist = -torus_distance(eye + t[live, None] * D[live])
+        hit = dist < 1e-10
+        depth[live[hit]] = t[live[hit]]
+        t[live] += np.maximum(dist, 0.0)
+        live = live[~hit & (t[live] < 200.0)]
+    return depth.reshape(d.shape[:2])
 
 
 def write_nrrd(path, f):
@@ -315,6 +351,20 @@ def main():
                 stats = st
             entry["breakdown"] = breakdown(spheres, f, truth, depths["smooth"], depths["smooth reference"], stats)
             result["fields"][name] = entry
+        # The torus: the same modes and measures, no breakdown.
+        truth = torus_depth()
+        entry = {"torus": {"centre": TORUS_CENTRE, "ring_radius": TORUS_RING, "tube_radius": TORUS_TUBE}, "modes": {}}
+        field = os.path.join(tmp, "torus.nrrd")
+        write_nrrd(field, torus_field())
+        for label, surface, extra in [("voxel", "voxel", ()), ("smooth", "smooth", ()),
+                                      ("smooth reference", "smooth", ("--renderer", "reference"))]:
+            out = os.path.join(tmp, label.replace(" ", "_") + ".exr")
+            st = render(args.octrace, field, out, surface, extra)
+            m = measure(read_exr_z(out).astype(np.float64), truth)
+            m.update(renderer=st.get("renderer"), depth=st.get("depth"), bytes_per_voxel=st.get("bytes_per_voxel"),
+                     boundary_voxels=st.get("boundary_voxels"))
+            entry["modes"][label] = m
+        result["fields"]["torus"] = entry
         # Cost per frame: the default renderer, each mode's fastest of `repeat`, alternated.
         field = os.path.join(tmp, "spheres.nrrd")
         best = {"voxel": float("inf"), "smooth": float("inf")}

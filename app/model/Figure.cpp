@@ -479,10 +479,10 @@ io::FigureSpec figureSpec(const Frame& plot, const FigureSettings& f, const Figu
     // along y at x = hi, along z at (hi, lo).
     int axis = 0;  // the axis the next ticks belong to (their labels are thinned together)
     std::vector<dvec3> tickAt;  // the world point of each label, to move it to the other edges
-    auto tick = [&](const dvec3& p, const std::string& text, double dx, double dy) {
+    auto tick = [&](const dvec3& p, const std::string& text, double dx, double dy, const std::string& bare = {}) {
         dvec2 at;
         if (!project(p, at)) return;
-        spec.labels.push_back({at, text, dx, dy, axis});
+        spec.labels.push_back({at, text, dx, dy, axis, 0, bare});
         tickAt.push_back(p);
     };
     if (geographic.valid && geographic.polar()) {
@@ -511,11 +511,13 @@ io::FigureSpec figureSpec(const Frame& plot, const FigureSettings& f, const Figu
     } else if (subject.patientLps) {
         // Patient LPS in mm; the patient's letters go outside the plot, one a side (io).
         spec.sideLetters = patientLetters(project, box);
-        for (double x : ticksOf(box.lo.x, box.hi.x, 5)) tick({x, box.lo.y, box.hi.z}, numberText(x, 4) + " mm", 0.0, 1.4);
+        // An axis with no room for 3 labels in mm drops the unit (the subtitle names it).
+        const auto mm = [&](const dvec3& p, double v, double dx, double dy) { tick(p, numberText(v, 4) + " mm", dx, dy, numberText(v, 4)); };
+        for (double x : ticksOf(box.lo.x, box.hi.x, 5)) mm({x, box.lo.y, box.hi.z}, x, 0.0, 1.4);
         axis = 1;
-        for (double y : ticksOf(box.lo.y, box.hi.y, 5)) tick({box.hi.x, y, box.hi.z}, numberText(y, 4) + " mm", 2.6, 0.0);
+        for (double y : ticksOf(box.lo.y, box.hi.y, 5)) mm({box.hi.x, y, box.hi.z}, y, 2.6, 0.0);
         axis = 2;
-        for (double z : ticksOf(box.lo.z, box.hi.z, 4, box.hi.z)) tick({box.hi.x, box.lo.y, z}, numberText(z, 4) + " mm", 3.0, 0.0);
+        for (double z : ticksOf(box.lo.z, box.hi.z, 4, box.hi.z)) mm({box.hi.x, box.lo.y, z}, z, 3.0, 0.0);
         sub += "; patient LPS, mm";
     } else {
         // World coordinates: metres for a city (km over 5 km), else the field's own units. Where

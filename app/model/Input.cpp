@@ -8,6 +8,7 @@
 #include "octrace/io/OctreeFile.h"
 #include "octrace/io/SphereReader.h"
 #include "octrace/util/Error.h"
+#include "octrace/util/Log.h"
 #include "octrace/util/Memory.h"
 
 #include <algorithm>
@@ -182,7 +183,11 @@ std::string describe(const std::string& input, const io::FieldRequest& req, cons
                     which = " of " + vars.front();
                 }
             }
-            const DepthChoice c = depthForField(loadField(input, first, int(opt::depth.defaultValue)));
+            // Its notes and warnings are the read's above (io::describeInput): not said twice.
+            const DepthChoice c = [&] {
+                const log::ThreadFloor quiet(log::Level::Error);
+                return depthForField(loadField(input, first, int(opt::depth.defaultValue)));
+            }();
             text += autoDepthLine({c.depth, c.reason + which}, "", true);
         } catch (const UsageError&) {
             throw;

@@ -249,12 +249,10 @@ io::FigureSpec sliceFigureSpec(const SliceSpec& a, const ScalarField& f, const S
     }
     // The scale bar (the figure's own, in the plot's lower left corner under the slice):
     // always for patient volumes, with `scale_bar` for other grids.
-    if (f.patientLps || a.figure.scaleBar) {
-        const double length = io::scaleBarLength(v.pixelSize, v.width);
-        if (length > 0.0) {
-            spec.scaleBarPx = length / v.pixelSize;
-            spec.scaleBarLabel = numberText(length) + (f.patientLps ? " mm" : f.geographic.valid ? " km" : "");
-        }
+    const SliceScaleBar bar = sliceScaleBar(f, v, a.figure.scaleBar);
+    if (bar.length > 0.0) {
+        spec.scaleBarPx = bar.pixels;
+        spec.scaleBarLabel = bar.label;
     }
     // The bar and the subtitle.
     const std::string units = f.units.empty() ? "" : " (" + f.units + ")";
@@ -288,6 +286,16 @@ std::string sliceDirectionName(const ScalarField& f, const dvec3& d) {
     if (f.patientLps) return patientLetter(d);
     const int a = worldAxisOf(d);
     return std::string(d[a] > 0.0 ? "+" : "-") + char('x' + a);
+}
+
+SliceScaleBar sliceScaleBar(const ScalarField& f, const SliceView& v, bool requested) {
+    SliceScaleBar bar;
+    if (!f.patientLps && !requested) return bar;
+    bar.length = io::scaleBarLength(v.pixelSize, v.width);
+    if (!(bar.length > 0.0)) return {};
+    bar.pixels = bar.length / v.pixelSize;
+    bar.label = numberText(bar.length) + (f.patientLps ? " mm" : f.geographic.valid ? " km" : "");
+    return bar;
 }
 
 ValueWindow quantileWindow(const ScalarField& f, double lowFraction, double highFraction) {

@@ -70,7 +70,8 @@ void describeSteps(const std::string& input, const io::FieldRequest& request, In
     const io::TimeAxis axis = io::readTimeAxis(input, request);
     info.volumeSteps = axis.volumes;
     for (std::size_t i = 0; i < axis.size; ++i) {
-        QString name = axis.volumes ? QStringLiteral("volume %1").arg(i) : QStringLiteral("step %1").arg(i);
+        // "volume 2 of 4": the index the box and the CLI take (from 0), and how many there are.
+        QString name = (axis.volumes ? QStringLiteral("volume %1 of %2") : QStringLiteral("step %1 of %2")).arg(i).arg(axis.size);
         if (axis.volumes && i < axis.labels.size() && !axis.labels[i].empty())
             name += QStringLiteral(": ") + QString::fromStdString(axis.labels[i]);
         else if (axis.dated() && i < axis.dates.size())

@@ -335,6 +335,7 @@ QWidget* MainWindow::buildControls() {
     auto* inputBox = new QGroupBox(tr("Input"), w);
     auto* inputForm = new QFormLayout(inputBox);
     inputLabel_ = new QLabel(tr("(none: File > Open, or drop a file here)"), inputBox);
+    inputLabel_->setObjectName(QStringLiteral("inputLabel"));
     inputLabel_->setWordWrap(true);
     inputForm->addRow(inputLabel_);
     variableCombo_ = new QComboBox(inputBox);
@@ -362,6 +363,7 @@ QWidget* MainWindow::buildControls() {
     seriesCombo_ = new QComboBox(inputBox);
     seriesCombo_->setObjectName(QStringLiteral("seriesCombo"));
     seriesCombo_->setToolTip(tr("DICOM series (default: the largest)"));
+    seriesCombo_->setSizeAdjustPolicy(QComboBox::AdjustToContents);  // its size hint: the longest series named
     connect(seriesCombo_, &QComboBox::activated, this, [this](int index) {
         StudioState s = state_;
         s.series = std::to_string(index + 1);
@@ -438,6 +440,19 @@ QWidget* MainWindow::buildControls() {
     depthRow->addWidget(depthSpin_, 1);
     depthRow->addWidget(depthAutoCheck_);
     surfForm->addRow(tr("Depth"), depthRow);
+    // `surface` (the options table): auto is the setting unset (smooth, voxel with the papers'
+    // renderers), as the CLI without --surface.
+    surfaceCombo_ = new QComboBox(surfBox);
+    surfaceCombo_->setObjectName(QLatin1String(model::opt::surface.key));
+    configure(surfaceCombo_, model::opt::surface);
+    surfaceCombo_->addItem(tr("auto"), QString());
+    surfaceCombo_->setItemData(0, QString::fromStdString(model::sayForStudio(model::opt::surface.defaultText)), Qt::ToolTipRole);
+    for (const std::string& c : model::opt::surface.choiceList())
+        surfaceCombo_->addItem(QString::fromStdString(c), QString::fromStdString(c));
+    connect(surfaceCombo_, &QComboBox::currentIndexChanged, this, [this] {
+        if (!updating_) settingEdited(QLatin1String(model::opt::surface.key), surfaceCombo_->currentData().toString());
+    });
+    surfForm->addRow(tr(model::opt::surface.label), surfaceCombo_);
     layout->addWidget(surfBox);
     layout->addWidget(buildCutControls(w));
 
@@ -877,6 +892,9 @@ void MainWindow::showState() {
     depthAutoCheck_->setChecked(!state_.depth);
     rendererCombo_->setCurrentText(QString::fromStdString(state_.renderer));
     secondCombo_->setCurrentText(QString::fromStdString(state_.secondRenderer));
+    const auto surface = state_.settings.find(model::opt::surface.key);
+    surfaceCombo_->setCurrentIndex(std::max(
+        0, surfaceCombo_->findData(surface == state_.settings.end() ? QString() : QString::fromStdString(surface->second))));
     fovSpin_->setValue(state_.fov);
     for (int i = 0; i < 3; ++i) lightSpin_[i]->setValue(state_.light[i]);
     ambientSpin_->setValue(state_.ambient);
@@ -956,8 +974,12 @@ void MainWindow::onInputLoaded() {
     state_.position = pending_.position;
     state_.lookAt = pending_.lookAt;
     state_.up = pending_.up;
-    inputLabel_->setText(QString::fromStdString(state_.input));
-    setWindowTitle(tr("%1 - octrace studio").arg(QFileInfo(QString::fromStdString(state_.input)).fileName()));
+    // The file's (or DICOM folder's) name, as the title; the path as given in the tooltip.
+    const QString input = QString::fromStdString(state_.input);
+    const QString name = QFileInfo(input).fileName().isEmpty() ? input : QFileInfo(input).fileName();
+    inputLabel_->setText(name);
+    inputLabel_->setToolTip(input);
+    setWindowTitle(tr("%1 - octrace studio").arg(name));
     const InputInfo& in = engine_.info();
     updating_ = true;
     variableCombo_->clear();
@@ -966,6 +988,8 @@ void MainWindow::onInputLoaded() {
     variableCombo_->setEnabled(in.variables.size() > 1);
     seriesCombo_->clear();
     seriesCombo_->addItems(in.series);
+    // As wide as the longest series' name (the side panel widens with it), up to 60 characters.
+    seriesCombo_->setMinimumWidth(std::min(seriesCombo_->sizeHint().width(), 60 * seriesCombo_->fontMetrics().averageCharWidth()));
     seriesCombo_->setCurrentIndex(in.seriesRead);  // the series on screen, not the first listed
     seriesCombo_->setEnabled(in.series.size() > 1);
     timeEdit_->setEnabled(!in.octreeFile);

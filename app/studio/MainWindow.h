@@ -196,6 +196,7 @@ private:
     QDoubleSpinBox *isoSpin_ = nullptr, *fovSpin_ = nullptr, *lightSpin_[3] = {nullptr, nullptr, nullptr};
     QSpinBox* depthSpin_ = nullptr;
     QCheckBox* depthAutoCheck_ = nullptr;  ///< `depth` auto: the spin box shows what it chose
+    QComboBox* surfaceCombo_ = nullptr;    ///< `surface`: auto (unset), voxel or smooth
     QProgressBar* progress_ = nullptr;
     QPushButton* cancelButton_ = nullptr;
     QPlainTextEdit* messages_ = nullptr;

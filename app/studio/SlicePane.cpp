@@ -70,15 +70,15 @@ void SlicePane::paintEvent(QPaintEvent*) {
     p.setPen(Qt::white);
     p.drawText(rect().adjusted(6, 4, -6, -4), Qt::AlignLeft | Qt::AlignTop, content_.caption);
     // The scale bar in the lower left corner, its length in millimetres under it.
-    if (content_.scaleBar > 0.0) {
-        const double len = content_.scaleBar / devicePixelRatioF();
+    if (content_.scaleBar.length > 0.0) {
+        const double len = content_.scaleBar.pixels / devicePixelRatioF();
         const QFontMetrics fm(font());
         const double y = height() - fm.height() - 8;
         p.setPen(QPen(Qt::white, 2));
         p.drawLine(QPointF(10, y), QPointF(10 + len, y));
         p.drawLine(QPointF(10, y - 4), QPointF(10, y + 4));
         p.drawLine(QPointF(10 + len, y - 4), QPointF(10 + len, y + 4));
-        p.drawText(QPointF(10, y + fm.ascent() + 3), content_.scaleBarLabel);
+        p.drawText(QPointF(10, y + fm.ascent() + 3), QString::fromStdString(content_.scaleBar.label));
     }
     if (hasFocus()) {
         p.setPen(QPen(palette().color(QPalette::Highlight), 2));

@@ -25,14 +25,14 @@ public:
     void setPlane(SlicePlane plane) { plane_ = plane; }
 
     /// What the pane shows: a slice (its image is result.image, without a figure), its letters
-    /// (right, left, up, down), the scale bar's length in mm (0: none), the crosshair's pixel
+    /// (right, left, up, down), the scale bar of `slice --figure` (model::sliceScaleBar: its
+    /// length in mm, in image pixels and its label; length 0: none), the crosshair's pixel
     /// (image pixels, centres at +0.5) and the caption in the upper left corner.
     struct Content {
         model::SliceResult result;
         QImage image;
         QString letters[4];
-        double scaleBar = 0.0;
-        QString scaleBarLabel;
+        model::SliceScaleBar scaleBar;
         std::optional<QPointF> crosshair;
         QString caption;
     };

@@ -3,7 +3,6 @@
 #include "Engine.h"
 
 #include "octrace/build/CtPresets.h"
-#include "octrace/io/Figure.h"
 #include "octrace/model/OptionTable.h"
 #include "octrace/model/Surface.h"
 #include "octrace/util/Error.h"
@@ -464,13 +463,7 @@ void SliceViews::renderPane(int i) {
         c.letters[1] = QString::fromStdString(model::sliceDirectionName(*field_, -R));
         c.letters[2] = QString::fromStdString(model::sliceDirectionName(*field_, U));
         c.letters[3] = QString::fromStdString(model::sliceDirectionName(*field_, -U));
-        if (field_->patientLps) {  // the scale bar of `slice --figure`: always on patient volumes
-            const double length = io::scaleBarLength(v.pixelSize, v.width);
-            if (length > 0.0) {
-                c.scaleBar = length / v.pixelSize;
-                c.scaleBarLabel = QStringLiteral("%1 mm").arg(text(length));
-            }
-        }
+        c.scaleBar = model::sliceScaleBar(*field_, v, false);  // `slice --figure`'s: always on patient volumes
         const dvec3 d = crosshairWorld() - v.topLeft;
         const double ps2 = v.pixelSize * v.pixelSize;
         c.crosshair = QPointF(glm::dot(d, v.right) / ps2 + 0.5, glm::dot(d, v.down) / ps2 + 0.5);

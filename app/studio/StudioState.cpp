@@ -47,7 +47,7 @@ std::span<const Binding> bindings() {
 std::span<const model::Option* const> textSettings() {
     static const model::Option* const table[] = {&model::opt::region,   &model::opt::depthRange, &model::opt::verticalScale,
                                                  &model::opt::mapProjection, &model::opt::volume, &model::opt::colourBy,
-                                                 &model::opt::floor};
+                                                 &model::opt::floor, &model::opt::surface};
     return table;
 }
 

@@ -113,7 +113,8 @@ std::span<const Binding> bindings();
 
 /// The settings StudioState::settings holds as text: what to read of an ocean field (`region`,
 /// `depth_range`, `vertical_scale`, `map_projection`), the volume of a 4-D series (`volume`) and
-/// the surface's `colour_by` and `floor`. Sessions keep each under its table member.
+/// the surface's `colour_by`, `floor` and `surface` (voxel or smooth). Sessions keep each under
+/// its table member.
 std::span<const model::Option* const> textSettings();
 /// What a change of a setting asks for, from where model::applySetting puts it: a new read
 /// (what to read), a new build (the surface), or a new frame (shading only).

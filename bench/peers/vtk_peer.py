@@ -21,6 +21,9 @@ drawn once, unlit, coloured by its point normals as direct RGB scalars (255 (n +
 interpolates them across each triangle as it interpolates the normal for Phong shading, so
 normalize(2 rgb / 255 - 1) is the normal VTK shades each pixel with (to 8 bits a component);
 black background. No times are measured then.
+
+With "mesh_out": PATH in SPEC, the final mesh (points, point normals, triangles) is also written
+there for the Embree peer (bench/peers/embree_peer.cpp reads it), after the extraction is timed.
 """
 import json
 import os
@@ -70,6 +73,13 @@ def main():
     nrm.Update()
     mesh = nrm.GetOutput()
     info["normals_ms"] = (time.perf_counter() - t0) * 1e3
+    if spec.get("mesh_out"):  # the mesh for the Embree peer (embree_peer.cpp: OCTMESH1), not timed
+        pts = ns.vtk_to_numpy(mesh.GetPoints().GetData()).astype("<f4")
+        nrms = ns.vtk_to_numpy(mesh.GetPointData().GetNormals()).astype("<f4")
+        tris = ns.vtk_to_numpy(mesh.GetPolys().GetConnectivityArray()).astype("<i4")
+        with open(spec["mesh_out"], "wb") as f:
+            f.write(b"OCTMESH1" + np.array([len(pts), len(tris) // 3], dtype="<u8").tobytes())
+            f.write(pts.tobytes() + nrms.tobytes() + tris.tobytes())
     info["extract_ms"] = info["flying_edges_ms"] + info["mask_and_map_ms"] + info["normals_ms"]
     res.update(info)
 

@@ -99,6 +99,35 @@ TEST(DicomCli, InfoListsEchoesAndBValuesAndVolumeChoosesEach) {
     }
 }
 
+// Magnitude and phase told apart by ImageType (classic MR files) and two diffusion directions of
+// one b-value (an enhanced MR file, its frames interleaved), from tests/data/dicom: `info` lists
+// both volumes by what tells them apart, `--volume 1` slices the second (another image than the
+// default, volume 0, which a note names).
+TEST(DicomCli, InfoListsMagnitudeAndPhaseAndGradientDirectionsAsVolumes) {
+    struct Case {
+        const char* path;
+        const char* labels[2];
+    };
+    for (const Case& c : {Case{"/dicom/two_image_types", {"image type ORIGINAL\\PRIMARY\\M\\ND", "image type ORIGINAL\\PRIMARY\\P\\ND"}},
+                          Case{"/dicom/two_gradient_directions.dcm", {"gradient direction 0\\1\\0", "gradient direction 1\\0\\0"}}}) {
+        SCOPED_TRACE(c.path);
+        const std::string path = std::string(OCTRACE_TEST_DATA) + c.path;
+        Result info = run({"info", path});
+        ASSERT_EQ(info.code, 0) << info.err;
+        EXPECT_NE(info.out.find("64x64x3, "), std::string::npos) << info.out;
+        EXPECT_NE(info.out.find("volumes: 2 (choose with --volume, from 0)\nvolume 0: " + std::string(c.labels[0]) +
+                                ", 3 slices\nvolume 1: " + c.labels[1] + ", 3 slices\nchosen: series 1, volume 0\n"),
+                  std::string::npos) << info.out;
+        Scratch s;
+        Result second = run({"slice", path, "--volume", "1", "--window", "500,1000", "-o", s.path("v1.png")});
+        ASSERT_EQ(second.code, 0) << second.err;
+        Result defaulted = run({"slice", path, "--window", "500,1000", "-o", s.path("default.png")});
+        ASSERT_EQ(defaulted.code, 0) << defaulted.err;
+        EXPECT_NE(defaulted.err.find("reading volume 0"), std::string::npos) << defaulted.err;
+        EXPECT_NE(slurp(s.path("v1.png")), slurp(s.path("default.png")));
+    }
+}
+
 // The XA10 fMRI series (four enhanced MR files) and dcm2niix's 4-D NIfTI of it: `info` lists the
 // NIfTI's volumes with their times as it lists the series' volumes with their temporal
 // positions, and the slice of volume v at one position is the same PNG, byte for byte, from

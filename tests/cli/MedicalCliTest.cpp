@@ -14,6 +14,11 @@ namespace {
 const char* kTwoSeries = OCTRACE_TEST_DATA "/dicom/two_series";
 
 bool has(const std::string& text, const std::string& what) { return text.find(what) != std::string::npos; }
+std::size_t occurrences(const std::string& text, const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++n;
+    return n;
+}
 
 /// A small CT series of `dir`: HU = 8 * i - 1000 along x, with the options' window.
 std::string smallCt(const Scratch& s, const std::string& name, const octrace::io::DicomSeriesWriteOptions& o) {
@@ -140,8 +145,21 @@ TEST(MedicalCli, TheGantryTiltedCtLoadsWithAWarningAndItsResampledGeometry) {
     Result r = run({"info", sharedData(rel)});
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_TRUE(has(r.err, "warning: " + sharedData(rel) + ": slices are sheared by a gantry tilt of 14 degrees")) << r.err;
+    // Once, though info reads the series twice (its description, then its depth auto).
+    EXPECT_EQ(occurrences(r.err, "gantry tilt"), 1u) << r.err;
     EXPECT_TRUE(has(r.out, "dims: 512 x 521 x 4")) << r.out;
     EXPECT_TRUE(has(r.out, "spacing: 0.417969 x 0.417969 x 4.85148")) << r.out;
     EXPECT_TRUE(has(r.out, "direction (columns): (1, 0, 0) (0, 0.970296, -0.241922) (-0, 0.241922, 0.970296)")) << r.out;
     EXPECT_TRUE(has(r.out, "units 'HU'")) << r.out;
+}
+
+// A series of several volumes: info lists them, and the note that volume 0 is read comes once.
+TEST(MedicalCli, InfoOnASeriesOfSeveralVolumesSaysItsNoteOnce) {
+    for (const char* rel : {"medical/siemens_xa10_fmri_4d", "medical/siemens_xa10_fmri_4d/reference_dcm2niix.nii"}) {
+        if (!haveShared(rel)) GTEST_SKIP() << "shared data absent: " << sharedData(rel);
+        Result r = run({"info", sharedData(rel)});
+        ASSERT_EQ(r.code, 0) << r.err;
+        EXPECT_EQ(occurrences(r.err, "reading volume 0"), 1u) << rel << ": " << r.err;
+        EXPECT_TRUE(has(r.out, "volume 3")) << r.out;
+    }
 }

@@ -389,6 +389,45 @@ RawNifti readRawNifti(const std::string& path) {
     return n;
 }
 
+/// The NIfTI voxel (x, y, z, within 0.001 of integers) at the patient position `lps` (DICOM's
+/// LPS turned into RAS, through the inverse of the sform), checked to lie inside the image;
+/// `worst` gets the largest distance off the grid, in voxels.
+ivec3 niftiVoxel(const RawNifti& ref, dvec3 lps, double& worst) {
+    dmat3 m;
+    dvec3 offset;
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) m[c][r] = ref.srow[r][c];
+        offset[r] = ref.srow[r][3];
+    }
+    const dvec3 voxel = glm::inverse(m) * (dvec3(-lps.x, -lps.y, lps.z) - offset);
+    const dvec3 rounded = glm::round(voxel);
+    worst = std::max(worst, glm::length(voxel - rounded));
+    const ivec3 v(rounded);
+    EXPECT_TRUE(v.x >= 0 && v.y >= 0 && v.z >= 0 && v.x < ref.dim[1] && v.y < ref.dim[2] && v.z < ref.dim[3])
+        << "(" << lps.x << ", " << lps.y << ", " << lps.z << ") lies outside the NIfTI";
+    return glm::clamp(v, ivec3(0), ivec3(ref.dim[1] - 1, ref.dim[2] - 1, ref.dim[3] - 1));
+}
+
+/// The stored integer of time point `t` of the NIfTI at its voxel `v`.
+float niftiSample(const RawNifti& ref, int t, ivec3 v) {
+    const std::size_t nx = std::size_t(ref.dim[1]), ny = std::size_t(ref.dim[2]), nz = std::size_t(ref.dim[3]);
+    return float(ref.samples[((std::size_t(t) * nz + std::size_t(v.z)) * ny + std::size_t(v.y)) * nx + std::size_t(v.x)]);
+}
+
+/// Every voxel of `f` lies on a voxel of the NIfTI (within 0.001 voxel) and holds the stored
+/// integer of its time point `t` there.
+void expectNiftiTimePoint(const ScalarField& f, const RawNifti& ref, int t, const std::string& what) {
+    double worst = 0.0;
+    std::size_t wrong = 0;
+    for (int k = 0; k < f.dims.z; ++k)
+        for (int j = 0; j < f.dims.y; ++j)
+            for (int i = 0; i < f.dims.x; ++i)
+                if (f.values[f.index(i, j, k)] != niftiSample(ref, t, niftiVoxel(ref, f.worldFromGrid(i, j, k), worst)))
+                    ++wrong;
+    EXPECT_EQ(wrong, 0u) << what << ": voxels that differ from time point " << t << " of the NIfTI";
+    EXPECT_LT(worst, 1e-3) << what << ": voxels off the NIfTI's grid (in NIfTI voxels)";
+}
+
 }  // namespace
 
 // The Siemens XA10 resting-state fMRI (four enhanced MR files, one time point each, 6 frames
@@ -407,18 +446,11 @@ TEST(DicomReader, TheXa10FmriSeriesIsFourVolumesEqualToDcm2niixsReference) {
     ASSERT_EQ(labels.size(), 4u);
     for (int t = 0; t < 4; ++t) EXPECT_EQ(labels[std::size_t(t)], "temporal position " + std::to_string(t + 1));
 
-    // The sform's inverse: RAS -> NIfTI voxel.
-    dmat3 m;
-    dvec3 offset;
-    for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) m[c][r] = ref.srow[r][c];
-        offset[r] = ref.srow[r][3];
-    }
-    const dmat3 inverse = glm::inverse(m);
     const int nx = ref.dim[1], ny = ref.dim[2], nz = ref.dim[3];
     for (int t = 0; t < 4; ++t) {
         const ScalarField f = io::DicomReader::read(folder, {}, 0, t);
         ASSERT_EQ(f.dims, ivec3(nx, ny, nz)) << "volume " << t;
+        expectNiftiTimePoint(f, ref, t, "volume " + std::to_string(t));
         const ScalarField fromNifti = io::VolumeReader::read(nii, io::VolumeReader::Format::Nifti, 0, t);
         ASSERT_EQ(fromNifti.dims, ivec3(nx, ny, nz));
         dmat3 niftiAxes = fromNifti.direction;
@@ -430,26 +462,17 @@ TEST(DicomReader, TheXa10FmriSeriesIsFourVolumesEqualToDcm2niixsReference) {
             for (int j = 0; j < ny; ++j)
                 for (int i = 0; i < nx; ++i) {
                     const dvec3 lps = f.worldFromGrid(i, j, k);
-                    const dvec3 voxel = inverse * (dvec3(-lps.x, -lps.y, lps.z) - offset);
-                    const dvec3 rounded = glm::round(voxel);
-                    worst = std::max(worst, glm::length(voxel - rounded));
-                    const ivec3 v(rounded);
-                    ASSERT_TRUE(v.x >= 0 && v.y >= 0 && v.z >= 0 && v.x < nx && v.y < ny && v.z < nz)
-                        << "volume " << t << " voxel " << i << "," << j << "," << k << " lies outside the NIfTI";
-                    const std::size_t at = ((std::size_t(t) * nz + v.z) * ny + v.y) * nx + v.x;
-                    ASSERT_EQ(f.values[f.index(i, j, k)], float(ref.samples[at]))
-                        << "volume " << t << " voxel " << i << "," << j << "," << k;
+                    const float stored = niftiSample(ref, t, niftiVoxel(ref, lps, worst));
                     // octrace's NIfTI reader (which may store the slices reversed: VTK does with a
                     // reflection): the same value at the same LPS position.
                     const dvec3 g = niftiGrid * (lps - fromNifti.origin);
                     const ivec3 w(glm::round(g));
                     worstNifti = std::max(worstNifti, glm::length(g - dvec3(w)));
                     ASSERT_TRUE(w.x >= 0 && w.y >= 0 && w.z >= 0 && w.x < nx && w.y < ny && w.z < nz);
-                    EXPECT_EQ(fromNifti.values[fromNifti.index(w.x, w.y, w.z)], float(ref.samples[at]));
+                    EXPECT_EQ(fromNifti.values[fromNifti.index(w.x, w.y, w.z)], stored);
                     ++checked;
                 }
         EXPECT_EQ(checked, std::size_t(nx) * ny * nz);
-        EXPECT_LT(worst, 1e-3) << "volume " << t << ": DICOM voxels off the NIfTI's grid (in NIfTI voxels)";
         EXPECT_LT(worstNifti, 1e-3) << "volume " << t << ": DICOM voxels off octrace's NIfTI grid (in its voxels)";
     }
     // The default is volume 0, and a volume beyond the last is refused naming the count.
@@ -676,4 +699,54 @@ TEST(DicomReader, TheFourDNiftiDecodesOnlyTheVolumeAskedForSliceBySlice) {
     expectSameVoxels(VolumeReader::read(dir.file("big.nii"), VolumeReader::Format::Nifti, 0, 3), whole3, "big-endian, volume 3");
     expectSameVoxels(VolumeReader::read(full, VolumeReader::Format::Nifti, 0, 1), VolumeReader::read(nii, VolumeReader::Format::Nifti, 0, 1),
                      ".nii.gz, volume 1");
+}
+
+// The other attributes that tell the volumes of a series apart, each alone in a series of two
+// volumes of 3 slices written from time points 1 and 2 of the XA10 fMRI's NIfTI
+// (tests/data/dicom/make_volume_corpus.py): classic MR files told apart by ImageType (M and P),
+// ComplexImageComponent, TriggerTime, or by nothing but AcquisitionTime (time point 2 acquired
+// first, its files last in name order); enhanced MR files (the two volumes' frames interleaved)
+// by StackID, by DimensionIndexValues alone (InversionTimes, which octrace does not read), or by
+// DiffusionGradientOrientation at one b-value. Each is two volumes labelled by what tells them
+// apart, in that order; volume v holds the samples of the time point it was written from at
+// their positions; the default is volume 0, with a note naming it.
+TEST(DicomReader, EveryVolumeAttributeSplitsASeriesIntoVolumesNamedByIt) {
+    struct Case {
+        const char* path;
+        std::vector<std::string> labels;
+        int timePoint[2];  // of the NIfTI, that volume 0 and 1 were written from
+    };
+    const Case cases[] = {
+        {"dicom/two_image_types", {"image type ORIGINAL\\PRIMARY\\M\\ND", "image type ORIGINAL\\PRIMARY\\P\\ND"}, {0, 1}},
+        {"dicom/two_complex_components", {"complex component MAGNITUDE", "complex component PHASE"}, {0, 1}},
+        {"dicom/two_trigger_times", {"trigger time 0.0", "trigger time 400.0"}, {0, 1}},
+        {"dicom/two_acquisitions", {"repeat 1 (acquired 120001.000)", "repeat 2 (acquired 120003.000)"}, {1, 0}},
+        {"dicom/two_stacks.dcm", {"stack 1", "stack 2"}, {0, 1}},
+        {"dicom/two_dimension_indices.dcm", {"dimension index 1 (InversionTimes)", "dimension index 2 (InversionTimes)"}, {0, 1}},
+        {"dicom/two_gradient_directions.dcm", {"gradient direction 0\\1\\0", "gradient direction 1\\0\\0"}, {0, 1}},
+    };
+    const std::string nii = test::sharedData("medical/siemens_xa10_fmri_4d/reference_dcm2niix.nii");
+    const RawNifti ref = nii.empty() ? RawNifti{} : readRawNifti(nii);
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.path);
+        const std::string path = test::testData(c.path);
+        EXPECT_EQ(io::DicomReader::listVolumes(path), c.labels);
+        const std::string text = io::DicomReader::describe(path, {}, 0, 1);
+        EXPECT_NE(text.find("64x64x3, "), std::string::npos) << text;
+        EXPECT_NE(text.find(", 2 volumes)"), std::string::npos) << text;
+        EXPECT_NE(text.find("volume 0: " + c.labels[0] + ", 3 slices\nvolume 1: " + c.labels[1] + ", 3 slices\n"),
+                  std::string::npos) << text;
+        EXPECT_NE(text.find("chosen: series 1, volume 1"), std::string::npos) << text;
+        const ScalarField v0 = io::DicomReader::read(path, {}, 0, 0), v1 = io::DicomReader::read(path, {}, 0, 1);
+        ASSERT_EQ(v0.dims, ivec3(64, 64, 3));
+        ASSERT_EQ(v1.dims, ivec3(64, 64, 3));
+        EXPECT_FALSE(v0.values == v1.values);
+        const ScalarField defaulted = io::DicomReader::read(path);
+        expectSameVoxels(defaulted, v0, "default volume");
+        EXPECT_NE(std::find(defaulted.notes.begin(), defaulted.notes.end(), "volume 0 of 2: " + c.labels[0]), defaulted.notes.end());
+        if (nii.empty()) continue;
+        expectNiftiTimePoint(v0, ref, c.timePoint[0], "volume 0");
+        expectNiftiTimePoint(v1, ref, c.timePoint[1], "volume 1");
+    }
+    if (nii.empty()) GTEST_SKIP() << "shared data absent: the volumes' samples were not compared with the NIfTI";
 }

@@ -174,6 +174,42 @@ TEST(FigureText, CollidingTickLabelsAreThinnedToEveryKthAndKeepAtLeastThree) {
     EXPECT_EQ(textsOf(boxes, "axis 0").size(), 1u);
 }
 
+TEST(FigureText, AnAxisWithNoRoomForThreeLabelsWithTheirUnitKeepsThreeWithoutIt) {
+    if (figureFontPath().empty()) GTEST_SKIP() << "no DejaVu Sans font (fonts-dejavu-core)";
+    const FigureLayout l = layoutFigure(480, 360, 150, true);
+    const Frame plot = patternPlot(l.plotW, l.plotH);
+    FigureSpec spec;
+    // Five labels 18 pixels apart along a line: "-150 mm" is wider than 36 pixels, so no three
+    // of them fit in mm; "-150" fits every other one.
+    const auto axis = [&](bool bare) {
+        spec.labels.clear();
+        for (int i = 0; i < 5; ++i) {
+            const std::string v = std::to_string(-250 + 50 * i);
+            spec.labels.push_back({{60.0 + 18.0 * i, 120.0}, v + " mm", 0.0, 1.4, 1, 0, bare ? v : std::string()});
+        }
+        std::vector<FigureTextBox> boxes;
+        composeFigure(plot, spec, l, nullptr, &boxes);
+        expectApart(boxes, l.width, l.height);
+        return textsOf(boxes, "axis 1");
+    };
+    const auto withUnit = axis(false);
+    EXPECT_LT(withUnit.size(), 3u);
+    for (const auto& t : withUnit) EXPECT_NE(t.find(" mm"), std::string::npos) << t;
+    const auto bare = axis(true);
+    ASSERT_GE(bare.size(), 3u);
+    for (const auto& t : bare) EXPECT_EQ(t.find(" mm"), std::string::npos) << t;
+    // Where three fit with the unit, it stays.
+    spec.labels.clear();
+    for (int i = 0; i < 3; ++i) {
+        const std::string v = std::to_string(-250 + 50 * i);
+        spec.labels.push_back({{60.0 + 120.0 * i, 120.0}, v + " mm", 0.0, 1.4, 1, 0, v});
+    }
+    std::vector<FigureTextBox> boxes;
+    composeFigure(plot, spec, l, nullptr, &boxes);
+    for (const auto& t : textsOf(boxes, "axis 1")) EXPECT_NE(t.find(" mm"), std::string::npos) << t;
+    EXPECT_EQ(textsOf(boxes, "axis 1").size(), 3u);
+}
+
 TEST(FigureText, ALongBarLabelWrapsBeforeItsUnitsAndALongSubtitleWrapsInAFittedLayout) {
     if (figureFontPath().empty()) GTEST_SKIP() << "no DejaVu Sans font (fonts-dejavu-core)";
     for (const auto& [w, h] : std::vector<std::pair<int, int>>{{480, 360}, {700, 500}, {1200, 900}}) {

@@ -19,6 +19,8 @@
 #include <QDoubleSpinBox>
 #include <QLabel>
 #include <QPlainTextEdit>
+#include <QScrollArea>
+#include <QScrollBar>
 #include <QSignalSpy>
 #include <QSlider>
 #include <QSpinBox>
@@ -135,7 +137,7 @@ private slots:
         open(QStringLiteral(OCTRACE_SAMPLES "/torus.nrrd"));
         QVERIFY(!ocean()->isVisible());
         QVERIFY(!steps()->isVisible());  // one volume: nothing to step through
-        open(kLevitus);
+        open(QDir::current().relativeFilePath(kLevitus));  // as a user in the repository types it, for the screenshots
         QVERIFY(ocean()->isVisible());
         QVERIFY(!steps()->isVisible());  // the atlas is annual: no time axis
         // Without a region the boxes show what was read: the whole grid.
@@ -211,20 +213,6 @@ private slots:
         window_->setFigure(false, QString(), 100, false);
     }
 
-    void aBadRegionIsRefusedAndTheFieldStays() {
-        const std::string before = window_->state().settings.at("region");
-        QSignalSpy reads(&window_->engine(), &Engine::inputLoaded);
-        {
-            const QSignalBlocker quiet(ocean());
-            find<QDoubleSpinBox>("regionSouth")->setValue(70.0);  // the south edge north of the north edge
-        }
-        find<QDoubleSpinBox>("regionNorth")->setValue(10.0);  // 280,360,70,10: refused
-        QCOMPARE(window_->state().settings.at("region"), before);
-        QCOMPARE(reads.count(), 0);
-        QCOMPARE(find<QDoubleSpinBox>("regionSouth")->value(), 0.0);  // the boxes show the region in use
-        for (auto* box : window_->findChildren<QWidget*>(QStringLiteral("errorBox"))) box->close();
-    }
-
     void sessionKeepsTheOceanSettings() {
         const QString path = tmp_.filePath(QStringLiteral("ocean.json"));
         QVERIFY(window_->saveSessionTo(path));
@@ -293,6 +281,20 @@ private slots:
         slices->setFourUp(false);
     }
 
+    void aBadRegionIsRefusedAndTheFieldStays() {
+        const std::string before = window_->state().settings.at("region");
+        QSignalSpy reads(&window_->engine(), &Engine::inputLoaded);
+        {
+            const QSignalBlocker quiet(ocean());
+            find<QDoubleSpinBox>("regionSouth")->setValue(70.0);  // the south edge north of the north edge
+        }
+        find<QDoubleSpinBox>("regionNorth")->setValue(10.0);  // 280,360,70,10: refused
+        QCOMPARE(window_->state().settings.at("region"), before);
+        QCOMPARE(reads.count(), 0);
+        QCOMPARE(find<QDoubleSpinBox>("regionSouth")->value(), 0.0);  // the boxes show the region in use
+        for (auto* box : window_->findChildren<QWidget*>(QStringLiteral("errorBox"))) box->close();
+    }
+
     void engineKeepsOneCopyOfTheField() {
         // The slice panes' field is the one read, whose samples each build shares (no second
         // copy of the field beside the budget the read was checked against): a build, and
@@ -325,14 +327,14 @@ private slots:
         QVERIFY(ocean()->isVisible());
         QVERIFY(steps()->isVisible());
         QCOMPARE(steps()->count(), 4);
-        QCOMPARE(window_->findChild<QLabel*>(QStringLiteral("stepName"))->text(), QStringLiteral("step 0: 2001-01-15"));
+        QCOMPARE(window_->findChild<QLabel*>(QStringLiteral("stepName"))->text(), QStringLiteral("step 0 of 4: 2001-01-15"));
         changeAndWait([&] { find<QDoubleSpinBox>("isoSpin")->setValue(20.0); });
         const QString january = exportEqualsCli();
         QVERIFY(!january.isEmpty());
         // July, by the slider: the time step read is the CLI's --time 2.
         changeAndWait([&] { find<QSlider>("stepSlider")->setValue(2); });
         QCOMPARE(window_->state().time, std::string("2"));
-        QCOMPARE(window_->findChild<QLabel*>(QStringLiteral("stepName"))->text(), QStringLiteral("step 2: 2001-07-15"));
+        QCOMPARE(window_->findChild<QLabel*>(QStringLiteral("stepName"))->text(), QStringLiteral("step 2 of 4: 2001-07-15"));
         QCOMPARE(window_->engine().iso(), 20.0);
         const QString july = exportEqualsCli();
         QVERIFY(!july.isEmpty());
@@ -348,7 +350,7 @@ private slots:
         QCOMPARE(window_->engine().tree(), before);
         QCOMPARE(window_->state().time, std::string("2"));
         QCOMPARE(steps()->step(), 2);  // the slider shows the step on screen again
-        QCOMPARE(window_->findChild<QLabel*>(QStringLiteral("stepName"))->text(), QStringLiteral("step 2: 2001-07-15"));
+        QCOMPARE(window_->findChild<QLabel*>(QStringLiteral("stepName"))->text(), QStringLiteral("step 2 of 4: 2001-07-15"));
     }
 
     void playAdvancesThroughTheSteps() {
@@ -393,21 +395,21 @@ private slots:
 
     void volumeSelectorReadsTheVolumeAsTheCli() {
         if (!QFileInfo::exists(kFmri)) QSKIP("the XA10 fMRI series is absent");
-        open(kFmri);
+        open(QDir::current().relativeFilePath(kFmri));  // as a user in the repository types it, for the screenshot
         // The Series box counts one volume's slices, then the volumes (4 files of 6 frames).
         const QString seriesText = find<QComboBox>("seriesCombo")->currentText();
         QVERIFY2(seriesText.endsWith(QStringLiteral("(MR, 64x64x6, 4 volumes)")), qPrintable(seriesText));
         QVERIFY(!ocean()->isVisible());
         QVERIFY(steps()->isVisible());
         QCOMPARE(steps()->count(), 4);
-        QCOMPARE(window_->findChild<QLabel*>(QStringLiteral("stepName"))->text(), QStringLiteral("volume 0: temporal position 1"));
+        QCOMPARE(window_->findChild<QLabel*>(QStringLiteral("stepName"))->text(), QStringLiteral("volume 0 of 4: temporal position 1"));
         const QString first = exportEqualsCli();
         QVERIFY(!first.isEmpty());
         // Volume 3 by the index box: the CLI's --volume 3.
         changeAndWait([&] { find<QSpinBox>("stepIndex")->setValue(3); });
         QCOMPARE(window_->state().settings.at("volume"), std::string("3"));
         QVERIFY(window_->commandLine(QStringLiteral("x.png"), 10, 10).join(' ').contains(QStringLiteral("--volume 3")));
-        QCOMPARE(window_->findChild<QLabel*>(QStringLiteral("stepName"))->text(), QStringLiteral("volume 3: temporal position 4"));
+        QCOMPARE(window_->findChild<QLabel*>(QStringLiteral("stepName"))->text(), QStringLiteral("volume 3 of 4: temporal position 4"));
         const QString last = exportEqualsCli();
         QVERIFY(!last.isEmpty());
         QVERIFY(differingPixels(first, last) > 0);  // another time point, another surface
@@ -420,7 +422,20 @@ private slots:
         steps()->setPlaying(false);
         QTRY_VERIFY_WITH_TIMEOUT(!window_->engine().building(), kWaitMs);
         changeAndWait([&] { find<QSpinBox>("stepIndex")->setValue(2); });
-        screenshot(QStringLiteral("studio-volumes.png"));
+        QCOMPARE(window_->findChild<QLabel*>(QStringLiteral("stepName"))->text(), QStringLiteral("volume 2 of 4: temporal position 3"));
+        if (!screenshots_.isEmpty()) {
+            // The picture: volume 2 in the four-up layout, the volume selector in the Input box.
+            auto* slices = window_->slices();
+            slices->setFourUp(true);
+            QTRY_VERIFY(slices->pane(0)->isVisible() && slices->pane(0)->hasSlice());
+            // The 3-D view from a little above (the default looks at the 6-slice slab's edge).
+            QSignalSpy frames(window_, &MainWindow::frameShown);
+            for (int k = 0; k < 4; ++k) QTest::keyClick(window_->view(0), Qt::Key_Down);
+            QTRY_VERIFY_WITH_TIMEOUT(!window_->engine().building() && frames.count() > 0, kWaitMs);
+            window_->findChild<QScrollArea*>(QStringLiteral("sidePanel"))->verticalScrollBar()->setValue(0);
+            screenshot(QStringLiteral("studio-volumes.png"));
+            slices->setFourUp(false);
+        }
     }
 
     void steppingTheVolumeKeepsTheSlicePanes() {

@@ -49,6 +49,8 @@
 #include <QtTest>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <chrono>
 #include <functional>
 
@@ -439,6 +441,49 @@ private slots:
         combo->setCurrentText(QStringLiteral("full"));
     }
 
+    void surfaceControlDrawsAsTheCli() {
+        // The `surface` setting: auto (unset) draws smooth with tile and voxel with full, as
+        // render without --surface; voxel or smooth chosen holds for every renderer.
+        openSample();
+        auto* surface = window_->findChild<QComboBox*>(QStringLiteral("surface"));
+        auto* renderer = window_->findChild<QComboBox*>(QStringLiteral("rendererCombo"));
+        QVERIFY(surface && renderer);
+        QCOMPARE(surface->currentIndex(), 0);
+        QVERIFY(!window_->state().settings.count("surface"));
+        renderer->setCurrentText(QStringLiteral("tile"));
+        exportEqualsCli(QStringLiteral("surface-auto-tile"), 220, 160, false);
+        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
+        surface->setCurrentIndex(surface->findData(QStringLiteral("voxel")));
+        QVERIFY(built.wait(kWaitMs));
+        waitFrame();
+        QCOMPARE(window_->state().settings.at("surface"), std::string("voxel"));
+        QVERIFY(window_->engine().tree()->corners().empty());  // voxel builds no corner values
+        QVERIFY(window_->commandLine(QStringLiteral("x.png"), 10, 10).join(QLatin1Char(' ')).contains(QStringLiteral("--surface voxel")));
+        exportEqualsCli(QStringLiteral("surface-voxel-tile"), 220, 160, false);
+        // (Exports, not the view: a frame of the renderer before may still be on its way.)
+        QVERIFY(differingPixels(tmp_.filePath(QStringLiteral("surface-auto-tile-studio.png")),
+                                tmp_.filePath(QStringLiteral("surface-voxel-tile-studio.png"))) > 100);
+        // Smooth with a paper renderer, which draws voxel in auto.
+        surface->setCurrentIndex(surface->findData(QStringLiteral("smooth")));
+        QVERIFY(built.wait(kWaitMs));
+        renderer->setCurrentText(QStringLiteral("full"));
+        waitFrame();
+        QVERIFY(!window_->engine().tree()->corners().empty());
+        exportEqualsCli(QStringLiteral("surface-smooth-full"), 220, 160, false);
+        // A session keeps it.
+        const QString session = tmp_.filePath(QStringLiteral("surface-session.json"));
+        QVERIFY(window_->saveSessionTo(session));
+        surface->setCurrentIndex(0);
+        QVERIFY(built.wait(kWaitMs));
+        QVERIFY(!window_->state().settings.count("surface"));
+        QVERIFY(window_->openSession(session));
+        QVERIFY(built.wait(kWaitMs));
+        QCOMPARE(surface->currentData().toString(), QStringLiteral("smooth"));
+        surface->setCurrentIndex(0);
+        QVERIFY(built.wait(kWaitMs));
+        waitFrame();
+    }
+
     void exportsFigureWithAnnotationsAsTheCli() {
         // A colour map brings the colour bar; title, subtitle, the box with its ticks and the
         // scale bar are the annotations, set at 200 dpi over a 900x640 figure.
@@ -782,6 +827,51 @@ private slots:
         waitFrame();
     }
 
+    void sessionSavesAndRestoresTheState() {
+        const QString path = tmp_.filePath(QStringLiteral("session.json"));
+        auto* combo = window_->findChild<QComboBox*>(QStringLiteral("rendererCombo"));
+        auto* colormap = window_->findChild<QComboBox*>(QStringLiteral("colormapCombo"));
+        colormap->setCurrentIndex(1);
+        combo->setCurrentText(QStringLiteral("direct"));
+        waitFrame();
+        screenshot(QStringLiteral("studio-colormap.png"));
+        QVERIFY(window_->saveSessionTo(path));
+        QFile file(path);
+        QVERIFY(file.open(QIODevice::ReadOnly));
+        const QByteArray saved = file.readAll();
+        QVERIFY(saved.contains(QFileInfo(QStringLiteral("data_samples/torus.nrrd")).absoluteFilePath().toUtf8()));
+        QCOMPARE(QFileInfo(path).dir().entryList(QDir::Files | QDir::Hidden).filter(QStringLiteral(".tmp")).size(), 0);
+        // Change things, then open the session: the state comes back, the input is read again.
+        combo->setCurrentText(QStringLiteral("full"));
+        colormap->setCurrentIndex(0);
+        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
+        QSignalSpy failed(&window_->engine(), &Engine::failed);
+        QVERIFY2(window_->openSession(path), saved.constData());
+        QVERIFY2(built.wait(kWaitMs), failed.isEmpty() ? "" : qPrintable(failed.first().at(0).toString()));
+        QCOMPARE(octrace::studio::sessionJson(window_->state()), saved);
+        QCOMPARE(combo->currentText(), QStringLiteral("direct"));
+        QCOMPARE(colormap->currentIndex(), 1);
+        waitFrame();
+        exportEqualsCli(QStringLiteral("session"), 200, 150, false);  // the colour map too
+
+        // Missing and broken files: a message, and the state stays as it was.
+        const QByteArray current = octrace::studio::sessionJson(window_->state());
+        for (const QByteArray& bad : {QByteArray("{ not json"), QByteArray("[1, 2]"), QByteArray("{\"octrace_studio_session\": 3}"),
+                                      QByteArray("{\"octrace_studio_session\": 1, \"surface\": {\"depth\": 99}}")}) {
+            QFile f(tmp_.filePath(QStringLiteral("bad.json")));
+            QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
+            f.write(bad);
+            f.close();
+            QVERIFY(!window_->openSession(f.fileName()));
+            QCOMPARE(octrace::studio::sessionJson(window_->state()), current);
+        }
+        QVERIFY(!window_->openSession(tmp_.filePath(QStringLiteral("missing.json"))));
+        QCOMPARE(octrace::studio::sessionJson(window_->state()), current);
+        for (auto* box : window_->findChildren<QWidget*>(QStringLiteral("errorBox"))) box->close();
+        colormap->setCurrentIndex(0);
+        combo->setCurrentText(QStringLiteral("full"));
+    }
+
     void exportRefusesOversize() {
         QSignalSpy failed(&window_->engine(), &Engine::failed);
         window_->exportFigure(tmp_.filePath(QStringLiteral("huge.png")), octrace::studio::kMaxExportSide + 1, 10, false);
@@ -885,51 +975,6 @@ private slots:
         time->setText(QString());
         emit time->editingFinished();
         for (auto* box : window_->findChildren<QWidget*>(QStringLiteral("errorBox"))) box->close();
-    }
-
-    void sessionSavesAndRestoresTheState() {
-        const QString path = tmp_.filePath(QStringLiteral("session.json"));
-        auto* combo = window_->findChild<QComboBox*>(QStringLiteral("rendererCombo"));
-        auto* colormap = window_->findChild<QComboBox*>(QStringLiteral("colormapCombo"));
-        colormap->setCurrentIndex(1);
-        combo->setCurrentText(QStringLiteral("direct"));
-        waitFrame();
-        screenshot(QStringLiteral("studio-colormap.png"));
-        QVERIFY(window_->saveSessionTo(path));
-        QFile file(path);
-        QVERIFY(file.open(QIODevice::ReadOnly));
-        const QByteArray saved = file.readAll();
-        QVERIFY(saved.contains(QFileInfo(QStringLiteral("data_samples/torus.nrrd")).absoluteFilePath().toUtf8()));
-        QCOMPARE(QFileInfo(path).dir().entryList(QDir::Files | QDir::Hidden).filter(QStringLiteral(".tmp")).size(), 0);
-        // Change things, then open the session: the state comes back, the input is read again.
-        combo->setCurrentText(QStringLiteral("full"));
-        colormap->setCurrentIndex(0);
-        QSignalSpy built(&window_->engine(), &Engine::surfaceBuilt);
-        QSignalSpy failed(&window_->engine(), &Engine::failed);
-        QVERIFY2(window_->openSession(path), saved.constData());
-        QVERIFY2(built.wait(kWaitMs), failed.isEmpty() ? "" : qPrintable(failed.first().at(0).toString()));
-        QCOMPARE(octrace::studio::sessionJson(window_->state()), saved);
-        QCOMPARE(combo->currentText(), QStringLiteral("direct"));
-        QCOMPARE(colormap->currentIndex(), 1);
-        waitFrame();
-        exportEqualsCli(QStringLiteral("session"), 200, 150, false);  // the colour map too
-
-        // Missing and broken files: a message, and the state stays as it was.
-        const QByteArray current = octrace::studio::sessionJson(window_->state());
-        for (const QByteArray& bad : {QByteArray("{ not json"), QByteArray("[1, 2]"), QByteArray("{\"octrace_studio_session\": 3}"),
-                                      QByteArray("{\"octrace_studio_session\": 1, \"surface\": {\"depth\": 99}}")}) {
-            QFile f(tmp_.filePath(QStringLiteral("bad.json")));
-            QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
-            f.write(bad);
-            f.close();
-            QVERIFY(!window_->openSession(f.fileName()));
-            QCOMPARE(octrace::studio::sessionJson(window_->state()), current);
-        }
-        QVERIFY(!window_->openSession(tmp_.filePath(QStringLiteral("missing.json"))));
-        QCOMPARE(octrace::studio::sessionJson(window_->state()), current);
-        for (auto* box : window_->findChildren<QWidget*>(QStringLiteral("errorBox"))) box->close();
-        colormap->setCurrentIndex(0);
-        combo->setCurrentText(QStringLiteral("full"));
     }
 
     void ctWindowPresetGreysLikeTheCli() {
@@ -1123,13 +1168,95 @@ private slots:
         QCOMPARE(axial.letters[3], QStringLiteral("P"));
         QCOMPARE(slices->pane(1)->content().letters[2], QStringLiteral("S"));
         QCOMPARE(slices->pane(2)->content().letters[0], QStringLiteral("P"));
-        // The scale bar as the figure's: io::scaleBarLength of the pixel size and width, in mm.
-        QVERIFY(axial.scaleBar > 10.0 && axial.scaleBar < axial.image.width());
-        QVERIFY(axial.scaleBarLabel.endsWith(QStringLiteral(" mm")));
+        // The scale bar (scaleBarIsTheFiguresAtThePanesZoom checks its length).
+        QVERIFY(axial.scaleBar.pixels > 10.0 && axial.scaleBar.pixels < axial.image.width());
         // The crosshair in the 3-D view.
         QVERIFY(window_->view(0)->marker().has_value());
-        sidePanel()->verticalScrollBar()->setValue(0);  // the Input box at the top
-        screenshot(QStringLiteral("studio-fourup-ct.png"));
+        // The Input box names the file; its tooltip the path as given.
+        auto* input = window_->findChild<QLabel*>(QStringLiteral("inputLabel"));
+        QVERIFY(input);
+        QCOMPARE(input->text(), QStringLiteral("lidc2_chest_ct.nrrd"));
+        QCOMPARE(input->toolTip(), QString::fromStdString(window_->state().input));
+        QCOMPARE(window_->windowTitle(), QStringLiteral("lidc2_chest_ct.nrrd - octrace studio"));
+        if (!screenshots_.isEmpty()) {
+            // The probe over the heart in the axial pane, as a user pointing at it sees it.
+            auto* pane = slices->pane(0);
+            const QPoint at(pane->width() / 2 + 10, pane->height() / 2 + 10);
+            QMouseEvent move(QEvent::MouseMove, QPointF(at), pane->mapToGlobal(QPointF(at)), Qt::NoButton, Qt::NoButton, Qt::NoModifier);
+            QApplication::sendEvent(pane, &move);
+            QVERIFY(slices->probe().valid);
+            sidePanel()->verticalScrollBar()->setValue(0);  // the Input box at the top
+            screenshot(QStringLiteral("studio-fourup-ct.png"));
+        }
+    }
+
+    /// The length in widget pixels of the scale bar `pane` paints: the longest run of white
+    /// pixels along the bar's row, from its left end (10 px in) rightwards.
+    static int paintedScaleBar(QWidget* pane) {
+        const QImage shot = pane->grab().toImage().convertToFormat(QImage::Format_RGB32);
+        const qreal dpr = shot.devicePixelRatio();
+        const int y0 = int(std::lround((pane->height() - QFontMetrics(pane->font()).height() - 8) * dpr));
+        int longest = 0;
+        for (int y = std::max(0, y0 - 2); y <= std::min(shot.height() - 1, y0 + 1); ++y) {
+            int x = int(10 * dpr), run = 0;
+            while (x < shot.width() && (shot.pixel(x, y) & 0xFFFFFF) == 0xFFFFFF) ++x, ++run;
+            longest = std::max(longest, run);
+        }
+        return int(std::lround(longest / dpr));
+    }
+
+    void scaleBarIsTheFiguresAtThePanesZoom() {
+        // Each pane's scale bar is the one `slice --figure` draws for a view of the same mm per
+        // pixel and width (model::sliceScaleBar, io::scaleBarLength: the largest 1, 2 or 5 x 10^k
+        // mm of at most a fifth of the width), labelled as the figure labels it, and painted at
+        // that length. At another zoom (a smaller window: more mm per pixel) it follows.
+        if (!openChestFourUp()) QSKIP("needs ../shared/data/medical/lidc2_chest_ct.nrrd");
+        auto* slices = window_->slices();
+        const auto field = window_->engine().field();
+        const auto check = [&](int i) {
+            auto* pane = slices->pane(i);
+            QVERIFY(pane->hasSlice());
+            const auto& c = pane->content();
+            const octrace::SliceView& v = c.result.view;
+            const double mmPerPixel = v.pixelSize;
+            const octrace::model::SliceScaleBar figure = octrace::model::sliceScaleBar(*field, v, false);
+            QCOMPARE(c.scaleBar.length, figure.length);
+            QCOMPARE(c.scaleBar.pixels, figure.pixels);
+            QCOMPARE(c.scaleBar.label, figure.label);
+            // The figure's rule, from the pane's mm per pixel and width.
+            const double most = mmPerPixel * v.width / 5.0;
+            QVERIFY2(c.scaleBar.length <= most * (1.0 + 1e-12) && c.scaleBar.length > most / 2.5 - 1e-9,
+                     qPrintable(QStringLiteral("pane %1: %2 mm for at most %3 mm").arg(i).arg(c.scaleBar.length).arg(most)));
+            const double k = std::pow(10.0, std::floor(std::log10(c.scaleBar.length) + 1e-9));
+            const double m = c.scaleBar.length / k;
+            QVERIFY2(std::abs(m - 1.0) < 1e-9 || std::abs(m - 2.0) < 1e-9 || std::abs(m - 5.0) < 1e-9, qPrintable(QString::number(m)));
+            QCOMPARE(c.scaleBar.pixels, c.scaleBar.length / mmPerPixel);
+            QCOMPARE(c.scaleBar.label, QString::number(c.scaleBar.length, 'g', 6).toStdString() + " mm");
+            // Painted at that length (the pen's caps add a pixel or two).
+            const int painted = paintedScaleBar(pane);
+            const double expected = c.scaleBar.pixels / pane->devicePixelRatioF();
+            QVERIFY2(std::abs(painted - expected) <= 2.0,
+                     qPrintable(QStringLiteral("pane %1: painted %2 px, the bar is %3 px").arg(i).arg(painted).arg(expected)));
+        };
+        std::array<double, 3> mmPerPixel{}, length{};
+        for (int i = 0; i < 3; ++i) {
+            check(i);
+            mmPerPixel[std::size_t(i)] = slices->pane(i)->content().result.view.pixelSize;
+            length[std::size_t(i)] = slices->pane(i)->content().scaleBar.length;
+        }
+        // Another zoom: the window 640 high, the panes wide and low (the slice fits their height:
+        // more mm per pixel, and more mm across), so the axial bar takes another round length.
+        window_->resize(1600, 640);
+        for (int i = 0; i < 3; ++i) {
+            QTRY_VERIFY_WITH_TIMEOUT(slices->pane(i)->content().result.view.pixelSize > mmPerPixel[std::size_t(i)] * 1.5, kWaitMs);
+            check(i);
+        }
+        QVERIFY2(slices->pane(0)->content().scaleBar.length > length[0],
+                 qPrintable(QStringLiteral("%1 mm at %2 mm/px, %3 mm at %4 mm/px").arg(length[0]).arg(mmPerPixel[0])
+                                .arg(slices->pane(0)->content().scaleBar.length).arg(slices->pane(0)->content().result.view.pixelSize)));
+        window_->resize(1600, 1000);
+        QTRY_COMPARE(window_->size(), QSize(1600, 1000));
+        QTest::qWait(200);
     }
 
     void sliceWheelAndArrowKeysMoveExactlyOneSlice() {

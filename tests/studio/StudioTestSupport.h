@@ -3,6 +3,7 @@
 // comparing PNG files pixel by pixel.
 #include "SliceViews.h"
 
+#include <QApplication>
 #include <QImage>
 #include <QLabel>
 #include <QMainWindow>
@@ -85,6 +86,7 @@ inline bool saveScreenshot(QMainWindow* window, const QString& scratch, const QS
     // An input made in the scratch folder (the Input panel's label): its file name.
     for (auto* label : window->findChildren<QLabel*>())
         if (label->text().contains(scratch)) label->setText(label->text().remove(scratch + QLatin1Char('/')));
+    QApplication::processEvents();  // the labels' layout settles (a label changed just now, its room)
     return window->grab().save(file);
 }
 

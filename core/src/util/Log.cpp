@@ -1,5 +1,6 @@
 #include "octrace/util/Log.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <mutex>
@@ -10,6 +11,7 @@ std::atomic<Level> gLevel{Level::Info};
 std::mutex gMutex;
 std::function<void(Level, const std::string&)> gSink;
 std::function<std::string(const std::string&)> gWording;
+thread_local Level tFloor = Level::Debug;
 const char* prefix(Level l) {
     switch (l) {
     case Level::Debug: return "debug: ";
@@ -31,8 +33,10 @@ void setWording(std::function<std::string(const std::string&)> wording) {
     std::lock_guard<std::mutex> lock(gMutex);
     gWording = std::move(wording);
 }
+ThreadFloor::ThreadFloor(Level floor) : previous_(tFloor) { tFloor = std::max(tFloor, floor); }
+ThreadFloor::~ThreadFloor() { tFloor = previous_; }
 void message(Level l, const std::string& raw) {
-    if (l < gLevel.load()) return;
+    if (l < gLevel.load() || l < tFloor) return;
     std::lock_guard<std::mutex> lock(gMutex);
     const std::string text = gWording ? gWording(raw) : raw;
     if (gSink) {

@@ -231,8 +231,9 @@ std::optional<gdcm::Tag> tagOf(const std::string& text) {
 
 // Which of DimensionIndexValues' entries are spatial (the stack, the position in it, the
 // position itself): those say where a frame lies, not which volume it belongs to. Nothing
-// when a pointer cannot be read (the values are then not used).
-std::optional<std::vector<bool>> spatialDimensions(Attributes& attrs) {
+// when a pointer cannot be read (the values are then not used). `names` gets the keywords of
+// the others (GDCM's dictionary; "(GGGG,EEEE)" for a private or unknown one).
+std::optional<std::vector<bool>> spatialDimensions(Attributes& attrs, std::string& names) {
     std::vector<bool> spatial;
     for (std::size_t i = 0, n = attrs.items(kDimensionIndexSeq); i < n; ++i) {
         const gdcm::DataSet* d = attrs.item(attrs.top(), kDimensionIndexSeq, i);
@@ -240,6 +241,17 @@ std::optional<std::vector<bool>> spatialDimensions(Attributes& attrs) {
         const auto tag = pointer ? tagOf(*pointer) : std::nullopt;
         if (!tag) return std::nullopt;
         spatial.push_back(*tag == kStackId || *tag == kInStackPosition || *tag == kPosition);
+        if (spatial.back()) continue;
+        static const gdcm::Dict& dict = gdcm::Global::GetInstance().GetDicts().GetPublicDict();
+        // GDCM answers an unknown tag with the entry of (FFFF,FFFF).
+        const gdcm::DictEntry& entry = dict.GetDictEntry(*tag);
+        std::string keyword = tag->IsPrivate() || &entry == &dict.GetDictEntry(gdcm::Tag(0xffff, 0xffff)) ? "" : entry.GetKeyword();
+        if (keyword.empty()) {
+            char text[16];
+            std::snprintf(text, sizeof text, "(%04X,%04X)", tag->GetGroup(), tag->GetElement());
+            keyword = text;
+        }
+        names += (names.empty() ? "" : ", ") + keyword;
     }
     return spatial;
 }
@@ -383,7 +395,7 @@ std::optional<DicomHeader> readDicomHeader(const std::string& file, std::string&
     const std::uintmax_t size = fileSize(file), at = reader.GetStreamCurrentPosition();
     checkPixelDataFits(c, h, encapsulated, size > at ? size - at : 0);
 
-    const auto spatial = spatialDimensions(attrs);
+    const auto spatial = spatialDimensions(attrs, h.dimensionNames);
     for (std::size_t n = 0; n < h.frames.size(); ++n) {
         h.frames[n] = readFrame(c, n);
         readVolumeKey(c, n, spatial, h.frames[n]);

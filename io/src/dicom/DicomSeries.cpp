@@ -205,8 +205,10 @@ std::vector<SeriesVolume> splitVolumes(const std::vector<DicomHeader>& headers) 
         const std::vector<std::string>& key = group.first;
         const std::vector<SliceRef>& images = group.second;
         std::string label;
+        const std::string& dimensions = headers[images.front().header].dimensionNames;
         for (std::size_t i = 0; i < used.size(); ++i)
-            label += (i ? ", " : "") + std::string(volumeAttributeName(used[i])) + " " + (key[i].empty() ? "(none)" : key[i]);
+            label += (i ? ", " : "") + std::string(volumeAttributeName(used[i])) + " " + (key[i].empty() ? "(none)" : key[i]) +
+                     (used[i] == kDimensionIndex && !dimensions.empty() ? " (" + dimensions + ")" : "");
         // Images still sharing a position: the first acquired at each position is in the first repeat.
         std::vector<std::size_t> at = positionClusters(headers, images, where);
         std::vector<std::vector<std::size_t>> byPosition(where.size());

@@ -63,6 +63,9 @@ struct DicomHeader {
     int bitsAllocated = 0;
     bool monochrome1 = false;   ///< PhotometricInterpretation MONOCHROME1: low values displayed bright
     double sliceSpacing = 0.0;  ///< SpacingBetweenSlices, else SliceThickness; 0 when absent
+    /// The keywords of the attributes the kDimensionIndex values index (the DimensionIndexPointers
+    /// that are not spatial, "InversionTimes"; comma-separated), which its volume label names.
+    std::string dimensionNames;
     std::vector<DicomFrame> frames;  ///< NumberOfFrames entries
 };
 

@@ -284,11 +284,17 @@ struct AxisLabels {
     double span = 0.0;
     bool endOn(double labelPx) const;
     /// The widest ink of its labels along the line through its two farthest points, at the
-    /// smallest size they are set in (pixels).
-    double extent(Font& font, double labelPx) const;
+    /// smallest size they are set in (pixels); `bare`: of their texts without the unit.
+    double extent(Font& font, double labelPx, bool bare) const;
     /// Whether `count` of its labels can lie apart along its span at the smallest size.
-    bool roomFor(std::size_t count, Font& font, double labelPx) const;
+    bool roomFor(std::size_t count, Font& font, double labelPx, bool bare) const;
+    /// Whether its labels have a text without the unit.
+    bool hasBare() const {
+        return std::any_of(labels.begin(), labels.end(), [](const FigureLabel* l) { return !l->bare.empty(); });
+    }
 };
+/// The text of `lab` with its unit, or without it (`bare`) where it has such a text.
+const std::string& labelText(const FigureLabel& lab, bool bare) { return bare && !lab.bare.empty() ? lab.bare : lab.text; }
 std::vector<AxisLabels> axesOf(const FigureSpec& spec) {
     std::vector<AxisLabels> out;
     for (const FigureLabel& lab : spec.labels) {
@@ -310,7 +316,7 @@ constexpr double kLabelScales[] = {1.0, 0.85, 0.7};
 /// The gap kept between texts (pixels).
 int textGap(double labelPx) { return std::max(1, int(std::lround(0.15 * labelPx))); }
 
-double AxisLabels::extent(Font& font, double labelPx) const {
+double AxisLabels::extent(Font& font, double labelPx, bool bare) const {
     dvec2 u(0.0);
     for (const FigureLabel* a : labels)
         for (const FigureLabel* b : labels)
@@ -318,14 +324,14 @@ double AxisLabels::extent(Font& font, double labelPx) const {
     font.size(labelPx * kLabelScales[std::size(kLabelScales) - 1]);
     double widest = 0.0;
     for (const FigureLabel* lab : labels) {
-        const InkBox b = font.draw(nullptr, lab->text, 0.0, 0.0);
+        const InkBox b = font.draw(nullptr, labelText(*lab, bare), 0.0, 0.0);
         if (!b.empty()) widest = std::max(widest, (b.x1 - b.x0) * std::abs(u.x) + (b.y1 - b.y0) * std::abs(u.y));
     }
     return widest;
 }
 
-bool AxisLabels::roomFor(std::size_t count, Font& font, double labelPx) const {
-    return labels.size() >= count && span >= double(count - 1) * (extent(font, labelPx) + textGap(labelPx));
+bool AxisLabels::roomFor(std::size_t count, Font& font, double labelPx, bool bare) const {
+    return labels.size() >= count && span >= double(count - 1) * (extent(font, labelPx, bare) + textGap(labelPx));
 }
 
 /// The subsets of `size` of 0..n-1 (sorted), the most evenly spread first: by their smallest
@@ -527,7 +533,7 @@ void appendTextBoxes(const std::string& path, const FigureLayout& l, const std::
         const char* sep = "";
         for (const AxisLabels& g : groups)
             if (g.axis == axes[i].axis && !g.endOn(l.labelPx))
-                s << std::exchange(sep, ", ") << "[" << g.span << ", " << g.extent(font, l.labelPx) << "]";
+                s << std::exchange(sep, ", ") << "[" << g.span << ", " << g.extent(font, l.labelPx, true) << "]";
         s << "]}";
     }
     s << "], \"boxes\": [";
@@ -773,10 +779,11 @@ Frame composeFigure(const Frame& plot, const FigureSpec& spec, const FigureLayou
         std::stable_sort(out.begin(), out.end(), [](const AxisLabels* a, const AxisLabels* b) { return a->edge < b->edge; });
         return out;
     };
-    const auto candidates = [&](const AxisLabels& axis) {
+    const auto candidates = [&](const AxisLabels& axis, bool bare) {
         std::vector<Candidate> labels;
         for (const FigureLabel* lab : axis.labels)
-            labels.push_back({lab->text, 0.0, 0.0, true, origin.x + lab->at.x + lab->dx * l.labelPx, origin.y + lab->at.y + lab->dy * l.labelPx});
+            labels.push_back({labelText(*lab, bare), 0.0, 0.0, true, origin.x + lab->at.x + lab->dx * l.labelPx,
+                              origin.y + lab->at.y + lab->dy * l.labelPx});
         return labels;
     };
     constexpr std::size_t kLeastTicks = 3;
@@ -787,29 +794,35 @@ Frame composeFigure(const Frame& plot, const FigureSpec& spec, const FigureLayou
         kept = 0;
         for (std::size_t i : order) {
             const std::string role = "axis " + std::to_string(axes[i].axis);
+            const std::vector<const AxisLabels*> all = places(axes[i]);
             const AxisLabels* pick = nullptr;
             std::size_t most = 0;
-            for (const AxisLabels* place : places(axes[i])) {
-                TextLayout t = layout.trial();
-                t.placeThinned(role, candidates(*place), true, l.labelPx, kLeastTicks);
-                if (!pick || t.count(role) > most) pick = place, most = t.count(role);
-                if (most >= std::min(kLeastTicks, place->labels.size())) break;
-            }
-            // An axis too short for 3 labels on each of its places (docs/dev/figures.md) keeps 2
-            // where they fit, as evenly spread as they can be.
-            std::size_t least = kLeastTicks;
-            const std::vector<const AxisLabels*> all = places(axes[i]);
-            if (most < std::min(kLeastTicks, pick->labels.size()) &&
-                std::none_of(all.begin(), all.end(), [&](const AxisLabels* p) { return p->roomFor(kLeastTicks, font, l.labelPx); })) {
-                least = 2;
-                pick = nullptr, most = 0;
+            bool bare = false;
+            // With their unit on each place in turn, then (labels that have one) without it.
+            for (const bool b : {false, true}) {
+                if (b && !axes[i].hasBare()) break;
                 for (const AxisLabels* place : all) {
                     TextLayout t = layout.trial();
-                    t.placeThinned(role, candidates(*place), true, l.labelPx, least);
+                    t.placeThinned(role, candidates(*place, b), true, l.labelPx, kLeastTicks);
+                    if (!pick || t.count(role) > most) pick = place, most = t.count(role), bare = b;
+                    if (most >= std::min(kLeastTicks, place->labels.size())) break;
+                }
+                if (most >= std::min(kLeastTicks, pick->labels.size())) break;
+            }
+            // An axis too short for 3 labels on each of its places (docs/dev/figures.md) keeps 2
+            // where they fit, as evenly spread as they can be, with their unit.
+            std::size_t least = kLeastTicks;
+            if (most < std::min(kLeastTicks, pick->labels.size()) &&
+                std::none_of(all.begin(), all.end(), [&](const AxisLabels* p) { return p->roomFor(kLeastTicks, font, l.labelPx, true); })) {
+                least = 2;
+                pick = nullptr, most = 0, bare = false;
+                for (const AxisLabels* place : all) {
+                    TextLayout t = layout.trial();
+                    t.placeThinned(role, candidates(*place, false), true, l.labelPx, least);
                     if (!pick || t.count(role) > most) pick = place, most = t.count(role);
                 }
             }
-            layout.placeThinned(role, candidates(*pick), true, l.labelPx, least);
+            layout.placeThinned(role, candidates(*pick, bare), true, l.labelPx, least);
             kept += most >= std::min(least, pick->labels.size());
             chosen.push_back(pick);
         }

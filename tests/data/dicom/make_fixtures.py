@@ -20,12 +20,12 @@ CT_IMAGE, ENHANCED_CT, MR_IMAGE = "1.2.840.10008.5.1.4.1.1.2", "1.2.840.10008.5.
 
 
 def element(group, elem, vr, value):
-    """One explicit-VR little-endian element; `value` is bytes, str, int (US) or a list of items (SQ)."""
+    """One explicit-VR little-endian element; `value` is bytes, str, int (US, UL) or a list of items (SQ)."""
     if vr == "SQ":
         body = b"".join(struct.pack("<HHI", 0xFFFE, 0xE000, len(item)) + item for item in (dataset(i) for i in value))
     elif vr == "US":
         body = struct.pack("<H", value)
-    elif vr == "UL":
+    elif vr == "UL" and isinstance(value, int):
         body = struct.pack("<I", value)
     elif isinstance(value, str):
         body = value.encode("ascii")

@@ -20,6 +20,19 @@ void setSink(std::function<void(Level, const std::string&)> sink);
 /// and io messages (util/Parameter.h) in its own words. Pass {} to show them as they are.
 void setWording(std::function<std::string(const std::string&)> wording);
 
+/// While one lives, this thread's messages below `floor` are dropped too (other threads' are
+/// not): to redo work whose messages were already given, e.g. a second read of one file.
+class ThreadFloor {
+public:
+    explicit ThreadFloor(Level floor);
+    ~ThreadFloor();
+    ThreadFloor(const ThreadFloor&) = delete;
+    ThreadFloor& operator=(const ThreadFloor&) = delete;
+
+private:
+    Level previous_;
+};
+
 void message(Level level, const std::string& text);
 inline void debug(const std::string& t) { message(Level::Debug, t); }
 inline void info(const std::string& t) { message(Level::Info, t); }

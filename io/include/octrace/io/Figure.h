@@ -53,6 +53,10 @@ struct FigureLabel {
     /// cannot keep 3 of its labels clear of the rest (composeFigure); only one place per axis
     /// is drawn, with its tick marks.
     int edge = 0;
+    /// The text without its unit ("-120" for "-120 mm"), or empty: an axis that cannot keep 3
+    /// of its labels with their unit on any of its places sets them without it, where the
+    /// subtitle names the unit (composeFigure).
+    std::string bare;
 };
 
 /// Rough width of a label in label heights (DejaVu Sans: about 0.6 of the height a character),

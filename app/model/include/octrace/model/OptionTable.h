@@ -124,7 +124,7 @@ inline constexpr Option form{.key = "form", .kind = OptionKind::Choice, .flag = 
             "the grid ends (volume)",
     .commands = "render export build animate"};
 inline constexpr Option surface{.key = "surface", .kind = OptionKind::Choice, .flag = "surface", .argument = "voxel|smooth",
-    .defaultText = "smooth for field inputs, except with the papers' renderers (full, linear, area and their variants, "
+    .session = "surface.mode", .label = "Surface", .defaultText = "smooth for field inputs, except with the papers' renderers (full, linear, area and their variants, "
                    "direct, samet, beam), which draw voxel",
     .choices = "voxel|smooth",
     .help = "how a boundary voxel is drawn: its box, or where the ray crosses the trilinear interpolant of the field's "

@@ -106,6 +106,19 @@ std::string slicePositionText(const ScalarField& field, const SliceView& view);
 /// patient letter of a patient volume (L, R, P, A, S, I), else "+x", "-y", ...
 std::string sliceDirectionName(const ScalarField& field, const dvec3& d);
 
+/// The scale bar of a slice: what `slice --figure` draws under its plot and the studio's slice
+/// panes in their corner, one mechanism for both. Its length is io::scaleBarLength of the view's
+/// pixel size (world units per pixel: mm on patient volumes) and width, in world units;
+/// `pixels` the same in the view's pixels; the label the length with its unit ("50 mm", "200
+/// km" on a geographic grid). Drawn always on patient volumes, on other grids when `requested`
+/// (`scale_bar`); length 0 (no bar) otherwise or when the view has no extent.
+struct SliceScaleBar {
+    double length = 0.0;
+    double pixels = 0.0;
+    std::string label;
+};
+SliceScaleBar sliceScaleBar(const ScalarField& field, const SliceView& view, bool requested);
+
 /// A display window over the valid values from the `lowFraction` to the `highFraction` quantile
 /// (nearest rank): the studio's automatic window for a volume without presets (MR: 1st to 99th
 /// percentile). A width of at least 1e-30 when the quantiles meet. @throws EmptyResultError
