@@ -69,6 +69,7 @@ int runSlice(const std::vector<std::string>& args) {
     io::FieldRequest request = a.request;
     request.memoryBudget = model::memoryBudget(a);
     request.acceptPlanar = true;  // a 2-D field is drawn as a map
+    request.hooks.progress = readProgressPrinter(a.quiet);
 
     Timer loadTimer;
     const ScalarField field = loadField(a.input, request, 8);

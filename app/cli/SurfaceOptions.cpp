@@ -30,17 +30,20 @@ std::string huText(double hu) {
     return s.str();
 }
 
-/// Progress on stderr while building, only when stderr is a terminal.
-std::function<void(double)> progressPrinter(bool quiet) {
+/// Progress of a stage ("reading", "building octree") on stderr, only when stderr is a terminal.
+std::function<void(double)> progressPrinter(bool quiet, const char* stage) {
     if (quiet || !isatty(2)) return {};
-    // The line ends once the build reports it is complete (the builder's last call is 1.0).
-    return [](double f) {
-        std::fprintf(stderr, "\roctrace: building octree %3d%%", int(f * 100.0 + 0.5));
+    // The line ends once the stage reports it is complete (the builder's and the readers' last
+    // call is 1.0).
+    return [stage](double f) {
+        std::fprintf(stderr, "\roctrace: %s %3d%%", stage, int(f * 100.0 + 0.5));
         if (f >= 1.0) std::fputs("\n", stderr);
     };
 }
 
 }  // namespace
+
+std::function<void(double)> readProgressPrinter(bool quiet) { return progressPrinter(quiet, "reading"); }
 
 std::string joinNames(const std::vector<std::string>& names) {
     std::string s;
@@ -52,7 +55,8 @@ Surface buildSurface(const SurfaceArgs& a) {
     if (a.quiet) log::setLevel(log::Level::Error);
     if (a.verbose) log::setLevel(log::Level::Debug);
     model::BuildHooks terminal;
-    terminal.progress = progressPrinter(a.quiet);
+    terminal.readProgress = readProgressPrinter(a.quiet);
+    terminal.progress = progressPrinter(a.quiet, "building octree");
     return model::buildSurface(a, terminal);
 }
 

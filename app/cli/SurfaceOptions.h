@@ -113,8 +113,12 @@ bool parseCommandLine(const OptionParser& p, const std::vector<std::string>& arg
 
 
 /// Applies --quiet / --verbose to the log and builds with progress on stderr when it is a
-/// terminal: model::buildSurface (the pipeline's first steps), which see.
+/// terminal (reading a DICOM or NIfTI input, then building the octree): model::buildSurface
+/// (the pipeline's first steps), which see.
 Surface buildSurface(const SurfaceArgs& a);
+/// The progress of a read on stderr ("octrace: reading N%"), as buildSurface shows it: only
+/// when stderr is a terminal and not `quiet` (else empty), for io::FieldRequest::hooks.
+std::function<void(double)> readProgressPrinter(bool quiet);
 
 
 

@@ -285,14 +285,15 @@ Surface buildSurface(const SurfaceSpec& a, const BuildHooks& hooks) {
         return s;
     }
     if (a.cityGiven) throw UsageError("`lod_select`, `crs`, `dem`, `texture`, `height_attr`, `base_attr` and `terrain_depth` apply to city inputs (CityJSON, CityGML, footprints, DEM rasters), not to " + a.input);
-    readSurfaceField(a, s);
+    readSurfaceField(a, s, hooks);
     buildFromField(a, s, hooks);
     return s;
 }
 
-void readSurfaceField(const SurfaceSpec& a, Surface& s) {
+void readSurfaceField(const SurfaceSpec& a, Surface& s, const BuildHooks& hooks) {
     io::FieldRequest request = a.request;
     request.memoryBudget = memoryBudget(a);
+    request.hooks = hooks.forRead();
     Timer t;
     if (isSphereInput(a.input) && !a.depth) {
         // Auto: the spheres' box gives the depth, which gives the distance field's samples.

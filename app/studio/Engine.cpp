@@ -163,7 +163,9 @@ void Engine::open(const StudioState& state) {
                 return;
             }
             if (state.input.rfind("analytic:", 0) != 0) {
-                io::InputChoices choices = io::listInputChoices(state.input);
+                // The headers scanned for the Series box: Cancel stops this scan too (its progress
+                // is not shown: the read scans them again, with progress, below).
+                io::InputChoices choices = io::listInputChoices(state.input, {{}, [&stop] { return stop.load(); }});
                 for (const auto& v : choices.variables) info.variables << QString::fromStdString(v);
                 // Several variables and none chosen: the first, which the Variable box then shows.
                 if (a.request.variable.empty() && choices.variables.size() > 1) {
@@ -186,7 +188,7 @@ void Engine::open(const StudioState& state) {
                     info.seriesRead = int(io::DicomReader::chooseSeries(choices.series, a.request.series, state.input));
             }
             auto base = std::make_shared<model::Surface>();
-            model::readSurfaceField(a, *base);
+            model::readSurfaceField(a, *base, hooksFor(gen, stop, tr("Reading %1").arg(QString::fromStdString(state.input)), true));
             if (stop) throw CancelledError("cancelled");
             if (state.input.rfind("analytic:", 0) != 0) describeSteps(state.input, a.request, info);
             describeGeographic(base->field, info);
@@ -220,6 +222,19 @@ void Engine::handBack(unsigned gen, std::function<void()> then) {
     QMetaObject::invokeMethod(this, [this, gen, then = std::move(then)] {
         if (gen == generation_) then();
     }, Qt::QueuedConnection);
+}
+
+model::BuildHooks Engine::hooksFor(unsigned gen, const std::atomic<bool>& stop, const QString& stage, bool reading) {
+    model::BuildHooks hooks;
+    auto shown = std::make_shared<std::atomic<int>>(-1);  // percent last sent
+    auto report = [this, shown, gen, stage](double f) {
+        const int pc = int(f * 100.0);
+        if (shown->exchange(pc) == pc) return;
+        handBack(gen, [this, stage, f] { emit progress(stage, f); });
+    };
+    (reading ? hooks.readProgress : hooks.progress) = report;
+    hooks.cancelled = [&stop] { return stop.load(); };
+    return hooks;
 }
 
 void Engine::runBuildJob(unsigned gen, const std::function<void()>& work) {
@@ -265,16 +280,7 @@ void Engine::startBuild(const StudioState& state) {
         surface->field = std::as_const(base->field).copy();
         surface->spheres = base->spheres;
         runBuildJob(gen, [&] {
-            model::BuildHooks hooks;
-            int shown = -1;  // percent last sent: one queued signal per percent at most
-            hooks.progress = [this, &shown, gen](double f) {
-                const int pc = int(f * 100.0);
-                if (pc == shown) return;
-                shown = pc;
-                handBack(gen, [this, f] { emit progress(tr("Building the octree"), f); });
-            };
-            hooks.cancelled = [&stop] { return stop.load(); };
-            model::buildFromField(surfaceArgs(state), *surface, hooks);
+            model::buildFromField(surfaceArgs(state), *surface, hooksFor(gen, stop, tr("Building the octree"), false));
             surface->tree.computeSummaries();
             // The subject now. The surface kept has the field's grid and kind without its
             // samples and mask (`base` keeps them), which is what its look and framing read

@@ -17,6 +17,7 @@
 #include <QString>
 
 #include <array>
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -152,6 +153,9 @@ private:
     void runBuildJob(unsigned gen, const std::function<void()>& work);
     /// Runs `then` on the GUI thread if `gen` is still the current build by then.
     void handBack(unsigned gen, std::function<void()> then);
+    /// A job's hooks: progress of `stage` as the progress signal (one per percent at most, from
+    /// any thread; to readProgress when `reading`, else to progress) and cancellation by `stop`.
+    model::BuildHooks hooksFor(unsigned gen, const std::atomic<bool>& stop, const QString& stage, bool reading);
 
     InputInfo info_;
     std::shared_ptr<model::Surface> base_;  // holds the field read (its samples shared with each build)

@@ -11,11 +11,14 @@
 #include "octrace/io/VolumeReader.h"
 #include "octrace/util/Error.h"
 
+#include <zlib.h>
+
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <tuple>
 
 using namespace octrace;
 
@@ -562,6 +565,140 @@ TEST(DicomReader, EchoesAndBValuesAreVolumesNamedByWhatTellsThemApart) {
         }
         EXPECT_THROW_WITH(io::DicomReader::read(folder, {}, 0, 2), InputError, "holds 2 volumes, 0..1 (0: " + c.labels[0]);
     }
+}
+
+namespace {
+
+// Read hooks that record every progress value and say "cancel" once `cancelAfter` values
+// were reported (never when negative).
+struct RecordingHooks {
+    std::vector<double> reported;
+    int cancelAfter = -1;
+
+    io::ReadHooks hooks() {
+        return {[this](double f) { reported.push_back(f); },
+                [this] { return cancelAfter >= 0 && int(reported.size()) >= cancelAfter; }};
+    }
+};
+
+// The first `n` of `bytes` written to `path`, plain or gzipped.
+void writePrefix(const std::string& path, const std::string& bytes, std::size_t n, bool gzip) {
+    if (!gzip) {
+        std::ofstream out(path, std::ios::binary);
+        out.write(bytes.data(), std::streamsize(n));
+        return;
+    }
+    gzFile g = gzopen(path.c_str(), "wb");
+    ASSERT_NE(g, nullptr);
+    ASSERT_EQ(gzwrite(g, bytes.data(), unsigned(n)), int(n));
+    gzclose(g);
+}
+
+void expectRisingToOne(const std::vector<double>& reported, const std::string& what) {
+    ASSERT_FALSE(reported.empty()) << what;
+    EXPECT_GE(reported.front(), 0.0) << what;
+    for (std::size_t i = 1; i < reported.size(); ++i) EXPECT_LE(reported[i - 1], reported[i]) << what << " at " << i;
+    EXPECT_EQ(reported.back(), 1.0) << what;
+}
+
+}  // namespace
+
+// Reading a series reports per header scanned and per file decoded (only the files of the
+// volume read), rising to 1, and stops with CancelledError when asked between files; without
+// a cancel it gives the same voxels as a read without hooks.
+TEST(DicomReader, ReportsProgressPerFileAndStopsBetweenFilesWhenCancelled) {
+    OCTRACE_SHARED_FILE_OR_SKIP(folder, "medical/siemens_xa10_fmri_4d");
+    RecordingHooks all;
+    const ScalarField f = io::DicomReader::read(folder, {}, 0, 2, false, all.hooks());
+    expectRisingToOne(all.reported, "XA10 volume 2");
+    // Four headers scanned, the one file of volume 2 decoded, then 1.
+    EXPECT_EQ(all.reported.size(), 4u + 1u + 1u);
+    expectSameVoxels(f, io::DicomReader::read(folder, {}, 0, 2), "with hooks");
+    for (int k : {0, 2, 4}) {
+        RecordingHooks stop;
+        stop.cancelAfter = k;
+        EXPECT_THROW_WITH(io::DicomReader::read(folder, {}, 0, 2, false, stop.hooks()), CancelledError, folder + ": read cancelled");
+        EXPECT_EQ(int(stop.reported.size()), k) << "cancelled after " << k << " reports";
+    }
+    // Listing the series (the studio's Series box) scans the headers with the same hooks.
+    RecordingHooks listing;
+    EXPECT_EQ(io::listInputChoices(folder, listing.hooks()).series.size(), 1u);
+    EXPECT_EQ(listing.reported.size(), 4u);
+    listing.cancelAfter = 1;
+    EXPECT_THROW(io::listInputChoices(folder, listing.hooks()), CancelledError);
+    // Through readField, as the model reads: the request carries the hooks.
+    OCTRACE_SHARED_FILE_OR_SKIP(sagittal, "medical/d2n_mr_sag_4slices_anatomical");
+    RecordingHooks viaRequest;
+    io::FieldRequest req;
+    req.hooks = viaRequest.hooks();
+    io::readField(sagittal, req);
+    expectRisingToOne(viaRequest.reported, "sagittal MR through readField");
+    viaRequest.reported.clear();
+    viaRequest.cancelAfter = 3;
+    EXPECT_THROW(io::readField(sagittal, req), CancelledError);
+}
+
+// A 4-D NIfTI image is read one volume at a time: per slice of the volume asked for (progress
+// rising to 1, cancellation between slices), and a file cut after volume 0 still gives volume 0
+// while volume 3 is refused naming it (the other volumes are not decoded), plain or gzipped.
+TEST(DicomReader, TheFourDNiftiDecodesOnlyTheVolumeAskedForSliceBySlice) {
+    OCTRACE_SHARED_FILE_OR_SKIP(folder, "medical/siemens_xa10_fmri_4d");
+    const std::string nii = folder + "/reference_dcm2niix.nii";
+    using io::VolumeReader;
+    const ScalarField whole0 = VolumeReader::read(nii, VolumeReader::Format::Nifti, 0, 0);
+    const ScalarField whole3 = VolumeReader::read(nii, VolumeReader::Format::Nifti, 0, 3);
+    EXPECT_FALSE(whole0.values == whole3.values);
+
+    RecordingHooks slices;
+    expectSameVoxels(VolumeReader::read(nii, VolumeReader::Format::Nifti, 0, 3, slices.hooks()), whole3, "with hooks");
+    expectRisingToOne(slices.reported, "NIfTI volume 3");
+    EXPECT_EQ(slices.reported.size(), std::size_t(whole3.dims.z) + 1u);  // one per slice, then 1
+    RecordingHooks stop;
+    stop.cancelAfter = 2;
+    EXPECT_THROW_WITH(VolumeReader::read(nii, VolumeReader::Format::Nifti, 0, 3, stop.hooks()), CancelledError, "read cancelled");
+    EXPECT_EQ(stop.reported.size(), 2u);
+
+    // Cut inside volume 1: volume 0 (64x64x6 int16 from the header's vox_offset) is whole.
+    const std::string bytes = testutil::fileBytes(nii);
+    float voxOffset = 0.0f;
+    std::memcpy(&voxOffset, bytes.data() + 108, 4);
+    const std::size_t volumeBytes = std::size_t(whole0.sampleCount()) * 2;
+    test::TempDir dir;
+    const std::string cut = dir.file("cut.nii");
+    const std::size_t cutAt = std::size_t(voxOffset) + volumeBytes + volumeBytes / 3;
+    writePrefix(cut, bytes, cutAt, false);
+    expectSameVoxels(VolumeReader::read(cut, VolumeReader::Format::Nifti, 0, 0), whole0, "cut file, volume 0");
+    EXPECT_THROW_WITH(VolumeReader::read(cut, VolumeReader::Format::Nifti, 0, 3), FileError,
+                      cut + ": NIfTI data truncated: volume 3 of 4: 64x64x6 x 16 bits");
+    // Gzipped and cut in the same place of the decompressed data: volume 0 is inflated and
+    // read, volume 3 runs into the end of the stream.
+    const std::string gz = dir.file("cut.nii.gz");
+    writePrefix(gz, bytes, cutAt, true);
+    std::filesystem::resize_file(gz, std::filesystem::file_size(gz) - 8);  // no gzip trailer either
+    expectSameVoxels(VolumeReader::read(gz, VolumeReader::Format::Nifti, 0, 0), whole0, "cut .nii.gz, volume 0");
+    EXPECT_THROW_WITH(VolumeReader::read(gz, VolumeReader::Format::Nifti, 0, 3), FileError,
+                      gz + ": NIfTI data truncated: volume 3 of 4");
+    // The whole file gzipped reads every volume as the plain file does.
+    const std::string full = dir.file("full.nii.gz");
+    writePrefix(full, bytes, bytes.size(), true);
+    expectSameVoxels(VolumeReader::read(full, VolumeReader::Format::Nifti, 0, 3), whole3, ".nii.gz, volume 3");
+    // The same file big-endian (every header field and sample byte-swapped): the same voxels.
+    std::string big = bytes;
+    const auto swapAt = [&](std::size_t at, std::size_t size, std::size_t count) {
+        for (std::size_t i = 0; i < count; ++i) std::reverse(big.begin() + std::ptrdiff_t(at + i * size), big.begin() + std::ptrdiff_t(at + (i + 1) * size));
+    };
+    // NIfTI-1 fields by (offset, size, count): sizeof_hdr, extents, session_error, dim,
+    // intent_p1..3, intent_code .. slice_start, pixdim, vox_offset .. scl_inter, slice_end,
+    // cal_max .. toffset, glmax and glmin, qform_code and sform_code, quatern_b .. srow_z.
+    for (auto [at, size, count] : {std::tuple<std::size_t, std::size_t, std::size_t>{0, 4, 1}, {32, 4, 1}, {36, 2, 1}, {40, 2, 8},
+                                   {56, 4, 3}, {68, 2, 4}, {76, 4, 8}, {108, 4, 3}, {120, 2, 1}, {124, 4, 4}, {140, 4, 2},
+                                   {252, 2, 2}, {256, 4, 18}})
+        swapAt(at, size, count);
+    swapAt(std::size_t(voxOffset), 2, (bytes.size() - std::size_t(voxOffset)) / 2);
+    writePrefix(dir.file("big.nii"), big, big.size(), false);
+    expectSameVoxels(VolumeReader::read(dir.file("big.nii"), VolumeReader::Format::Nifti, 0, 3), whole3, "big-endian, volume 3");
+    expectSameVoxels(VolumeReader::read(full, VolumeReader::Format::Nifti, 0, 1), VolumeReader::read(nii, VolumeReader::Format::Nifti, 0, 1),
+                     ".nii.gz, volume 1");
 }
 
 // The other attributes that tell the volumes of a series apart, each alone in a series of two

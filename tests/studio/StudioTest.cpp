@@ -34,6 +34,7 @@
 #include <QLineEdit>
 #include <QLabel>
 #include <QPlainTextEdit>
+#include <QProgressBar>
 #include <QStatusBar>
 #include <QProcess>
 #include <QPushButton>
@@ -897,6 +898,45 @@ private slots:
         QVERIFY(cancelled.count() == 1 || cancelled.wait(kWaitMs));  // said at once when the job was still waiting
         QCOMPARE(window_->engine().tree(), tree);  // the previous surface stays
         QVERIFY(!window_->engine().building());
+    }
+
+    void cancelDuringTheReadKeepsTheScene() {
+        // Reading a DICOM series is a stage of the progress bar ("Reading ...", in percent as
+        // its files are scanned and decoded), and Cancel during it leaves the studio idle with
+        // the scene on screen. Cancel is pressed from the first read percentage below 100, so
+        // before the read's result is handed back, however fast the read is.
+        auto* cancel = window_->findChild<QPushButton*>(QStringLiteral("cancelButton"));
+        auto* bar = window_->findChild<QProgressBar*>(QStringLiteral("progress"));
+        QVERIFY(cancel && bar);
+        const auto tree = window_->engine().tree();
+        QVERIFY(tree);
+        const QByteArray before = octrace::studio::sessionJson(window_->state());
+        const QString said = QStringLiteral("Cancelled; the previous surface stays");
+        const qsizetype saidBefore = messagesText().count(said);
+        QSignalSpy cancelled(&window_->engine(), &Engine::cancelled);
+        QSignalSpy loaded(&window_->engine(), &Engine::inputLoaded);
+        double readShown = -1.0;
+        int barShown = -1;
+        auto connection = connect(&window_->engine(), &Engine::progress, this, [&](const QString& stage, double f) {
+            if (readShown >= 0.0 || !stage.startsWith(QStringLiteral("Reading")) || f < 0.0 || f >= 1.0) return;
+            readShown = f;
+            barShown = bar->maximum() == 100 ? bar->value() : -1;  // the window's slot ran first
+            cancel->click();
+        });
+        window_->openInput(QStringLiteral(OCTRACE_TEST_DATA "/dicom/two_series"));
+        QTRY_VERIFY2_WITH_TIMEOUT(cancelled.count() == 1, qPrintable(messagesText()), kWaitMs);
+        disconnect(connection);
+        QVERIFY(readShown >= 0.0);
+        QCOMPARE(barShown, int(readShown * 100.0));
+        QVERIFY(!window_->engine().building());
+        QVERIFY(!cancel->isEnabled());
+        QVERIFY(bar->isHidden());
+        QVERIFY2(messagesText().count(said) == saidBefore + 1, qPrintable(messagesText()));
+        // Nothing of the series arrives later: the scene and the window's state stay.
+        QTest::qWait(300);
+        QCOMPARE(loaded.count(), 0);
+        QCOMPARE(window_->engine().tree(), tree);
+        QCOMPARE(octrace::studio::sessionJson(window_->state()), before);
     }
 
     void brokenInputShowsAMessage() {

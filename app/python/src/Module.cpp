@@ -212,7 +212,9 @@ Field readField(const std::string& path, const Settings& settings) {
     applySettings(settings, {.surface = &spec});
     auto s = std::make_shared<model::Surface>();
     std::atomic<bool> cancel{false};
-    interruptible([&] { model::readSurfaceField(spec, *s); }, cancel);
+    model::BuildHooks hooks;
+    hooks.cancelled = [&] { return cancel.load(); };
+    interruptible([&] { model::readSurfaceField(spec, *s, hooks); }, cancel);
     Field f;
     f.input = path;
     f.loadMs = s->loadMs;

@@ -21,6 +21,10 @@ namespace {
 
 using detail::DicomHeader;
 
+// The share of a read's progress that scanning the headers takes; decoding the volume's files
+// takes the rest.
+constexpr double kScanShare = 0.1;
+
 // 8 GiB of float samples: far beyond any real series, refused before decoding anything.
 constexpr double kMaxSamples = double(1u << 31);
 
@@ -75,12 +79,14 @@ std::vector<std::string> candidateFiles(const std::string& path, bool& folder) {
     return files;
 }
 
-Scan scan(const std::string& path) {
+Scan scan(const std::string& path, const ReadHooks& hooks = {}) {
     Scan s;
     const std::vector<std::string> files = candidateFiles(path, s.folder);
     std::map<std::string, Series> byUid;
-    std::size_t skipped = 0;
+    std::size_t skipped = 0, scanned = 0;
     for (const std::string& f : files) {
+        hooks.checkCancelled(path);
+        hooks.report(kScanShare * double(scanned++) / double(files.size()));
         std::string whyNot;
         std::optional<DicomHeader> h = forFile(path, f, [&] { return detail::readDicomHeader(f, whyNot); });
         if (!h) {
@@ -137,14 +143,18 @@ std::size_t chooseScanned(const Scan& s, const std::string& want, const std::str
 
 // Stored values (rescaled for CT) of every slice, in the layout's z order.
 std::vector<float> decodeSlices(const std::vector<DicomHeader>& headers, const detail::SeriesLayout& L, bool rescale,
-                                const std::string& path) {
+                                const std::string& path, const ReadHooks& hooks) {
     // Only the files that hold a slice of the volume are decoded.
     const std::size_t plane = std::size_t(L.sliceDims.x) * std::size_t(L.sliceDims.y);
     std::vector<std::vector<std::pair<int, std::size_t>>> wanted(headers.size());  // per file: (frame, slice)
     for (std::size_t k = 0; k < L.slices.size(); ++k) wanted[L.slices[k].header].push_back({L.slices[k].frame, k});
     std::vector<float> stored(plane * L.slices.size());
+    std::size_t done = 0;  // slices decoded: progress per file, in proportion to its slices
     for (std::size_t h = 0; h < headers.size(); ++h) {
         if (wanted[h].empty()) continue;
+        hooks.checkCancelled(path);
+        hooks.report(kScanShare + (1.0 - kScanShare) * double(done) / double(L.slices.size()));
+        done += wanted[h].size();
         const std::vector<float> frames = forFile(path, headers[h].file, [&] { return detail::decodeDicomFrames(headers[h]); });
         for (auto [frame, k] : wanted[h]) {
             const detail::DicomFrame& g = headers[h].frames[std::size_t(frame)];
@@ -153,6 +163,7 @@ std::vector<float> decodeSlices(const std::vector<DicomHeader>& headers, const d
             for (std::size_t i = 0; i < plane; ++i) dst[i] = rescale ? float(src[i] * g.slope + g.intercept) : src[i];
         }
     }
+    hooks.report(1.0);
     return stored;
 }
 
@@ -192,7 +203,7 @@ std::string singleImageText(const Series& series, const std::string& path) {
 }
 
 ScalarField assemble(const Series& series, const std::string& path, std::uint64_t memoryBudget, int volume,
-                     bool acceptPlanar) {
+                     bool acceptPlanar, const ReadHooks& hooks) {
     const std::size_t chosen = chooseVolume(series, volume, path);
     const detail::SeriesVolume& vol = series.volumes[chosen];
     detail::SeriesLayout L = detail::layoutSeries(series.headers, path, vol.images);
@@ -225,7 +236,7 @@ ScalarField assemble(const Series& series, const std::string& path, std::uint64_
     f.spacing = dvec3(L.spacing, L.single ? 1.0 : L.uniform ? L.z.back() / double(L.z.size() - 1) : 1.0);
     if (!L.uniform) f.coords[2] = L.z;
     f.origin = L.origin + L.direction[0] * offset.x + L.direction[1] * offset.y;
-    std::vector<float> values = decodeSlices(series.headers, L, ct, path);
+    std::vector<float> values = decodeSlices(series.headers, L, ct, path, hooks);
     f.values = L.tilted ? detail::resampleSheared(values, L, dims, offset, f.valid) : std::move(values);
     // The display the file recommends: the window of its first slice, MONOCHROME1's inversion.
     const DicomHeader& first = series.headers[L.slices.front().header];
@@ -255,7 +266,7 @@ ScalarField assemble(const Series& series, const std::string& path, std::uint64_
 }
 
 ScalarField readScanned(const Scan& s, const std::string& path, const std::string& want, std::uint64_t memoryBudget, int volume,
-                        bool acceptPlanar) {
+                        bool acceptPlanar, const ReadHooks& hooks = {}) {
     const std::size_t chosen = chooseScanned(s, want, path);
     const DicomSeriesInfo& info = s.series[chosen].info;
     // Said when there was a choice to make; a folder of one series gets a debugging line.
@@ -263,7 +274,7 @@ ScalarField readScanned(const Scan& s, const std::string& path, const std::strin
                              ", " + seriesLine(info);
     if (s.series.size() > 1) log::info(said + (want.empty() ? ": the largest; choose another with `series`" : ""));
     else log::debug(said);
-    return assemble(s.series[chosen], path, memoryBudget, volume, acceptPlanar);
+    return assemble(s.series[chosen], path, memoryBudget, volume, acceptPlanar, hooks);
 }
 
 }  // namespace
@@ -292,15 +303,15 @@ std::size_t DicomReader::chooseSeries(const std::vector<DicomSeriesInfo>& list, 
                      "' (give a UID, an index or a description; series: " + known + ")");
 }
 
-std::vector<DicomSeriesInfo> DicomReader::listSeries(const std::string& path) {
+std::vector<DicomSeriesInfo> DicomReader::listSeries(const std::string& path, const ReadHooks& hooks) {
     std::vector<DicomSeriesInfo> list;
-    for (const Series& s : scan(path).series) list.push_back(s.info);
+    for (const Series& s : scan(path, hooks).series) list.push_back(s.info);
     return list;
 }
 
 ScalarField DicomReader::read(const std::string& path, const std::string& series, std::uint64_t memoryBudget, int volume,
-                              bool acceptPlanar) {
-    return readScanned(scan(path), path, series, memoryBudget, volume, acceptPlanar);
+                              bool acceptPlanar, const ReadHooks& hooks) {
+    return readScanned(scan(path, hooks), path, series, memoryBudget, volume, acceptPlanar, hooks);
 }
 
 std::vector<std::string> DicomReader::listVolumes(const std::string& path, const std::string& series) {

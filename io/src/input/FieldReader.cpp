@@ -79,11 +79,11 @@ std::optional<VolumeReader::Format> volumeFormat(FileKind kind) {
 
 }  // namespace
 
-InputChoices listInputChoices(const std::string& path) {
+InputChoices listInputChoices(const std::string& path, const ReadHooks& hooks) {
     InputChoices c;
     const FileKind kind = kindOf(path);
     if (kind == FileKind::NetCdf || kind == FileKind::Zarr) c.variables = NetcdfReader::volumeVariables(path);
-    if (kind == FileKind::Dicom) c.series = DicomReader::listSeries(path);
+    if (kind == FileKind::Dicom) c.series = DicomReader::listSeries(path, hooks);
     return c;
 }
 
@@ -113,7 +113,7 @@ ScalarField readField(const std::string& path, const FieldRequest& req) {
         const char* name = VolumeReader::formatName(*format);
         refuseSeries(path, req);
         refuseRegion(path, req, name);
-        f = checkVolume(VolumeReader::read(path, *format, req.memoryBudget, req.volume), path, req, name);
+        f = checkVolume(VolumeReader::read(path, *format, req.memoryBudget, req.volume, req.hooks), path, req, name);
         f.validate();
         return f;
     }
@@ -126,7 +126,7 @@ ScalarField readField(const std::string& path, const FieldRequest& req) {
             break;
         case FileKind::Dicom:
             refuseRegion(path, req, "DICOM");
-            f = checkVolume(DicomReader::read(path, req.series, req.memoryBudget, req.volume, req.acceptPlanar), path, req, "DICOM");
+            f = checkVolume(DicomReader::read(path, req.series, req.memoryBudget, req.volume, req.acceptPlanar, req.hooks), path, req, "DICOM");
             break;
         default:
             refuseSeries(path, req);

@@ -10,6 +10,10 @@
 
 namespace octrace::io {
 
+void ReadHooks::checkCancelled(const std::string& what) const {
+    if (cancelled && cancelled()) throw CancelledError(what + ": read cancelled");
+}
+
 namespace {
 
 // "A,B,..." as exactly N finite numbers; `what` names the option, `form` the expected text.

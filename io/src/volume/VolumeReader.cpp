@@ -21,9 +21,13 @@
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkXMLImageDataReader.h>
 
+#include <zlib.h>
+
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <sstream>
 
 namespace octrace::io {
@@ -115,7 +119,175 @@ std::vector<std::string> niftiVolumeLabels(vtkNIFTIImageHeader* h) {
     return labels;
 }
 
-ScalarField readNifti(const std::string& path, std::uint64_t budget, int volume) {
+// The file that holds a NIfTI image's samples: the file itself (.nii, .nii.gz, .img), else
+// the .img (or .img.gz) beside a .hdr, as VTK's reader finds it.
+std::string niftiDataFile(const std::string& path) {
+    const std::string low = detail::lower(path);
+    for (const char* hdr : {".hdr", ".hdr.gz"}) {
+        if (!endsWith(low, hdr)) continue;
+        const std::string stem = path.substr(0, path.size() - std::strlen(hdr));
+        for (const char* img : {".img", ".img.gz", ".IMG", ".IMG.gz"})
+            if (std::filesystem::exists(stem + img)) return stem + img;
+        throw FileError(path + ": NIfTI/Analyze header without its .img data file");
+    }
+    return path;
+}
+
+// Whether the file's byte order is not the machine's: sizeof_hdr (the header's first 4 bytes,
+// 348 for NIfTI-1 and Analyze, 540 for NIfTI-2) reads right only in the file's own order.
+bool niftiSwapped(const std::string& path, vtkNIFTIImageReader* reader) {
+    std::string header = path;
+    const std::string low = detail::lower(path);
+    for (const char* img : {".img", ".img.gz"})
+        if (endsWith(low, img)) header = path.substr(0, path.size() - std::strlen(img)) + (std::strlen(img) == 4 ? ".hdr" : ".hdr.gz");
+    std::uint32_t size = 0;
+    if (gzFile g = gzopen(header.c_str(), "rb")) {
+        const int got = gzread(g, &size, sizeof size);
+        gzclose(g);
+        if (got == int(sizeof size)) {
+            if (size == 348 || size == 540) return false;
+            const std::uint32_t swapped = __builtin_bswap32(size);
+            if (swapped == 348 || swapped == 540) return true;
+        }
+    }
+    return reader->GetSwapBytes();
+}
+
+// One NIfTI sample type as float: the datatype code's C type, byte-swapped when the file's
+// byte order is not the machine's.
+template <typename T>
+void samplesToFloat(const unsigned char* src, std::size_t n, bool swap, float* dst) {
+    for (std::size_t i = 0; i < n; ++i) {
+        unsigned char b[sizeof(T)];
+        std::memcpy(b, src + i * sizeof(T), sizeof(T));
+        if (swap) std::reverse(b, b + sizeof(T));
+        T v;
+        std::memcpy(&v, b, sizeof(T));
+        dst[i] = float(v);
+    }
+}
+
+// How the samples of one NIfTI datatype become floats.
+struct SampleType {
+    void (*convert)(const unsigned char*, std::size_t, bool, float*);
+    std::size_t bytes;
+};
+
+template <typename T>
+SampleType sampleType() {
+    return {samplesToFloat<T>, sizeof(T)};
+}
+
+// The sample type of a NIfTI datatype code with one value per sample, checked against bitpix
+// (which sizes the reads); colour, complex and 128-bit types are refused naming the code.
+SampleType niftiSampleType(int datatype, int bitpix, const std::string& path) {
+    SampleType t{};
+    switch (datatype) {
+        case 2: t = sampleType<std::uint8_t>(); break;
+        case 4: t = sampleType<std::int16_t>(); break;
+        case 8: t = sampleType<std::int32_t>(); break;
+        case 16: t = sampleType<float>(); break;
+        case 64: t = sampleType<double>(); break;
+        case 256: t = sampleType<std::int8_t>(); break;
+        case 512: t = sampleType<std::uint16_t>(); break;
+        case 768: t = sampleType<std::uint32_t>(); break;
+        case 1024: t = sampleType<std::int64_t>(); break;
+        case 1280: t = sampleType<std::uint64_t>(); break;
+        case 128:
+        case 2304: throw FileError(path + ": NIfTI datatype " + std::to_string(datatype) + " is colour (RGB/RGBA): a volume needs one value per sample");
+        default: throw FileError(path + ": NIfTI datatype " + std::to_string(datatype) + " is not supported (complex or 128-bit samples)");
+    }
+    if (std::size_t(bitpix) != 8 * t.bytes)
+        throw FileError(path + ": NIfTI bitpix " + std::to_string(bitpix) + " does not match datatype " + std::to_string(datatype) + " (" +
+                        std::to_string(8 * t.bytes) + " bits)");
+    return t;
+}
+
+// Closes a gzFile (zlib reads plain files through it too).
+struct GzCloser {
+    void operator()(gzFile_s* g) const { gzclose(g); }
+};
+
+// Reads `bytes` bytes from `g` into `dst`; false when the data end first. A decoding error
+// (corrupt compressed data, wrong checksum) is a FileError naming `path`.
+bool gzReadAll(gzFile g, unsigned char* dst, std::uint64_t bytes, const std::string& path) {
+    while (bytes > 0) {
+        const unsigned chunk = unsigned(std::min<std::uint64_t>(bytes, 1u << 30));
+        const int got = gzread(g, dst, chunk);
+        if (got < 0) {
+            int code = Z_OK;
+            const char* why = gzerror(g, &code);
+            if (code == Z_BUF_ERROR) return false;  // "unexpected end of file": a cut .gz
+            throw FileError(path + ": cannot decode the NIfTI data: " + std::string(why && *why ? why : "zlib error"));
+        }
+        if (got == 0) return false;
+        dst += got;
+        bytes -= std::uint64_t(got);
+    }
+    return true;
+}
+
+// The samples of volume `chosen` of a NIfTI image, as floats in VTK's slice order (reversed
+// when qfac is -1, as the geometry VTK gives is): only that volume is decoded. A plain file is
+// read from its offset; a gzipped one is streamed, the volumes before it inflated and skipped
+// (gzseek), the ones after it left alone. Progress per slice; cancellation asked before each.
+std::vector<float> readNiftiVolume(const std::string& path, vtkNIFTIImageReader* reader, vtkNIFTIImageHeader* h, ivec3 dims,
+                                   long long chosen, long long volumes, const ReadHooks& hooks) {
+    const SampleType type = niftiSampleType(h->GetDataType(), h->GetBitPix(), path);
+    const std::string data = niftiDataFile(path);
+    const std::uint64_t typeSize = type.bytes;
+    const std::uint64_t plane = std::uint64_t(dims.x) * std::uint64_t(dims.y);
+    const std::uint64_t sliceBytes = saturatingMultiply(plane, typeSize), volumeBytes = saturatingMultiply(sliceBytes, std::uint64_t(dims.z));
+    // Past 2^62 bytes no file holds the data (and the sums below could wrap): refused as cut.
+    constexpr std::uint64_t kNoFileThatLarge = std::uint64_t(1) << 62;
+    const std::uint64_t skipped = saturatingMultiply(std::uint64_t(chosen), volumeBytes);
+    if (volumeBytes >= kNoFileThatLarge || skipped >= kNoFileThatLarge)
+        throw FileError(path + ": NIfTI data truncated: volume " + std::to_string(chosen) + " of " + dimsText(dims) + " x " +
+                        std::to_string(h->GetBitPix()) + " bits would end past 2^62 bytes");
+    const std::uint64_t start = std::uint64_t(std::max<long long>(0, h->GetVoxOffset())) + skipped;
+    const std::string which = volumes > 1 ? "volume " + std::to_string(chosen) + " of " + std::to_string(volumes) + ": " : std::string();
+    const std::string need = which + dimsText(dims) + " x " + std::to_string(h->GetBitPix()) + " bits from byte " + std::to_string(start) +
+                             " need " + std::to_string(start + volumeBytes) + " bytes";
+    const bool gzipped = endsWith(detail::lower(data), ".gz");
+    if (!gzipped && detail::fileSize(data) < start + volumeBytes)
+        throw FileError(path + ": NIfTI data truncated: " + need + ", the file has " + std::to_string(detail::fileSize(data)));
+    std::unique_ptr<gzFile_s, GzCloser> g(gzopen(data.c_str(), "rb"));
+    if (!g) throw FileError(data + ": cannot open the NIfTI data");
+    gzbuffer(g.get(), 1u << 18);
+    const std::string cut = path + ": NIfTI data truncated: " + need + ", the " + (gzipped ? "decompressed data end" : "file ends") + " before";
+    if (start > 0 && gzseek64(g.get(), z_off64_t(start), SEEK_SET) != z_off64_t(start)) {
+        int code = Z_OK;
+        const char* why = gzerror(g.get(), &code);
+        if (code != Z_OK && code != Z_BUF_ERROR) throw FileError(path + ": cannot decode the NIfTI data: " + std::string(why ? why : "zlib error"));
+        throw FileError(cut);
+    }
+    const bool swap = niftiSwapped(path, reader);
+    const bool reversed = reader->GetQFac() < 0.0;
+    // The samples grow slice by slice as they are decoded (a header that claims more than a
+    // .gz holds is refused as cut before all of it is allocated), in the file's order; the
+    // slices are reversed at the end when qfac is -1.
+    std::vector<float> values;
+    if (!gzipped) values.reserve(std::size_t(plane) * std::size_t(dims.z));  // the file holds them: checked above
+    std::vector<unsigned char> slice(static_cast<std::size_t>(sliceBytes));
+    for (int k = 0; k < dims.z; ++k) {
+        hooks.checkCancelled(path);
+        hooks.report(double(k) / double(dims.z));
+        if (!gzReadAll(g.get(), slice.data(), sliceBytes, path)) throw FileError(cut);
+        values.resize(std::size_t(plane) * std::size_t(k + 1));
+        type.convert(slice.data(), std::size_t(plane), swap, values.data() + std::size_t(plane) * std::size_t(k));
+    }
+    if (reversed)
+        for (int k = 0; k < dims.z / 2; ++k)
+            std::swap_ranges(values.begin() + std::ptrdiff_t(plane * std::uint64_t(k)), values.begin() + std::ptrdiff_t(plane * std::uint64_t(k + 1)),
+                             values.begin() + std::ptrdiff_t(plane * std::uint64_t(dims.z - 1 - k)));
+    // The last volume reaches the end of the compressed stream: reading on checks its CRC.
+    unsigned char probe = 0;
+    if (gzipped && chosen == volumes - 1) gzReadAll(g.get(), &probe, 1, path);
+    hooks.report(1.0);
+    return values;
+}
+
+ScalarField readNifti(const std::string& path, std::uint64_t budget, int volume, const ReadHooks& hooks) {
     vtkNew<vtkNIFTIImageReader> reader;
     detail::VtkMessages messages;
     vtkNIFTIImageHeader* h = niftiHeader(reader, messages, path);
@@ -183,29 +355,14 @@ ScalarField readNifti(const std::string& path, std::uint64_t budget, int volume)
     f.origin = start;
     detail::setAxes(axes, f, path + ": NIfTI " + (which.empty() ? std::string("pixdim") : which));
     f.validateGeometry();
-    // Every volume is decoded (VTK reads them as the components of each sample), one is kept.
-    checkBudget(path, dims, saturatingMultiply(typeSize, std::uint64_t(volumes)), budget);
-    if (!endsWith(detail::lower(path), ".gz") && endsWith(detail::lower(path), ".nii")) {
-        const std::uint64_t need = std::uint64_t(f.sampleCount()) * std::uint64_t(volumes) * typeSize + std::uint64_t(std::max<long long>(0, h->GetVoxOffset()));
-        if (detail::fileSize(path) < need)
-            throw FileError(path + ": NIfTI data truncated: " + dimsText(dims) + " x " + std::to_string(bitpix) + " bits from byte " +
-                            std::to_string(h->GetVoxOffset()) + " need " + std::to_string(need) + " bytes, the file has " +
-                            std::to_string(detail::fileSize(path)));
-    }
-
+    // Only the volume asked for is decoded (readNiftiVolume), so only it counts.
+    checkBudget(path, dims, typeSize, budget);
     if (volumes > 1) {
-        reader->TimeAsVectorOn();
         const std::string label = niftiVolumeLabels(h)[std::size_t(chosen)];
         f.notes.push_back("volume " + std::to_string(chosen) + " of " + std::to_string(volumes) + " (NIfTI dim[4])" +
                           (label.empty() ? std::string() : ": " + label));
     }
-    update(reader, messages, path, "NIfTI");
-    std::vector<float> values = detail::scalarsAsFloat(reader->GetOutput(), f.sampleCount() * std::size_t(volumes), path, volumes == 1);
-    if (volumes > 1) {  // sample-major: the volumes of one sample are adjacent
-        std::vector<float> one(f.sampleCount());
-        for (std::size_t i = 0; i < one.size(); ++i) one[i] = values[i * std::size_t(volumes) + std::size_t(chosen)];
-        values = std::move(one);
-    }
+    std::vector<float> values = readNiftiVolume(path, reader, h, dims, chosen, volumes, hooks);
     const double slope = h->GetSclSlope(), inter = h->GetSclInter();
     if (slope != 0.0 && std::isfinite(slope) && std::isfinite(inter) && (slope != 1.0 || inter != 0.0)) {
         for (float& v : values) v = float(double(v) * slope + inter);
@@ -270,13 +427,13 @@ const char* VolumeReader::formatName(Format format) {
     }
 }
 
-ScalarField VolumeReader::read(const std::string& path, Format format, std::uint64_t memoryBudget, int volume) {
+ScalarField VolumeReader::read(const std::string& path, Format format, std::uint64_t memoryBudget, int volume, const ReadHooks& hooks) {
     if (volume >= 0 && format != Format::Nifti)
         throw InputError(path + ": `volume` chooses a volume of a DICOM series or a 4-D NIfTI image; a " +
                          std::string(formatName(format)) + " file holds one");
     switch (format) {
         case Format::MetaImage: return readMetaImage(path, memoryBudget);
-        case Format::Nifti: return readNifti(path, memoryBudget, volume);
+        case Format::Nifti: return readNifti(path, memoryBudget, volume, hooks);
         default: return readVti(path, memoryBudget);
     }
 }

@@ -4,6 +4,7 @@
 /// little or big endian, JPEG baseline/lossless, JPEG-LS, JPEG 2000, RLE; single- or
 /// multi-frame) into a ScalarField. No GDCM type appears here.
 #include "octrace/build/ScalarField.h"
+#include "octrace/io/FieldRequest.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -33,8 +34,9 @@ public:
     /// starting with the DICOM preamble "DICM" at byte 128, or named *.dcm, are read) or a
     /// DICOMDIR (the folder it sits in is searched). Only headers are read.
     /// @throws InputError if `path` does not exist; FileError "no DICOM image" when nothing
-    ///         under it is a DICOM image; FileError for a broken single file.
-    static std::vector<DicomSeriesInfo> listSeries(const std::string& path);
+    ///         under it is a DICOM image; FileError for a broken single file; CancelledError
+    ///         when hooks.cancelled says so (asked before each file; progress is reported too).
+    static std::vector<DicomSeriesInfo> listSeries(const std::string& path, const ReadHooks& hooks = {});
 
     /// The index in `list` (listSeries' order, 0-based) of the series `series` chooses, as
     /// read() chooses it: a SeriesInstanceUID, a 1-based index or a SeriesDescription; empty =
@@ -83,8 +85,12 @@ public:
     /// what tells the volume read apart.
     /// @throws InputError for a `volume` beyond the last; FileError naming the volume when the
     ///         volumes do not hold the same slices (one missing a slice, different counts).
+    ///
+    /// `hooks` (ReadHooks): progress over the headers scanned (the first tenth) and the files
+    /// decoded (only those of the volume read), cancellation asked before each file
+    /// (CancelledError).
     static ScalarField read(const std::string& path, const std::string& series = {}, std::uint64_t memoryBudget = 0,
-                            int volume = -1, bool acceptPlanar = false);
+                            int volume = -1, bool acceptPlanar = false, const ReadHooks& hooks = {});
 
     /// The labels of the volumes of the series `series` chooses (one "" for a series of one
     /// volume), from the headers only. @throws as read().

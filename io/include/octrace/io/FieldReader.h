@@ -35,12 +35,13 @@ ScalarField readField(const std::string& path, const FieldRequest& req = {});
 /// What a chooser (the studio's) can offer for an input: the 3-D variables of a NetCDF file
 /// (NetcdfReader::volumeVariables) and the image series of a DICOM input (listSeries); both
 /// empty for the formats that hold one field. Throws as readField() for an input that cannot
-/// be opened.
+/// be opened. A DICOM folder's headers are scanned with `hooks` (DicomReader::listSeries:
+/// CancelledError when cancelled).
 struct InputChoices {
     std::vector<std::string> variables;
     std::vector<DicomSeriesInfo> series;
 };
-InputChoices listInputChoices(const std::string& path);
+InputChoices listInputChoices(const std::string& path, const ReadHooks& hooks = {});
 
 std::string describeInput(const std::string& path, const FieldRequest& req = {});
 

@@ -4,9 +4,26 @@
 /// vertical exaggeration, which DICOM series. Plain data, no GDAL or VTK types.
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 
 namespace octrace::io {
+
+/// What an interactive caller gives a read (model::BuildHooks fills it): `progress` of the
+/// read, 0..1, non-decreasing, 1 once the samples are in (DICOM: per file scanned and per file
+/// decoded; NIfTI: per slice of the volume read; the other formats do not report), and
+/// `cancelled`, asked between files or slices: true stops the read with CancelledError.
+/// Either may be empty. Both are called on the reading thread.
+struct ReadHooks {
+    std::function<void(double)> progress;
+    std::function<bool()> cancelled;
+
+    void report(double fraction) const {
+        if (progress) progress(fraction);
+    }
+    /// @throws CancelledError "`what`: read cancelled" when cancelled() says so.
+    void checkCancelled(const std::string& what) const;
+};
 
 struct FieldRequest {
     /// Variable to read. Empty: the file's only 3-D variable (an error if it has several);
@@ -53,6 +70,8 @@ struct FieldRequest {
     /// its pole, else the contract's lon x cos(lat0) mapping; LonLat and Polar force one.
     enum class Projection { Auto, LonLat, Polar };
     Projection projection = Projection::Auto;
+    /// Progress and cancellation of the read (not a setting: no option names it).
+    ReadHooks hooks;
 };
 
 /// The `horizontalSamples` that match an octree of `depth`: 2^depth + 1 (depth clamped to 1..12).

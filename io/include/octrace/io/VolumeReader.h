@@ -4,6 +4,7 @@
 /// .mha), NIfTI-1/2 (.nii, .nii.gz, .hdr/.img) and VTK XML image data (.vti), into a
 /// ScalarField with the file's direction matrix. No VTK type appears here.
 #include "octrace/build/ScalarField.h"
+#include "octrace/io/FieldRequest.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -36,8 +37,14 @@ public:
     ///
     /// A 4-D NIfTI image (dim[4] > 1: time points, diffusion directions) is a series of
     /// volumes: `volume` (0-based) chooses one; -1 reads volume 0 and says (log::info) how many
-    /// there are. Other formats hold one volume and refuse a `volume` (InputError).
-    static ScalarField read(const std::string& path, Format format, std::uint64_t memoryBudget = 0, int volume = -1);
+    /// there are. Other formats hold one volume and refuse a `volume` (InputError). Only the
+    /// volume asked for is decoded: a file cut after it reads, one cut inside it is refused
+    /// (FileError "NIfTI data truncated", naming the volume); a .nii.gz is inflated up to its
+    /// end, the volumes before it skipped.
+    /// `hooks`: NIfTI reports progress per slice and is cancelled between slices
+    /// (CancelledError); the other formats read in one step and do not report.
+    static ScalarField read(const std::string& path, Format format, std::uint64_t memoryBudget = 0, int volume = -1,
+                            const ReadHooks& hooks = {});
 
     /// The volumes in the file, from its header: dim[4] of a 4-D NIfTI image, else one. Each is
     /// labelled by its time ("time 1.5 s": toffset + v * pixdim[4] in xyzt_units' time unit)

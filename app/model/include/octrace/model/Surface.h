@@ -134,10 +134,16 @@ struct Surface {
 };
 
 /// What an interactive caller gives a build: progress (0..1, from the builder's threads) and
-/// cancellation (BuildOptions::cancelled: CancelledError).
+/// cancellation (BuildOptions::cancelled: CancelledError). Reading the input is a stage of its
+/// own before the build: `readProgress` (0..1, from the reading thread; DICOM per file, NIfTI
+/// per slice, io::ReadHooks) and the same `cancelled`, asked between files or slices.
 struct BuildHooks {
     std::function<void(double)> progress;
     std::function<bool()> cancelled;
+    std::function<void(double)> readProgress;
+
+    /// The read's share of these hooks, for io::FieldRequest::hooks.
+    io::ReadHooks forRead() const { return {readProgress, cancelled}; }
 };
 
 /// A city input (CityJSON, CityGML, footprints, DEM) is read into one projected CRS and
@@ -177,9 +183,10 @@ DepthChoice chooseGeometryDepth(const SurfaceSpec& a, const Box3& bounds, const 
                                 const std::function<double(int)>& bytesAtDepth);
 
 /// buildSurface's two steps for a field input (not an octree file or a city), for callers that
-/// build again and again from one read: readSurfaceField reads a.input into s.field (s.loadMs);
+/// build again and again from one read: readSurfaceField reads a.input into s.field (s.loadMs),
+/// reporting to hooks.readProgress and stopping when hooks.cancelled says so (CancelledError);
 /// buildFromField does the rest from s.field with `hooks`. Throw as buildSurface.
-void readSurfaceField(const SurfaceSpec& a, Surface& s);
+void readSurfaceField(const SurfaceSpec& a, Surface& s, const BuildHooks& hooks = {});
 void buildFromField(const SurfaceSpec& a, Surface& s, const BuildHooks& hooks = {});
 
 /// The colour map of a surface coloured by height by default.
