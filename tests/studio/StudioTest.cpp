@@ -1037,6 +1037,12 @@ private slots:
             return tree ? tree->occupiedBounds().hi.z - tree->occupiedBounds().lo.z : 0.0;
         };
         QSignalSpy loaded(&window_->engine(), &Engine::inputLoaded);
+        // The frames shown, and how many there were when the last surface was built: the first
+        // frame of the chest can be shown before the checks below are done (waitFrame() would
+        // then wait for one more that never comes).
+        QSignalSpy frames(window_, &MainWindow::frameShown);
+        qsizetype framesAtBuild = -1;
+        const auto onBuilt = connect(&window_->engine(), &Engine::surfaceBuilt, this, [&] { framesAtBuild = frames.count(); });
         window_->openInput(QString::fromStdString(folder));
         QTRY_VERIFY2_WITH_TIMEOUT(!loaded.isEmpty() && window_->state().input == folder, qPrintable(messagesText()), kWaitMs);
         QCOMPARE(series->count(), 2);
@@ -1045,7 +1051,8 @@ private slots:
                  qPrintable(series->currentText()));
         QCOMPARE(series->currentIndex(), 1);
         QTRY_VERIFY_WITH_TIMEOUT(height() > 100.0, kWaitMs);  // what was built is the chest
-        waitFrame();
+        QTRY_VERIFY_WITH_TIMEOUT(framesAtBuild >= 0 && frames.count() > framesAtBuild, kWaitMs);  // and shown
+        disconnect(onBuilt);
         sidePanel()->verticalScrollBar()->setValue(0);  // the Input box at the top
         screenshot(QStringLiteral("studio-series.png"));
     }
