@@ -608,7 +608,7 @@ QWidget* MainWindow::buildControls() {
         }
         colouringChanged();
     });
-    renderForm->addRow(tr("CT window"), windowCombo_);
+    renderForm->addRow(tr(model::opt::window.label), windowCombo_);
     layout->addWidget(renderBox);
     layout->addStretch(1);
     return w;

@@ -216,7 +216,7 @@ inline constexpr Option colormap{.key = "colormap", .kind = OptionKind::Text, .f
     .defaultText = "viridis by height where nothing else colours the surface (see `colour`)",
     .help = "colour by a colour map", .commands = "render export slice animate"};
 inline constexpr Option window{.key = "window", .kind = OptionKind::Text, .flag = "window", .argument = "NAME|C,W|none",
-    .session = "shading.window", .label = "CT window", .defaultText = "the window stored in a DICOM file",
+    .session = "shading.window", .label = "Display window", .defaultText = "the window stored in a DICOM file",
     .help = "grey by a display window (a CT preset, a centre and width, or none)", .commands = "render export slice animate"};
 inline constexpr Option colourBy{.key = "colour_by", .kind = OptionKind::Text, .flag = "colour-by", .argument = "VAR",
     .session = "surface.colour_by", .label = "Colour by", .defaultText = "none", .help = "colour the isosurface by a second variable of the same file, sampled at each voxel",
