@@ -378,20 +378,23 @@ void buildFromField(const SurfaceSpec& a, Surface& s, const BuildHooks& hooks) {
     if (!a.isoPreset.empty()) requireHounsfield(s.field, a.input, "`iso` " + a.isoPreset);
     // A sphere input's field is the signed distance to its spheres: their surface is at 0.
     const bool sphereDistance = isSphereInput(a.input);
+    // Chosen once (a histogram of the whole field): its value here, its reason in the log below.
+    const bool chosen = !a.iso && a.isoPreset.empty() && !sphereDistance;
+    const std::pair<double, std::string> byDefault = chosen ? defaultIso(s.field, a.input) : std::pair<double, std::string>{};
     s.iso = !a.isoPreset.empty() ? *ctIsoPreset(a.isoPreset)
             : a.iso                ? quantityIn({*a.iso, a.isoUnit, numberText(*a.iso) + a.isoUnit}, s.field.units, "`iso`",
                                                 a.input + ": variable '" + s.field.name + "'")
             : sphereDistance       ? 0.0
-                                   : defaultIso(s.field, a.input).first;
+                                   : byDefault.first;
     if (a.iso && !a.isoUnit.empty()) {
         std::ostringstream m;
         m << "`iso` " << numberText(*a.iso) << a.isoUnit << " is " << numberText(s.iso, 9) << " " << s.field.units
           << ", the units of '" << s.field.name << "' (UDUNITS-2)";
         log::info(m.str());
     }
-    if (!a.iso && a.isoPreset.empty() && !sphereDistance) {
+    if (chosen) {
         std::ostringstream m;
-        m << "no `iso` given: using " << s.iso << ", " << defaultIso(s.field, a.input).second;
+        m << "no `iso` given: using " << s.iso << ", " << byDefault.second;
         log::info(m.str());
     }
     for (const auto& n : s.field.notes) log::debug(n);
