@@ -14,6 +14,14 @@ namespace octrace::test {
 
 using namespace octrace;
 
+/// An analytic field's shell octree with the field's corner values (drawn as smooth surfaces).
+inline Octree smoothTree(const std::string& field, int n, int depth, std::uint32_t seed = 1) {
+    BuildOptions o;
+    o.depth = depth;
+    o.iso = 0.0;
+    o.corners = true;
+    return buildShellOctree(makeAnalyticField(field, n, seed), o);
+}
 inline const Octree& sphereTree() {
     static const Octree t = buildShellOctree(makeAnalyticField("sphere", 33), {7, 0.0, 0});
     return t;

@@ -20,13 +20,6 @@ using namespace octrace::test;
 
 namespace {
 
-Octree smoothTree(const std::string& field, int n, int depth, std::uint32_t seed = 1) {
-    BuildOptions o;
-    o.depth = depth;
-    o.iso = 0.0;
-    o.corners = true;
-    return buildShellOctree(makeAnalyticField(field, n, seed), o);
-}
 
 const Octree& smoothSphere() {
     static const Octree t = smoothTree("sphere", 33, 7);

@@ -8,6 +8,7 @@
 #include "octrace/render/DiscreteTraversal.h"
 #include "octrace/render/Lod.h"
 #include "octrace/render/Shading.h"
+#include "octrace/render/SmoothSurface.h"
 #include "octrace/util/Parallel.h"
 #include "octrace/util/Timer.h"
 
@@ -227,6 +228,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
     Timer timer;
     frame.reshape(camera.width, camera.height);  // every pixel is written below
     const Shader shader(tree, camera, settings);
+    const SmoothSurface& smooth = shader.smooth();
     const PixelRays rays(tree, camera);
     const RayGenerator gen(camera);
     const int T = std::max(settings.tileSize, 1);
@@ -243,6 +245,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
     parallelFor(std::size_t(groupsX) * std::size_t(groupsY), settings.threads, [&](std::size_t g) {
         std::vector<FrontierNode> group, list, next;
         std::vector<StartNode> starts;
+        std::vector<std::uint64_t> colMask, rowMask;
         const int gx = int(g % std::size_t(groupsX)), gy = int(g / std::size_t(groupsX));
         const int gx0 = gx * G * T, gy0 = gy * G * T;
         const int gx1 = std::min(gx0 + G * T, camera.width), gy1 = std::min(gy0 + G * T, camera.height);
@@ -277,27 +280,57 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                 st.nodesVisited = counters.nodes;
                 continue;
             }
+            // Step 4 per pixel: bit i of colMask[x - x0] & rowMask[y - y0] says whether the
+            // pixel lies in node i's rectangle (lists of up to 64 nodes; longer ones test each).
+            const bool masked = kept <= 64;
+            if (masked) {
+                colMask.assign(std::size_t(x1 - x0), 0);
+                rowMask.assign(std::size_t(y1 - y0), 0);
+                for (std::size_t i = 0; i < kept; ++i) {
+                    const FrontierNode& fn = list[i];
+                    const std::uint64_t bit = std::uint64_t(1) << i;
+                    for (int x = std::max(fn.x0, x0); x <= std::min(fn.x1, x1 - 1); ++x) colMask[std::size_t(x - x0)] |= bit;
+                    for (int y = std::max(fn.y0, y0); y <= std::min(fn.y1, y1 - 1); ++y) rowMask[std::size_t(y - y0)] |= bit;
+                }
+            }
             for (int y = y0; y < y1; ++y)
                 for (int x = x0; x < x1; ++x) {
                     const dvec3 dir = gen.direction(x, y);
                     TraversalHit hit;
-                    if (!rays.mayHitSurface(x, y)) {
-                        // Step 5: nothing the ray can visit holds a boundary voxel.
+                    const std::uint64_t mask = masked ? colMask[std::size_t(x - x0)] & rowMask[std::size_t(y - y0)] : ~std::uint64_t(0);
+                    if (!rays.mayHitSurface(x, y) || mask == 0) {
+                        // Step 5: nothing the ray can visit holds a boundary voxel (outside the
+                        // surface's outline, or outside every frontier node's rectangle).
                         if (rays.mayMeetCube(x, y) && rays.meetsCube(x, y)) ++st.rays;
                         ++st.raysFull;
                     } else {
                         const QuantizedRay q = rays.quantized(x, y, dir);
                         if (q.meetsCube) ++st.rays;
+                        // Smooth surfaces: the interpolant's test runs inside the traversal, on
+                        // the boundary voxels in the ray's visiting order (the same as full's,
+                        // by cover and order), instead of proposing the first and starting over
+                        // from the root when it is passed (writePixelHit then keeps the hit).
+                        SmoothSurface::RayState sray;
+                        VoxelFilter filter;
+                        if (smooth.active()) {
+                            sray.world = rays.world(x, y, dir);
+                            filter = smooth.filter(sray);
+                        }
+                        const VoxelFilter* fp = smooth.active() ? &filter : nullptr;
                         if (q.sign != s) {
                             // Another sign pattern: the frontier's order may not be this ray's.
                             ++st.raysFull;
-                            hit = traverseDiscrete(tree, q, counters);
+                            hit = traverseDiscrete(tree, q, counters, nullptr, fp);
                         } else {
                             ++st.raysCommonPath;
                             std::size_t n = 0;
-                            for (const FrontierNode& fn : list)
-                                if (x >= fn.x0 && x <= fn.x1 && y >= fn.y0 && y <= fn.y1) starts[n++] = fn.start;
-                            hit = traverseFromNodes(tree, q, starts.data(), n, counters);
+                            if (masked) {
+                                for (std::uint64_t m = mask; m; m &= m - 1) starts[n++] = list[std::size_t(std::countr_zero(m))].start;
+                            } else {
+                                for (const FrontierNode& fn : list)
+                                    if (x >= fn.x0 && x <= fn.x1 && y >= fn.y0 && y <= fn.y1) starts[n++] = fn.start;
+                            }
+                            hit = traverseFromNodes(tree, q, starts.data(), n, counters, fp);
                         }
                     }
                     writePixelHit(frame, x, y, hit, shader, rays, dir, settings, st, counters);
