@@ -43,19 +43,27 @@ std::vector<std::string> colormapNames() {
     return n;
 }
 
-vec3 colormap(const std::string& nameIn, float t) {
+Colormap::Colormap(const std::string& nameIn) {
     const std::string name = nameIn == "gray" ? "grey" : nameIn;
     for (const auto& m : maps()) {
         if (name != m.name) continue;
-        t = std::clamp(std::isnan(t) ? 0.0f : t, 0.0f, 1.0f) * float(m.size - 1);
-        std::size_t i = std::min(std::size_t(t), m.size - 2);
-        float f = t - float(i);
-        vec3 c = vec3(m.table[i][0], m.table[i][1], m.table[i][2]) * (1.0f - f) +
-                 vec3(m.table[i + 1][0], m.table[i + 1][1], m.table[i + 1][2]) * f;
-        return vec3(srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z));
+        table_ = m.table;
+        size_ = m.size;
+        return;
     }
     throw UsageError("unknown colour map '" + nameIn + "' (choose one of: viridis, thermal, haline, speed, grey, coolwarm)");
 }
+
+vec3 Colormap::operator()(float t) const {
+    t = std::clamp(std::isnan(t) ? 0.0f : t, 0.0f, 1.0f) * float(size_ - 1);
+    std::size_t i = std::min(std::size_t(t), size_ - 2);
+    float f = t - float(i);
+    vec3 c = vec3(table_[i][0], table_[i][1], table_[i][2]) * (1.0f - f) +
+             vec3(table_[i + 1][0], table_[i + 1][1], table_[i + 1][2]) * f;
+    return vec3(srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z));
+}
+
+vec3 colormap(const std::string& name, float t) { return Colormap(name)(t); }
 
 std::string defaultColormap(const std::string& standardName, const std::string& name) {
     const std::string sn = lower(standardName), n = lower(name);
@@ -97,7 +105,7 @@ Albedo::Albedo(const Octree& tree, const RenderSettings& settings)
         if (tree.hasColours() && settings.voxelColours) colours_ = &tree.colours();
         return;
     }
-    colormap(colormap_, 0.0f);  // validate the name once
+    map_.emplace(colormap_);  // throws for an unknown name
     if (std::isfinite(settings.colourMin) && std::isfinite(settings.colourMax) && settings.colourMin != settings.colourMax) {
         hLo_ = float((double(settings.colourMin) - tree.cubeOrigin.z) / tree.voxelSize());
         hHi_ = float((double(settings.colourMax) - tree.cubeOrigin.z) / tree.voxelSize());
@@ -127,7 +135,7 @@ vec3 Albedo::at(std::uint32_t voxel, float zCells) const {
         const float v = (*values_)[voxel];
         if (window_.valid()) return vec3(srgbToLinear(window_.grey(v, inverted_)));
         if (std::isnan(v)) return masked_;
-        return colormap(colormap_, hi_ != lo_ ? (v - lo_) / (hi_ - lo_) : 0.5f);
+        return (*map_)(hi_ != lo_ ? (v - lo_) / (hi_ - lo_) : 0.5f);
     }
     if (colours_) {
         const std::uint32_t c = (*colours_)[voxel];
@@ -136,7 +144,7 @@ vec3 Albedo::at(std::uint32_t voxel, float zCells) const {
     if (colormap_.empty()) return colour_;
     // Colour by height (world z) over the surface's extent or the range given.
     const float t = (zCells - hLo_) / (hHi_ - hLo_);
-    return colormap(colormap_, t);
+    return (*map_)(t);
 }
 
 Shader::Shader(const Octree& tree, const Camera& camera, const RenderSettings& settings)

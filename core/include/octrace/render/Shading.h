@@ -9,6 +9,7 @@
 #include "octrace/render/SmoothSurface.h"
 
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,17 @@ namespace octrace {
 std::vector<std::string> colormapNames();
 /// Throws UsageError for an unknown name.
 vec3 colormap(const std::string& name, float t);
+/// A colour map looked up by name once: colormap(name, t) without the look-up per call.
+class Colormap {
+public:
+    /// Throws UsageError for an unknown name.
+    explicit Colormap(const std::string& name);
+    vec3 operator()(float t) const;
+
+private:
+    const float (*table_)[3] = nullptr;  // sRGB control points, evenly spaced
+    std::size_t size_ = 0;
+};
 /// The colour map for a variable, by its CF standard_name (sea water temperature: thermal,
 /// salinity: haline, speed of sound: speed), else by its name (TEMP, SALT, sound_speed, ...);
 /// viridis for anything else.
@@ -67,6 +79,7 @@ private:
     ValueWindow window_;
     bool inverted_ = false;
     std::string colormap_;   // empty: uniform colour_
+    std::optional<Colormap> map_;  // colormap_ looked up
     float lo_ = 0.0f, hi_ = 1.0f;  // value range
     float hLo_ = 0.0f, hHi_ = 1.0f;  // heights at the colour map's ends (cell space along z)
 };
