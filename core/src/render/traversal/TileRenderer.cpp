@@ -79,38 +79,46 @@ struct TileFrustum {
     }
 };
 
-TileFrustum tileFrustum(const Octree& tree, const RayGenerator& gen, const PixelRays& rays, int x0, int y0, int x1,
-                        int y1, bool widen) {
-    TileFrustum f;
+/// Per frame: what every tile's frustum shares (apex, pad) and the slopes (perspective) or
+/// offsets (orthographic) of every column and row of the image, computed once, at row 0 and
+/// column 0 (the value of a column computed at another row differs by a few units in the last
+/// place, which the pad's 1e-9 far covers: step 2).
+struct ScreenSlopes {
+    TileFrustum base;
+    std::vector<double> x, y;
+    ScreenSlopes(const Octree& tree, const RayGenerator& gen, const PixelRays& rays, int width, int height, bool widen) {
+        const dvec3 right = gen.right(), up = gen.up(), back = gen.back();
+        base.apex = tree.toOctreeSpace(gen.eye());
+        x.resize(std::size_t(width));
+        y.resize(std::size_t(height));
+        for (int i = 0; i < width; ++i)
+            x[std::size_t(i)] = gen.orthographic() ? glm::dot(rays.originOS(i, 0) - base.apex, right)
+                                                   : glm::dot(gen.direction(i, 0), right) / -glm::dot(gen.direction(i, 0), back);
+        for (int j = 0; j < height; ++j)
+            y[std::size_t(j)] = gen.orthographic() ? glm::dot(rays.originOS(0, j) - base.apex, up)
+                                                   : glm::dot(gen.direction(0, j), up) / -glm::dot(gen.direction(0, j), back);
+        // Step 2: a quantized ray's points lie within 2^-11 lattice units of its exact ray (or of
+        // its origin); the directions and the forms above carry rounding errors relative to the
+        // distances involved, far below 1e-9 of the farthest point of the cube from the apex.
+        const double far = glm::length(base.apex - dvec3(0.5 * std::ldexp(1.0, N))) + std::ldexp(1.0, N);
+        base.pad = widen ? 2.0 * (std::ldexp(1.0, -10) + 1e-9 * far) : 0.0;
+    }
+};
+
+TileFrustum tileFrustum(const RayGenerator& gen, const ScreenSlopes& sl, int x0, int y0, int x1, int y1) {
+    TileFrustum f = sl.base;
     const dvec3 right = gen.right(), up = gen.up(), back = gen.back();
-    f.apex = tree.toOctreeSpace(gen.eye());
     // The extent of the tile's pixels across right and up: per unit of depth (perspective: the
     // directions' slopes) or in octree units (orthographic: the origins' offsets), over every
     // row and column of the tile (the computed values, not an interpolation of the corners).
-    double xl = std::numeric_limits<double>::infinity(), xh = -xl, yl = xl, yh = -xl;
-    for (int x = x0; x < x1; ++x) {
-        const double sx = gen.orthographic() ? glm::dot(rays.originOS(x, y0) - f.apex, right)
-                                             : glm::dot(gen.direction(x, y0), right) / -glm::dot(gen.direction(x, y0), back);
-        xl = std::min(xl, sx);
-        xh = std::max(xh, sx);
-    }
-    for (int y = y0; y < y1; ++y) {
-        const double sy = gen.orthographic() ? glm::dot(rays.originOS(x0, y) - f.apex, up)
-                                             : glm::dot(gen.direction(x0, y), up) / -glm::dot(gen.direction(x0, y), back);
-        yl = std::min(yl, sy);
-        yh = std::max(yh, sy);
-    }
+    const auto [xl, xh] = std::minmax_element(sl.x.begin() + x0, sl.x.begin() + x1);
+    const auto [yl, yh] = std::minmax_element(sl.y.begin() + y0, sl.y.begin() + y1);
     if (gen.orthographic()) {
         f.g = {right, -right, up, -up, -back};
-        f.h = {-xl, xh, -yl, yh, 0.0};
+        f.h = {-*xl, *xh, -*yl, *yh, 0.0};
     } else {
-        f.g = {right + xl * back, -right - xh * back, up + yl * back, -up - yh * back, -back};
+        f.g = {right + *xl * back, -right - *xh * back, up + *yl * back, -up - *yh * back, -back};
     }
-    // Step 2: a quantized ray's points lie within 2^-11 lattice units of its exact ray (or of
-    // its origin); the directions and the forms above carry rounding errors relative to the
-    // distances involved, far below 1e-9 of the farthest point of the cube from the apex.
-    const double far = glm::length(f.apex - dvec3(0.5 * std::ldexp(1.0, N))) + std::ldexp(1.0, N);
-    f.pad = widen ? 2.0 * (std::ldexp(1.0, -10) + 1e-9 * far) : 0.0;
     f.prepare();
     return f;
 }
@@ -231,6 +239,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
     const SmoothSurface& smooth = shader.smooth();
     const PixelRays rays(tree, camera);
     const RayGenerator gen(camera);
+    const ScreenSlopes slopes(tree, gen, rays, camera.width, camera.height, widen_);
     const int T = std::max(settings.tileSize, 1);
     const int tilesX = (camera.width + T - 1) / T, tilesY = (camera.height + T - 1) / T;
     // Frontier size: enough nodes to cut the empty space out, few enough that a ray that
@@ -253,7 +262,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
         const dvec3 mid = gen.direction((gx0 + gx1) / 2, (gy0 + gy1) / 2);
         const unsigned s = (mid.x < 0.0 ? 4u : 0u) | (mid.y < 0.0 ? 2u : 0u) | (mid.z < 0.0 ? 1u : 0u);
         if (!tree.nodes().empty()) {
-            const TileFrustum gf = tileFrustum(tree, gen, rays, gx0, gy0, gx1, gy1, widen_);
+            const TileFrustum gf = tileFrustum(gen, slopes, gx0, gy0, gx1, gy1);
             filterFrontier(gf, root, group);
             refineFrontier(tree, gf, s, G * G * cap, group, next);
         }
@@ -263,7 +272,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
             TraversalCounters counters;
             const int x0 = tx * T, y0 = ty * T;
             const int x1 = std::min(x0 + T, camera.width), y1 = std::min(y0 + T, camera.height);
-            const TileFrustum fr = tileFrustum(tree, gen, rays, x0, y0, x1, y1, widen_);
+            const TileFrustum fr = tileFrustum(gen, slopes, x0, y0, x1, y1);
             filterFrontier(fr, group, list);
             refineFrontier(tree, fr, s, cap, list, next);
             // Step 4: the nodes whose rectangle misses the tile are dropped.
