@@ -27,7 +27,8 @@ constexpr int N = Octree::kIntBits;
 /// A frontier node: an inner node of the tree that may hold a voxel some ray of the tile visits.
 struct FrontierNode {
     StartNode start;
-    int x0, x1, y0, y1;  ///< the pixels whose rays can visit a cell of the node (step 4)
+    int x0 = 0, x1 = 0, y0 = 0, y1 = 0;  ///< the pixels whose rays can visit a cell of the node (step 4)
+    bool rect = false;                  ///< whether x0 .. y1 are computed
 };
 
 /// children sorted by popcount(c ^ s) per sign pattern s: front to back for every ray of
@@ -146,7 +147,7 @@ void refineFrontier(const Octree& tree, const TileFrustum& f, unsigned s, std::s
                 if (!(nd.childMask & (1u << c)) || (nd.termMask & (1u << c))) continue;  // empty, or an interior term (volume form)
                 const ivec3 cell = fn.start.cell * 2 + ivec3(int(c >> 2), int((c >> 1) & 1), int(c & 1));
                 if (f.meets(cell, fn.start.level + 1))
-                    next.push_back({{nd.firstChild + childRank(nd.childMask, c), fn.start.level + 1, cell}, 0, 0, 0, 0});
+                    next.push_back({{nd.firstChild + childRank(nd.childMask, c), fn.start.level + 1, cell}});
             }
             if (next.size() > cap) return;  // keep the coarser list
         }
@@ -159,6 +160,7 @@ void refineFrontier(const Octree& tree, const TileFrustum& f, unsigned s, std::s
 /// bounding rectangle of its corners' projections, a hundredth of a pixel wider; every pixel
 /// when a corner is not in front of a perspective eye (or a projection is out of range).
 void pixelRect(const Octree& tree, const RayGenerator& gen, const TileFrustum& f, FrontierNode& fn, int w, int h) {
+    fn.rect = true;
     const double side = std::ldexp(1.0, N - fn.start.level), k = tree.cubeSide / std::ldexp(1.0, N);
     const dvec3 lo = dvec3(fn.start.cell) * side - dvec3(f.pad) - f.apex;
     const double s = side + 2.0 * f.pad;
@@ -213,11 +215,16 @@ void fillBackground(Frame& frame, const PixelRays& rays, const RenderSettings& s
         if ((x >= innerLo && x <= innerHi) || rays.meetsCube(x, y)) ++st.rays;
 }
 
-/// The nodes of `from` (in order) that meet the frustum `f`, into `list`.
-void filterFrontier(const TileFrustum& f, const std::vector<FrontierNode>& from, std::vector<FrontierNode>& list) {
+/// The nodes of `from` (in order) that meet the frustum `f` of the tile x0 .. x1-1, y0 .. y1-1,
+/// into `list`; a node whose pixel rectangle is known and misses the tile is left out at once
+/// (step 4: no ray of the tile visits a cell of it).
+void filterFrontier(const TileFrustum& f, const std::vector<FrontierNode>& from, std::vector<FrontierNode>& list, int x0,
+                    int y0, int x1, int y1) {
     list.clear();
-    for (const FrontierNode& fn : from)
+    for (const FrontierNode& fn : from) {
+        if (fn.rect && !(fn.x1 >= x0 && fn.x0 < x1 && fn.y1 >= y0 && fn.y0 < y1)) continue;
         if (f.meets(fn.start.cell, fn.start.level)) list.push_back(fn);
+    }
 }
 
 RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
@@ -250,7 +257,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
     // refinement starts, so the coarse levels are walked once per group.
     constexpr int G = 4;
     const int groupsX = (tilesX + G - 1) / G, groupsY = (tilesY + G - 1) / G;
-    const std::vector<FrontierNode> root{{StartNode{}, 0, 0, 0, 0}};
+    const std::vector<FrontierNode> root{{StartNode{}}};
     parallelFor(std::size_t(groupsX) * std::size_t(groupsY), settings.threads, [&](std::size_t g) {
         std::vector<FrontierNode> group, list, next;
         std::vector<StartNode> starts;
@@ -263,8 +270,11 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
         const unsigned s = (mid.x < 0.0 ? 4u : 0u) | (mid.y < 0.0 ? 2u : 0u) | (mid.z < 0.0 ? 1u : 0u);
         if (!tree.nodes().empty()) {
             const TileFrustum gf = tileFrustum(gen, slopes, gx0, gy0, gx1, gy1);
-            filterFrontier(gf, root, group);
+            filterFrontier(gf, root, group, gx0, gy0, gx1, gy1);
             refineFrontier(tree, gf, s, G * G * cap, group, next);
+            // The group's nodes' rectangles (every frustum has the same apex and pad), so that
+            // each tile leaves out the nodes whose rectangle misses it before the frustum test.
+            for (FrontierNode& fn : group) pixelRect(tree, gen, gf, fn, camera.width, camera.height);
         }
         for (int ty = gy * G; ty < std::min((gy + 1) * G, tilesY); ++ty)
             for (int tx = gx * G; tx < std::min((gx + 1) * G, tilesX); ++tx) {
@@ -273,12 +283,12 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
             const int x0 = tx * T, y0 = ty * T;
             const int x1 = std::min(x0 + T, camera.width), y1 = std::min(y0 + T, camera.height);
             const TileFrustum fr = tileFrustum(gen, slopes, x0, y0, x1, y1);
-            filterFrontier(fr, group, list);
+            filterFrontier(fr, group, list, x0, y0, x1, y1);
             refineFrontier(tree, fr, s, cap, list, next);
             // Step 4: the nodes whose rectangle misses the tile are dropped.
             std::size_t kept = 0;
             for (FrontierNode& fn : list) {
-                pixelRect(tree, gen, fr, fn, camera.width, camera.height);
+                if (!fn.rect) pixelRect(tree, gen, fr, fn, camera.width, camera.height);
                 if (fn.x1 >= x0 && fn.x0 < x1 && fn.y1 >= y0 && fn.y0 < y1) list[kept++] = fn;
             }
             list.resize(kept);
