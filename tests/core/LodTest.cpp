@@ -90,7 +90,20 @@ TEST(Lod, AverageNormalOfAFlatPatchIsItsNormal) {
     for (const NodeSummary& s : t.summaries()) EXPECT_GT(glm::dot(decodeNormal(s.normal), voxelNormal), 0.999f);
 }
 
-TEST(Lod, FullAndReferenceDrawTheSameCutTreeBitForBit) {
+/// The tile renderer keeps its frontier above the cut's coarsest level and traces from it with
+/// the cut: the same frame as full's, for several tile sizes and thread counts.
+static void expectTileDrawsTheCutAsFull(const Octree& t, const Camera& camera, RenderSettings s, const Frame& full) {
+    for (const auto& [tileSize, threads] : {std::pair{8, 2}, {3, 1}, {16, 3}}) {
+        s.tileSize = tileSize;
+        s.threads = threads;
+        Frame tile;
+        makeRenderer("tile")->render(t, camera, s, tile);
+        const FrameDiff d = diffFrames(tile, full);
+        EXPECT_TRUE(d.identical()) << "tile " << tileSize << ", threads " << threads << ": " << d.first;
+    }
+}
+
+TEST(Lod, FullReferenceAndTileDrawTheSameCutTreeBitForBit) {
     // A sphere's coarse nodes reach beyond its bounding box: a cut must not be clipped by it.
     {
         Octree sphere = buildShellOctree(makeAnalyticField("sphere", 33), {6, 0.0, 0});
@@ -103,6 +116,7 @@ TEST(Lod, FullAndReferenceDrawTheSameCutTreeBitForBit) {
                 makeRenderer("reference")->render(sphere, nc.camera, lodSettings(pixels, level), ref);
                 const FrameDiff d = diffFrames(full, ref);
                 EXPECT_TRUE(d.identical()) << d.first;
+                expectTileDrawsTheCutAsFull(sphere, nc.camera, lodSettings(pixels, level), full);
             }
     }
     const Octree& t = summarized();
@@ -115,6 +129,7 @@ TEST(Lod, FullAndReferenceDrawTheSameCutTreeBitForBit) {
             makeRenderer("reference")->render(t, nc.camera, s, ref);
             const FrameDiff d = diffFrames(full, ref);
             EXPECT_TRUE(d.identical()) << d.first;
+            expectTileDrawsTheCutAsFull(t, nc.camera, s, full);
         }
 }
 

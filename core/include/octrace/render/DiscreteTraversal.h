@@ -113,9 +113,11 @@ struct StartNode {
 /// traverseFromNode on each of `count` nodes in turn until one gives a hit (one set-up for
 /// all). The caller orders the nodes so that this is the ray's first hit among them. With a
 /// filter, as traverseDiscrete: a refused voxel is passed and the search goes on behind it,
-/// through the rest of its node and the nodes after it.
+/// through the rest of its node and the nodes after it. With a cut, as traverseDiscrete: a
+/// crossed non-empty node the cut stops at is the hit (the start nodes themselves must lie
+/// above LodCut::coarsestLevel()).
 TraversalHit traverseFromNodes(const Octree& tree, const QuantizedRay& ray, const StartNode* nodes, std::size_t count,
-                               TraversalCounters& counters, const VoxelFilter* filter = nullptr);
+                               TraversalCounters& counters, const VoxelFilter* filter = nullptr, const LodCut* cut = nullptr);
 
 /// Samet's neighbour finding on the voxel octree (renderer samet): the ray goes leaf to leaf,
 /// from the leaf holding its first point; at each leaf its exit point, the neighbour of equal

@@ -513,10 +513,11 @@ BranchNode branchNode(const Octree& tree, const ivec3& a, const ivec3& b, int up
 }
 
 TraversalHit traverseFromNodes(const Octree& tree, const QuantizedRay& ray, const StartNode* nodes, std::size_t count,
-                               TraversalCounters& counters, const VoxelFilter* filter) {
+                               TraversalCounters& counters, const VoxelFilter* filter, const LodCut* cut) {
     if (!ray.meetsCube || count == 0) return TraversalHit{};
     Engine<false> e(tree, ray, counters, nullptr);
     e.setFilter(filter);
+    e.setCut(cut);
     const i64 cU = ray.dU == 0, cV = ray.dV == 0;
     for (std::size_t i = 0; i < count; ++i) {
         const StartNode& n = nodes[i];

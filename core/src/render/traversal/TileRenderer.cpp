@@ -128,8 +128,8 @@ TileFrustum tileFrustum(const RayGenerator& gen, const ScreenSlopes& sl, int x0,
 /// frontier of a larger tile holding this one, filtered by this tile's frustum), each node
 /// replaced by its non-empty children that meet the frustum (level by level), as long as the
 /// list stays within `cap` nodes; nodes at depth-1 and nodes with a coarse leaf stay whole.
-void refineFrontier(const Octree& tree, const TileFrustum& f, unsigned s, std::size_t cap, std::vector<FrontierNode>& list,
-                    std::vector<FrontierNode>& next) {
+void refineFrontier(const Octree& tree, const TileFrustum& f, unsigned s, std::size_t cap, int keepLevel,
+                    std::vector<FrontierNode>& list, std::vector<FrontierNode>& next) {
     if (list.empty()) return;
     const auto& order = childOrder().order[s];
     const bool shell = tree.form == OctreeForm::Shell;
@@ -138,7 +138,7 @@ void refineFrontier(const Octree& tree, const TileFrustum& f, unsigned s, std::s
         bool refined = false;
         for (const FrontierNode& fn : list) {
             const OctreeNode& nd = tree.nodes()[fn.start.node];
-            if (fn.start.level >= tree.depth - 1 || (shell && (nd.termMask & nd.childMask))) {
+            if (fn.start.level >= keepLevel || (shell && (nd.termMask & nd.childMask))) {
                 next.push_back(fn);
                 continue;
             }
@@ -229,22 +229,16 @@ void filterFrontier(const TileFrustum& f, const std::vector<FrontierNode>& from,
 
 RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
                                  Frame& frame) const {
+    // A multi-resolution cut (--lod, --level) draws nodes whole: the frontier stays above the
+    // coarsest level the cut can stop at, and the traversals from it honour the cut.
     const LodCut cut(tree, camera, settings.detail.lodPixels, settings.detail.level);
-    if (cut.active()) {
-        // A multi-resolution cut draws nodes whole: the full traversal with the cut, per pixel.
-        return renderPerPixel(name(), tree, camera, settings, frame,
-                              [&](const PixelRays& rays, int x, int y, const dvec3& d, TraversalCounters& c, bool& meets) {
-                                  const QuantizedRay q = rays.quantized(x, y, d);
-                                  meets = q.meetsCube;
-                                  return traverseDiscrete(tree, q, c, &cut);
-                              });
-    }
+    const LodCut* cutp = cut.active() ? &cut : nullptr;
     camera.validate();
     Timer timer;
     frame.reshape(camera.width, camera.height);  // every pixel is written below
     const Shader shader(tree, camera, settings);
     const SmoothSurface& smooth = shader.smooth();
-    const PixelRays rays(tree, camera);
+    const PixelRays rays(tree, camera, cut.coarsestLevel());
     const RayGenerator gen(camera);
     const ScreenSlopes slopes(tree, gen, rays, camera.width, camera.height, widen_);
     const int T = std::max(settings.tileSize, 1);
@@ -252,6 +246,8 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
     // Frontier size: enough nodes to cut the empty space out, few enough that a ray that
     // misses them all does not test too many boxes.
     const std::size_t cap = std::size_t(std::max(8, T * T / 4));
+    // Nodes at this level stay whole: their children are voxels, or nodes a cut may draw whole.
+    const int keepLevel = std::min(tree.depth, cut.coarsestLevel()) - 1;
     std::vector<RenderStats> tileStats(std::size_t(tilesX) * std::size_t(tilesY));
     // Tiles in groups of G x G: the group's frontier (a larger cap) is where each tile's
     // refinement starts, so the coarse levels are walked once per group.
@@ -271,7 +267,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
         if (!tree.nodes().empty()) {
             const TileFrustum gf = tileFrustum(gen, slopes, gx0, gy0, gx1, gy1);
             filterFrontier(gf, root, group, gx0, gy0, gx1, gy1);
-            refineFrontier(tree, gf, s, G * G * cap, group, next);
+            refineFrontier(tree, gf, s, G * G * cap, keepLevel, group, next);
             // The group's nodes' rectangles (every frustum has the same apex and pad), so that
             // each tile leaves out the nodes whose rectangle misses it before the frustum test.
             for (FrontierNode& fn : group) pixelRect(tree, gen, gf, fn, camera.width, camera.height);
@@ -284,7 +280,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
             const int x1 = std::min(x0 + T, camera.width), y1 = std::min(y0 + T, camera.height);
             const TileFrustum fr = tileFrustum(gen, slopes, x0, y0, x1, y1);
             filterFrontier(fr, group, list, x0, y0, x1, y1);
-            refineFrontier(tree, fr, s, cap, list, next);
+            refineFrontier(tree, fr, s, cap, keepLevel, list, next);
             // Step 4: the nodes whose rectangle misses the tile are dropped.
             std::size_t kept = 0;
             for (FrontierNode& fn : list) {
@@ -339,7 +335,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                         if (q.sign != s) {
                             // Another sign pattern: the frontier's order may not be this ray's.
                             ++st.raysFull;
-                            hit = traverseDiscrete(tree, q, counters, nullptr, fp);
+                            hit = traverseDiscrete(tree, q, counters, cutp, fp);
                         } else {
                             ++st.raysCommonPath;
                             std::size_t n = 0;
@@ -349,10 +345,10 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                                 for (const FrontierNode& fn : list)
                                     if (x >= fn.x0 && x <= fn.x1 && y >= fn.y0 && y <= fn.y1) starts[n++] = fn.start;
                             }
-                            hit = traverseFromNodes(tree, q, starts.data(), n, counters, fp);
+                            hit = traverseFromNodes(tree, q, starts.data(), n, counters, fp, cutp);
                         }
                     }
-                    writePixelHit(frame, x, y, hit, shader, rays, dir, settings, st, counters);
+                    writePixelHit(frame, x, y, hit, shader, rays, dir, settings, st, counters, cutp);
                 }
             st.nodesVisited = counters.nodes;
         }
