@@ -100,11 +100,21 @@ vec4 contrastingBackground(const Octree& tree, const RenderSettings& settings) {
     return contrast(y, yWhite) >= contrast(y, ySlate) ? white : slate;
 }
 
-RenderSettings renderSettings(const SurfaceSpec& surfaceSpec, const Surface& surface, const RenderSpec& spec) {
+bool sameColouring(const RenderSettings& a, const RenderSettings& b) {
+    const auto same = [](float x, float y) { return x == y || (std::isnan(x) && std::isnan(y)); };
+    return a.colour == b.colour && a.colormap == b.colormap && same(a.colourMin, b.colourMin) &&
+           same(a.colourMax, b.colourMax) && a.maskedColour == b.maskedColour && a.floorColour == b.floorColour &&
+           a.voxelColours == b.voxelColours && a.window.centre == b.window.centre && a.window.width == b.window.width &&
+           a.invertedGrey == b.invertedGrey;
+}
+
+RenderSettings renderSettings(const SurfaceSpec& surfaceSpec, const Surface& surface, const RenderSpec& spec,
+                              const BackgroundSource& background) {
     RenderSettings rs;
     rs.threads = surfaceSpec.threads;
     applyColour(surfaceSpec, surface, rs);
-    rs.background = spec.background ? displayToLinear(*spec.background) : contrastingBackground(surface.tree, rs);
+    rs.background = spec.background ? displayToLinear(*spec.background)
+                                    : (background ? background(surface.tree, rs) : contrastingBackground(surface.tree, rs));
     if (spec.light) rs.lightCamera = *spec.light;
     applyLighting(surfaceSpec, rs);
     rs.coherence = spec.coherence;

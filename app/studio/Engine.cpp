@@ -318,7 +318,17 @@ Engine::ExportView Engine::exportView(const StudioState& state, int width, int h
 }
 
 RenderSettings Engine::settingsFor(const StudioState& state, bool transparent) const {
-    if (surface_) return renderSettingsFor(state, transparent, *surface_);
+    if (surface_) {
+        // GUI thread only (like every caller of settingsFor), so the memo needs no lock.
+        const auto memo = [this](const Octree& tree, const RenderSettings& rs) {
+            const auto& m = backgroundMemo_;
+            const bool sameSurface = m && !m->surface.owner_before(surface_) && !surface_.owner_before(m->surface) && !m->surface.expired();
+            if (sameSurface && model::sameColouring(m->colouring, rs)) return m->background;
+            backgroundMemo_ = BackgroundMemo{surface_, rs, model::contrastingBackground(tree, rs)};
+            return backgroundMemo_->background;
+        };
+        return renderSettingsFor(state, transparent, *surface_, memo);
+    }
     return renderSettingsFor(state, transparent, model::Surface());
 }
 

@@ -161,6 +161,14 @@ private:
     std::shared_ptr<model::Surface> base_;  // holds the field read (its samples shared with each build)
     std::shared_ptr<const ScalarField> sliceField_;
     std::shared_ptr<const model::Surface> surface_;
+    // settingsFor's contrasting background, for the surface and the colouring it was computed
+    // for (a pass over every boundary voxel, asked on every camera move).
+    struct BackgroundMemo {
+        std::weak_ptr<const model::Surface> surface;
+        RenderSettings colouring;
+        vec4 background{0.0f};
+    };
+    mutable std::optional<BackgroundMemo> backgroundMemo_;
     double iso_ = 0.0;
     int depth_ = 0;
     bool depthAuto_ = false;

@@ -112,10 +112,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
         if (i == 0) connect(views_[i], &RenderView::painted, this, &MainWindow::framePainted);
         connect(views_[i], &RenderView::resized, this, [this] { exactTimer_.start(); });
     }
-    surfelView_ = new SurfelView(secondPane_);
-    surfelView_->setObjectName(QStringLiteral("surfelView"));
-    connectNavigation(surfelView_->input());
-    secondPane_->addWidget(surfelView_);
+    // The OpenGL surfel view is made when first shown (surfelView()): an OpenGL widget in a window
+    // makes Qt compose the whole window with OpenGL, which on a machine without a GPU (Mesa's
+    // llvmpipe) took about 45% of the studio's CPU time while orbiting in the CPU renderers' view.
     secondPane_->hide();
     // The 3-D views alone, or in the four-up layout with the slice panes.
     slices_ = new SliceViews(splitter, engine_, this);
@@ -1107,6 +1106,16 @@ void MainWindow::setSplit(bool on) {
 
 bool MainWindow::openGlPane() const { return state_.split && state_.secondRenderer == kOpenGlPane; }
 
+SurfelView* MainWindow::surfelView() {
+    if (!surfelView_) {
+        surfelView_ = new SurfelView(secondPane_);
+        surfelView_->setObjectName(QStringLiteral("surfelView"));
+        connectNavigation(surfelView_->input());
+        secondPane_->addWidget(surfelView_);
+    }
+    return surfelView_;
+}
+
 void MainWindow::updateSurfelView() {
     auto tree = engine_.tree();
     if (!tree || !openGlPane()) return;
@@ -1115,11 +1124,12 @@ void MainWindow::updateSurfelView() {
         surfels_ = std::make_shared<const std::vector<Surfel>>(extractSurfels(*tree, rs));
         surfelTree_ = tree;
         surfelSettings_ = rs;
-        surfelView_->setSurfels(surfels_);
+        surfelView()->setSurfels(surfels_);
     }
-    const qreal dpr = surfelView_->devicePixelRatioF();
-    surfelView_->setView(cameraFor(state_, tree->occupiedBounds(), engine_.view(), std::max(1, int(surfelView_->width() * dpr)),
-                                   std::max(1, int(surfelView_->height() * dpr))),
+    SurfelView* gl = surfelView();
+    const qreal dpr = gl->devicePixelRatioF();
+    gl->setView(cameraFor(state_, tree->occupiedBounds(), engine_.view(), std::max(1, int(gl->width() * dpr)),
+                          std::max(1, int(gl->height() * dpr))),
                          rs);
 }
 
@@ -1128,7 +1138,7 @@ void MainWindow::requestRender(bool preview) {
     FrameRequest r;
     r.renderers = {state_.renderer};
     if (state_.split && !openGlPane()) r.renderers.push_back(state_.secondRenderer);
-    secondPane_->setCurrentWidget(openGlPane() ? static_cast<QWidget*>(surfelView_) : views_[1]);
+    secondPane_->setCurrentWidget(openGlPane() ? static_cast<QWidget*>(surfelView()) : views_[1]);
     if (openGlPane()) updateSurfelView();
     r.camera = viewCamera();
     try {

@@ -70,7 +70,8 @@ public:
     const StudioState& state() const { return state_; }
     Engine& engine() { return engine_; }
     RenderView* view(int pane) const { return views_[pane]; }
-    SurfelView* surfelView() const { return surfelView_; }
+    /// The OpenGL pane, made on first use.
+    SurfelView* surfelView();
     /// The slice panes and the layout around the 3-D view (SliceViews.h).
     SliceViews* slices() const { return slices_; }
     /// The camera of pane views at their current size.

@@ -137,10 +137,11 @@ namespace {
 vec4 transparentBackground(const StudioState& state) { return vec4(vec3(state.background.value_or(vec4(1.0f))), 0.0f); }
 }  // namespace
 
-RenderSettings renderSettingsFor(const StudioState& state, bool transparent, const model::Surface& surface) {
+RenderSettings renderSettingsFor(const StudioState& state, bool transparent, const model::Surface& surface,
+                                 const model::BackgroundSource& background) {
     model::RenderSpec spec = renderSpec(state, 1, 1);
     if (transparent) spec.background = transparentBackground(state);
-    return model::renderSettings(surfaceArgs(state), surface, spec);
+    return model::renderSettings(surfaceArgs(state), surface, spec, background);
 }
 
 std::vector<std::string> inputArguments(const StudioState& state, std::string_view command) {

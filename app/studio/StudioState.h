@@ -150,7 +150,9 @@ model::SurfaceSpec surfaceArgs(const StudioState& state);
 /// octree's colours and values, its field's kind: what the default look reads), by the CLI's
 /// conversion of the same options (model::renderSettings); `transparent` makes the
 /// background's alpha 0 (white unless state.background is set).
-RenderSettings renderSettingsFor(const StudioState& state, bool transparent, const model::Surface& surface);
+/// `background`: where the contrasting background comes from (model::renderSettings).
+RenderSettings renderSettingsFor(const StudioState& state, bool transparent, const model::Surface& surface,
+                                 const model::BackgroundSource& background = {});
 
 /// The figure options of `state` (render --figure, --title, --dpi, --scale-bar).
 model::FigureSettings figureArgs(const StudioState& state);

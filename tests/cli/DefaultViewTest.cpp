@@ -5,9 +5,11 @@
 #include "CliRunner.h"
 
 #include "../io/ImageTestSupport.h"
+#include "octrace/model/Render.h"
 #include "octrace/model/Surface.h"
 
 #include <cmath>
+#include <functional>
 #include <regex>
 
 using namespace octrace::testcli;
@@ -307,4 +309,35 @@ TEST(DefaultIso, OtsuSplitsAnImageVolumesTwoClassesAndOceanFieldsKeepTheMiddle) 
     const auto [middle, said] = octrace::model::defaultIso(f, "ocean.nc");
     EXPECT_DOUBLE_EQ(middle, 500.0);
     EXPECT_NE(said.find("the middle of the range [0, 1000]"), std::string::npos) << said;
+}
+
+// The studio remembers the contrasting background per surface while these settings stay the
+// same (it is asked on every camera move): they must be every setting Albedo reads.
+TEST(DefaultView, SameColouringComparesEverySettingTheSurfacesColourReads) {
+    using namespace octrace;
+    const RenderSettings base;
+    EXPECT_TRUE(model::sameColouring(base, base));  // NaN colour range ends compare equal
+    RenderSettings other = base;
+    other.threads = 7;
+    other.tileSize = 3;
+    other.background = vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    other.surface = SurfaceMode::Smooth;
+    EXPECT_TRUE(model::sameColouring(base, other)) << "settings that do not colour the surface";
+    const std::vector<std::pair<const char*, std::function<void(RenderSettings&)>>> changes = {
+        {"colour", [](RenderSettings& s) { s.colour = vec3(0.1f); }},
+        {"colormap", [](RenderSettings& s) { s.colormap = "viridis"; }},
+        {"colourMin", [](RenderSettings& s) { s.colourMin = 1.0f; }},
+        {"colourMax", [](RenderSettings& s) { s.colourMax = 2.0f; }},
+        {"maskedColour", [](RenderSettings& s) { s.maskedColour = vec3(0.5f); }},
+        {"floorColour", [](RenderSettings& s) { s.floorColour = vec3(0.5f); }},
+        {"voxelColours", [](RenderSettings& s) { s.voxelColours = !s.voxelColours; }},
+        {"window centre", [](RenderSettings& s) { s.window.centre = 40.0; }},
+        {"window width", [](RenderSettings& s) { s.window.width = 400.0; }},
+        {"invertedGrey", [](RenderSettings& s) { s.invertedGrey = !s.invertedGrey; }},
+    };
+    for (const auto& [name, change] : changes) {
+        RenderSettings s = base;
+        change(s);
+        EXPECT_FALSE(model::sameColouring(base, s)) << name;
+    }
 }

@@ -16,6 +16,7 @@
 #include "octrace/util/Math.h"
 
 #include <optional>
+#include <functional>
 #include <string>
 
 namespace octrace::model {
@@ -80,12 +81,20 @@ Camera frameCamera(const RenderSpec& spec, const Box3& bounds, SceneView view = 
 /// larger contrast ratio (WCAG's (L1 + 0.05) / (L2 + 0.05)) with the mean relative luminance of
 /// the boundary voxels' albedo (Albedo, Shading.h). Linear RGBA, opaque.
 vec4 contrastingBackground(const Octree& tree, const RenderSettings& settings);
+/// Whether two settings colour a surface alike: the settings Albedo (Shading.h) reads, which are
+/// all contrastingBackground depends on besides the tree.
+bool sameColouring(const RenderSettings& a, const RenderSettings& b);
+/// Where renderSettings takes the contrasting background from: contrastingBackground, or a
+/// caller's memo of it (the studio asks on every camera move; the answer is a pass over every
+/// boundary voxel).
+using BackgroundSource = std::function<vec4(const Octree& tree, const RenderSettings& settings)>;
 
 /// The render settings of a surface built from `surfaceSpec` (its colours, display window and
 /// lighting: applyColour, applyLighting) drawn by `spec` (background, else the contrasting one; light, threads from the
 /// surface spec, coherence, detail, sphere shading). The renderer's alias is not applied here:
 /// renderFrame does it, so that one RenderSettings serves a main and a baseline renderer.
-RenderSettings renderSettings(const SurfaceSpec& surfaceSpec, const Surface& surface, const RenderSpec& spec);
+RenderSettings renderSettings(const SurfaceSpec& surfaceSpec, const Surface& surface, const RenderSpec& spec,
+                              const BackgroundSource& background = {});
 
 /// One frame of `tree` with the renderer named `renderer` (a name or an alias, whose setting is
 /// applied over `settings`). Throws UsageError for an unknown renderer or one that does not
