@@ -757,7 +757,8 @@ def write_md(results, info, have, failed):
     a("## Reading the numbers\n")
     a("* The programs do not draw the same representation. octrace ray-casts the boundary voxels (blocky "
       "at one voxel; with `--surface smooth` the trilinear interpolant of the field inside them); VTK rasterizes a smooth triangle mesh, whose cost grows with its triangles, and the "
-      "native mesh has a few thousand because the NetCDF grid is coarse; vdb_render ray-marches a narrow-band "
+      "native mesh of the ocean scenes has a few thousand because the NetCDF grid is coarse (the spheres' 192^3 samples give "
+      "half a million); vdb_render ray-marches a narrow-band "
       "level set with the same voxel size as octrace. Only the lattice rows are at octrace's resolution.")
     a("* llvmpipe is a CPU rasterizer: the same two cores do all the work in every row. On a GPU, VTK's "
       "frame time would be a small fraction of these numbers.")
