@@ -9,8 +9,14 @@ Install the peers (Debian bookworm packages, as root):
     apt-get install -y python3-numpy python3-netcdf4 python3-vtk9 xvfb python3-openvdb libopenvdb-tools \
                        libembree-dev zlib1g-dev g++
 
-Usage: bench/peers.py [--octrace PATH] [--data DIR] [--python /usr/bin/python3] [--depth 9]
-                      [--scenes levitus_T,levitus_S]
+Usage: bench/peers.py [--octrace PATH] [--data DIR] [--python /usr/bin/python3] [--depth D]
+                      [--scenes levitus_T,levitus_S,spheres]
+
+Scenes: bench/scenes/NAME.json, each at its deepest depth unless --depth is given. The ocean
+scenes (levitus_T, levitus_S; depth 9) read a NetCDF file of the data folder; `spheres` (issue
+23's scene of many spheres of different sizes: octrace's analytic field `spheres` on 192^3 samples,
+depth 8, at octrace's default framing) is an analytic input, whose samples the peers read from the
+NRRD that `octrace sample` writes (bench/peers/field.py).
 
 * octrace: `octrace render ... --renderer full --threads N --repeat 3 --stats` for N = 1, 2;
   render_ms = the fastest of the 3 renders (build excluded, reported separately). `full` draws
@@ -18,7 +24,7 @@ Usage: bench/peers.py [--octrace PATH] [--data DIR] [--python /usr/bin/python3] 
   `--surface smooth` (the field's trilinear interpolant, docs/dev/smooth-surfaces.md) is run too,
   and the default renderer `tile` in both surface modes (smooth is its default for fields).
 * VTK (python3-vtk9, xvfb): flying edges on the field, then VTK's OpenGL renderer on Mesa's
-  llvmpipe (a CPU rasterizer) under Xvfb; two fields: the NetCDF samples themselves ("native")
+  llvmpipe (a CPU rasterizer) under Xvfb; two fields: the file's samples themselves ("native")
   and the field octrace classifies, the trilinear field at the corners of its depth-N voxel
   lattice ("lattice"). Threads: vtkSMPTools and LP_NUM_THREADS = N. Render time = median of 7
   frames after the first, each ended by glFinish. bench/peers/vtk_peer.py, isomesh.py.
@@ -142,13 +148,50 @@ SURFACES = ("voxel", "smooth")
 NORMAL_LIGHTS = [(1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 1, 0), (1, 0, 1), (0, 1, 1)]
 
 
+def is_analytic(scene):
+    return scene["input"].startswith("analytic:")
+
+
+def scene_input(scene, data):
+    """octrace's INPUT for a scene: a file of the data folder, or an analytic field as it is."""
+    return scene["input"] if is_analytic(scene) else os.path.join(data, scene["input"])
+
+
+def scene_depth(args, scene):
+    """--depth if given, else the scene's deepest depth (bench/scenes/*.json "depths")."""
+    return args.depth if args.depth else max(scene["depths"])
+
+
+def write_analytic_nrrd(octrace, scene, tmp):
+    """The samples of an analytic scene (analytic:NAME[:N]) for the peers, written by `octrace sample`
+    as NRRD: the same float32 samples octrace generates for that input (default seed)."""
+    parts = scene["input"].split(":")
+    path = os.path.join(tmp, "%s.nrrd" % parts[1])
+    run([octrace, "sample", parts[1], "-o", path] + (["--samples", parts[2]] if len(parts) > 2 else []))
+    return path
+
+
 def octrace_cmd(octrace, scene, data, depth, threads, stats, png, surface="voxel", repeat=OCTRACE_REPEAT, extra=(),
                 renderer="full"):
-    return [octrace, "render", os.path.join(data, scene["input"]), "--var", scene["var"], "--iso", str(scene["iso"]),
-            "--region", scene["region"], "--depth", str(depth), "--size", scene["size"],
+    fieldopts = [x for key, opt in (("var", "--var"), ("region", "--region")) if key in scene for x in (opt, str(scene[key]))]
+    return [octrace, "render", scene_input(scene, data), *fieldopts, "--iso", str(scene["iso"]),
+            "--depth", str(depth), "--size", scene["size"],
             "--camera-pos", scene["camera_pos"], "--look-at", scene["look_at"], "--up", scene["up"],
             "--fov", str(scene["fov"]), "--renderer", renderer, "--surface", surface, "--threads", str(threads),
             "--repeat", str(repeat), "--stats", stats, "-o", png, "--quiet", *extra]
+
+
+def native_label(scene):
+    """What the peers' "native" rows mesh: the file's own samples."""
+    if is_analytic(scene):
+        parts = scene["input"].split(":")
+        return "the field's %s^3 samples" % (parts[2] if len(parts) > 2 else "65")
+    return "NetCDF samples"
+
+
+def km(scene):
+    """The world unit of a scene's numbers: km for the ocean scenes, none for an analytic field."""
+    return "" if is_analytic(scene) else " km"
 
 
 def hfov_for_vdb(vfov_deg, width, height):
@@ -234,7 +277,7 @@ def run_normals(args, scene_name, scene, spec, sr, outdir, tmp):
         exrs[surface] = []
         for k, light in enumerate(NORMAL_LIGHTS):
             exr = os.path.join(tmp, "%s_normals_%s_%d.exr" % (scene_name, surface, k))
-            run(octrace_cmd(args.octrace, scene, args.data, args.depth, 2, exr + ".json", exr, surface, 1,
+            run(octrace_cmd(args.octrace, scene, args.data, scene_depth(args, scene), 2, exr + ".json", exr, surface, 1,
                             ("--ambient", "0", "--colour", "1,1,1", "--light", ",".join(map(str, light)))))
             exrs[surface].append(exr)
     pngs = {}
@@ -316,8 +359,8 @@ def main():
     ap.add_argument("--octrace", default=os.path.join(ROOT, "build", "app", "octrace"))
     ap.add_argument("--data", default=os.path.normpath(os.path.join(ROOT, "..", "shared", "data")))
     ap.add_argument("--python", default="/usr/bin/python3")
-    ap.add_argument("--depth", type=int, default=9)
-    ap.add_argument("--scenes", default="levitus_T,levitus_S")
+    ap.add_argument("--depth", type=int, default=None, help="octree depth of every scene (default: each scene's deepest)")
+    ap.add_argument("--scenes", default="levitus_T,levitus_S,spheres")
     args = ap.parse_args()
     t_start = time.perf_counter()
     load_start = list(os.getloadavg())
@@ -342,8 +385,8 @@ def main():
         with open(os.path.join(ROOT, "bench", "scenes", scene_name + ".json")) as f:
             scene = json.load(f)
         w, h = [int(v) for v in scene["size"].split("x")]
-        input_path = os.path.join(args.data, scene["input"])
-        if not os.path.exists(input_path):
+        input_path = scene_input(scene, args.data)
+        if not is_analytic(scene) and not os.path.exists(input_path):
             sys.exit("peers: %s not found (the scenes need ../shared/data)" % input_path)
         sr = {"name": scene_name, "scene": scene, "runs": {}, "notes": []}
         results.append(sr)
@@ -355,7 +398,7 @@ def main():
             key = "octrace" if surface == "voxel" else "octrace_smooth"
             for n in THREADS:
                 stats = os.path.join(outdir, "%s_%s_threads%d.json" % (scene_name, key, n))
-                p, wall = run(octrace_cmd(args.octrace, scene, args.data, args.depth, n, stats, oct_png[surface], surface))
+                p, wall = run(octrace_cmd(args.octrace, scene, args.data, scene_depth(args, scene), n, stats, oct_png[surface], surface))
                 with open(stats) as f:
                     s = json.load(f)
                 sr["runs"]["%s_threads%d" % (key, n)] = s
@@ -366,7 +409,7 @@ def main():
             key = "octrace_tile" if surface == "voxel" else "octrace_tile_smooth"
             for n in THREADS:
                 stats = os.path.join(outdir, "%s_%s_threads%d.json" % (scene_name, key, n))
-                run(octrace_cmd(args.octrace, scene, args.data, args.depth, n, stats, os.path.join(tmp, "tile.png"), surface,
+                run(octrace_cmd(args.octrace, scene, args.data, scene_depth(args, scene), n, stats, os.path.join(tmp, "tile.png"), surface,
                                 renderer="tile"))
                 with open(stats) as f:
                     sr["runs"]["%s_threads%d" % (key, n)] = json.load(f)
@@ -376,9 +419,12 @@ def main():
         m = re.search(r"vertical scale ([0-9.eE+-]+)", s1.get("geographic", ""))
         octrace_vscale = float(m.group(1)) if m else None
 
-        spec = {"input": input_path, "var": scene["var"], "iso": scene["iso"], "region": scene["region"],
-                "depth": args.depth, "size": scene["size"], "camera_pos": scene["camera_pos"],
+        spec = {"iso": scene["iso"], "depth": scene_depth(args, scene), "size": scene["size"], "camera_pos": scene["camera_pos"],
                 "look_at": scene["look_at"], "up": scene["up"], "fov": scene["fov"], "frames": VTK_FRAMES}
+        if is_analytic(scene):
+            spec.update(input=write_analytic_nrrd(args.octrace, scene, tmp), format="nrrd")
+        else:
+            spec.update(input=input_path, format="netcdf", var=scene["var"], region=scene["region"])
         images = {"octrace": {"png": oct_png["voxel"], "background": [255, 255, 255]},
                   "octrace_smooth": {"png": oct_png["smooth"], "background": [255, 255, 255]}}
 
@@ -408,8 +454,8 @@ def main():
 
         # ---- images: thumbnails and mask comparison (need VTK's PNG reader/writer) ----
         if have["vtk"][0] or have["openvdb"][0] or have["embree"][0]:
-            job = {"reference": "octrace", "images": images, "thumb_dir": outdir, "prefix": scene_name,
-                   "thumb_width": 480}
+            job = {"reference": "octrace", "also_against": ["octrace_smooth"], "images": images, "thumb_dir": outdir,
+                   "prefix": scene_name, "thumb_width": 480}
             img_json = os.path.join(outdir, "%s_images.json" % scene_name)
             im = run_helper(args, tmp, "images.py", job, img_json)
             for v in im["images"].values():  # relative paths in the committed JSON
@@ -436,7 +482,8 @@ def main():
     run_info = {"date_utc": datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M"), "octrace": octrace_version,
                 "cpu": cpu, "cores": os.cpu_count(), "platform": platform.platform(), "peers": {
                     k: {"ran": ok, "detail": why} for k, (ok, why) in have.items()}, "versions": versions,
-                "total_seconds": total_s, "depth": args.depth, "apt": APT,
+                "total_seconds": total_s, "depth": args.depth, "scene_depths": {sr["name"]: sr["runs"]["octrace_threads1"]["depth"] for sr in results},
+                "apt": APT,
                 "loadavg_start": load_start, "loadavg_end": list(os.getloadavg()),
                 "octrace_binary": os.path.relpath(args.octrace, ROOT), "octrace_sha256": octrace_sha256,
                 "failed": failed}
@@ -472,16 +519,22 @@ def write_md(results, info, have, failed):
     a("**Ratio** = peer time / octrace time on the same scene and thread count (above 1: octrace is")
     a("faster). Render times exclude loading and preparing; preparation is shown beside them:")
     a("octrace's octree build, VTK's isosurface extraction, OpenVDB's mesh-to-level-set conversion.\n")
+    write_summary_md(a, results)
 
     for sr in results:
         sc = sr["scene"]
         R = sr["runs"]
         o1, o2 = R["octrace_threads1"], R["octrace_threads2"]
-        a("## %s: %s %s isosurface, %s\n" % (sr["name"], sc["var"], sc["iso"], sc["size"]))
-        a("`%s`, region %s, octrace depth %d (%s boundary voxels of %.2f km), camera `--camera-pos %s --look-at %s "
+        if is_analytic(sc):
+            a("## %s: %s, iso %s of `%s`, %s\n" % (sr["name"], sc["name"], sc["iso"], sc["input"], sc["size"]))
+        else:
+            a("## %s: %s %s isosurface, %s\n" % (sr["name"], sc["var"], sc["iso"], sc["size"]))
+        if sc.get("description") and is_analytic(sc):
+            a(sc["description"] + "\n")
+        a("`%s`%s, octrace depth %d (%s boundary voxels of %.4g%s), camera `--camera-pos %s --look-at %s "
           "--up %s --fov %s` (vertical), %s pixels, of which %s rays meet octrace's scene cube.\n" % (
-              sc["input"], sc["region"], o1["depth"], format(o1["boundary_voxels"], ","),
-              o1["cube_side"] / (1 << o1["depth"]), sc["camera_pos"], sc["look_at"], sc["up"], sc["fov"],
+              sc["input"], (", region " + sc["region"]) if "region" in sc else "", o1["depth"], format(o1["boundary_voxels"], ","),
+              o1["cube_side"] / (1 << o1["depth"]), km(sc), sc["camera_pos"], sc["look_at"], sc["up"], sc["fov"],
               format(o1["pixels"], ","), format(o1["rays"], ",")))
         a("| program | surface drawn | threads | preparation ms | render ms | render ratio | prep + render ratio |")
         a("|---|---|---|---|---|---|---|")
@@ -509,7 +562,7 @@ def write_md(results, info, have, failed):
                     a("| %s | %s | %d | %s (build) | %s | %s | %s |" % (
                         label, drawn, n, fmt_ms(r["build_ms"]), fmt_ms(r["render_ms"]), fmt_ratio(r["render_ms"] / o["render_ms"]),
                         fmt_ratio((r["build_ms"] + r["render_ms"]) / (o["build_ms"] + o["render_ms"]))))
-        for grid, label in (("native", "NetCDF samples"), ("lattice", "octrace's depth-%d lattice" % o1["depth"])):
+        for grid, label in (("native", native_label(sc)), ("lattice", "octrace's depth-%d lattice" % o1["depth"])):
             for n in THREADS:
                 r = R.get("vtk_%s_threads%d" % (grid, n))
                 if not r:
@@ -525,8 +578,8 @@ def write_md(results, info, have, failed):
             if not r:
                 continue
             o = oct_by_n[n]
-            a("| OpenVDB `vdb_render` | level set, %s active voxels of %.2f km (from the lattice mesh) | %d | %s (level set%s) | %s | %s | %s |" % (
-                format(ls["active_voxels"], ","), ls["voxel_size_km"], n, fmt_ms(ls["levelset_ms"]),
+            a("| OpenVDB `vdb_render` | level set, %s active voxels of %.4g%s (from the lattice mesh) | %d | %s (level set%s) | %s | %s | %s |" % (
+                format(ls["active_voxels"], ","), ls["voxel_size_km"], km(sc), n, fmt_ms(ls["levelset_ms"]),
                 "" if ls.get("cpus") == n else ", every CPU",
                 fmt_ms(r["render_ms"]), fmt_ratio(r["render_ms"] / o["render_ms"]),
                 fmt_ratio((ls["levelset_ms"] + r["render_ms"]) / (o["build_ms"] + o["render_ms"]))))
@@ -567,7 +620,8 @@ def write_md(results, info, have, failed):
         for n in THREADS:
             r = R.get("vtk_lattice_threads%d" % n)
             if r:
-                extra.append("reading the NetCDF region and resampling it to octrace's lattice in numpy (bench/peers/field.py, "
+                extra.append("reading the %s and resampling it to octrace's lattice in numpy (bench/peers/field.py, " % (
+                    "NRRD of `octrace sample`" if is_analytic(sc) else "NetCDF region") +
                              "not counted for any program), %d thread%s: %s ms" % (n, "" if n == 1 else "s", fmt_ms(r["load_ms"])))
                 break
         if extra:
@@ -578,12 +632,14 @@ def write_md(results, info, have, failed):
         fc = sr.get("field_check")
         if fc:
             same = fc["octrace_boundary_voxels"] == fc["peer_lattice_boundary_cells"]
+            vs = ("Vertical scale: peers %.6f, octrace `%s`; " % (fc["peer_vertical_scale"], fc["octrace_vertical_scale"])
+                  if fc["peer_vertical_scale"] is not None else "")
             a("Same field? The peers' reader, mapping and lattice resampling (bench/peers/field.py) find %s cells "
               "on octrace's depth-%d lattice that straddle the iso value with 8 valid corners; octrace reports %s "
-              "boundary voxels (%s). Vertical scale: peers %.6f, octrace `%s`; scene cube: peers origin (%s) side %.6f, "
+              "boundary voxels (%s). %sscene cube: peers origin (%s) side %.6f, "
               "octrace (%s) side %.6f.\n" % (
                   format(fc["peer_lattice_boundary_cells"], ","), o1["depth"], format(fc["octrace_boundary_voxels"], ","),
-                  "identical" if same else "**they differ**", fc["peer_vertical_scale"], fc["octrace_vertical_scale"],
+                  "identical" if same else "**they differ**", vs,
                   ", ".join("%.6f" % v for v in fc["peer_cube_origin"]), fc["peer_cube_side"], fc["octrace_cube_origin"],
                   fc["octrace_cube_side"]))
         if sr.get("octrace_full_png"):
@@ -592,14 +648,16 @@ def write_md(results, info, have, failed):
         if im:
             names = [k for k in ("octrace", "octrace_smooth", "vtk_native", "vtk_lattice", "openvdb", "embree") if k in im["images"]]
             titles = {"octrace": "octrace (full, depth %d)" % o1["depth"],
-                      "octrace_smooth": "octrace (full --surface smooth)", "vtk_native": "VTK, NetCDF samples",
+                      "octrace_smooth": "octrace (full --surface smooth)", "vtk_native": "VTK, " + native_label(sc),
                       "vtk_lattice": "VTK, octrace's lattice", "openvdb": "OpenVDB vdb_render",
                       "embree": "Embree, octrace's lattice"}
             x0, y0, x1, y1 = im["crop"]
             a("Images (each program's own %dx%d frame, all cropped to the same window x %d..%d, y %d..%d and scaled "
               "down; vdb_render's black background shown white). Second row: where each peer's surface covers the "
               "same pixels as octrace's (grey), only octrace's (red), only the peer's (blue); *agreement* = "
-              "pixels both cover / pixels either covers.\n" % (im["images"]["octrace"]["width"],
+              "pixels both cover / pixels either covers; after it the same against octrace's smooth surface, the trilinear "
+              "interpolant the peers' lattice meshes approximate, where octrace's voxel image draws the voxels' boxes, "
+              "which stand out of a curved surface by up to a voxel.\n" % (im["images"]["octrace"]["width"],
                                                                  im["images"]["octrace"]["height"], x0, x1, y0, y1))
             a("| " + " | ".join(titles[k] for k in names) + " |")
             a("|" + "---|" * len(names))
@@ -615,29 +673,38 @@ def write_md(results, info, have, failed):
                         k, e["maskdiff"], v["agreement"], format(v["only_reference"], ","), format(v["only_this"], ",")))
                 else:
                     v = e["vs_reference"]
-                    cells.append("![%s mask difference](peers/%s)<br>agreement %.3f (%s only octrace, %s only peer)" % (
-                        k, e["maskdiff"], v["agreement"], format(v["only_reference"], ","), format(v["only_this"], ",")))
+                    vs = e.get("vs_octrace_smooth")
+                    cells.append("![%s mask difference](peers/%s)<br>agreement %.3f (%s only octrace, %s only peer)%s" % (
+                        k, e["maskdiff"], v["agreement"], format(v["only_reference"], ","), format(v["only_this"], ","),
+                        "; with octrace smooth %.3f (%s only octrace, %s only peer)" % (
+                            vs["agreement"], format(vs["only_reference"], ","), format(vs["only_this"], ",")) if vs else ""))
             a("| " + " | ".join(cells) + " |")
             a("")
         nm = sr.get("normals")
         if nm:
-            write_normals_md(a, nm)
+            write_normals_md(a, nm, sc)
 
     a("## How each program was driven\n")
-    a("* **octrace**: `octrace render INPUT --var V --iso I --region R --depth 9 --size 1600x1200 --camera-pos ... "
+    a("* **octrace**: `octrace render INPUT [--var V --region R] --iso I --depth D --size 1600x1200 --camera-pos ... "
       "--look-at ... --up ... --fov ... --renderer full --threads N --repeat %d --stats F.json`; *render* = "
       "`render_ms`, the fastest of the %d renders in the process; *preparation* = `build_ms` (octree build from "
       "the field). The same with `--renderer tile` (the default renderer, exact: its hits are `full`'s) in "
       "both surface modes." % (OCTRACE_REPEAT, OCTRACE_REPEAT))
-    a("* **Field for the peers** (`bench/peers/field.py`): the NetCDF variable read with `netCDF4`, "
+    a("* **Depth** D: each scene's deepest depth of `bench/scenes/*.json` (`--depth` sets one for all).")
+    a("* **Field for the peers, ocean scenes** (`bench/peers/field.py`): the NetCDF variable read with `netCDF4`, "
       "`missing_value`/`_FillValue` masked, the region selected and mapped as octrace does (ARCHITECTURE.md, "
       "Coordinates): km, x = R (lon - lon0) cos(lat0), y = R (lat - lat0), z = -depth_km x vertical scale, "
       "R = 6371, (lon0, lat0) = the region's centre, vertical scale by octrace's default rule (a quarter of the "
       "larger horizontal extent over the depth range), checked above against the scale octrace states in "
       "`--stats` (`geographic`). *Native* = the NetCDF samples as they are (1 degree x 1 degree x 20 uneven "
       "levels: the peers' own resolution, much coarser than octrace's voxels). *Lattice* = the trilinear "
-      "field at the corners of octrace's depth-9 voxel lattice over its scene cube, computed the way octrace's "
+      "field at the corners of octrace's depth-D voxel lattice over its scene cube, computed the way octrace's "
       "builder computes it; a corner is masked when any sample its stencil uses is masked.")
+    a("* **Field for the peers, analytic scenes** (`analytic:NAME:N`): `octrace sample NAME --samples N` writes the "
+      "N^3 float32 samples octrace generates for that input as NRRD; field.py reads them (origin and spacing from "
+      "the header, uniform axes). *Native* = those samples; *lattice* = the trilinear field at the corners of the "
+      "depth-D lattice, as above (a uniform axis located by dividing by the spacing, as octrace's FieldSampler "
+      "does). The count of straddling cells checks it against octrace's boundary voxels.")
     a("* **Masked samples** (land, sea floor): octrace never forms a surface in a cell with a masked corner. For "
       "flying edges the masked samples are set to iso - (value range) - 1, and afterwards every triangle whose "
       "cell has a masked corner is removed (its cell found from its centroid in index space), so the walls the "
@@ -666,6 +733,7 @@ def write_md(results, info, have, failed):
       "find. So `vdb_render` draws the iso-value one voxel (`-isovalue`): a closed shell two voxels thick "
       "around the sheet, which from the camera looks like the sheet (octrace's boundary voxels are one voxel "
       "thick). Half a voxel leaves dark seams where the intersector's linear search steps over the thin shell. "
+      "A closed surface (the spheres) comes out signed, and its zero is drawn (`-isovalue 0`). "
       "pyopenvdb has no thread setting and TBB sizes its pool from the CPU affinity mask, so the level set is "
       "built twice: pinned to one CPU with `taskset -c 0` for the 1-thread rows, unpinned for the 2-thread rows.")
     hf = first(results, "openvdb_threads1", "hfov_deg")
@@ -689,7 +757,8 @@ def write_md(results, info, have, failed):
     a("## Reading the numbers\n")
     a("* The programs do not draw the same representation. octrace ray-casts the boundary voxels (blocky "
       "at one voxel; with `--surface smooth` the trilinear interpolant of the field inside them); VTK rasterizes a smooth triangle mesh, whose cost grows with its triangles, and the "
-      "native mesh has a few thousand because the NetCDF grid is coarse; vdb_render ray-marches a narrow-band "
+      "native mesh of the ocean scenes has a few thousand because the NetCDF grid is coarse (the spheres' 192^3 samples give "
+      "half a million); vdb_render ray-marches a narrow-band "
       "level set with the same voxel size as octrace. Only the lattice rows are at octrace's resolution.")
     a("* llvmpipe is a CPU rasterizer: the same two cores do all the work in every row. On a GPU, VTK's "
       "frame time would be a small fraction of these numbers.")
@@ -700,11 +769,38 @@ def write_md(results, info, have, failed):
         f.write("\n".join(L) + "\n")
 
 
-def write_normals_md(a, nm):
+def write_summary_md(a, results):
+    """Issue 23's peers targets, one row per scene and thread count: the default renderer `tile`
+    (voxel and smooth surfaces) at least 2x faster than VTK on octrace's lattice mesh, and faster
+    than Embree on the same mesh."""
+    a("Issue 23's targets: octrace's default renderer (`tile`, either surface) at least 2x faster than VTK + "
+      "llvmpipe drawing the lattice mesh (ratio VTK / tile >= 2) and faster than Embree tracing it (Embree / tile "
+      "> 1). Render ms of this run:\n")
+    a("| scene | threads | `full` | `tile` | `tile` smooth | VTK lattice | Embree | VTK / `tile` | VTK / `tile` smooth "
+      "| Embree / `tile` | Embree / `tile` smooth |")
+    a("|---|---|---|---|---|---|---|---|---|---|---|")
+
+    def ms(r):
+        return fmt_ms(r["render_ms"]) if r else "-"
+
+    def ratio(peer, octrace):
+        return fmt_ratio(peer["render_ms"] / octrace["render_ms"]) if peer and octrace else "-"
+
+    for sr in results:
+        R = sr["runs"]
+        for n in THREADS:
+            f, t, ts = (R.get("%s_threads%d" % (k, n)) for k in ("octrace", "octrace_tile", "octrace_tile_smooth"))
+            v, e = R.get("vtk_lattice_threads%d" % n), R.get("embree_threads%d" % n)
+            a("| %s | %d | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+                sr["name"], n, ms(f), ms(t), ms(ts), ms(v), ms(e), ratio(v, t), ratio(v, ts), ratio(e, t), ratio(e, ts)))
+    a("")
+
+
+def write_normals_md(a, nm, scene):
     """The normals step's table and images (bench/peers/normals.py)."""
     grids = [g for g in ("native", "lattice") if "vtk_" + g in nm["maps"]]
     modes = [m for m in SURFACES if "octrace_" + m in nm["maps"]]
-    glabel = {"native": "VTK, NetCDF samples", "lattice": "VTK, octrace's lattice"}
+    glabel = {"native": "VTK, " + native_label(scene), "lattice": "VTK, octrace's lattice"}
     a("Normals: the angle between the normal octrace shades a pixel with and the one VTK shades it with (its "
       "flying-edges mesh's point normals, interpolated per pixel as Phong shading does), over the pixels both draw "
       "as surface, in degrees: mean (median, 90th percentile) and the pixels compared. `voxel`: the boundary "

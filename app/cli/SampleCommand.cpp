@@ -23,7 +23,7 @@ int runSample(const std::vector<std::string>& args) {
     auto pos = p.parse(args);
     if (help) {
         std::fputs(p.help().c_str(), stdout);
-        std::fputs("\nNAME: sphere (iso 0 = sphere of radius 0.7), torus, gyroid, noise\n", stdout);
+        std::fputs(("\nNAME: " + analyticFieldList() + " (iso 0 of each; sphere: radius 0.7; spheres: 60 of radii 0.04 to 0.3)\n").c_str(), stdout);
         return 0;
     }
     if (pos.size() != 1) throw UsageError("sample needs exactly one NAME");

@@ -27,7 +27,7 @@ const char* kTopHelp =
     "  slice INPUT -o OUT    an axial, coronal, sagittal or x/y/z slice of a field, greyed by a window or coloured (.png, .exr, .tif)\n"
     "  animate INPUT -o OUT  one surface per time step of a field, rendered as an MP4 video (.mp4)\n"
     "  info INPUT...         describe inputs: format, variables, units, value ranges, grid, bounds\n"
-    "  sample NAME -o OUT    write an analytic sample field (sphere, torus, gyroid, noise) as NRRD\n"
+    "  sample NAME -o OUT    write an analytic sample field (sphere, torus, gyroid, noise, spheres) as NRRD\n"
     "  options               every setting: flag, range, default, session member, studio control\n"
     "\n"
     "INPUT is a NetCDF file (.nc, .cdf), a Zarr v2 store (its folder), a NRRD file (.nrrd, .nhdr), a DICOM\n"

@@ -19,6 +19,7 @@
 #include "octrace/io/ImageWriter.h"
 #include "octrace/render/ImageCompare.h"
 #include "octrace/render/Renderer.h"
+#include "octrace/build/AnalyticField.h"
 #include "octrace/build/CtPresets.h"
 #include "octrace/render/Shading.h"
 #include "octrace/util/Log.h"
@@ -264,8 +265,9 @@ void MainWindow::buildMenus() {
     open->setShortcut(QKeySequence::Open);
     file->addAction(tr("Open &Analytic Field..."), this, [this] {
         bool ok = false;
-        const QString name = QInputDialog::getItem(this, tr("Analytic field"), tr("Field:"),
-                                                   {"sphere", "torus", "gyroid", "noise"}, 0, false, &ok);
+        QStringList names;
+        for (const std::string& n : analyticFieldNames()) names << QString::fromStdString(n);
+        const QString name = QInputDialog::getItem(this, tr("Analytic field"), tr("Field:"), names, 0, false, &ok);
         if (ok) openInput(QStringLiteral("analytic:%1").arg(name));
     });
     recentMenu_ = file->addMenu(tr("Open &Recent"));

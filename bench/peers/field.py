@@ -1,5 +1,9 @@
 """The scene's scalar field for the peer renderers, in octrace's world coordinates.
 
+Two sources: a NetCDF variable over a longitude/latitude region (`load`, the ocean scenes) or a
+NRRD file written by `octrace sample NAME --samples N` (`load_nrrd`, the analytic scenes: the
+samples octrace generates for the input `analytic:NAME:N`, float32, so the same numbers).
+
 Reads the NetCDF variable with the `netCDF4` module (Debian `python3-netcdf4`) and maps it the
 way octrace's reader does (io/src/netcdf/GeoGrid.cpp, contract in ARCHITECTURE.md "Coordinates"):
 kilometres, x = R (lon - lon0) cos(lat0), y = R (lat - lat0), z = -depth_km * vertical_scale,
@@ -67,6 +71,44 @@ def load(path, var, region, vertical_scale=None):
                 vertical_scale=vertical_scale, lons=u[xsel], lats=lat[ysel], depths_m=depth_km[zsel] * 1000.0)
 
 
+def load_nrrd(path):
+    """The NRRD files octrace writes (io/src/nrrd/NrrdWriter.cpp): float, raw, little endian, axes
+    along x, y, z (diagonal space directions). Returns the same dict as load() with uniform axes
+    (origin + i * spacing, as ScalarField::worldFromGrid) and `origin`, `spacing` for lattice()."""
+    with open(path, "rb") as f:
+        data = f.read()
+    end = data.index(b"\n\n")
+    head = {}
+    for line in data[:end].decode("utf-8").splitlines()[1:]:
+        if line.startswith("#") or ":" not in line:
+            continue
+        k, v = line.split(":", 1)
+        head[k.strip()] = v.lstrip("=").strip()
+    if head.get("type") != "float" or head.get("encoding") != "raw" or head.get("endian", "little") != "little":
+        raise ValueError("%s: not a raw little-endian float NRRD" % path)
+    dims = [int(v) for v in head["sizes"].split()]
+    dirs = [[float(c) for c in t.strip("()").split(",")] for t in head["space directions"].replace(") (", ")|(").split("|")]
+    spacing = []
+    for a in range(3):
+        if any(dirs[a][b] != 0.0 for b in range(3) if b != a) or not dirs[a][a] > 0:
+            raise ValueError("%s: only axis-aligned, increasing grids are read here" % path)
+        spacing.append(dirs[a][a])
+    origin = [float(c) for c in head["space origin"].strip("()").split(",")]
+    n = dims[0] * dims[1] * dims[2]
+    values = np.frombuffer(data[end + 2:end + 2 + 4 * n], dtype="<f4").astype(np.float32).reshape(dims[2], dims[1], dims[0])
+    values = values.copy()
+    values[~np.isfinite(values)] = np.nan
+    x, y, z = [origin[a] + np.arange(dims[a]) * spacing[a] for a in range(3)]
+    return dict(x=x, y=y, z=z, values=np.ascontiguousarray(values), origin=origin, spacing=spacing, vertical_scale=None)
+
+
+def load_spec(spec):
+    """The field a peer spec names: "format" "nrrd" (load_nrrd) or NetCDF (load, with var and region)."""
+    if spec.get("format") == "nrrd":
+        return load_nrrd(spec["input"])
+    return load(spec["input"], spec["var"], [float(v) for v in str(spec["region"]).split(",")], spec.get("vertical_scale"))
+
+
 def cube(field):
     """octrace's scene cube (core/src/build/OctreeBuilder.cpp): centred on the grid's world bounds, side
     = the largest extent. Returns (origin[3], side)."""
@@ -76,14 +118,19 @@ def cube(field):
     return [0.5 * (l + h) - 0.5 * side for l, h in zip(lo, hi)], side
 
 
-def _locate(coords, w):
+def _locate(coords, w, uniform=None):
     """octrace's FieldSampler::locate for the positions w along an increasing axis:
-    (inside, i0, i1, t)."""
+    (inside, i0, i1, t). uniform = (origin, spacing) for a uniform axis (octrace keeps no
+    coordinates then and divides by the spacing), None for a rectilinear one."""
     n = len(coords)
-    span = coords[-1] - coords[0]
-    inside = (w >= coords[0] - 1e-9 * span) & (w <= coords[-1] + 1e-9 * span)
-    i = np.clip(np.searchsorted(coords, w, side="right") - 1, 0, n - 2)
-    idx = i + (w - coords[i]) / (coords[i + 1] - coords[i])
+    if uniform is not None:
+        idx = (w - uniform[0]) / uniform[1]
+        inside = np.ones(len(w), dtype=bool)
+    else:
+        span = coords[-1] - coords[0]
+        inside = (w >= coords[0] - 1e-9 * span) & (w <= coords[-1] + 1e-9 * span)
+        i = np.clip(np.searchsorted(coords, w, side="right") - 1, 0, n - 2)
+        idx = i + (w - coords[i]) / (coords[i + 1] - coords[i])
     inside &= (idx >= -1e-7) & (idx <= (n - 1) + 1e-7)
     idx = np.clip(idx, 0.0, n - 1)
     i0 = np.minimum(np.floor(idx).astype(np.int64), n - 1)
@@ -113,7 +160,8 @@ def lattice(field, cube_origin, cube_side, depth):
     sel = []
     for a in range(3):
         w = cube_origin[a] + np.arange(n) * h
-        inside, i0, i1, t = _locate(axes[a], w)
+        uniform = (field["origin"][a], field["spacing"][a]) if "spacing" in field else None
+        inside, i0, i1, t = _locate(axes[a], w, uniform)
         keep = np.nonzero(inside)[0]
         sel.append((keep[0], i0[keep], i1[keep], t[keep]))
     v = field["values"]  # [z, y, x]

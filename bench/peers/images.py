@@ -11,6 +11,9 @@ the reference image (octrace's): pixels hit by both, by only one, and the agreem
 foreground boxes, padded by 2 %) and scaled to thumb_width, background shown white, so that
 they can be compared with each other; plus, for each non-reference image, a mask difference
 (grey = both hit, red = only the reference, blue = only this peer).
+With "also_against": [NAME, ...] in JOB, every other image is compared with those too
+(`vs_NAME`, the same counts; bench/peers.py: octrace's smooth surface, which draws the trilinear
+interpolant the peers' lattice meshes approximate, where the voxel image draws the voxels' boxes).
 """
 import json
 import os
@@ -51,6 +54,14 @@ def write_png(path, rgb, width):
     wr.Write()
 
 
+def compare(m, ref):
+    """Pixels of the masks m and ref: both, only ref, only m, agreement = both / either."""
+    both = int((m & ref).sum())
+    either = int((m | ref).sum())
+    return {"both": both, "only_reference": int((ref & ~m).sum()), "only_this": int((m & ~ref).sum()),
+            "agreement": both / either if either else 1.0}
+
+
 def main():
     job_path, out_json = sys.argv[1:3]
     with open(job_path) as f:
@@ -72,11 +83,10 @@ def main():
             entry["foreground_box"] = [int(xs.min()), int(ys.min()), int(xs.max()), int(ys.max())]
             boxes.append(entry["foreground_box"])
         if name != ref and m.shape == masks[ref].shape:
-            both = int((m & masks[ref]).sum())
-            either = int((m | masks[ref]).sum())
-            entry["vs_reference"] = {"both": both, "only_reference": int((masks[ref] & ~m).sum()),
-                                     "only_this": int((m & ~masks[ref]).sum()),
-                                     "agreement": both / either if either else 1.0}
+            entry["vs_reference"] = compare(m, masks[ref])
+        for other in job.get("also_against", []):
+            if other in masks and name not in (ref, other) and m.shape == masks[other].shape:
+                entry["vs_" + other] = compare(m, masks[other])
         out["images"][name] = entry
     H, W = masks[ref].shape
     if boxes:

@@ -2,7 +2,8 @@
 
 Used by vtk_peer.py (which draws it) and vdb_peer.py (which turns it into a level set).
 
-grid "native": the NetCDF samples themselves (60 x 50 x 20 for the Levitus scenes). x and y are
+grid "native": the field's samples themselves (60 x 50 x 20 for the Levitus scenes, the NRRD's
+samples for an analytic scene: uniform, so the depth mapping below is the identity). x and y are
 uniform in km but depth is not, and vtkFlyingEdges3D takes only vtkImageData (uniform spacing),
 so flying edges runs in index space for depth (k = level number) and every vertex's z is then
 mapped through the level depths, piecewise linearly. Marching-cubes vertices lie on cell edges
@@ -42,7 +43,7 @@ def extract(spec):
 
     info = {"grid": spec["grid"]}
     t0 = time.perf_counter()
-    fld = fieldmod.load(spec["input"], spec["var"], vec(spec["region"]), spec.get("vertical_scale"))
+    fld = fieldmod.load_spec(spec)
     iso = float(spec["iso"])
     if spec["grid"] == "native":
         vals = fld["values"]
@@ -70,7 +71,7 @@ def extract(spec):
             return np.column_stack((origin[0] + p[:, 0] * h, origin[1] + p[:, 1] * h, origin[2] + p[:, 2] * h))
     info["grid_dims"] = [nx, ny, nz]
     info["vertical_scale"] = fld["vertical_scale"]
-    info["lon0"], info["lat0"] = fld["lon0"], fld["lat0"]
+    info["lon0"], info["lat0"] = fld.get("lon0"), fld.get("lat0")
     info["load_ms"] = (time.perf_counter() - t0) * 1e3
 
     masked = np.isnan(vals)

@@ -17,6 +17,10 @@ sign change for a ray tracer to find, so vdb_render is asked for the iso-value e
 which from the camera looks like the sheet (octrace's boundary voxels are one voxel thick).
 Half a voxel was tried: rays then step over the thin shell between two samples of the
 intersector's linear search and leave dark seams.
+A closed mesh (every edge shared by exactly two triangles: the spheres scene, whose balls all lie
+inside the grid) comes out signed, negative inside; then the level set's own zero is drawn
+(`isovalue` 0, `shell_voxels` 0). An open sheet can come out partly signed (some of Levitus S's
+values are negative), so the mesh's edges decide, not the values.
 """
 import json
 import os
@@ -29,6 +33,15 @@ import isomesh  # noqa: E402
 
 HALF_WIDTH = 4.0
 SHELL_VOXELS = 1.0
+
+
+def closed_mesh(tris):
+    """Whether every edge of the triangles is shared by exactly two of them."""
+    import numpy as np
+    e = np.concatenate([tris[:, [0, 1]], tris[:, [1, 2]], tris[:, [2, 0]]])
+    e.sort(axis=1)
+    _, counts = np.unique(e[:, 0].astype(np.int64) * (int(tris.max()) + 1) + e[:, 1], return_counts=True)
+    return bool(len(counts)) and bool(np.all(counts == 2))
 
 
 def main():
@@ -50,11 +63,12 @@ def main():
     info["levelset_ms"] = (time.perf_counter() - t0) * 1e3
     grid.name = "isosurface"
     vmin, vmax = grid.evalMinMax()
+    shell = 0.0 if closed_mesh(tris) else SHELL_VOXELS
     info.update({"peer": "openvdb", "openvdb_version": ".".join(str(v) for v in vdb.LIBRARY_VERSION),
                  "voxel_size_km": h, "half_width_voxels": HALF_WIDTH, "active_voxels": int(grid.activeVoxelCount()),
                  "leaf_nodes": int(grid.leafCount()), "mem_bytes": int(grid.memUsage()),
                  "value_min": float(vmin), "value_max": float(vmax), "background": float(grid.background),
-                 "isovalue": SHELL_VOXELS * h, "shell_voxels": SHELL_VOXELS})
+                 "isovalue": shell * h, "shell_voxels": shell, "closed_mesh": shell == 0.0})
     t0 = time.perf_counter()
     vdb.write(out_vdb, grids=[grid])
     info["write_ms"] = (time.perf_counter() - t0) * 1e3

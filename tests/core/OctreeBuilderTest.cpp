@@ -324,6 +324,7 @@ TEST(OctreeBuilder, MarksExactlyTheStraddlingCellsOfFieldsWithManySheets) {
     expectBoundaryMatchesDenseReference(makeAnalyticField("gyroid", 24), 5, 0.0, "gyroid 24^3 depth 5");
     expectBoundaryMatchesDenseReference(makeAnalyticField("noise", 21, 3), 6, 0.0, "noise 21^3 depth 6");
     expectBoundaryMatchesDenseReference(makeAnalyticField("torus", 40), 6, 0.05, "torus 40^3 depth 6 iso 0.05");
+    expectBoundaryMatchesDenseReference(makeAnalyticField("spheres", 48), 6, 0.0, "spheres 48^3 depth 6");
 }
 
 TEST(OctreeBuilder, NeverMarksCellsThatTouchMaskedSamples) {

@@ -2,7 +2,10 @@
 
 #include "octrace/util/Error.h"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <random>
 
 namespace octrace {
@@ -22,7 +25,52 @@ ScalarField sampleFunction(const std::string& name, ivec3 dims, dvec3 origin, dv
     return s;
 }
 
-std::vector<std::string> analyticFieldNames() { return {"sphere", "torus", "gyroid", "noise"}; }
+std::vector<std::string> analyticFieldNames() { return {"sphere", "torus", "gyroid", "noise", "spheres"}; }
+
+std::string analyticFieldList() {
+    std::string s;
+    for (const std::string& n : analyticFieldNames()) s += (s.empty() ? "" : ", ") + n;
+    return s;
+}
+
+namespace {
+
+struct Ball {
+    dvec3 centre;
+    double radius;
+};
+
+/// A number in [0, 1) from the generator's raw 32-bit output (which the standard fixes for
+/// mt19937), so that a seed gives the same spheres with every standard library.
+double unit(std::mt19937& rng) { return double(rng() >> 8) * (1.0 / 16777216.0); }
+
+/// 60 disjoint balls inside [-1,1]^3 with radii from 0.04 to 0.3, log-uniform, placed largest
+/// first at random positions at least 0.02 apart (a position that touches an earlier ball is drawn again).
+std::vector<Ball> disjointBalls(std::uint32_t seed) {
+    const int count = 60;
+    const double rmin = 0.04, rmax = 0.3, gap = 0.02;
+    std::mt19937 rng(seed);
+    std::vector<double> radii(count);
+    for (double& r : radii) r = rmin * std::pow(rmax / rmin, unit(rng));
+    std::sort(radii.begin(), radii.end(), std::greater<>());
+    std::vector<Ball> balls;
+    for (double r : radii) {
+        for (int attempt = 0; attempt < 10000; ++attempt) {
+            const dvec3 c(-1.0 + r + (2.0 - 2.0 * r) * unit(rng), -1.0 + r + (2.0 - 2.0 * r) * unit(rng),
+                          -1.0 + r + (2.0 - 2.0 * r) * unit(rng));
+            const bool apart = std::all_of(balls.begin(), balls.end(), [&](const Ball& b) {
+                return glm::length(b.centre - c) >= b.radius + r + gap;
+            });
+            if (apart) {
+                balls.push_back({c, r});
+                break;
+            }
+        }
+    }
+    return balls;
+}
+
+}  // namespace
 
 ScalarField makeAnalyticField(const std::string& name, int n, std::uint32_t seed) {
     if (n < 2) throw UsageError("analytic field needs at least 2 samples per axis");
@@ -63,7 +111,23 @@ ScalarField makeAnalyticField(const std::string& name, int n, std::uint32_t seed
         s.source = "analytic:noise(seed " + std::to_string(seed) + ")";
         return s;
     }
-    throw UsageError("unknown analytic field '" + name + "' (choose one of: sphere, torus, gyroid, noise)");
+    if (name == "spheres") {
+        const std::vector<Ball> balls = disjointBalls(seed);
+        ScalarField s = sampleFunction(name, dims, origin, spacing, [&](const dvec3& p) {
+            // max over the balls of radius - distance: iso 0 is their union. A ball can beat
+            // the best so far only if its distance is below radius - best: compare squares first.
+            double best = -std::numeric_limits<double>::infinity();
+            for (const Ball& b : balls) {
+                const dvec3 d = p - b.centre;
+                const double d2 = glm::dot(d, d), reach = b.radius - best;
+                if (reach > 0.0 && d2 < reach * reach) best = std::max(best, b.radius - std::sqrt(d2));
+            }
+            return float(best);
+        });
+        s.source = "analytic:spheres(seed " + std::to_string(seed) + ")";
+        return s;
+    }
+    throw UsageError("unknown analytic field '" + name + "' (choose one of: " + analyticFieldList() + ")");
 }
 
 }  // namespace octrace

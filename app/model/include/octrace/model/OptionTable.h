@@ -441,7 +441,7 @@ inline constexpr Option compression{.key = "compression", .kind = OptionKind::In
 inline constexpr Option sampleCount{.key = "grid_samples", .kind = OptionKind::Integer, .flag = "samples", .argument = "N",
     .defaultValue = 65, .min = 2, .max = 1024, .help = "samples per axis over [-1,1]^3", .commands = "sample"};
 inline constexpr Option seed{.key = "seed", .kind = OptionKind::Integer, .flag = "seed", .argument = "S", .defaultValue = 1,
-    .min = 0, .max = 1 << 30, .help = "random seed of the 'noise' field", .commands = "sample"};
+    .min = 0, .max = 1 << 30, .help = "random seed of the 'noise' and 'spheres' fields", .commands = "sample"};
 }  // namespace opt
 
 /// Every option of the table, in the order of the declarations above.
