@@ -115,4 +115,81 @@ void filterFrontier(const TileFrustum& f, const std::vector<FrontierNode>& from,
     }
 }
 
+ImageFrontier::ImageFrontier(const Octree& tree, const Camera& camera, const PixelRays& rays, int tileSize)
+    : tree_(tree), gen_(camera), slopes_(tree, gen_, rays, camera.width, camera.height, true), width_(camera.width),
+      height_(camera.height), tileSize_(std::max(tileSize, 1)), keepLevel_(tree.depth - 1) {
+    const int T = tileSize_;
+    tilesX_ = (width_ + T - 1) / T;
+    const int tilesY = (height_ + T - 1) / T;
+    groupsX_ = (tilesX_ + kGroup - 1) / kGroup;
+    const int groupsY = (tilesY + kGroup - 1) / kGroup;
+    // The tile renderer's sizes: the cap per tile, kGroup^2 times the cap per group.
+    cap_ = std::size_t(std::max(8, T * T / 4));
+    tiles_.resize(std::size_t(tilesX_) * std::size_t(tilesY));
+    groups_.resize(std::size_t(groupsX_) * std::size_t(groupsY));
+    tileOnce_.reset(new std::once_flag[tiles_.size()]);
+    groupOnce_.reset(new std::once_flag[groups_.size()]);
+    signs_.resize(groups_.size());
+    for (std::size_t g = 0; g < groups_.size(); ++g) {
+        const int gx0 = int(g % std::size_t(groupsX_)) * kGroup * T, gy0 = int(g / std::size_t(groupsX_)) * kGroup * T;
+        const int gx1 = std::min(gx0 + kGroup * T, width_), gy1 = std::min(gy0 + kGroup * T, height_);
+        const dvec3 mid = gen_.direction((gx0 + gx1) / 2, (gy0 + gy1) / 2);
+        signs_[g] = std::uint8_t((mid.x < 0.0 ? 4u : 0u) | (mid.y < 0.0 ? 2u : 0u) | (mid.z < 0.0 ? 1u : 0u));
+    }
+}
+
+const std::vector<FrontierNode>& ImageFrontier::groupNodes(std::size_t g) const {
+    std::call_once(groupOnce_[g], [&] {
+        if (tree_.nodes().empty()) return;
+        const int T = tileSize_;
+        const int gx0 = int(g % std::size_t(groupsX_)) * kGroup * T, gy0 = int(g / std::size_t(groupsX_)) * kGroup * T;
+        const int gx1 = std::min(gx0 + kGroup * T, width_), gy1 = std::min(gy0 + kGroup * T, height_);
+        const std::vector<FrontierNode> root{{StartNode{}}};
+        std::vector<FrontierNode> next;
+        const TileFrustum gf = tileFrustum(gen_, slopes_, gx0, gy0, gx1, gy1);
+        filterFrontier(gf, root, groups_[g], gx0, gy0, gx1, gy1);
+        refineFrontier(tree_, gf, signs_[g], std::size_t(kGroup * kGroup) * cap_, keepLevel_, groups_[g], next);
+        // The group's nodes' rectangles (every frustum has the same apex and pad), as the tile
+        // renderer computes them: each tile leaves out those that miss it.
+        for (FrontierNode& fn : groups_[g]) pixelRect(tree_, gen_, gf, fn, width_, height_);
+    });
+    return groups_[g];
+}
+
+const ImageFrontier::Tile& ImageFrontier::tile(int x, int y) const {
+    const int tx = x / tileSize_, ty = y / tileSize_;
+    const std::size_t t = std::size_t(ty) * std::size_t(tilesX_) + std::size_t(tx);
+    std::call_once(tileOnce_[t], [&] {
+        const std::size_t g = group(tx, ty);
+        const std::vector<FrontierNode>& from = groupNodes(g);
+        Tile& tl = tiles_[t];
+        std::vector<FrontierNode>& list = tl.nodes;
+        std::vector<FrontierNode> next;
+        const int x0 = tx * tileSize_, y0 = ty * tileSize_;
+        const int x1 = std::min(x0 + tileSize_, width_), y1 = std::min(y0 + tileSize_, height_);
+        const TileFrustum fr = tileFrustum(gen_, slopes_, x0, y0, x1, y1);
+        filterFrontier(fr, from, list, x0, y0, x1, y1);
+        refineFrontier(tree_, fr, signs_[g], cap_, keepLevel_, list, next);
+        // Step 4: the nodes whose rectangle misses the tile are dropped.
+        std::size_t kept = 0;
+        for (FrontierNode& fn : list) {
+            if (!fn.rect) pixelRect(tree_, gen_, fr, fn, width_, height_);
+            if (fn.x1 >= x0 && fn.x0 < x1 && fn.y1 >= y0 && fn.y0 < y1) list[kept++] = fn;
+        }
+        list.resize(kept);
+        // Per pixel, the nodes whose rectangle holds it, as a bit mask over the list.
+        tl.masked = list.size() <= 64 && tileSize_ <= 8;
+        if (tl.masked) {
+            tl.pixelNodes.assign(std::size_t(tileSize_ * tileSize_), 0);
+            for (std::size_t i = 0; i < list.size(); ++i) {
+                const FrontierNode& fn = list[i];
+                for (int py = std::max(fn.y0, y0); py <= std::min(fn.y1, y1 - 1); ++py)
+                    for (int px = std::max(fn.x0, x0); px <= std::min(fn.x1, x1 - 1); ++px)
+                        tl.pixelNodes[std::size_t((py - y0) * tileSize_ + (px - x0))] |= std::uint64_t(1) << i;
+            }
+        }
+    });
+    return tiles_[t];
+}
+
 }  // namespace octrace::detail

@@ -117,4 +117,61 @@ void pixelRect(const Octree& tree, const RayGenerator& gen, const TileFrustum& f
 void filterFrontier(const TileFrustum& f, const std::vector<FrontierNode>& from, std::vector<FrontierNode>& list, int x0,
                     int y0, int x1, int y1);
 
+/// Every tile's frontier for one frame (steps 1-4 as the tile renderer builds them: tiles of
+/// `tileSize` pixels in groups of 4 x 4, each group's frontier refined for each of its tiles,
+/// nodes whose pixel rectangle misses the tile dropped), each built the first time it is asked
+/// for (a tile no ray asks about costs nothing) and then kept for the frame. What the exact
+/// trajectory-coherence variants read to certify a start (docs/dev/coherence.md). Cover and
+/// order (step 3) hold for each tile's list and those of the tile's rays whose sign pattern is
+/// sign(x, y). Thread-safe (a list is built once, under std::call_once; its content does not
+/// depend on which thread builds it). Keeps a reference to `tree`.
+class ImageFrontier {
+public:
+    ImageFrontier(const Octree& tree, const Camera& camera, const PixelRays& rays, int tileSize);
+    /// The frontier of the tile holding pixel (x, y), front to back for sign(x, y); a pixel
+    /// outside a node's rectangle (x0..x1, y0..y1) visits no cell of it.
+    const std::vector<FrontierNode>& nodes(int x, int y) const { return tile(x, y).nodes; }
+    /// Calls f(node) for the nodes of nodes(x, y) whose rectangle holds pixel (x, y), in list
+    /// order, until f returns false; false if it did.
+    template <class F>
+    bool forEachNode(int x, int y, F&& f) const {
+        const Tile& t = tile(x, y);
+        if (t.masked) {
+            // Bit i of the pixel's mask: node i's rectangle holds the pixel.
+            const std::size_t bit = std::size_t((y % tileSize_) * tileSize_ + x % tileSize_);
+            for (std::uint64_t m = t.pixelNodes[bit]; m; m &= m - 1)
+                if (!f(t.nodes[std::size_t(std::countr_zero(m))])) return false;
+            return true;
+        }
+        for (const FrontierNode& fn : t.nodes)
+            if (x >= fn.x0 && x <= fn.x1 && y >= fn.y0 && y <= fn.y1 && !f(fn)) return false;
+        return true;
+    }
+    /// The sign pattern that orders that tile's list (its group's middle ray's).
+    unsigned sign(int x, int y) const { return signs_[group(x / tileSize_, y / tileSize_)]; }
+
+private:
+    static constexpr int kGroup = 4;  ///< tiles per group side, as the tile renderer's
+    std::size_t group(int tx, int ty) const {
+        return std::size_t(ty / kGroup) * std::size_t(groupsX_) + std::size_t(tx / kGroup);
+    }
+    const std::vector<FrontierNode>& groupNodes(std::size_t g) const;
+    struct Tile {
+        std::vector<FrontierNode> nodes;
+        bool masked = false;  ///< at most 64 nodes and 64 pixels: pixelNodes holds, per pixel, its nodes
+        std::vector<std::uint64_t> pixelNodes;
+    };
+    const Tile& tile(int x, int y) const;
+
+    const Octree& tree_;
+    RayGenerator gen_;
+    ScreenSlopes slopes_;
+    int width_, height_, tileSize_, tilesX_, groupsX_, keepLevel_;
+    std::size_t cap_;
+    std::vector<std::uint8_t> signs_;  // per group
+    mutable std::vector<Tile> tiles_;
+    mutable std::vector<std::vector<FrontierNode>> groups_;
+    mutable std::unique_ptr<std::once_flag[]> tileOnce_, groupOnce_;
+};
+
 }  // namespace octrace::detail
