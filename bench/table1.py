@@ -16,12 +16,12 @@ that takes the depth) and "args" (any further options). A scene with "write_dico
 by the project's writer (octrace_write_dicom, beside the octrace executable: the input's values
 are stored values, the series' real values value * SLOPE + INTERCEPT), in a temporary folder,
 once per run. `--scenes K1,K2` runs only those rows
-and takes the others from the raw JSON already in docs/benchmarks/table1/ (each row is still
+(and `--renderers R1,R2` only those columns) and takes the others from the raw JSON already in docs/benchmarks/table1/ (each row is still
 one invocation per cell, so its ratios stay within one run); a scene not asked for whose raw JSON is
 incomplete is listed as not measured yet.
 
 Usage: bench/table1.py [--octrace PATH] [--data DIR] [--repeat R] [--quick] [--scenes K,...]
-                       [--write-dicom PATH]
+                       [--renderers R,...] [--write-dicom PATH]
 """
 import argparse
 import glob
@@ -84,7 +84,7 @@ def run(args, scene, depth, renderer, threads, verify, outdir, extra=(), tag_suf
     (e.g. bench/branch_up.py's --branch-up), with `tag_suffix` added to the file names."""
     tag = "%s_d%d_%s_t%d%s" % (scene["key"], depth, renderer.replace("+", "_"), threads, tag_suffix)
     stats = os.path.join(outdir, tag + ".json")
-    if args.only and scene["key"] not in args.only:
+    if (args.only and scene["key"] not in args.only) or (args.renderers and renderer not in args.renderers):
         if not os.path.exists(stats):
             return None  # a row not asked for and never measured: left out of the table
         with open(stats) as f:
@@ -126,11 +126,14 @@ def main():
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--quick", action="store_true", help="depth 7 only (a smoke run; does not write the table)")
     ap.add_argument("--scenes", default="", help="comma-separated scene keys to run (default: all)")
+    ap.add_argument("--renderers", default="",
+                    help="comma-separated renderers to run (default: all); the others' cells are read from the raw JSON")
     ap.add_argument("--write-dicom", default=os.path.join(ROOT, "build", "octrace_write_dicom"),
                     help="the DICOM series writer, for scenes with write_dicom")
     args = ap.parse_args()
     args.written = set()
     args.only = [k for k in args.scenes.split(",") if k]
+    args.renderers = [r for r in args.renderers.split(",") if r]
     args.tmp = "/tmp/octrace-table1"
     os.makedirs(args.tmp, exist_ok=True)
     outdir = os.path.join(ROOT, "docs", "benchmarks", "table1")
@@ -145,7 +148,7 @@ def main():
     for s in list(scenes):
         cells = [(depth, r, threads) for depth in ([7] if args.quick else s["depths"]) for threads in (1, 2)
                  for r in RENDERERS + DIRECT]
-        if args.only and s["key"] not in args.only and not all(
+        if (args.only and s["key"] not in args.only or args.renderers) and not all(
                 os.path.exists(os.path.join(outdir, "%s_d%d_%s_t%d.json" % (s["key"], d, r.replace("+", "_"), t)))
                 for d, r, t in cells):
             unmeasured.append(s["name"])
@@ -181,6 +184,10 @@ def main():
     L.append("molecule images: 1,639,389 and 1,477,514). Each time is the fastest of %d renders in one process (`--repeat %d`); the machine is a" % (args.repeat, args.repeat))
     L.append("shared 2-core VM, so read the ratios to `full` (same scene, depth, thread count, same")
     L.append("invocation) rather than the absolute times. Paper: Athlon 1800, 2006.\n")
+    if args.renderers:
+        L.append("The last run (`--renderers %s`) measured only %s, each against `full` in its own" % (
+            ",".join(args.renderers), ", ".join("`%s`" % r for r in args.renderers)))
+        L.append("process; the other cells are those of the raw JSON of an earlier run.\n")
     for threads in (1, 2):
         L.append("## %s\n" % ("Single thread" if threads == 1 else "2 threads"))
         L.append("Time in seconds (us per ray). Paper's figures in the second line of each row.\n")
@@ -215,9 +222,11 @@ def main():
     L.append("## Exactness (single-thread runs, `--verify`)\n")
     L.append("`mismatched` = traced pixels whose hit voxel differs from the exact reference (the same as")
     L.append("`full`); for `area+colour` the colour-filled pixels are judged by the image difference instead.")
-    L.append("`certified` = exact variants: rays found below the branch node without computing any state")
-    L.append("byte above it. `miss-filled` = approximate variants: pixels taken as background, untraced,")
-    L.append("because both partners missed (miss coherence, `--miss-coherence`; - = measured before it existed).")
+    L.append("`certified` = exact variants: rays whose start at the branch node was proven safe (the tile")
+    L.append("frontier certificate of docs/dev/coherence.md, since 2026-11-28; before, only the structural")
+    L.append("test). `miss-filled` = pixels taken as background because both partners missed (miss")
+    L.append("coherence): untraced by the approximate variants (`--miss-coherence`), and by the exact ones")
+    L.append("only where the tile frontier proves the miss (since 2026-11-28); - = measured before it existed.")
     L.append("PSNR against the reference image (inf = identical).\n")
     L.append("`hit agreement` = of the pixels that either hits, the share both hit; `depth error` = largest")
     L.append("depth difference where both hit, in voxel diagonals.\n")

@@ -159,7 +159,7 @@ TEST(CoherentRenderers, ExactVariantsGiveTheFullTraversalsImageBitForBit) {
                 EXPECT_EQ(differingHits(f, full), 0);
                 EXPECT_TRUE(f.rgba == full.rgba);
                 EXPECT_TRUE(f.depth == full.depth);
-                EXPECT_EQ(st.fallbacks, 0u);
+                EXPECT_LE(st.raysCertified + st.fallbacks, st.raysCommonPath);
                 certified += long(st.raysCertified);
                 commonPath += long(st.raysCommonPath);
             }
@@ -183,10 +183,11 @@ TEST(CoherentRenderers, CountEveryPixelOnceAsFullCommonPathOrFilled) {
         }
         EXPECT_EQ(filled, long(st.colourFilled));
         EXPECT_EQ(missFilled, long(st.missFilled));
-        // Miss coherence is part of the approximate trajectory variants only; the torus's hole
-        // gives them pixels between two misses.
+        // Miss coherence is part of the trajectory variants (the exact ones take a pixel as a
+        // miss only where their frontier proves it); the torus's hole gives them pixels between
+        // two misses.
         const std::string n = name;
-        if (n.find("exact") == std::string::npos && n.rfind("full", 0) != 0) EXPECT_GT(st.missFilled, 0u);
+        if (n.rfind("full", 0) != 0) EXPECT_GT(st.missFilled, 0u);
         else EXPECT_EQ(st.missFilled, 0u);
     }
 }
@@ -221,8 +222,10 @@ TEST_F(RodAlone, MissCoherenceTakesThePixelsBetweenTwoMissesAsBackground) {
     }
     for (const char* name : {"linear-exact", "area-exact"}) {
         Frame f;
-        EXPECT_EQ(draw(name, tree, cam, f).missFilled, 0u) << name;
+        EXPECT_GT(draw(name, tree, cam, f).missFilled, 0u) << name;  // the background around the rod
         EXPECT_EQ(differingHits(f, full), 0) << name;
+        for (int y = 0; y < H; ++y)  // the rod between missing partners is traced, not taken as a miss
+            if (full.hitId[full.pixel(102, y)] != kNoHit) ASSERT_FALSE(f.flags[f.pixel(102, y)] & Frame::kMissFilled) << y;
     }
 }
 
@@ -252,6 +255,55 @@ TEST_F(RodBeforeSheet, ApproximateVariantsMissAThinRodInFrontThatTheExactOnesSee
     EXPECT_GT(differingHits(area, full), H / 4);
     EXPECT_EQ(differingHits(linExact, full), 0);
     EXPECT_EQ(differingHits(areaExact, full), 0);
+    // Where `linear` starts column 102 at a branch node in the sheet (its partners are the
+    // supporting columns 100 and 104, traced from the root by every variant) and misses the rod,
+    // the frontier certificate finds the rod in front: those pixels are traced from the root,
+    // never certified. In `area` that is the pattern of the base rows.
+    for (const char* name : {"linear-exact", "area-exact"}) {
+        Frame f;
+        const RenderStats st = draw(name, tree, cam, f);
+        EXPECT_GT(st.fallbacks, 0u) << name;
+        long wrongStarts = 0, certified = 0;
+        for (int y = 0; y < H; ++y) {
+            if (std::string(name) == "area-exact" && y % 4 != 0) continue;
+            const std::size_t p = full.pixel(102, y);
+            if (lin.hitId[p] == full.hitId[p]) continue;
+            ++wrongStarts;
+            certified += (f.flags[p] & Frame::kCertified) != 0;
+        }
+        EXPECT_GT(wrongStarts, 0) << name;
+        EXPECT_EQ(certified, 0) << name;
+    }
+}
+
+TEST(CoherentRenderers, ExactVariantsEqualFullAndTheReferenceAtTheHardCamerasOnEveryScene) {
+    // The tile renderer's test scenes (thin rods included) and cameras (grazing, inside,
+    // orthographic, on the lattice): the frontier certificate never lets a wrong start through,
+    // for any thread count, and it certifies most common-path rays.
+    long certified = 0, commonPath = 0;
+    for (const NamedTree& nt : hardTestTrees())
+        for (const NamedCamera& nc : hardTestCameras(*nt.tree)) {
+            Frame full, reference;
+            const RenderStats fs = draw("full", *nt.tree, nc.camera, full);
+            draw("reference", *nt.tree, nc.camera, reference);
+            for (const char* name : {"linear-exact", "area-exact"})
+                for (int threads : {1, 2, 7}) {
+                    SCOPED_TRACE(std::string(name) + ", " + nt.name + ", " + nc.name + ", threads " + std::to_string(threads));
+                    Frame f;
+                    RenderSettings s;
+                    s.threads = threads;
+                    const RenderStats st = render(name, *nt.tree, nc.camera, f, s);
+                    const FrameDiff d = diffFrames(f, full);
+                    EXPECT_TRUE(d.identical()) << d.first;
+                    EXPECT_EQ(differingHits(f, reference), 0);
+                    EXPECT_EQ(st.rays, fs.rays);
+                    EXPECT_EQ(st.hits, fs.hits);
+                    EXPECT_EQ(st.raysFull + st.raysCommonPath + st.colourFilled + st.missFilled, st.pixels);
+                    certified += long(st.raysCertified);
+                    commonPath += long(st.raysCommonPath);
+                }
+        }
+    EXPECT_GT(certified, commonPath / 2);
 }
 
 TEST_F(RodBeforeSheet, StartingAboveTheBranchNodeFindsTheRodAndFromTheRootEqualsFull) {

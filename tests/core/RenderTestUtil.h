@@ -5,6 +5,7 @@
 #include "octrace/build/OctreeBuilder.h"
 #include "octrace/render/Renderer.h"
 
+#include <cmath>
 #include <cstring>
 #include <sstream>
 #include <string>
@@ -78,6 +79,66 @@ inline std::vector<NamedCamera> allTestCameras(const Octree& t) {
     auto a = generalTestCameras(t), b = latticeTestCameras(t);
     a.insert(a.end(), b.begin(), b.end());
     return a;
+}
+
+// The scenes and cameras of the exact renderers' tests (tile, the exact trajectory variants):
+// every scene of the renderer tests plus thin rods, at the hard cameras.
+struct NamedTree {
+    std::string name;
+    const Octree* tree;
+};
+
+inline const Octree& volumeTree() {  // volume form: interior terms the shell renderers skip
+    static const Octree t = buildOctree(makeAnalyticField("torus", 33), {6, 0.0, 0});
+    return t;
+}
+
+/// Thin rods (radius 0.012, a voxel and a half at depth 8) in several directions, between
+/// the pixel rays of any tile: what a bound that misses a sliver of a tile's rays gets wrong.
+inline Octree buildRods(bool corners) {
+    BuildOptions o;
+    o.depth = 8;
+    o.iso = 0.0;
+    o.corners = corners;
+    return buildShellOctree(
+        sampleFunction("rods", ivec3(129), dvec3(-1.0), dvec3(2.0 / 128), [](const dvec3& p) {
+            double v = -1.0;
+            for (int i = 0; i < 7; ++i) {
+                const double a = 0.31 * i - 0.9, b = 0.23 * i - 0.7;
+                v = std::max(v, 0.012 - std::hypot(p.x - a, p.z - 0.4 * b));       // along y
+                v = std::max(v, 0.012 - std::hypot(p.y - b, p.z + 0.5 * a));       // along x
+                v = std::max(v, 0.012 - std::hypot(p.x - p.y - 0.2 * a, p.z - b)); // diagonal in x, y
+            }
+            return float(v);
+        }),
+        o);
+}
+inline const Octree& rodsTree() {
+    static const Octree t = buildRods(false);
+    return t;
+}
+
+inline std::vector<NamedTree> hardTestTrees() {
+    return {{"sphere", &sphereTree()}, {"torus", &torusTree()}, {"noise", &noiseTree()},
+            {"volume torus", &volumeTree()}, {"rods", &rodsTree()}};
+}
+
+/// The tile renderer's test cameras: the shared ones, plus a grazing view along a cube face, views from inside the cube and
+/// orthographic views (one framed, one whose view plane cuts the cube).
+inline std::vector<NamedCamera> hardTestCameras(const Octree& t) {
+    std::vector<NamedCamera> c = allTestCameras(t);
+    const Box3 cube = cubeOf(t);
+    c.push_back({"grazing the top face", makeCamera({-3.0, -2.5, 1.0}, {1.0, 1.0, 0.999}, {0, 0, 1}, 40, 97, 61)});
+    c.push_back({"inside, looking down", makeCamera({0.1, 0.05, 0.6}, {0.12, 0.1, -1.0}, {0, 1, 0}, 100, 80, 60)});
+    Camera ortho = Camera::framing(cube, 90, 70);
+    ortho.projection = Camera::Projection::Orthographic;
+    ortho.frameOrthographic(cube);
+    c.push_back({"orthographic", ortho});
+    Camera cut = makeCamera({0.2, -0.1, 0.3}, {-0.4, 0.5, -0.2}, {0, 0, 1}, 30, 77, 59);
+    cut.projection = Camera::Projection::Orthographic;
+    cut.orthoHeight = 1.1;
+    c.push_back({"orthographic, view plane inside", cut});
+    return c;
 }
 
 /// Renders with a renderer's name or alias (area+colour: area with colour coherence), as the

@@ -149,6 +149,11 @@ BranchNode branchNode(const Octree& tree, const ivec3& cellA, const ivec3& cellB
 TraversalHit traverseFromBranch(const Octree& tree, const QuantizedRay& ray, const BranchNode& branch,
                                 TraversalCounters& counters, bool& fellBack);
 
+/// The children (bit c = child c) of a node that a ray of sign pattern `sign` can cross before
+/// its child `child`: those whose mirrored bits are a proper subset of its (the children one ray
+/// crosses are visited in the order of their mirrored bits under inclusion).
+std::uint8_t predecessorChildren(unsigned sign, unsigned child);
+
 /// Trajectory coherence, exact: the full traversal, guided down the branch node's path. At a
 /// path node whose non-empty children cannot precede the path child for this ray's sign
 /// pattern (a property of the tree, not of the ray), nothing can lie in front on that level,

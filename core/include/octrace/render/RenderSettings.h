@@ -31,7 +31,8 @@ struct CoherenceSettings {
     /// partners both found nothing is taken as background without being traced, as paper A's
     /// colour coherence does between two background pixels. Approximate in the same way as the
     /// start at the branch node: what lies between two missing rays and neither of them meets
-    /// is not seen. The exact variants ignore it; off: such a pixel is traced from the root.
+    /// is not seen. Off: such a pixel is traced from the root. The exact variants ignore it:
+    /// they take such a pixel as a miss only when their tile frontier proves it, always.
     bool miss = true;
 };
 

@@ -17,10 +17,10 @@ struct RenderStats {
     std::uint64_t raysFull = 0;        ///< pixels traced from the root (supporting rays and others)
     std::uint64_t raysCommonPath = 0;  ///< pixels started from the branch node of two neighbours
     std::uint64_t fallbacks = 0;       ///< of those, retraced from the root
-    std::uint64_t raysCertified = 0;   ///< exact variants: found below the branch node, root skipped
+    std::uint64_t raysCertified = 0;   ///< exact variants: started at the branch node, the start proven safe
     std::uint64_t statesDeferred = 0;  ///< exact variants: path nodes whose state byte was never needed
     std::uint64_t colourFilled = 0;    ///< pixels filled by colour coherence, not traced
-    std::uint64_t missFilled = 0;      ///< pixels taken as background by miss coherence, not traced
+    std::uint64_t missFilled = 0;      ///< pixels taken as background by miss coherence (exact variants: proven)
     // Direct renderers (they trace no rays: rays = 0):
     std::uint64_t voxelsSplatted = 0;  ///< voxel footprints drawn, counted once per screen tile they cover
     // Sphere scenes (object octree):

@@ -14,6 +14,7 @@
 #include "render/traversal/CoherentRenderers.h"
 #include "render/PerPixel.h"
 #include "render/traversal/PixelRays.h"
+#include "render/traversal/TileFrontier.h"
 
 #include "octrace/render/DiscreteTraversal.h"
 #include "octrace/render/ImageCompare.h"
@@ -33,6 +34,9 @@ namespace {
 
 enum class Start { Root, Branch, Guided };
 
+/// Tile side of the exact variants' frontier certificate: the tile renderer's default.
+constexpr int kCertificateTile = 8;
+
 struct Context {
     const Octree& tree;
     const RenderSettings& settings;
@@ -43,7 +47,107 @@ struct Context {
     std::uint32_t* srgb;  // packed 8-bit colour of traced and filled pixels (colour coherence; nullptr: off)
     const LodCut& cut;
     std::uint32_t backgroundSrgb;  // packSrgb8(settings.background), for colour coherence
+    const ImageFrontier* frontier;  // the exact variants' certificate (nullptr: none)
 };
+
+/// Frontier nodes to be proven empty for one ray, traced in batches (one traversal set-up per
+/// batch: traverseFromNodes).
+class EmptyProof {
+public:
+    EmptyProof(const Octree& tree, const QuantizedRay& q, TraversalCounters& counters) : tree_(tree), q_(q), counters_(counters) {}
+    /// Adds a node; false when a full batch held a hit.
+    bool add(const StartNode& n) {
+        slots_.n[count_++] = n;
+        return count_ < kBatch || flush();
+    }
+    /// True when no node added since the last flush gives the ray a hit.
+    bool flush() {
+        const std::size_t n = count_;
+        count_ = 0;
+        return n == 0 || !traverseFromNodes(tree_, q_, slots_.n, n, counters_).hit();
+    }
+
+private:
+    static constexpr std::size_t kBatch = 16;
+    const Octree& tree_;
+    const QuantizedRay& q_;
+    TraversalCounters& counters_;
+    union Slots {  // left uninitialised: written before read
+        Slots() {}
+        StartNode n[kBatch];
+    } slots_;
+    std::size_t count_ = 0;
+};
+
+/// Whether the ray of pixel (x, y) finds no hit in any of the frontier nodes that its tile keeps
+/// for it: then it visits no boundary voxel (cover, docs/dev/tile-renderer.md step 3: every
+/// boundary voxel a ray of the tile visits lies in a frontier node whose rectangle holds its
+/// pixel), whatever its sign pattern.
+bool provenMiss(const Context& c, int x, int y, const QuantizedRay& q, TraversalCounters& counters) {
+    EmptyProof empty(c.tree, q, counters);
+    return c.frontier->forEachNode(x, y, [&](const FrontierNode& fn) { return empty.add(fn.start); }) && empty.flush();
+}
+
+/// Step 3 of certifiedStart: B lies inside the frontier node at `fromLevel` on its path. Every
+/// non-empty child that a ray of q's sign pattern can cross before the path child, at the path
+/// nodes from that level down to B's parent, must give the ray no hit: inner nodes are traced
+/// (in `empty`'s batches), a leaf (a coarse leaf; conservatively an interior term) must not be
+/// crossed.
+bool nothingBeforePath(const Context& c, const QuantizedRay& q, const BranchNode& b, int fromLevel, EmptyProof& empty) {
+    for (int l = fromLevel; l < b.level; ++l) {
+        const OctreeNode& nd = c.tree.nodes()[b.path[l]];
+        const unsigned before = nd.childMask & predecessorChildren(q.sign, b.childIndex[l]);
+        if (!before) continue;
+        const ivec3 cell = b.cell >> (b.level - l);
+        for (unsigned ch = 0; ch < 8; ++ch) {
+            if (!(before & (1u << ch))) continue;
+            const ivec3 cc = cell * 2 + ivec3(int(ch >> 2), int((ch >> 1) & 1), int(ch & 1));
+            if (l + 1 >= c.tree.depth || (nd.termMask & (1u << ch))) {
+                if (rayCrossesCell(q, cc, l + 1)) return false;
+            } else if (!empty.add({nd.firstChild + childRank(nd.childMask, ch), l + 1, cc})) {
+                return false;
+            }
+        }
+    }
+    return empty.flush();
+}
+
+/// The exact variants' start at branch node `b`, certified by the tile frontier
+/// (docs/dev/coherence.md, "The frontier certificate"). The pixel's frontier nodes are walked
+/// front to back up to the node that holds the hit found in B: every node before it must lie in
+/// B or give the ray no hit (traced, in batches), and if it holds B (B inside it), nothing of
+/// it in front of B's cells may give the ray a hit (nothingBeforePath). True with `hit` set when certified; false
+/// when the caller must trace from the root.
+bool certifiedStart(const Context& c, int x, int y, const QuantizedRay& q, const BranchNode& b,
+                    TraversalCounters& counters, TraversalHit& hit) {
+    const int depth = c.tree.depth;
+    EmptyProof empty(c.tree, q, counters);
+    bool traced = false, certified = false;
+    c.frontier->forEachNode(x, y, [&](const FrontierNode& fn) {
+        const StartNode& n = fn.start;
+        const bool inB = n.level >= b.level && (n.cell >> (n.level - b.level)) == b.cell;
+        const bool holdsB = n.level < b.level && (b.cell >> (b.level - n.level)) == n.cell;
+        if (!inB && !holdsB) return empty.add(n);  // outside B: it must give the ray no hit
+        if (!traced) {
+            // What lies in front of B's first node must be empty before B is worth tracing.
+            if (!empty.flush()) return false;
+            hit = traverseFromNode(c.tree, q, b.path[b.level], b.level, b.cell, counters);
+            if (!hit.hit()) return false;
+            traced = true;
+        }
+        // B inside this node: nothing in front of B's cells but what the path passes in it.
+        if (holdsB) {
+            certified = empty.flush() && nothingBeforePath(c, q, b, n.level, empty);
+            return false;
+        }
+        if ((hit.cell >> (depth - n.level)) == n.cell) {
+            certified = empty.flush();
+            return false;
+        }
+        return true;  // another node inside B
+    });
+    return certified;  // the end of the list without reaching h's node: not for a hit in B (cover)
+}
 
 /// Traces pixel (x, y) and writes it; `partners` are the two neighbours whose hits give the
 /// branch node (nullptr: from the root).
@@ -78,6 +182,13 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
     const dvec3 dir = c.rays.direction(x, y);
     const QuantizedRay q = c.rays.quantized(x, y, dir);
     if (q.meetsCube) ++st.rays;
+    // The exact variants' miss coherence, always on: a pixel whose partners both missed is taken
+    // as a miss only when that is proven (so it is no setting).
+    if (partners && c.frontier && f.hitId[partners[0]] == kNoHit &&
+        f.hitId[partners[1]] == kNoHit && provenMiss(c, x, y, q, counters)) {
+        ++st.missFilled;
+        return background(Frame::kMissFilled);
+    }
     TraversalHit hit;
     std::uint8_t flags = Frame::kTraced;
     const bool usePartners = partners && mode != Start::Root && f.hitId[partners[0]] != kNoHit &&
@@ -93,7 +204,18 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
                 ++st.fallbacks;
                 flags |= Frame::kFallback;
             }
+        } else if (c.frontier && q.sign == c.frontier->sign(x, y)) {
+            if (certifiedStart(c, x, y, q, bn, counters, hit)) {
+                ++st.raysCertified;
+                flags |= Frame::kCertified;
+            } else {
+                ++st.fallbacks;
+                flags |= Frame::kFallback;
+                hit = traverseDiscrete(c.tree, q, counters);
+            }
         } else {
+            // Another sign pattern than the one ordering the tile's frontier: only the
+            // structural certificate applies.
             bool certified = false;
             hit = traverseGuided(c.tree, q, bn, counters, certified);
             if (certified) {
@@ -227,7 +349,11 @@ RenderStats DiscreteRenderer::render(const Octree& tree, const Camera& camera, c
     std::unique_ptr<std::uint32_t[]> srgb(settings.coherence.colour ? new std::uint32_t[frame.hitId.size()] : nullptr);
     if (cut.active() && pattern_ != Pattern::Full)
         throw UsageError("renderer " + name() + " has no multi-resolution mode (`lod`, `level`): use " + voxelRenderersThat(&Renderer::multiResolution));
-    const Context ctx{tree, settings, frame, shader, rays, cells.get(), srgb.get(), cut, packSrgb8(settings.background)};
+    // The exact variants' certificate: every tile's frontier, built once per frame.
+    std::unique_ptr<const ImageFrontier> frontier(
+        exact_ && pattern_ != Pattern::Full ? new ImageFrontier(tree, camera, rays, kCertificateTile) : nullptr);
+    const Context ctx{tree,   settings, frame, shader, rays, cells.get(), srgb.get(), cut, packSrgb8(settings.background),
+                      frontier.get()};
     const int W = camera.width, H = camera.height;
     const Start mode = pattern_ == Pattern::Full ? Start::Root : exact_ ? Start::Guided : Start::Branch;
     const bool colour = settings.coherence.colour;

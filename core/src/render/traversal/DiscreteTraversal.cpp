@@ -555,6 +555,8 @@ TraversalHit traverseFromBranch(const Octree& tree, const QuantizedRay& ray, con
     return traverseDiscrete(tree, ray, counters);
 }
 
+std::uint8_t predecessorChildren(unsigned sign, unsigned child) { return predecessors().mask[sign & 7u][child & 7u]; }
+
 TraversalHit traverseGuided(const Octree& tree, const QuantizedRay& ray, const BranchNode& branch,
                             TraversalCounters& counters, bool& certified) {
     certified = false;

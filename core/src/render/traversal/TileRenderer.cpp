@@ -2,6 +2,7 @@
 // the tile's frontier nodes instead of the root. Exactness argument: docs/dev/tile-renderer.md
 // (the numbered steps there are cited below).
 #include "render/traversal/TileRenderer.h"
+#include "render/traversal/TileFrontier.h"
 #include "render/PerPixel.h"
 #include "render/traversal/PixelRays.h"
 
@@ -20,182 +21,6 @@
 #include <vector>
 
 namespace octrace::detail {
-namespace {
-
-constexpr int N = Octree::kIntBits;
-
-/// A frontier node: an inner node of the tree that may hold a voxel some ray of the tile visits.
-struct FrontierNode {
-    StartNode start;
-    int x0 = 0, x1 = 0, y0 = 0, y1 = 0;  ///< the pixels whose rays can visit a cell of the node (step 4)
-    bool rect = false;                  ///< whether x0 .. y1 are computed
-};
-
-/// children sorted by popcount(c ^ s) per sign pattern s: front to back for every ray of
-/// that sign pattern (step 3).
-struct ChildOrder {
-    std::array<std::array<std::uint8_t, 8>, 8> order{};
-    ChildOrder() {
-        for (unsigned s = 0; s < 8; ++s) {
-            std::array<std::uint8_t, 8> o{0, 1, 2, 3, 4, 5, 6, 7};
-            std::stable_sort(o.begin(), o.end(),
-                             [s](std::uint8_t a, std::uint8_t b) { return std::popcount(a ^ s) < std::popcount(b ^ s); });
-            order[s] = o;
-        }
-    }
-};
-const ChildOrder& childOrder() {
-    static const ChildOrder c;
-    return c;
-}
-
-/// The union of a tile's rays as five half-spaces g_i . (p - apex) + h_i >= 0 in octree space
-/// (step 1), and the conservative test of a node box against it (step 2).
-struct TileFrustum {
-    dvec3 apex;
-    std::array<dvec3, 5> g;
-    std::array<double, 5> h{};
-    double pad = 0.0;  ///< how far every box is widened on each side: 2 x the quantization bound
-    // Per form and level: h_i + |g_i|_1 (half side + pad), the most the form gains from a box's
-    // centre to a corner of the widened box.
-    std::array<std::array<double, Octree::kMaxDepth + 1>, 5> reach{};
-
-    void prepare() {
-        for (int i = 0; i < 5; ++i) {
-            const dvec3& gi = g[std::size_t(i)];
-            for (int level = 0; level <= Octree::kMaxDepth; ++level)
-                reach[std::size_t(i)][std::size_t(level)] =
-                    h[std::size_t(i)] + (std::abs(gi.x) + std::abs(gi.y) + std::abs(gi.z)) * (double(1 << (N - level)) * 0.5 + pad);
-        }
-    }
-
-    /// False only if no point of the box widened by `pad` satisfies all five: then no
-    /// quantized ray of the tile visits a cell of the box.
-    bool meets(const ivec3& cell, int level) const {
-        const double side = double(1 << (N - level));
-        const dvec3 c = (dvec3(cell) + 0.5) * side - apex;
-        for (std::size_t i = 0; i < 5; ++i)
-            if (glm::dot(g[i], c) + reach[i][std::size_t(level)] < 0.0) return false;
-        return true;
-    }
-};
-
-/// Per frame: what every tile's frustum shares (apex, pad) and the slopes (perspective) or
-/// offsets (orthographic) of every column and row of the image, computed once, at row 0 and
-/// column 0 (the value of a column computed at another row differs by a few units in the last
-/// place, which the pad's 1e-9 far covers: step 2).
-struct ScreenSlopes {
-    TileFrustum base;
-    std::vector<double> x, y;
-    ScreenSlopes(const Octree& tree, const RayGenerator& gen, const PixelRays& rays, int width, int height, bool widen) {
-        const dvec3 right = gen.right(), up = gen.up(), back = gen.back();
-        base.apex = tree.toOctreeSpace(gen.eye());
-        x.resize(std::size_t(width));
-        y.resize(std::size_t(height));
-        for (int i = 0; i < width; ++i)
-            x[std::size_t(i)] = gen.orthographic() ? glm::dot(rays.originOS(i, 0) - base.apex, right)
-                                                   : glm::dot(gen.direction(i, 0), right) / -glm::dot(gen.direction(i, 0), back);
-        for (int j = 0; j < height; ++j)
-            y[std::size_t(j)] = gen.orthographic() ? glm::dot(rays.originOS(0, j) - base.apex, up)
-                                                   : glm::dot(gen.direction(0, j), up) / -glm::dot(gen.direction(0, j), back);
-        // Step 2: a quantized ray's points lie within 2^-11 lattice units of its exact ray (or of
-        // its origin); the directions and the forms above carry rounding errors relative to the
-        // distances involved, far below 1e-9 of the farthest point of the cube from the apex.
-        const double far = glm::length(base.apex - dvec3(0.5 * std::ldexp(1.0, N))) + std::ldexp(1.0, N);
-        base.pad = widen ? 2.0 * (std::ldexp(1.0, -10) + 1e-9 * far) : 0.0;
-    }
-};
-
-TileFrustum tileFrustum(const RayGenerator& gen, const ScreenSlopes& sl, int x0, int y0, int x1, int y1) {
-    TileFrustum f = sl.base;
-    const dvec3 right = gen.right(), up = gen.up(), back = gen.back();
-    // The extent of the tile's pixels across right and up: per unit of depth (perspective: the
-    // directions' slopes) or in octree units (orthographic: the origins' offsets), over every
-    // row and column of the tile (the computed values, not an interpolation of the corners).
-    const auto [xl, xh] = std::minmax_element(sl.x.begin() + x0, sl.x.begin() + x1);
-    const auto [yl, yh] = std::minmax_element(sl.y.begin() + y0, sl.y.begin() + y1);
-    if (gen.orthographic()) {
-        f.g = {right, -right, up, -up, -back};
-        f.h = {-*xl, *xh, -*yl, *yh, 0.0};
-    } else {
-        f.g = {right + *xl * back, -right - *xh * back, up + *yl * back, -up - *yh * back, -back};
-    }
-    f.prepare();
-    return f;
-}
-
-/// Step 3: the tile's frontier, front to back for sign pattern s: from `list` (the root, or the
-/// frontier of a larger tile holding this one, filtered by this tile's frustum), each node
-/// replaced by its non-empty children that meet the frustum (level by level), as long as the
-/// list stays within `cap` nodes; nodes at depth-1 and nodes with a coarse leaf stay whole.
-void refineFrontier(const Octree& tree, const TileFrustum& f, unsigned s, std::size_t cap, int keepLevel,
-                    std::vector<FrontierNode>& list, std::vector<FrontierNode>& next) {
-    if (list.empty()) return;
-    const auto& order = childOrder().order[s];
-    const bool shell = tree.form == OctreeForm::Shell;
-    for (;;) {
-        next.clear();
-        bool refined = false;
-        for (const FrontierNode& fn : list) {
-            const OctreeNode& nd = tree.nodes()[fn.start.node];
-            if (fn.start.level >= keepLevel || (shell && (nd.termMask & nd.childMask))) {
-                next.push_back(fn);
-                continue;
-            }
-            refined = true;
-            for (unsigned c : order) {
-                if (!(nd.childMask & (1u << c)) || (nd.termMask & (1u << c))) continue;  // empty, or an interior term (volume form)
-                const ivec3 cell = fn.start.cell * 2 + ivec3(int(c >> 2), int((c >> 1) & 1), int(c & 1));
-                if (f.meets(cell, fn.start.level + 1))
-                    next.push_back({{nd.firstChild + childRank(nd.childMask, c), fn.start.level + 1, cell}});
-            }
-            if (next.size() > cap) return;  // keep the coarser list
-        }
-        list.swap(next);
-        if (!refined || list.empty()) return;
-    }
-}
-
-/// Step 4: the pixels of the image whose exact rays meet the node's box widened by the pad: the
-/// bounding rectangle of its corners' projections, a hundredth of a pixel wider; every pixel
-/// when a corner is not in front of a perspective eye (or a projection is out of range).
-void pixelRect(const Octree& tree, const RayGenerator& gen, const TileFrustum& f, FrontierNode& fn, int w, int h) {
-    fn.rect = true;
-    const double side = std::ldexp(1.0, N - fn.start.level), k = tree.cubeSide / std::ldexp(1.0, N);
-    const dvec3 lo = dvec3(fn.start.cell) * side - dvec3(f.pad) - f.apex;
-    const double s = side + 2.0 * f.pad;
-    double xl = std::numeric_limits<double>::infinity(), xh = -xl, yl = xl, yh = -xl;
-    bool all = false;
-    for (int c = 0; c < 8 && !all; ++c) {
-        const dvec3 rel = (lo + dvec3((c & 4) ? s : 0.0, (c & 2) ? s : 0.0, (c & 1) ? s : 0.0)) * k;
-        const double cx = glm::dot(rel, gen.right()), cy = glm::dot(rel, gen.up()), cz = glm::dot(rel, gen.back());
-        if (!gen.orthographic() && !(cz < -1e-9 * glm::length(rel))) {
-            all = true;
-            break;
-        }
-        double px, py;
-        gen.toPixel(cx, cy, cz, px, py);
-        if (!(std::abs(px) < 1e7 && std::abs(py) < 1e7)) all = true;
-        xl = std::min(xl, px);
-        xh = std::max(xh, px);
-        yl = std::min(yl, py);
-        yh = std::max(yh, py);
-    }
-    if (all) {
-        fn.x0 = fn.y0 = 0;
-        fn.x1 = w - 1;
-        fn.y1 = h - 1;
-        return;
-    }
-    // Pixel x has its centre at x + 0.5.
-    constexpr double m = 0.01;
-    fn.x0 = int(std::max(std::ceil(xl - m - 0.5), -1.0));
-    fn.x1 = int(std::min(std::floor(xh + m - 0.5), double(w)));
-    fn.y0 = int(std::max(std::ceil(yl - m - 0.5), -1.0));
-    fn.y1 = int(std::min(std::floor(yh + m - 0.5), double(h)));
-}
-
-}  // namespace
 
 /// Pixels x0 .. x1-1 of row y as background, as writePixelHit writes a miss, counting the rays
 /// that meet the cube (certain inside the cube's inner outline, quantized between it and the
@@ -213,18 +38,6 @@ void fillBackground(Frame& frame, const PixelRays& rays, const RenderSettings& s
     const auto [cubeLo, cubeHi] = rays.cubeSpan(y);
     for (int x = std::max(x0, cubeLo); x < x1 && x <= cubeHi; ++x)
         if ((x >= innerLo && x <= innerHi) || rays.meetsCube(x, y)) ++st.rays;
-}
-
-/// The nodes of `from` (in order) that meet the frustum `f` of the tile x0 .. x1-1, y0 .. y1-1,
-/// into `list`; a node whose pixel rectangle is known and misses the tile is left out at once
-/// (step 4: no ray of the tile visits a cell of it).
-void filterFrontier(const TileFrustum& f, const std::vector<FrontierNode>& from, std::vector<FrontierNode>& list, int x0,
-                    int y0, int x1, int y1) {
-    list.clear();
-    for (const FrontierNode& fn : from) {
-        if (fn.rect && !(fn.x1 >= x0 && fn.x0 < x1 && fn.y1 >= y0 && fn.y0 < y1)) continue;
-        if (f.meets(fn.start.cell, fn.start.level)) list.push_back(fn);
-    }
 }
 
 RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
