@@ -35,6 +35,19 @@ RenderStats draw(const Renderer& r, const Octree& t, const Camera& c, Frame& f, 
 
 }  // namespace
 
+/// tile's frame `tf` (stats `ts`) equals full's `ff` (`fs`) bit for bit, its hits equal the
+/// reference's `rf`, and it counts the same rays and hits.
+static void expectSameAsFullAndReference(const Frame& tf, const RenderStats& ts, const Frame& ff, const RenderStats& fs,
+                                  const Frame& rf) {
+    const FrameDiff toFull = diffFrames(tf, ff);
+    EXPECT_TRUE(toFull.identical()) << toFull.first;
+    std::size_t offReference = 0;
+    for (std::size_t i = 0; i < tf.hitId.size(); ++i) offReference += tf.hitId[i] != rf.hitId[i];
+    EXPECT_EQ(offReference, 0u);
+    EXPECT_EQ(ts.rays, fs.rays);
+    EXPECT_EQ(ts.hits, fs.hits);
+}
+
 TEST(TileRenderer, EqualsFullBitForBitAndTheReferenceVoxelForVoxelOnEveryScene) {
     const auto full = makeRenderer("full"), tile = makeRenderer("tile"), reference = makeRenderer("reference");
     long hits = 0, startedBelowRoot = 0;
@@ -49,13 +62,7 @@ TEST(TileRenderer, EqualsFullBitForBitAndTheReferenceVoxelForVoxelOnEveryScene) 
                                  std::to_string(threads));
                     Frame tf;
                     const RenderStats ts = draw(*tile, *nt.tree, nc.camera, tf, threads, tileSize);
-                    const FrameDiff toFull = diffFrames(tf, ff);
-                    EXPECT_TRUE(toFull.identical()) << toFull.first;
-                    std::size_t offReference = 0;
-                    for (std::size_t i = 0; i < tf.hitId.size(); ++i) offReference += tf.hitId[i] != rf.hitId[i];
-                    EXPECT_EQ(offReference, 0u);
-                    EXPECT_EQ(ts.rays, fs.rays);
-                    EXPECT_EQ(ts.hits, fs.hits);
+                    expectSameAsFullAndReference(tf, ts, ff, fs, rf);
                     EXPECT_EQ(ts.pixels, fs.pixels);
                     EXPECT_EQ(ts.raysFull + ts.raysCommonPath, ts.pixels);
                     hits += long(ts.hits);
@@ -87,13 +94,7 @@ TEST(TileRenderer, InSmoothModeEqualsFullBitForBitAndTheSmoothReferenceVoxelForV
                                  std::to_string(threads));
                     Frame tf;
                     const RenderStats ts = draw(*tile, *nt.tree, nc.camera, tf, threads, tileSize, SurfaceMode::Smooth);
-                    const FrameDiff toFull = diffFrames(tf, ff);
-                    EXPECT_TRUE(toFull.identical()) << toFull.first;
-                    std::size_t offReference = 0;
-                    for (std::size_t i = 0; i < tf.hitId.size(); ++i) offReference += tf.hitId[i] != rf.hitId[i];
-                    EXPECT_EQ(offReference, 0u);
-                    EXPECT_EQ(ts.rays, fs.rays);
-                    EXPECT_EQ(ts.hits, fs.hits);
+                    expectSameAsFullAndReference(tf, ts, ff, fs, rf);
                     smoothHits += long(ts.hits);
                 }
             }
