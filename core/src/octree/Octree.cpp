@@ -91,7 +91,7 @@ std::uint64_t encodeCorners(const float values[8], float iso) {
 }
 
 void decodeCorners(std::uint64_t code, double d[8]) {
-    for (int q = 0; q < 8; ++q) d[q] = double(std::int8_t(std::uint8_t(code >> (8 * q)))) / 127.0;
+    for (int q = 0; q < 8; ++q) d[q] = double(std::int8_t(std::uint8_t(code >> (8 * q)))) * (1.0 / 127.0);
 }
 
 std::size_t Octree::bytes() const {

@@ -1,6 +1,7 @@
 #include "octrace/render/SmoothSurface.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -9,30 +10,37 @@ namespace {
 
 inline int sideOf(double v) { return v >= 0.0 ? 1 : 0; }
 
+/// How close (in voxels) the fast test brackets a crossing: far below what a depth buffer of
+/// float32 resolves at the distances drawn (its unit in the last place is 6e-8 of the distance).
+constexpr double kCrossingTolerance = 1e-7;
+
 /// The interpolant along p(u) = entry + u dir as a cubic c[0] + c[1] u + c[2] u^2 + c[3] u^3.
 struct Cubic {
     double c[4] = {0, 0, 0, 0};
     Cubic(const double d[8], const dvec3& e, const dvec3& dir) {
-        // The weight of the lower / upper corner along each axis, linear in u: w[a][h] = w0 + w1 u.
-        double w[3][2][2];
-        for (int a = 0; a < 3; ++a) {
-            w[a][0][0] = 1.0 - e[a];
-            w[a][0][1] = -dir[a];
-            w[a][1][0] = e[a];
-            w[a][1][1] = dir[a];
+        // The weight of the lower / upper corner along axis a, linear in u: (w0, w1) with
+        // w(u) = w0 + w1 u. Contracted one axis at a time (z, then y, then x): linear, quadratic,
+        // cubic polynomials, fewer products than expanding each corner's weight.
+        auto lower = [&](int a) { return std::array<double, 2>{1.0 - e[a], -dir[a]}; };
+        auto upper = [&](int a) { return std::array<double, 2>{e[a], dir[a]}; };
+        const auto z0 = lower(2), z1 = upper(2), y0 = lower(1), y1 = upper(1), x0 = lower(0), x1 = upper(0);
+        std::array<double, 3> h[2];
+        for (int x = 0; x < 2; ++x) {
+            std::array<double, 2> g[2];
+            for (int y = 0; y < 2; ++y) {
+                const double a = d[(x << 2) | (y << 1)], b = d[(x << 2) | (y << 1) | 1];
+                g[y] = {a * z0[0] + b * z1[0], a * z0[1] + b * z1[1]};
+            }
+            h[x] = {g[0][0] * y0[0] + g[1][0] * y1[0], g[0][0] * y0[1] + g[0][1] * y0[0] + g[1][0] * y1[1] + g[1][1] * y1[0],
+                    g[0][1] * y0[1] + g[1][1] * y1[1]};
         }
-        for (int q = 0; q < 8; ++q) {
-            const double* X = w[0][(q >> 2) & 1];
-            const double* Y = w[1][(q >> 1) & 1];
-            const double* Z = w[2][q & 1];
-            const double p0 = X[0] * Y[0], p1 = X[0] * Y[1] + X[1] * Y[0], p2 = X[1] * Y[1];
-            c[0] += d[q] * (p0 * Z[0]);
-            c[1] += d[q] * (p1 * Z[0] + p0 * Z[1]);
-            c[2] += d[q] * (p2 * Z[0] + p1 * Z[1]);
-            c[3] += d[q] * (p2 * Z[1]);
-        }
+        c[0] = h[0][0] * x0[0] + h[1][0] * x1[0];
+        c[1] = h[0][0] * x0[1] + h[0][1] * x0[0] + h[1][0] * x1[1] + h[1][1] * x1[0];
+        c[2] = h[0][1] * x0[1] + h[0][2] * x0[0] + h[1][1] * x1[1] + h[1][2] * x1[0];
+        c[3] = h[0][2] * x0[1] + h[1][2] * x1[1];
     }
     double operator()(double u) const { return ((c[3] * u + c[2]) * u + c[1]) * u + c[0]; }
+    double slope(double u) const { return (3.0 * c[3] * u + 2.0 * c[2]) * u + c[1]; }
     /// The zeros of the derivative in (0, span), ascending; returns how many.
     int extrema(double span, double out[2]) const {
         const double A = 3.0 * c[3], B = 2.0 * c[2], C = c[1];
@@ -71,7 +79,8 @@ double trilinear(const double d[8], const dvec3& p) {
 SmoothSurface::SmoothSurface(const Octree& tree, const RenderSettings& settings)
     : tree_(tree), active_(settings.surface == SurfaceMode::Smooth && !tree.corners().empty()) {}
 
-bool SmoothSurface::clip(const Ray& ray, const ivec3& cell, double& t0, double& span, dvec3& entry) const {
+bool SmoothSurface::clip(const RayState& state, const ivec3& cell, double& t0, double& span, dvec3& entry) const {
+    const Ray& ray = state.world;
     const double side = tree_.voxelSize();
     const dvec3 lo = tree_.cubeOrigin + dvec3(cell) * side;
     // A hair wider than the box: the quantized ray that proposed it may graze where the world
@@ -84,7 +93,7 @@ bool SmoothSurface::clip(const Ray& ray, const ivec3& cell, double& t0, double& 
             if (ray.origin[a] < l || ray.origin[a] > h) return false;
             continue;
         }
-        double ta = (l - ray.origin[a]) / ray.direction[a], tb = (h - ray.origin[a]) / ray.direction[a];
+        double ta = (l - ray.origin[a]) * state.inverse[a], tb = (h - ray.origin[a]) * state.inverse[a];
         if (ta > tb) std::swap(ta, tb);
         tin = std::max(tin, ta);
         tout = std::min(tout, tb);
@@ -149,23 +158,19 @@ bool cubicCrossing(const VoxelSpan& s, int& side, double& u) {
             flo = fhi;
             continue;
         }
-        // Illinois: regula falsi that halves the value of an end kept twice in a row.
-        int kept = 0;
-        for (int it = 0; it < 100 && hi - lo > 1e-9; ++it) {
-            double m = fhi != flo ? lo - flo * (hi - lo) / (fhi - flo) : 0.5 * (lo + hi);
+        // Newton's method from the regula falsi point, kept inside the bracket (a step that
+        // leaves it bisects instead); once a step is below half the tolerance, the next point
+        // is placed half the tolerance past Newton's on the side still open, so that the
+        // bracket closes to the tolerance around the crossing.
+        double m = fhi != flo ? lo - flo * (hi - lo) / (fhi - flo) : 0.5 * (lo + hi);
+        for (int it = 0; it < 100; ++it) {
             if (!(m > lo && m < hi)) m = 0.5 * (lo + hi);
             const double fm = f(m);
-            if (sideOf(fm) == side) {
-                lo = m;
-                flo = fm;
-                if (kept == -1) fhi *= 0.5;
-                kept = -1;
-            } else {
-                hi = m;
-                fhi = fm;
-                if (kept == 1) flo *= 0.5;
-                kept = 1;
-            }
+            const bool same = sideOf(fm) == side;
+            (same ? lo : hi) = m;
+            if (hi - lo <= kCrossingTolerance) break;
+            const double next = m - fm / f.slope(m);
+            m = std::abs(next - m) < 0.5 * kCrossingTolerance ? next + (same ? 0.5 : -0.5) * kCrossingTolerance : next;
         }
         u = hi;
         return true;
@@ -211,7 +216,7 @@ bool SmoothSurface::testWith(RayState& ray, TraversalHit& hit, const Search& sea
     const std::uint64_t code = tree_.corners()[hit.voxel];
     if (code == 0) return true;
     VoxelSpan s;
-    if (!clip(ray.world, hit.cell, s.t0, s.span, s.entry)) return false;
+    if (!clip(ray, hit.cell, s.t0, s.span, s.entry)) return false;
     decodeCorners(code, s.d);
     s.dir = ray.world.direction;
     double u = 0.0;

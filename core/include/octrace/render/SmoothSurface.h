@@ -37,7 +37,11 @@ public:
 
     /// One ray's state: the world ray and the side it carries (-1: none yet).
     struct RayState {
+        RayState() = default;
+        explicit RayState(const Ray& r)
+            : world(r), inverse(1.0 / r.direction.x, 1.0 / r.direction.y, 1.0 / r.direction.z) {}
         Ray world;
+        dvec3 inverse{0.0};  ///< 1 / world.direction per axis (the box clip's slabs)
         int side = -1;
     };
     /// The fast test: the interpolant along the ray is a cubic in the distance; its extrema
@@ -59,7 +63,7 @@ public:
 private:
     /// The voxel's box clipped to the ray (in front of the eye): entry distance t0, length
     /// in voxels `span`, the entry in voxel coordinates [0,1]^3; false when the ray misses it.
-    bool clip(const Ray& ray, const ivec3& cell, double& t0, double& span, dvec3& entry) const;
+    bool clip(const RayState& ray, const ivec3& cell, double& t0, double& span, dvec3& entry) const;
     /// The shared part of test() and testReference(): the voxel's corners and the ray's span in
     /// it, handed to `search`, which finds the crossing.
     template <class Search>

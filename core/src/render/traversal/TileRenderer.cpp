@@ -89,6 +89,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
             for (int tx = gx * G; tx < std::min((gx + 1) * G, tilesX); ++tx) {
             RenderStats& st = tileStats[std::size_t(ty) * std::size_t(tilesX) + std::size_t(tx)];
             TraversalCounters counters;
+            ShadeMemo memo;
             const int x0 = tx * T, y0 = ty * T;
             const int x1 = std::min(x0 + T, camera.width), y1 = std::min(y0 + T, camera.height);
             const TileFrustum fr = tileFrustum(gen, slopes, x0, y0, x1, y1);
@@ -141,7 +142,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                         SmoothSurface::RayState sray;
                         VoxelFilter filter;
                         if (smooth.active()) {
-                            sray.world = rays.world(x, y, dir);
+                            sray = SmoothSurface::RayState(rays.world(x, y, dir));
                             filter = smooth.filter(sray);
                         }
                         const VoxelFilter* fp = smooth.active() ? &filter : nullptr;
@@ -161,7 +162,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                             hit = traverseFromNodes(tree, q, starts.data(), n, counters, fp, cutp);
                         }
                     }
-                    writePixelHit(frame, x, y, hit, shader, rays, dir, settings, st, counters, cutp);
+                    writePixelHit(frame, x, y, hit, shader, rays, dir, settings, st, counters, cutp, &memo);
                 }
             st.nodesVisited = counters.nodes;
         }
