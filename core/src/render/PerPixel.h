@@ -34,15 +34,23 @@ inline TraversalHit surfaceHit(const SmoothSurface& smooth, const TraversalHit& 
     return traverseDiscrete(smooth.tree(), rays.quantized(x, y, dir), counters, cut, &filter);
 }
 
+/// The colour of the last plain voxel hit a thread shaded. Without smooth surfaces and shadow
+/// rays, shade() of a voxel hit depends on the voxel alone (its normal, colour, height and the
+/// frame's light), so neighbouring pixels that hit the same voxel take the same colour from here.
+struct ShadeMemo {
+    std::uint32_t voxel = kNoHit;
+    vec4 colour{0.0f};
+};
+
 /// Writes every field of pixel (x, y) from its primary ray's hit (or miss): flags, hit id,
 /// colour (or the background) and depth, and counts the pixel and the hit; a renderer that
 /// writes every pixel this way needs no clear (Frame::reshape). Every ray caster shades
 /// through this, so equal hits give equal pixels.
 /// The hit goes through surfaceHit first (with `counters` and `cut` for the traversal it may
-/// go on with).
+/// go on with). `memo`: a thread's ShadeMemo, or none.
 inline void writePixelHit(Frame& frame, int x, int y, const TraversalHit& proposed, const Shader& shader,
                           const PixelRays& rays, const dvec3& dir, const RenderSettings& settings, RenderStats& st,
-                          TraversalCounters& counters, const LodCut* cut = nullptr) {
+                          TraversalCounters& counters, const LodCut* cut = nullptr, ShadeMemo* memo = nullptr) {
     const TraversalHit hit = surfaceHit(shader.smooth(), proposed, rays, x, y, dir, counters, cut);
     const std::size_t p = frame.pixel(x, y);
     ++st.pixels;
@@ -55,7 +63,15 @@ inline void writePixelHit(Frame& frame, int x, int y, const TraversalHit& propos
     }
     ++st.hits;
     frame.hitId[p] = hit.voxel;
-    frame.rgba[p] = shader.shade(hit, &st.secondaryRays);
+    if (memo && !hit.smooth && !hit.nodeHit() && hit.leafShift == 0 && !shader.shadows()) {
+        if (memo->voxel != hit.voxel) {
+            memo->voxel = hit.voxel;
+            memo->colour = shader.shade(hit, &st.secondaryRays);
+        }
+        frame.rgba[p] = memo->colour;
+    } else {
+        frame.rgba[p] = shader.shade(hit, &st.secondaryRays);
+    }
     frame.depth[p] = shader.distance(rays.world(x, y, dir), hit);
 }
 

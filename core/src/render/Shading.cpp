@@ -203,9 +203,10 @@ float Shader::distanceToBox(const Ray& ray, const Box3& b) const {
     double tin = 0.0;
     for (int a = 0; a < 3; ++a) {
         if (ray.direction[a] == 0.0) continue;
-        double t0 = (b.lo[a] - ray.origin[a]) / ray.direction[a];
-        double t1 = (b.hi[a] - ray.origin[a]) / ray.direction[a];
-        tin = std::max(tin, std::min(t0, t1));
+        // The plane the ray enters by along this axis: the nearer one's distance is the smaller
+        // of the two (rounding is monotone), so the other division is not needed.
+        const double plane = ray.direction[a] > 0.0 ? b.lo[a] : b.hi[a];
+        tin = std::max(tin, (plane - ray.origin[a]) / ray.direction[a]);
     }
     return float(tin);
 }
