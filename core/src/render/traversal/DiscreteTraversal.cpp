@@ -182,6 +182,26 @@ public:
         if (!computeOrder(stack_[0])) sp_ = -1;
     }
 
+    /// As start(), only if the ray crosses the node's box (boxCrossed, sharing its products
+    /// with the frame); false, and nothing to run, otherwise.
+    bool startIfCrossed(std::uint32_t node, int level, i64 m0, i64 u0, i64 v0) {
+        setFrame(node, level, m0, u0, v0);
+        const NodeState& f = stack_[0];
+        const i64 s = i64(1) << (N - level);
+        // boxCrossed's tests, with the frame's lower/upper points; F at the two corners from
+        // F at the centre (F is linear, dF/du = dV << Q, dF/dv = -dU << Q, and s/2 away).
+        const i64 qa = r_.dV << (Q + N - level - 1), qb = r_.dU << (Q + N - level - 1);
+        const i64 Fuv1 = f.Fc - qa - qb, Fu1v = f.Fc + qa + qb;  // F(u0, v0 + s), F(u0 + s, v0)
+        if (!(f.Wu0 < ((u0 + s) << (N + Q)) && f.Wu1 > (u0 << (N + Q)) - k_.cU && f.Wv0 < ((v0 + s) << (N + Q)) &&
+              f.Wv1 > (v0 << (N + Q)) - k_.cV && Fuv1 < k_.cU && Fu1v > -k_.cV && r_.eyeM < ((m0 + s) << Q) &&
+              r_.uEyeFloor < u0 + s && r_.vEyeFloor < v0 + s)) {
+            sp_ = -1;
+            return false;
+        }
+        if (!computeOrder(stack_[0])) sp_ = -1;
+        return true;
+    }
+
     /// Bottom frame without its state byte.
     void setFrame(std::uint32_t node, int level, i64 m0, i64 u0, i64 v0) {
         sp_ = 0;
@@ -192,10 +212,11 @@ public:
         f.m0 = m0;
         f.u0 = u0;
         f.v0 = v0;
-        f.Wu0 = (r_.U0 << N) + m0 * r_.dU;
-        f.Wu1 = (r_.U0 << N) + (m0 + s) * r_.dU;
-        f.Wv0 = (r_.V0 << N) + m0 * r_.dV;
-        f.Wv1 = (r_.V0 << N) + (m0 + s) * r_.dV;
+        const i64 U = r_.U0 << N, V = r_.V0 << N;
+        f.Wu0 = U + m0 * r_.dU;
+        f.Wu1 = f.Wu0 + s * r_.dU;
+        f.Wv0 = V + m0 * r_.dV;
+        f.Wv1 = f.Wv0 + s * r_.dV;
         f.Fc = (((u0 + h) << Q) - r_.U0) * r_.dV - (((v0 + h) << Q) - r_.V0) * r_.dU;
         f.partial = (m0 << Q) < r_.eyeM;
         f.lazy = false;
@@ -518,14 +539,12 @@ TraversalHit traverseFromNodes(const Octree& tree, const QuantizedRay& ray, cons
     Engine<false> e(tree, ray, counters, nullptr);
     e.setFilter(filter);
     e.setCut(cut);
-    const i64 cU = ray.dU == 0, cV = ray.dV == 0;
     for (std::size_t i = 0; i < count; ++i) {
         const StartNode& n = nodes[i];
         i64 m0, u0, v0;
         mirroredOrigin(ray, n.cell, n.level, m0, u0, v0);
         // The state byte leaves out the tests that follow from the node being crossed: check it.
-        if (!boxCrossed(ray, cU, cV, m0, u0, v0, i64(1) << (N - n.level))) continue;
-        e.start(n.node, n.level, m0, u0, v0);
+        if (!e.startIfCrossed(n.node, n.level, m0, u0, v0)) continue;
         const TraversalHit hit = e.run();
         if (hit.hit()) return hit;
     }
