@@ -77,7 +77,7 @@ double trilinear(const double d[8], const dvec3& p) {
 }  // namespace
 
 SmoothSurface::SmoothSurface(const Octree& tree, const RenderSettings& settings)
-    : tree_(tree), active_(settings.surface == SurfaceMode::Smooth && !tree.corners().empty()) {}
+    : tree_(tree), active_(settings.surface == SurfaceMode::Smooth && !tree.corners().empty()), inverseVoxel_(1.0 / tree.voxelSize()) {}
 
 bool SmoothSurface::clip(const RayState& state, const ivec3& cell, double& t0, double& span, dvec3& entry) const {
     const Ray& ray = state.world;
@@ -100,8 +100,8 @@ bool SmoothSurface::clip(const RayState& state, const ivec3& cell, double& t0, d
     }
     if (!(tout >= tin)) return false;
     t0 = tin;
-    span = (tout - tin) / side;
-    entry = (ray.origin + tin * ray.direction - lo) / side;
+    span = (tout - tin) * inverseVoxel_;
+    entry = (ray.origin + tin * ray.direction - lo) * inverseVoxel_;
     return true;
 }
 

@@ -71,6 +71,7 @@ private:
     bool accept(const RayState& ray, TraversalHit& hit, const double d[8], double t0, const dvec3& entry, double u) const;
     const Octree& tree_;
     bool active_ = false;
+    double inverseVoxel_ = 1.0;  ///< 1 / the voxel's side
 };
 
 }  // namespace octrace
