@@ -5,10 +5,12 @@
 #include "octrace/util/Error.h"
 
 #include <algorithm>
+#include <array>
 #include <climits>
 #include <cctype>
 #include <cmath>
 #include <limits>
+#include <mutex>
 
 namespace octrace {
 namespace {
@@ -43,24 +45,54 @@ std::vector<std::string> colormapNames() {
     return n;
 }
 
+namespace {
+/// A map's colours in linear RGB at kSteps equal steps of each interval between its control
+/// points (sRGB interpolated, then linearised), built once per map. Linear interpolation between
+/// neighbouring steps differs from the exact conversion by less than 1e-6 (the conversion's
+/// curvature over a step of at most a 4096th of the map), a thousandth of an 8-bit step.
+struct LinearMap {
+    std::vector<vec3> colours;
+    std::size_t steps = 0;  // colours.size() - 1
+};
+const LinearMap& linearMap(std::size_t index) {
+    static std::vector<std::once_flag> once(maps().size());
+    static std::vector<LinearMap> linear(maps().size());
+    const Map& m = maps()[index];
+    std::call_once(once[index], [&] {
+        const std::size_t k = (4096 + m.size - 2) / (m.size - 1);  // steps per interval
+        LinearMap& l = linear[index];
+        l.steps = (m.size - 1) * k;
+        l.colours.resize(l.steps + 1);
+        for (std::size_t j = 0; j <= l.steps; ++j) {
+            const std::size_t i = std::min(j / k, m.size - 2);
+            const float f = float(j - i * k) / float(k);
+            const float* a = m.table[i];
+            const float* b = m.table[i + 1];
+            l.colours[j] = vec3(srgbToLinear(a[0] * (1.0f - f) + b[0] * f), srgbToLinear(a[1] * (1.0f - f) + b[1] * f),
+                                srgbToLinear(a[2] * (1.0f - f) + b[2] * f));
+        }
+    });
+    return linear[index];
+}
+}  // namespace
+
 Colormap::Colormap(const std::string& nameIn) {
     const std::string name = nameIn == "gray" ? "grey" : nameIn;
-    for (const auto& m : maps()) {
-        if (name != m.name) continue;
-        table_ = m.table;
-        size_ = m.size;
+    for (std::size_t index = 0; index < maps().size(); ++index) {
+        if (name != maps()[index].name) continue;
+        const LinearMap& l = linearMap(index);
+        linear_ = l.colours.data();
+        steps_ = l.steps;
         return;
     }
     throw UsageError("unknown colour map '" + nameIn + "' (choose one of: viridis, thermal, haline, speed, grey, coolwarm)");
 }
 
 vec3 Colormap::operator()(float t) const {
-    t = std::clamp(std::isnan(t) ? 0.0f : t, 0.0f, 1.0f) * float(size_ - 1);
-    std::size_t i = std::min(std::size_t(t), size_ - 2);
-    float f = t - float(i);
-    vec3 c = vec3(table_[i][0], table_[i][1], table_[i][2]) * (1.0f - f) +
-             vec3(table_[i + 1][0], table_[i + 1][1], table_[i + 1][2]) * f;
-    return vec3(srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z));
+    t = std::clamp(std::isnan(t) ? 0.0f : t, 0.0f, 1.0f) * float(steps_);
+    const std::size_t i = std::min(std::size_t(t), steps_ - 1);
+    const float f = t - float(i);
+    return linear_[i] * (1.0f - f) + linear_[i + 1] * f;
 }
 
 vec3 colormap(const std::string& name, float t) { return Colormap(name)(t); }

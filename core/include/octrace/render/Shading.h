@@ -29,8 +29,8 @@ public:
     vec3 operator()(float t) const;
 
 private:
-    const float (*table_)[3] = nullptr;  // sRGB control points, evenly spaced
-    std::size_t size_ = 0;
+    const vec3* linear_ = nullptr;  // linear RGB at steps_ + 1 equal steps (Shading.cpp, LinearMap)
+    std::size_t steps_ = 0;
 };
 /// The colour map for a variable, by its CF standard_name (sea water temperature: thermal,
 /// salinity: haline, speed of sound: speed), else by its name (TEMP, SALT, sound_speed, ...);
