@@ -94,10 +94,11 @@ int previewLevel(int depth) { return std::max(1, depth - 2); }
 }  // namespace
 
 QImage toImage(const Frame& frame) {
-    const std::vector<std::uint8_t> px = quantizeSrgb8(frame, 4);
-    QImage img(frame.width, frame.height, QImage::Format_RGBA8888);
-    for (int y = 0; y < frame.height; ++y)
-        std::memcpy(img.scanLine(y), px.data() + std::size_t(y) * std::size_t(frame.width) * 4, std::size_t(frame.width) * 4);
+    // Qt's 32-bit layout, written in place on all cores; an opaque frame is marked RGB32, which
+    // Qt paints by copying rows (an image with alpha is blended pixel by pixel).
+    QImage img(frame.width, frame.height, QImage::Format_ARGB32);
+    if (img.isNull()) return img;
+    if (packSrgb8Rows(frame, img.bits(), std::size_t(img.bytesPerLine()), 0)) img.reinterpretAsFormat(QImage::Format_RGB32);
     return img;
 }
 
@@ -363,8 +364,13 @@ void Engine::requestFrame(const FrameRequest& request) {
                 RenderSettings s = rs;
                 resolved.applyTo(s);
                 if (request.preview && r->multiResolution()) s.detail.level = out.level;
+                // A newer exact frame stops this one (the tile renderer between its groups of
+                // tiles): a preview still drawing when the button is released no longer delays
+                // the exact frame by its own length.
+                s.cancel = &stop;
                 PaneFrame p;
                 p.stats = r->render(*tree, cam, s, p.frame);
+                if (stop) return;
                 p.tracesRays = r->tracesRays();
                 p.image = toImage(p.frame);
                 out.panes.push_back(std::move(p));

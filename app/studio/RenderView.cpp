@@ -31,7 +31,8 @@ void RenderView::setMarker(std::optional<QPointF> pos) {
 
 void RenderView::paintEvent(QPaintEvent*) {
     QPainter p(this);
-    p.fillRect(rect(), palette().color(QPalette::Base));
+    // The frame covers the whole view: the base colour shows only where it is transparent.
+    if (image_.isNull() || image_.hasAlphaChannel()) p.fillRect(rect(), palette().color(QPalette::Base));
     if (!image_.isNull()) {
         // A preview is smaller than the pane: scaled up to fill it.
         p.setRenderHint(QPainter::SmoothPixmapTransform, image_.size() != size());

@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 
 using namespace octrace;
@@ -112,6 +113,27 @@ TEST(TileRenderer, VisitsFewerNodesThanFullOnTheFramedSurface) {
     const RenderStats ts = draw(*makeRenderer("tile"), t, cam, b, 2);
     EXPECT_TRUE(diffFrames(a, b).identical());
     EXPECT_LT(ts.nodesVisited, fs.nodesVisited);
+}
+
+/// RenderSettings::cancel: a render asked to stop before it starts draws no tile group; with
+/// the flag present but false, the frame is the one drawn without it.
+TEST(TileRenderer, StopsWhenCancelledAndDrawsTheSameFrameWhenNot) {
+    const Octree& t = noiseTree();
+    const Camera cam = Camera::framing(t.occupiedBounds(), 160, 120);
+    const auto tile = makeRenderer("tile");
+    Frame plain, flagged, stopped;
+    RenderSettings s;
+    s.threads = 2;
+    const RenderStats ps = tile->render(t, cam, s, plain);
+    std::atomic<bool> cancel{false};
+    s.cancel = &cancel;
+    tile->render(t, cam, s, flagged);
+    EXPECT_TRUE(diffFrames(plain, flagged).identical());
+    EXPECT_EQ(ps.pixels, std::uint64_t(160 * 120));
+    cancel = true;
+    const RenderStats ss = tile->render(t, cam, s, stopped);
+    EXPECT_EQ(ss.pixels, 0u);
+    EXPECT_EQ(ss.rays, 0u);
 }
 
 /// A wall one voxel thick (depth 7, the voxels [X, X + v) with X the cube's middle plane

@@ -1,6 +1,7 @@
 #include "octrace/render/ImageCompare.h"
 
 #include "octrace/util/Error.h"
+#include "octrace/util/Parallel.h"
 
 #include <algorithm>
 #include <array>
@@ -97,22 +98,56 @@ bool needsAlphaChannel(const Frame& frame, bool forced) {
     return false;
 }
 
-std::vector<std::uint8_t> quantizeSrgb8(const Frame& frame, int channels) {
-    if (channels != 3 && channels != 4) throw UsageError("quantizeSrgb8: 3 or 4 channels, not " + std::to_string(channels));
+namespace {
+void checkQuantized(const Frame& frame, const char* what) {
     if (frame.width < 0 || frame.height < 0 ||
         frame.rgba.size() != std::size_t(std::max(frame.width, 0)) * std::size_t(std::max(frame.height, 0)))
-        throw UsageError("quantizeSrgb8: the frame holds " + std::to_string(frame.rgba.size()) + " colour values for " +
-                         std::to_string(frame.width) + "x" + std::to_string(frame.height) + " pixels");
+        throw UsageError(std::string(what) + ": the frame holds " + std::to_string(frame.rgba.size()) +
+                         " colour values for " + std::to_string(frame.width) + "x" + std::to_string(frame.height) +
+                         " pixels");
+}
+}  // namespace
+
+std::vector<std::uint8_t> quantizeSrgb8(const Frame& frame, int channels) {
+    if (channels != 3 && channels != 4) throw UsageError("quantizeSrgb8: 3 or 4 channels, not " + std::to_string(channels));
+    checkQuantized(frame, "quantizeSrgb8");
     std::vector<std::uint8_t> out(frame.rgba.size() * std::size_t(channels));
     std::uint8_t* px = out.data();
+    const SrgbTables& t = tables();
     for (const vec4& c : frame.rgba) {
-        px[0] = linearToSrgb8(c.r);
-        px[1] = linearToSrgb8(c.g);
-        px[2] = linearToSrgb8(c.b);
+        px[0] = toSrgb8(t, c.r);
+        px[1] = toSrgb8(t, c.g);
+        px[2] = toSrgb8(t, c.b);
         if (channels == 4) px[3] = alphaTo8(c.a);
         px += channels;
     }
     return out;
+}
+
+bool packSrgb8Rows(const Frame& frame, std::uint8_t* out, std::size_t stride, int threads) {
+    checkQuantized(frame, "packSrgb8Rows");
+    if (stride < std::size_t(frame.width) * 4)
+        throw UsageError("packSrgb8Rows: rows of " + std::to_string(stride) + " bytes cannot hold " +
+                         std::to_string(frame.width) + " pixels");
+    const SrgbTables& t = tables();
+    constexpr std::size_t kRows = 32;  // rows per task
+    const std::size_t h = std::size_t(frame.height), w = std::size_t(frame.width);
+    std::vector<std::uint8_t> opaque((h + kRows - 1) / kRows, 1);
+    parallelFor(opaque.size(), threads, [&](std::size_t task) {
+        for (std::size_t y = task * kRows; y < std::min(h, (task + 1) * kRows); ++y) {
+            const vec4* c = frame.rgba.data() + y * w;
+            std::uint32_t* row = reinterpret_cast<std::uint32_t*>(out + y * stride);
+            std::uint32_t alphas = 0xFFu;
+            for (std::size_t x = 0; x < w; ++x) {
+                const std::uint32_t a = alphaTo8(c[x].a);
+                alphas &= a;
+                row[x] = a << 24 | std::uint32_t(toSrgb8(t, c[x].r)) << 16 | std::uint32_t(toSrgb8(t, c[x].g)) << 8 |
+                         std::uint32_t(toSrgb8(t, c[x].b));
+            }
+            if (alphas != 0xFFu) opaque[task] = 0;
+        }
+    });
+    return std::all_of(opaque.begin(), opaque.end(), [](std::uint8_t o) { return o != 0; });
 }
 
 ImageDifference compareImages(const Frame& a, const Frame& b) {

@@ -39,6 +39,12 @@ bool needsAlphaChannel(const Frame& frame, bool forced);
 /// buffer that does not hold width·height pixels.
 std::vector<std::uint8_t> quantizeSrgb8(const Frame& frame, int channels);
 
+/// The same 8-bit values as quantizeSrgb8 with 4 channels, as 32-bit words A << 24 | R << 16 |
+/// G << 8 | B (the layout of Qt's RGB32 and ARGB32 images), rows of `stride` bytes at `out`,
+/// the rows split over `threads` threads (0: all cores). Returns whether every alpha is 255.
+/// Throws UsageError as quantizeSrgb8 does, or for a stride shorter than a row.
+bool packSrgb8Rows(const Frame& frame, std::uint8_t* out, std::size_t stride, int threads);
+
 /// How far apart two images are once both are quantized as an 8-bit sRGB PNG would be
 /// (RGB through linearToSrgb8, A through alphaTo8).
 struct ImageDifference {

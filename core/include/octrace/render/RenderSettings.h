@@ -3,6 +3,7 @@
 #include "octrace/build/ScalarField.h"
 #include "octrace/util/Math.h"
 
+#include <atomic>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -114,6 +115,11 @@ struct RenderSettings {
     /// Read by every voxel renderer, through the shared hit path (SmoothSurface.h). Smooth on an
     /// octree without corner values (Octree::corners()) draws voxels.
     SurfaceMode surface = SurfaceMode::Voxel;
+    /// Not an option: when set and it becomes true, the tile renderer stops at its next group
+    /// of tiles and leaves the rest of the frame unwritten (the caller throws the frame away:
+    /// the studio, when a newer frame replaces the one being drawn). The other renderers run
+    /// to the end.
+    const std::atomic<bool>* cancel = nullptr;
 };
 
 }  // namespace octrace

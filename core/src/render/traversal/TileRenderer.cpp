@@ -68,6 +68,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
     const int groupsX = (tilesX + G - 1) / G, groupsY = (tilesY + G - 1) / G;
     const std::vector<FrontierNode> root{{StartNode{}}};
     parallelFor(std::size_t(groupsX) * std::size_t(groupsY), settings.threads, [&](std::size_t g) {
+        if (settings.cancel && settings.cancel->load(std::memory_order_relaxed)) return;  // the frame is thrown away
         std::vector<FrontierNode> group, list, next;
         std::vector<StartNode> starts;
         std::vector<std::uint64_t> colMask, rowMask;
