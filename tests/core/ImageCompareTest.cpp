@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 using namespace octrace;
@@ -147,4 +148,34 @@ TEST(CompareImages, EmptyFramesAreIdentical) {
     ImageDifference d = compareImages(Frame(), Frame());
     EXPECT_EQ(d.differingPixels, 0u);
     EXPECT_TRUE(std::isinf(d.psnrDb));
+}
+
+// packSrgb8Rows writes quantizeSrgb8's bytes as 0xAARRGGBB words into rows of any stride, the
+// same on 1 and 2 threads, and says whether every alpha is 255.
+TEST(PackSrgb8Rows, WritesQuantizeSrgb8sBytesInQtsLayoutIntoRowsOfAnyStride) {
+    Frame f(37, 71);  // more rows than one task's 32
+    for (int y = 0; y < f.height; ++y)
+        for (int x = 0; x < f.width; ++x)
+            f.rgba[f.pixel(x, y)] = vec4(float(x) / 36.0f, float(y) / 70.0f, float((x * 7 + y) % 13) / 12.0f - 0.1f, 1.0f);
+    const std::vector<std::uint8_t> want = quantizeSrgb8(f, 4);
+    for (int threads : {1, 2}) {
+        const std::size_t stride = std::size_t(f.width) * 4 + 12;
+        std::vector<std::uint8_t> out(stride * std::size_t(f.height), 0xAB);
+        EXPECT_TRUE(packSrgb8Rows(f, out.data(), stride, threads));
+        for (int y = 0; y < f.height; ++y) {
+            for (int x = 0; x < f.width; ++x) {
+                std::uint32_t w;
+                std::memcpy(&w, out.data() + std::size_t(y) * stride + std::size_t(x) * 4, 4);
+                const std::uint8_t* q = want.data() + (std::size_t(y) * std::size_t(f.width) + std::size_t(x)) * 4;
+                ASSERT_EQ(w, std::uint32_t(q[3]) << 24 | std::uint32_t(q[0]) << 16 | std::uint32_t(q[1]) << 8 | q[2])
+                    << x << "," << y << " on " << threads << " threads";
+            }
+            for (std::size_t b = std::size_t(f.width) * 4; b < stride; ++b) ASSERT_EQ(out[std::size_t(y) * stride + b], 0xAB);
+        }
+    }
+    f.rgba[f.pixel(20, 60)].a = 0.5f;
+    std::vector<std::uint8_t> out(std::size_t(f.width) * std::size_t(f.height) * 4);
+    EXPECT_FALSE(packSrgb8Rows(f, out.data(), std::size_t(f.width) * 4, 2));
+    EXPECT_EQ(out[(std::size_t(60) * std::size_t(f.width) + 20) * 4 + 3], alphaTo8(0.5f));
+    EXPECT_THROW(packSrgb8Rows(f, out.data(), std::size_t(f.width) * 4 - 1, 1), UsageError);
 }
