@@ -137,7 +137,8 @@ struct VoxelSpan {
 };
 
 /// The fast search: the cubic's extrema split the span into monotone pieces; the first piece
-/// whose end lies on the other side holds the crossing, found by Illinois regula falsi.
+/// whose end lies on the other side holds the crossing, found by Newton's method from the
+/// regula falsi point inside the bracket, closed to kCrossingTolerance.
 /// `side`: the carried side (-1 none: the entry's), on return the exit side when there is no
 /// crossing. Returns whether there is one, at `u` voxels from the entry.
 bool cubicCrossing(const VoxelSpan& s, int& side, double& u) {
