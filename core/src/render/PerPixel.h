@@ -34,6 +34,17 @@ inline TraversalHit surfaceHit(const SmoothSurface& smooth, const TraversalHit& 
     return traverseDiscrete(smooth.tree(), rays.quantized(x, y, dir), counters, cut, &filter);
 }
 
+/// Writes pixel (x, y) as a miss (background, infinite depth, no hit) and counts it; what
+/// writePixelHit writes for a ray that hits nothing.
+inline void writeMissPixel(Frame& frame, int x, int y, const RenderSettings& settings, RenderStats& st) {
+    const std::size_t p = frame.pixel(x, y);
+    ++st.pixels;
+    frame.flags[p] = Frame::kTraced;
+    frame.rgba[p] = settings.background;
+    frame.depth[p] = std::numeric_limits<float>::infinity();
+    frame.hitId[p] = kNoHit;
+}
+
 /// The colour of the last plain voxel hit a thread shaded. Without smooth surfaces and shadow
 /// rays, shade() of a voxel hit depends on the voxel alone (its normal, colour, height and the
 /// frame's light), so neighbouring pixels that hit the same voxel take the same colour from here.
@@ -51,16 +62,19 @@ struct ShadeMemo {
 inline void writePixelHit(Frame& frame, int x, int y, const TraversalHit& proposed, const Shader& shader,
                           const PixelRays& rays, const dvec3& dir, const RenderSettings& settings, RenderStats& st,
                           TraversalCounters& counters, const LodCut* cut = nullptr, ShadeMemo* memo = nullptr) {
-    const TraversalHit hit = surfaceHit(shader.smooth(), proposed, rays, x, y, dir, counters, cut);
+    // Taken by reference when surfaceHit would return it unchanged: a copy of the hit just
+    // written field by field stalls on store forwarding, a measurable share of a frame.
+    TraversalHit tested;
+    const bool retest = shader.smooth().active() && proposed.hit() && !proposed.smooth;
+    if (retest) tested = surfaceHit(shader.smooth(), proposed, rays, x, y, dir, counters, cut);
+    const TraversalHit& hit = retest ? tested : proposed;
+    if (!hit.hit()) {
+        writeMissPixel(frame, x, y, settings, st);
+        return;
+    }
     const std::size_t p = frame.pixel(x, y);
     ++st.pixels;
     frame.flags[p] = Frame::kTraced;
-    if (!hit.hit()) {
-        frame.rgba[p] = settings.background;
-        frame.depth[p] = std::numeric_limits<float>::infinity();
-        frame.hitId[p] = kNoHit;
-        return;
-    }
     ++st.hits;
     frame.hitId[p] = hit.voxel;
     if (memo && !hit.smooth && !hit.nodeHit() && hit.leafShift == 0 && !shader.shadows()) {

@@ -125,43 +125,44 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
             }
             for (int y = y0; y < y1; ++y)
                 for (int x = x0; x < x1; ++x) {
-                    const dvec3 dir = gen.direction(x, y);
-                    TraversalHit hit;
                     const std::uint64_t mask = masked ? colMask[std::size_t(x - x0)] & rowMask[std::size_t(y - y0)] : ~std::uint64_t(0);
                     if (!rays.mayHitSurface(x, y) || mask == 0) {
                         // Step 5: nothing the ray can visit holds a boundary voxel (outside the
                         // surface's outline, or outside every frontier node's rectangle).
                         if (rays.mayMeetCube(x, y) && rays.meetsCube(x, y)) ++st.rays;
                         ++st.raysFull;
+                        writeMissPixel(frame, x, y, settings, st);
+                        continue;
+                    }
+                    const dvec3 dir = gen.direction(x, y);
+                    TraversalHit hit;
+                    const QuantizedRay q = rays.quantized(x, y, dir);
+                    if (q.meetsCube) ++st.rays;
+                    // Smooth surfaces: the interpolant's test runs inside the traversal, on
+                    // the boundary voxels in the ray's visiting order (the same as full's,
+                    // by cover and order), instead of proposing the first and starting over
+                    // from the root when it is passed (writePixelHit then keeps the hit).
+                    SmoothSurface::RayState sray;
+                    VoxelFilter filter;
+                    if (smooth.active()) {
+                        sray = SmoothSurface::RayState(rays.world(x, y, dir));
+                        filter = smooth.filter(sray);
+                    }
+                    const VoxelFilter* fp = smooth.active() ? &filter : nullptr;
+                    if (q.sign != s) {
+                        // Another sign pattern: the frontier's order may not be this ray's.
+                        ++st.raysFull;
+                        hit = traverseDiscrete(tree, q, counters, cutp, fp);
                     } else {
-                        const QuantizedRay q = rays.quantized(x, y, dir);
-                        if (q.meetsCube) ++st.rays;
-                        // Smooth surfaces: the interpolant's test runs inside the traversal, on
-                        // the boundary voxels in the ray's visiting order (the same as full's,
-                        // by cover and order), instead of proposing the first and starting over
-                        // from the root when it is passed (writePixelHit then keeps the hit).
-                        SmoothSurface::RayState sray;
-                        VoxelFilter filter;
-                        if (smooth.active()) {
-                            sray = SmoothSurface::RayState(rays.world(x, y, dir));
-                            filter = smooth.filter(sray);
-                        }
-                        const VoxelFilter* fp = smooth.active() ? &filter : nullptr;
-                        if (q.sign != s) {
-                            // Another sign pattern: the frontier's order may not be this ray's.
-                            ++st.raysFull;
-                            hit = traverseDiscrete(tree, q, counters, cutp, fp);
+                        ++st.raysCommonPath;
+                        std::size_t n = 0;
+                        if (masked) {
+                            for (std::uint64_t m = mask; m; m &= m - 1) starts[n++] = list[std::size_t(std::countr_zero(m))].start;
                         } else {
-                            ++st.raysCommonPath;
-                            std::size_t n = 0;
-                            if (masked) {
-                                for (std::uint64_t m = mask; m; m &= m - 1) starts[n++] = list[std::size_t(std::countr_zero(m))].start;
-                            } else {
-                                for (const FrontierNode& fn : list)
-                                    if (x >= fn.x0 && x <= fn.x1 && y >= fn.y0 && y <= fn.y1) starts[n++] = fn.start;
-                            }
-                            hit = traverseFromNodes(tree, q, starts.data(), n, counters, fp, cutp);
+                            for (const FrontierNode& fn : list)
+                                if (x >= fn.x0 && x <= fn.x1 && y >= fn.y0 && y <= fn.y1) starts[n++] = fn.start;
                         }
+                        hit = traverseFromNodes(tree, q, starts.data(), n, counters, fp, cutp);
                     }
                     writePixelHit(frame, x, y, hit, shader, rays, dir, settings, st, counters, cutp, &memo);
                 }
