@@ -17,6 +17,13 @@
 
 namespace octrace::detail {
 
+/// Whether surfaceHit tests `hit` (the frame draws smooth surfaces and the hit is a voxel the
+/// test has not accepted yet); otherwise it returns the hit unchanged, and a caller may keep it
+/// without the copy.
+inline bool surfaceTestApplies(const SmoothSurface& smooth, const TraversalHit& hit) {
+    return smooth.active() && hit.hit() && !hit.smooth;
+}
+
 /// The shared hit path of smooth surfaces (SmoothSurface.h), for every ray caster: the hit a
 /// renderer proposes (the first boundary voxel on the pixel's ray) is tested against the field's
 /// interpolant; a ray that passes it goes on with the discrete traversal under the same test
@@ -25,7 +32,7 @@ namespace octrace::detail {
 /// reference renderer runs its own test in its own traversal).
 inline TraversalHit surfaceHit(const SmoothSurface& smooth, const TraversalHit& proposed, const PixelRays& rays, int x, int y,
                                const dvec3& dir, TraversalCounters& counters, const LodCut* cut = nullptr) {
-    if (!smooth.active() || !proposed.hit() || proposed.smooth) return proposed;
+    if (!surfaceTestApplies(smooth, proposed)) return proposed;
     SmoothSurface::RayState ray{rays.world(x, y, dir)};
     TraversalHit hit = proposed;
     if (smooth.test(ray, hit)) return hit;
@@ -65,7 +72,7 @@ inline void writePixelHit(Frame& frame, int x, int y, const TraversalHit& propos
     // Taken by reference when surfaceHit would return it unchanged: a copy of the hit just
     // written field by field stalls on store forwarding, a measurable share of a frame.
     TraversalHit tested;
-    const bool retest = shader.smooth().active() && proposed.hit() && !proposed.smooth;
+    const bool retest = surfaceTestApplies(shader.smooth(), proposed);
     if (retest) tested = surfaceHit(shader.smooth(), proposed, rays, x, y, dir, counters, cut);
     const TraversalHit& hit = retest ? tested : proposed;
     if (!hit.hit()) {

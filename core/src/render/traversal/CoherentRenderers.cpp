@@ -229,7 +229,7 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
     }
     // In place, and only when the smooth test applies (as writePixelHit: a copy of the hit just
     // written field by field stalls on store forwarding).
-    if (c.shader.smooth().active() && hit.hit() && !hit.smooth) hit = surfaceHit(c.shader.smooth(), hit, c.rays, x, y, dir, counters, &c.cut);
+    if (surfaceTestApplies(c.shader.smooth(), hit)) hit = surfaceHit(c.shader.smooth(), hit, c.rays, x, y, dir, counters, &c.cut);
     f.flags[p] = flags;
     if (!hit.hit()) {
         f.rgba[p] = c.settings.background;

@@ -134,13 +134,20 @@ inline unsigned stateByte(const RayConsts& k, const NodeState& n, i64& Wuc, i64&
 
 /// Exact test of a node box [m0, m0+s) x [u0, u0+s) x [v0, v0+s) (mirrored lattice): the
 /// same pairwise interval tests as the state byte, for the box itself.
+/// The tests themselves, given the line's lower/upper points on the box's main planes (Wu0 ..
+/// Wv1, as in NodeState) and F at the box's (u0, v0 + s) and (u0 + s, v0) corners.
+inline bool boxCrossedFrom(const QuantizedRay& r, i64 cU, i64 cV, i64 m0, i64 u0, i64 v0, i64 s, i64 Wu0, i64 Wu1,
+                           i64 Wv0, i64 Wv1, i64 Fuv1, i64 Fu1v) {
+    return Wu0 < ((u0 + s) << (N + Q)) && Wu1 > (u0 << (N + Q)) - cU && Wv0 < ((v0 + s) << (N + Q)) &&
+           Wv1 > (v0 << (N + Q)) - cV && Fuv1 < cU && Fu1v > -cV && r.eyeM < ((m0 + s) << Q) &&
+           r.uEyeFloor < u0 + s && r.vEyeFloor < v0 + s;
+}
+
 bool boxCrossed(const QuantizedRay& r, i64 cU, i64 cV, i64 m0, i64 u0, i64 v0, i64 s) {
     const i64 Wu0 = (r.U0 << N) + m0 * r.dU, Wu1 = (r.U0 << N) + (m0 + s) * r.dU;
     const i64 Wv0 = (r.V0 << N) + m0 * r.dV, Wv1 = (r.V0 << N) + (m0 + s) * r.dV;
     auto F = [&](i64 a, i64 b) { return ((a << Q) - r.U0) * r.dV - ((b << Q) - r.V0) * r.dU; };
-    return Wu0 < ((u0 + s) << (N + Q)) && Wu1 > (u0 << (N + Q)) - cU && Wv0 < ((v0 + s) << (N + Q)) &&
-           Wv1 > (v0 << (N + Q)) - cV && F(u0, v0 + s) < cU && F(u0 + s, v0) > -cV && r.eyeM < ((m0 + s) << Q) &&
-           r.uEyeFloor < u0 + s && r.vEyeFloor < v0 + s;
+    return boxCrossedFrom(r, cU, cV, m0, u0, v0, s, Wu0, Wu1, Wv0, Wv1, F(u0, v0 + s), F(u0 + s, v0));
 }
 
 /// predecessors[s][z]: children that some ray with sign pattern s can visit before child z
@@ -191,10 +198,7 @@ public:
         // boxCrossed's tests, with the frame's lower/upper points; F at the two corners from
         // F at the centre (F is linear, dF/du = dV << Q, dF/dv = -dU << Q, and s/2 away).
         const i64 qa = r_.dV << (Q + N - level - 1), qb = r_.dU << (Q + N - level - 1);
-        const i64 Fuv1 = f.Fc - qa - qb, Fu1v = f.Fc + qa + qb;  // F(u0, v0 + s), F(u0 + s, v0)
-        if (!(f.Wu0 < ((u0 + s) << (N + Q)) && f.Wu1 > (u0 << (N + Q)) - k_.cU && f.Wv0 < ((v0 + s) << (N + Q)) &&
-              f.Wv1 > (v0 << (N + Q)) - k_.cV && Fuv1 < k_.cU && Fu1v > -k_.cV && r_.eyeM < ((m0 + s) << Q) &&
-              r_.uEyeFloor < u0 + s && r_.vEyeFloor < v0 + s)) {
+        if (!boxCrossedFrom(r_, k_.cU, k_.cV, m0, u0, v0, s, f.Wu0, f.Wu1, f.Wv0, f.Wv1, f.Fc - qa - qb, f.Fc + qa + qb)) {
             sp_ = -1;
             return false;
         }
