@@ -148,6 +148,16 @@ bool cubicCrossing(const VoxelSpan& s, int& side, double& u) {
         u = 0.0;
         return true;
     }
+    // The cubic on [0, span] in Bernstein form: f is a convex combination of the four
+    // coefficients (with positive weights inside the span, the end coefficients at its ends),
+    // so when all four lie on the carried side, so does f over the whole span: no crossing,
+    // and the exit side is the carried one. Most voxels the ray passes are decided here.
+    {
+        const double h = s.span * (1.0 / 3.0);
+        const double b0 = f.c[0], b1 = b0 + f.c[1] * h, b2 = b1 + (f.c[1] + f.c[2] * s.span) * h;
+        const double b3 = f(s.span);
+        if (side ? std::min({b0, b1, b2, b3}) >= 0.0 : std::max({b0, b1, b2, b3}) < 0.0) return false;
+    }
     double cuts[3];
     const int n = f.extrema(s.span, cuts);
     cuts[n] = s.span;

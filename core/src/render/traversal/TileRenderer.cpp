@@ -36,8 +36,12 @@ void fillBackground(Frame& frame, const PixelRays& rays, const RenderSettings& s
     st.raysFull += n;
     const auto [innerLo, innerHi] = rays.cubeInnerSpan(y);
     const auto [cubeLo, cubeHi] = rays.cubeSpan(y);
-    for (int x = std::max(x0, cubeLo); x < x1 && x <= cubeHi; ++x)
-        if ((x >= innerLo && x <= innerHi) || rays.meetsCube(x, y)) ++st.rays;
+    // The inner span's pixels are counted at once; only those between it and the outline quantize.
+    const int lo = std::max(x0, cubeLo), hi = std::min(x1 - 1, cubeHi);
+    const int inLo = std::max(lo, innerLo), inHi = std::min(hi, innerHi);
+    if (inLo <= inHi) st.rays += std::uint64_t(inHi - inLo + 1);
+    for (int x = lo; x <= hi; ++x)
+        if ((x < inLo || x > inHi) && rays.meetsCube(x, y)) ++st.rays;
 }
 
 RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
