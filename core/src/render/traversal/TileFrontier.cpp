@@ -15,7 +15,10 @@ const ChildOrder& childOrder() {
 }
 
 TileFrustum tileFrustum(const RayGenerator& gen, const ScreenSlopes& sl, int x0, int y0, int x1, int y1) {
-    TileFrustum f = sl.base;
+    // Only what every frustum shares (a copy of the whole, reach included, is a string move).
+    TileFrustum f;
+    f.apex = sl.base.apex;
+    f.pad = sl.base.pad;
     const dvec3 right = gen.right(), up = gen.up(), back = gen.back();
     // The extent of the tile's pixels across right and up: per unit of depth (perspective: the
     // directions' slopes) or in octree units (orthographic: the origins' offsets), over every

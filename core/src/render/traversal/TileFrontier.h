@@ -48,8 +48,9 @@ struct TileFrustum {
     std::array<double, 5> h{};
     double pad = 0.0;  ///< how far every box is widened on each side: 2 x the quantization bound
     // Per form and level: h_i + |g_i|_1 (half side + pad), the most the form gains from a box's
-    // centre to a corner of the widened box.
-    std::array<std::array<double, Octree::kMaxDepth + 1>, 5> reach{};
+    // centre to a corner of the widened box. Filled by prepare() (left uninitialized before: a
+    // frustum is made per tile).
+    std::array<std::array<double, Octree::kMaxDepth + 1>, 5> reach;
 
     void prepare() {
         for (int i = 0; i < 5; ++i) {
