@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <iterator>
 #include <utility>
 
 namespace octrace::studio {
@@ -106,6 +107,40 @@ void writeFigure(const Frame& frame, const std::string& path, bool alpha) {
     io::ImageWriteOptions o;
     o.alpha = alpha;
     io::writeImage(frame, path, o);
+}
+
+Frame FramePool::take(int width, int height) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    for (auto it = kept_.rbegin(); it != kept_.rend(); ++it)
+        if (it->width == width && it->height == height) {
+            Frame f = std::move(*it);
+            kept_.erase(std::next(it).base());
+            return f;
+        }
+    return Frame();
+}
+
+void FramePool::give(Frame&& frame) {
+    auto bytes = [](const Frame& f) { return Frame::bytesFor(f.width, f.height); };
+    if (frame.width <= 0 || frame.height <= 0 || bytes(frame) > kKeepBytes) return;  // not kept
+    const std::lock_guard<std::mutex> lock(mutex_);
+    // The oldest of its size beyond kPerSize go, then the oldest of any size beyond kKeepBytes.
+    std::size_t same = 0;
+    for (const Frame& f : kept_) same += f.width == frame.width && f.height == frame.height;
+    for (auto it = kept_.begin(); same >= kPerSize && it != kept_.end();)
+        if (it->width == frame.width && it->height == frame.height) {
+            it = kept_.erase(it);
+            --same;
+        } else {
+            ++it;
+        }
+    kept_.push_back(std::move(frame));
+    std::uint64_t total = 0;
+    for (const Frame& f : kept_) total += bytes(f);
+    while (total > kKeepBytes) {  // the newest alone fits
+        total -= bytes(kept_.front());
+        kept_.erase(kept_.begin());
+    }
 }
 
 Engine::Engine(QObject* parent) : QObject(parent) { qRegisterMetaType<FrameResult>(); }
@@ -369,6 +404,7 @@ void Engine::requestFrame(const FrameRequest& request) {
                 // the exact frame by its own length.
                 s.cancel = &stop;
                 PaneFrame p;
+                p.frame = frames_.take(cam.width, cam.height);
                 p.stats = r->render(*tree, cam, s, p.frame);
                 if (stop) return;
                 p.tracesRays = r->tracesRays();
@@ -403,7 +439,13 @@ void Engine::requestFrame(const FrameRequest& request) {
                 }
             }
             if (stop) return;
-            QMetaObject::invokeMethod(this, [this, out = std::move(out)] { emit frameReady(out); }, Qt::QueuedConnection);
+            QMetaObject::invokeMethod(
+                this,
+                [this, out = std::move(out)]() mutable {
+                    emit frameReady(out);
+                    for (PaneFrame& p : out.panes) frames_.give(std::move(p.frame));  // shown: the next render's
+                },
+                Qt::QueuedConnection);
         } catch (const std::exception& e) {
             QMetaObject::invokeMethod(this, [this, msg = errorText(e)] { emit failed(msg); }, Qt::QueuedConnection);
         }

@@ -189,6 +189,60 @@ private slots:
         QVERIFY(QTest::qWaitForWindowExposed(window_));
     }
 
+    void framePoolGivesBackAFrameOfTheAskedSizeWithinItsLimits() {
+        using octrace::Frame;
+        using octrace::studio::FramePool;
+        FramePool pool;
+        QCOMPARE(pool.take(64, 32).width, 0);  // nothing kept: an empty frame
+        Frame a(64, 32);
+        const auto* buffer = a.rgba.data();
+        pool.give(std::move(a));
+        QCOMPARE(pool.take(32, 64).width, 0);  // another size
+        Frame b = pool.take(64, 32);
+        QCOMPARE(b.width, 64);
+        QCOMPARE(b.height, 32);
+        QVERIFY(b.rgba.data() == buffer);  // the same buffers: the renderer's reshape keeps them
+        QCOMPARE(pool.take(64, 32).width, 0);  // handed out once
+        // At most kPerSize of a size, the newest kept.
+        std::vector<const octrace::vec4*> given;
+        for (std::size_t i = 0; i < FramePool::kPerSize + 2; ++i) {
+            Frame f(16, 16);
+            given.push_back(f.rgba.data());
+            pool.give(std::move(f));
+        }
+        for (std::size_t i = 0; i < FramePool::kPerSize; ++i) {
+            const Frame f = pool.take(16, 16);
+            QCOMPARE(f.width, 16);
+            QVERIFY(std::find(given.end() - std::ptrdiff_t(FramePool::kPerSize), given.end(), f.rgba.data()) != given.end());
+        }
+        QCOMPARE(pool.take(16, 16).width, 0);
+        // Within kKeepBytes in all: a frame larger than the budget is not kept and drops nothing;
+        // one that fits drops the oldest until the budget holds.
+        int side = 1;
+        while (Frame::bytesFor(side, side) <= FramePool::kKeepBytes) side *= 2;
+        pool.give(Frame(8, 8));
+        Frame big;
+        big.width = big.height = side;  // only the size counts (no buffers allocated)
+        pool.give(std::move(big));
+        QCOMPARE(pool.take(side, side).width, 0);
+        QCOMPARE(pool.take(8, 8).width, 8);
+        pool.give(Frame(8, 8));
+        Frame half;
+        half.width = half.height = side / 2;  // a quarter of the smallest size over budget:
+        while (Frame::bytesFor(half.width, half.height) * 2 <= FramePool::kKeepBytes) half.width *= 2;
+        const int halfWidth = half.width;  // ... widened until two would not fit
+        pool.give(std::move(half));
+        QCOMPARE(pool.take(8, 8).width, 8);  // both fit
+        pool.give(Frame(8, 8));
+        Frame second;
+        second.width = halfWidth + 1;
+        second.height = side / 2;
+        pool.give(std::move(second));  // the first and the second are over budget: the oldest, the first, goes
+        QCOMPARE(pool.take(halfWidth, side / 2).width, 0);
+        QCOMPARE(pool.take(8, 8).width, 8);
+        QCOMPARE(pool.take(halfWidth + 1, side / 2).width, halfWidth + 1);
+    }
+
     void opensSample() {
         openSample();
         const auto& info = window_->engine().info();
