@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -91,6 +92,30 @@ std::uint8_t alphaTo8(float alpha) {
     return std::uint8_t(std::floor(double(alpha) * 255.0 + 0.5));
 }
 
+namespace {
+/// A colour as A << 24 | R << 16 | G << 8 | B (toSrgb8, alphaTo8), the last one remembered: a run
+/// of equal colours (the background, a flat face) is converted once.
+class PackMemo {
+public:
+    explicit PackMemo(const SrgbTables& t) : t_(t) {}
+    std::uint32_t argb(const vec4& c) {
+        if (!have_ || std::memcmp(&c, &last_, sizeof(vec4)) != 0) {
+            have_ = true;
+            last_ = c;
+            packed_ = std::uint32_t(alphaTo8(c.a)) << 24 | std::uint32_t(toSrgb8(t_, c.r)) << 16 |
+                      std::uint32_t(toSrgb8(t_, c.g)) << 8 | std::uint32_t(toSrgb8(t_, c.b));
+        }
+        return packed_;
+    }
+
+private:
+    const SrgbTables& t_;
+    vec4 last_{0.0f};
+    std::uint32_t packed_ = 0;
+    bool have_ = false;
+};
+}  // namespace
+
 bool needsAlphaChannel(const Frame& frame, bool forced) {
     if (forced) return true;
     for (const vec4& c : frame.rgba)
@@ -113,12 +138,13 @@ std::vector<std::uint8_t> quantizeSrgb8(const Frame& frame, int channels) {
     checkQuantized(frame, "quantizeSrgb8");
     std::vector<std::uint8_t> out(frame.rgba.size() * std::size_t(channels));
     std::uint8_t* px = out.data();
-    const SrgbTables& t = tables();
+    PackMemo memo(tables());
     for (const vec4& c : frame.rgba) {
-        px[0] = toSrgb8(t, c.r);
-        px[1] = toSrgb8(t, c.g);
-        px[2] = toSrgb8(t, c.b);
-        if (channels == 4) px[3] = alphaTo8(c.a);
+        const std::uint32_t v = memo.argb(c);
+        px[0] = std::uint8_t(v >> 16);
+        px[1] = std::uint8_t(v >> 8);
+        px[2] = std::uint8_t(v);
+        if (channels == 4) px[3] = std::uint8_t(v >> 24);
         px += channels;
     }
     return out;
@@ -138,11 +164,10 @@ bool packSrgb8Rows(const Frame& frame, std::uint8_t* out, std::size_t stride, in
             const vec4* c = frame.rgba.data() + y * w;
             std::uint32_t* row = reinterpret_cast<std::uint32_t*>(out + y * stride);
             std::uint32_t alphas = 0xFFu;
+            PackMemo memo(t);
             for (std::size_t x = 0; x < w; ++x) {
-                const std::uint32_t a = alphaTo8(c[x].a);
-                alphas &= a;
-                row[x] = a << 24 | std::uint32_t(toSrgb8(t, c[x].r)) << 16 | std::uint32_t(toSrgb8(t, c[x].g)) << 8 |
-                         std::uint32_t(toSrgb8(t, c[x].b));
+                row[x] = memo.argb(c[x]);
+                alphas &= row[x] >> 24;
             }
             if (alphas != 0xFFu) opaque[task] = 0;
         }
