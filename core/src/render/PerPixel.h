@@ -11,6 +11,7 @@
 #include "octrace/util/Timer.h"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <string>
 #include <vector>
@@ -52,12 +53,25 @@ inline void writeMissPixel(Frame& frame, int x, int y, const RenderSettings& set
     frame.hitId[p] = kNoHit;
 }
 
-/// The colour of the last plain voxel hit a thread shaded. Without smooth surfaces and shadow
-/// rays, shade() of a voxel hit depends on the voxel alone (its normal, colour, height and the
-/// frame's light), so neighbouring pixels that hit the same voxel take the same colour from here.
+/// The colours of the plain voxel hits a thread shaded last, in a small direct-mapped table
+/// (slot: the voxel's index modulo kSlots; voxels are stored in Morton order, so neighbours take
+/// different slots). Without smooth surfaces and shadow rays, shade() of a voxel hit depends on
+/// the voxel alone (its normal, colour, height and the frame's light), so nearby pixels that hit
+/// the same voxel take the same colour from here.
 struct ShadeMemo {
-    std::uint32_t voxel = kNoHit;
-    vec4 colour{0.0f};
+    static constexpr std::size_t kSlots = 512;
+    std::array<std::uint32_t, kSlots> voxel;
+    std::array<vec4, kSlots> colour;
+    ShadeMemo() { voxel.fill(kNoHit); }
+    /// shade(hit) for a plain voxel hit.
+    vec4 shade(const Shader& shader, const TraversalHit& hit, RenderStats& st) {
+        const std::size_t i = hit.voxel % kSlots;
+        if (voxel[i] != hit.voxel) {
+            voxel[i] = hit.voxel;
+            colour[i] = shader.shade(hit, &st.secondaryRays);
+        }
+        return colour[i];
+    }
 };
 
 /// Writes every field of pixel (x, y) from its primary ray's hit (or miss): flags, hit id,
@@ -85,11 +99,7 @@ inline void writePixelHit(Frame& frame, int x, int y, const TraversalHit& propos
     ++st.hits;
     frame.hitId[p] = hit.voxel;
     if (memo && !hit.smooth && !hit.nodeHit() && hit.leafShift == 0 && !shader.shadows()) {
-        if (memo->voxel != hit.voxel) {
-            memo->voxel = hit.voxel;
-            memo->colour = shader.shade(hit, &st.secondaryRays);
-        }
-        frame.rgba[p] = memo->colour;
+        frame.rgba[p] = memo->shade(shader, hit, st);
     } else {
         frame.rgba[p] = shader.shade(hit, &st.secondaryRays);
     }

@@ -75,6 +75,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
         if (settings.cancel && settings.cancel->load(std::memory_order_relaxed)) return;  // the frame is thrown away
         std::vector<FrontierNode> group, list, next;
         std::vector<StartNode> starts;
+        ShadeMemo memo;  // for the group's tiles
         std::vector<std::uint64_t> colMask, rowMask;
         const int gx = int(g % std::size_t(groupsX)), gy = int(g / std::size_t(groupsX));
         const int gx0 = gx * G * T, gy0 = gy * G * T;
@@ -94,7 +95,6 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
             for (int tx = gx * G; tx < std::min((gx + 1) * G, tilesX); ++tx) {
             RenderStats& st = tileStats[std::size_t(ty) * std::size_t(tilesX) + std::size_t(tx)];
             TraversalCounters counters;
-            ShadeMemo memo;
             const int x0 = tx * T, y0 = ty * T;
             const int x1 = std::min(x0 + T, camera.width), y1 = std::min(y0 + T, camera.height);
             const TileFrustum fr = tileFrustum(gen, slopes, x0, y0, x1, y1);
