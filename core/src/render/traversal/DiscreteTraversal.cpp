@@ -61,6 +61,12 @@ const Tables& tables() {
     return t;
 }
 
+/// OrderTable::instance(), kept here: an engine is made per ray, and the call is in another file.
+const OrderTable& orderTable() {
+    static const OrderTable& t = OrderTable::instance();
+    return t;
+}
+
 inline i64 floorShift(i64 x, int s) { return x >> s; }  // arithmetic shift = floor (C++20)
 
 /// State of one node on the traversal stack, in mirrored integer space.
@@ -176,7 +182,7 @@ class Engine {
 public:
     Engine(const Octree& tree, const QuantizedRay& r, TraversalCounters& counters,
            const std::function<void(unsigned, unsigned)>* observe)
-        : tree_(tree), r_(r), counters_(counters), observe_(observe), order_(OrderTable::instance()) {
+        : tree_(tree), r_(r), counters_(counters), observe_(observe), order_(orderTable()) {
         const Tables& T = tables();
         k_ = RayConsts{&r, r.dU == 0 ? 1 : 0, r.dV == 0 ? 1 : 0, T.toOriginal[std::size_t(r.main)][r.sign].data(),
                        T.toCanonical[std::size_t(r.main)][r.sign].data()};
