@@ -179,3 +179,36 @@ TEST(PackSrgb8Rows, WritesQuantizeSrgb8sBytesInQtsLayoutIntoRowsOfAnyStride) {
     EXPECT_EQ(out[(std::size_t(60) * std::size_t(f.width) + 20) * 4 + 3], alphaTo8(0.5f));
     EXPECT_THROW(packSrgb8Rows(f, out.data(), std::size_t(f.width) * 4 - 1, 1), UsageError);
 }
+
+// Both conversions remember the last colour (runs of equal colours are converted once): every
+// pixel must still get its own codes, whatever comes before it (runs, a colour that differs only
+// in alpha or in the sign of a zero, NaN), and the opaque answer must see every alpha.
+TEST(PackSrgb8Rows, RunsOfEqualColoursGiveEachPixelItsOwnCodes) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const std::vector<vec4> row = {vec4(nan, 0.2f, 0.3f, nan),     vec4(nan, 0.2f, 0.3f, nan), vec4(0.2f, 0.2f, 0.3f, 1.0f),
+                                   vec4(0.2f, 0.2f, 0.3f, 1.0f),  vec4(0.2f, 0.2f, 0.3f, 0.5f), vec4(0.2f, 0.2f, 0.3f, 1.0f),
+                                   vec4(0.0f, 0.0f, 0.0f, 1.0f),  vec4(-0.0f, 0.0f, 0.0f, 1.0f), vec4(0.7f, 0.7f, 0.7f, 1.0f),
+                                   vec4(0.7f, 0.7f, 0.71f, 1.0f)};
+    Frame f(int(row.size()), 3);
+    for (int y = 0; y < f.height; ++y)
+        for (int x = 0; x < f.width; ++x) f.rgba[f.pixel(x, y)] = row[std::size_t((x + y) % f.width)];
+    const std::vector<std::uint8_t> q = quantizeSrgb8(f, 4);
+    std::vector<std::uint8_t> packed(std::size_t(f.width) * std::size_t(f.height) * 4);
+    EXPECT_FALSE(packSrgb8Rows(f, packed.data(), std::size_t(f.width) * 4, 1));  // NaN and 0.5 alphas
+    for (std::size_t i = 0; i < f.rgba.size(); ++i) {
+        const vec4& c = f.rgba[i];
+        const std::uint8_t want[4] = {linearToSrgb8(c.r), linearToSrgb8(c.g), linearToSrgb8(c.b), alphaTo8(c.a)};
+        for (int k = 0; k < 4; ++k) ASSERT_EQ(q[i * 4 + std::size_t(k)], want[k]) << "pixel " << i << " channel " << k;
+        std::uint32_t w;
+        std::memcpy(&w, packed.data() + i * 4, 4);
+        ASSERT_EQ(w, std::uint32_t(want[3]) << 24 | std::uint32_t(want[0]) << 16 | std::uint32_t(want[1]) << 8 | want[2]) << i;
+    }
+    // Opaque except for the first pixel of a row whose other pixels are equal to it but for alpha.
+    Frame g(5, 2);
+    for (vec4& c : g.rgba) c = vec4(0.4f, 0.4f, 0.4f, 1.0f);
+    g.rgba[g.pixel(0, 1)].a = 0.0f;
+    std::vector<std::uint8_t> out(std::size_t(g.width) * std::size_t(g.height) * 4);
+    EXPECT_FALSE(packSrgb8Rows(g, out.data(), std::size_t(g.width) * 4, 2));
+    g.rgba[g.pixel(0, 1)].a = 1.0f;
+    EXPECT_TRUE(packSrgb8Rows(g, out.data(), std::size_t(g.width) * 4, 2));
+}
