@@ -228,9 +228,9 @@ private slots:
         QCOMPARE(pool.take(8, 8).width, 8);
         pool.give(Frame(8, 8));
         Frame half;
-        half.width = half.height = side / 2;  // a quarter of the smallest size over budget:
-        while (Frame::bytesFor(half.width, half.height) * 2 <= FramePool::kKeepBytes) half.width *= 2;
-        const int halfWidth = half.width;  // ... widened until two would not fit
+        half.width = half.height = side / 2;  // a quarter of the smallest square over budget, which fits;
+        while (Frame::bytesFor(half.width, half.height) * 2 <= FramePool::kKeepBytes) half.width *= 2;  // two must not
+        const int halfWidth = half.width;
         pool.give(std::move(half));
         QCOMPARE(pool.take(8, 8).width, 8);  // both fit
         pool.give(Frame(8, 8));

@@ -79,7 +79,7 @@ struct ShadeMemo {
 /// writes every pixel this way needs no clear (Frame::reshape). Every ray caster shades
 /// through this, so equal hits give equal pixels.
 /// The hit goes through surfaceHit first (with `counters` and `cut` for the traversal it may
-/// go on with). `memo`: a thread's ShadeMemo, or none.
+/// go on with). `memo`: the ShadeMemo of the calling thread's current work (one group of tiles), or none.
 inline void writePixelHit(Frame& frame, int x, int y, const TraversalHit& proposed, const Shader& shader,
                           const PixelRays& rays, const dvec3& dir, const RenderSettings& settings, RenderStats& st,
                           TraversalCounters& counters, const LodCut* cut = nullptr, ShadeMemo* memo = nullptr) {
