@@ -46,8 +46,8 @@ std::vector<std::string> colormapNames() {
 
 namespace {
 /// A map's colours in linear RGB at k equal steps of each interval between its control points,
-/// k = ceil(4096 / intervals) (sRGB interpolated, then linearised), built once per map. Linear interpolation between
-/// neighbouring steps differs from the exact conversion by less than 1e-6 (the conversion's
+/// k = ceil(4096 / intervals) (sRGB interpolated, then linearised), built once per map. Linear
+/// interpolation between neighbouring steps differs from the exact conversion by less than 1e-6 (the conversion's
 /// curvature over a step of at most a 4096th of the map), a thousandth of an 8-bit step.
 struct LinearMap {
     std::vector<vec3> colours;

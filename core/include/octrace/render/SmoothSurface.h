@@ -47,8 +47,9 @@ public:
     /// The fast test: the interpolant along the ray is a cubic in the distance; its extrema
     /// split the ray's span in the voxel into monotone pieces, the first piece whose end lies
     /// on the other side holds the crossing, found by Newton's method from the regula falsi
-    /// point, kept inside the bracket, to 1e-7 of a voxel. Fills hit.smooth, distance, normal when it accepts. Nodes drawn whole,
-    /// coarse leaves and voxels without corners are accepted as they are.
+    /// point, kept inside the bracket, to 1e-7 of a voxel. Fills hit.smooth, distance, normal
+    /// when it accepts. Nodes drawn whole, coarse leaves and voxels without corners are accepted
+    /// as they are.
     bool test(RayState& ray, TraversalHit& hit) const;
     /// The reference test, written independently of test(): the trilinear interpolant evaluated
     /// directly (no polynomial) at kReferenceSteps equal steps over the ray's span in the voxel,

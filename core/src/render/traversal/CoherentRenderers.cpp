@@ -248,17 +248,14 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
 /// Writes the background to the pixels of row y whose rays cannot hit the surface, counted as
 /// tracePixel counts them, in one pass; returns the pixels left to the patterns (lo > hi: none).
 /// Each field is filled as a run (raw pointers: the byte-wide flags would otherwise make the
-/// compiler reload every buffer's address per pixel), and the rays are counted per run: all of
-/// the run inside the cube's inner outline, a quantization only between it and the outline.
+/// compiler reload every buffer's address per pixel), and the rays are counted per run
+/// (PixelRays::raysMeetingCube, as the tile renderer's background rows).
 std::pair<int, int> fillOutsideSurface(const Context& c, int y, RenderStats& st) {
     Frame& f = c.frame;
     const int W = f.width;
     const auto [first, second] = c.rays.surfaceSpan(y);
     const int lo = std::max(first, 0), hi = std::min(second, W - 1);
     const std::uint32_t bg = c.backgroundSrgb;
-    // Plain ints, not structured bindings: clang 14 (the fuzz build) cannot capture those.
-    const int cubeLo = c.rays.cubeSpan(y).first, cubeHi = c.rays.cubeSpan(y).second;
-    const int innerLo = c.rays.cubeInnerSpan(y).first, innerHi = c.rays.cubeInnerSpan(y).second;
     auto fill = [&](int x0, int x1) {
         if (x1 <= x0) return;
         const std::size_t p = f.pixel(x0, y), n = std::size_t(x1 - x0);
@@ -268,18 +265,7 @@ std::pair<int, int> fillOutsideSurface(const Context& c, int y, RenderStats& st)
         std::fill_n(f.hitId.data() + p, n, kNoHit);
         if (c.srgb) std::fill_n(c.srgb + p, n, bg);
         st.raysFull += n;
-        // Rays meeting the cube: the pixels in the inner span surely do, those outside the
-        // outline cannot, those in between are quantized.
-        const int a = std::max(x0, cubeLo), b = std::min(x1 - 1, cubeHi);
-        for (int x = a; x <= b; ++x) {
-            if (x >= innerLo && x <= innerHi) {
-                const int last = std::min(b, innerHi);
-                st.rays += std::uint64_t(last - x + 1);
-                x = last;
-            } else if (c.rays.meetsCube(x, y)) {
-                ++st.rays;
-            }
-        }
+        st.rays += c.rays.raysMeetingCube(y, x0, x1);
     };
     if (lo > hi) {
         fill(0, W);

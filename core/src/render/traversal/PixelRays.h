@@ -6,6 +6,8 @@
 #include "octrace/render/Camera.h"
 #include "octrace/render/DiscreteTraversal.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -47,6 +49,18 @@ public:
     /// Whether the pixel's quantized ray meets the cube, quantizing it only when that is not
     /// certain (for counting rays that are not traced).
     bool meetsCube(int x, int y) const { return surelyMeetsCube(x, y) || quantized(x, y, direction(x, y)).meetsCube; }
+    /// How many pixels x0 .. x1-1 of row y meetsCube: those inside the inner span counted at
+    /// once, those between it and the outline quantized, none outside the outline.
+    std::uint64_t raysMeetingCube(int y, int x0, int x1) const {
+        const auto [cubeLo, cubeHi] = cubeSpan(y);
+        const auto [innerLo, innerHi] = cubeInnerSpan(y);
+        const int lo = std::max(x0, cubeLo), hi = std::min(x1 - 1, cubeHi);
+        const int inLo = std::max(lo, innerLo), inHi = std::min(hi, innerHi);
+        std::uint64_t n = inLo <= inHi ? std::uint64_t(inHi - inLo + 1) : 0;
+        for (int x = lo; x <= hi; ++x)
+            if ((x < inLo || x > inHi) && meetsCube(x, y)) ++n;
+        return n;
+    }
     /// False only when the pixel's ray cannot hit a boundary voxel: outside the projected
     /// outline of the surface's bounding box (Octree::occupiedCells), in the same way.
     bool mayHitSurface(int x, int y) const {

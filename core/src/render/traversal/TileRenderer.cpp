@@ -34,14 +34,7 @@ void fillBackground(Frame& frame, const PixelRays& rays, const RenderSettings& s
     std::fill_n(frame.hitId.data() + p, n, kNoHit);
     st.pixels += n;
     st.raysFull += n;
-    const auto [innerLo, innerHi] = rays.cubeInnerSpan(y);
-    const auto [cubeLo, cubeHi] = rays.cubeSpan(y);
-    // The inner span's pixels are counted at once; only those between it and the outline quantize.
-    const int lo = std::max(x0, cubeLo), hi = std::min(x1 - 1, cubeHi);
-    const int inLo = std::max(lo, innerLo), inHi = std::min(hi, innerHi);
-    if (inLo <= inHi) st.rays += std::uint64_t(inHi - inLo + 1);
-    for (int x = lo; x <= hi; ++x)
-        if ((x < inLo || x > inHi) && rays.meetsCube(x, y)) ++st.rays;
+    st.rays += rays.raysMeetingCube(y, x0, x1);
 }
 
 RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const RenderSettings& settings,
