@@ -1,6 +1,8 @@
 #pragma once
 // Ray generators shared by the traversal tests.
 #include "../TestScale.h"
+#include "octrace/build/CityModel.h"
+#include "octrace/build/CityVoxelizer.h"
 #include "octrace/octree/Octree.h"
 #include "octrace/render/DiscreteTraversal.h"
 #include "octrace/render/ReferenceTraversal.h"
@@ -36,6 +38,23 @@ private:
     int depth_;
     std::vector<ivec3> cells_;
 };
+
+/// Ground at z = 1 to terrain depth 3 and a house to depth 6 in a 64-unit cube: coarse leaves.
+inline const Octree& coarseLeafTree() {
+    static const Octree t = [] {
+        CityModel m;
+        m.objects.push_back({"ground", "TINRelief", CityRole::Terrain, packColour(vec3(0, 1, 0))});
+        m.objects.push_back({"house", "Building", CityRole::Solid, packColour(vec3(1, 0, 0))});
+        m.addPolygon({{{0, 0, 1}, {64, 0, 1}, {64, 64, 1}, {0, 64, 1}}}, 0);
+        m.addPrism({{{8, 8}, {24, 8}, {24, 24}, {8, 24}}}, 1.0, 17.0, 1);
+        m.addPolygon({{{0, 0, 64}, {1, 0, 64}, {0, 1, 64}}}, 1);
+        CityBuildOptions o;
+        o.depth = 6;
+        o.terrainDepth = 3;
+        return voxelizeCity(m, o);
+    }();
+    return t;
+}
 
 /// Eye somewhere around the cube (outside), looking at a random point of a random voxel.
 inline void rayAtVoxel(const VoxelCells& cells, std::mt19937_64& rng, dvec3& o, dvec3& d) {

@@ -16,23 +16,6 @@ using namespace octrace::testutil;
 
 namespace {
 
-/// Ground at z = 1 to terrain depth 3 and a house to depth 6 in a 64-unit cube: coarse leaves.
-const Octree& coarseLeafTree() {
-    static const Octree t = [] {
-        CityModel m;
-        m.objects.push_back({"ground", "TINRelief", CityRole::Terrain, packColour(vec3(0, 1, 0))});
-        m.objects.push_back({"house", "Building", CityRole::Solid, packColour(vec3(1, 0, 0))});
-        m.addPolygon({{{0, 0, 1}, {64, 0, 1}, {64, 64, 1}, {0, 64, 1}}}, 0);
-        m.addPrism({{{8, 8}, {24, 8}, {24, 24}, {8, 24}}}, 1.0, 17.0, 1);
-        m.addPolygon({{{0, 0, 64}, {1, 0, 64}, {0, 1, 64}}}, 1);
-        CityBuildOptions o;
-        o.depth = 6;
-        o.terrainDepth = 3;
-        return voxelizeCity(m, o);
-    }();
-    return t;
-}
-
 /// Samet against the reference for one ray; fills `why` on a mismatch.
 bool sametAgrees(const Octree& t, const dvec3& o, const dvec3& d, std::uint64_t& hits, std::string& why) {
     const QuantizedRay q = quantizeRay(o, d);

@@ -1,4 +1,5 @@
 #include "octrace/render/DiscreteTraversal.h"
+#include "render/traversal/DiscreteLattice.h"
 
 #include "octrace/render/Lod.h"
 #include "octrace/render/OrderTable.h"
@@ -10,12 +11,7 @@
 namespace octrace {
 namespace {
 
-constexpr int N = Octree::kIntBits;
-constexpr int Q = QuantizedRay::kFracBits;
-constexpr std::int64_t L = std::int64_t(1) << N;
-using i64 = std::int64_t;
-
-constexpr unsigned axisBit(int a) { return 4u >> a; }
+using namespace lattice;
 
 // Canonical child numbering inside the traversal: (hm << 2) | (hu << 1) | hv, where hm, hu, hv
 // say which half along the (mirrored) main, u and v axes.
@@ -136,17 +132,6 @@ inline unsigned stateByte(const RayConsts& k, const NodeState& n, i64& Wuc, i64&
         byte &= T.expandMU[emu] & T.expandMV[emv];
     }
     return byte;
-}
-
-/// Exact test of a node box [m0, m0+s) x [u0, u0+s) x [v0, v0+s) (mirrored lattice): the
-/// same pairwise interval tests as the state byte, for the box itself.
-/// The tests themselves, given the line's lower/upper points on the box's main planes (Wu0 ..
-/// Wv1, as in NodeState) and F at the box's (u0, v0 + s) and (u0 + s, v0) corners.
-inline bool boxCrossedFrom(const QuantizedRay& r, i64 cU, i64 cV, i64 m0, i64 u0, i64 v0, i64 s, i64 Wu0, i64 Wu1,
-                           i64 Wv0, i64 Wv1, i64 Fuv1, i64 Fu1v) {
-    return Wu0 < ((u0 + s) << (N + Q)) && Wu1 > (u0 << (N + Q)) - cU && Wv0 < ((v0 + s) << (N + Q)) &&
-           Wv1 > (v0 << (N + Q)) - cV && Fuv1 < cU && Fu1v > -cV && r.eyeM < ((m0 + s) << Q) &&
-           r.uEyeFloor < u0 + s && r.vEyeFloor < v0 + s;
 }
 
 bool boxCrossed(const QuantizedRay& r, i64 cU, i64 cV, i64 m0, i64 u0, i64 v0, i64 s) {
@@ -280,10 +265,7 @@ public:
                 mirrored[r_.main] = n.m0 + hm * h;
                 mirrored[r_.u] = n.u0 + hu * h;
                 mirrored[r_.v] = n.v0 + hv * h;
-                for (int a = 0; a < 3; ++a) {
-                    i64 o = (r_.sign & axisBit(a)) ? L - (mirrored[a] + h) : mirrored[a];
-                    result.cell[a] = int(o >> (N - tree_.depth));
-                }
+                result.cell = unmirroredCell(r_, mirrored, h, tree_.depth);
                 result.voxel = coarseLeaf ? tree_.nodes()[slot].firstChild : slot;
                 result.leafShift = tree_.depth - n.level - 1;
                 if (filter_ && !(*filter_)(result)) {
@@ -300,11 +282,7 @@ public:
                 mirrored[r_.main] = n.m0 + hm * h;
                 mirrored[r_.u] = n.u0 + hu * h;
                 mirrored[r_.v] = n.v0 + hv * h;
-                ivec3 cell;
-                for (int a = 0; a < 3; ++a) {
-                    const i64 o = (r_.sign & axisBit(a)) ? L - (mirrored[a] + h) : mirrored[a];
-                    cell[a] = int(o >> (N - level));
-                }
+                const ivec3 cell = unmirroredCell(r_, mirrored, h, level);
                 if (cut_->stops(level, cell)) {
                     result.voxel = tree_.summaries()[slot].firstVoxel;
                     result.cell = cell;
@@ -402,19 +380,6 @@ TraversalHit traverse(const Octree& tree, const QuantizedRay& r, TraversalCounte
     e.setFilter(filter);
     if (!e.startAtRoot()) return TraversalHit{};
     return e.run();
-}
-
-/// Mirrored lattice origin of a node given by its cell coordinates at `level`.
-void mirroredOrigin(const QuantizedRay& r, const ivec3& cell, int level, i64& m0, i64& u0, i64& v0) {
-    const i64 s = i64(1) << (N - level);
-    i64 o[3];
-    for (int a = 0; a < 3; ++a) {
-        const i64 lo = i64(cell[a]) << (N - level);
-        o[a] = (r.sign & axisBit(a)) ? L - (lo + s) : lo;
-    }
-    m0 = o[r.main];
-    u0 = o[r.u];
-    v0 = o[r.v];
 }
 
 /// Exact test whether the ray crosses the branch node; gives the node's mirrored origin.

@@ -3,6 +3,7 @@
 // (the numbered steps there are cited below).
 #include "render/traversal/TileRenderer.h"
 #include "render/traversal/TileFrontier.h"
+#include "render/traversal/PacketTraversal.h"
 #include "render/PerPixel.h"
 #include "render/traversal/PixelRays.h"
 
@@ -21,6 +22,44 @@
 #include <vector>
 
 namespace octrace::detail {
+namespace {
+/// The pixels of a tile whose rays go through the packet traversal (step 6), as bits k = row *
+/// side + column of word arrays: what their hits need. Sized once for a tile's pixels and never
+/// reallocated (a pixel's filter holds its sray).
+struct PacketPixels {
+    int side = 0;
+    std::size_t words = 0;
+    std::vector<dvec3> dir;
+    std::vector<QuantizedRay> q;
+    std::vector<TraversalHit> hit;             ///< valid where `done` has bit k
+    std::vector<SmoothSurface::RayState> sray;  ///< smooth surfaces: each filter's state, carried from node to node
+    std::vector<VoxelFilter> filter;
+    std::vector<std::uint64_t> traced;      ///< bit k: pixel k's ray goes through the packets
+    std::vector<std::uint64_t> done;        ///< bit k: pixel k's hit is found
+    std::vector<std::uint64_t> nodePixels;  ///< `words` words per frontier node i: the pixels of its rectangle
+    explicit PacketPixels(int tileSide)
+        : side(tileSide), words((std::size_t(tileSide) * std::size_t(tileSide) + 63) / 64), dir(64 * words),
+          q(64 * words), hit(64 * words), sray(64 * words), filter(64 * words), traced(words), done(words),
+          nodePixels(64 * words) {}
+    void clear() {
+        std::fill(traced.begin(), traced.end(), 0);
+        std::fill(done.begin(), done.end(), 0);
+    }
+    /// Node i's pixels: columns cx0 .. cx1 of rows cy0 .. cy1 (tile coordinates, inclusive).
+    void setRect(std::size_t i, int cx0, int cx1, int cy0, int cy1) {
+        std::uint64_t* w = nodePixels.data() + i * words;
+        std::fill(w, w + words, 0);
+        for (int row = cy0; row <= cy1; ++row)
+            for (std::size_t a = std::size_t(row * side + cx0), b = std::size_t(row * side + cx1); a <= b;) {
+                // bits a .. b, at most up to the end of a's word
+                const std::size_t end = std::min(b, a | 63);
+                const unsigned lo = unsigned(a % 64), n = unsigned(end - a + 1);
+                w[a / 64] |= (n == 64 ? ~std::uint64_t(0) : ((std::uint64_t(1) << n) - 1)) << lo;
+                a = end + 1;
+            }
+    }
+};
+}  // namespace
 
 /// Pixels x0 .. x1-1 of row y as background, as writePixelHit writes a miss, counting the rays
 /// that meet the cube (certain inside the cube's inner outline, quantized between it and the
@@ -64,12 +103,14 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
     constexpr int G = 4;
     const int groupsX = (tilesX + G - 1) / G, groupsY = (tilesY + G - 1) / G;
     const std::vector<FrontierNode> root{{StartNode{}}};
+    const PacketIsa isa = packetIsa();
     parallelFor(std::size_t(groupsX) * std::size_t(groupsY), settings.threads, [&](std::size_t g) {
         if (settings.cancel && settings.cancel->load(std::memory_order_relaxed)) return;  // the frame is thrown away
         std::vector<FrontierNode> group, list, next;
         std::vector<StartNode> starts;
         ShadeMemo memo;  // for the group's tiles
         std::vector<std::uint64_t> colMask, rowMask;
+        PacketPixels packet(T);
         const int gx = int(g % std::size_t(groupsX)), gy = int(g / std::size_t(groupsX));
         const int gx0 = gx * G * T, gy0 = gy * G * T;
         const int gx1 = std::min(gx0 + G * T, camera.width), gy1 = std::min(gy0 + G * T, camera.height);
@@ -120,6 +161,16 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                     for (int y = std::max(fn.y0, y0); y <= std::min(fn.y1, y1 - 1); ++y) rowMask[std::size_t(y - y0)] |= bit;
                 }
             }
+            // Step 6: rays of the tile's sign pattern go through the packet traversal, node by
+            // node (not under a cut, and only with the per-pixel node masks).
+            const bool packets = masked && !cutp;
+            packet.clear();
+            if (packets)
+                for (std::size_t i = 0; i < kept; ++i) {
+                    const FrontierNode& fn = list[i];
+                    packet.setRect(i, std::max(fn.x0, x0) - x0, std::min(fn.x1, x1 - 1) - x0, std::max(fn.y0, y0) - y0,
+                                   std::min(fn.y1, y1 - 1) - y0);
+                }
             for (int y = y0; y < y1; ++y)
                 for (int x = x0; x < x1; ++x) {
                     const std::uint64_t mask = masked ? colMask[std::size_t(x - x0)] & rowMask[std::size_t(y - y0)] : ~std::uint64_t(0);
@@ -135,6 +186,18 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                     TraversalHit hit;
                     const QuantizedRay q = rays.quantized(x, y, dir);
                     if (q.meetsCube) ++st.rays;
+                    if (packets && q.sign == s && q.meetsCube) {
+                        ++st.raysCommonPath;
+                        const std::size_t k = std::size_t((y - y0) * T + (x - x0));
+                        packet.traced[k / 64] |= std::uint64_t(1) << (k % 64);
+                        packet.dir[k] = dir;
+                        packet.q[k] = q;
+                        if (smooth.active()) {
+                            packet.sray[k] = SmoothSurface::RayState(rays.world(x, y, dir));
+                            packet.filter[k] = smooth.filter(packet.sray[k]);
+                        }
+                        continue;
+                    }
                     // Smooth surfaces: the interpolant's test runs inside the traversal, on
                     // the boundary voxels in the ray's visiting order (the same as full's,
                     // by cover and order), instead of proposing the first and starting over
@@ -163,6 +226,40 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                     }
                     writePixelHit(frame, x, y, hit, shader, rays, dir, settings, st, counters, cutp, &memo);
                 }
+            if (packets) {
+                // Step 6: node by node in list order, the pixels still without a hit whose
+                // rectangle holds the node, in packets of rays of one main axis.
+                PacketLane lanes[3][kPacketLanes];
+                std::size_t owner[3][kPacketLanes];
+                unsigned count[3] = {0, 0, 0};
+                for (std::size_t i = 0; i < kept; ++i) {
+                    const auto flush = [&](int a) {
+                        const unsigned found = traversePacket(isa, tree, list[i].start, lanes[a], count[a], counters);
+                        for (unsigned l = 0; l < count[a]; ++l)
+                            if (found >> l & 1u) packet.done[owner[a][l] / 64] |= std::uint64_t(1) << (owner[a][l] % 64);
+                        count[a] = 0;
+                    };
+                    for (std::size_t w = 0; w < packet.words; ++w)
+                        for (std::uint64_t m = packet.nodePixels[i * packet.words + w] & packet.traced[w] & ~packet.done[w]; m;
+                             m &= m - 1) {
+                            const std::size_t k = w * 64 + std::size_t(std::countr_zero(m));
+                            const int a = packet.q[k].main;
+                            lanes[a][count[a]] = PacketLane{&packet.q[k], smooth.active() ? &packet.filter[k] : nullptr, &packet.hit[k]};
+                            owner[a][count[a]] = k;
+                            if (++count[a] == kPacketLanes) flush(a);
+                        }
+                    for (int a = 0; a < 3; ++a)
+                        if (count[a]) flush(a);
+                }
+                const TraversalHit none;
+                for (std::size_t w = 0; w < packet.words; ++w)
+                    for (std::uint64_t m = packet.traced[w]; m; m &= m - 1) {
+                        const std::size_t k = w * 64 + std::size_t(std::countr_zero(m));
+                        const bool found = packet.done[w] >> (k % 64) & 1u;
+                        writePixelHit(frame, x0 + int(k % std::size_t(T)), y0 + int(k / std::size_t(T)), found ? packet.hit[k] : none,
+                                      shader, rays, packet.dir[k], settings, st, counters, cutp, &memo);
+                    }
+            }
             st.nodesVisited = counters.nodes;
         }
     });

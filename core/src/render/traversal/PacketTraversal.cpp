@@ -1,0 +1,198 @@
+// The discrete traversal of several rays at once: docs/dev/tile-renderer.md, "Packets".
+#include "render/traversal/PacketTraversal.h"
+#include "render/traversal/DiscreteLattice.h"
+
+#include <cstdint>
+#include <cstdlib>
+#include <immintrin.h>
+
+namespace octrace::detail {
+namespace {
+
+using namespace lattice;
+
+/// What the lanes share (the start node, in their common mirrored frame) and each lane's start
+/// values, as doubles (exact: setupPacket checks the magnitudes).
+struct PacketSetup {
+    alignas(32) double Wu0[kPacketLanes], Wu1[kPacketLanes], Wv0[kPacketLanes], Wv1[kPacketLanes], Fc[kPacketLanes];
+    alignas(32) double cU[kPacketLanes], cV[kPacketLanes], dUq[kPacketLanes], dVq[kPacketLanes];
+    unsigned active = 0;  ///< lanes that cross the node and that the packet takes
+    i64 m0 = 0, u0 = 0, v0 = 0;
+    std::uint32_t node = 0;
+    int level = 0;
+    int main = 0, u = 1, v = 2;
+    std::uint8_t toOriginal[8] = {};  ///< canonical child index (hm, hu, hv) -> original child index
+};
+
+/// The lanes' start on the node, as the scalar engine's startIfCrossed: a lane whose ray does not
+/// cross the node has no hit in it; a lane the packet cannot take exactly goes to `scalar`.
+void setupPacket(const StartNode& start, const PacketLane* lanes, unsigned count, PacketSetup& p, unsigned& scalar) {
+    const QuantizedRay& r0 = *lanes[0].ray;
+    mirroredOrigin(r0, start.cell, start.level, p.m0, p.u0, p.v0);
+    p.node = start.node;
+    p.level = start.level;
+    p.main = r0.main;
+    p.u = r0.u;
+    p.v = r0.v;
+    for (unsigned ci = 0; ci < 8; ++ci) {
+        const unsigned mirrored = ((ci >> 2) ? axisBit(r0.main) : 0u) | (((ci >> 1) & 1) ? axisBit(r0.u) : 0u) |
+                                  ((ci & 1) ? axisBit(r0.v) : 0u);
+        p.toOriginal[ci] = std::uint8_t(mirrored ^ r0.sign);
+    }
+    const int lg = N - start.level - 1;
+    const i64 s = i64(1) << (N - start.level), h = s >> 1;
+    // Every value of the traversal below the node is a start value plus or minus terms of at most
+    // (|dU| + |dV|) 2^(Q + lg) in all (the halvings of F's steps sum to less than that, and the
+    // comparisons add Ah + Bh): within 2^52 when both parts are within 2^50.
+    constexpr i64 kBound = i64(1) << 50;
+    p.active = 0;
+    scalar = 0;
+    for (unsigned l = 0; l < kPacketLanes; ++l) {
+        p.Wu0[l] = p.Wu1[l] = p.Wv0[l] = p.Wv1[l] = p.Fc[l] = p.cU[l] = p.cV[l] = p.dUq[l] = p.dVq[l] = 0.0;
+        if (l >= count) continue;
+        const QuantizedRay& r = *lanes[l].ray;
+        const i64 wu0 = (r.U0 << N) + p.m0 * r.dU, wu1 = wu0 + s * r.dU;
+        const i64 wv0 = (r.V0 << N) + p.m0 * r.dV, wv1 = wv0 + s * r.dV;
+        const i64 fc = (((p.u0 + h) << Q) - r.U0) * r.dV - (((p.v0 + h) << Q) - r.V0) * r.dU;
+        const i64 cu = r.dU == 0 ? 1 : 0, cv = r.dV == 0 ? 1 : 0;
+        const i64 qa = r.dV << (Q + lg), qb = r.dU << (Q + lg);
+        if (!boxCrossedFrom(r, cu, cv, p.m0, p.u0, p.v0, s, wu0, wu1, wv0, wv1, fc - qa - qb, fc + qa + qb)) continue;
+        const i64 steps = (std::abs(r.dU) + std::abs(r.dV)) << (Q + lg);
+        if ((p.m0 << Q) < r.eyeM || !(std::abs(fc) < kBound && steps < kBound)) {
+            scalar |= 1u << l;  // the eye's plane cuts the node (its eye tests), or too coarse a node
+            continue;
+        }
+        p.Wu0[l] = double(wu0);
+        p.Wu1[l] = double(wu1);
+        p.Wv0[l] = double(wv0);
+        p.Wv1[l] = double(wv1);
+        p.Fc[l] = double(fc);
+        p.cU[l] = double(cu);
+        p.cV[l] = double(cv);
+        p.dUq[l] = double(r.dU << Q);
+        p.dVq[l] = double(r.dV << Q);
+        p.active |= 1u << l;
+    }
+}
+
+/// A lane's filter, out of line: the kernels are compiled for their instruction set, and what
+/// they call of std::function stays compiled for the baseline.
+[[gnu::noinline]] bool passesFilter(const VoxelFilter& filter, TraversalHit& hit) { return filter(hit); }
+
+#define OCTRACE_PACKET_TARGET
+namespace sse2 {
+/// kPacketLanes doubles in SSE2 registers of two.
+struct Lanes {
+    static constexpr unsigned kRegs = kPacketLanes / 2;
+    __m128d r[kRegs];
+    static Lanes set(double x) {
+        Lanes o;
+        for (unsigned i = 0; i < kRegs; ++i) o.r[i] = _mm_set1_pd(x);
+        return o;
+    }
+    static Lanes load(const double* p) {
+        Lanes o;
+        for (unsigned i = 0; i < kRegs; ++i) o.r[i] = _mm_load_pd(p + 2 * i);
+        return o;
+    }
+    friend Lanes operator+(Lanes x, Lanes y) {
+        for (unsigned i = 0; i < kRegs; ++i) x.r[i] = _mm_add_pd(x.r[i], y.r[i]);
+        return x;
+    }
+    friend Lanes operator-(Lanes x, Lanes y) {
+        for (unsigned i = 0; i < kRegs; ++i) x.r[i] = _mm_sub_pd(x.r[i], y.r[i]);
+        return x;
+    }
+    friend Lanes operator*(Lanes x, Lanes y) {
+        for (unsigned i = 0; i < kRegs; ++i) x.r[i] = _mm_mul_pd(x.r[i], y.r[i]);
+        return x;
+    }
+    friend unsigned lt(Lanes x, Lanes y) {
+        unsigned m = 0;
+        for (unsigned i = 0; i < kRegs; ++i) m |= unsigned(_mm_movemask_pd(_mm_cmplt_pd(x.r[i], y.r[i]))) << (2 * i);
+        return m;
+    }
+    friend unsigned gt(Lanes x, Lanes y) {
+        unsigned m = 0;
+        for (unsigned i = 0; i < kRegs; ++i) m |= unsigned(_mm_movemask_pd(_mm_cmpgt_pd(x.r[i], y.r[i]))) << (2 * i);
+        return m;
+    }
+};
+#include "render/traversal/PacketKernel.inc"
+}  // namespace sse2
+#undef OCTRACE_PACKET_TARGET
+
+// Every function of this namespace carries the target attribute (GCC's target pragma alone
+// leaves friend functions defined in a class without it).
+#pragma GCC push_options
+#pragma GCC target("avx2")
+#define OCTRACE_PACKET_TARGET [[gnu::target("avx2")]]
+namespace avx2 {
+/// kPacketLanes doubles in AVX registers of four.
+struct Lanes {
+    static constexpr unsigned kRegs = kPacketLanes / 4;
+    __m256d r[kRegs];
+    OCTRACE_PACKET_TARGET static Lanes set(double x) {
+        Lanes o;
+        for (unsigned i = 0; i < kRegs; ++i) o.r[i] = _mm256_set1_pd(x);
+        return o;
+    }
+    OCTRACE_PACKET_TARGET static Lanes load(const double* p) {
+        Lanes o;
+        for (unsigned i = 0; i < kRegs; ++i) o.r[i] = _mm256_load_pd(p + 4 * i);
+        return o;
+    }
+    OCTRACE_PACKET_TARGET friend Lanes operator+(Lanes x, Lanes y) {
+        for (unsigned i = 0; i < kRegs; ++i) x.r[i] = _mm256_add_pd(x.r[i], y.r[i]);
+        return x;
+    }
+    OCTRACE_PACKET_TARGET friend Lanes operator-(Lanes x, Lanes y) {
+        for (unsigned i = 0; i < kRegs; ++i) x.r[i] = _mm256_sub_pd(x.r[i], y.r[i]);
+        return x;
+    }
+    OCTRACE_PACKET_TARGET friend Lanes operator*(Lanes x, Lanes y) {
+        for (unsigned i = 0; i < kRegs; ++i) x.r[i] = _mm256_mul_pd(x.r[i], y.r[i]);
+        return x;
+    }
+    OCTRACE_PACKET_TARGET friend unsigned lt(Lanes x, Lanes y) {
+        unsigned m = 0;
+        for (unsigned i = 0; i < kRegs; ++i) m |= unsigned(_mm256_movemask_pd(_mm256_cmp_pd(x.r[i], y.r[i], _CMP_LT_OQ))) << (4 * i);
+        return m;
+    }
+    OCTRACE_PACKET_TARGET friend unsigned gt(Lanes x, Lanes y) {
+        unsigned m = 0;
+        for (unsigned i = 0; i < kRegs; ++i) m |= unsigned(_mm256_movemask_pd(_mm256_cmp_pd(x.r[i], y.r[i], _CMP_GT_OQ))) << (4 * i);
+        return m;
+    }
+};
+#include "render/traversal/PacketKernel.inc"
+}  // namespace avx2
+#undef OCTRACE_PACKET_TARGET
+#pragma GCC pop_options
+
+}  // namespace
+
+PacketIsa packetIsa() {
+    static const PacketIsa isa = __builtin_cpu_supports("avx2") ? PacketIsa::Avx2 : PacketIsa::Sse2;
+    return isa;
+}
+
+unsigned traversePacket(PacketIsa isa, const Octree& tree, const StartNode& start, const PacketLane* lanes,
+                        unsigned count, TraversalCounters& counters) {
+    PacketSetup p;
+    unsigned scalar = 0;
+    setupPacket(start, lanes, count, p, scalar);
+    unsigned done = 0;
+    if (p.active) done = isa == PacketIsa::Avx2 ? avx2::runPacket(tree, p, lanes, counters) : sse2::runPacket(tree, p, lanes, counters);
+    for (; scalar; scalar &= scalar - 1) {
+        const unsigned l = unsigned(__builtin_ctz(scalar));
+        const TraversalHit hit = traverseFromNodes(tree, *lanes[l].ray, &start, 1, counters, lanes[l].filter);
+        if (hit.hit()) {
+            *lanes[l].hit = hit;
+            done |= 1u << l;
+        }
+    }
+    return done;
+}
+
+}  // namespace octrace::detail

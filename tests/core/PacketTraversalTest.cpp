@@ -1,0 +1,161 @@
+// The packet traversal (render/traversal/PacketTraversal.h): every lane finds the hit of the
+// scalar traversal from the same node, on both instruction sets, with and without a filter that
+// passes voxels, on shell, volume-form and mixed-depth (coarse leaf) trees, for rays aimed into
+// the node, rays from an eye inside it, and rays through node corners and edges.
+#include "octrace/build/AnalyticField.h"
+#include "octrace/build/OctreeBuilder.h"
+#include "render/traversal/PacketTraversal.h"
+#include "TraversalTestUtil.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+using namespace octrace;
+using namespace octrace::detail;
+using octrace::testutil::kL;
+
+namespace {
+
+struct NamedTree {
+    std::string name;
+    const Octree* tree;
+};
+
+std::vector<NamedTree> packetTrees() {
+    static const Octree sphere = buildShellOctree(makeAnalyticField("sphere", 33), {6, 0.0, 0});
+    static const Octree noise = buildShellOctree(makeAnalyticField("noise", 65, 7), {8, 0.0, 0});
+    static const Octree torus = [] {
+        BuildOptions o{6, 0.0, 0};
+        o.form = OctreeForm::Volume;
+        return buildOctree(makeAnalyticField("torus", 33), o);
+    }();
+    return {{"sphere", &sphere}, {"noise", &noise}, {"torus, volume form", &torus},
+            {"city with coarse leaves", &testutil::coarseLeafTree()}};
+}
+
+/// The inner nodes of a tree by level (interior terms left out: nothing is below them).
+std::vector<std::vector<StartNode>> innerNodes(const Octree& t) {
+    std::vector<std::vector<StartNode>> byLevel(std::size_t(t.depth));
+    for (int level = 0; level < t.depth; ++level)
+        t.forEachAtLevel(level, [&](const ivec3& cell, std::uint32_t index) {
+            if (t.nodes()[index].childMask) byLevel[std::size_t(level)].push_back({index, level, cell});
+        });
+    return byLevel;
+}
+
+bool sameHit(const TraversalHit& a, const TraversalHit& b) {
+    return a.voxel == b.voxel && (!a.hit() || (a.cell == b.cell && a.leafShift == b.leafShift));
+}
+
+struct Counts {
+    long lanes = 0, hits = 0, misses = 0, passed = 0;
+};
+
+/// One packet: the lanes' hits by both instruction sets against the scalar traversal's.
+void checkPacket(const Octree& t, const StartNode& start, const std::vector<QuantizedRay>& rays, const VoxelFilter* filter,
+                 Counts& counts, const std::string& what) {
+    ASSERT_LE(rays.size(), kPacketLanes);
+    std::vector<TraversalHit> expected(rays.size());
+    for (std::size_t l = 0; l < rays.size(); ++l) {
+        TraversalCounters c;
+        expected[l] = traverseFromNodes(t, rays[l], &start, 1, c, filter);
+        if (filter && !sameHit(expected[l], traverseFromNodes(t, rays[l], &start, 1, c))) ++counts.passed;
+        ++counts.lanes;
+        ++(expected[l].hit() ? counts.hits : counts.misses);
+    }
+    for (const PacketIsa isa : {PacketIsa::Sse2, PacketIsa::Avx2}) {
+        if (isa == PacketIsa::Avx2 && packetIsa() != PacketIsa::Avx2) continue;  // this processor has no AVX2
+        std::vector<TraversalHit> got(rays.size());
+        PacketLane lanes[kPacketLanes];
+        for (std::size_t l = 0; l < rays.size(); ++l) lanes[l] = PacketLane{&rays[l], filter, &got[l]};
+        TraversalCounters c;
+        const unsigned found = traversePacket(isa, t, start, lanes, unsigned(rays.size()), c);
+        for (std::size_t l = 0; l < rays.size(); ++l) {
+            const bool f = found >> l & 1u;
+            ASSERT_EQ(f, expected[l].hit()) << what << " lane " << l << (isa == PacketIsa::Avx2 ? " avx2" : " sse2");
+            if (f) {
+                ASSERT_TRUE(sameHit(got[l], expected[l]))
+                    << what << " lane " << l << (isa == PacketIsa::Avx2 ? " avx2" : " sse2") << ": voxel " << got[l].voxel
+                    << " instead of " << expected[l].voxel;
+            }
+        }
+    }
+}
+
+/// Rays grouped into packets of one main axis and sign pattern (the packet's requirement).
+void checkGrouped(const Octree& t, const StartNode& start, const std::vector<QuantizedRay>& rays, const VoxelFilter* filter,
+                  Counts& counts, const std::string& what) {
+    std::vector<QuantizedRay> groups[3][8];
+    for (const QuantizedRay& q : rays) {
+        if (!q.meetsCube) continue;
+        std::vector<QuantizedRay>& g = groups[q.main][q.sign];
+        g.push_back(q);
+        if (g.size() == kPacketLanes) {
+            checkPacket(t, start, g, filter, counts, what);
+            g.clear();
+        }
+    }
+    for (auto& byMain : groups)
+        for (auto& g : byMain)
+            if (!g.empty()) checkPacket(t, start, g, filter, counts, what);
+}
+
+}  // namespace
+
+TEST(PacketTraversal, EveryLaneFindsTheScalarTraversalsHitOnBothInstructionSets) {
+    // Voxels with (7x + 3y + z) % 4 == 0 are passed, as a smooth surface passes the voxels its
+    // interpolant misses: the lane goes on behind them.
+    const VoxelFilter passSome = [](TraversalHit& h) { return (7 * h.cell.x + 3 * h.cell.y + h.cell.z) % 4 != 0; };
+    for (const NamedTree& nt : packetTrees()) {
+        const Octree& t = *nt.tree;
+        const auto nodes = innerNodes(t);
+        std::mt19937_64 rng(17);
+        std::uniform_real_distribution<double> u(0.0, 1.0);
+        Counts counts;
+        for (int trial = 0; trial < 1500; ++trial) {
+            const int level = int(rng() % std::uint64_t(t.depth));
+            if (nodes[std::size_t(level)].empty()) continue;
+            const auto& at = nodes[std::size_t(level)];
+            const StartNode start = at[rng() % at.size()];
+            const double side = kL / double(1 << level);
+            const dvec3 lo = dvec3(start.cell) * side;
+            // The eye: far outside, near (a few sides), or inside the node's box (the eye's
+            // plane then cuts it: those lanes go to the scalar traversal).
+            const int kind = trial % 3;
+            const dvec3 dir = glm::normalize(dvec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5));
+            const dvec3 eye = kind == 2 ? lo + dvec3(u(rng), u(rng), u(rng)) * side
+                                        : lo + dvec3(0.5 * side) + dir * side * (kind == 0 ? 8.0 : 1.5);
+            std::vector<QuantizedRay> rays;
+            for (int i = 0; i < 16; ++i) {
+                // Aimed at a point of the box widened by a tenth, some rays miss it.
+                const dvec3 target = lo + (dvec3(u(rng), u(rng), u(rng)) * 1.2 - 0.1) * side;
+                rays.push_back(quantizeRay(eye, target - eye));
+            }
+            const std::string what = nt.name + ", node " + std::to_string(start.node) + " at level " + std::to_string(level) +
+                                     ", trial " + std::to_string(trial);
+            checkGrouped(t, start, rays, trial % 2 ? &passSome : nullptr, counts, what);
+            if (HasFatalFailure()) return;
+        }
+        // Rays through node corners and edges, from the root and from a node below it.
+        for (int trial = 0; trial < 300; ++trial) {
+            std::vector<QuantizedRay> rays;
+            for (int i = 0; i < 64; ++i) {
+                dvec3 o, d;
+                testutil::latticeRay(rng, o, d);
+                rays.push_back(quantizeRay(o, d));
+            }
+            const int level = trial % 2 ? 0 : 1 + int(rng() % std::uint64_t(t.depth - 1));
+            if (nodes[std::size_t(level)].empty()) continue;
+            const auto& at = nodes[std::size_t(level)];
+            checkGrouped(t, at[rng() % at.size()], rays, trial % 3 ? nullptr : &passSome, counts,
+                         nt.name + ", lattice rays, trial " + std::to_string(trial));
+            if (HasFatalFailure()) return;
+        }
+        // Both outcomes occur often, and the filter had voxels to pass.
+        EXPECT_GT(counts.hits, counts.lanes / 20) << nt.name;
+        EXPECT_GT(counts.misses, counts.lanes / 20) << nt.name;
+        EXPECT_GT(counts.passed, 0) << nt.name;
+    }
+}
