@@ -127,7 +127,7 @@ ImageFrontier::ImageFrontier(const Octree& tree, const Camera& camera, const Pix
     groupsX_ = (tilesX_ + kGroup - 1) / kGroup;
     const int groupsY = (tilesY + kGroup - 1) / kGroup;
     // The tile renderer's sizes: the cap per tile, kGroup^2 times the cap per group.
-    cap_ = std::size_t(std::max(8, T * T / 4));
+    cap_ = frontierCap(T);
     tiles_.resize(std::size_t(tilesX_) * std::size_t(tilesY));
     groups_.resize(std::size_t(groupsX_) * std::size_t(groupsY));
     tileOnce_.reset(new std::once_flag[tiles_.size()]);

@@ -98,6 +98,16 @@ struct ScreenSlopes {
     }
 };
 
+/// Tiles per side of a group: a group's frontier (step 3) is where each of its tiles' starts.
+constexpr int kTileGroup = 4;
+
+/// The most nodes a tile's frontier keeps (step 3), for tiles of `tileSize` pixels a side (a group
+/// of kTileGroup x kTileGroup tiles keeps kTileGroup^2 times as many): enough to cut the empty space out, few
+/// enough that the rays do not test too many boxes. T^2/8 for the default 8 (the packets of step 6
+/// walk a node's subtree for several rays at once, so coarser nodes cost less than when each ray
+/// walked them alone: CT skin and the molecule drew faster with 8 nodes than with 16).
+inline std::size_t frontierCap(int tileSize) { return std::size_t(std::max(8, tileSize * tileSize / 8)); }
+
 TileFrustum tileFrustum(const RayGenerator& gen, const ScreenSlopes& sl, int x0, int y0, int x1, int y1);
 
 /// Step 3: the tile's frontier, front to back for sign pattern s: from `list` (the root, or the
@@ -152,7 +162,7 @@ public:
     unsigned sign(int x, int y) const { return signs_[group(x / tileSize_, y / tileSize_)]; }
 
 private:
-    static constexpr int kGroup = 4;  ///< tiles per group side, as the tile renderer's
+    static constexpr int kGroup = kTileGroup;
     std::size_t group(int tx, int ty) const {
         return std::size_t(ty / kGroup) * std::size_t(groupsX_) + std::size_t(tx / kGroup);
     }

@@ -92,15 +92,13 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
     const ScreenSlopes slopes(tree, gen, rays, camera.width, camera.height, widen_);
     const int T = std::max(settings.tileSize, 1);
     const int tilesX = (camera.width + T - 1) / T, tilesY = (camera.height + T - 1) / T;
-    // Frontier size: enough nodes to cut the empty space out, few enough that a ray that
-    // misses them all does not test too many boxes.
-    const std::size_t cap = std::size_t(std::max(8, T * T / 4));
+    const std::size_t cap = frontierCap(T);
     // Nodes at this level stay whole: their children are voxels, or nodes a cut may draw whole.
     const int keepLevel = std::min(tree.depth, cut.coarsestLevel()) - 1;
     std::vector<RenderStats> tileStats(std::size_t(tilesX) * std::size_t(tilesY));
     // Tiles in groups of G x G: the group's frontier (a larger cap) is where each tile's
     // refinement starts, so the coarse levels are walked once per group.
-    constexpr int G = 4;
+    constexpr int G = kTileGroup;
     const int groupsX = (tilesX + G - 1) / G, groupsY = (tilesY + G - 1) / G;
     const std::vector<FrontierNode> root{{StartNode{}}};
     const PacketIsa isa = packetIsa();
