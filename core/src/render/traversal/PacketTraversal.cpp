@@ -14,8 +14,8 @@ using namespace lattice;
 /// What the lanes share (the start node, in their common mirrored frame) and each lane's start
 /// values, as doubles (exact: setupPacket checks the magnitudes).
 struct PacketSetup {
-    alignas(32) double Wu0[kPacketLanes], Wu1[kPacketLanes], Wv0[kPacketLanes], Wv1[kPacketLanes], Fc[kPacketLanes];
-    alignas(32) double cU[kPacketLanes], cV[kPacketLanes], dUq[kPacketLanes], dVq[kPacketLanes];
+    alignas(64) double Wu0[kMaxPacketLanes], Wu1[kMaxPacketLanes], Wv0[kMaxPacketLanes], Wv1[kMaxPacketLanes], Fc[kMaxPacketLanes];
+    alignas(64) double cU[kMaxPacketLanes], cV[kMaxPacketLanes], dUq[kMaxPacketLanes], dVq[kMaxPacketLanes];
     unsigned active = 0;  ///< lanes that cross the node and that the packet takes
     i64 m0 = 0, u0 = 0, v0 = 0;
     std::uint32_t node = 0;
@@ -26,7 +26,8 @@ struct PacketSetup {
 
 /// The lanes' start on the node, as the scalar engine's startIfCrossed: a lane whose ray does not
 /// cross the node has no hit in it; a lane the packet cannot take exactly goes to `scalar`.
-void setupPacket(const StartNode& start, const PacketLane* lanes, unsigned count, PacketSetup& p, unsigned& scalar) {
+void setupPacket(const StartNode& start, const PacketLane* lanes, unsigned count, unsigned width, PacketSetup& p,
+                 unsigned& scalar) {
     const QuantizedRay& r0 = *lanes[0].ray;
     mirroredOrigin(r0, start.cell, start.level, p.m0, p.u0, p.v0);
     p.node = start.node;
@@ -47,7 +48,7 @@ void setupPacket(const StartNode& start, const PacketLane* lanes, unsigned count
     constexpr i64 kBound = i64(1) << 50;
     p.active = 0;
     scalar = 0;
-    for (unsigned l = 0; l < kPacketLanes; ++l) {
+    for (unsigned l = 0; l < width; ++l) {
         p.Wu0[l] = p.Wu1[l] = p.Wv0[l] = p.Wv1[l] = p.Fc[l] = p.cU[l] = p.cV[l] = p.dUq[l] = p.dVq[l] = 0.0;
         if (l >= count) continue;
         const QuantizedRay& r = *lanes[l].ray;
@@ -81,9 +82,9 @@ void setupPacket(const StartNode& start, const PacketLane* lanes, unsigned count
 
 #define OCTRACE_PACKET_TARGET
 namespace sse2 {
-/// kPacketLanes doubles in SSE2 registers of two.
+/// 4 doubles in two SSE2 registers.
 struct Lanes {
-    static constexpr unsigned kRegs = kPacketLanes / 2;
+    static constexpr unsigned kRegs = 2, kCount = 2 * kRegs;
     __m128d r[kRegs];
     static Lanes set(double x) {
         Lanes o;
@@ -128,9 +129,9 @@ struct Lanes {
 #pragma GCC target("avx2")
 #define OCTRACE_PACKET_TARGET [[gnu::target("avx2")]]
 namespace avx2 {
-/// kPacketLanes doubles in AVX registers of four.
+/// 8 doubles in two AVX registers.
 struct Lanes {
-    static constexpr unsigned kRegs = kPacketLanes / 4;
+    static constexpr unsigned kRegs = 2, kCount = 4 * kRegs;
     __m256d r[kRegs];
     OCTRACE_PACKET_TARGET static Lanes set(double x) {
         Lanes o;
@@ -170,10 +171,72 @@ struct Lanes {
 #undef OCTRACE_PACKET_TARGET
 #pragma GCC pop_options
 
+
+// AVX-512 (foundation): the same kernel.
+#pragma GCC push_options
+#pragma GCC target("avx512f")
+#define OCTRACE_PACKET_TARGET [[gnu::target("avx512f")]]
+namespace avx512 {
+/// 16 doubles in two AVX-512 registers.
+struct Lanes {
+    static constexpr unsigned kRegs = 2, kCount = 8 * kRegs;
+    __m512d r[kRegs];
+    OCTRACE_PACKET_TARGET static Lanes set(double x) {
+        Lanes o;
+        for (unsigned i = 0; i < kRegs; ++i) o.r[i] = _mm512_set1_pd(x);
+        return o;
+    }
+    OCTRACE_PACKET_TARGET static Lanes load(const double* p) {
+        Lanes o;
+        for (unsigned i = 0; i < kRegs; ++i) o.r[i] = _mm512_loadu_pd(p + 8 * i);
+        return o;
+    }
+    OCTRACE_PACKET_TARGET friend Lanes operator+(Lanes x, Lanes y) {
+        for (unsigned i = 0; i < kRegs; ++i) x.r[i] = _mm512_add_pd(x.r[i], y.r[i]);
+        return x;
+    }
+    OCTRACE_PACKET_TARGET friend Lanes operator-(Lanes x, Lanes y) {
+        for (unsigned i = 0; i < kRegs; ++i) x.r[i] = _mm512_sub_pd(x.r[i], y.r[i]);
+        return x;
+    }
+    OCTRACE_PACKET_TARGET friend Lanes operator*(Lanes x, Lanes y) {
+        for (unsigned i = 0; i < kRegs; ++i) x.r[i] = _mm512_mul_pd(x.r[i], y.r[i]);
+        return x;
+    }
+    OCTRACE_PACKET_TARGET friend unsigned lt(Lanes x, Lanes y) {
+        unsigned m = 0;
+        for (unsigned i = 0; i < kRegs; ++i) m |= unsigned(_mm512_cmp_pd_mask(x.r[i], y.r[i], _CMP_LT_OQ)) << (8 * i);
+        return m;
+    }
+    OCTRACE_PACKET_TARGET friend unsigned gt(Lanes x, Lanes y) {
+        unsigned m = 0;
+        for (unsigned i = 0; i < kRegs; ++i) m |= unsigned(_mm512_cmp_pd_mask(x.r[i], y.r[i], _CMP_GT_OQ)) << (8 * i);
+        return m;
+    }
+};
+#include "render/traversal/PacketKernel.inc"
+}  // namespace avx512
+#undef OCTRACE_PACKET_TARGET
+#pragma GCC pop_options
+
 }  // namespace
 
+static_assert(sse2::Lanes::kCount <= kMaxPacketLanes && avx2::Lanes::kCount <= kMaxPacketLanes &&
+              avx512::Lanes::kCount <= kMaxPacketLanes);
+
+unsigned packetLanes(PacketIsa isa) {
+    switch (isa) {
+        case PacketIsa::Avx512: return avx512::Lanes::kCount;
+        case PacketIsa::Avx2: return avx2::Lanes::kCount;
+        case PacketIsa::Sse2: break;
+    }
+    return sse2::Lanes::kCount;
+}
+
 PacketIsa packetIsa() {
-    static const PacketIsa isa = __builtin_cpu_supports("avx2") ? PacketIsa::Avx2 : PacketIsa::Sse2;
+    static const PacketIsa isa = __builtin_cpu_supports("avx512f") ? PacketIsa::Avx512
+                                 : __builtin_cpu_supports("avx2")  ? PacketIsa::Avx2
+                                                                   : PacketIsa::Sse2;
     return isa;
 }
 
@@ -181,9 +244,15 @@ unsigned traversePacket(PacketIsa isa, const Octree& tree, const StartNode& star
                         unsigned count, TraversalCounters& counters) {
     PacketSetup p;
     unsigned scalar = 0;
-    setupPacket(start, lanes, count, p, scalar);
+    setupPacket(start, lanes, count, packetLanes(isa), p, scalar);
     unsigned done = 0;
-    if (p.active) done = isa == PacketIsa::Avx2 ? avx2::runPacket(tree, p, lanes, counters) : sse2::runPacket(tree, p, lanes, counters);
+    if (p.active) {
+        switch (isa) {
+            case PacketIsa::Avx512: done = avx512::runPacket(tree, p, lanes, counters); break;
+            case PacketIsa::Avx2: done = avx2::runPacket(tree, p, lanes, counters); break;
+            case PacketIsa::Sse2: done = sse2::runPacket(tree, p, lanes, counters); break;
+        }
+    }
     for (; scalar; scalar &= scalar - 1) {
         const unsigned l = unsigned(__builtin_ctz(scalar));
         const TraversalHit hit = traverseFromNodes(tree, *lanes[l].ray, &start, 1, counters, lanes[l].filter);

@@ -102,6 +102,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
     const int groupsX = (tilesX + G - 1) / G, groupsY = (tilesY + G - 1) / G;
     const std::vector<FrontierNode> root{{StartNode{}}};
     const PacketIsa isa = packetIsa();
+    const unsigned width = packetLanes(isa);
     parallelFor(std::size_t(groupsX) * std::size_t(groupsY), settings.threads, [&](std::size_t g) {
         if (settings.cancel && settings.cancel->load(std::memory_order_relaxed)) return;  // the frame is thrown away
         std::vector<FrontierNode> group, list, next;
@@ -227,8 +228,8 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
             if (packets) {
                 // Step 6: node by node in list order, the pixels still without a hit whose
                 // rectangle holds the node, in packets of rays of one main axis.
-                PacketLane lanes[3][kPacketLanes];
-                std::size_t owner[3][kPacketLanes];
+                PacketLane lanes[3][kMaxPacketLanes];
+                std::size_t owner[3][kMaxPacketLanes];
                 unsigned count[3] = {0, 0, 0};
                 for (std::size_t i = 0; i < kept; ++i) {
                     const auto flush = [&](int a) {
@@ -244,7 +245,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                             const int a = packet.q[k].main;
                             lanes[a][count[a]] = PacketLane{&packet.q[k], smooth.active() ? &packet.filter[k] : nullptr, &packet.hit[k]};
                             owner[a][count[a]] = k;
-                            if (++count[a] == kPacketLanes) flush(a);
+                            if (++count[a] == width) flush(a);
                         }
                     for (int a = 0; a < 3; ++a)
                         if (count[a]) flush(a);
