@@ -82,137 +82,60 @@ void setupPacket(const StartNode& start, const PacketLane* lanes, unsigned count
 
 #define OCTRACE_PACKET_TARGET
 namespace sse2 {
-/// 4 doubles in two SSE2 registers.
-struct Lanes {
-    static constexpr unsigned kRegs = 2, kCount = 2 * kRegs;
-    __m128d r[kRegs];
-    static Lanes set(double x) {
-        Lanes o;
-        for (unsigned i = 0; i < kRegs; ++i) o.r[i] = _mm_set1_pd(x);
-        return o;
-    }
-    static Lanes load(const double* p) {
-        Lanes o;
-        for (unsigned i = 0; i < kRegs; ++i) o.r[i] = _mm_load_pd(p + 2 * i);
-        return o;
-    }
-    friend Lanes operator+(Lanes x, Lanes y) {
-        for (unsigned i = 0; i < kRegs; ++i) x.r[i] = _mm_add_pd(x.r[i], y.r[i]);
-        return x;
-    }
-    friend Lanes operator-(Lanes x, Lanes y) {
-        for (unsigned i = 0; i < kRegs; ++i) x.r[i] = _mm_sub_pd(x.r[i], y.r[i]);
-        return x;
-    }
-    friend Lanes operator*(Lanes x, Lanes y) {
-        for (unsigned i = 0; i < kRegs; ++i) x.r[i] = _mm_mul_pd(x.r[i], y.r[i]);
-        return x;
-    }
-    friend unsigned lt(Lanes x, Lanes y) {
-        unsigned m = 0;
-        for (unsigned i = 0; i < kRegs; ++i) m |= unsigned(_mm_movemask_pd(_mm_cmplt_pd(x.r[i], y.r[i]))) << (2 * i);
-        return m;
-    }
-    friend unsigned gt(Lanes x, Lanes y) {
-        unsigned m = 0;
-        for (unsigned i = 0; i < kRegs; ++i) m |= unsigned(_mm_movemask_pd(_mm_cmpgt_pd(x.r[i], y.r[i]))) << (2 * i);
-        return m;
-    }
+/// One SSE2 register of doubles.
+struct Reg {
+    using type = __m128d;
+    static constexpr unsigned kWidth = 2;
+    static type set(double x) { return _mm_set1_pd(x); }
+    static type load(const double* p) { return _mm_load_pd(p); }
+    static type add(type x, type y) { return _mm_add_pd(x, y); }
+    static type sub(type x, type y) { return _mm_sub_pd(x, y); }
+    static type mul(type x, type y) { return _mm_mul_pd(x, y); }
+    static unsigned lt(type x, type y) { return unsigned(_mm_movemask_pd(_mm_cmplt_pd(x, y))); }
+    static unsigned gt(type x, type y) { return unsigned(_mm_movemask_pd(_mm_cmpgt_pd(x, y))); }
 };
 #include "render/traversal/PacketKernel.inc"
 }  // namespace sse2
 #undef OCTRACE_PACKET_TARGET
 
-// Every function of this namespace carries the target attribute (GCC's target pragma alone
+// Every function of these namespaces carries the target attribute (GCC's target pragma alone
 // leaves friend functions defined in a class without it).
 #pragma GCC push_options
 #pragma GCC target("avx2")
 #define OCTRACE_PACKET_TARGET [[gnu::target("avx2")]]
 namespace avx2 {
-/// 8 doubles in two AVX registers.
-struct Lanes {
-    static constexpr unsigned kRegs = 2, kCount = 4 * kRegs;
-    __m256d r[kRegs];
-    OCTRACE_PACKET_TARGET static Lanes set(double x) {
-        Lanes o;
-        for (unsigned i = 0; i < kRegs; ++i) o.r[i] = _mm256_set1_pd(x);
-        return o;
-    }
-    OCTRACE_PACKET_TARGET static Lanes load(const double* p) {
-        Lanes o;
-        for (unsigned i = 0; i < kRegs; ++i) o.r[i] = _mm256_load_pd(p + 4 * i);
-        return o;
-    }
-    OCTRACE_PACKET_TARGET friend Lanes operator+(Lanes x, Lanes y) {
-        for (unsigned i = 0; i < kRegs; ++i) x.r[i] = _mm256_add_pd(x.r[i], y.r[i]);
-        return x;
-    }
-    OCTRACE_PACKET_TARGET friend Lanes operator-(Lanes x, Lanes y) {
-        for (unsigned i = 0; i < kRegs; ++i) x.r[i] = _mm256_sub_pd(x.r[i], y.r[i]);
-        return x;
-    }
-    OCTRACE_PACKET_TARGET friend Lanes operator*(Lanes x, Lanes y) {
-        for (unsigned i = 0; i < kRegs; ++i) x.r[i] = _mm256_mul_pd(x.r[i], y.r[i]);
-        return x;
-    }
-    OCTRACE_PACKET_TARGET friend unsigned lt(Lanes x, Lanes y) {
-        unsigned m = 0;
-        for (unsigned i = 0; i < kRegs; ++i) m |= unsigned(_mm256_movemask_pd(_mm256_cmp_pd(x.r[i], y.r[i], _CMP_LT_OQ))) << (4 * i);
-        return m;
-    }
-    OCTRACE_PACKET_TARGET friend unsigned gt(Lanes x, Lanes y) {
-        unsigned m = 0;
-        for (unsigned i = 0; i < kRegs; ++i) m |= unsigned(_mm256_movemask_pd(_mm256_cmp_pd(x.r[i], y.r[i], _CMP_GT_OQ))) << (4 * i);
-        return m;
-    }
+/// One AVX register of doubles.
+struct Reg {
+    using type = __m256d;
+    static constexpr unsigned kWidth = 4;
+    OCTRACE_PACKET_TARGET static type set(double x) { return _mm256_set1_pd(x); }
+    OCTRACE_PACKET_TARGET static type load(const double* p) { return _mm256_load_pd(p); }
+    OCTRACE_PACKET_TARGET static type add(type x, type y) { return _mm256_add_pd(x, y); }
+    OCTRACE_PACKET_TARGET static type sub(type x, type y) { return _mm256_sub_pd(x, y); }
+    OCTRACE_PACKET_TARGET static type mul(type x, type y) { return _mm256_mul_pd(x, y); }
+    OCTRACE_PACKET_TARGET static unsigned lt(type x, type y) { return unsigned(_mm256_movemask_pd(_mm256_cmp_pd(x, y, _CMP_LT_OQ))); }
+    OCTRACE_PACKET_TARGET static unsigned gt(type x, type y) { return unsigned(_mm256_movemask_pd(_mm256_cmp_pd(x, y, _CMP_GT_OQ))); }
 };
 #include "render/traversal/PacketKernel.inc"
 }  // namespace avx2
 #undef OCTRACE_PACKET_TARGET
 #pragma GCC pop_options
 
-
-// AVX-512 (foundation): the same kernel.
 #pragma GCC push_options
 #pragma GCC target("avx512f")
 #define OCTRACE_PACKET_TARGET [[gnu::target("avx512f")]]
 namespace avx512 {
-/// 16 doubles in two AVX-512 registers.
-struct Lanes {
-    static constexpr unsigned kRegs = 2, kCount = 8 * kRegs;
-    __m512d r[kRegs];
-    OCTRACE_PACKET_TARGET static Lanes set(double x) {
-        Lanes o;
-        for (unsigned i = 0; i < kRegs; ++i) o.r[i] = _mm512_set1_pd(x);
-        return o;
-    }
-    OCTRACE_PACKET_TARGET static Lanes load(const double* p) {
-        Lanes o;
-        for (unsigned i = 0; i < kRegs; ++i) o.r[i] = _mm512_loadu_pd(p + 8 * i);
-        return o;
-    }
-    OCTRACE_PACKET_TARGET friend Lanes operator+(Lanes x, Lanes y) {
-        for (unsigned i = 0; i < kRegs; ++i) x.r[i] = _mm512_add_pd(x.r[i], y.r[i]);
-        return x;
-    }
-    OCTRACE_PACKET_TARGET friend Lanes operator-(Lanes x, Lanes y) {
-        for (unsigned i = 0; i < kRegs; ++i) x.r[i] = _mm512_sub_pd(x.r[i], y.r[i]);
-        return x;
-    }
-    OCTRACE_PACKET_TARGET friend Lanes operator*(Lanes x, Lanes y) {
-        for (unsigned i = 0; i < kRegs; ++i) x.r[i] = _mm512_mul_pd(x.r[i], y.r[i]);
-        return x;
-    }
-    OCTRACE_PACKET_TARGET friend unsigned lt(Lanes x, Lanes y) {
-        unsigned m = 0;
-        for (unsigned i = 0; i < kRegs; ++i) m |= unsigned(_mm512_cmp_pd_mask(x.r[i], y.r[i], _CMP_LT_OQ)) << (8 * i);
-        return m;
-    }
-    OCTRACE_PACKET_TARGET friend unsigned gt(Lanes x, Lanes y) {
-        unsigned m = 0;
-        for (unsigned i = 0; i < kRegs; ++i) m |= unsigned(_mm512_cmp_pd_mask(x.r[i], y.r[i], _CMP_GT_OQ)) << (8 * i);
-        return m;
-    }
+/// One AVX-512 register of doubles.
+struct Reg {
+    using type = __m512d;
+    static constexpr unsigned kWidth = 8;
+    OCTRACE_PACKET_TARGET static type set(double x) { return _mm512_set1_pd(x); }
+    OCTRACE_PACKET_TARGET static type load(const double* p) { return _mm512_load_pd(p); }
+    OCTRACE_PACKET_TARGET static type add(type x, type y) { return _mm512_add_pd(x, y); }
+    OCTRACE_PACKET_TARGET static type sub(type x, type y) { return _mm512_sub_pd(x, y); }
+    OCTRACE_PACKET_TARGET static type mul(type x, type y) { return _mm512_mul_pd(x, y); }
+    OCTRACE_PACKET_TARGET static unsigned lt(type x, type y) { return unsigned(_mm512_cmp_pd_mask(x, y, _CMP_LT_OQ)); }
+    OCTRACE_PACKET_TARGET static unsigned gt(type x, type y) { return unsigned(_mm512_cmp_pd_mask(x, y, _CMP_GT_OQ)); }
 };
 #include "render/traversal/PacketKernel.inc"
 }  // namespace avx512
