@@ -2,9 +2,13 @@
 #include "render/traversal/PacketTraversal.h"
 #include "render/traversal/DiscreteLattice.h"
 
+#include <cassert>
 #include <cstdint>
 #include <cstdlib>
+#if defined(__x86_64__) || defined(__i386__)
+#define OCTRACE_PACKET_X86 1
 #include <immintrin.h>
+#endif
 
 namespace octrace::detail {
 namespace {
@@ -82,6 +86,7 @@ void setupPacket(const StartNode& start, const PacketLane* lanes, unsigned count
 
 #define OCTRACE_PACKET_TARGET
 namespace sse2 {
+#if defined(OCTRACE_PACKET_X86)
 /// One SSE2 register of doubles.
 struct Reg {
     using type = __m128d;
@@ -94,14 +99,29 @@ struct Reg {
     static unsigned lt(type x, type y) { return unsigned(_mm_movemask_pd(_mm_cmplt_pd(x, y))); }
     static unsigned gt(type x, type y) { return unsigned(_mm_movemask_pd(_mm_cmpgt_pd(x, y))); }
 };
+#else
+/// Two doubles in plain C++ (a processor other than x86): the same arithmetic, lane by lane.
+struct Reg {
+    struct type {
+        double v[2];
+    };
+    static constexpr unsigned kWidth = 2;
+    static type set(double x) { return {{x, x}}; }
+    static type load(const double* p) { return {{p[0], p[1]}}; }
+    static type add(type x, type y) { return {{x.v[0] + y.v[0], x.v[1] + y.v[1]}}; }
+    static type sub(type x, type y) { return {{x.v[0] - y.v[0], x.v[1] - y.v[1]}}; }
+    static type mul(type x, type y) { return {{x.v[0] * y.v[0], x.v[1] * y.v[1]}}; }
+    static unsigned lt(type x, type y) { return unsigned(x.v[0] < y.v[0]) | unsigned(x.v[1] < y.v[1]) << 1; }
+    static unsigned gt(type x, type y) { return unsigned(x.v[0] > y.v[0]) | unsigned(x.v[1] > y.v[1]) << 1; }
+};
+#endif
 #include "render/traversal/PacketKernel.inc"
 }  // namespace sse2
 #undef OCTRACE_PACKET_TARGET
 
-// Every function of these namespaces carries the target attribute (GCC's target pragma alone
-// leaves friend functions defined in a class without it).
-#pragma GCC push_options
-#pragma GCC target("avx2")
+#if defined(OCTRACE_PACKET_X86)
+// Every function of these namespaces carries the target attribute (GCC's target pragma would leave
+// friend functions defined in a class without it, and clang does not know the pragma).
 #define OCTRACE_PACKET_TARGET [[gnu::target("avx2")]]
 namespace avx2 {
 /// One AVX register of doubles.
@@ -119,10 +139,7 @@ struct Reg {
 #include "render/traversal/PacketKernel.inc"
 }  // namespace avx2
 #undef OCTRACE_PACKET_TARGET
-#pragma GCC pop_options
 
-#pragma GCC push_options
-#pragma GCC target("avx512f")
 #define OCTRACE_PACKET_TARGET [[gnu::target("avx512f")]]
 namespace avx512 {
 /// One AVX-512 register of doubles.
@@ -140,10 +157,11 @@ struct Reg {
 #include "render/traversal/PacketKernel.inc"
 }  // namespace avx512
 #undef OCTRACE_PACKET_TARGET
-#pragma GCC pop_options
+#endif  // OCTRACE_PACKET_X86
 
 }  // namespace
 
+#if defined(OCTRACE_PACKET_X86)
 static_assert(sse2::Lanes::kCount <= kMaxPacketLanes && avx2::Lanes::kCount <= kMaxPacketLanes &&
               avx512::Lanes::kCount <= kMaxPacketLanes);
 
@@ -162,19 +180,31 @@ PacketIsa packetIsa() {
                                                                    : PacketIsa::Sse2;
     return isa;
 }
+#else
+static_assert(sse2::Lanes::kCount <= kMaxPacketLanes);
+unsigned packetLanes(PacketIsa) { return sse2::Lanes::kCount; }
+PacketIsa packetIsa() { return PacketIsa::Sse2; }
+#endif
 
 unsigned traversePacket(PacketIsa isa, const Octree& tree, const StartNode& start, const PacketLane* lanes,
-                        unsigned count, TraversalCounters& counters) {
+                        unsigned count, TraversalCounters& counters, unsigned* scalarLanes) {
+    for (unsigned l = 0; l < count; ++l) assert(lanes[l].ray->meetsCube && (!lanes[l].filter || *lanes[l].filter));
     PacketSetup p;
     unsigned scalar = 0;
     setupPacket(start, lanes, count, packetLanes(isa), p, scalar);
     unsigned done = 0;
+    if (scalarLanes) *scalarLanes = scalar;
     if (p.active) {
+#if defined(OCTRACE_PACKET_X86)
         switch (isa) {
             case PacketIsa::Avx512: done = avx512::runPacket(tree, p, lanes, counters); break;
             case PacketIsa::Avx2: done = avx2::runPacket(tree, p, lanes, counters); break;
             case PacketIsa::Sse2: done = sse2::runPacket(tree, p, lanes, counters); break;
         }
+#else
+        (void)isa;
+        done = sse2::runPacket(tree, p, lanes, counters);
+#endif
     }
     for (; scalar; scalar &= scalar - 1) {
         const unsigned l = unsigned(__builtin_ctz(scalar));

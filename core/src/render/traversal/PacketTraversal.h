@@ -7,7 +7,8 @@ namespace octrace::detail {
 
 /// The instruction set the packet traversal runs on: AVX-512 (16 rays per packet, in two
 /// 8-wide registers of doubles per lane quantity), AVX2 (8 rays, two 4-wide registers) or SSE2
-/// (4 rays, two 2-wide registers): the same exact arithmetic, so the same results.
+/// (4 rays, two 2-wide registers; on a processor other than x86, the same in plain C++): the same
+/// exact arithmetic, so the same results.
 enum class PacketIsa { Sse2, Avx2, Avx512 };
 
 /// The most rays a packet holds on any instruction set.
@@ -17,7 +18,8 @@ constexpr unsigned kMaxPacketLanes = 16;
 /// 1.7 times slower than 8).
 unsigned packetLanes(PacketIsa isa);
 
-/// The best the processor running this offers (AVX-512 foundation, else AVX2, else SSE2).
+/// The best the processor running this offers (AVX-512 foundation, else AVX2, else SSE2; Sse2,
+/// the plain C++ lanes, on other processors).
 PacketIsa packetIsa();
 
 /// One lane: its quantized ray, its filter (smooth surfaces, as traverseFromNodes's; may be
@@ -29,12 +31,13 @@ struct PacketLane {
 };
 
 /// traverseFromNodes(tree, *lane.ray, &start, 1, counters, lane.filter) for each of `count`
-/// lanes (1 .. packetLanes(isa)) at once: the rays must share their main axis and sign pattern, meet
-/// the cube, and no cut applies. Returns the lanes (bit i: lane i) that found their hit, which is
-/// written to *lane.hit; the others wrote nothing. Lanes the packet's exact arithmetic cannot
-/// take (the eye's main plane cuts the node, or the node is so coarse that a value could
-/// exceed 2^52) are traced by the scalar traversal on the node instead.
+/// lanes (1 .. packetLanes(isa)) at once: the rays must share their main axis and sign pattern and
+/// meet the cube, a lane's filter must be null or non-empty, and no cut applies. Returns the lanes
+/// (bit i: lane i) that found their hit, which is written to *lane.hit; the others wrote nothing.
+/// Lanes the packet's exact arithmetic cannot take (the eye's main plane cuts the node, or the
+/// node is so coarse that a value could exceed 2^52) are traced by the scalar traversal on the node
+/// instead; `scalarLanes`, when given, receives them (bit i: lane i).
 unsigned traversePacket(PacketIsa isa, const Octree& tree, const StartNode& start, const PacketLane* lanes,
-                        unsigned count, TraversalCounters& counters);
+                        unsigned count, TraversalCounters& counters, unsigned* scalarLanes = nullptr);
 
 }  // namespace octrace::detail
