@@ -4,6 +4,8 @@
 // the node, rays from an eye inside it, and rays through node corners and edges.
 #include "octrace/build/AnalyticField.h"
 #include "octrace/build/OctreeBuilder.h"
+#include "octrace/render/Camera.h"
+#include "octrace/render/Lod.h"
 #include "render/traversal/PacketTraversal.h"
 #include "TraversalTestUtil.h"
 
@@ -59,12 +61,14 @@ std::vector<std::vector<StartNode>> innerNodes(const Octree& t) {
 }
 
 bool sameHit(const TraversalHit& a, const TraversalHit& b) {
-    return a.voxel == b.voxel && (!a.hit() || (a.cell == b.cell && a.leafShift == b.leafShift));
+    return a.voxel == b.voxel && a.node == b.node &&
+           (!a.hit() || (a.cell == b.cell && a.leafShift == b.leafShift && a.level == b.level));
 }
 
 struct Counts {
     long lanes = 0, hits = 0, misses = 0, passed = 0;
-    long scalar = 0;  ///< lanes the packet handed to the scalar traversal
+    long scalar = 0;    ///< lanes the packet handed to the scalar traversal
+    long nodeHits = 0;  ///< lanes whose hit is a node a cut draws whole
 };
 
 const char* isaName(PacketIsa isa) { return isa == PacketIsa::Avx512 ? "avx512" : isa == PacketIsa::Avx2 ? "avx2" : "sse2"; }
@@ -79,13 +83,15 @@ std::vector<PacketIsa> runnableIsas() {
 
 /// One packet on `isa`: the lanes' hits against the scalar traversal's.
 void checkPacket(PacketIsa isa, const Octree& t, const StartNode& start, const std::vector<QuantizedRay>& rays,
-                 const VoxelFilter* filter, Counts& counts, const std::string& what, bool allInPacket) {
+                 const VoxelFilter* filter, Counts& counts, const std::string& what, bool allInPacket,
+                 const LodCut* cut) {
     ASSERT_LE(rays.size(), packetLanes(isa));
     std::vector<TraversalHit> expected(rays.size());
     for (std::size_t l = 0; l < rays.size(); ++l) {
         TraversalCounters c;
-        expected[l] = traverseFromNodes(t, rays[l], &start, 1, c, filter);
-        if (filter && !sameHit(expected[l], traverseFromNodes(t, rays[l], &start, 1, c))) ++counts.passed;
+        expected[l] = traverseFromNodes(t, rays[l], &start, 1, c, filter, cut);
+        if (filter && !sameHit(expected[l], traverseFromNodes(t, rays[l], &start, 1, c, nullptr, cut))) ++counts.passed;
+        if (expected[l].nodeHit()) ++counts.nodeHits;
         ++counts.lanes;
         ++(expected[l].hit() ? counts.hits : counts.misses);
     }
@@ -94,7 +100,7 @@ void checkPacket(PacketIsa isa, const Octree& t, const StartNode& start, const s
     for (std::size_t l = 0; l < rays.size(); ++l) lanes[l] = PacketLane{&rays[l], filter, &got[l]};
     TraversalCounters c;
     unsigned scalar = 0;
-    const unsigned found = traversePacket(isa, t, start, lanes, unsigned(rays.size()), c, &scalar);
+    const unsigned found = traversePacket(isa, t, start, lanes, unsigned(rays.size()), c, cut, &scalar);
     counts.scalar += std::popcount(scalar);
     // A node of level 4 or finer, the eye far from it along every ray's main axis: every lane is
     // the packet's own (its values are within the bound, the eye's plane does not cut the node).
@@ -115,7 +121,7 @@ void checkPacket(PacketIsa isa, const Octree& t, const StartNode& start, const s
 /// Rays grouped into packets of one main axis and sign pattern (the packet's requirement), on
 /// every instruction set this processor runs, each with its own packet width.
 void checkGrouped(const Octree& t, const StartNode& start, const std::vector<QuantizedRay>& rays, const VoxelFilter* filter,
-                  Counts& counts, const std::string& what, bool allInPacket = false) {
+                  Counts& counts, const std::string& what, bool allInPacket = false, const LodCut* cut = nullptr) {
     for (const PacketIsa isa : runnableIsas()) {
         std::vector<QuantizedRay> groups[3][8];
         for (const QuantizedRay& q : rays) {
@@ -123,13 +129,13 @@ void checkGrouped(const Octree& t, const StartNode& start, const std::vector<Qua
             std::vector<QuantizedRay>& g = groups[q.main][q.sign];
             g.push_back(q);
             if (g.size() == packetLanes(isa)) {
-                checkPacket(isa, t, start, g, filter, counts, what, allInPacket);
+                checkPacket(isa, t, start, g, filter, counts, what, allInPacket, cut);
                 g.clear();
             }
         }
         for (auto& byMain : groups)
             for (auto& g : byMain)
-                if (!g.empty()) checkPacket(isa, t, start, g, filter, counts, what, allInPacket);
+                if (!g.empty()) checkPacket(isa, t, start, g, filter, counts, what, allInPacket, cut);
     }
 }
 
@@ -194,4 +200,45 @@ TEST(PacketTraversal, EveryLaneFindsTheScalarTraversalsHitOnEveryInstructionSet)
         EXPECT_LT(counts.scalar, counts.lanes / 2) << nt.name;
         EXPECT_GT(counts.scalar, 0) << nt.name;
     }
+}
+
+TEST(PacketTraversal, UnderACutEveryLaneFindsTheScalarTraversalsNodeOrVoxel) {
+    // The cut stops at nodes by level and by projected size (Lod.h): the same for every lane, so
+    // a packet stops all the lanes that reach such a node there, as the scalar traversal does.
+    Octree t = buildShellOctree(makeAnalyticField("noise", 65, 7), {8, 0.0, 0});
+    t.computeSummaries();
+    const auto nodes = innerNodes(t);
+    const Camera camera = Camera::framing(Box3{t.cubeOrigin, t.cubeOrigin + dvec3(t.cubeSide)}, 1600, 1200);
+    const VoxelFilter passSome = [](TraversalHit& h) { return (7 * h.cell.x + 3 * h.cell.y + h.cell.z) % 4 != 0; };
+    long voxelHits = 0;
+    for (const auto& [pixels, level] : {std::pair{5.0, -1}, {0.0, 5}, {12.0, 6}}) {
+        const LodCut cut(t, camera, pixels, level);
+        ASSERT_TRUE(cut.active());
+        std::mt19937_64 rng(5);
+        std::uniform_real_distribution<double> u(0.0, 1.0);
+        Counts counts;
+        for (int trial = 0; trial < 600; ++trial) {
+            // Start nodes above the coarsest level the cut stops at, as the tile renderer's.
+            const int startLevel = int(rng() % std::uint64_t(std::max(1, cut.coarsestLevel())));
+            if (startLevel >= cut.coarsestLevel() || nodes[std::size_t(startLevel)].empty()) continue;
+            const auto& at = nodes[std::size_t(startLevel)];
+            const StartNode start = at[rng() % at.size()];
+            const double side = kL / double(1 << startLevel);
+            const dvec3 lo = dvec3(start.cell) * side;
+            const dvec3 dir = glm::normalize(dvec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5));
+            const dvec3 eye = lo + dvec3(0.5 * side) + dir * side * (trial % 2 ? 6.0 : 1.5);
+            std::vector<QuantizedRay> rays;
+            for (int i = 0; i < 32; ++i) {
+                const dvec3 target = lo + (dvec3(u(rng), u(rng), u(rng)) * 1.2 - 0.1) * side;
+                rays.push_back(quantizeRay(eye, target - eye));
+            }
+            checkGrouped(t, start, rays, trial % 3 ? nullptr : &passSome, counts,
+                         "lod " + std::to_string(pixels) + ", level " + std::to_string(level) + ", trial " + std::to_string(trial),
+                         false, &cut);
+            if (HasFatalFailure()) return;
+        }
+        EXPECT_GT(counts.nodeHits, counts.lanes / 50) << pixels << " " << level;
+        voxelHits += counts.hits - counts.nodeHits;
+    }
+    EXPECT_GT(voxelHits, 0);  // the size cut of 5 pixels lets some rays reach voxels
 }

@@ -2,6 +2,8 @@
 #include "render/traversal/PacketTraversal.h"
 #include "render/traversal/DiscreteLattice.h"
 
+#include "octrace/render/Lod.h"
+
 #include <cassert>
 #include <cstdint>
 #include <cstdlib>
@@ -187,7 +189,8 @@ PacketIsa packetIsa() { return PacketIsa::Sse2; }
 #endif
 
 unsigned traversePacket(PacketIsa isa, const Octree& tree, const StartNode& start, const PacketLane* lanes,
-                        unsigned count, TraversalCounters& counters, unsigned* scalarLanes) {
+                        unsigned count, TraversalCounters& counters, const LodCut* cut, unsigned* scalarLanes) {
+    if (cut && !cut->active()) cut = nullptr;
     for (unsigned l = 0; l < count; ++l) assert(lanes[l].ray->meetsCube && (!lanes[l].filter || *lanes[l].filter));
     PacketSetup p;
     unsigned scalar = 0;
@@ -197,18 +200,18 @@ unsigned traversePacket(PacketIsa isa, const Octree& tree, const StartNode& star
     if (p.active) {
 #if defined(OCTRACE_PACKET_X86)
         switch (isa) {
-            case PacketIsa::Avx512: done = avx512::runPacket(tree, p, lanes, counters); break;
-            case PacketIsa::Avx2: done = avx2::runPacket(tree, p, lanes, counters); break;
-            case PacketIsa::Sse2: done = sse2::runPacket(tree, p, lanes, counters); break;
+            case PacketIsa::Avx512: done = avx512::runPacket(tree, p, lanes, counters, cut); break;
+            case PacketIsa::Avx2: done = avx2::runPacket(tree, p, lanes, counters, cut); break;
+            case PacketIsa::Sse2: done = sse2::runPacket(tree, p, lanes, counters, cut); break;
         }
 #else
         (void)isa;
-        done = sse2::runPacket(tree, p, lanes, counters);
+        done = sse2::runPacket(tree, p, lanes, counters, cut);
 #endif
     }
     for (; scalar; scalar &= scalar - 1) {
         const unsigned l = unsigned(__builtin_ctz(scalar));
-        const TraversalHit hit = traverseFromNodes(tree, *lanes[l].ray, &start, 1, counters, lanes[l].filter);
+        const TraversalHit hit = traverseFromNodes(tree, *lanes[l].ray, &start, 1, counters, lanes[l].filter, cut);
         if (hit.hit()) {
             *lanes[l].hit = hit;
             done |= 1u << l;

@@ -3,6 +3,10 @@
 // "Packets"). Each lane is exact: it finds the same hit as traverseFromNodes on the same node.
 #include "octrace/render/DiscreteTraversal.h"
 
+namespace octrace {
+class LodCut;
+}
+
 namespace octrace::detail {
 
 /// The instruction set the packet traversal runs on: AVX-512 (16 rays per packet, in two
@@ -30,14 +34,16 @@ struct PacketLane {
     TraversalHit* hit = nullptr;
 };
 
-/// traverseFromNodes(tree, *lane.ray, &start, 1, counters, lane.filter) for each of `count`
+/// traverseFromNodes(tree, *lane.ray, &start, 1, counters, lane.filter, cut) for each of `count`
 /// lanes (1 .. packetLanes(isa)) at once: the rays must share their main axis and sign pattern and
-/// meet the cube, a lane's filter must be null or non-empty, and no cut applies. Returns the lanes
+/// meet the cube, a lane's filter must be null or non-empty, and with a cut the start node must
+/// lie above LodCut::coarsestLevel() (as for traverseFromNodes). Returns the lanes
 /// (bit i: lane i) that found their hit, which is written to *lane.hit; the others wrote nothing.
 /// Lanes the packet's exact arithmetic cannot take (the eye's main plane cuts the node, or the
 /// node is so coarse that a value could exceed 2^52) are traced by the scalar traversal on the node
 /// instead; `scalarLanes`, when given, receives them (bit i: lane i).
 unsigned traversePacket(PacketIsa isa, const Octree& tree, const StartNode& start, const PacketLane* lanes,
-                        unsigned count, TraversalCounters& counters, unsigned* scalarLanes = nullptr);
+                        unsigned count, TraversalCounters& counters, const LodCut* cut = nullptr,
+                        unsigned* scalarLanes = nullptr);
 
 }  // namespace octrace::detail

@@ -161,8 +161,8 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                 }
             }
             // Step 6: rays of the tile's sign pattern go through the packet traversal, node by
-            // node (not under a cut, and only with the per-pixel node masks).
-            const bool packets = masked && !cutp;
+            // node (only with the per-pixel node masks).
+            const bool packets = masked;
             packet.clear();
             if (packets)
                 for (std::size_t i = 0; i < kept; ++i) {
@@ -233,7 +233,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                 unsigned count[3] = {0, 0, 0};
                 for (std::size_t i = 0; i < kept; ++i) {
                     const auto flush = [&](int a) {
-                        const unsigned found = traversePacket(isa, tree, list[i].start, lanes[a], count[a], counters);
+                        const unsigned found = traversePacket(isa, tree, list[i].start, lanes[a], count[a], counters, cutp);
                         for (unsigned l = 0; l < count[a]; ++l)
                             if (found >> l & 1u) packet.done[owner[a][l] / 64] |= std::uint64_t(1) << (owner[a][l] % 64);
                         count[a] = 0;
