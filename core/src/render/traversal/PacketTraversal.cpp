@@ -200,13 +200,13 @@ unsigned traversePacket(PacketIsa isa, const Octree& tree, const StartNode& star
     if (p.active) {
 #if defined(OCTRACE_PACKET_X86)
         switch (isa) {
-            case PacketIsa::Avx512: done = avx512::runPacket(tree, p, lanes, counters, cut); break;
-            case PacketIsa::Avx2: done = avx2::runPacket(tree, p, lanes, counters, cut); break;
-            case PacketIsa::Sse2: done = sse2::runPacket(tree, p, lanes, counters, cut); break;
+            case PacketIsa::Avx512: done = cut ? avx512::runPacket<true>(tree, p, lanes, counters, cut) : avx512::runPacket<false>(tree, p, lanes, counters, nullptr); break;
+            case PacketIsa::Avx2: done = cut ? avx2::runPacket<true>(tree, p, lanes, counters, cut) : avx2::runPacket<false>(tree, p, lanes, counters, nullptr); break;
+            case PacketIsa::Sse2: done = cut ? sse2::runPacket<true>(tree, p, lanes, counters, cut) : sse2::runPacket<false>(tree, p, lanes, counters, nullptr); break;
         }
 #else
         (void)isa;
-        done = sse2::runPacket(tree, p, lanes, counters, cut);
+        done = cut ? sse2::runPacket<true>(tree, p, lanes, counters, cut) : sse2::runPacket<false>(tree, p, lanes, counters, nullptr);
 #endif
     }
     for (; scalar; scalar &= scalar - 1) {
