@@ -97,8 +97,8 @@ TEST(PixelRays, TheSurfaceBoxIsTheBoxOfEveryLeaf) {
     EXPECT_GT(lo.x, hi.x);
 }
 
-// RayGenerator::row computes two rays at a time: the same bits as one at a time, for odd and
-// even row lengths and starts, perspective and orthographic, rows off the image too.
+// RayGenerator::row computes four (AVX2) or two rays at a time: the same bits as one at a time,
+// for odd and even row lengths and starts, perspective and orthographic, rows off the image too.
 TEST(RayGenerator, RowGivesTheSameRaysBitForBitAsOneAtATime) {
     std::vector<Camera> cams = {makeCamera(dvec3(1.3, 0.4, 0.9), dvec3(0.0), dvec3(0, 0, 1), 60, 97, 61),
                                 makeCamera(dvec3(40.0, -25.0, 18.0), dvec3(0.1, 0.2, -0.3), dvec3(0, 0, 1), 20, 1600, 1200),

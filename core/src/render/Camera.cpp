@@ -7,6 +7,9 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
 
 namespace octrace {
 
@@ -47,6 +50,32 @@ RayGenerator::RayGenerator(const Camera& camera) : eye_(camera.position), ortho_
     pixelScaleY_ = 0.5 * camera.height / halfH_;
 }
 
+#if defined(__x86_64__) && defined(__GNUC__)
+/// RayGenerator::row's rays four at a time in AVX2 registers: the same operations in the same
+/// order (no fused multiply-add), so the same bits. Returns the rays made (a multiple of 4).
+/// `screen` = {sampleX, invWidth, halfW}: screenX(x) = ((x + sampleX) * invWidth * 2 - 1) * halfW.
+[[gnu::target("avx2")]] static int rowAvx2(const double (&screen)[3], const dvec3& eye, const dvec3& right, const dvec3& base, const dvec3& back,
+                                           int x0, int n, Ray* out) {
+    const __m256d one = _mm256_set1_pd(1.0), two = _mm256_set1_pd(2.0);
+    const __m256d sampleX = _mm256_set1_pd(screen[0]), invWidth = _mm256_set1_pd(screen[1]), halfW = _mm256_set1_pd(screen[2]);
+    int i = 0;
+    for (; i + 3 < n; i += 4) {
+        const int x = x0 + i;
+        const __m256d px = _mm256_set_pd(double(x + 3), double(x + 2), double(x + 1), double(x));
+        const __m256d sx = _mm256_mul_pd(_mm256_sub_pd(_mm256_mul_pd(_mm256_mul_pd(_mm256_add_pd(px, sampleX), invWidth), two), one), halfW);
+        __m256d d[3];
+        for (int a = 0; a < 3; ++a)
+            d[a] = _mm256_sub_pd(_mm256_add_pd(_mm256_mul_pd(sx, _mm256_set1_pd(right[a])), _mm256_set1_pd(base[a])), _mm256_set1_pd(back[a]));
+        const __m256d len2 = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(d[0], d[0]), _mm256_mul_pd(d[1], d[1])), _mm256_mul_pd(d[2], d[2]));
+        const __m256d inv = _mm256_div_pd(one, _mm256_sqrt_pd(len2));
+        double v[3][4];
+        for (int a = 0; a < 3; ++a) _mm256_storeu_pd(v[a], _mm256_mul_pd(d[a], inv));
+        for (int k = 0; k < 4; ++k) out[i + k] = {eye, dvec3(v[0][k], v[1][k], v[2][k])};
+    }
+    return i;
+}
+#endif
+
 void RayGenerator::row(int x0, int y, int n, Ray* out) const {
     if (ortho_) {
         for (int i = 0; i < n; ++i) out[i] = (*this)(x0 + i, y);
@@ -57,6 +86,10 @@ void RayGenerator::row(int x0, int y, int n, Ray* out) const {
     const double sy = screenY(y);
     const dvec3 base = sy * up_;
     int i = 0;
+#if defined(__x86_64__) && defined(__GNUC__)
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    if (avx2) i = rowAvx2({sampleX_, invWidth_, halfW_}, eye_, right_, base, back_, x0, n, out);
+#endif
 #if defined(__SSE2__)
     const __m128d one = _mm_set1_pd(1.0);
     for (; i + 1 < n; i += 2) {

@@ -7,6 +7,7 @@
 #include "octrace/util/Timer.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -36,8 +37,10 @@ public:
         const dvec3 l = glm::normalize(s.lightCamera);
         light_ = glm::normalize(l.x * right + l.y * up + l.z * back);
         eps_ = tree.cubeSide * 1e-9;
+        shadows_ = s.shadows.value_or(true);
     }
-    /// Colour seen along a ray that found `hit` (or nothing).
+    /// Colour seen along a ray that found `hit` (or nothing). Reflected and transmitted rays
+    /// are followed out of line, so the common case of a primary ray is inlined.
     vec3 shade(const dvec3& o, const dvec3& d, const SphereHit& hit, int depth, ObjectTraceCounters& c, std::uint64_t& secondary) const {
         if (!hit.hit()) return miss(d);
         const Sphere& sp = tree_.scene.spheres[hit.sphere];
@@ -48,24 +51,14 @@ public:
         const bool inside = glm::dot(n, d) > 0.0;
         if (inside) n = -n;
         double lambert = std::max(0.0, glm::dot(n, light_));
-        if (lambert > 0.0 && s_.shadows.value_or(true)) {
+        if (shadows_ && lambert > 0.0) {  // shadows_ first: the sign of lambert is not predictable
             ++secondary;
             if (traceSamet(tree_, p, light_, eps_, c).hit()) lambert = 0.0;
         }
         const vec3 local = sp.colour * float(s_.ambient + s_.diffuse * lambert);
         const Material& m = tree_.scene.materials[sp.material];
         if (depth >= s_.spheres.bounces || (m.reflect <= 0.0f && m.transmit <= 0.0f)) return local;
-        vec3 out = local * (1.0f - m.reflect - m.transmit);
-        const dvec3 r = d - 2.0 * glm::dot(d, n) * n;
-        if (m.reflect > 0.0f) out += m.reflect * follow(p, r, depth, c, secondary);
-        if (m.transmit > 0.0f) {
-            // Snell: eta = n1 / n2; total internal reflection sends the share along r.
-            const double eta = inside ? double(m.ior) : 1.0 / double(m.ior);
-            const double ci = -glm::dot(d, n), k = 1.0 - eta * eta * (1.0 - ci * ci);
-            const dvec3 t = k < 0.0 ? r : glm::normalize(eta * d + (eta * ci - std::sqrt(k)) * n);
-            out += m.transmit * follow(p, t, depth, c, secondary);
-        }
-        return out;
+        return secondaries(p, d, n, inside, local, m, depth, c, secondary);
     }
     /// A ray that leaves the scene: the light's colour (white) within half a degree of the
     /// light's direction, else the background.
@@ -84,6 +77,21 @@ public:
     }
 
 private:
+    /// The share of a reflecting or transmitting material's colour that its secondary rays bring.
+    [[gnu::noinline]] vec3 secondaries(const dvec3& p, const dvec3& d, const dvec3& n, bool inside, const vec3& local, const Material& m, int depth,
+                                       ObjectTraceCounters& c, std::uint64_t& secondary) const {
+        vec3 out = local * (1.0f - m.reflect - m.transmit);
+        const dvec3 r = d - 2.0 * glm::dot(d, n) * n;
+        if (m.reflect > 0.0f) out += m.reflect * follow(p, r, depth, c, secondary);
+        if (m.transmit > 0.0f) {
+            // Snell: eta = n1 / n2; total internal reflection sends the share along r.
+            const double eta = inside ? double(m.ior) : 1.0 / double(m.ior);
+            const double ci = -glm::dot(d, n), k = 1.0 - eta * eta * (1.0 - ci * ci);
+            const dvec3 t = k < 0.0 ? r : glm::normalize(eta * d + (eta * ci - std::sqrt(k)) * n);
+            out += m.transmit * follow(p, t, depth, c, secondary);
+        }
+        return out;
+    }
     vec3 follow(const dvec3& p, const dvec3& d, int depth, ObjectTraceCounters& c, std::uint64_t& secondary) const {
         ++secondary;
         return shade(p, d, traceSamet(tree_, p, d, eps_, c), depth + 1, c, secondary);
@@ -93,6 +101,7 @@ private:
     const RenderSettings& s_;
     dvec3 light_;
     double eps_;
+    bool shadows_;
 };
 
 /// Columns first .. last of a tile's row (none when first > last).
@@ -391,19 +400,22 @@ private:
     /// meets the sphere; each ray keeps its nearest hit (ties to the lower sphere number).
     void testAll(SphereSlot& e) {
         const Sphere& sp = tree_.scene.spheres[e.sphere];
-        std::vector<double>& nearT = x_.nearT;
         forEachLive(e.i0, e.i1, e.j0, e.j1, [&](int i, int j, std::size_t k) {
             const Ray& r = rays_[k];
-            ++c_.intersections;
-            const double t = perspective_ ? intersectSphereFrom(e.oc, e.c, r.direction, 0.0) : intersectSphere(sp, r.origin, r.direction, 0.0);
-            if (t < nearT[k] || (t == nearT[k] && t != kInf && e.sphere < x_.nearSphere[k])) {
-                nearT[k] = t;
-                x_.nearSphere[k] = e.sphere;
-                x_.owners.push_back({std::uint32_t(j) << 16 | std::uint32_t(i), e.owners});
-                e.owners = std::int32_t(x_.owners.size() - 1);
-                ++e.ownerCount;
-            }
+            keepNearer(e, i, j, k, perspective_ ? intersectSphereFrom(e.oc, e.c, r.direction, 0.0) : intersectSphere(sp, r.origin, r.direction, 0.0));
         });
+    }
+    /// Ray (i, j) (index k) meets sphere e at t: kept when nearer than its nearest hit so far.
+    void keepNearer(SphereSlot& e, int i, int j, std::size_t k, double t) {
+        ++c_.intersections;
+        std::vector<double>& nearT = x_.nearT;
+        if (t < nearT[k] || (t == nearT[k] && t != kInf && e.sphere < x_.nearSphere[k])) {
+            nearT[k] = t;
+            x_.nearSphere[k] = e.sphere;
+            x_.owners.push_back({std::uint32_t(j) << 16 | std::uint32_t(i), e.owners});
+            e.owners = std::int32_t(x_.owners.size() - 1);
+            ++e.ownerCount;
+        }
     }
 
     /// Calls f(i, j, k) for each ray not yet hit in columns [i0, i1) of rows [j0, j1) (k: its
@@ -576,34 +588,45 @@ RenderStats renderSphereScene(SphereTracer tracer, const std::string& name, cons
                 }
         }
         const bool lightMayShow = shader.lightMayShow(gen, sx0, sy0, sx0 + w - 1, sy0 + h - 1);
-        // Shade every sample, average per pixel.
+        // Shade every sample, average per pixel. The samples are visited row by row (the
+        // buffers' order), each added to its pixel's sum; a pixel still receives its samples in
+        // the order b, then a, so its sum is the same float as summed pixel by pixel.
         const float inv = 1.0f / float(s * s);
-        for (int y = py0; y < py1; ++y)
-            for (int x = px0; x < px1; ++x) {
-                vec3 sum(0.0f);
-                float alpha = 0.0f;
-                for (int b = 0; b < s; ++b)
-                    for (int a = 0; a < s; ++a) {
-                        const int i = (x - px0) * s + a, j = (y - py0) * s + b;
-                        const SphereHit& hit = hits[std::size_t(j) * std::size_t(w) + std::size_t(i)];
-                        alpha += hit.hit() ? 1.0f : settings.background.a;
-                        const ColumnSpan& span = spans[std::size_t(j)];
+        const int pw = px1 - px0;
+        std::array<vec4, kTileSamples> sums;  // per pixel of the tile's row (a tile is at most kTileSamples pixels wide)
+        const vec3 background = shader.background();
+        for (int y = py0; y < py1; ++y) {
+            std::fill_n(sums.begin(), pw, vec4(0.0f));
+            for (int b = 0; b < s; ++b) {
+                const int j = (y - py0) * s + b;
+                const ColumnSpan span = spans[std::size_t(j)];
+                const SphereHit* hitRow = hits.data() + std::size_t(j) * std::size_t(w);
+                const Ray* rayRow = rays.data() + std::size_t(j) * std::size_t(w);
+                for (int i = 0, x = 0; x < pw; ++x) {
+                    vec4 sum = sums[std::size_t(x)];  // in a register across the pixel's samples of the row
+                    for (int a = 0; a < s; ++a, ++i) {
                         if (i < span.first || i > span.last) {  // outside the cube: no ray made
-                            sum += lightMayShow ? shader.miss(gen(sx0 + i, sy0 + j).direction) : shader.background();
+                            sum += vec4(lightMayShow ? shader.miss(gen(sx0 + i, sy0 + j).direction) : background, settings.background.a);
                             continue;
                         }
-                        const Ray& r = rays[std::size_t(j) * std::size_t(w) + std::size_t(i)];
+                        const SphereHit& hit = hitRow[i];
                         st.hits += hit.hit();
-                        sum += shader.shade(r.origin, r.direction, hit, 0, secondary, st.secondaryRays);
+                        sum += vec4(shader.shade(rayRow[i].origin, rayRow[i].direction, hit, 0, secondary, st.secondaryRays),
+                                    hit.hit() ? 1.0f : settings.background.a);
                     }
+                    sums[std::size_t(x)] = sum;
+                }
+            }
+            for (int x = px0; x < px1; ++x) {
                 const std::size_t p = frame.pixel(x, y);
                 const SphereHit& first = hits[std::size_t((y - py0) * s) * std::size_t(w) + std::size_t((x - px0) * s)];
-                frame.rgba[p] = vec4(sum * inv, alpha * inv);
+                frame.rgba[p] = sums[std::size_t(x - px0)] * inv;
                 frame.hitId[p] = first.sphere;
                 frame.depth[p] = first.hit() ? float(first.t) : std::numeric_limits<float>::infinity();
                 frame.flags[p] = Frame::kTraced;
                 ++st.pixels;
             }
+        }
         st.raysFull = st.rays;
         st.nodesVisited = primary.nodes;
         st.intersections = primary.intersections;
