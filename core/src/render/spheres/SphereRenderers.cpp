@@ -12,6 +12,10 @@
 #include <cmath>
 #include <limits>
 
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
+
 namespace octrace {
 
 RenderStats Renderer::renderSpheres(const ObjectOctree&, const Camera&, const RenderSettings&, Frame&) const {
@@ -297,7 +301,10 @@ public:
     }
     BeamTile(const BeamTile&) = delete;
     BeamTile& operator=(const BeamTile&) = delete;
-    void run() { visit(0, 0, w_, 0, h_); }
+    void run() {
+        visit(0, 0, w_, 0, h_);
+        forEachLive(0, w_, 0, h_, [&](int, int, std::size_t k) { hits_[k] = SphereHit{}; });  // the rays left miss
+    }
 
 private:
     void visit(std::uint32_t node, int i0, int i1, int j0, int j1) {
@@ -540,7 +547,7 @@ RenderStats renderSphereScene(SphereTracer tracer, const std::string& name, cons
     if (settings.spheres.bounces < 0) throw UsageError("`bounces` must be >= 0");
     const int s = samplesPerSide(settings.spheres.samples);
     Timer timer;
-    frame.resize(camera.width, camera.height);
+    frame.reshape(camera.width, camera.height);  // every field of every pixel is written below
     // The rays: the pixel grid of a camera s times finer (sample (x*s+a, y*s+b) of pixel (x, y)).
     Camera sampleCamera = camera;
     sampleCamera.width = camera.width * s;
@@ -565,7 +572,9 @@ RenderStats renderSphereScene(SphereTracer tracer, const std::string& name, cons
         thread_local std::vector<SphereHit> hits;
         thread_local std::vector<Ray> rays;
         thread_local std::vector<ColumnSpan> spans;
-        hits.assign(std::size_t(w) * std::size_t(h), SphereHit{});
+        // Each tracer writes the hit (or miss) of every ray it traces, and only those are read:
+        // the buffer is not cleared.
+        hits.resize(std::size_t(w) * std::size_t(h));
         rays.resize(hits.size());
         spans.resize(std::size_t(h));
         for (int j = 0; j < h; ++j) {
@@ -595,6 +604,8 @@ RenderStats renderSphereScene(SphereTracer tracer, const std::string& name, cons
         const int pw = px1 - px0;
         std::array<vec4, kTileSamples> sums;  // per pixel of the tile's row (a tile is at most kTileSamples pixels wide)
         const vec3 background = shader.background();
+        const float backgroundAlpha = settings.background.a;
+        std::uint64_t hitSamples = 0, secondaryRays = 0;  // kept in registers, added to st once
         for (int y = py0; y < py1; ++y) {
             std::fill_n(sums.begin(), pw, vec4(0.0f));
             for (int b = 0; b < s; ++b) {
@@ -606,27 +617,40 @@ RenderStats renderSphereScene(SphereTracer tracer, const std::string& name, cons
                     vec4 sum = sums[std::size_t(x)];  // in a register across the pixel's samples of the row
                     for (int a = 0; a < s; ++a, ++i) {
                         if (i < span.first || i > span.last) {  // outside the cube: no ray made
-                            sum += vec4(lightMayShow ? shader.miss(gen(sx0 + i, sy0 + j).direction) : background, settings.background.a);
+                            sum += vec4(lightMayShow ? shader.miss(gen(sx0 + i, sy0 + j).direction) : background, backgroundAlpha);
                             continue;
                         }
                         const SphereHit& hit = hitRow[i];
-                        st.hits += hit.hit();
-                        sum += vec4(shader.shade(rayRow[i].origin, rayRow[i].direction, hit, 0, secondary, st.secondaryRays),
-                                    hit.hit() ? 1.0f : settings.background.a);
+                        hitSamples += hit.hit();
+                        sum += vec4(shader.shade(rayRow[i].origin, rayRow[i].direction, hit, 0, secondary, secondaryRays),
+                                    hit.hit() ? 1.0f : backgroundAlpha);
                     }
                     sums[std::size_t(x)] = sum;
                 }
             }
             for (int x = px0; x < px1; ++x) {
                 const std::size_t p = frame.pixel(x, y);
-                const SphereHit& first = hits[std::size_t((y - py0) * s) * std::size_t(w) + std::size_t((x - px0) * s)];
+                const int i = (x - px0) * s;
+                const ColumnSpan& span = spans[std::size_t((y - py0) * s)];
+                const SphereHit first = i < span.first || i > span.last ? SphereHit{} : hits[std::size_t((y - py0) * s) * std::size_t(w) + std::size_t(i)];
+#if defined(__SSE2__)
+                // Streamed past the caches: the frame is not read again while rendering.
+                const vec4 c = sums[std::size_t(x - px0)] * inv;
+                _mm_stream_ps(&frame.rgba[p].x, _mm_setr_ps(c.x, c.y, c.z, c.w));
+#else
                 frame.rgba[p] = sums[std::size_t(x - px0)] * inv;
+#endif
                 frame.hitId[p] = first.sphere;
                 frame.depth[p] = first.hit() ? float(first.t) : std::numeric_limits<float>::infinity();
                 frame.flags[p] = Frame::kTraced;
-                ++st.pixels;
             }
         }
+#if defined(__SSE2__)
+        _mm_sfence();  // the streamed colours are written before the tile counts as done
+#endif
+        st.pixels += std::uint64_t(pw) * std::uint64_t(py1 - py0);
+        st.hits += hitSamples;
+        st.secondaryRays += secondaryRays;
         st.raysFull = st.rays;
         st.nodesVisited = primary.nodes;
         st.intersections = primary.intersections;
