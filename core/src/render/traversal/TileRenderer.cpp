@@ -194,23 +194,24 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                     packet.setRect(i, std::max(fn.x0, x0) - x0, std::min(fn.x1, x1 - 1) - x0, std::max(fn.y0, y0) - y0,
                                    std::min(fn.y1, y1 - 1) - y0);
                 }
+            std::uint64_t raysMeeting = 0, raysFull = 0, raysCommon = 0;  // st's counters, in registers during the loop
             for (int y = y0; y < y1; ++y)
                 for (int x = x0; x < x1; ++x) {
                     const std::uint64_t mask = masked ? colMask[std::size_t(x - x0)] & rowMask[std::size_t(y - y0)] : ~std::uint64_t(0);
                     if (!rays.mayHitSurface(x, y) || mask == 0) {
                         // Step 5: nothing the ray can visit holds a boundary voxel (outside the
                         // surface's outline, or outside every frontier node's rectangle).
-                        if (rays.mayMeetCube(x, y) && rays.meetsCube(x, y)) ++st.rays;
-                        ++st.raysFull;
+                        if (rays.mayMeetCube(x, y) && rays.meetsCube(x, y)) ++raysMeeting;
+                        ++raysFull;
                         writeMissPixel(frame, x, y, settings, st);
                         continue;
                     }
                     const dvec3 dir = gen.direction(x, y);
                     TraversalHit hit;
                     const QuantizedRay q = rays.quantized(x, y, dir);
-                    if (q.meetsCube) ++st.rays;
+                    if (q.meetsCube) ++raysMeeting;
                     if (packets && q.sign == s && q.meetsCube) {
-                        ++st.raysCommonPath;
+                        ++raysCommon;
                         const std::size_t k = std::size_t((y - y0) * T + (x - x0));
                         packet.traced[k / 64] |= std::uint64_t(1) << (k % 64);
                         packet.dir[k] = dir;
@@ -234,10 +235,10 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                     const VoxelFilter* fp = smooth.active() ? &filter : nullptr;
                     if (q.sign != s) {
                         // Another sign pattern: the frontier's order may not be this ray's.
-                        ++st.raysFull;
+                        ++raysFull;
                         hit = traverseDiscrete(tree, q, counters, cutp, fp);
                     } else {
-                        ++st.raysCommonPath;
+                        ++raysCommon;
                         std::size_t n = 0;
                         if (masked) {
                             for (std::uint64_t m = mask; m; m &= m - 1) starts[n++] = list[std::size_t(std::countr_zero(m))].start;
@@ -249,6 +250,9 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                     }
                     writePixelHit(frame, x, y, hit, shader, rays, dir, settings, st, counters, cutp, &memo);
                 }
+            st.rays += raysMeeting;
+            st.raysFull += raysFull;
+            st.raysCommonPath += raysCommon;
             if (packets) {
                 // Step 6: node by node in list order, the pixels still without a hit whose
                 // rectangle holds the node, in packets of rays of one main axis.
