@@ -382,6 +382,36 @@ TEST(SphereRenderers, BeamBreaksTiesOfCoincidentSpheresAsTheReference) {
     }
 }
 
+TEST(SphereRenderers, BeamTestsASphereMetLaterWhoseHitTiesTheNearestSoFar) {
+    // The beam leaves out a sphere's test for a ray whose nearest hit so far lies nearer than the
+    // sphere's distance from the eye minus its radius, less a margin for rounding. Here a large
+    // sphere Y (lower number, so tested first in their leaf) and a small one X share their
+    // nearest point on one pixel's ray: along that ray the two hits differ by rounding only, and
+    // X's hit may be the nearer; without the margin X's test would be left out for such a ray.
+    std::mt19937_64 rng(23);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    Camera cam;
+    cam.position = dvec3(0.3, -0.2, 0.1);
+    cam.lookAt = dvec3(7.0, 3.0, 2.0);
+    cam.up = dvec3(0, 0, 1);
+    cam.fovYDegrees = 30.0;
+    cam.width = 24;
+    cam.height = 18;
+    const RayGenerator gen(cam);
+    for (int config = 0; config < 150; ++config) {
+        const Ray ray = gen(int(u(rng) * cam.width), int(u(rng) * cam.height));
+        const double near = 3.0 + 40.0 * u(rng), ry = 0.3 + 2.0 * u(rng), rx = ry * (0.1 + 0.8 * u(rng));
+        SphereSet s;
+        s.spheres.resize(2);
+        s.spheres[0].centre = ray.origin + (near + ry) * ray.direction;
+        s.spheres[0].radius = ry;
+        s.spheres[1].centre = ray.origin + (near + rx) * ray.direction;
+        s.spheres[1].radius = rx;
+        s.spheres[1].colour = vec3(0.1f, 0.9f, 0.2f);
+        expectBeamAndSametGiveTheReference(ObjectOctree::build(std::move(s)), cam, 1, "touching pair " + std::to_string(config));
+    }
+}
+
 TEST(SphereRenderers, SupersamplingTracesTheRaysOfTheFinerGrid) {
     ObjectOctree t = ObjectOctree::build(makeSphereFlake(2));
     Camera cam = cameraFor(t, 40, 30), fine = cameraFor(t, 80, 60);

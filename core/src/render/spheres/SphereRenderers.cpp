@@ -407,9 +407,24 @@ private:
     /// meets the sphere; each ray keeps its nearest hit (ties to the lower sphere number).
     void testAll(SphereSlot& e) {
         const Sphere& sp = tree_.scene.spheres[e.sphere];
+        if (!perspective_) {
+            forEachLive(e.i0, e.i1, e.j0, e.j1, [&](int i, int j, std::size_t k) {
+                const Ray& r = rays_[k];
+                keepNearer(e, i, j, k, intersectSphere(sp, r.origin, r.direction, 0.0));
+            });
+            return;
+        }
+        // Every ray starts at the eye, so a hit of the sphere lies at least |oc| - r along it
+        // (unit directions, to rounding). intersectSphereFrom's t is off the exact root by less
+        // than 1e-7 (|oc| + r): the square root's argument carries a few roundings of |oc|^2,
+        // which move the root by at most their square root, 4e-8 (|oc| + r), near a tangent
+        // too. So a ray whose nearest hit so far lies nearer than `beyond` keeps it whatever
+        // the test would say (no tie either), and the test is not made (docs/dev/spheres.md).
+        const double distance = glm::length(e.oc);
+        const double beyond = distance - sp.radius - 1e-6 * (distance + sp.radius);
         forEachLive(e.i0, e.i1, e.j0, e.j1, [&](int i, int j, std::size_t k) {
-            const Ray& r = rays_[k];
-            keepNearer(e, i, j, k, perspective_ ? intersectSphereFrom(e.oc, e.c, r.direction, 0.0) : intersectSphere(sp, r.origin, r.direction, 0.0));
+            if (x_.nearT[k] < beyond) return;
+            keepNearer(e, i, j, k, intersectSphereFrom(e.oc, e.c, rays_[k].direction, 0.0));
         });
     }
     /// Ray (i, j) (index k) meets sphere e at t: kept when nearer than its nearest hit so far.
