@@ -7,6 +7,10 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <limits>
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
 
 namespace octrace {
 namespace {
@@ -458,6 +462,118 @@ QuantizedRay quantizeRay(const dvec3& o, const dvec3& d) {
     i64 cU = r.dU == 0 ? 1 : 0, cV = r.dV == 0 ? 1 : 0;
     r.meetsCube = boxCrossed(r, cU, cV, 0, 0, 0, L);
     return r;
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+namespace {
+/// quantizeRay's fix(x * 2^Q): floor(x * 2^Q + 1/2) by truncation and a correction, lane by lane.
+[[gnu::target("avx512f,avx512dq")]] inline __m512i fixEight(__m512d x) {
+    const __m512d y = _mm512_add_pd(_mm512_mul_pd(x, _mm512_set1_pd(double(1 << QuantizedRay::kFracBits))), _mm512_set1_pd(0.5));
+    const __m512i t = _mm512_cvttpd_epi64(y);
+    const __mmask8 above = _mm512_cmp_pd_mask(_mm512_cvtepi64_pd(t), y, _CMP_GT_OQ);
+    return _mm512_mask_sub_epi64(t, above, t, _mm512_set1_epi64(1));
+}
+
+/// quantizeRay for eight rays from one origin in AVX-512 registers (F and DQ): every double the
+/// scalar code computes is computed here by the same operation on the same operands (no fused
+/// multiply-add), and the fixed-point conversions are exact in both, so every field has the
+/// same bits. A lane that takes one of the scalar code's early returns (a zero or non-finite
+/// direction, an eye past the far plane, a line far off the cube) is left to the scalar code:
+/// `scalar` gets its bit.
+[[gnu::target("avx512f,avx512dq")]] void quantizeEight(const dvec3& o, const dvec3* d, QuantizedRay* out, unsigned& scalar) {
+    alignas(64) double dx[8], dy[8], dz[8];
+    for (int l = 0; l < 8; ++l) {
+        dx[l] = d[l].x;
+        dy[l] = d[l].y;
+        dz[l] = d[l].z;
+    }
+    const __m512d zero = _mm512_setzero_pd(), Ld = _mm512_set1_pd(double(L)), one = _mm512_set1_pd(1.0);
+    const __m512d signBit = _mm512_set1_pd(-0.0);
+    const __m512d D[3] = {_mm512_load_pd(dx), _mm512_load_pd(dy), _mm512_load_pd(dz)};
+    __m512d om[3], dm[3];
+    __mmask8 neg[3];
+    for (int a = 0; a < 3; ++a) {
+        neg[a] = _mm512_cmp_pd_mask(D[a], zero, _CMP_LT_OQ);
+        const __m512d O = _mm512_set1_pd(o[a]);
+        om[a] = _mm512_mask_blend_pd(neg[a], O, _mm512_sub_pd(Ld, O));
+        dm[a] = _mm512_andnot_pd(signBit, D[a]);
+    }
+    // main: the first axis of largest |d| (strictly larger replaces).
+    const __mmask8 m1 = _mm512_cmp_pd_mask(dm[1], dm[0], _CMP_GT_OQ);
+    const __m512d d01 = _mm512_mask_blend_pd(m1, dm[0], dm[1]);
+    const __mmask8 m2 = _mm512_cmp_pd_mask(dm[2], d01, _CMP_GT_OQ);
+    const __mmask8 main0 = __mmask8(~(m1 | m2)), main1 = __mmask8(m1 & ~m2);
+    // (main, u, v) = (0, 1, 2), (1, 0, 2) or (2, 0, 1).
+    const __m512d omM = _mm512_mask_blend_pd(m2, _mm512_mask_blend_pd(m1, om[0], om[1]), om[2]);
+    const __m512d dmM = _mm512_mask_blend_pd(m2, d01, dm[2]);
+    const __m512d omU = _mm512_mask_blend_pd(main0, om[0], om[1]), dmU = _mm512_mask_blend_pd(main0, dm[0], dm[1]);
+    const __m512d omV = _mm512_mask_blend_pd(m2, om[2], om[1]), dmV = _mm512_mask_blend_pd(m2, dm[2], dm[1]);
+    // The scalar code's early returns, lane by lane.
+    const __mmask8 finite = _mm512_cmp_pd_mask(dmM, _mm512_set1_pd(std::numeric_limits<double>::infinity()), _CMP_LT_OQ);
+    __mmask8 ok = __mmask8(_mm512_cmp_pd_mask(dmM, zero, _CMP_GT_OQ) & finite & _mm512_cmp_pd_mask(omM, Ld, _CMP_LT_OQ));
+    const __m512d inv = _mm512_div_pd(one, dmM);
+    const __m512d t0 = _mm512_mul_pd(_mm512_sub_pd(zero, omM), inv), t1 = _mm512_mul_pd(_mm512_sub_pd(Ld, omM), inv);
+    const __m512d u0 = _mm512_add_pd(omU, _mm512_mul_pd(t0, dmU)), u1 = _mm512_add_pd(omU, _mm512_mul_pd(t1, dmU));
+    const __m512d v0 = _mm512_add_pd(omV, _mm512_mul_pd(t0, dmV)), v1 = _mm512_add_pd(omV, _mm512_mul_pd(t1, dmV));
+    const __m512d minus1 = _mm512_set1_pd(-1.0), L1 = _mm512_add_pd(Ld, one);
+    ok &= _mm512_cmp_pd_mask(u1, minus1, _CMP_GT_OQ) & _mm512_cmp_pd_mask(u0, L1, _CMP_LT_OQ) & _mm512_cmp_pd_mask(v1, minus1, _CMP_GT_OQ) &
+          _mm512_cmp_pd_mask(v0, L1, _CMP_LT_OQ);
+    const __m512d farLo = _mm512_set1_pd(-2.0 * double(L)), farHi = _mm512_set1_pd(3.0 * double(L));
+    for (const __m512d& x : {u0, u1, v0, v1})
+        ok &= __mmask8(_mm512_cmp_pd_mask(x, farLo, _CMP_GT_OQ) & _mm512_cmp_pd_mask(x, farHi, _CMP_LT_OQ));
+    scalar = unsigned(__mmask8(~ok));
+    if (!ok) return;
+    // fix(x * scale): floor(x * scale + 1/2) by truncation and a correction, as the scalar code.
+    const __m512i U0 = fixEight(u0), V0 = fixEight(v0);
+    const __m512i dU = _mm512_sub_epi64(fixEight(u1), U0), dV = _mm512_sub_epi64(fixEight(v1), V0);
+    const __m512i eyeM = _mm512_maskz_mov_epi64(_mm512_cmp_pd_mask(omM, zero, _CMP_GT_OQ), fixEight(omM));
+    const __m512i uEye = _mm512_maskz_srai_epi64(0xFF, _mm512_add_epi64(_mm512_maskz_slli_epi64(0xFF, U0, N + Q), _mm512_mullo_epi64(eyeM, dU)), N + 2 * Q);
+    const __m512i vEye = _mm512_maskz_srai_epi64(0xFF, _mm512_add_epi64(_mm512_maskz_slli_epi64(0xFF, V0, N + Q), _mm512_mullo_epi64(eyeM, dV)), N + 2 * Q);
+    alignas(64) i64 f[7][8];
+    _mm512_store_si512(f[0], U0);
+    _mm512_store_si512(f[1], dU);
+    _mm512_store_si512(f[2], V0);
+    _mm512_store_si512(f[3], dV);
+    _mm512_store_si512(f[4], eyeM);
+    _mm512_store_si512(f[5], uEye);
+    _mm512_store_si512(f[6], vEye);
+    for (unsigned l = 0; l < 8; ++l) {
+        if (!(ok >> l & 1u)) continue;
+        QuantizedRay& r = out[l];
+        r = QuantizedRay{};
+        r.main = (main0 >> l & 1u) ? 0 : (main1 >> l & 1u) ? 1 : 2;
+        r.u = r.main == 0 ? 1 : 0;
+        r.v = r.main == 2 ? 1 : 2;
+        for (int a = 0; a < 3; ++a)
+            if (neg[a] >> l & 1u) r.sign |= axisBit(a);
+        r.U0 = f[0][l];
+        r.dU = f[1][l];
+        r.V0 = f[2][l];
+        r.dV = f[3][l];
+        r.eyeM = f[4][l];
+        r.uEyeFloor = f[5][l];
+        r.vEyeFloor = f[6][l];
+        r.meetsCube = boxCrossed(r, r.dU == 0 ? 1 : 0, r.dV == 0 ? 1 : 0, 0, 0, 0, L);
+    }
+}
+}  // namespace
+#endif
+
+void quantizeRays(const dvec3& origin, const dvec3* directions, int n, QuantizedRay* out) {
+    int i = 0;
+#if defined(__x86_64__) && defined(__GNUC__)
+    static const bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
+    if (avx512)
+        for (; i + 8 <= n; i += 8) {
+            unsigned scalar = 0;
+            quantizeEight(origin, directions + i, out + i, scalar);
+            for (; scalar; scalar &= scalar - 1) {
+                const int l = std::countr_zero(scalar);
+                out[i + l] = quantizeRay(origin, directions[i + l]);
+            }
+        }
+#endif
+    for (; i < n; ++i) out[i] = quantizeRay(origin, directions[i]);
 }
 
 TraversalHit traverseDiscrete(const Octree& tree, const QuantizedRay& ray, TraversalCounters& counters,

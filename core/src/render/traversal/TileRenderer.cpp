@@ -123,6 +123,8 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
         std::vector<StartNode> starts;
         ShadeMemo memo;  // for the group's tiles
         std::vector<std::uint64_t> colMask, rowMask;
+        std::vector<dvec3> rowDirs(static_cast<std::size_t>(T));
+        std::vector<QuantizedRay> rowRays(static_cast<std::size_t>(T));
         PacketPixels packet(T);
         const int gx = int(g % std::size_t(groupsX)), gy = int(g / std::size_t(groupsX));
         const int gx0 = gx * G * T, gy0 = gy * G * T;
@@ -195,7 +197,15 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                                    std::min(fn.y1, y1 - 1) - y0);
                 }
             std::uint64_t raysMeeting = 0, raysFull = 0, raysCommon = 0;  // st's counters, in registers during the loop
-            for (int y = y0; y < y1; ++y)
+            for (int y = y0; y < y1; ++y) {
+                // The row's rays, quantized together when some pixel of the row needs its ray.
+                bool rowTraced = false;
+                for (int x = x0; x < x1 && !rowTraced; ++x)
+                    rowTraced = rays.mayHitSurface(x, y) && (!masked || (colMask[std::size_t(x - x0)] & rowMask[std::size_t(y - y0)]));
+                if (rowTraced) {
+                    for (int x = x0; x < x1; ++x) rowDirs[std::size_t(x - x0)] = gen.direction(x, y);
+                    rays.quantizedRow(y, x0, x1 - x0, rowDirs.data(), rowRays.data());
+                }
                 for (int x = x0; x < x1; ++x) {
                     const std::uint64_t mask = masked ? colMask[std::size_t(x - x0)] & rowMask[std::size_t(y - y0)] : ~std::uint64_t(0);
                     if (!rays.mayHitSurface(x, y) || mask == 0) {
@@ -206,9 +216,9 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                         writeMissPixel(frame, x, y, settings, st);
                         continue;
                     }
-                    const dvec3 dir = gen.direction(x, y);
+                    const dvec3 dir = rowDirs[std::size_t(x - x0)];
                     TraversalHit hit;
-                    const QuantizedRay q = rays.quantized(x, y, dir);
+                    const QuantizedRay& q = rowRays[std::size_t(x - x0)];
                     if (q.meetsCube) ++raysMeeting;
                     if (packets && q.sign == s && q.meetsCube) {
                         ++raysCommon;
@@ -250,6 +260,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                     }
                     writePixelHit(frame, x, y, hit, shader, rays, dir, settings, st, counters, cutp, &memo);
                 }
+            }
             st.rays += raysMeeting;
             st.raysFull += raysFull;
             st.raysCommonPath += raysCommon;
