@@ -123,8 +123,6 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
         std::vector<StartNode> starts;
         ShadeMemo memo;  // for the group's tiles
         std::vector<std::uint64_t> colMask, rowMask;
-        std::vector<dvec3> rowDirs(static_cast<std::size_t>(T));
-        std::vector<QuantizedRay> rowRays(static_cast<std::size_t>(T));
         PacketPixels packet(T);
         const int gx = int(g % std::size_t(groupsX)), gy = int(g / std::size_t(groupsX));
         const int gx0 = gx * G * T, gy0 = gy * G * T;
@@ -202,9 +200,12 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                 bool rowTraced = false;
                 for (int x = x0; x < x1 && !rowTraced; ++x)
                     rowTraced = rays.mayHitSurface(x, y) && (!masked || (colMask[std::size_t(x - x0)] & rowMask[std::size_t(y - y0)]));
+                // Straight into the packets' slots of the row (k = row * T + column).
+                dvec3* rowDirs = packet.dir.data() + std::size_t((y - y0) * T);
+                QuantizedRay* rowRays = packet.q.data() + std::size_t((y - y0) * T);
                 if (rowTraced) {
-                    for (int x = x0; x < x1; ++x) rowDirs[std::size_t(x - x0)] = gen.direction(x, y);
-                    rays.quantizedRow(y, x0, x1 - x0, rowDirs.data(), rowRays.data());
+                    for (int x = x0; x < x1; ++x) rowDirs[x - x0] = gen.direction(x, y);
+                    rays.quantizedRow(y, x0, x1 - x0, rowDirs, rowRays);
                 }
                 for (int x = x0; x < x1; ++x) {
                     const std::uint64_t mask = masked ? colMask[std::size_t(x - x0)] & rowMask[std::size_t(y - y0)] : ~std::uint64_t(0);
@@ -216,16 +217,14 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                         writeMissPixel(frame, x, y, settings, st);
                         continue;
                     }
-                    const dvec3 dir = rowDirs[std::size_t(x - x0)];
+                    const dvec3 dir = rowDirs[x - x0];
                     TraversalHit hit;
-                    const QuantizedRay& q = rowRays[std::size_t(x - x0)];
+                    const QuantizedRay& q = rowRays[x - x0];
                     if (q.meetsCube) ++raysMeeting;
                     if (packets && q.sign == s && q.meetsCube) {
                         ++raysCommon;
                         const std::size_t k = std::size_t((y - y0) * T + (x - x0));
                         packet.traced[k / 64] |= std::uint64_t(1) << (k % 64);
-                        packet.dir[k] = dir;
-                        packet.q[k] = q;
                         if (smooth.active()) {
                             packet.sray[k] = SmoothSurface::RayState(rays.world(x, y, dir));
                             packet.filter[k] = smooth.filter(packet.sray[k]);
