@@ -4,7 +4,9 @@
 
 #include "octrace/render/Lod.h"
 
+#include <algorithm>
 #include <cassert>
+#include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #if defined(__x86_64__) || defined(__i386__)
@@ -30,9 +32,88 @@ struct PacketSetup {
     std::uint8_t toOriginal[8] = {};  ///< canonical child index (hm, hu, hv) -> original child index
 };
 
+// Every value of the traversal below the node is a start value plus or minus terms of at most
+// (|dU| + |dV|) 2^(Q + lg) in all (the halvings of F's steps sum to less than that, and the
+// comparisons add Ah + Bh): within 2^52 when both parts are within 2^50.
+constexpr i64 kBound = i64(1) << 50;
+
+#if defined(OCTRACE_PACKET_X86)
+static_assert(offsetof(QuantizedRay, dU) == offsetof(QuantizedRay, U0) + 8 && offsetof(QuantizedRay, V0) == offsetof(QuantizedRay, U0) + 16 &&
+                  offsetof(QuantizedRay, dV) == offsetof(QuantizedRay, U0) + 24 && offsetof(QuantizedRay, eyeM) == offsetof(QuantizedRay, U0) + 32 &&
+                  offsetof(QuantizedRay, uEyeFloor) == offsetof(QuantizedRay, U0) + 40 &&
+                  offsetof(QuantizedRay, vEyeFloor) == offsetof(QuantizedRay, U0) + 48,
+              "setupLanesAvx512 loads QuantizedRay's seven 64-bit fields from U0 on");
+
+/// The lanes' part of setupPacket eight lanes at a time in AVX-512 registers (F and DQ): the
+/// same 64-bit integer operations (wrapping alike), compared and converted to double exactly as
+/// the scalar code, so the same start values, the same active lanes and the same lanes for the
+/// scalar engine.
+[[gnu::target("avx512f,avx512dq")]] void setupLanesAvx512(const PacketLane* lanes, unsigned count, PacketSetup& p, unsigned& scalar, i64 s,
+                                                          i64 h, int lg) {
+    const __m512i zero = _mm512_setzero_si512(), one = _mm512_set1_epi64(1), bound = _mm512_set1_epi64(kBound);
+    const __m512i m0 = _mm512_set1_epi64(p.m0), S = _mm512_set1_epi64(s), shiftQlg = _mm512_set1_epi64(Q + lg);
+    const __m512i uMid = _mm512_set1_epi64((p.u0 + h) << Q), vMid = _mm512_set1_epi64((p.v0 + h) << Q);
+    const __m512i uHi = _mm512_set1_epi64((p.u0 + s) << (N + Q)), uLo = _mm512_set1_epi64(p.u0 << (N + Q));
+    const __m512i vHi = _mm512_set1_epi64((p.v0 + s) << (N + Q)), vLo = _mm512_set1_epi64(p.v0 << (N + Q));
+    const __m512i mHi = _mm512_set1_epi64((p.m0 + s) << Q), mLo = _mm512_set1_epi64(p.m0 << Q);
+    const __m512i uEnd = _mm512_set1_epi64(p.u0 + s), vEnd = _mm512_set1_epi64(p.v0 + s);
+    for (unsigned g = 0; g < kMaxPacketLanes / 8; ++g) {
+        // Each lane's seven 64-bit fields (U0 .. vEyeFloor, consecutive) in one register, then
+        // transposed: one register per field, lane k in element k.
+        __m512i row[8];
+        __mmask8 valid = 0;
+        for (unsigned k = 0; k < 8; ++k) {
+            const unsigned l = 8 * g + k;
+            row[k] = l < count ? _mm512_maskz_loadu_epi64(0x7F, &lanes[l].ray->U0) : zero;
+            if (l < count) valid |= __mmask8(1u << k);
+        }
+        __m512i t[8], u[8];
+        for (int k = 0; k < 8; k += 2) {
+            t[k] = _mm512_maskz_unpacklo_epi64(0xFF, row[k], row[k + 1]);      // fields 0, 2, 4, 6 of lanes k, k+1
+            t[k + 1] = _mm512_maskz_unpackhi_epi64(0xFF, row[k], row[k + 1]);  // fields 1, 3, 5, 7
+        }
+        const __m512i lo = _mm512_set_epi64(13, 12, 5, 4, 9, 8, 1, 0), hi = _mm512_set_epi64(15, 14, 7, 6, 11, 10, 3, 2);
+        for (int k = 0; k < 8; k += 4)
+            for (int odd = 0; odd < 2; ++odd) {
+                u[k + odd] = _mm512_permutex2var_epi64(t[k + odd], lo, t[k + 2 + odd]);      // fields 0|1, 4|5 of 4 lanes
+                u[k + 2 + odd] = _mm512_permutex2var_epi64(t[k + odd], hi, t[k + 2 + odd]);  // fields 2|3, 6|7
+            }
+        const __m512i first = _mm512_set_epi64(11, 10, 9, 8, 3, 2, 1, 0), second = _mm512_set_epi64(15, 14, 13, 12, 7, 6, 5, 4);
+        const __m512i U0 = _mm512_permutex2var_epi64(u[0], first, u[4]), eyeM = _mm512_permutex2var_epi64(u[0], second, u[4]);
+        const __m512i dU = _mm512_permutex2var_epi64(u[1], first, u[5]), uEye = _mm512_permutex2var_epi64(u[1], second, u[5]);
+        const __m512i V0 = _mm512_permutex2var_epi64(u[2], first, u[6]), vEye = _mm512_permutex2var_epi64(u[2], second, u[6]);
+        const __m512i dV = _mm512_permutex2var_epi64(u[3], first, u[7]);
+        const __m512i wu0 = _mm512_add_epi64(_mm512_maskz_sllv_epi64(0xFF, U0, _mm512_set1_epi64(N)), _mm512_mullo_epi64(m0, dU));
+        const __m512i wu1 = _mm512_add_epi64(wu0, _mm512_mullo_epi64(S, dU));
+        const __m512i wv0 = _mm512_add_epi64(_mm512_maskz_sllv_epi64(0xFF, V0, _mm512_set1_epi64(N)), _mm512_mullo_epi64(m0, dV));
+        const __m512i wv1 = _mm512_add_epi64(wv0, _mm512_mullo_epi64(S, dV));
+        const __m512i fc = _mm512_sub_epi64(_mm512_mullo_epi64(_mm512_sub_epi64(uMid, U0), dV), _mm512_mullo_epi64(_mm512_sub_epi64(vMid, V0), dU));
+        const __mmask8 zu = _mm512_cmpeq_epi64_mask(dU, zero), zv = _mm512_cmpeq_epi64_mask(dV, zero);
+        const __m512i cu = _mm512_maskz_mov_epi64(zu, one), cv = _mm512_maskz_mov_epi64(zv, one);
+        const __m512i qa = _mm512_maskz_sllv_epi64(0xFF, dV, shiftQlg), qb = _mm512_maskz_sllv_epi64(0xFF, dU, shiftQlg);
+        const __m512i fuv1 = _mm512_sub_epi64(_mm512_sub_epi64(fc, qa), qb), fu1v = _mm512_add_epi64(_mm512_add_epi64(fc, qa), qb);
+        // boxCrossedFrom, term by term.
+        __mmask8 crossed = valid & _mm512_cmplt_epi64_mask(wu0, uHi) & _mm512_cmpgt_epi64_mask(wu1, _mm512_sub_epi64(uLo, cu)) &
+                           _mm512_cmplt_epi64_mask(wv0, vHi) & _mm512_cmpgt_epi64_mask(wv1, _mm512_sub_epi64(vLo, cv));
+        crossed &= _mm512_cmplt_epi64_mask(fuv1, cu) & _mm512_cmpgt_epi64_mask(fu1v, _mm512_sub_epi64(zero, cv)) &
+                   _mm512_cmplt_epi64_mask(eyeM, mHi) & _mm512_cmplt_epi64_mask(uEye, uEnd) & _mm512_cmplt_epi64_mask(vEye, vEnd);
+        const __m512i steps = _mm512_maskz_sllv_epi64(0xFF, _mm512_add_epi64(_mm512_maskz_abs_epi64(0xFF, dU), _mm512_maskz_abs_epi64(0xFF, dV)), shiftQlg);
+        const __mmask8 exact = __mmask8(~_mm512_cmplt_epi64_mask(mLo, eyeM) & _mm512_cmplt_epi64_mask(_mm512_maskz_abs_epi64(0xFF, fc), bound) &
+                                        _mm512_cmplt_epi64_mask(steps, bound));
+        const __mmask8 active = crossed & exact;
+        double* const out[9] = {p.Wu0, p.Wu1, p.Wv0, p.Wv1, p.Fc, p.cU, p.cV, p.dUq, p.dVq};
+        const __m512i value[9] = {wu0, wu1, wv0, wv1, fc, cu, cv, _mm512_maskz_sllv_epi64(0xFF, dU, _mm512_set1_epi64(Q)),
+                                  _mm512_maskz_sllv_epi64(0xFF, dV, _mm512_set1_epi64(Q))};
+        for (int i = 0; i < 9; ++i) _mm512_store_pd(out[i] + 8 * g, _mm512_maskz_cvtepi64_pd(active, value[i]));
+        p.active |= unsigned(active) << (8 * g);
+        scalar |= unsigned(crossed & __mmask8(~exact)) << (8 * g);
+    }
+}
+#endif
+
 /// The lanes' start on the node, as the scalar engine's startIfCrossed: a lane whose ray does not
 /// cross the node has no hit in it; a lane the packet cannot take exactly goes to `scalar`.
-void setupPacket(const StartNode& start, const PacketLane* lanes, unsigned count, unsigned width, PacketSetup& p,
+void setupPacket(const StartNode& start, const PacketLane* lanes, unsigned count, unsigned width, bool avx512, PacketSetup& p,
                  unsigned& scalar) {
     const QuantizedRay& r0 = *lanes[0].ray;
     mirroredOrigin(r0, start.cell, start.level, p.m0, p.u0, p.v0);
@@ -48,15 +129,18 @@ void setupPacket(const StartNode& start, const PacketLane* lanes, unsigned count
     }
     const int lg = N - start.level - 1;
     const i64 s = i64(1) << (N - start.level), h = s >> 1;
-    // Every value of the traversal below the node is a start value plus or minus terms of at most
-    // (|dU| + |dV|) 2^(Q + lg) in all (the halvings of F's steps sum to less than that, and the
-    // comparisons add Ah + Bh): within 2^52 when both parts are within 2^50.
-    constexpr i64 kBound = i64(1) << 50;
     p.active = 0;
     scalar = 0;
-    for (unsigned l = 0; l < width; ++l) {
-        p.Wu0[l] = p.Wu1[l] = p.Wv0[l] = p.Wv1[l] = p.Fc[l] = p.cU[l] = p.cV[l] = p.dUq[l] = p.dVq[l] = 0.0;
-        if (l >= count) continue;
+#if defined(OCTRACE_PACKET_X86)
+    if (avx512) {
+        setupLanesAvx512(lanes, count, p, scalar, s, h, lg);
+        return;
+    }
+#else
+    (void)avx512;
+#endif
+    for (double* a : {p.Wu0, p.Wu1, p.Wv0, p.Wv1, p.Fc, p.cU, p.cV, p.dUq, p.dVq}) std::fill_n(a, width, 0.0);
+    for (unsigned l = 0; l < count; ++l) {
         const QuantizedRay& r = *lanes[l].ray;
         const i64 wu0 = (r.U0 << N) + p.m0 * r.dU, wu1 = wu0 + s * r.dU;
         const i64 wv0 = (r.V0 << N) + p.m0 * r.dV, wv1 = wv0 + s * r.dV;
@@ -194,7 +278,13 @@ unsigned traversePacket(PacketIsa isa, const Octree& tree, const StartNode& star
     for (unsigned l = 0; l < count; ++l) assert(lanes[l].ray->meetsCube && (!lanes[l].filter || *lanes[l].filter));
     PacketSetup p;
     unsigned scalar = 0;
-    setupPacket(start, lanes, count, packetLanes(isa), p, scalar);
+#if defined(OCTRACE_PACKET_X86)
+    static const bool dq = __builtin_cpu_supports("avx512dq");
+    const bool avx512 = isa == PacketIsa::Avx512 && dq;
+#else
+    const bool avx512 = false;
+#endif
+    setupPacket(start, lanes, count, packetLanes(isa), avx512, p, scalar);
     unsigned done = 0;
     if (scalarLanes) *scalarLanes = scalar;
     if (p.active) {
