@@ -347,14 +347,16 @@ TEST(TrajectoryCoherence, StartingAtTheBranchNodeFindsAHitInsideItOrFallsBack) {
 // of quantizeRay's result bit for bit: eyes outside, on and inside the cube and far off, every
 // sign pattern and main axis, ties between axes, zero and tiny components, lines just missing
 // the cube, and the scalar code's early returns (zero, infinite or NaN directions, eyes past the
-// far plane) mixed into the same batches.
+// far plane) mixed into the same batches, and rays in any direction from eyes beside the cube
+// (the line may cross the cube behind the eye: the eye's tests decide).
 TEST(DiscreteTraversal, QuantizeRaysGivesQuantizeRayBitForBit) {
     const double L = double(std::int64_t(1) << Octree::kIntBits);
     std::mt19937_64 rng(91);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
     const std::vector<dvec3> eyes = {dvec3(-0.7, 1.9, 2.4) * L, dvec3(0.5, 0.5, 0.5) * L, dvec3(0.0), dvec3(L, L, 0.0),
-                                     dvec3(0.25, -3.0, 0.6) * L, dvec3(40.0, -25.0, 90.0) * L, dvec3(1.5, 0.5, 0.5) * L};
+                                     dvec3(0.25, -3.0, 0.6) * L, dvec3(40.0, -25.0, 90.0) * L, dvec3(1.5, 0.5, 0.5) * L,
+                                     dvec3(0.5, 1.5, 0.5) * L, dvec3(0.5, 0.5, 1.5) * L, dvec3(0.4, -0.5, 0.6) * L};
     std::size_t lanes = 0, meeting = 0;
     for (const dvec3& eye : eyes)
         for (int batch = 0; batch < 200; ++batch) {
@@ -368,6 +370,8 @@ TEST(DiscreteTraversal, QuantizeRaysGivesQuantizeRayBitForBit) {
                     case 3: v = dvec3(inf, u(rng), u(rng)); break;                        // early return
                     case 4: v = dvec3(u(rng), nan, u(rng)); break;
                     case 5: v = dvec3(1e-300, u(rng) * 1e-12, -1.0); break;               // tiny components
+                    case 6:
+                    case 7: v = dvec3(u(rng), u(rng), u(rng)); break;                     // any way, often away from the cube
                     default: v = glm::normalize(dvec3(0.5, 0.5, 0.5) * L + L * 0.8 * dvec3(u(rng), u(rng), u(rng)) - eye); break;
                 }
             }

@@ -529,6 +529,20 @@ namespace {
     const __m512i eyeM = _mm512_maskz_mov_epi64(_mm512_cmp_pd_mask(omM, zero, _CMP_GT_OQ), fixEight(omM));
     const __m512i uEye = _mm512_maskz_srai_epi64(0xFF, _mm512_add_epi64(_mm512_maskz_slli_epi64(0xFF, U0, N + Q), _mm512_mullo_epi64(eyeM, dU)), N + 2 * Q);
     const __m512i vEye = _mm512_maskz_srai_epi64(0xFF, _mm512_add_epi64(_mm512_maskz_slli_epi64(0xFF, V0, N + Q), _mm512_mullo_epi64(eyeM, dV)), N + 2 * Q);
+    // boxCrossed(r, cU, cV, 0, 0, 0, L), term by term (cU, cV: 1 where dU, dV are 0).
+    const __m512i zeroI = _mm512_setzero_si512(), oneI = _mm512_set1_epi64(1), LI = _mm512_set1_epi64(L);
+    const __m512i cU = _mm512_maskz_mov_epi64(_mm512_cmpeq_epi64_mask(dU, zeroI), oneI);
+    const __m512i cV = _mm512_maskz_mov_epi64(_mm512_cmpeq_epi64_mask(dV, zeroI), oneI);
+    const __m512i U0N = _mm512_maskz_slli_epi64(0xFF, U0, N), V0N = _mm512_maskz_slli_epi64(0xFF, V0, N);
+    const __m512i far = _mm512_set1_epi64(L << (N + Q)), LQ = _mm512_set1_epi64(L << Q);
+    const __m512i Wu1 = _mm512_add_epi64(U0N, _mm512_mullo_epi64(LI, dU)), Wv1 = _mm512_add_epi64(V0N, _mm512_mullo_epi64(LI, dV));
+    // F(a, b) = ((a << Q) - U0) dV - ((b << Q) - V0) dU at (0, L) and (L, 0).
+    const __m512i Fuv1 = _mm512_sub_epi64(_mm512_mullo_epi64(_mm512_sub_epi64(zeroI, U0), dV), _mm512_mullo_epi64(_mm512_sub_epi64(LQ, V0), dU));
+    const __m512i Fu1v = _mm512_sub_epi64(_mm512_mullo_epi64(_mm512_sub_epi64(LQ, U0), dV), _mm512_mullo_epi64(_mm512_sub_epi64(zeroI, V0), dU));
+    const __mmask8 meets = _mm512_cmplt_epi64_mask(U0N, far) & _mm512_cmpgt_epi64_mask(Wu1, _mm512_sub_epi64(zeroI, cU)) &
+                           _mm512_cmplt_epi64_mask(V0N, far) & _mm512_cmpgt_epi64_mask(Wv1, _mm512_sub_epi64(zeroI, cV)) &
+                           _mm512_cmplt_epi64_mask(Fuv1, cU) & _mm512_cmpgt_epi64_mask(Fu1v, _mm512_sub_epi64(zeroI, cV)) &
+                           _mm512_cmplt_epi64_mask(eyeM, LQ) & _mm512_cmplt_epi64_mask(uEye, LI) & _mm512_cmplt_epi64_mask(vEye, LI);
     alignas(64) i64 f[7][8];
     _mm512_store_si512(f[0], U0);
     _mm512_store_si512(f[1], dU);
@@ -553,7 +567,7 @@ namespace {
         r.eyeM = f[4][l];
         r.uEyeFloor = f[5][l];
         r.vEyeFloor = f[6][l];
-        r.meetsCube = boxCrossed(r, r.dU == 0 ? 1 : 0, r.dV == 0 ? 1 : 0, 0, 0, 0, L);
+        r.meetsCube = meets >> l & 1u;
     }
 }
 }  // namespace
