@@ -350,7 +350,29 @@ TEST(TrajectoryCoherence, StartingAtTheBranchNodeFindsAHitInsideItOrFallsBack) {
 // far plane) mixed into the same batches, and rays in any direction from eyes beside the cube
 // (the line may cross the cube behind the eye: the eye's tests decide).
 TEST(DiscreteTraversal, QuantizeRaysGivesQuantizeRayBitForBit) {
+#if defined(__x86_64__) && defined(__GNUC__)
+    if (!__builtin_cpu_supports("avx512f") || !__builtin_cpu_supports("avx512dq"))
+        GTEST_SKIP() << "no AVX-512 F and DQ: quantizeRays is quantizeRay on this processor";
+#endif
     const double L = double(std::int64_t(1) << Octree::kIntBits);
+    const auto same = [](const QuantizedRay& a, const QuantizedRay& b) {
+        return a.meetsCube == b.meetsCube && a.main == b.main && a.u == b.u && a.v == b.v && a.sign == b.sign && a.U0 == b.U0 &&
+               a.dU == b.dU && a.V0 == b.V0 && a.dV == b.dV && a.eyeM == b.eyeM && a.uEyeFloor == b.uEyeFloor &&
+               a.vEyeFloor == b.vEyeFloor;
+    };
+    {
+        // A ray whose u on the lower main plane, om_u + t0 dm_u, falls on a rounding boundary of the
+        // fixed point: rounding the product before the sum (quantizeRay) and fusing them into one
+        // rounding give U0 = 409601 and 409600 (found by the review of the AVX-512 code, which GCC
+        // had compiled with fused multiply-adds).
+        const dvec3 eye(-81920.0, -40523.437979044305, -10426.038612372042), dir(1.0, 0.4958915783827468, 0.22727097915493213);
+        const std::vector<dvec3> d(8, dir);
+        std::vector<QuantizedRay> out(8);
+        quantizeRays(eye, d.data(), 8, out.data());
+        const QuantizedRay one = quantizeRay(eye, dir);
+        EXPECT_EQ(one.U0, 409601);
+        for (const QuantizedRay& q : out) EXPECT_TRUE(same(q, one)) << "U0 " << q.U0 << " against " << one.U0;
+    }
     std::mt19937_64 rng(91);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
@@ -363,9 +385,12 @@ TEST(DiscreteTraversal, QuantizeRaysGivesQuantizeRayBitForBit) {
             const int n = 1 + int(rng() % 37);
             std::vector<dvec3> d(static_cast<std::size_t>(n));
             for (dvec3& v : d) {
-                switch (rng() % 12) {
+                switch (rng() % 14) {
                     case 0: v = dvec3(u(rng), u(rng), 0.0); break;                       // a zero component
                     case 1: { const double a = u(rng); v = dvec3(a, -a, 0.5 * u(rng)); break; }  // |x| = |y|
+                    case 8: { const double a = u(rng); v = dvec3(a, 0.5 * u(rng), a); break; }   // |x| = |z|
+                    case 9: { const double a = u(rng); v = dvec3(0.5 * u(rng), a, -a); break; }  // |y| = |z|
+                    case 10: { const double a = u(rng); v = dvec3(-a, a, a); break; }            // all three
                     case 2: v = dvec3(0.0); break;                                        // early return
                     case 3: v = dvec3(inf, u(rng), u(rng)); break;                        // early return
                     case 4: v = dvec3(u(rng), nan, u(rng)); break;
@@ -379,9 +404,7 @@ TEST(DiscreteTraversal, QuantizeRaysGivesQuantizeRayBitForBit) {
             quantizeRays(eye, d.data(), n, out.data());
             for (int i = 0; i < n; ++i) {
                 const QuantizedRay a = quantizeRay(eye, d[std::size_t(i)]), &b = out[std::size_t(i)];
-                ASSERT_TRUE(a.meetsCube == b.meetsCube && a.main == b.main && a.u == b.u && a.v == b.v && a.sign == b.sign &&
-                            a.U0 == b.U0 && a.dU == b.dU && a.V0 == b.V0 && a.dV == b.dV && a.eyeM == b.eyeM &&
-                            a.uEyeFloor == b.uEyeFloor && a.vEyeFloor == b.vEyeFloor)
+                ASSERT_TRUE(same(a, b))
                     << "eye " << eye.x << "," << eye.y << "," << eye.z << " direction " << d[std::size_t(i)].x << ","
                     << d[std::size_t(i)].y << "," << d[std::size_t(i)].z;
                 ++lanes;

@@ -412,6 +412,35 @@ TEST(SphereRenderers, BeamTestsASphereMetLaterWhoseHitTiesTheNearestSoFar) {
     }
 }
 
+TEST(SphereRenderers, RenderingIntoAUsedFrameGivesTheFreshFrame) {
+    // The sphere tracers write every field of every pixel and do not clear the frame first
+    // (Frame::reshape), nor their per-tile buffers: a frame of the same size full of other
+    // values, and a second render on the same thread, give the fresh frame's every field.
+    const ObjectOctree t = ObjectOctree::build(makeRandomSpheres(800, 3, 0.05));
+    const Camera cam = cameraFor(t, 61, 47);
+    for (const char* name : {"reference", "samet", "beam"})
+        for (int samples : {1, 4}) {
+            RenderSettings rs;
+            rs.threads = 2;
+            rs.spheres.samples = samples;
+            Frame fresh, used(cam.width, cam.height);
+            for (std::size_t p = 0; p < used.rgba.size(); ++p) {
+                used.rgba[p] = vec4(0.3f, float(p % 7), -1.0f, 0.25f);
+                used.depth[p] = float(p);
+                used.hitId[p] = std::uint32_t(p * 31);
+                used.flags[p] = std::uint8_t(p);
+            }
+            makeRenderer(name)->renderSpheres(t, cam, rs, fresh);
+            makeRenderer(name)->renderSpheres(t, Camera::framing(t.scene.bounds(), 61, 47, 45.0), rs, used);  // other rays first
+            makeRenderer(name)->renderSpheres(t, cam, rs, used);
+            const std::string what = std::string(name) + ", " + std::to_string(samples) + " samples";
+            EXPECT_EQ(used.rgba, fresh.rgba) << what;
+            EXPECT_EQ(used.depth, fresh.depth) << what;
+            EXPECT_EQ(used.hitId, fresh.hitId) << what;
+            EXPECT_EQ(used.flags, fresh.flags) << what;
+        }
+}
+
 TEST(SphereRenderers, SupersamplingTracesTheRaysOfTheFinerGrid) {
     ObjectOctree t = ObjectOctree::build(makeSphereFlake(2));
     Camera cam = cameraFor(t, 40, 30), fine = cameraFor(t, 80, 60);

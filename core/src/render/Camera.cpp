@@ -52,7 +52,7 @@ RayGenerator::RayGenerator(const Camera& camera) : eye_(camera.position), ortho_
 
 #if defined(__x86_64__) && defined(__GNUC__)
 /// RayGenerator::row's rays four at a time in AVX2 registers: the same operations in the same
-/// order (no fused multiply-add), so the same bits. Returns the rays made (a multiple of 4).
+/// order (no fused multiply-add: -ffp-contract=off), so the same bits. Returns the rays made (a multiple of 4).
 /// `screen` = {sampleX, invWidth, halfW}: screenX(x) = ((x + sampleX) * invWidth * 2 - 1) * halfW.
 [[gnu::target("avx2")]] static int rowAvx2(const double (&screen)[3], const dvec3& eye, const dvec3& right, const dvec3& base, const dvec3& back,
                                            int x0, int n, Ray* out) {

@@ -10,6 +10,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #if defined(__SSE2__)
@@ -414,12 +415,13 @@ private:
             });
             return;
         }
-        // Every ray starts at the eye, so a hit of the sphere lies at least |oc| - r along it
-        // (unit directions, to rounding). intersectSphereFrom's t is off the exact root by less
-        // than 1e-7 (|oc| + r): the square root's argument carries a few roundings of |oc|^2,
-        // which move the root by at most their square root, 4e-8 (|oc| + r), near a tangent
-        // too. So a ray whose nearest hit so far lies nearer than `beyond` keeps it whatever
-        // the test would say (no tie either), and the test is not made (docs/dev/spheres.md).
+        // Every ray starts at the eye, so a hit of the sphere lies at least |oc| - r along it.
+        // intersectSphereFrom's t falls short of that by less than 1e-7 (|oc| + r): the square
+        // root's argument carries a few roundings of |oc|^2 and the direction's length differs
+        // from 1 by rounding, which move the root by at most about the square root of their size
+        // (4e-8 and 3e-8 of |oc| + r), near a tangent too. So a ray whose nearest hit so far lies
+        // nearer than `beyond` keeps it whatever the test would say (no tie either), and the
+        // test is not made (docs/dev/spheres.md).
         const double distance = glm::length(e.oc);
         const double beyond = distance - sp.radius - 1e-6 * (distance + sp.radius);
         forEachLive(e.i0, e.i1, e.j0, e.j1, [&](int i, int j, std::size_t k) {
@@ -563,6 +565,7 @@ RenderStats renderSphereScene(SphereTracer tracer, const std::string& name, cons
     const int s = samplesPerSide(settings.spheres.samples);
     Timer timer;
     frame.reshape(camera.width, camera.height);  // every field of every pixel is written below
+    const bool streamColours = reinterpret_cast<std::uintptr_t>(frame.rgba.data()) % 16 == 0;
     // The rays: the pixel grid of a camera s times finer (sample (x*s+a, y*s+b) of pixel (x, y)).
     Camera sampleCamera = camera;
     sampleCamera.width = camera.width * s;
@@ -649,9 +652,14 @@ RenderStats renderSphereScene(SphereTracer tracer, const std::string& name, cons
                 const ColumnSpan& span = spans[std::size_t((y - py0) * s)];
                 const SphereHit first = i < span.first || i > span.last ? SphereHit{} : hits[std::size_t((y - py0) * s) * std::size_t(w) + std::size_t(i)];
 #if defined(__SSE2__)
-                // Streamed past the caches: the frame is not read again while rendering.
-                const vec4 c = sums[std::size_t(x - px0)] * inv;
-                _mm_stream_ps(&frame.rgba[p].x, _mm_setr_ps(c.x, c.y, c.z, c.w));
+                // Streamed past the caches (the frame is not read again while rendering) when the
+                // buffer has the 16-byte alignment the streaming store needs.
+                if (streamColours) {
+                    const vec4 c = sums[std::size_t(x - px0)] * inv;
+                    _mm_stream_ps(&frame.rgba[p].x, _mm_setr_ps(c.x, c.y, c.z, c.w));
+                } else {
+                    frame.rgba[p] = sums[std::size_t(x - px0)] * inv;
+                }
 #else
                 frame.rgba[p] = sums[std::size_t(x - px0)] * inv;
 #endif

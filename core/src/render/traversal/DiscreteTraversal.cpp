@@ -476,7 +476,8 @@ namespace {
 
 /// quantizeRay for eight rays from one origin in AVX-512 registers (F and DQ): every double the
 /// scalar code computes is computed here by the same operation on the same operands (no fused
-/// multiply-add), and the fixed-point conversions are exact in both, so every field has the
+/// multiply-add: the build passes -ffp-contract=off, without which GCC fuses them here, where the
+/// target has FMA), and the fixed-point conversions are exact in both, so every field has the
 /// same bits. A lane that takes one of the scalar code's early returns (a zero or non-finite
 /// direction, an eye past the far plane, a line far off the cube) is left to the scalar code:
 /// `scalar` gets its bit.
