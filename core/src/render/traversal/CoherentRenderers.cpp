@@ -247,9 +247,8 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
 
 /// Writes the background to the pixels of row y whose rays cannot hit the surface, counted as
 /// tracePixel counts them, in one pass; returns the pixels left to the patterns (lo > hi: none).
-/// Each field is filled as a run (raw pointers: the byte-wide flags would otherwise make the
-/// compiler reload every buffer's address per pixel), and the rays are counted per run
-/// (PixelRays::raysMeetingCube, as the tile renderer's background rows).
+/// Each field is filled as a run (writeMissRun, as the tile renderer's background rows), and the
+/// rays are counted per run (PixelRays::raysMeetingCube).
 std::pair<int, int> fillOutsideSurface(const Context& c, int y, RenderStats& st) {
     Frame& f = c.frame;
     const int W = f.width;
@@ -259,10 +258,7 @@ std::pair<int, int> fillOutsideSurface(const Context& c, int y, RenderStats& st)
     auto fill = [&](int x0, int x1) {
         if (x1 <= x0) return;
         const std::size_t p = f.pixel(x0, y), n = std::size_t(x1 - x0);
-        std::fill_n(f.flags.data() + p, n, std::uint8_t(Frame::kTraced));
-        std::fill_n(f.rgba.data() + p, n, c.settings.background);
-        std::fill_n(f.depth.data() + p, n, std::numeric_limits<float>::infinity());
-        std::fill_n(f.hitId.data() + p, n, kNoHit);
+        writeMissRun(f, p, n, c.settings);
         if (c.srgb) std::fill_n(c.srgb + p, n, bg);
         st.raysFull += n;
         st.rays += c.rays.raysMeetingCube(y, x0, x1);

@@ -76,6 +76,14 @@ public:
         const auto& s = surfaceSpans_[std::size_t(y)];
         return x >= s.first && x <= s.second;
     }
+    /// Whether mayHitSurface holds for some pixel of columns x0 .. x1-1 of rows y0 .. y1-1.
+    bool mayHitSurfaceIn(int x0, int y0, int x1, int y1) const {
+        for (int y = y0; y < y1; ++y) {
+            const auto& s = surfaceSpans_[std::size_t(y)];
+            if (s.first <= s.second && s.first < x1 && s.second >= x0) return true;
+        }
+        return false;
+    }
     /// The pixels x of row y for which mayHitSurface holds: first <= x <= second (first >
     /// second: none; the ends may lie outside the image).
     std::pair<int, int> surfaceSpan(int y) const { return surfaceSpans_[std::size_t(y)]; }

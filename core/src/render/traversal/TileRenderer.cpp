@@ -19,7 +19,6 @@
 #include <bit>
 #include <cmath>
 #include <limits>
-#include <type_traits>
 #include <vector>
 
 namespace octrace::detail {
@@ -67,25 +66,8 @@ struct PacketPixels {
 /// outline, none outside).
 void fillBackground(Frame& frame, const PixelRays& rays, const RenderSettings& settings, int y, int x0, int x1,
                     RenderStats& st) {
-    const std::size_t p = frame.pixel(x0, y), n = std::size_t(x1 - x0);
-    // A whole row of a default tile has a constant length, so its stores are made in place
-    // (a call to memset per row of 8 pixels took longer than the stores).
-    const auto fill = [&]<std::size_t N>(std::size_t count, std::integral_constant<std::size_t, N>) {
-        const std::size_t m = N ? N : count;
-        std::uint8_t* flags = frame.flags.data() + p;
-        vec4* rgba = frame.rgba.data() + p;
-        float* depth = frame.depth.data() + p;
-        std::uint32_t* hitId = frame.hitId.data() + p;
-        const vec4 background = settings.background;
-        for (std::size_t i = 0; i < m; ++i) flags[i] = Frame::kTraced;  // one loop per array: each a few vector stores
-        for (std::size_t i = 0; i < m; ++i) rgba[i] = background;
-        for (std::size_t i = 0; i < m; ++i) depth[i] = std::numeric_limits<float>::infinity();
-        for (std::size_t i = 0; i < m; ++i) hitId[i] = kNoHit;
-    };
-    if (n == 8)
-        fill(n, std::integral_constant<std::size_t, 8>{});
-    else
-        fill(n, std::integral_constant<std::size_t, 0>{});
+    const std::size_t n = std::size_t(x1 - x0);
+    writeMissRun(frame, frame.pixel(x0, y), n, settings);
     st.pixels += n;
     st.raysFull += n;
     st.rays += rays.raysMeetingCube(y, x0, x1);
@@ -145,12 +127,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
             TraversalCounters counters;
             const int x0 = tx * T, y0 = ty * T;
             const int x1 = std::min(x0 + T, camera.width), y1 = std::min(y0 + T, camera.height);
-            bool maySee = false;  // some pixel's ray may hit the surface (PixelRays::mayHitSurface)
-            for (int y = y0; y < y1 && !maySee; ++y) {
-                const auto [first, last] = rays.surfaceSpan(y);
-                maySee = first <= last && first < x1 && last >= x0;
-            }
-            if (!maySee) {
+            if (!rays.mayHitSurfaceIn(x0, y0, x1, y1)) {
                 // Step 5: outside the surface's outline, no ray of the tile visits a boundary voxel.
                 for (int y = y0; y < y1; ++y) fillBackground(frame, rays, settings, y, x0, x1, st);
                 continue;
@@ -196,11 +173,15 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                                    std::min(fn.y1, y1 - 1) - y0);
                 }
             std::uint64_t raysMeeting = 0, raysFull = 0, raysCommon = 0;  // st's counters, in registers during the loop
+            // The pixel's frontier nodes (bits of `list`), none when its ray cannot reach the surface.
+            const auto pixelNodes = [&](int x, int y) -> std::uint64_t {
+                if (!rays.mayHitSurface(x, y)) return 0;
+                return masked ? colMask[std::size_t(x - x0)] & rowMask[std::size_t(y - y0)] : ~std::uint64_t(0);
+            };
             for (int y = y0; y < y1; ++y) {
                 // The row's rays, quantized together when some pixel of the row needs its ray.
                 bool rowTraced = false;
-                for (int x = x0; x < x1 && !rowTraced; ++x)
-                    rowTraced = rays.mayHitSurface(x, y) && (!masked || (colMask[std::size_t(x - x0)] & rowMask[std::size_t(y - y0)]));
+                for (int x = x0; x < x1 && !rowTraced; ++x) rowTraced = pixelNodes(x, y) != 0;
                 // Straight into the packets' slots of the row (k = row * T + column).
                 dvec3* rowDirs = packet.dir.data() + std::size_t((y - y0) * T);
                 QuantizedRay* rowRays = packet.q.data() + std::size_t((y - y0) * T);
@@ -209,8 +190,8 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                     rays.quantizedRow(y, x0, x1 - x0, rowDirs, rowRays);
                 }
                 for (int x = x0; x < x1; ++x) {
-                    const std::uint64_t mask = masked ? colMask[std::size_t(x - x0)] & rowMask[std::size_t(y - y0)] : ~std::uint64_t(0);
-                    if (!rays.mayHitSurface(x, y) || mask == 0) {
+                    const std::uint64_t mask = pixelNodes(x, y);
+                    if (mask == 0) {
                         // Step 5: nothing the ray can visit holds a boundary voxel (outside the
                         // surface's outline, or outside every frontier node's rectangle).
                         if (rays.mayMeetCube(x, y) && rays.meetsCube(x, y)) ++raysMeeting;
