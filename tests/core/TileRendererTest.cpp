@@ -7,6 +7,7 @@
 #include "octrace/build/AnalyticField.h"
 #include "octrace/build/OctreeBuilder.h"
 #include "octrace/render/Renderer.h"
+#include "render/traversal/TileFrontier.h"
 #include "render/traversal/TileRenderer.h"
 #include "RenderTestUtil.h"
 
@@ -14,6 +15,9 @@
 
 #include <atomic>
 #include <cmath>
+#include <functional>
+#include <limits>
+#include <random>
 
 using namespace octrace;
 using namespace octrace::test;
@@ -168,4 +172,76 @@ TEST(TileRenderer, SeesAWallThatOnlyTheQuantizedRayOfATilesLastColumnMeets) {
     long lost = 0;
     for (int y = 0; y < 64; ++y) lost += unwidened.hitId[unwidened.pixel(31, y)] != ff.hitId[ff.pixel(31, y)];
     EXPECT_EQ(lost, wall);
+}
+
+// The frontier's frustum test of a node's eight children at once (AVX-512 where the processor
+// has it) gives each child's own test bit for bit: random frusta (one with a NaN gradient, which
+// the test passes), random nodes of every level, many of them straddling a plane.
+TEST(TileFrontier, EightChildrenTestedAtOnceGiveEachChildsOwnTest) {
+    std::mt19937_64 rng(17);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const double L = std::ldexp(1.0, Octree::kIntBits);
+    std::size_t mixed = 0, nodes = 0;
+    for (int k = 0; k < 300; ++k) {
+        detail::TileFrustum f;
+        f.apex = dvec3(0.5 + 1.5 * u(rng), 0.5 + 1.5 * u(rng), 0.5 + 1.5 * u(rng)) * L;
+        for (dvec3& g : f.g) g = dvec3(u(rng), u(rng), u(rng));
+        for (double& h : f.h) h = rng() % 2 ? 0.0 : 0.1 * L * u(rng);
+        f.pad = rng() % 2 ? 0.0 : 1e-3;
+        if (k == 0) f.g[2].y = std::numeric_limits<double>::quiet_NaN();
+        f.prepare();
+        for (int n = 0; n < 300; ++n) {
+            const int level = int(rng() % unsigned(Octree::kIntBits));  // the children's level is at most kIntBits
+            const unsigned span = 1u << level;
+            const ivec3 cell(int(rng() % span), int(rng() % span), int(rng() % span));
+            unsigned each = 0;
+            for (unsigned c = 0; c < 8; ++c)
+                if (f.meets(cell * 2 + ivec3(int(c >> 2), int((c >> 1) & 1), int(c & 1)), level + 1)) each |= 1u << c;
+            ASSERT_EQ(f.meetsChildren(cell, level), each) << "level " << level;
+            mixed += each != 0 && each != 0xFF;
+            ++nodes;
+        }
+    }
+    EXPECT_GT(mixed, nodes / 100);
+}
+
+// A node's pixel rectangle is the same whether its corners are projected eight at once
+// (AVX-512) or one by one: every node of every test scene, at every test camera (inside the
+// cube, grazing, orthographic), so that both the projected rectangles and the fallback to every
+// pixel (a corner behind a perspective eye) occur.
+TEST(TileFrontier, PixelRectanglesAreTheSameProjectedAtOnceOrCornerByCorner) {
+#if defined(__x86_64__) && defined(__GNUC__)
+    if (!__builtin_cpu_supports("avx512f")) GTEST_SKIP() << "no AVX-512 F: both are the scalar code on this processor";
+#endif
+    std::size_t projected = 0, everyPixel = 0;
+    for (const NamedTree& nt : hardTestTrees())
+        for (const NamedCamera& nc : hardTestCameras(*nt.tree)) {
+            SCOPED_TRACE(nt.name + ", " + nc.name);
+            const Octree& t = *nt.tree;
+            const Camera& cam = nc.camera;
+            const RayGenerator gen(cam);
+            const detail::PixelRays rays(t, cam);
+            const detail::ScreenSlopes slopes(t, gen, rays, cam.width, cam.height, true);
+            const detail::TileFrustum f = detail::tileFrustum(gen, slopes, 0, 0, cam.width, cam.height);
+            std::function<void(const StartNode&)> visit = [&](const StartNode& s) {
+                detail::FrontierNode a{s}, b{s};
+                detail::pixelRect(t, gen, f, a, cam.width, cam.height, false);
+                detail::pixelRect(t, gen, f, b, cam.width, cam.height, true);
+                ASSERT_EQ(a.projected, b.projected);
+                ASSERT_EQ(a.x0, b.x0);
+                ASSERT_EQ(a.x1, b.x1);
+                ASSERT_EQ(a.y0, b.y0);
+                ASSERT_EQ(a.y1, b.y1);
+                ++(a.projected ? projected : everyPixel);
+                const OctreeNode& nd = t.nodes()[s.node];
+                if (s.level + 1 >= t.depth) return;
+                for (unsigned c = 0; c < 8; ++c)
+                    if ((nd.childMask >> c & 1u) && !(nd.termMask >> c & 1u))
+                        visit({nd.firstChild + childRank(nd.childMask, c), s.level + 1,
+                               s.cell * 2 + ivec3(int(c >> 2), int((c >> 1) & 1), int(c & 1))});
+            };
+            if (!t.nodes().empty()) visit(StartNode{});
+        }
+    EXPECT_GT(projected, 1000u);
+    EXPECT_GT(everyPixel, 10u);
 }

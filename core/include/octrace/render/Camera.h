@@ -101,6 +101,14 @@ public:
         px = pixelX0_ + cx * pixelScaleX_;
         py = pixelY0_ - cy * pixelScaleY_;
     }
+    /// toPixel's terms, for code that projects many points at once: px = x0 + cx * sx and
+    /// py = y0 - cy * sy, cx and cy first multiplied by -1 / cz in perspective.
+    void pixelTerms(double& x0, double& y0, double& sx, double& sy) const {
+        x0 = pixelX0_;
+        y0 = pixelY0_;
+        sx = pixelScaleX_;
+        sy = pixelScaleY_;
+    }
 
 private:
     // Offsets of the pixel centre on the view plane at unit distance (perspective) or in

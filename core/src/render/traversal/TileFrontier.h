@@ -22,6 +22,11 @@ struct FrontierNode {
     StartNode start;
     int x0 = 0, x1 = 0, y0 = 0, y1 = 0;  ///< the pixels whose rays can visit a cell of the node (step 4)
     bool rect = false;                  ///< whether x0 .. y1 are computed
+    bool projected = false;             ///< whether they bound the projection (not every pixel for want of one)
+    /// Unused: with it every byte of the 40 is a member, so a copy moves the node in pieces at
+    /// 0, 16 and 32 (without it, GCC's last piece overlapped the second, and reading a node just
+    /// copied stalled on store forwarding).
+    std::uint16_t spare = 0;
 };
 
 /// children sorted by popcount(c ^ s) per sign pattern s: front to back for every ray of
@@ -60,6 +65,10 @@ struct TileFrustum {
                     h[std::size_t(i)] + (std::abs(gi.x) + std::abs(gi.y) + std::abs(gi.z)) * (double(1 << (Octree::kIntBits - level)) * 0.5 + pad);
         }
     }
+
+    /// Bit c: meets(child c of the node, level + 1) (child c: cell * 2 + (c >> 2, c >> 1 & 1,
+    /// c & 1)), the eight at once in AVX-512 where the processor has it, bit for bit the same.
+    unsigned meetsChildren(const ivec3& cell, int level) const;
 
     /// False only if no point of the box widened by `pad` satisfies all five: then no
     /// quantized ray of the tile visits a cell of the box.
@@ -120,11 +129,15 @@ void refineFrontier(const Octree& tree, const TileFrustum& f, unsigned s, std::s
 /// Step 4: the pixels of the image whose exact rays meet the node's box widened by the pad: the
 /// bounding rectangle of its corners' projections, a hundredth of a pixel wider; every pixel
 /// when a corner is not in front of a perspective eye (or a projection is out of range).
-void pixelRect(const Octree& tree, const RayGenerator& gen, const TileFrustum& f, FrontierNode& fn, int w, int h);
+/// The corners are projected eight at once in AVX-512 where the processor has it (bit for bit
+/// the scalar code, which `scalar` forces: for tests).
+void pixelRect(const Octree& tree, const RayGenerator& gen, const TileFrustum& f, FrontierNode& fn, int w, int h,
+               bool scalar = false);
 
-/// The nodes of `from` (in order) that meet the frustum `f` of the tile x0 .. x1-1, y0 .. y1-1,
-/// into `list`; a node whose pixel rectangle is known and misses the tile is left out at once
-/// (step 4: no ray of the tile visits a cell of it).
+/// The nodes of `from` (in order) that may hold a cell some ray of the tile x0 .. x1-1, y0 .. y1-1
+/// visits, into `list`: a node whose pixel rectangle is known is kept when the rectangle meets
+/// the tile (step 4; the frustum test would add nothing to a rectangle bounding the node's
+/// projection), any other when it meets the frustum `f` (step 2).
 void filterFrontier(const TileFrustum& f, const std::vector<FrontierNode>& from, std::vector<FrontierNode>& list, int x0,
                     int y0, int x1, int y1);
 

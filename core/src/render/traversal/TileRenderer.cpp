@@ -48,6 +48,15 @@ struct PacketPixels {
     /// Node i's pixels: columns cx0 .. cx1 of rows cy0 .. cy1 (tile coordinates, inclusive).
     void setRect(std::size_t i, int cx0, int cx1, int cy0, int cy1) {
         std::uint64_t* w = nodePixels.data() + i * words;
+        if (words == 1) {
+            // Tiles of up to 8 x 8: the word built in a register (a word cleared by a fill and
+            // then read back waits for the fill's stores).
+            const std::uint64_t row = ((std::uint64_t(2) << (cx1 - cx0)) - 1) << cx0;  // columns cx0 .. cx1 (< 8 of them)
+            std::uint64_t m = 0;
+            for (int r = cy0; r <= cy1; ++r) m |= row << (r * side);
+            *w = m;
+            return;
+        }
         std::fill(w, w + words, 0);
         for (int row = cy0; row <= cy1; ++row)
             for (std::size_t a = std::size_t(row * side + cx0), b = std::size_t(row * side + cx1); a <= b;) {
@@ -84,6 +93,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
     frame.reshape(camera.width, camera.height);  // every pixel is written below
     const Shader shader(tree, camera, settings);
     const SmoothSurface& smooth = shader.smooth();
+    const bool smoothOn = smooth.active();
     const PixelRays rays(tree, camera, cut.coarsestLevel());
     const RayGenerator gen(camera);
     const ScreenSlopes slopes(tree, gen, rays, camera.width, camera.height, widen_);
@@ -113,7 +123,8 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
         // The sign pattern of the group's middle ray orders the frontiers.
         const dvec3 mid = gen.direction((gx0 + gx1) / 2, (gy0 + gy1) / 2);
         const unsigned s = (mid.x < 0.0 ? 4u : 0u) | (mid.y < 0.0 ? 2u : 0u) | (mid.z < 0.0 ? 1u : 0u);
-        if (!tree.nodes().empty()) {
+        // A group outside the surface's outline has only background tiles (step 5, below).
+        if (!tree.nodes().empty() && rays.mayHitSurfaceIn(gx0, gy0, gx1, gy1)) {
             const TileFrustum gf = tileFrustum(gen, slopes, gx0, gy0, gx1, gy1);
             filterFrontier(gf, root, group, gx0, gy0, gx1, gy1);
             refineFrontier(tree, gf, s, G * G * cap, keepLevel, group, next);
@@ -136,11 +147,11 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
             filterFrontier(fr, group, list, x0, y0, x1, y1);
             refineFrontier(tree, fr, s, cap, keepLevel, list, next);
             // Step 4: the nodes whose rectangle misses the tile are dropped.
-            std::size_t kept = 0;
-            for (FrontierNode& fn : list) {
+            for (FrontierNode& fn : list)
                 if (!fn.rect) pixelRect(tree, gen, fr, fn, camera.width, camera.height);
+            std::size_t kept = 0;  // after the rectangles (a node copied just after its fields were written waits for them)
+            for (const FrontierNode& fn : list)
                 if (fn.x1 >= x0 && fn.x0 < x1 && fn.y1 >= y0 && fn.y0 < y1) list[kept++] = fn;
-            }
             list.resize(kept);
             if (starts.size() < kept) starts.resize(kept);
             if (list.empty()) {
@@ -207,7 +218,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                         ++raysCommon;
                         const std::size_t k = std::size_t((y - y0) * T + (x - x0));
                         packet.traced[k / 64] |= std::uint64_t(1) << (k % 64);
-                        if (smooth.active()) {
+                        if (smoothOn) {
                             packet.sray[k] = SmoothSurface::RayState(rays.world(x, y, dir));
                             packet.filter[k] = smooth.filter(packet.sray[k]);
                         }
@@ -219,11 +230,11 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                     // from the root when it is passed (writePixelHit then keeps the hit).
                     SmoothSurface::RayState sray;
                     VoxelFilter filter;
-                    if (smooth.active()) {
+                    if (smoothOn) {
                         sray = SmoothSurface::RayState(rays.world(x, y, dir));
                         filter = smooth.filter(sray);
                     }
-                    const VoxelFilter* fp = smooth.active() ? &filter : nullptr;
+                    const VoxelFilter* fp = smoothOn ? &filter : nullptr;
                     if (q.sign != s) {
                         // Another sign pattern: the frontier's order may not be this ray's.
                         ++raysFull;
@@ -263,7 +274,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                              m &= m - 1) {
                             const std::size_t k = w * 64 + std::size_t(std::countr_zero(m));
                             const int a = packet.q[k].main;
-                            lanes[a][count[a]] = PacketLane{&packet.q[k], smooth.active() ? &packet.filter[k] : nullptr, &packet.hit[k]};
+                            lanes[a][count[a]] = PacketLane{&packet.q[k], smoothOn ? &packet.filter[k] : nullptr, &packet.hit[k]};
                             owner[a][count[a]] = k;
                             if (++count[a] == width) flush(a);
                         }
