@@ -2,7 +2,9 @@
 // TileRenderer.cpp so that the exact trajectory-coherence variants can use it too.
 #include "render/traversal/TileFrontier.h"
 
+#include <bit>
 #include <limits>
+#include <stdexcept>
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
@@ -248,7 +250,11 @@ void filterFrontier(const TileFrustum& f, const std::vector<FrontierNode>& from,
 
 ImageFrontier::ImageFrontier(const Octree& tree, const Camera& camera, const PixelRays& rays, int tileSize)
     : tree_(tree), gen_(camera), slopes_(tree, gen_, rays, camera.width, camera.height, true), width_(camera.width),
-      height_(camera.height), tileSize_(std::max(tileSize, 1)), keepLevel_(tree.depth - 1) {
+      height_(camera.height), tileSize_(tileSize), keepLevel_(tree.depth - 1) {
+    if (tileSize < 1 || !std::has_single_bit(unsigned(tileSize)))
+        throw std::invalid_argument("ImageFrontier: the tile size must be a power of two");
+    tileShift_ = std::countr_zero(unsigned(tileSize));
+    tileMask_ = tileSize - 1;
     const int T = tileSize_;
     tilesX_ = (width_ + T - 1) / T;
     const int tilesY = (height_ + T - 1) / T;
@@ -288,7 +294,7 @@ const std::vector<FrontierNode>& ImageFrontier::groupNodes(std::size_t g) const 
 }
 
 const ImageFrontier::Tile& ImageFrontier::tile(int x, int y) const {
-    const int tx = x / tileSize_, ty = y / tileSize_;
+    const int tx = x >> tileShift_, ty = y >> tileShift_;
     const std::size_t t = std::size_t(ty) * std::size_t(tilesX_) + std::size_t(tx);
     std::call_once(tileOnce_[t], [&] {
         const std::size_t g = group(tx, ty);
