@@ -143,6 +143,16 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                 for (int y = y0; y < y1; ++y) fillBackground(frame, rays, settings, y, x0, x1, st);
                 continue;
             }
+            // The tile's rows of the frame, fetched for writing while the pre-pass runs (each
+            // row of a tile is a separate short stream that the hardware prefetcher misses).
+            for (int y = y0; y < y1; ++y) {
+                const std::size_t p0 = frame.pixel(x0, y), p1 = frame.pixel(x1 - 1, y);
+                for (const char* a = reinterpret_cast<const char*>(&frame.rgba[p0]); a <= reinterpret_cast<const char*>(&frame.rgba[p1]); a += 64)
+                    __builtin_prefetch(a, 1);
+                __builtin_prefetch(&frame.depth[p0], 1);
+                __builtin_prefetch(&frame.hitId[p0], 1);
+                __builtin_prefetch(&frame.flags[p0], 1);
+            }
             const TileFrustum fr = tileFrustum(gen, slopes, x0, y0, x1, y1);
             filterFrontier(fr, group, list, x0, y0, x1, y1);
             refineFrontier(tree, fr, s, cap, keepLevel, list, next);
