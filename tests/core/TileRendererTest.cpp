@@ -178,6 +178,9 @@ TEST(TileRenderer, SeesAWallThatOnlyTheQuantizedRayOfATilesLastColumnMeets) {
 // has it) gives each child's own test bit for bit: random frusta (one with a NaN gradient, which
 // the test passes), random nodes of every level, many of them straddling a plane.
 TEST(TileFrontier, EightChildrenTestedAtOnceGiveEachChildsOwnTest) {
+#if defined(__x86_64__) && defined(__GNUC__)
+    if (!__builtin_cpu_supports("avx512f")) GTEST_SKIP() << "no AVX-512 F: both are the scalar code on this processor";
+#endif
     std::mt19937_64 rng(17);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     const double L = std::ldexp(1.0, Octree::kIntBits);

@@ -238,7 +238,7 @@ void filterFrontier(const TileFrustum& f, const std::vector<FrontierNode>& from,
     list.resize(from.size());
     std::size_t kept = 0;
     for (const FrontierNode& fn : from) {
-        const bool inRect = (fn.x1 >= x0) & (fn.x0 < x1) & (fn.y1 >= y0) & (fn.y0 < y1);
+        const bool inRect = fn.rectMeets(x0, y0, x1, y1);
         list[kept] = fn;
         if (fn.projected)
             kept += inRect;
@@ -312,7 +312,7 @@ const ImageFrontier::Tile& ImageFrontier::tile(int x, int y) const {
             if (!fn.rect) pixelRect(tree_, gen_, fr, fn, width_, height_);
         std::size_t kept = 0;  // after the rectangles (a node copied just after its fields were written waits for them)
         for (const FrontierNode& fn : list)
-            if (fn.x1 >= x0 && fn.x0 < x1 && fn.y1 >= y0 && fn.y0 < y1) list[kept++] = fn;
+            if (fn.rectMeets(x0, y0, x1, y1)) list[kept++] = fn;
         list.resize(kept);
         // Per pixel, the nodes whose rectangle holds it, as a bit mask over the list.
         tl.masked = list.size() <= 64 && tileSize_ <= 8;

@@ -23,6 +23,11 @@ struct FrontierNode {
     int x0 = 0, x1 = 0, y0 = 0, y1 = 0;  ///< the pixels whose rays can visit a cell of the node (step 4)
     bool rect = false;                  ///< whether x0 .. y1 are computed
     bool projected = false;             ///< whether they bound the projection (not every pixel for want of one)
+    /// Whether some pixel of columns x0 .. x1-1 and rows y0 .. y1-1 lies in the rectangle (a
+    /// node projected between pixel centres has an empty one: no pixel's ray visits it).
+    bool rectMeets(int x0, int y0, int x1, int y1) const {
+        return (std::max(this->x0, x0) <= std::min(this->x1, x1 - 1)) & (std::max(this->y0, y0) <= std::min(this->y1, y1 - 1));
+    }
     /// Unused: with it every byte of the 40 is a member, so a copy moves the node in pieces at
     /// 0, 16 and 32 (without it, GCC's last piece overlapped the second, and reading a node just
     /// copied stalled on store forwarding).

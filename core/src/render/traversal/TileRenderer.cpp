@@ -18,6 +18,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -51,7 +52,11 @@ struct PacketPixels {
         if (words == 1) {
             // Tiles of up to 8 x 8: the word built in a register (a word cleared by a fill and
             // then read back waits for the fill's stores).
-            const std::uint64_t row = ((std::uint64_t(2) << (cx1 - cx0)) - 1) << cx0;  // columns cx0 .. cx1 (< 8 of them)
+            if (cx1 < cx0 || cy1 < cy0) {  // an empty rectangle (the lists keep none: rectMeets)
+                *w = 0;
+                return;
+            }
+            const std::uint64_t row = ((std::uint64_t(2) << (cx1 - cx0)) - 1) << cx0;  // columns cx0 .. cx1 (at most 8 of them)
             std::uint64_t m = 0;
             for (int r = cy0; r <= cy1; ++r) m |= row << (r * side);
             *w = m;
@@ -145,13 +150,19 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
             }
             // The tile's rows of the frame, fetched for writing while the pre-pass runs (each
             // row of a tile is a separate short stream that the hardware prefetcher misses).
+            const auto prefetchRun = [](const void* first, const void* last) {
+                // Every cache line from the one holding `first` to the one holding `last`.
+                for (std::uintptr_t a = reinterpret_cast<std::uintptr_t>(first) & ~std::uintptr_t(63),
+                                    end = reinterpret_cast<std::uintptr_t>(last);
+                     a <= end; a += 64)
+                    __builtin_prefetch(reinterpret_cast<const void*>(a), 1);
+            };
             for (int y = y0; y < y1; ++y) {
                 const std::size_t p0 = frame.pixel(x0, y), p1 = frame.pixel(x1 - 1, y);
-                for (const char* a = reinterpret_cast<const char*>(&frame.rgba[p0]); a <= reinterpret_cast<const char*>(&frame.rgba[p1]); a += 64)
-                    __builtin_prefetch(a, 1);
-                __builtin_prefetch(&frame.depth[p0], 1);
-                __builtin_prefetch(&frame.hitId[p0], 1);
-                __builtin_prefetch(&frame.flags[p0], 1);
+                prefetchRun(&frame.rgba[p0], reinterpret_cast<const char*>(&frame.rgba[p1]) + sizeof(vec4) - 1);
+                prefetchRun(&frame.depth[p0], &frame.depth[p1]);
+                prefetchRun(&frame.hitId[p0], &frame.hitId[p1]);
+                prefetchRun(&frame.flags[p0], &frame.flags[p1]);
             }
             const TileFrustum fr = tileFrustum(gen, slopes, x0, y0, x1, y1);
             filterFrontier(fr, group, list, x0, y0, x1, y1);
@@ -161,7 +172,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                 if (!fn.rect) pixelRect(tree, gen, fr, fn, camera.width, camera.height);
             std::size_t kept = 0;  // after the rectangles (a node copied just after its fields were written waits for them)
             for (const FrontierNode& fn : list)
-                if (fn.x1 >= x0 && fn.x0 < x1 && fn.y1 >= y0 && fn.y0 < y1) list[kept++] = fn;
+                if (fn.rectMeets(x0, y0, x1, y1)) list[kept++] = fn;
             list.resize(kept);
             if (starts.size() < kept) starts.resize(kept);
             if (list.empty()) {
