@@ -28,6 +28,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <vector>
 
 namespace octrace::detail {
 namespace {
@@ -149,10 +150,31 @@ bool certifiedStart(const Context& c, int x, int y, const QuantizedRay& q, const
     return certified;  // the end of the list without reaching h's node: not for a hit in B (cover)
 }
 
+/// The directions and quantized rays of pixels x0 .. x0 + n - 1 of one row, made together
+/// (PixelRays::quantizedRow: eight at a time where the processor can, the same bits).
+struct RowRays {
+    int y = -1, x0 = 0, n = 0;
+    std::vector<dvec3> dir;
+    std::vector<QuantizedRay> q;
+    /// Pixels lo .. hi of row y (none when lo > hi).
+    void make(const PixelRays& rays, int row, int lo, int hi) {
+        y = row;
+        x0 = lo;
+        n = std::max(hi - lo + 1, 0);
+        if (dir.size() < std::size_t(n)) {
+            dir.resize(std::size_t(n));
+            q.resize(std::size_t(n));
+        }
+        for (int i = 0; i < n; ++i) dir[std::size_t(i)] = rays.direction(lo + i, row);
+        if (n) rays.quantizedRow(row, lo, n, dir.data(), q.data());
+    }
+    bool holds(int x, int row) const { return row == y && x >= x0 && x < x0 + n; }
+};
+
 /// Traces pixel (x, y) and writes it; `partners` are the two neighbours whose hits give the
-/// branch node (nullptr: from the root).
+/// branch node (nullptr: from the root). `row`: the row's rays made beforehand, or none.
 void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Start mode, RenderStats& st,
-                TraversalCounters& counters) {
+                TraversalCounters& counters, const RowRays* row = nullptr) {
     Frame& f = c.frame;
     const std::size_t p = f.pixel(x, y);
     auto background = [&](std::uint8_t flags) {
@@ -179,8 +201,11 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
         ++(missFill ? st.missFilled : st.raysFull);
         return background(missFill ? Frame::kMissFilled : Frame::kTraced);
     }
-    const dvec3 dir = c.rays.direction(x, y);
-    const QuantizedRay q = c.rays.quantized(x, y, dir);
+    const bool made = row && row->holds(x, y);
+    QuantizedRay own;
+    const dvec3 dir = made ? row->dir[std::size_t(x - row->x0)] : c.rays.direction(x, y);
+    if (!made) own = c.rays.quantized(x, y, dir);
+    const QuantizedRay& q = made ? row->q[std::size_t(x - row->x0)] : own;
     if (q.meetsCube) ++st.rays;
     // The exact variants' miss coherence, always on: a pixel whose partners both missed is taken
     // as a miss only when that is proven (so it is no setting).
@@ -354,6 +379,15 @@ RenderStats DiscreteRenderer::render(const Octree& tree, const Camera& camera, c
     auto patternSpan = [&](int y, RenderStats& st) {
         return fillFirst ? fillOutsideSurface(ctx, y, st) : std::pair<int, int>{0, W - 1};
     };
+    // The exact variants quantize a row's rays together before its pixels (the approximate
+    // ones and `full` stay as paper A's: one ray at a time). One buffer per thread.
+    const bool rowsTogether = exact_ && pattern_ != Pattern::Full;
+    const auto rowRays = [&](int y, int lo, int hi) -> const RowRays* {
+        if (!rowsTogether) return nullptr;
+        thread_local RowRays rr;
+        rr.make(rays, y, std::max(lo, 0), std::min(hi, W - 1));
+        return &rr;
+    };
     // One row along its own pattern, all phases while the row is in cache.
     auto doRow = [&](int y, TraversalCounters& k) {
         RenderStats& st = rowStats[std::size_t(y)];
@@ -374,20 +408,21 @@ RenderStats DiscreteRenderer::render(const Octree& tree, const Camera& camera, c
             }
             return;
         }
+        const RowRays* rr = rowRays(y, lo, hi);
         // 1. supporting columns
         for (int x = 0; x < W; ++x)
-            if (isSupportCol(x) && !outside(x)) tracePixel(ctx, x, y, nullptr, mode, st, k);
+            if (isSupportCol(x) && !outside(x)) tracePixel(ctx, x, y, nullptr, mode, st, k, rr);
         // 2. middle of each 4-pixel group, from the supporting pixels 2 away
         for (int x = 2; x < W; x += 4) {
             if (isSupportCol(x) || outside(x)) continue;
             const std::size_t pr[2] = {frame.pixel(x - 2, y), frame.pixel(std::min(x + 2, W - 1), y)};
-            tracePixel(ctx, x, y, pr, mode, st, k);
+            tracePixel(ctx, x, y, pr, mode, st, k, rr);
         }
         // 3. the two remaining pixels, from their neighbours at distance 1
         for (int x = 1; x < W; ++x) {
             if (isSupportCol(x) || x % 4 == 2 || outside(x)) continue;
             const std::size_t pr[2] = {frame.pixel(x - 1, y), frame.pixel(x + 1, y)};
-            if (!(colour && tryFill(ctx, x, y, pr, st))) tracePixel(ctx, x, y, pr, mode, st, k);
+            if (!(colour && tryFill(ctx, x, y, pr, st))) tracePixel(ctx, x, y, pr, mode, st, k, rr);
         }
     };
     // The rows strictly between base row b and the next base row, from the pixels above and below.
@@ -400,13 +435,14 @@ RenderStats DiscreteRenderer::render(const Octree& tree, const Camera& camera, c
                 if ((y % 4 == 2) != (pass == 0)) continue;  // first the middle row, then the others
                 RenderStats& st = rowStats[std::size_t(y)];
                 const auto [lo, hi] = span[y - b - 1];
+                const RowRays* rr = rowRays(y, lo, hi);
                 for (int x = std::max(lo, 0); x <= std::min(hi, W - 1); ++x) {
                     if (y % 4 == 2) {
                         const std::size_t pr[2] = {frame.pixel(x, y - 2), frame.pixel(x, std::min(y + 2, H - 1))};
-                        tracePixel(ctx, x, y, pr, mode, st, k);
+                        tracePixel(ctx, x, y, pr, mode, st, k, rr);
                     } else {
                         const std::size_t pr[2] = {frame.pixel(x, y - 1), frame.pixel(x, y + 1)};
-                        if (!(colour && tryFill(ctx, x, y, pr, st))) tracePixel(ctx, x, y, pr, mode, st, k);
+                        if (!(colour && tryFill(ctx, x, y, pr, st))) tracePixel(ctx, x, y, pr, mode, st, k, rr);
                     }
                 }
             }
