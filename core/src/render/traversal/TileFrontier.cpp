@@ -248,6 +248,20 @@ void filterFrontier(const TileFrustum& f, const std::vector<FrontierNode>& from,
     list.resize(kept);
 }
 
+void tileFrontier(const Octree& tree, const RayGenerator& gen, const TileFrustum& f, const std::vector<FrontierNode>& from,
+                  unsigned s, std::size_t cap, int keepLevel, int x0, int y0, int x1, int y1, int w, int h,
+                  std::vector<FrontierNode>& list, std::vector<FrontierNode>& next) {
+    filterFrontier(f, from, list, x0, y0, x1, y1);
+    refineFrontier(tree, f, s, cap, keepLevel, list, next);
+    // Step 4: the nodes whose rectangle misses the tile are dropped.
+    for (FrontierNode& fn : list)
+        if (!fn.rect) pixelRect(tree, gen, f, fn, w, h);
+    std::size_t kept = 0;  // after the rectangles (a node copied just after its fields were written waits for them)
+    for (const FrontierNode& fn : list)
+        if (fn.rectMeets(x0, y0, x1, y1)) list[kept++] = fn;
+    list.resize(kept);
+}
+
 ImageFrontier::ImageFrontier(const Octree& tree, const Camera& camera, const PixelRays& rays, int tileSize)
     : tree_(tree), gen_(camera), slopes_(tree, gen_, rays, camera.width, camera.height, true), width_(camera.width),
       height_(camera.height), tileSize_(tileSize), keepLevel_(tree.depth - 1) {
@@ -304,16 +318,8 @@ const ImageFrontier::Tile& ImageFrontier::tile(int x, int y) const {
         std::vector<FrontierNode> next;
         const int x0 = tx * tileSize_, y0 = ty * tileSize_;
         const int x1 = std::min(x0 + tileSize_, width_), y1 = std::min(y0 + tileSize_, height_);
-        const TileFrustum fr = tileFrustum(gen_, slopes_, x0, y0, x1, y1);
-        filterFrontier(fr, from, list, x0, y0, x1, y1);
-        refineFrontier(tree_, fr, signs_[g], cap_, keepLevel_, list, next);
-        // Step 4: the nodes whose rectangle misses the tile are dropped.
-        for (FrontierNode& fn : list)
-            if (!fn.rect) pixelRect(tree_, gen_, fr, fn, width_, height_);
-        std::size_t kept = 0;  // after the rectangles (a node copied just after its fields were written waits for them)
-        for (const FrontierNode& fn : list)
-            if (fn.rectMeets(x0, y0, x1, y1)) list[kept++] = fn;
-        list.resize(kept);
+        tileFrontier(tree_, gen_, tileFrustum(gen_, slopes_, x0, y0, x1, y1), from, signs_[g], cap_, keepLevel_, x0, y0, x1,
+                     y1, width_, height_, list, next);
         // Per pixel, the nodes whose rectangle holds it, as a bit mask over the list.
         tl.masked = list.size() <= 64 && tileSize_ <= 8;
         if (tl.masked) {

@@ -146,6 +146,14 @@ void pixelRect(const Octree& tree, const RayGenerator& gen, const TileFrustum& f
 void filterFrontier(const TileFrustum& f, const std::vector<FrontierNode>& from, std::vector<FrontierNode>& list, int x0,
                     int y0, int x1, int y1);
 
+/// Steps 3 and 4 for the tile x0 .. x1-1, y0 .. y1-1 of a w x h image with frustum `f`: `from`
+/// (its group's frontier, with rectangles) filtered, refined for sign pattern s within `cap`,
+/// every node's rectangle computed, and the nodes whose rectangle misses the tile dropped, into
+/// `list` (`next`: scratch). What the tile renderer and ImageFrontier both build per tile.
+void tileFrontier(const Octree& tree, const RayGenerator& gen, const TileFrustum& f, const std::vector<FrontierNode>& from,
+                  unsigned s, std::size_t cap, int keepLevel, int x0, int y0, int x1, int y1, int w, int h,
+                  std::vector<FrontierNode>& list, std::vector<FrontierNode>& next);
+
 /// Every tile's frontier for one frame (steps 1-4 as the tile renderer builds them: tiles of
 /// `tileSize` pixels in groups of 4 x 4, each group's frontier refined for each of its tiles,
 /// nodes whose pixel rectangle misses the tile dropped), each built the first time it is asked

@@ -164,16 +164,9 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                 prefetchRun(&frame.hitId[p0], &frame.hitId[p1]);
                 prefetchRun(&frame.flags[p0], &frame.flags[p1]);
             }
-            const TileFrustum fr = tileFrustum(gen, slopes, x0, y0, x1, y1);
-            filterFrontier(fr, group, list, x0, y0, x1, y1);
-            refineFrontier(tree, fr, s, cap, keepLevel, list, next);
-            // Step 4: the nodes whose rectangle misses the tile are dropped.
-            for (FrontierNode& fn : list)
-                if (!fn.rect) pixelRect(tree, gen, fr, fn, camera.width, camera.height);
-            std::size_t kept = 0;  // after the rectangles (a node copied just after its fields were written waits for them)
-            for (const FrontierNode& fn : list)
-                if (fn.rectMeets(x0, y0, x1, y1)) list[kept++] = fn;
-            list.resize(kept);
+            tileFrontier(tree, gen, tileFrustum(gen, slopes, x0, y0, x1, y1), group, s, cap, keepLevel, x0, y0, x1, y1,
+                         camera.width, camera.height, list, next);
+            const std::size_t kept = list.size();
             if (starts.size() < kept) starts.resize(kept);
             if (list.empty()) {
                 // Step 5: no ray of the tile visits a boundary voxel.
