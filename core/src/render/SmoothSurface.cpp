@@ -235,7 +235,9 @@ bool SmoothSurface::testWith(RayState& ray, TraversalHit& hit, const Search& sea
     return accept(ray, hit, s.d, s.t0, s.entry, u);
 }
 
-bool SmoothSurface::test(RayState& ray, TraversalHit& hit) const { return testWith(ray, hit, cubicCrossing); }
+// Flattened: the clip, the corners' decoding, the search and the acceptance inline (a million
+// calls a frame and more; each call spills the search's registers).
+[[gnu::flatten]] bool SmoothSurface::test(RayState& ray, TraversalHit& hit) const { return testWith(ray, hit, cubicCrossing); }
 
 bool SmoothSurface::testReference(RayState& ray, TraversalHit& hit) const { return testWith(ray, hit, marchedCrossing); }
 

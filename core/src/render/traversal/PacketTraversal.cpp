@@ -166,9 +166,33 @@ void setupPacket(const StartNode& start, const PacketLane* lanes, unsigned count
     }
 }
 
-/// A lane's filter, out of line: the kernels are compiled for their instruction set, and what
-/// they call of std::function stays compiled for the baseline.
-[[gnu::noinline]] bool passesFilter(const VoxelFilter& filter, TraversalHit& hit) { return filter(hit); }
+/// The lanes of `m` that take the voxel (index `voxel`, at `cell`, a leaf of side 2^leafShift
+/// voxels) as their hit: each lane's hit is set to it, then given to the lane's filter (none:
+/// taken); a lane whose filter passes the voxel goes on behind it, and its hit is written again
+/// at its next voxel (only the hits of lanes done are read). Out of line, once per voxel rather
+/// than per lane: the kernels are compiled for their instruction set, and what they call of
+/// std::function stays compiled for the baseline; around a call, a kernel saves and restores its
+/// vector registers.
+[[gnu::noinline]] unsigned acceptingLanes(const PacketLane* lanes, unsigned m, std::uint32_t voxel, const ivec3& cell,
+                                          int leafShift) {
+    unsigned accepted = 0;
+    for (unsigned rest = m; rest; rest &= rest - 1) {
+        const unsigned l = unsigned(__builtin_ctz(rest));
+        TraversalHit& hit = *lanes[l].hit;
+        // Field by field (read back narrower by the filter: no wait on store forwarding).
+        hit.voxel = voxel;
+        hit.cell = cell;
+        hit.leafShift = leafShift;
+        hit.node = kNoHit;
+        hit.level = 0;
+        hit.smooth = false;
+        hit.distance = 0.0;
+        hit.normal = vec3(0.0f);
+        hit.zCells = 0.0f;
+        if (!lanes[l].filter || (*lanes[l].filter)(hit)) accepted |= 1u << l;
+    }
+    return accepted;
+}
 
 #define OCTRACE_PACKET_TARGET
 namespace sse2 {

@@ -38,7 +38,8 @@ struct PacketLane {
 /// lanes (1 .. packetLanes(isa)) at once: the rays must share their main axis and sign pattern and
 /// meet the cube, a lane's filter must be null or non-empty, and with a cut the start node must
 /// lie above LodCut::coarsestLevel() (as for traverseFromNodes). Returns the lanes
-/// (bit i: lane i) that found their hit, which is written to *lane.hit; the others wrote nothing.
+/// (bit i: lane i) that found their hit, which is written to *lane.hit; the others' *lane.hit is
+/// left unspecified (a lane's filter is handed each voxel it passes there).
 /// Lanes the packet's exact arithmetic cannot take (the eye's main plane cuts the node, or the
 /// node is so coarse that a value could exceed 2^52) are traced by the scalar traversal on the node
 /// instead; `scalarLanes`, when given, receives them (bit i: lane i).

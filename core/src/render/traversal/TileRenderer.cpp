@@ -34,7 +34,7 @@ struct PacketPixels {
     std::vector<QuantizedRay> q;
     std::vector<TraversalHit> hit;             ///< valid where `done` has bit k
     std::vector<SmoothSurface::RayState> sray;  ///< smooth surfaces: each filter's state, carried from node to node
-    std::vector<VoxelFilter> filter;
+    std::vector<VoxelFilter> filter;            ///< smooth surfaces: the test of pixel k's sray[k] (set once: sray does not move)
     std::vector<std::uint64_t> traced;      ///< bit k: pixel k's ray goes through the packets
     std::vector<std::uint64_t> done;        ///< bit k: pixel k's hit is found
     std::vector<std::uint64_t> nodePixels;  ///< `words` words per frontier node i: the pixels of its rectangle
@@ -42,6 +42,9 @@ struct PacketPixels {
         : side(tileSide), words((std::size_t(tileSide) * std::size_t(tileSide) + 63) / 64), dir(64 * words),
           q(64 * words), hit(64 * words), sray(64 * words), filter(64 * words), traced(words), done(words),
           nodePixels(64 * words) {}
+    PacketPixels(int tileSide, const SmoothSurface& smooth) : PacketPixels(tileSide) {
+        for (std::size_t k = 0; k < filter.size(); ++k) filter[k] = smooth.filter(sray[k]);
+    }
     void clear() {
         std::fill(traced.begin(), traced.end(), 0);
         std::fill(done.begin(), done.end(), 0);
@@ -121,7 +124,12 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
         std::vector<StartNode> starts;
         ShadeMemo memo;  // for the group's tiles
         std::vector<std::uint64_t> colMask, rowMask;
-        PacketPixels packet(T);
+        PacketPixels packet(T, smooth);
+        // Smooth surfaces: the ray state and test of the pixel traced alone (set once; the
+        // state is assigned per pixel).
+        SmoothSurface::RayState sray;
+        const VoxelFilter filter = smooth.filter(sray);
+        const VoxelFilter* fp = smoothOn ? &filter : nullptr;
         const int gx = int(g % std::size_t(groupsX)), gy = int(g / std::size_t(groupsX));
         const int gx0 = gx * G * T, gy0 = gy * G * T;
         const int gx1 = std::min(gx0 + G * T, camera.width), gy1 = std::min(gy0 + G * T, camera.height);
@@ -232,23 +240,14 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                         ++raysCommon;
                         const std::size_t k = std::size_t((y - y0) * T + (x - x0));
                         packet.traced[k / 64] |= std::uint64_t(1) << (k % 64);
-                        if (smoothOn) {
-                            packet.sray[k] = SmoothSurface::RayState(rays.world(x, y, dir));
-                            packet.filter[k] = smooth.filter(packet.sray[k]);
-                        }
+                        if (smoothOn) packet.sray[k] = SmoothSurface::RayState(rays.world(x, y, dir));
                         continue;
                     }
                     // Smooth surfaces: the interpolant's test runs inside the traversal, on
                     // the boundary voxels in the ray's visiting order (the same as full's,
                     // by cover and order), instead of proposing the first and starting over
                     // from the root when it is passed (writePixelHit then keeps the hit).
-                    SmoothSurface::RayState sray;
-                    VoxelFilter filter;
-                    if (smoothOn) {
-                        sray = SmoothSurface::RayState(rays.world(x, y, dir));
-                        filter = smooth.filter(sray);
-                    }
-                    const VoxelFilter* fp = smoothOn ? &filter : nullptr;
+                    if (smoothOn) sray = SmoothSurface::RayState(rays.world(x, y, dir));
                     if (q.sign != s) {
                         // Another sign pattern: the frontier's order may not be this ray's.
                         ++raysFull;
