@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
+#include <random>
 #include <cmath>
 #include <map>
 #include <limits>
@@ -212,4 +214,79 @@ TEST(SmoothSurface, ColouringByHeightFollowsTheHitPointNotTheVoxel) {
     }
     ASSERT_GT(seen, 50u);
     EXPECT_GT(varying, seen * 3 / 4) << "voxels whose pixels show more than one colour, of " << seen << " drawn in 4 pixels or more";
+}
+
+TEST(SmoothSurface, RaysTestedTogetherGetEachRaysOwnTestBitForBit) {
+    // testLanes (with AVX-512: the clip, the cubic and the search's first steps eight rays at a
+    // time) against test() ray by ray: the result, every field of the hit and the carried side,
+    // bit for bit, for 1 .. 16 rays through one voxel. Rays aim at random points of the voxel
+    // (some just outside it, so that the clip fails), from eyes near and far, some parallel to
+    // an axis or two (a zero direction component: clip's special case), carrying no side yet
+    // or either side. On a processor without AVX-512 both are test().
+    std::mt19937_64 rng(23);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    int compared = 0, accepted = 0, refused = 0;
+    for (const Octree* tree : {&smoothNoise(), &smoothSphere(), &smoothTorus()}) {
+        const SmoothSurface surface(*tree, smoothSettings());
+        ASSERT_TRUE(surface.active());
+        std::vector<std::pair<ivec3, std::uint32_t>> voxels;
+        tree->forEachVoxel([&](const ivec3& cell, std::uint32_t v) {
+            if (tree->corners()[v] != 0) voxels.emplace_back(cell, v);
+        });
+        ASSERT_FALSE(voxels.empty());
+        const double side = tree->voxelSize();
+        for (int trial = 0; trial < 3000; ++trial) {
+            const auto& [cell, voxel] = voxels[std::size_t(rng() % voxels.size())];
+            const dvec3 lo = tree->cubeOrigin + dvec3(cell) * side;
+            const unsigned count = 1 + unsigned(rng() % 16);
+            std::vector<SmoothSurface::RayState> one(count), many(count);
+            std::vector<TraversalHit> hitOne(count), hitMany(count);
+            for (unsigned k = 0; k < count; ++k) {
+                // A target in the voxel widened by a tenth on each side.
+                const dvec3 target = lo + side * dvec3(unit(rng) * 1.2 - 0.1, unit(rng) * 1.2 - 0.1, unit(rng) * 1.2 - 0.1);
+                dvec3 dir(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5);
+                const unsigned kind = unsigned(rng() % 8);
+                if (kind == 0) dir.x = 0.0;
+                if (kind == 1) dir.y = dir.z = 0.0;
+                if (kind == 2) dir.z = -0.0;
+                dir = glm::normalize(dir);
+                // The eye: far off, a voxel or two off, or inside the voxel.
+                const double back = kind == 3 ? side * 0.3 : kind == 4 ? side * 1.5 : side * (2.0 + 500.0 * unit(rng));
+                Ray r{target - back * dir, dir};
+                one[k] = SmoothSurface::RayState(r);
+                one[k].side = int(rng() % 3) - 1;
+                many[k] = one[k];
+                TraversalHit h;
+                h.voxel = voxel;
+                h.cell = cell;
+                hitOne[k] = hitMany[k] = h;
+            }
+            std::vector<SmoothSurface::RayState*> states(count);
+            std::vector<TraversalHit*> hits(count);
+            for (unsigned k = 0; k < count; ++k) {
+                states[k] = &many[k];
+                hits[k] = &hitMany[k];
+            }
+            const unsigned got = surface.testLanes(states.data(), hits.data(), count);
+            for (unsigned k = 0; k < count; ++k) {
+                const int sideBefore = one[k].side;
+                const bool want = surface.test(one[k], hitOne[k]);
+                const std::string what = "trial " + std::to_string(trial) + " ray " + std::to_string(k) + " of " +
+                                         std::to_string(count) + ", side before " + std::to_string(sideBefore);
+                ASSERT_EQ(bool(got >> k & 1u), want) << what;
+                ASSERT_EQ(many[k].side, one[k].side) << what;
+                ASSERT_EQ(hitMany[k].smooth, hitOne[k].smooth) << what;
+                ASSERT_EQ(std::bit_cast<std::uint64_t>(hitMany[k].distance), std::bit_cast<std::uint64_t>(hitOne[k].distance)) << what;
+                for (int a = 0; a < 3; ++a)
+                    ASSERT_EQ(std::bit_cast<std::uint32_t>(hitMany[k].normal[a]), std::bit_cast<std::uint32_t>(hitOne[k].normal[a])) << what;
+                ASSERT_EQ(std::bit_cast<std::uint32_t>(hitMany[k].zCells), std::bit_cast<std::uint32_t>(hitOne[k].zCells)) << what;
+                ++compared;
+                ++(want ? accepted : refused);
+            }
+        }
+    }
+    // Every outcome occurs often.
+    EXPECT_GT(accepted, compared / 10);
+    EXPECT_GT(refused, compared / 10);
+    EXPECT_GT(compared, 40000);
 }

@@ -1,9 +1,13 @@
 #include "octrace/render/SmoothSurface.h"
 
 #include <algorithm>
+#include <bit>
 #include <array>
 #include <cmath>
 #include <limits>
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
 
 namespace octrace {
 namespace {
@@ -14,9 +18,17 @@ inline int sideOf(double v) { return v >= 0.0 ? 1 : 0; }
 /// float32 resolves at the distances drawn (its unit in the last place is 6e-8 of the distance).
 constexpr double kCrossingTolerance = 1e-7;
 
+/// testLanes takes the rays of a voxel together (eight at a time, AVX-512) from this many on;
+/// below it, gathering their states into registers costs what the lanes save (the tile
+/// renderer's smooth frames: CT skin, whose voxels meet two rays of a packet on average, drew
+/// 3% slower with 2, T at its default view 2% faster with 2 and 4.5% with 4).
+constexpr unsigned kLanesTogether = 4;
+
 /// The interpolant along p(u) = entry + u dir as a cubic c[0] + c[1] u + c[2] u^2 + c[3] u^3.
 struct Cubic {
     double c[4] = {0, 0, 0, 0};
+    Cubic() = default;
+    /// The coefficients as written out below (the lanes' version computes them so, lane by lane).
     Cubic(const double d[8], const dvec3& e, const dvec3& dir) {
         // The weight of the lower / upper corner along axis a, linear in u: (w0, w1) with
         // w(u) = w0 + w1 u. Contracted one axis at a time (z, then y, then x): linear, quadratic,
@@ -136,31 +148,30 @@ struct VoxelSpan {
     dvec3 entry{0.0}, dir{0.0};
 };
 
-/// The fast search: the cubic's extrema split the span into monotone pieces; the first piece
-/// whose end lies on the other side holds the crossing, found by Newton's method from the
-/// regula falsi point inside the bracket, closed to kCrossingTolerance.
-/// `side`: the carried side (-1 none: the entry's), on return the exit side when there is no
-/// crossing. Returns whether there is one, at `u` voxels from the entry.
-bool cubicCrossing(const VoxelSpan& s, int& side, double& u) {
-    const Cubic f(s.d, s.entry, s.dir);
+/// How cubicCrossing's first steps decide a voxel.
+enum class Start { None, Entry, Search };
+
+/// cubicCrossing's first steps (the lanes' version, SmoothSurface::testLanes, takes the same
+/// steps lane by lane): the carried side, a crossing at the entry, or none by the Bernstein bound.
+Start crossingStart(const Cubic& f, double span, int& side) {
     if (side < 0) side = sideOf(f(0.0));
-    if (sideOf(f(0.0)) != side) {
-        u = 0.0;
-        return true;
-    }
+    if (sideOf(f(0.0)) != side) return Start::Entry;
     // The cubic on [0, span] in Bernstein form: f is a convex combination of the four
     // coefficients (with positive weights inside the span, the end coefficients at its ends),
     // so when all four lie on the carried side, so does f over the whole span: no crossing,
     // and the exit side is the carried one. Most voxels the ray passes are decided here.
-    {
-        const double h = s.span * (1.0 / 3.0);
-        const double b0 = f.c[0], b1 = b0 + f.c[1] * h, b2 = b1 + (f.c[1] + f.c[2] * s.span) * h;
-        const double b3 = f(s.span);
-        if (side ? std::min({b0, b1, b2, b3}) >= 0.0 : std::max({b0, b1, b2, b3}) < 0.0) return false;
-    }
+    const double h = span * (1.0 / 3.0);
+    const double b0 = f.c[0], b1 = b0 + f.c[1] * h, b2 = b1 + (f.c[1] + f.c[2] * span) * h;
+    const double b3 = f(span);
+    if (side ? std::min({b0, b1, b2, b3}) >= 0.0 : std::max({b0, b1, b2, b3}) < 0.0) return Start::None;
+    return Start::Search;
+}
+
+/// The rest of cubicCrossing, once crossingStart has said Search.
+bool cubicSearch(const Cubic& f, double span, int& side, double& u) {
     double cuts[3];
-    const int n = f.extrema(s.span, cuts);
-    cuts[n] = s.span;
+    const int n = f.extrema(span, cuts);
+    cuts[n] = span;
     double lo = 0.0, flo = f(0.0);
     for (int i = 0; i <= n; ++i) {
         double hi = cuts[i], fhi = f(hi);
@@ -186,8 +197,23 @@ bool cubicCrossing(const VoxelSpan& s, int& side, double& u) {
         u = hi;
         return true;
     }
-    side = sideOf(f(s.span));
+    side = sideOf(f(span));
     return false;
+}
+
+/// The fast search: the cubic's extrema split the span into monotone pieces; the first piece
+/// whose end lies on the other side holds the crossing, found by Newton's method from the
+/// regula falsi point inside the bracket, closed to kCrossingTolerance.
+/// `side`: the carried side (-1 none: the entry's), on return the exit side when there is no
+/// crossing. Returns whether there is one, at `u` voxels from the entry.
+bool cubicCrossing(const VoxelSpan& s, int& side, double& u) {
+    const Cubic f(s.d, s.entry, s.dir);
+    switch (crossingStart(f, s.span, side)) {
+        case Start::None: return false;
+        case Start::Entry: u = 0.0; return true;
+        case Start::Search: break;
+    }
+    return cubicSearch(f, s.span, side, u);
 }
 
 /// The reference search, as cubicCrossing but by a march of equal steps over the span with the
@@ -219,6 +245,125 @@ bool marchedCrossing(const VoxelSpan& s, int& side, double& u) {
     return false;
 }
 
+
+/// What the first steps of test() give for up to eight rays in one voxel (testLanes).
+struct LaneStarts {
+    alignas(64) double t0[8], span[8], entry[3][8], c[4][8];
+    int side[8];          ///< the carried side after crossingStart
+    unsigned clipped = 0;  ///< lanes whose ray meets the voxel's box (clip)
+    unsigned entry0 = 0;   ///< of those, the crossing at the entry (Start::Entry)
+    unsigned search = 0;   ///< of those, Start::Search
+};
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#define OCTRACE_SMOOTH_AVX512 1
+// The lanes' arithmetic (a lambda would not take startEight's target).
+[[gnu::target("avx512f")]] inline __m512d mulL(__m512d x, __m512d y) { return _mm512_mul_pd(x, y); }
+[[gnu::target("avx512f")]] inline __m512d addL(__m512d x, __m512d y) { return _mm512_add_pd(x, y); }
+[[gnu::target("avx512f")]] inline __m512d negL(__m512d x) {  // -x: the sign flipped, as C++'s unary minus
+    return _mm512_castsi512_pd(_mm512_xor_si512(_mm512_castpd_si512(x), _mm512_set1_epi64(std::int64_t(0x8000000000000000ull))));
+}
+/// Cubic::operator() lane by lane.
+[[gnu::target("avx512f")]] inline __m512d cubicL(const __m512d c[4], __m512d u) {
+    return addL(mulL(addL(mulL(addL(mulL(c[3], u), c[2]), u), c[1]), u), c[0]);
+}
+
+/// SmoothSurface::clip, the Cubic and crossingStart for `n` (1 .. 8) rays in one voxel, in
+/// AVX-512 registers: every double the scalar code computes is computed here by the same
+/// operation on the same operands in the same order (no fused multiply-add: the build passes
+/// -ffp-contract=off), every comparison with the same predicate (false on NaN, as C++'s), and
+/// std::max, std::min and their lists resolved as libstdc++ does (the first of equals), so each
+/// lane gets the scalar code's bits. `lo`, `l`, `h`: the voxel's lower corner and its padded
+/// slabs per axis, as clip computes them.
+[[gnu::target("avx512f")]] void startEight(const SmoothSurface::RayState* const* rays, unsigned n, const double lo[3],
+                                            const double l[3], const double h[3], double inverseVoxel,
+                                            const double d[8], LaneStarts& out) {
+    alignas(64) double o[3][8], inv[3][8], dir[3][8];
+    alignas(64) std::int64_t side[8];
+    for (unsigned k = 0; k < 8; ++k) {
+        const SmoothSurface::RayState& r = *rays[k < n ? k : 0];  // idle lanes repeat lane 0
+        for (int a = 0; a < 3; ++a) {
+            o[a][k] = r.world.origin[a];
+            inv[a][k] = r.inverse[a];
+            dir[a][k] = r.world.direction[a];
+        }
+        side[k] = r.side;
+    }
+    const __mmask8 lanes = __mmask8((1u << n) - 1u);
+    const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0);
+    // clip: the slabs axis by axis.
+    __m512d tin = zero, tout = _mm512_set1_pd(std::numeric_limits<double>::infinity());
+    __mmask8 outside = 0;
+    __m512d O[3], D[3];
+    for (int a = 0; a < 3; ++a) {
+        O[a] = _mm512_load_pd(o[a]);
+        D[a] = _mm512_load_pd(dir[a]);
+        const __m512d I = _mm512_load_pd(inv[a]), L = _mm512_set1_pd(l[a]), H = _mm512_set1_pd(h[a]);
+        const __mmask8 parallel = _mm512_cmp_pd_mask(D[a], zero, _CMP_EQ_OQ);
+        outside |= parallel & (_mm512_cmp_pd_mask(O[a], L, _CMP_LT_OQ) | _mm512_cmp_pd_mask(O[a], H, _CMP_GT_OQ));
+        const __m512d ta = _mm512_mul_pd(_mm512_sub_pd(L, O[a]), I), tb = _mm512_mul_pd(_mm512_sub_pd(H, O[a]), I);
+        const __mmask8 swap = _mm512_cmp_pd_mask(ta, tb, _CMP_GT_OQ);
+        const __m512d near = _mm512_mask_blend_pd(swap, ta, tb), far = _mm512_mask_blend_pd(swap, tb, ta);
+        tin = _mm512_mask_mov_pd(tin, _mm512_cmp_pd_mask(tin, near, _CMP_LT_OQ) & ~parallel, near);   // std::max(tin, near)
+        tout = _mm512_mask_mov_pd(tout, _mm512_cmp_pd_mask(far, tout, _CMP_LT_OQ) & ~parallel, far);  // std::min(tout, far)
+    }
+    const __mmask8 clipped = _mm512_cmp_pd_mask(tout, tin, _CMP_GE_OQ) & ~outside & lanes;
+    const __m512d iv = _mm512_set1_pd(inverseVoxel);
+    const __m512d span = _mm512_mul_pd(_mm512_sub_pd(tout, tin), iv);
+    __m512d E[3];
+    for (int a = 0; a < 3; ++a)
+        E[a] = _mm512_mul_pd(_mm512_sub_pd(_mm512_add_pd(O[a], _mm512_mul_pd(tin, D[a])), _mm512_set1_pd(lo[a])), iv);
+    // The Cubic, as its constructor writes it out: (w0, w1) per axis and end.
+    const __m512d z0[2] = {_mm512_sub_pd(one, E[2]), negL(D[2])}, z1[2] = {E[2], D[2]};
+    const __m512d y0[2] = {_mm512_sub_pd(one, E[1]), negL(D[1])}, y1[2] = {E[1], D[1]};
+    const __m512d x0[2] = {_mm512_sub_pd(one, E[0]), negL(D[0])}, x1[2] = {E[0], D[0]};
+    __m512d hx[2][3];
+    for (int x = 0; x < 2; ++x) {
+        __m512d g[2][2];
+        for (int y = 0; y < 2; ++y) {
+            const __m512d A = _mm512_set1_pd(d[(x << 2) | (y << 1)]), B = _mm512_set1_pd(d[(x << 2) | (y << 1) | 1]);
+            g[y][0] = addL(mulL(A, z0[0]), mulL(B, z1[0]));
+            g[y][1] = addL(mulL(A, z0[1]), mulL(B, z1[1]));
+        }
+        hx[x][0] = addL(mulL(g[0][0], y0[0]), mulL(g[1][0], y1[0]));
+        hx[x][1] = addL(addL(addL(mulL(g[0][0], y0[1]), mulL(g[0][1], y0[0])), mulL(g[1][0], y1[1])), mulL(g[1][1], y1[0]));
+        hx[x][2] = addL(mulL(g[0][1], y0[1]), mulL(g[1][1], y1[1]));
+    }
+    const __m512d c0 = addL(mulL(hx[0][0], x0[0]), mulL(hx[1][0], x1[0]));
+    const __m512d c1 = addL(addL(addL(mulL(hx[0][0], x0[1]), mulL(hx[0][1], x0[0])), mulL(hx[1][0], x1[1])), mulL(hx[1][1], x1[0]));
+    const __m512d c2 = addL(addL(addL(mulL(hx[0][1], x0[1]), mulL(hx[0][2], x0[0])), mulL(hx[1][1], x1[1])), mulL(hx[1][2], x1[0]));
+    const __m512d c3 = addL(mulL(hx[0][2], x0[1]), mulL(hx[1][2], x1[1]));
+    const __m512d c[4] = {c0, c1, c2, c3};
+    // crossingStart: the carried side, the entry, the Bernstein bound.
+    const __m512i S = _mm512_load_si512(side);
+    const __mmask8 none = _mm512_cmplt_epi64_mask(S, _mm512_setzero_si512());
+    const __mmask8 above0 = _mm512_cmp_pd_mask(cubicL(c, zero), zero, _CMP_GE_OQ);  // sideOf(f(0))
+    const __mmask8 above = (none & above0) | (~none & _mm512_cmpeq_epi64_mask(S, _mm512_set1_epi64(1)));
+    const __mmask8 entry0 = above0 ^ above;
+    const __m512d third = mulL(span, _mm512_set1_pd(1.0 / 3.0));
+    const __m512d b0 = c0, b1 = addL(b0, mulL(c1, third)), b2 = addL(b1, mulL(addL(c1, mulL(c2, span)), third));
+    const __m512d b3 = cubicL(c, span);
+    // std::min({b0, b1, b2, b3}) and std::max(...): the first of the least / greatest.
+    __m512d lowest = b0, highest = b0;
+    for (const __m512d b : {b1, b2, b3}) {
+        lowest = _mm512_mask_mov_pd(lowest, _mm512_cmp_pd_mask(b, lowest, _CMP_LT_OQ), b);
+        highest = _mm512_mask_mov_pd(highest, _mm512_cmp_pd_mask(highest, b, _CMP_LT_OQ), b);
+    }
+    const __mmask8 kept = (above & _mm512_cmp_pd_mask(lowest, zero, _CMP_GE_OQ)) | (~above & _mm512_cmp_pd_mask(highest, zero, _CMP_LT_OQ));
+    out.clipped = clipped;
+    out.entry0 = clipped & entry0;
+    out.search = clipped & ~entry0 & ~kept;
+    _mm512_store_pd(out.t0, tin);
+    _mm512_store_pd(out.span, span);
+    for (int a = 0; a < 3; ++a) _mm512_store_pd(out.entry[a], E[a]);
+    _mm512_store_pd(out.c[0], c0);
+    _mm512_store_pd(out.c[1], c1);
+    _mm512_store_pd(out.c[2], c2);
+    _mm512_store_pd(out.c[3], c3);
+    for (unsigned k = 0; k < 8; ++k) out.side[k] = int(above >> k & 1u);
+}
+#endif
+
 }  // namespace
 
 template <class Search>
@@ -238,6 +383,52 @@ bool SmoothSurface::testWith(RayState& ray, TraversalHit& hit, const Search& sea
 // Flattened: the clip, the corners' decoding, the search and the acceptance inline (a million
 // calls a frame and more; each call spills the search's registers).
 [[gnu::flatten]] bool SmoothSurface::test(RayState& ray, TraversalHit& hit) const { return testWith(ray, hit, cubicCrossing); }
+
+unsigned SmoothSurface::testLanes(RayState* const* rays, TraversalHit* const* hits, unsigned count) const {
+    unsigned accepted = 0;
+#if defined(OCTRACE_SMOOTH_AVX512)
+    static const bool avx512 = __builtin_cpu_supports("avx512f");
+    const TraversalHit& first = *hits[0];
+    const std::uint64_t code = active_ && count >= kLanesTogether && !first.nodeHit() && first.leafShift == 0 ? tree_.corners()[first.voxel] : 0;
+    if (avx512 && code != 0) {
+        // The voxel's part of testWith and clip, once.
+        double d[8];
+        decodeCorners(code, d);
+        const double side = tree_.voxelSize();
+        const dvec3 lo = tree_.cubeOrigin + dvec3(first.cell) * side;
+        const double pad = 1e-7 * side;
+        double l[3], h[3];
+        for (int a = 0; a < 3; ++a) {
+            l[a] = lo[a] - pad;
+            h[a] = lo[a] + side + pad;
+        }
+        const double lov[3] = {lo.x, lo.y, lo.z};
+        for (unsigned i = 0; i < count; i += 8) {
+            const unsigned n = std::min(count - i, 8u);
+            LaneStarts st;
+            startEight(rays + i, n, lov, l, h, inverseVoxel_, d, st);
+            for (unsigned rest = st.clipped; rest; rest &= rest - 1) {
+                const unsigned k = unsigned(std::countr_zero(rest));
+                RayState& ray = *rays[i + k];
+                ray.side = st.side[k];
+                double u = 0.0;
+                if (!(st.entry0 >> k & 1u)) {
+                    if (!(st.search >> k & 1u)) continue;  // no crossing (Start::None)
+                    Cubic f;
+                    for (int j = 0; j < 4; ++j) f.c[j] = st.c[j][k];
+                    if (!cubicSearch(f, st.span[k], ray.side, u)) continue;
+                }
+                accept(ray, *hits[i + k], d, st.t0[k], dvec3(st.entry[0][k], st.entry[1][k], st.entry[2][k]), u);
+                accepted |= 1u << (i + k);
+            }
+        }
+        return accepted;
+    }
+#endif
+    for (unsigned k = 0; k < count; ++k)
+        if (test(*rays[k], *hits[k])) accepted |= 1u << k;
+    return accepted;
+}
 
 bool SmoothSurface::testReference(RayState& ray, TraversalHit& hit) const { return testWith(ray, hit, marchedCrossing); }
 

@@ -51,6 +51,13 @@ public:
     /// when it accepts. Nodes drawn whole, coarse leaves and voxels without corners are accepted
     /// as they are.
     bool test(RayState& ray, TraversalHit& hit) const;
+    /// test() of one voxel for `count` rays (1 .. 32) that meet it (a packet's lanes): hit k is
+    /// *hits[k], with the voxel's fields set alike in all, ray k *rays[k]. Returns the rays
+    /// accepted (bit k); every ray's result, hit and carried side are test()'s, bit for bit. With
+    /// AVX-512, the voxel's corners are decoded once and the box clip, the cubic and the first
+    /// steps of the search run eight rays at a time; the rest of the search, for the rays that
+    /// need it, and the hit are test()'s own code.
+    unsigned testLanes(RayState* const* rays, TraversalHit* const* hits, unsigned count) const;
     /// The reference test, written independently of test(): the trilinear interpolant evaluated
     /// directly (no polynomial) at kReferenceSteps equal steps over the ray's span in the voxel,
     /// the first step that changes side bisected to 1e-12 of a voxel, in float64.

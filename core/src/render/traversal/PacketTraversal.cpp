@@ -30,6 +30,7 @@ struct PacketSetup {
     int level = 0;
     int main = 0, u = 1, v = 2;
     std::uint8_t toOriginal[8] = {};  ///< canonical child index (hm, hu, hv) -> original child index
+    const SmoothSurface* smooth = nullptr;  ///< traversePacket's `smooth`
 };
 
 // Every value of the traversal below the node is a start value plus or minus terms of at most
@@ -168,14 +169,17 @@ void setupPacket(const StartNode& start, const PacketLane* lanes, unsigned count
 
 /// The lanes of `m` that take the voxel (index `voxel`, at `cell`, a leaf of side 2^leafShift
 /// voxels) as their hit: each lane's hit is set to it, then given to the lane's filter (none:
-/// taken); a lane whose filter passes the voxel goes on behind it, and its hit is written again
-/// at its next voxel (only the hits of lanes done are read). Out of line, once per voxel rather
-/// than per lane: the kernels are compiled for their instruction set, and what they call of
-/// std::function stays compiled for the baseline; around a call, a kernel saves and restores its
-/// vector registers.
+/// taken), or with `smooth` the lanes' states to smooth's test of them all at once; a lane whose
+/// filter passes the voxel goes on behind it, and its hit is written again at its next voxel
+/// (only the hits of lanes done are read). Out of line, once per voxel rather than per lane: the
+/// kernels are compiled for their instruction set, and what they call of std::function stays
+/// compiled for the baseline; around a call, a kernel saves and restores its vector registers.
 [[gnu::noinline]] unsigned acceptingLanes(const PacketLane* lanes, unsigned m, std::uint32_t voxel, const ivec3& cell,
-                                          int leafShift) {
+                                          int leafShift, const SmoothSurface* smooth) {
     unsigned accepted = 0;
+    SmoothSurface::RayState* states[kMaxPacketLanes];
+    TraversalHit* hits[kMaxPacketLanes];
+    unsigned n = 0;
     for (unsigned rest = m; rest; rest &= rest - 1) {
         const unsigned l = unsigned(__builtin_ctz(rest));
         TraversalHit& hit = *lanes[l].hit;
@@ -189,7 +193,18 @@ void setupPacket(const StartNode& start, const PacketLane* lanes, unsigned count
         hit.distance = 0.0;
         hit.normal = vec3(0.0f);
         hit.zCells = 0.0f;
-        if (!lanes[l].filter || (*lanes[l].filter)(hit)) accepted |= 1u << l;
+        if (smooth) {
+            states[n] = lanes[l].state;
+            hits[n++] = &hit;
+        } else if (!lanes[l].filter || (*lanes[l].filter)(hit)) {
+            accepted |= 1u << l;
+        }
+    }
+    if (smooth) {
+        // Bit i of the tested is the i-th lane of m.
+        unsigned tested = smooth->testLanes(states, hits, n);
+        for (unsigned rest = m; rest; rest &= rest - 1, tested >>= 1)
+            if (tested & 1u) accepted |= 1u << __builtin_ctz(rest);
     }
     return accepted;
 }
@@ -297,9 +312,11 @@ PacketIsa packetIsa() { return PacketIsa::Sse2; }
 #endif
 
 unsigned traversePacket(PacketIsa isa, const Octree& tree, const StartNode& start, const PacketLane* lanes,
-                        unsigned count, TraversalCounters& counters, const LodCut* cut, unsigned* scalarLanes) {
+                        unsigned count, TraversalCounters& counters, const LodCut* cut, unsigned* scalarLanes,
+                        const SmoothSurface* smooth) {
     if (cut && !cut->active()) cut = nullptr;
-    for (unsigned l = 0; l < count; ++l) assert(lanes[l].ray->meetsCube && (!lanes[l].filter || *lanes[l].filter));
+    for (unsigned l = 0; l < count; ++l)
+        assert(lanes[l].ray->meetsCube && (!lanes[l].filter || *lanes[l].filter) && (!smooth || lanes[l].state));
     PacketSetup p;
     unsigned scalar = 0;
 #if defined(OCTRACE_PACKET_X86)
@@ -309,6 +326,7 @@ unsigned traversePacket(PacketIsa isa, const Octree& tree, const StartNode& star
     const bool avx512 = false;
 #endif
     setupPacket(start, lanes, count, packetLanes(isa), avx512, p, scalar);
+    p.smooth = smooth;
     unsigned done = 0;
     if (scalarLanes) *scalarLanes = scalar;
     if (p.active) {

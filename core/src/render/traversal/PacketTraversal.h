@@ -2,6 +2,7 @@
 // Private to core: the discrete traversal of several rays at once (docs/dev/tile-renderer.md,
 // "Packets"). Each lane is exact: it finds the same hit as traverseFromNodes on the same node.
 #include "octrace/render/DiscreteTraversal.h"
+#include "octrace/render/SmoothSurface.h"
 
 namespace octrace {
 class LodCut;
@@ -27,11 +28,13 @@ unsigned packetLanes(PacketIsa isa);
 PacketIsa packetIsa();
 
 /// One lane: its quantized ray, its filter (smooth surfaces, as traverseFromNodes's; may be
-/// null) and where its hit goes.
+/// null), where its hit goes, and with smooth surfaces (traversePacket's `smooth`) the ray
+/// state that the filter tests.
 struct PacketLane {
     const QuantizedRay* ray = nullptr;
     const VoxelFilter* filter = nullptr;
     TraversalHit* hit = nullptr;
+    SmoothSurface::RayState* state = nullptr;
 };
 
 /// traverseFromNodes(tree, *lane.ray, &start, 1, counters, lane.filter, cut) for each of `count`
@@ -43,8 +46,10 @@ struct PacketLane {
 /// Lanes the packet's exact arithmetic cannot take (the eye's main plane cuts the node, or the
 /// node is so coarse that a value could exceed 2^52) are traced by the scalar traversal on the node
 /// instead; `scalarLanes`, when given, receives them (bit i: lane i).
+/// `smooth`, when given: every lane's filter is smooth's test() of the lane's `state`; the lanes
+/// that meet a voxel are then tested together (SmoothSurface::testLanes, the same results).
 unsigned traversePacket(PacketIsa isa, const Octree& tree, const StartNode& start, const PacketLane* lanes,
                         unsigned count, TraversalCounters& counters, const LodCut* cut = nullptr,
-                        unsigned* scalarLanes = nullptr);
+                        unsigned* scalarLanes = nullptr, const SmoothSurface* smooth = nullptr);
 
 }  // namespace octrace::detail

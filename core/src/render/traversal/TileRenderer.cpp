@@ -277,7 +277,8 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                 unsigned count[3] = {0, 0, 0};
                 for (std::size_t i = 0; i < kept; ++i) {
                     const auto flush = [&](int a) {
-                        const unsigned found = traversePacket(isa, tree, list[i].start, lanes[a], count[a], counters, cutp);
+                        const unsigned found = traversePacket(isa, tree, list[i].start, lanes[a], count[a], counters, cutp, nullptr,
+                                                             smoothOn ? &smooth : nullptr);
                         for (unsigned l = 0; l < count[a]; ++l)
                             if (found >> l & 1u) packet.done[owner[a][l] / 64] |= std::uint64_t(1) << (owner[a][l] % 64);
                         count[a] = 0;
@@ -287,7 +288,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                              m &= m - 1) {
                             const std::size_t k = w * 64 + std::size_t(std::countr_zero(m));
                             const int a = packet.q[k].main;
-                            lanes[a][count[a]] = PacketLane{&packet.q[k], smoothOn ? &packet.filter[k] : nullptr, &packet.hit[k]};
+                            lanes[a][count[a]] = PacketLane{&packet.q[k], smoothOn ? &packet.filter[k] : nullptr, &packet.hit[k], &packet.sray[k]};
                             owner[a][count[a]] = k;
                             if (++count[a] == width) flush(a);
                         }
