@@ -1,8 +1,9 @@
 #include "octrace/render/SmoothSurface.h"
 
 #include <algorithm>
-#include <bit>
 #include <array>
+#include <bit>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -22,7 +23,7 @@ constexpr double kCrossingTolerance = 1e-7;
 /// below it, gathering their states into registers costs what the lanes save (the tile
 /// renderer's smooth frames: CT skin, whose voxels meet two rays of a packet on average, drew
 /// 3% slower with 2, T at its default view 2% faster with 2 and 4.5% with 4).
-constexpr unsigned kLanesTogether = 4;
+[[maybe_unused]] constexpr unsigned kLanesTogether = 4;
 
 /// The interpolant along p(u) = entry + u dir as a cubic c[0] + c[1] u + c[2] u^2 + c[3] u^3.
 struct Cubic {
@@ -345,7 +346,8 @@ struct LaneStarts {
     const __m512d b3 = cubicL(c, span);
     // std::min({b0, b1, b2, b3}) and std::max(...): the first of the least / greatest.
     __m512d lowest = b0, highest = b0;
-    for (const __m512d b : {b1, b2, b3}) {
+    const __m512d later[3] = {b1, b2, b3};
+    for (const __m512d b : later) {
         lowest = _mm512_mask_mov_pd(lowest, _mm512_cmp_pd_mask(b, lowest, _CMP_LT_OQ), b);
         highest = _mm512_mask_mov_pd(highest, _mm512_cmp_pd_mask(highest, b, _CMP_LT_OQ), b);
     }
@@ -389,6 +391,7 @@ unsigned SmoothSurface::testLanes(RayState* const* rays, TraversalHit* const* hi
 #if defined(OCTRACE_SMOOTH_AVX512)
     static const bool avx512 = __builtin_cpu_supports("avx512f");
     const TraversalHit& first = *hits[0];
+    for (unsigned k = 1; k < count; ++k) assert(hits[k]->voxel == first.voxel && hits[k]->cell == first.cell);
     const std::uint64_t code = active_ && count >= kLanesTogether && !first.nodeHit() && first.leafShift == 0 ? tree_.corners()[first.voxel] : 0;
     if (avx512 && code != 0) {
         // The voxel's part of testWith and clip, once.

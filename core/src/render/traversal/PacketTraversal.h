@@ -46,8 +46,9 @@ struct PacketLane {
 /// Lanes the packet's exact arithmetic cannot take (the eye's main plane cuts the node, or the
 /// node is so coarse that a value could exceed 2^52) are traced by the scalar traversal on the node
 /// instead; `scalarLanes`, when given, receives them (bit i: lane i).
-/// `smooth`, when given: every lane's filter is smooth's test() of the lane's `state`; the lanes
-/// that meet a voxel are then tested together (SmoothSurface::testLanes, the same results).
+/// `smooth`, when given: every lane's filter must be smooth's test() of the lane's `state` (the
+/// packet then tests the lanes that meet a voxel together, SmoothSurface::testLanes, the same
+/// results, and leaves the filters to the lanes traced by the scalar traversal).
 unsigned traversePacket(PacketIsa isa, const Octree& tree, const StartNode& start, const PacketLane* lanes,
                         unsigned count, TraversalCounters& counters, const LodCut* cut = nullptr,
                         unsigned* scalarLanes = nullptr, const SmoothSurface* smooth = nullptr);
