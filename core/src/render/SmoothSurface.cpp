@@ -15,6 +15,23 @@ namespace {
 
 inline int sideOf(double v) { return v >= 0.0 ? 1 : 0; }
 
+/// A voxel's box as SmoothSurface::clip (and the lanes' version) takes it: its lower corner
+/// and its slabs per axis, a hair wider than the box (the quantized ray that proposed it may
+/// graze where the world ray passes a rounding error outside).
+struct VoxelSlabs {
+    dvec3 lo;
+    double l[3], h[3];
+    VoxelSlabs(const Octree& tree, const ivec3& cell) {
+        const double side = tree.voxelSize();
+        lo = tree.cubeOrigin + dvec3(cell) * side;
+        const double pad = 1e-7 * side;
+        for (int a = 0; a < 3; ++a) {
+            l[a] = lo[a] - pad;
+            h[a] = lo[a] + side + pad;
+        }
+    }
+};
+
 /// How close (in voxels) the fast test brackets a crossing: far below what a depth buffer of
 /// float32 resolves at the distances drawn (its unit in the last place is 6e-8 of the distance).
 constexpr double kCrossingTolerance = 1e-7;
@@ -94,14 +111,10 @@ SmoothSurface::SmoothSurface(const Octree& tree, const RenderSettings& settings)
 
 bool SmoothSurface::clip(const RayState& state, const ivec3& cell, double& t0, double& span, dvec3& entry) const {
     const Ray& ray = state.world;
-    const double side = tree_.voxelSize();
-    const dvec3 lo = tree_.cubeOrigin + dvec3(cell) * side;
-    // A hair wider than the box: the quantized ray that proposed it may graze where the world
-    // ray passes a rounding error outside.
-    const double pad = 1e-7 * side;
+    const VoxelSlabs box(tree_, cell);
     double tin = 0.0, tout = std::numeric_limits<double>::infinity();
     for (int a = 0; a < 3; ++a) {
-        const double l = lo[a] - pad, h = lo[a] + side + pad;
+        const double l = box.l[a], h = box.h[a];
         if (ray.direction[a] == 0.0) {
             if (ray.origin[a] < l || ray.origin[a] > h) return false;
             continue;
@@ -114,7 +127,7 @@ bool SmoothSurface::clip(const RayState& state, const ivec3& cell, double& t0, d
     if (!(tout >= tin)) return false;
     t0 = tin;
     span = (tout - tin) * inverseVoxel_;
-    entry = (ray.origin + tin * ray.direction - lo) * inverseVoxel_;
+    entry = (ray.origin + tin * ray.direction - box.lo) * inverseVoxel_;
     return true;
 }
 
@@ -274,11 +287,9 @@ struct LaneStarts {
 /// operation on the same operands in the same order (no fused multiply-add: the build passes
 /// -ffp-contract=off), every comparison with the same predicate (false on NaN, as C++'s), and
 /// std::max, std::min and their lists resolved as libstdc++ does (the first of equals), so each
-/// lane gets the scalar code's bits. `lo`, `l`, `h`: the voxel's lower corner and its padded
-/// slabs per axis, as clip computes them.
-[[gnu::target("avx512f")]] void startEight(const SmoothSurface::RayState* const* rays, unsigned n, const double lo[3],
-                                            const double l[3], const double h[3], double inverseVoxel,
-                                            const double d[8], LaneStarts& out) {
+/// lane gets the scalar code's bits.
+[[gnu::target("avx512f")]] void startEight(const SmoothSurface::RayState* const* rays, unsigned n, const VoxelSlabs& box,
+                                            double inverseVoxel, const double d[8], LaneStarts& out) {
     alignas(64) double o[3][8], inv[3][8], dir[3][8];
     alignas(64) std::int64_t side[8];
     for (unsigned k = 0; k < 8; ++k) {
@@ -299,7 +310,7 @@ struct LaneStarts {
     for (int a = 0; a < 3; ++a) {
         O[a] = _mm512_load_pd(o[a]);
         D[a] = _mm512_load_pd(dir[a]);
-        const __m512d I = _mm512_load_pd(inv[a]), L = _mm512_set1_pd(l[a]), H = _mm512_set1_pd(h[a]);
+        const __m512d I = _mm512_load_pd(inv[a]), L = _mm512_set1_pd(box.l[a]), H = _mm512_set1_pd(box.h[a]);
         const __mmask8 parallel = _mm512_cmp_pd_mask(D[a], zero, _CMP_EQ_OQ);
         outside |= parallel & (_mm512_cmp_pd_mask(O[a], L, _CMP_LT_OQ) | _mm512_cmp_pd_mask(O[a], H, _CMP_GT_OQ));
         const __m512d ta = _mm512_mul_pd(_mm512_sub_pd(L, O[a]), I), tb = _mm512_mul_pd(_mm512_sub_pd(H, O[a]), I);
@@ -313,7 +324,7 @@ struct LaneStarts {
     const __m512d span = _mm512_mul_pd(_mm512_sub_pd(tout, tin), iv);
     __m512d E[3];
     for (int a = 0; a < 3; ++a)
-        E[a] = _mm512_mul_pd(_mm512_sub_pd(_mm512_add_pd(O[a], _mm512_mul_pd(tin, D[a])), _mm512_set1_pd(lo[a])), iv);
+        E[a] = _mm512_mul_pd(_mm512_sub_pd(_mm512_add_pd(O[a], _mm512_mul_pd(tin, D[a])), _mm512_set1_pd(box.lo[a])), iv);
     // The Cubic, as its constructor writes it out: (w0, w1) per axis and end.
     const __m512d z0[2] = {_mm512_sub_pd(one, E[2]), negL(D[2])}, z1[2] = {E[2], D[2]};
     const __m512d y0[2] = {_mm512_sub_pd(one, E[1]), negL(D[1])}, y1[2] = {E[1], D[1]};
@@ -397,19 +408,11 @@ unsigned SmoothSurface::testLanes(RayState* const* rays, TraversalHit* const* hi
         // The voxel's part of testWith and clip, once.
         double d[8];
         decodeCorners(code, d);
-        const double side = tree_.voxelSize();
-        const dvec3 lo = tree_.cubeOrigin + dvec3(first.cell) * side;
-        const double pad = 1e-7 * side;
-        double l[3], h[3];
-        for (int a = 0; a < 3; ++a) {
-            l[a] = lo[a] - pad;
-            h[a] = lo[a] + side + pad;
-        }
-        const double lov[3] = {lo.x, lo.y, lo.z};
+        const VoxelSlabs box(tree_, first.cell);
         for (unsigned i = 0; i < count; i += 8) {
             const unsigned n = std::min(count - i, 8u);
             LaneStarts st;
-            startEight(rays + i, n, lov, l, h, inverseVoxel_, d, st);
+            startEight(rays + i, n, box, inverseVoxel_, d, st);
             for (unsigned rest = st.clipped; rest; rest &= rest - 1) {
                 const unsigned k = unsigned(std::countr_zero(rest));
                 RayState& ray = *rays[i + k];

@@ -167,6 +167,21 @@ void setupPacket(const StartNode& start, const PacketLane* lanes, unsigned count
     }
 }
 
+/// `hit` := the voxel `voxel` at `cell`, a leaf of side 2^leafShift voxels, field by field: a
+/// copy of a whole hit reads it back in wider pieces than its fields were written in, and waits
+/// for them (store forwarding); a filter reads it back field by field.
+inline void setVoxelHit(TraversalHit& hit, std::uint32_t voxel, const ivec3& cell, int leafShift) {
+    hit.voxel = voxel;
+    hit.cell = cell;
+    hit.leafShift = leafShift;
+    hit.node = kNoHit;
+    hit.level = 0;
+    hit.smooth = false;
+    hit.distance = 0.0;
+    hit.normal = vec3(0.0f);
+    hit.zCells = 0.0f;
+}
+
 /// The lanes of `m` that take the voxel (index `voxel`, at `cell`, a leaf of side 2^leafShift
 /// voxels) as their hit: each lane's hit is set to it, then given to the lane's filter (none:
 /// taken), or with `smooth` the lanes' states to smooth's test of them all at once; a lane whose
@@ -183,16 +198,7 @@ void setupPacket(const StartNode& start, const PacketLane* lanes, unsigned count
     for (unsigned rest = m; rest; rest &= rest - 1) {
         const unsigned l = unsigned(__builtin_ctz(rest));
         TraversalHit& hit = *lanes[l].hit;
-        // Field by field (read back narrower by the filter: no wait on store forwarding).
-        hit.voxel = voxel;
-        hit.cell = cell;
-        hit.leafShift = leafShift;
-        hit.node = kNoHit;
-        hit.level = 0;
-        hit.smooth = false;
-        hit.distance = 0.0;
-        hit.normal = vec3(0.0f);
-        hit.zCells = 0.0f;
+        setVoxelHit(hit, voxel, cell, leafShift);
         if (smooth) {
             states[n] = lanes[l].state;
             hits[n++] = &hit;
