@@ -276,25 +276,13 @@ void tracePixel(const Context& c, int x, int y, const std::size_t* partners, Sta
 /// rays are counted per run (PixelRays::raysMeetingCube).
 std::pair<int, int> fillOutsideSurface(const Context& c, int y, RenderStats& st) {
     Frame& f = c.frame;
-    const int W = f.width;
-    const auto [first, second] = c.rays.surfaceSpan(y);
-    const int lo = std::max(first, 0), hi = std::min(second, W - 1);
-    const std::uint32_t bg = c.backgroundSrgb;
-    auto fill = [&](int x0, int x1) {
-        if (x1 <= x0) return;
+    return c.rays.forRunsOutsideSurface(y, f.width, [&](int x0, int x1) {
         const std::size_t p = f.pixel(x0, y), n = std::size_t(x1 - x0);
         writeMissRun(f, p, n, c.settings);
-        if (c.srgb) std::fill_n(c.srgb + p, n, bg);
+        if (c.srgb) std::fill_n(c.srgb + p, n, c.backgroundSrgb);
         st.raysFull += n;
         st.rays += c.rays.raysMeetingCube(y, x0, x1);
-    };
-    if (lo > hi) {
-        fill(0, W);
-        return {1, 0};
-    }
-    fill(0, lo);
-    fill(hi + 1, W);
-    return {lo, hi};
+    });
 }
 
 /// Colour coherence: fills pixel p from its partners when both are known (traced, or filled by

@@ -87,6 +87,21 @@ public:
     /// The pixels x of row y for which mayHitSurface holds: first <= x <= second (first >
     /// second: none; the ends may lie outside the image).
     std::pair<int, int> surfaceSpan(int y) const { return surfaceSpans_[std::size_t(y)]; }
+    /// The pixels of row y (of an image `width` wide) outside surfaceSpan, as at most two runs:
+    /// calls run(x0, x1) for columns x0 .. x1-1 of each non-empty one. Returns the columns left,
+    /// clipped to the image (lo > hi: none).
+    template <class Run>
+    std::pair<int, int> forRunsOutsideSurface(int y, int width, const Run& run) const {
+        const auto [first, second] = surfaceSpan(y);
+        const int lo = std::max(first, 0), hi = std::min(second, width - 1);
+        if (lo > hi) {
+            run(0, width);
+            return {1, 0};
+        }
+        if (lo > 0) run(0, lo);
+        if (hi + 1 < width) run(hi + 1, width);
+        return {lo, hi};
+    }
 
 private:
     const Octree& tree_;
