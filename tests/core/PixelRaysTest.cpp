@@ -74,26 +74,63 @@ TEST(PixelRays, RenderingIntoAUsedFrameGivesTheFreshFrame) {
     }
 }
 
+namespace {
+/// The box of every leaf, the long way; checks that `t` has some.
+void expectOccupiedCellsAreTheLeaves(const Octree& t) {
+    ivec3 lo(INT_MAX), hi(INT_MIN);
+    std::size_t leaves = 0;
+    t.forEachLeaf([&](const ivec3& c, int shift, std::uint32_t) {
+        lo = glm::min(lo, c);
+        hi = glm::max(hi, c + ((1 << shift) - 1));
+        ++leaves;
+    });
+    ASSERT_GT(leaves, 0u);
+    ivec3 olo, ohi;
+    t.occupiedCells(olo, ohi);
+    EXPECT_EQ(olo, lo);
+    EXPECT_EQ(ohi, hi);
+}
+}  // namespace
+
 TEST(PixelRays, TheSurfaceBoxIsTheBoxOfEveryLeaf) {
     // Octree::occupiedCells skips nodes inside the box found so far; it must still give the
     // box of all leaves.
-    for (const Octree* t : {&sphereTree(), &torusTree(), &noiseTree()}) {
-        ivec3 lo(INT_MAX), hi(INT_MIN);
-        std::size_t leaves = 0;
-        t->forEachLeaf([&](const ivec3& c, int shift, std::uint32_t) {
-            lo = glm::min(lo, c);
-            hi = glm::max(hi, c + ((1 << shift) - 1));
-            ++leaves;
-        });
-        ASSERT_GT(leaves, 0u);
-        ivec3 olo, ohi;
-        t->occupiedCells(olo, ohi);
-        EXPECT_EQ(olo, lo);
-        EXPECT_EQ(ohi, hi);
-    }
+    for (const Octree* t : {&sphereTree(), &torusTree(), &noiseTree()}) expectOccupiedCellsAreTheLeaves(*t);
     Octree empty;
     ivec3 lo, hi;
     empty.occupiedCells(lo, hi);
+    EXPECT_GT(lo.x, hi.x);
+}
+
+// occupiedCells keeps its answer between frames: it must follow the octree's topology, depth
+// and form, and moves.
+TEST(PixelRays, TheKeptSurfaceBoxFollowsTheOctree) {
+    Octree t = noiseTree().copy();
+    expectOccupiedCellsAreTheLeaves(t);
+    expectOccupiedCellsAreTheLeaves(t);  // the kept answer
+    const Octree& torus = torusTree();
+    ivec3 nlo, nhi, tlo, thi;
+    t.occupiedCells(nlo, nhi);
+    torus.occupiedCells(tlo, thi);
+    ASSERT_TRUE(nlo != tlo || nhi != thi) << "the two scenes must have different boxes";
+    t.setTopology(std::vector<OctreeNode>(torus.nodes()), std::vector<Voxel>(torus.voxels()));
+    t.depth = torus.depth;
+    expectOccupiedCellsAreTheLeaves(t);
+    // The same nodes one level shallower: every cell halves.
+    t.depth = torus.depth - 1;
+    ivec3 slo, shi;
+    t.occupiedCells(slo, shi);
+    EXPECT_EQ(slo, tlo / 2);
+    EXPECT_EQ(shi, thi / 2);
+    t.depth = torus.depth;
+    Octree moved = std::move(t);
+    expectOccupiedCellsAreTheLeaves(moved);
+    Octree assigned;
+    assigned = std::move(moved);
+    expectOccupiedCellsAreTheLeaves(assigned);
+    assigned.setTopology({}, {});
+    ivec3 lo, hi;
+    assigned.occupiedCells(lo, hi);
     EXPECT_GT(lo.x, hi.x);
 }
 

@@ -114,6 +114,7 @@ void Octree::setTopology(std::vector<OctreeNode> nodes, std::vector<Voxel> voxel
     keepIfLength(attributes_.voxelMaterials, n);
     keepIfLength(attributes_.corners, n);
     summaries_ = std::vector<NodeSummary>{};
+    forgetOccupiedCells();
 }
 
 void Octree::setColours(std::vector<std::uint32_t> colours) {

@@ -40,6 +40,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -162,9 +163,10 @@ public:
     static constexpr int kIntBits = 14;
     static constexpr int kMaxDepth = kIntBits;
 
-    Octree() = default;
-    Octree(Octree&&) noexcept = default;
-    Octree& operator=(Octree&&) noexcept = default;
+    Octree();
+    Octree(Octree&&) noexcept;
+    Octree& operator=(Octree&&) noexcept;
+    ~Octree();
     Octree(const Octree&) = delete;
     Octree& operator=(const Octree&) = delete;
 
@@ -260,7 +262,8 @@ public:
 
     /// Smallest cell-space box [lo, hi] (inclusive) holding every boundary voxel; lo > hi
     /// when there is none. Computed without entering nodes that lie inside the box found so
-    /// far: O(voxels) at worst.
+    /// far: O(voxels) at worst; then kept for the same nodes, depth and form (renderers ask
+    /// for it every frame). Thread-safe.
     void occupiedCells(ivec3& lo, ivec3& hi) const;
     /// World box of the occupied cells (the surface's bounding box).
     Box3 occupiedBounds() const;
@@ -307,11 +310,16 @@ public:
     void validate() const;
 
 private:
+    /// occupiedCells' answer and what it was found for (OctreeBounds.cpp).
+    struct OccupiedCache;
+    void forgetOccupiedCells();
+    void findOccupiedCells(ivec3& lo, ivec3& hi) const;  ///< occupiedCells without the cache
     std::vector<OctreeNode> nodes_;
     std::vector<Voxel> voxels_;
     VoxelAttributes attributes_;
     std::vector<NodeSummary> summaries_;
     OctreeMetadata metadata_;
+    std::unique_ptr<OccupiedCache> occupied_;  ///< null only in an octree moved from
 };
 
 template <class F>
