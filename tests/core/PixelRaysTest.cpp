@@ -123,8 +123,14 @@ TEST(PixelRays, TheKeptSurfaceBoxFollowsTheOctree) {
     EXPECT_EQ(slo, tlo / 2);
     EXPECT_EQ(shi, thi / 2);
     t.depth = torus.depth;
+    expectOccupiedCellsAreTheLeaves(t.copy());  // a copy of a tree that keeps its box
     Octree moved = std::move(t);
     expectOccupiedCellsAreTheLeaves(moved);
+    // The tree moved from, given nodes again: it answers without keeping.
+    t.setTopology(std::vector<OctreeNode>(noiseTree().nodes()), std::vector<Voxel>(noiseTree().voxels()));
+    t.depth = noiseTree().depth;
+    expectOccupiedCellsAreTheLeaves(t);
+    expectOccupiedCellsAreTheLeaves(t);
     Octree assigned;
     assigned = std::move(moved);
     expectOccupiedCellsAreTheLeaves(assigned);

@@ -119,7 +119,8 @@ TEST(TileRenderer, VisitsFewerNodesThanFullOnTheFramedSurface) {
     EXPECT_LT(ts.nodesVisited, fs.nodesVisited);
 }
 
-/// RenderSettings::cancel: a render asked to stop before it starts draws no tile group; with
+/// RenderSettings::cancel: a render asked to stop before it starts draws no band of background
+/// rows and no tile group; with
 /// the flag present but false, the frame is the one drawn without it.
 TEST(TileRenderer, StopsWhenCancelledAndDrawsTheSameFrameWhenNot) {
     const Octree& t = noiseTree();

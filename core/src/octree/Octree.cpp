@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <mutex>
 #include <sstream>
 #include <utility>
 
@@ -163,6 +164,51 @@ void Octree::setMetadata(std::string_view key, std::string value) {
     const auto it = metadata_.find(key);
     if (it != metadata_.end()) it->second = std::move(value);
     else metadata_.emplace(std::string(key), std::move(value));
+}
+
+/// What occupiedCells found last, and for which nodes (their buffer and count), depth and form.
+struct Octree::OccupiedCache {
+    std::mutex mutex;
+    bool valid = false;
+    const OctreeNode* nodes = nullptr;
+    std::size_t count = 0;
+    int depth = 0;
+    OctreeForm form = OctreeForm::Shell;
+    ivec3 lo{0}, hi{0};
+};
+
+Octree::Octree() : occupied_(std::make_unique<OccupiedCache>()) {}
+Octree::Octree(Octree&&) noexcept = default;
+Octree& Octree::operator=(Octree&&) noexcept = default;
+Octree::~Octree() = default;
+
+void Octree::forgetOccupiedCells() {
+    if (!occupied_) return;
+    const std::lock_guard<std::mutex> lock(occupied_->mutex);
+    occupied_->valid = false;
+}
+
+void Octree::occupiedCells(ivec3& lo, ivec3& hi) const {
+    std::unique_lock<std::mutex> lock;
+    if (occupied_) {
+        lock = std::unique_lock<std::mutex>(occupied_->mutex);
+        const OccupiedCache& c = *occupied_;
+        if (c.valid && c.nodes == nodes_.data() && c.count == nodes_.size() && c.depth == depth && c.form == form) {
+            lo = c.lo;
+            hi = c.hi;
+            return;
+        }
+    }
+    findOccupiedCells(lo, hi);
+    if (!occupied_) return;
+    OccupiedCache& c = *occupied_;
+    c.valid = true;
+    c.nodes = nodes_.data();
+    c.count = nodes_.size();
+    c.depth = depth;
+    c.form = form;
+    c.lo = lo;
+    c.hi = hi;
 }
 
 Octree Octree::emptyCopy() const {

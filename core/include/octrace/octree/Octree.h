@@ -319,7 +319,9 @@ private:
     VoxelAttributes attributes_;
     std::vector<NodeSummary> summaries_;
     OctreeMetadata metadata_;
-    std::unique_ptr<OccupiedCache> occupied_;  ///< null only in an octree moved from
+    /// Null in an octree moved from, and in one a moved-from octree was assigned to: they answer
+    /// occupiedCells without keeping it.
+    std::unique_ptr<OccupiedCache> occupied_;
 };
 
 template <class F>

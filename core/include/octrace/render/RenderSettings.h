@@ -115,8 +115,8 @@ struct RenderSettings {
     /// Read by every voxel renderer, through the shared hit path (SmoothSurface.h). Smooth on an
     /// octree without corner values (Octree::corners()) draws voxels.
     SurfaceMode surface = SurfaceMode::Voxel;
-    /// Not an option: when set and it becomes true, the tile renderer stops at its next group
-    /// of tiles and leaves the rest of the frame unwritten (the caller throws the frame away:
+    /// Not an option: when set and it becomes true, the tile renderer stops at its next band of
+    /// background rows or group of tiles and leaves the rest of the frame unwritten (the caller throws the frame away:
     /// the studio, when a newer frame replaces the one being drawn). The other renderers run
     /// to the end.
     const std::atomic<bool>* cancel = nullptr;

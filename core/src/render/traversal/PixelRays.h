@@ -87,13 +87,18 @@ public:
     /// The pixels x of row y for which mayHitSurface holds: first <= x <= second (first >
     /// second: none; the ends may lie outside the image).
     std::pair<int, int> surfaceSpan(int y) const { return surfaceSpans_[std::size_t(y)]; }
+    /// The columns of x0 .. x1-1 in row y for which mayHitSurface holds, as [lo, hi] (lo > hi:
+    /// none): what forRunsOutsideSurface leaves of them.
+    std::pair<int, int> surfaceSpanIn(int y, int x0, int x1) const {
+        const auto [first, second] = surfaceSpan(y);
+        return {std::max(first, x0), std::min(second, x1 - 1)};
+    }
     /// The pixels of row y (of an image `width` wide) outside surfaceSpan, as at most two runs:
     /// calls run(x0, x1) for columns x0 .. x1-1 of each non-empty one. Returns the columns left,
     /// clipped to the image (lo > hi: none).
     template <class Run>
     std::pair<int, int> forRunsOutsideSurface(int y, int width, const Run& run) const {
-        const auto [first, second] = surfaceSpan(y);
-        const int lo = std::max(first, 0), hi = std::min(second, width - 1);
+        const auto [lo, hi] = surfaceSpanIn(y, 0, width);
         if (lo > hi) {
             run(0, width);
             return {1, 0};

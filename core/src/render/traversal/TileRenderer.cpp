@@ -130,7 +130,9 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
     parallelFor(bands, settings.threads, [&](std::size_t b) {
         if (settings.cancel && settings.cancel->load(std::memory_order_relaxed)) return;  // the frame is thrown away
         for (int y = int(b) * kBandRows; y < std::min(int(b + 1) * kBandRows, camera.height); ++y)
-            rays.forRunsOutsideSurface(y, camera.width, [&](int x0, int x1) { fillBackground(frame, rays, settings, y, x0, x1, bandStats[b]); });
+            rays.forRunsOutsideSurface(y, camera.width, [&](int x0, int x1) {
+                fillBackground(frame, rays, settings, y, x0, x1, bandStats[b]);
+            });
     });
     parallelFor(std::size_t(groupsX) * std::size_t(groupsY), settings.threads, [&](std::size_t g) {
         if (settings.cancel && settings.cancel->load(std::memory_order_relaxed)) return;  // the frame is thrown away
@@ -194,8 +196,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                 // Step 5: no ray of the tile visits a boundary voxel (those outside the outline
                 // are written with their rows).
                 for (int y = y0; y < y1; ++y) {
-                    const auto [first, second] = rays.surfaceSpan(y);
-                    const int lo = std::max(first, x0), hi = std::min(second, x1 - 1);
+                    const auto [lo, hi] = rays.surfaceSpanIn(y, x0, x1);
                     if (lo <= hi) fillBackground(frame, rays, settings, y, lo, hi + 1, st);
                 }
                 st.nodesVisited += counters.nodes;
@@ -243,7 +244,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                 }
                 for (int x = x0; x < x1; ++x) {
                     if (!rays.mayHitSurface(x, y)) continue;  // step 5: written with its row, above
-                    const std::uint64_t mask = pixelNodes(x, y);
+                    const std::uint64_t mask = masked ? colMask[std::size_t(x - x0)] & rowMask[std::size_t(y - y0)] : ~std::uint64_t(0);
                     if (mask == 0) {
                         // Step 5: nothing the ray can visit holds a boundary voxel (outside every
                         // frontier node's rectangle).
