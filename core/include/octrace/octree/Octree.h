@@ -310,7 +310,7 @@ public:
     void validate() const;
 
 private:
-    /// occupiedCells' answer and what it was found for (OctreeBounds.cpp).
+    /// occupiedCells' answer and what it was found for (Octree.cpp).
     struct OccupiedCache;
     void forgetOccupiedCells();
     void findOccupiedCells(ivec3& lo, ivec3& hi) const;  ///< occupiedCells without the cache
