@@ -35,19 +35,29 @@ struct PacketPixels {
     std::vector<TraversalHit> hit;             ///< valid where `done` has bit k
     std::vector<SmoothSurface::RayState> sray;  ///< smooth surfaces: each filter's state, carried from node to node
     std::vector<VoxelFilter> filter;            ///< smooth surfaces: the test of pixel k's sray[k] (set once: sray does not move)
+    std::vector<PacketLane> lane;           ///< pixel k's lane (its pointers into the arrays above never change)
     std::vector<std::uint64_t> traced;      ///< bit k: pixel k's ray goes through the packets
+    std::vector<std::uint64_t> axis[3];     ///< bit k of axis[a]: traced, and the ray's main axis is a
     std::vector<std::uint64_t> done;        ///< bit k: pixel k's hit is found
     std::vector<std::uint64_t> nodePixels;  ///< `words` words per frontier node i: the pixels of its rectangle
-    explicit PacketPixels(int tileSide)
+    /// `smooth` active: each lane carries its filter (smooth's test of its sray).
+    PacketPixels(int tileSide, const SmoothSurface& smooth)
         : side(tileSide), words((std::size_t(tileSide) * std::size_t(tileSide) + 63) / 64), dir(64 * words),
-          q(64 * words), hit(64 * words), sray(64 * words), filter(64 * words), traced(words), done(words),
-          nodePixels(64 * words) {}
-    PacketPixels(int tileSide, const SmoothSurface& smooth) : PacketPixels(tileSide) {
-        for (std::size_t k = 0; k < filter.size(); ++k) filter[k] = smooth.filter(sray[k]);
+          q(64 * words), hit(64 * words), sray(64 * words), filter(64 * words), lane(64 * words), traced(words),
+          axis{std::vector<std::uint64_t>(words), std::vector<std::uint64_t>(words), std::vector<std::uint64_t>(words)},
+          done(words), nodePixels(64 * words) {
+        for (std::size_t k = 0; k < lane.size(); ++k) {
+            if (smooth.active()) filter[k] = smooth.filter(sray[k]);
+            lane[k] = PacketLane{&q[k], smooth.active() ? &filter[k] : nullptr, &hit[k], &sray[k]};
+        }
     }
     void clear() {
-        std::fill(traced.begin(), traced.end(), 0);
-        std::fill(done.begin(), done.end(), 0);
+        for (std::vector<std::uint64_t>* v : {&traced, &axis[0], &axis[1], &axis[2], &done}) std::fill(v->begin(), v->end(), 0);
+    }
+    /// Pixel k's ray, of main axis a, goes through the packets.
+    void trace(std::size_t k, int a) {
+        traced[k / 64] |= std::uint64_t(1) << (k % 64);
+        axis[a][k / 64] |= std::uint64_t(1) << (k % 64);
     }
     /// Node i's pixels: columns cx0 .. cx1 of rows cy0 .. cy1 (tile coordinates, inclusive).
     void setRect(std::size_t i, int cx0, int cx1, int cy0, int cy1) {
@@ -260,7 +270,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                     if (packets && q.sign == s && q.meetsCube) {
                         ++raysCommon;
                         const std::size_t k = std::size_t((y - y0) * T + (x - x0));
-                        packet.traced[k / 64] |= std::uint64_t(1) << (k % 64);
+                        packet.trace(k, q.main);
                         if (smoothOn) packet.sray[k] = SmoothSurface::RayState(rays.world(x, y, dir));
                         continue;
                     }
@@ -292,29 +302,32 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
             st.raysCommonPath += raysCommon;
             if (packets) {
                 // Step 6: node by node in list order, the pixels still without a hit whose
-                // rectangle holds the node, in packets of rays of one main axis.
-                PacketLane lanes[3][kMaxPacketLanes];
-                std::size_t owner[3][kMaxPacketLanes];
-                unsigned count[3] = {0, 0, 0};
+                // rectangle holds the node, in packets of rays of one main axis (each axis's
+                // pixels in their order, as many to a packet as it takes).
+                PacketLane lanes[kMaxPacketLanes];
+                std::uint32_t owner[kMaxPacketLanes];  // the lanes' pixels
                 for (std::size_t i = 0; i < kept; ++i) {
-                    const auto flush = [&](int a) {
-                        const unsigned found = traversePacket(isa, tree, list[i].start, lanes[a], count[a], counters, cutp, nullptr,
+                    unsigned count = 0;
+                    const auto flush = [&] {
+                        const unsigned found = traversePacket(isa, tree, list[i].start, lanes, count, counters, cutp, nullptr,
                                                              smoothOn ? &smooth : nullptr);
-                        for (unsigned l = 0; l < count[a]; ++l)
-                            if (found >> l & 1u) packet.done[owner[a][l] / 64] |= std::uint64_t(1) << (owner[a][l] % 64);
-                        count[a] = 0;
-                    };
-                    for (std::size_t w = 0; w < packet.words; ++w)
-                        for (std::uint64_t m = packet.nodePixels[i * packet.words + w] & packet.traced[w] & ~packet.done[w]; m;
-                             m &= m - 1) {
-                            const std::size_t k = w * 64 + std::size_t(std::countr_zero(m));
-                            const int a = packet.q[k].main;
-                            lanes[a][count[a]] = PacketLane{&packet.q[k], smoothOn ? &packet.filter[k] : nullptr, &packet.hit[k], &packet.sray[k]};
-                            owner[a][count[a]] = k;
-                            if (++count[a] == width) flush(a);
+                        for (unsigned rest = found; rest; rest &= rest - 1) {
+                            const unsigned k = owner[std::countr_zero(rest)];
+                            packet.done[k / 64] |= std::uint64_t(1) << (k % 64);
                         }
-                    for (int a = 0; a < 3; ++a)
-                        if (count[a]) flush(a);
+                        count = 0;
+                    };
+                    for (int a = 0; a < 3; ++a) {
+                        for (std::size_t w = 0; w < packet.words; ++w)
+                            for (std::uint64_t m = packet.nodePixels[i * packet.words + w] & packet.axis[a][w] & ~packet.done[w]; m;
+                                 m &= m - 1) {
+                                const std::size_t k = w * 64 + std::size_t(std::countr_zero(m));
+                                lanes[count] = packet.lane[k];
+                                owner[count] = std::uint32_t(k);
+                                if (++count == width) flush();
+                            }
+                        if (count) flush();
+                    }
                 }
                 const TraversalHit none;
                 for (std::size_t w = 0; w < packet.words; ++w)
