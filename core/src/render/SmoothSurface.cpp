@@ -4,6 +4,7 @@
 #include <array>
 #include <bit>
 #include <cassert>
+#include <cstddef>
 #include <cmath>
 #include <limits>
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -37,10 +38,11 @@ struct VoxelSlabs {
 constexpr double kCrossingTolerance = 1e-7;
 
 /// testLanes takes the rays of a voxel together (eight at a time, AVX-512) from this many on;
-/// below it, gathering their states into registers costs what the lanes save (the tile
-/// renderer's smooth frames: CT skin, whose voxels meet two rays of a packet on average, drew
-/// 3% slower with 2, T at its default view 2% faster with 2 and 4.5% with 4).
-[[maybe_unused]] constexpr unsigned kLanesTogether = 4;
+/// a ray alone is cheaper through test() (the tile renderer's smooth frames at 1 thread: CT skin
+/// about 3% slower with 1 than with 2). With each lane's fields gathered through the stack, the
+/// lanes only paid from 4 rays; loaded and transposed in registers, from 2 (CT skin, whose voxels
+/// meet two rays of a packet on average, and CT bone and T, 2-4% faster with 2 than with 4).
+[[maybe_unused]] constexpr unsigned kLanesTogether = 2;
 
 /// The interpolant along p(u) = entry + u dir as a cubic c[0] + c[1] u + c[2] u^2 + c[3] u^3.
 struct Cubic {
@@ -290,27 +292,49 @@ struct LaneStarts {
 /// lane gets the scalar code's bits.
 [[gnu::target("avx512f")]] void startEight(const SmoothSurface::RayState* const* rays, unsigned n, const VoxelSlabs& box,
                                             double inverseVoxel, const double d[8], LaneStarts& out) {
-    alignas(64) double o[3][8], inv[3][8], dir[3][8];
-    alignas(64) std::int64_t side[8];
+    // Each lane's first eight doubles (origin, direction, inverse x and y: consecutive) in one
+    // register, then transposed: one register per field, lane k in element k. Written to the
+    // stack lane by lane and read back as registers, they waited on the stores (store
+    // forwarding). Idle lanes repeat lane 0.
+    static_assert(offsetof(SmoothSurface::RayState, world) == 0 && offsetof(Ray, direction) == 24 &&
+                      offsetof(SmoothSurface::RayState, inverse) == 48,
+                  "startEight loads a RayState's origin, direction and inverse as nine consecutive doubles");
+    __m512d row[8], invZ = _mm512_setzero_pd();
+    __m512i sides = _mm512_setzero_si512();
     for (unsigned k = 0; k < 8; ++k) {
-        const SmoothSurface::RayState& r = *rays[k < n ? k : 0];  // idle lanes repeat lane 0
-        for (int a = 0; a < 3; ++a) {
-            o[a][k] = r.world.origin[a];
-            inv[a][k] = r.inverse[a];
-            dir[a][k] = r.world.direction[a];
-        }
-        side[k] = r.side;
+        const SmoothSurface::RayState& r = *rays[k < n ? k : 0];
+        row[k] = _mm512_loadu_pd(&r.world.origin.x);
+        invZ = _mm512_mask_broadcastsd_pd(invZ, __mmask8(1u << k), _mm_load_sd(&r.inverse.z));
+        sides = _mm512_mask_set1_epi64(sides, __mmask8(1u << k), r.side);
     }
+    __m512d t[8], u[8];
+    for (int k = 0; k < 8; k += 2) {
+        t[k] = _mm512_maskz_unpacklo_pd(0xFF, row[k], row[k + 1]);      // fields 0, 2, 4, 6 of lanes k, k+1
+        t[k + 1] = _mm512_maskz_unpackhi_pd(0xFF, row[k], row[k + 1]);  // fields 1, 3, 5, 7
+    }
+    const __m512i lo = _mm512_set_epi64(13, 12, 5, 4, 9, 8, 1, 0), hi = _mm512_set_epi64(15, 14, 7, 6, 11, 10, 3, 2);
+    for (int k = 0; k < 8; k += 4)
+        for (int odd = 0; odd < 2; ++odd) {
+            u[k + odd] = _mm512_permutex2var_pd(t[k + odd], lo, t[k + 2 + odd]);      // fields 0|1, 4|5 of 4 lanes
+            u[k + 2 + odd] = _mm512_permutex2var_pd(t[k + odd], hi, t[k + 2 + odd]);  // fields 2|3, 6|7
+        }
+    const __m512i first = _mm512_set_epi64(11, 10, 9, 8, 3, 2, 1, 0), second = _mm512_set_epi64(15, 14, 13, 12, 7, 6, 5, 4);
+    // Field f < 4 from u[f] and u[f + 4]'s first halves, field f + 4 from their second halves.
+    const __m512d ox = _mm512_permutex2var_pd(u[0], first, u[4]), dy = _mm512_permutex2var_pd(u[0], second, u[4]);
+    const __m512d oy = _mm512_permutex2var_pd(u[1], first, u[5]), dz = _mm512_permutex2var_pd(u[1], second, u[5]);
+    const __m512d oz = _mm512_permutex2var_pd(u[2], first, u[6]), ix = _mm512_permutex2var_pd(u[2], second, u[6]);
+    const __m512d dx = _mm512_permutex2var_pd(u[3], first, u[7]), iy = _mm512_permutex2var_pd(u[3], second, u[7]);
     const __mmask8 lanes = __mmask8((1u << n) - 1u);
     const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0);
     // clip: the slabs axis by axis.
     __m512d tin = zero, tout = _mm512_set1_pd(std::numeric_limits<double>::infinity());
     __mmask8 outside = 0;
     __m512d O[3], D[3];
+    const __m512d Os[3] = {ox, oy, oz}, Ds[3] = {dx, dy, dz}, Is[3] = {ix, iy, invZ};
     for (int a = 0; a < 3; ++a) {
-        O[a] = _mm512_load_pd(o[a]);
-        D[a] = _mm512_load_pd(dir[a]);
-        const __m512d I = _mm512_load_pd(inv[a]), L = _mm512_set1_pd(box.l[a]), H = _mm512_set1_pd(box.h[a]);
+        O[a] = Os[a];
+        D[a] = Ds[a];
+        const __m512d I = Is[a], L = _mm512_set1_pd(box.l[a]), H = _mm512_set1_pd(box.h[a]);
         const __mmask8 parallel = _mm512_cmp_pd_mask(D[a], zero, _CMP_EQ_OQ);
         outside |= parallel & (_mm512_cmp_pd_mask(O[a], L, _CMP_LT_OQ) | _mm512_cmp_pd_mask(O[a], H, _CMP_GT_OQ));
         const __m512d ta = _mm512_mul_pd(_mm512_sub_pd(L, O[a]), I), tb = _mm512_mul_pd(_mm512_sub_pd(H, O[a]), I);
@@ -347,7 +371,7 @@ struct LaneStarts {
     const __m512d c3 = addL(mulL(hx[0][2], x0[1]), mulL(hx[1][2], x1[1]));
     const __m512d c[4] = {c0, c1, c2, c3};
     // crossingStart: the carried side, the entry, the Bernstein bound.
-    const __m512i S = _mm512_load_si512(side);
+    const __m512i S = sides;
     const __mmask8 none = _mm512_cmplt_epi64_mask(S, _mm512_setzero_si512());
     const __mmask8 above0 = _mm512_cmp_pd_mask(cubicL(c, zero), zero, _CMP_GE_OQ);  // sideOf(f(0))
     const __mmask8 above = (none & above0) | (~none & _mm512_cmpeq_epi64_mask(S, _mm512_set1_epi64(1)));
