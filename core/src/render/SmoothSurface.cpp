@@ -1,4 +1,5 @@
 #include "octrace/render/SmoothSurface.h"
+#include "render/Transpose8.h"
 
 #include <algorithm>
 #include <array>
@@ -307,23 +308,9 @@ struct LaneStarts {
         invZ = _mm512_mask_broadcastsd_pd(invZ, __mmask8(1u << k), _mm_load_sd(&r.inverse.z));
         sides = _mm512_mask_set1_epi64(sides, __mmask8(1u << k), r.side);
     }
-    __m512d t[8], u[8];
-    for (int k = 0; k < 8; k += 2) {
-        t[k] = _mm512_maskz_unpacklo_pd(0xFF, row[k], row[k + 1]);      // fields 0, 2, 4, 6 of lanes k, k+1
-        t[k + 1] = _mm512_maskz_unpackhi_pd(0xFF, row[k], row[k + 1]);  // fields 1, 3, 5, 7
-    }
-    const __m512i lo = _mm512_set_epi64(13, 12, 5, 4, 9, 8, 1, 0), hi = _mm512_set_epi64(15, 14, 7, 6, 11, 10, 3, 2);
-    for (int k = 0; k < 8; k += 4)
-        for (int odd = 0; odd < 2; ++odd) {
-            u[k + odd] = _mm512_permutex2var_pd(t[k + odd], lo, t[k + 2 + odd]);      // fields 0|1, 4|5 of 4 lanes
-            u[k + 2 + odd] = _mm512_permutex2var_pd(t[k + odd], hi, t[k + 2 + odd]);  // fields 2|3, 6|7
-        }
-    const __m512i first = _mm512_set_epi64(11, 10, 9, 8, 3, 2, 1, 0), second = _mm512_set_epi64(15, 14, 13, 12, 7, 6, 5, 4);
-    // Field f < 4 from u[f] and u[f + 4]'s first halves, field f + 4 from their second halves.
-    const __m512d ox = _mm512_permutex2var_pd(u[0], first, u[4]), dy = _mm512_permutex2var_pd(u[0], second, u[4]);
-    const __m512d oy = _mm512_permutex2var_pd(u[1], first, u[5]), dz = _mm512_permutex2var_pd(u[1], second, u[5]);
-    const __m512d oz = _mm512_permutex2var_pd(u[2], first, u[6]), ix = _mm512_permutex2var_pd(u[2], second, u[6]);
-    const __m512d dx = _mm512_permutex2var_pd(u[3], first, u[7]), iy = _mm512_permutex2var_pd(u[3], second, u[7]);
+    __m512d field[8];
+    detail::transpose8(row, field);
+    const __m512d ox = field[0], oy = field[1], oz = field[2], dx = field[3], dy = field[4], dz = field[5], ix = field[6], iy = field[7];
     const __mmask8 lanes = __mmask8((1u << n) - 1u);
     const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0);
     // clip: the slabs axis by axis.

@@ -1,6 +1,7 @@
 // The discrete traversal of several rays at once: docs/dev/tile-renderer.md, "Packets".
 #include "render/traversal/PacketTraversal.h"
 #include "render/traversal/DiscreteLattice.h"
+#include "render/Transpose8.h"
 
 #include "octrace/render/Lod.h"
 
@@ -68,22 +69,9 @@ static_assert(offsetof(QuantizedRay, dU) == offsetof(QuantizedRay, U0) + 8 && of
             row[k] = l < count ? _mm512_maskz_loadu_epi64(0x7F, &lanes[l].ray->U0) : zero;
             if (l < count) valid |= __mmask8(1u << k);
         }
-        __m512i t[8], u[8];
-        for (int k = 0; k < 8; k += 2) {
-            t[k] = _mm512_maskz_unpacklo_epi64(0xFF, row[k], row[k + 1]);      // fields 0, 2, 4, 6 of lanes k, k+1
-            t[k + 1] = _mm512_maskz_unpackhi_epi64(0xFF, row[k], row[k + 1]);  // fields 1, 3, 5, 7
-        }
-        const __m512i lo = _mm512_set_epi64(13, 12, 5, 4, 9, 8, 1, 0), hi = _mm512_set_epi64(15, 14, 7, 6, 11, 10, 3, 2);
-        for (int k = 0; k < 8; k += 4)
-            for (int odd = 0; odd < 2; ++odd) {
-                u[k + odd] = _mm512_permutex2var_epi64(t[k + odd], lo, t[k + 2 + odd]);      // fields 0|1, 4|5 of 4 lanes
-                u[k + 2 + odd] = _mm512_permutex2var_epi64(t[k + odd], hi, t[k + 2 + odd]);  // fields 2|3, 6|7
-            }
-        const __m512i first = _mm512_set_epi64(11, 10, 9, 8, 3, 2, 1, 0), second = _mm512_set_epi64(15, 14, 13, 12, 7, 6, 5, 4);
-        const __m512i U0 = _mm512_permutex2var_epi64(u[0], first, u[4]), eyeM = _mm512_permutex2var_epi64(u[0], second, u[4]);
-        const __m512i dU = _mm512_permutex2var_epi64(u[1], first, u[5]), uEye = _mm512_permutex2var_epi64(u[1], second, u[5]);
-        const __m512i V0 = _mm512_permutex2var_epi64(u[2], first, u[6]), vEye = _mm512_permutex2var_epi64(u[2], second, u[6]);
-        const __m512i dV = _mm512_permutex2var_epi64(u[3], first, u[7]);
+        __m512i field[8];
+        transpose8(row, field);
+        const __m512i U0 = field[0], dU = field[1], V0 = field[2], dV = field[3], eyeM = field[4], uEye = field[5], vEye = field[6];
         const __m512i wu0 = _mm512_add_epi64(_mm512_maskz_sllv_epi64(0xFF, U0, _mm512_set1_epi64(N)), _mm512_mullo_epi64(m0, dU));
         const __m512i wu1 = _mm512_add_epi64(wu0, _mm512_mullo_epi64(S, dU));
         const __m512i wv0 = _mm512_add_epi64(_mm512_maskz_sllv_epi64(0xFF, V0, _mm512_set1_epi64(N)), _mm512_mullo_epi64(m0, dV));
