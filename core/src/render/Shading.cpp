@@ -194,6 +194,12 @@ vec4 Shader::shade(std::uint32_t voxel, const ivec3& cell, int leafShift, std::u
     return shadeNormal(voxel, cell, baked_ ? vec3(0.0f) : decodeNormal(tree_.voxels()[voxel].normal), shadowRays, leafShift);
 }
 
+void Shader::prefetch(std::uint32_t voxel) const {
+    if (baked_) __builtin_prefetch(baked_->data() + voxel);
+    else __builtin_prefetch(tree_.voxels().data() + voxel);
+    albedo_.prefetch(voxel);
+}
+
 vec4 Shader::shadeNormal(std::uint32_t voxel, const ivec3& cell, vec3 n, std::uint64_t* shadowRays, int leafShift, float zCells) const {
     if (std::isnan(zCells)) zCells = float(cell.z) + 0.5f;
     if (baked_) return vec4(albedo_.at(voxel, zCells) * (float((*baked_)[voxel]) * (1.0f / 255.0f)), 1.0f);

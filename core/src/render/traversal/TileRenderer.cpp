@@ -314,6 +314,10 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                         for (unsigned rest = found; rest; rest &= rest - 1) {
                             const unsigned k = owner[std::countr_zero(rest)];
                             packet.done[k / 64] |= std::uint64_t(1) << (k % 64);
+                            // Shaded once the tile's nodes are done: fetched meanwhile (the
+                            // normals and colours of CT skin's and the molecule's voxels are
+                            // far from the cache).
+                            if (!packet.hit[k].nodeHit()) shader.prefetch(packet.hit[k].voxel);
                         }
                         count = 0;
                     };
