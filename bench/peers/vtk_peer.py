@@ -149,8 +149,9 @@ def main():
         times.append((time.perf_counter() - t) * 1e3)
     res["frame_ms"] = times
     if times:
-        res["render_ms"] = statistics.median(times)
-        res["render_ms_min"] = min(times)
+        # The fastest frame, as every program of the comparison is timed (bench/peers.py).
+        res["render_ms"] = min(times)
+        res["render_ms_median"] = statistics.median(times)
     grab = vtk.vtkWindowToImageFilter()
     grab.SetInput(rw)
     grab.ReadFrontBufferOff()
