@@ -194,9 +194,15 @@ vec4 Shader::shade(std::uint32_t voxel, const ivec3& cell, int leafShift, std::u
     return shadeNormal(voxel, cell, baked_ ? vec3(0.0f) : decodeNormal(tree_.voxels()[voxel].normal), shadowRays, leafShift);
 }
 
-void Shader::prefetch(std::uint32_t voxel) const {
+void Albedo::prefetch(std::uint32_t voxel) const {
+    if (!tree_.voxelMaterials().empty()) __builtin_prefetch(tree_.voxelMaterials().data() + voxel);
+    if (colours_) __builtin_prefetch(colours_->data() + voxel);
+    if (values_) __builtin_prefetch(values_->data() + voxel);
+}
+
+void Shader::prefetch(std::uint32_t voxel, bool normal) const {
     if (baked_) __builtin_prefetch(baked_->data() + voxel);
-    else __builtin_prefetch(tree_.voxels().data() + voxel);
+    else if (normal) __builtin_prefetch(tree_.voxels().data() + voxel);
     albedo_.prefetch(voxel);
 }
 

@@ -58,12 +58,9 @@ public:
     /// `zCells`: height in cell space (a voxel's centre is at cell.z + 0.5; a node's is its
     /// summary's meanZ).
     vec3 at(std::uint32_t voxel, float zCells) const;
-    /// Starts fetching what at(voxel, ...) reads of the voxel's own attributes (its colour,
-    /// value or material), for a caller that knows the voxel well before it shades it.
-    void prefetch(std::uint32_t voxel) const {
-        if (colours_) __builtin_prefetch(colours_->data() + voxel);
-        if (values_) __builtin_prefetch(values_->data() + voxel);
-    }
+    /// Starts fetching what at(voxel, ...) reads of the voxel's own attributes (its material,
+    /// colour or value), for a caller that knows the voxel well before it shades it.
+    void prefetch(std::uint32_t voxel) const;
     /// Colouring by voxel values with the colour map, over [low(), high()] with colormapName().
     bool byValue() const { return values_ != nullptr && !window_.valid(); }
     float low() const { return lo_; }
@@ -105,8 +102,8 @@ public:
     vec4 shade(std::uint32_t voxel, const ivec3& cell, int leafShift = 0, std::uint64_t* shadowRays = nullptr) const;
     /// Starts fetching what shade() reads of the voxel (its normal or baked light, and its
     /// colour, Albedo::prefetch): a hit found well before it is shaded is then shaded from the
-    /// cache.
-    void prefetch(std::uint32_t voxel) const;
+    /// cache. `normal`: false for a hit that brings its own normal (a smooth surface's).
+    void prefetch(std::uint32_t voxel, bool normal = true) const;
     /// Distance from the camera along the (unit) ray to where it enters the voxel's box.
     float distance(const Ray& ray, const ivec3& cell) const;
     /// An inner node drawn whole (multi-resolution): its summary's normal and mean height.

@@ -51,6 +51,9 @@ struct PacketPixels {
             lane[k] = PacketLane{&q[k], smooth.active() ? &filter[k] : nullptr, &hit[k], &sray[k]};
         }
     }
+    // lane[k] and the filters point into this object's own arrays: a copy would point into this one.
+    PacketPixels(const PacketPixels&) = delete;
+    PacketPixels& operator=(const PacketPixels&) = delete;
     void clear() {
         for (std::vector<std::uint64_t>* v : {&traced, &axis[0], &axis[1], &axis[2], &done}) std::fill(v->begin(), v->end(), 0);
     }
@@ -317,7 +320,8 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                             // Shaded once the tile's nodes are done: fetched meanwhile (the
                             // normals and colours of CT skin's and the molecule's voxels are
                             // far from the cache).
-                            if (!packet.hit[k].nodeHit()) shader.prefetch(packet.hit[k].voxel);
+                            const TraversalHit& hit = packet.hit[k];
+                            if (!hit.nodeHit()) shader.prefetch(hit.voxel, !hit.smooth);
                         }
                         count = 0;
                     };
