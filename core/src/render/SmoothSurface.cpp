@@ -310,21 +310,17 @@ struct LaneStarts {
     }
     __m512d field[8];
     detail::transpose8(row, field);
-    const __m512d ox = field[0], oy = field[1], oz = field[2], dx = field[3], dy = field[4], dz = field[5], ix = field[6], iy = field[7];
+    const __m512d O[3] = {field[0], field[1], field[2]}, D[3] = {field[3], field[4], field[5]}, I[3] = {field[6], field[7], invZ};
     const __mmask8 lanes = __mmask8((1u << n) - 1u);
     const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0);
     // clip: the slabs axis by axis.
     __m512d tin = zero, tout = _mm512_set1_pd(std::numeric_limits<double>::infinity());
     __mmask8 outside = 0;
-    __m512d O[3], D[3];
-    const __m512d Os[3] = {ox, oy, oz}, Ds[3] = {dx, dy, dz}, Is[3] = {ix, iy, invZ};
     for (int a = 0; a < 3; ++a) {
-        O[a] = Os[a];
-        D[a] = Ds[a];
-        const __m512d I = Is[a], L = _mm512_set1_pd(box.l[a]), H = _mm512_set1_pd(box.h[a]);
+        const __m512d L = _mm512_set1_pd(box.l[a]), H = _mm512_set1_pd(box.h[a]);
         const __mmask8 parallel = _mm512_cmp_pd_mask(D[a], zero, _CMP_EQ_OQ);
         outside |= parallel & (_mm512_cmp_pd_mask(O[a], L, _CMP_LT_OQ) | _mm512_cmp_pd_mask(O[a], H, _CMP_GT_OQ));
-        const __m512d ta = _mm512_mul_pd(_mm512_sub_pd(L, O[a]), I), tb = _mm512_mul_pd(_mm512_sub_pd(H, O[a]), I);
+        const __m512d ta = _mm512_mul_pd(_mm512_sub_pd(L, O[a]), I[a]), tb = _mm512_mul_pd(_mm512_sub_pd(H, O[a]), I[a]);
         const __mmask8 swap = _mm512_cmp_pd_mask(ta, tb, _CMP_GT_OQ);
         const __m512d near = _mm512_mask_blend_pd(swap, ta, tb), far = _mm512_mask_blend_pd(swap, tb, ta);
         tin = _mm512_mask_mov_pd(tin, _mm512_cmp_pd_mask(tin, near, _CMP_LT_OQ) & ~parallel, near);   // std::max(tin, near)
@@ -358,10 +354,9 @@ struct LaneStarts {
     const __m512d c3 = addL(mulL(hx[0][2], x0[1]), mulL(hx[1][2], x1[1]));
     const __m512d c[4] = {c0, c1, c2, c3};
     // crossingStart: the carried side, the entry, the Bernstein bound.
-    const __m512i S = sides;
-    const __mmask8 none = _mm512_cmplt_epi64_mask(S, _mm512_setzero_si512());
+    const __mmask8 none = _mm512_cmplt_epi64_mask(sides, _mm512_setzero_si512());
     const __mmask8 above0 = _mm512_cmp_pd_mask(cubicL(c, zero), zero, _CMP_GE_OQ);  // sideOf(f(0))
-    const __mmask8 above = (none & above0) | (~none & _mm512_cmpeq_epi64_mask(S, _mm512_set1_epi64(1)));
+    const __mmask8 above = (none & above0) | (~none & _mm512_cmpeq_epi64_mask(sides, _mm512_set1_epi64(1)));
     const __mmask8 entry0 = above0 ^ above;
     const __m512d third = mulL(span, _mm512_set1_pd(1.0 / 3.0));
     const __m512d b0 = c0, b1 = addL(b0, mulL(c1, third)), b2 = addL(b1, mulL(addL(c1, mulL(c2, span)), third));

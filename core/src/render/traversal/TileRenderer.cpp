@@ -36,32 +36,31 @@ struct PacketPixels {
     std::vector<SmoothSurface::RayState> sray;  ///< smooth surfaces: each filter's state, carried from node to node
     std::vector<VoxelFilter> filter;            ///< smooth surfaces: the test of pixel k's sray[k] (set once: sray does not move)
     std::vector<PacketLane> lane;           ///< pixel k's lane (its pointers into the arrays above never change)
-    std::vector<std::uint64_t> traced;      ///< bit k: pixel k's ray goes through the packets
-    std::vector<std::uint64_t> axis[3];     ///< bit k of axis[a]: traced, and the ray's main axis is a
+    std::vector<std::uint64_t> axis[3];     ///< bit k of axis[a]: pixel k's ray, of main axis a, goes through the packets
     std::vector<std::uint64_t> done;        ///< bit k: pixel k's hit is found
     std::vector<std::uint64_t> nodePixels;  ///< `words` words per frontier node i: the pixels of its rectangle
     /// `smooth` active: each lane carries its filter (smooth's test of its sray).
     PacketPixels(int tileSide, const SmoothSurface& smooth)
         : side(tileSide), words((std::size_t(tileSide) * std::size_t(tileSide) + 63) / 64), dir(64 * words),
-          q(64 * words), hit(64 * words), sray(64 * words), filter(64 * words), lane(64 * words), traced(words),
+          q(64 * words), hit(64 * words), sray(64 * words), filter(64 * words), lane(64 * words),
           axis{std::vector<std::uint64_t>(words), std::vector<std::uint64_t>(words), std::vector<std::uint64_t>(words)},
           done(words), nodePixels(64 * words) {
+        const bool filtered = smooth.active();
         for (std::size_t k = 0; k < lane.size(); ++k) {
-            if (smooth.active()) filter[k] = smooth.filter(sray[k]);
-            lane[k] = PacketLane{&q[k], smooth.active() ? &filter[k] : nullptr, &hit[k], &sray[k]};
+            if (filtered) filter[k] = smooth.filter(sray[k]);
+            lane[k] = PacketLane{&q[k], filtered ? &filter[k] : nullptr, &hit[k], &sray[k]};
         }
     }
     // lane[k] and the filters point into this object's own arrays: a copy would point into this one.
     PacketPixels(const PacketPixels&) = delete;
     PacketPixels& operator=(const PacketPixels&) = delete;
     void clear() {
-        for (std::vector<std::uint64_t>* v : {&traced, &axis[0], &axis[1], &axis[2], &done}) std::fill(v->begin(), v->end(), 0);
+        for (std::vector<std::uint64_t>* v : {&axis[0], &axis[1], &axis[2], &done}) std::fill(v->begin(), v->end(), 0);
     }
     /// Pixel k's ray, of main axis a, goes through the packets.
-    void trace(std::size_t k, int a) {
-        traced[k / 64] |= std::uint64_t(1) << (k % 64);
-        axis[a][k / 64] |= std::uint64_t(1) << (k % 64);
-    }
+    void trace(std::size_t k, int a) { axis[a][k / 64] |= std::uint64_t(1) << (k % 64); }
+    /// Word w of the pixels whose rays go through the packets.
+    std::uint64_t traced(std::size_t w) const { return axis[0][w] | axis[1][w] | axis[2][w]; }
     /// Node i's pixels: columns cx0 .. cx1 of rows cy0 .. cy1 (tile coordinates, inclusive).
     void setRect(std::size_t i, int cx0, int cx1, int cy0, int cy1) {
         std::uint64_t* w = nodePixels.data() + i * words;
@@ -339,7 +338,7 @@ RenderStats TileRenderer::render(const Octree& tree, const Camera& camera, const
                 }
                 const TraversalHit none;
                 for (std::size_t w = 0; w < packet.words; ++w)
-                    for (std::uint64_t m = packet.traced[w]; m; m &= m - 1) {
+                    for (std::uint64_t m = packet.traced(w); m; m &= m - 1) {
                         const std::size_t k = w * 64 + std::size_t(std::countr_zero(m));
                         const bool found = packet.done[w] >> (k % 64) & 1u;
                         writePixelHit(frame, x0 + int(k % std::size_t(T)), y0 + int(k / std::size_t(T)), found ? packet.hit[k] : none,
