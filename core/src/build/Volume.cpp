@@ -18,12 +18,12 @@ VoxelCount countVoxels(const Octree& tree) {
         const OctreeNode& nd = tree.nodes()[it.node];
         const unsigned terms = nd.termMask, kids = nd.childMask & ~nd.termMask;
         if (it.level == tree.depth - 1) {
-            n.interior += unsigned(std::popcount(terms));
-            n.boundary += unsigned(std::popcount(kids));
+            n.interior += unsigned(detail::kPopcount8.v[terms]);
+            n.boundary += unsigned(detail::kPopcount8.v[kids]);
             continue;
         }
-        if (tree.form == OctreeForm::Shell) n.boundary += unsigned(std::popcount(terms));  // coarse leaves (Octree.h)
-        else n.interior += std::uint64_t(std::popcount(terms)) << (3 * (tree.depth - it.level - 1));
+        if (tree.form == OctreeForm::Shell) n.boundary += unsigned(detail::kPopcount8.v[terms]);  // coarse leaves (Octree.h)
+        else n.interior += std::uint64_t(detail::kPopcount8.v[terms]) << (3 * (tree.depth - it.level - 1));
         std::uint32_t slot = nd.firstChild;
         for (int c = 0; c < 8; ++c) {
             if (!(nd.childMask & (1u << c))) continue;

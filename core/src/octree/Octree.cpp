@@ -343,7 +343,7 @@ void Octree::validate() const {
         stack.pop_back();
         const OctreeNode& n = nodes_[it.node];
         if (n.termMask & ~n.childMask) fail("term bit without child bit");
-        int count = std::popcount(unsigned(n.childMask));
+        const int count = detail::kPopcount8.v[n.childMask];
         if (it.level == depth - 1) {
             if (n.termMask && form != OctreeForm::Volume) fail("interior voxel in a shell octree");
             if (std::size_t(n.firstChild) + count > voxels_.size()) fail("voxel index out of range");

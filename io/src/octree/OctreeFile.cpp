@@ -2,6 +2,7 @@
 #include "octrace/io/OctreeFile.h"
 
 #include "octree/Crc32c.h"
+#include "octree/VoxelNeighbours.h"
 #include "octrace/io/AtomicFile.h"
 #include "octrace/util/Error.h"
 #include "octrace/util/Memory.h"
@@ -9,6 +10,7 @@
 #include <zstd.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -158,113 +160,53 @@ Flattened flatten(const Octree& tree) {
     return f;
 }
 
-/// Morton code of a cell (x highest of each bit triple, as child indices c = 4x + 2y + z).
-std::uint64_t morton(const ivec3& c) {
-    std::uint64_t m = 0;
-    for (int b = Octree::kMaxDepth - 1; b >= 0; --b)
-        m = (m << 3) | std::uint64_t(((c.x >> b) & 1) << 2 | ((c.y >> b) & 1) << 1 | ((c.z >> b) & 1));
-    return m;
-}
-
-/// Cells of the voxels in breadth-first order (which, at the voxel level, is Morton order).
-std::vector<std::uint64_t> voxelMortonCodes(const Octree& tree) {
-    std::vector<std::uint64_t> codes(tree.voxels().size());
-    std::vector<std::pair<std::uint32_t, ivec3>> level{{0u, ivec3(0)}}, next;
-    for (int l = 0; l < tree.depth; ++l) {
-        next.clear();
-        std::size_t v = 0;
-        for (auto [n, cell] : level) {
-            const OctreeNode& nd = tree.nodes()[n];
-            std::uint32_t slot = nd.firstChild;
-            for (int c = 0; c < 8; ++c) {
-                if (!(nd.childMask & (1u << c))) continue;
-                const ivec3 cc = cell * 2 + ivec3((c >> 2) & 1, (c >> 1) & 1, c & 1);
-                if (l == tree.depth - 1) codes[v++] = morton(cc);
-                else next.push_back({slot, cc});
-                ++slot;
-            }
-        }
-        level.swap(next);
+/// The prediction of voxel i's normal from the normals before it (`normals`, in the file's order)
+/// and its face neighbours (voxelNeighbours): per 16-bit octahedral component, the parallelogram
+/// a + b - ab in each plane xy, xz, yz that holds the voxel's two face neighbours and their edge
+/// neighbour, averaged; else the mean of its face neighbours; else the previous voxel's normal.
+std::uint32_t predictNormal(std::size_t i, const std::vector<std::array<std::uint32_t, 3>>& neighbours,
+                            const std::uint32_t* normals) {
+    if (i == 0) return 0;
+    // The neighbours at -1 along the axes of each non-empty subset s of {x, y, z} (bit a = axis
+    // a): the face neighbours, then an edge neighbour where its two face neighbours are voxels
+    // (the face neighbour at -a's own neighbour at -b), none at {x, y, z}.
+    std::uint32_t at[8];
+    for (int a = 0; a < 3; ++a) at[1 << a] = neighbours[i][std::size_t(a)];
+    const auto edge = [&](int a, int b) {
+        return at[1 << a] != detail::kNoNeighbour && at[1 << b] != detail::kNoNeighbour ? neighbours[at[1 << a]][std::size_t(b)]
+                                                                                       : detail::kNoNeighbour;
+    };
+    at[3] = edge(0, 1);
+    at[5] = edge(0, 2);
+    at[6] = edge(1, 2);
+    const auto has = [&](int s) { return at[s] != detail::kNoNeighbour; };
+    const auto component = [&](int s, int h) { return std::int64_t(h ? normals[at[s]] & 0xFFFFu : normals[at[s]] >> 16); };
+    std::int64_t sum[2] = {0, 0}, count = 0;
+    for (int p : {3, 5, 6}) {
+        const int a = p & -p, b = p - a;
+        if (!(has(a) && has(b) && has(p))) continue;
+        for (int h = 0; h < 2; ++h) sum[h] += std::clamp<std::int64_t>(component(a, h) + component(b, h) - component(p, h), 0, 0xFFFF);
+        ++count;
     }
-    return codes;
+    if (!count)
+        for (int a : {1, 2, 4})
+            if (has(a)) {
+                for (int h = 0; h < 2; ++h) sum[h] += component(a, h);
+                ++count;
+            }
+    if (!count) return normals[i - 1];
+    return std::uint32_t((sum[0] + count / 2) / count) << 16 | std::uint32_t((sum[1] + count / 2) / count);
 }
-
-/// The prediction of voxel i's normal: per 16-bit octahedral component, the mean of its face
-/// neighbours at -x, -y and -z that are voxels (all three come before it in Morton order),
-/// else the previous voxel's.
-class NormalPredictor {
-public:
-    explicit NormalPredictor(const std::vector<std::uint64_t>& codes) : codes_(codes) {}
-    std::uint32_t predict(std::size_t i, const std::vector<std::uint32_t>& normals) const {
-        if (i == 0) return 0;
-        // Neighbours at -1 along the axes of each non-empty subset of {x, y, z} (bit a = axis a).
-        std::int64_t v[8][2];
-        bool has[8] = {true, false, false, false, false, false, false, false};
-        const std::uint64_t code = codes_[i];
-        // The single axes first; a diagonal (3, 5, 6) only serves a parallelogram whose two
-        // sides exist, and {x, y, z} (7) none.
-        for (int s : {1, 2, 4, 3, 5, 6}) {
-            has[s] = false;
-            if ((s & (s - 1)) && !(has[s & -s] && has[s - (s & -s)])) continue;
-            std::uint64_t n = code;
-            bool ok = true;
-            for (int a = 0; a < 3 && ok; ++a) {
-                if (!(s & (1 << a))) continue;
-                const std::uint64_t mask = kAxisMask >> a;
-                if ((n & mask) == 0) ok = false;  // on the cube's face
-                else n = (((n & mask) - 1) & mask) | (n & ~mask);
-            }
-            if (!ok) continue;
-            // Galloping back from i, then a binary search in the bracket: a neighbour along
-            // the axis of the lowest Morton bit is a few codes back, so its probes stay in cache.
-            std::size_t hi = i, lo = 0;
-            for (std::size_t step = 1; step < hi; step *= 2) {
-                if (codes_[hi - step] <= n) {
-                    lo = hi - step;
-                    break;
-                }
-                hi -= step;
-            }
-            auto it = std::lower_bound(codes_.begin() + std::ptrdiff_t(lo), codes_.begin() + std::ptrdiff_t(hi), n);
-            if (it == codes_.begin() + std::ptrdiff_t(hi) || *it != n) continue;
-            const std::uint32_t x = normals[std::size_t(it - codes_.begin())];
-            v[s][0] = x >> 16;
-            v[s][1] = x & 0xFFFFu;
-            has[s] = true;
-        }
-        // A parallelogram in a plane (a + b - ab) where one is complete, else the mean of the
-        // face neighbours, else the previous voxel.
-        std::int64_t sum[2] = {0, 0}, count = 0;
-        for (int p : {3, 5, 6}) {
-            const int a = p & -p, b = p - a;
-            if (!(has[a] && has[b] && has[p])) continue;
-            for (int h = 0; h < 2; ++h) sum[h] += std::clamp<std::int64_t>(v[a][h] + v[b][h] - v[p][h], 0, 0xFFFF);
-            ++count;
-        }
-        if (!count)
-            for (int a : {1, 2, 4})
-                if (has[a]) {
-                    for (int h = 0; h < 2; ++h) sum[h] += v[a][h];
-                    ++count;
-                }
-        if (!count) return normals[i - 1];
-        return std::uint32_t((sum[0] + count / 2) / count) << 16 | std::uint32_t((sum[1] + count / 2) / count);
-    }
-
-private:
-    static constexpr std::uint64_t kAxisMask = 0x4924924924924924ull & ((std::uint64_t(1) << (3 * Octree::kMaxDepth)) - 1);
-    const std::vector<std::uint64_t>& codes_;
-};
 
 /// Normals as 4 byte planes of zig-zagged differences to their prediction (per 16-bit
 /// component): high bytes first, which are nearly all 0 on a smooth surface, so that zstd
 /// packs them tightly.
-std::vector<std::uint8_t> encodeNormals(const std::vector<std::uint32_t>& normals, const std::vector<std::uint64_t>& codes) {
+std::vector<std::uint8_t> encodeNormals(const std::vector<std::uint32_t>& normals,
+                                        const std::vector<std::array<std::uint32_t, 3>>& neighbours) {
     const std::size_t n = normals.size();
-    const NormalPredictor predictor(codes);
     std::vector<std::uint8_t> out(4 * n);
     for (std::size_t i = 0; i < n; ++i) {
-        const std::uint32_t cur = normals[i], prev = predictor.predict(i, normals);
+        const std::uint32_t cur = normals[i], prev = predictNormal(i, neighbours, normals.data());
         for (int h = 0; h < 2; ++h) {
             const int shift = h ? 0 : 16;
             const auto d = std::int16_t(std::uint16_t(((cur >> shift) & 0xFFFFu) - ((prev >> shift) & 0xFFFFu)));
@@ -276,12 +218,12 @@ std::vector<std::uint8_t> encodeNormals(const std::vector<std::uint32_t>& normal
     return out;
 }
 
-std::vector<std::uint32_t> decodeNormals(const std::vector<std::uint8_t>& planes, const std::vector<std::uint64_t>& codes) {
+std::vector<std::uint32_t> decodeNormals(const std::vector<std::uint8_t>& planes,
+                                         const std::vector<std::array<std::uint32_t, 3>>& neighbours) {
     const std::size_t n = planes.size() / 4;
-    const NormalPredictor predictor(codes);
     std::vector<std::uint32_t> out(n);
     for (std::size_t i = 0; i < n; ++i) {
-        const std::uint32_t prev = predictor.predict(i, out);
+        const std::uint32_t prev = predictNormal(i, neighbours, out.data());
         std::uint32_t cur = 0;
         for (int h = 0; h < 2; ++h) {
             const int shift = h ? 0 : 16;
@@ -431,6 +373,53 @@ std::vector<std::uint8_t> readAll(const std::string& path) {
 
 }  // namespace
 
+std::vector<std::array<std::uint32_t, 3>> detail::voxelNeighbours(const Octree& tree) {
+    using Around = std::array<std::uint32_t, 3>;
+    const std::vector<OctreeNode>& nodes = tree.nodes();
+    if (nodes.empty()) return {};
+    // Per breadth-first position p of the current level: its node, the position of its first
+    // child on the next level, and its neighbours' positions at -x, -y, -z on its own level.
+    std::vector<std::uint32_t> node{0}, nextNode, first;
+    std::vector<Around> around{Around{kNoNeighbour, kNoNeighbour, kNoNeighbour}}, nextAround;
+    for (int l = 0; l < tree.depth; ++l) {
+        const bool voxelLevel = l == tree.depth - 1;
+        first.resize(node.size());
+        std::size_t children = 0;
+        for (std::uint32_t n : node) children += octrace::detail::kPopcount8.v[nodes[n].childMask];
+        nextNode.clear();
+        nextAround.clear();
+        if (!voxelLevel) nextNode.reserve(children);
+        nextAround.reserve(children);  // exactly: a voxel's 12 bytes are most of the memory
+        std::uint32_t q = 0;
+        for (std::size_t p = 0; p < node.size(); ++p) {
+            const OctreeNode& nd = nodes[node[p]];
+            first[p] = q;
+            std::uint32_t slot = nd.firstChild;
+            for (unsigned c = 0; c < 8; ++c) {
+                if (!(nd.childMask >> c & 1u)) continue;
+                Around n;
+                for (unsigned a = 0; a < 3; ++a) {
+                    // Axis a is bit 2 - a of the child index (c = 4x + 2y + z). On the high side
+                    // the neighbour is a sibling; on the low side, in the parent's neighbour
+                    // (which precedes p, so its first child's position is known).
+                    const unsigned bit = 4u >> a;
+                    const std::uint32_t owner = c & bit ? std::uint32_t(p) : around[p][a];
+                    const unsigned cc = c ^ bit;
+                    const unsigned m = owner == kNoNeighbour ? 0u : nodes[node[owner]].childMask;
+                    n[a] = m >> cc & 1u ? first[owner] + childRank(m, cc) : kNoNeighbour;
+                }
+                nextAround.push_back(n);
+                if (!voxelLevel) nextNode.push_back(slot);
+                ++slot;
+                ++q;
+            }
+        }
+        node.swap(nextNode);
+        around.swap(nextAround);
+    }
+    return around;
+}
+
 std::vector<std::uint8_t> encodeOctreeFile(const Octree& tree, int zstdLevel) {
     if (tree.nodes().empty() || tree.voxels().empty()) throw Error("cannot write an empty octree");
     const Flattened f = flatten(tree);
@@ -461,7 +450,7 @@ std::vector<std::uint8_t> encodeOctreeFile(const Octree& tree, int zstdLevel) {
     w.crcFrom(0);
     putChunk(w, "TREE", f.masks, zstdLevel);
     if (withTerms) putChunk(w, "TERM", f.terms, zstdLevel);
-    putChunk(w, "NORM", encodeNormals(f.normals, voxelMortonCodes(tree)), zstdLevel);
+    putChunk(w, "NORM", encodeNormals(f.normals, detail::voxelNeighbours(tree)), zstdLevel);
     // Optional: per-voxel colours (city models) and the CRS of world space.
     if (!f.colours.empty()) putChunk(w, "COLR", f.colours, zstdLevel);
     if (!tree.crs().empty()) putChunk(w, "CRS ", std::vector<std::uint8_t>(tree.crs().begin(), tree.crs().end()), zstdLevel);
@@ -514,7 +503,10 @@ Octree decodeOctreeFile(std::span<const std::uint8_t> bytes, const std::string& 
         throw FileError(name + ": chunk 'COLR' holds " + std::to_string(colrChunk->rawBytes) + " bytes, not 4 for each of the " +
                         std::to_string(info.voxels) + " voxels");
     if (crsChunk && crsChunk->rawBytes > 65536) throw FileError(name + ": chunk 'CRS ' is absurdly long");
-    const std::uint64_t need = info.nodes * (sizeof(OctreeNode) + 2) + info.voxels * (sizeof(Voxel) + 8 + (colrChunk ? 4 : 0) + (crnrChunk ? 16 : 0));
+    // Beside the tree: a level's positions while the normals' neighbours are found (20 bytes per
+    // node) and each voxel's neighbours (12 bytes).
+    const std::uint64_t need = info.nodes * (sizeof(OctreeNode) + 2 + 20) +
+                               info.voxels * (sizeof(Voxel) + 12 + (colrChunk ? 4 : 0) + (crnrChunk ? 16 : 0));
     checkMemoryBudget(name + ": reading an octree of " + std::to_string(info.nodes) + " nodes and " +
                           std::to_string(info.voxels) + " voxels",
                       need, memoryBudget);
@@ -545,7 +537,7 @@ Octree decodeOctreeFile(std::span<const std::uint8_t> bytes, const std::string& 
             OctreeNode& n = nodes[i];
             n.childMask = masks[i];
             n.termMask = terms[i];
-            const unsigned count = unsigned(std::popcount(unsigned(n.childMask)));
+            const unsigned count = octrace::detail::kPopcount8.v[n.childMask];
             std::uint64_t& next = level == tree.depth - 1 ? nextVoxel : nextNode;
             n.firstChild = std::uint32_t(next);
             next += count;
@@ -564,7 +556,7 @@ Octree decodeOctreeFile(std::span<const std::uint8_t> bytes, const std::string& 
     } catch (const Error& e) {
         throw broken(e.what());
     }
-    const std::vector<std::uint32_t> normals = decodeNormals(normalPlanes, voxelMortonCodes(tree));
+    const std::vector<std::uint32_t> normals = decodeNormals(normalPlanes, detail::voxelNeighbours(tree));
     for (std::size_t i = 0; i < normals.size(); ++i) tree.setVoxelNormal(std::uint32_t(i), normals[i]);
     tree.setBaked(std::move(baked));  // its length was checked against the header's above
     if (crnrChunk) {
