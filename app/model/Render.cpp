@@ -88,12 +88,21 @@ vec4 contrastingBackground(const Octree& tree, const RenderSettings& settings) {
     if (tree.voxels().empty()) return white;
     const Albedo albedo(tree, settings);
     const auto luminance = [](vec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
+    // The surface's mean luminance, over every entry of voxels().
     double sum = 0.0;
-    std::size_t n = 0;
-    tree.forEachVoxel([&](const ivec3& cell, std::uint32_t v) {
-        sum += luminance(albedo.at(v, float(cell.z) + 0.5f));
-        ++n;
-    });
+    const std::size_t n = tree.voxels().size();
+    if (!albedo.byHeight()) {
+        // The colour is the voxel's own (material, value, colour or one colour): no cells needed.
+        for (std::size_t v = 0; v < n; ++v) sum += luminance(albedo.at(std::uint32_t(v), 0.0f));
+    } else if (tree.voxelMaterials().empty()) {
+        // By height alone: the voxels counted per cell layer, each layer's colour looked up once.
+        std::vector<std::uint64_t> layer(std::size_t(1) << tree.depth, 0);
+        tree.forEachVoxel([&](const ivec3& cell, std::uint32_t) { ++layer[std::size_t(cell.z)]; });
+        for (std::size_t z = 0; z < layer.size(); ++z)
+            if (layer[z]) sum += double(layer[z]) * luminance(albedo.at(0, float(z) + 0.5f));
+    } else {
+        tree.forEachVoxel([&](const ivec3& cell, std::uint32_t v) { sum += luminance(albedo.at(v, float(cell.z) + 0.5f)); });
+    }
     const double y = n ? sum / double(n) : 1.0;
     const double yWhite = 1.0, ySlate = luminance(vec3(slate));
     const auto contrast = [](double a, double b) { return (std::max(a, b) + 0.05) / (std::min(a, b) + 0.05); };

@@ -5,8 +5,11 @@
 #include "CliRunner.h"
 
 #include "../io/ImageTestSupport.h"
+#include "octrace/build/AnalyticField.h"
+#include "octrace/build/OctreeBuilder.h"
 #include "octrace/model/Render.h"
 #include "octrace/model/Surface.h"
+#include "octrace/render/Shading.h"
 
 #include <cmath>
 #include <functional>
@@ -340,4 +343,46 @@ TEST(DefaultView, SameColouringComparesEverySettingTheSurfacesColourReads) {
         change(s);
         EXPECT_FALSE(model::sameColouring(base, s)) << name;
     }
+}
+
+// The contrasting background is chosen from the surface's mean luminance, which the function
+// takes per cell layer when the colour depends on the height alone and per voxel otherwise: its
+// choice equals the one made from every voxel's own colour, for colour ranges swept across the
+// point where the choice flips, by height and by a single colour.
+TEST(DefaultView, TheContrastingBackgroundIsTheOneEveryVoxelsColourChooses) {
+    using namespace octrace;
+    BuildOptions o;
+    o.depth = 6;
+    o.iso = 0.0;
+    const Octree tree = buildShellOctree(makeAnalyticField("torus", 33), o);
+    const auto byVoxel = [&](const RenderSettings& rs) {
+        const Albedo albedo(tree, rs);
+        const auto luminance = [](vec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
+        double sum = 0.0;
+        tree.forEachVoxel([&](const ivec3& cell, std::uint32_t v) { sum += luminance(albedo.at(v, float(cell.z) + 0.5f)); });
+        const double y = sum / double(tree.voxels().size());
+        const vec4 slate = model::displayToLinear(vec4(0.32f, 0.34f, 0.43f, 1.0f));
+        const double ySlate = luminance(vec3(slate));
+        const auto contrast = [](double a, double b) { return (std::max(a, b) + 0.05) / (std::min(a, b) + 0.05); };
+        return contrast(y, 1.0) >= contrast(y, ySlate) ? vec4(1.0f) : slate;
+    };
+    const Box3 box = tree.occupiedBounds();
+    const double h = box.hi.z - box.lo.z;
+    int white = 0, slate = 0;
+    for (int i = 0; i <= 40; ++i) {
+        // Grey from black to white over a window sliding up through the surface's height.
+        RenderSettings rs;
+        rs.colormap = "grey";
+        rs.colourMin = float(box.lo.z - h + h * 2.0 * i / 40.0);
+        rs.colourMax = float(rs.colourMin + h);
+        const vec4 want = byVoxel(rs), got = model::contrastingBackground(tree, rs);
+        EXPECT_EQ(got, want) << "window from " << rs.colourMin;
+        (want == vec4(1.0f) ? white : slate) += 1;
+        // One colour, darker to lighter.
+        RenderSettings one;
+        one.colour = vec3(float(i) / 40.0f);
+        EXPECT_EQ(model::contrastingBackground(tree, one), byVoxel(one)) << "grey " << one.colour.r;
+    }
+    EXPECT_GT(white, 3);  // the sweep crosses the point where the choice flips
+    EXPECT_GT(slate, 3);
 }
