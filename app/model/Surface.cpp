@@ -49,13 +49,13 @@ ValueWindow parseWindow(const std::string& v) {
 std::pair<double, std::string> defaultIso(const ScalarField& field, const std::string& input) {
     const auto [lo, hi] = field.validRange();
     std::ostringstream why;
-    if (field.geographic.valid || input.rfind("analytic:", 0) == 0 || !(hi > lo)) {
+    if (input.rfind("analytic:", 0) == 0 || !(hi > lo)) {
         why << "the middle of the range [" << lo << ", " << hi << "] of '" << field.name << "'";
         return {0.5 * (double(lo) + double(hi)), why.str()};
     }
-    // Otsu (1979) over the samples between their 0.5th and 99.5th percentiles (the few beyond,
-    // clamped to those ends, would otherwise pull the split towards themselves: one bright
-    // outlier splits off alone). The percentiles from a fine histogram of the whole range.
+    // The valid samples between their 0.5th and 99.5th percentiles (from a fine histogram of the
+    // whole range): the few beyond would pull an image volume's split towards themselves (one
+    // bright outlier splits off alone), and an ocean field's middle to where no cell crosses it.
     const auto histogram = [&](double from, double to, std::vector<double>& count) {
         const double width = (to - from) / double(count.size());
         const int last = int(count.size()) - 1;
@@ -74,6 +74,16 @@ std::pair<double, std::string> defaultIso(const ScalarField& field, const std::s
     for (double seen = 0.0; a < fine.size() && seen + fine[a] < 0.005 * total; ++a) seen += fine[a];
     for (double seen = 0.0; b > a && seen + fine[b] < 0.005 * total; --b) seen += fine[b];
     const double from = double(lo) + double(a) * fineWidth, to = double(lo) + double(b + 1) * fineWidth;
+    if (field.geographic.valid) {
+        // An ocean field has no two classes to split: the middle of its range without the few
+        // extreme samples (Levitus salinity: 33.7 rather than 22.7, which the 4.6 of a few
+        // coastal samples put where no cell of the atlas crosses).
+        const double middle = 0.5 * (from + to);
+        why << "the middle of [" << from << ", " << to << "], the range of the valid samples of '" << field.name
+            << "' between their 0.5th and 99.5th percentiles (all: [" << lo << ", " << hi << "])";
+        return {middle, why.str()};
+    }
+    // Otsu (1979) over the samples between those percentiles, clamped to those ends.
     constexpr int kBins = 256;
     std::vector<double> count(kBins, 0.0);
     const double width = histogram(from, to, count);

@@ -98,7 +98,8 @@ inline constexpr Option depth{.key = "depth", .kind = OptionKind::Integer, .flag
 inline constexpr Option iso{.key = "iso", .kind = OptionKind::Text, .flag = "iso", .argument = "VALUE[UNIT]|NAME",
     .session = "surface.iso", .label = "Iso value",
     .defaultText = "for an image volume (CT, MR, NRRD, ...) Otsu's threshold of its valid samples (what best splits them "
-                   "into tissue and background); for an ocean field or an analytic one the middle of the valid range",
+                   "into tissue and background); for an ocean field the middle of its valid samples' range between their 0.5th and "
+                   "99.5th percentiles; for an analytic one the middle of the valid range",
     .help = "iso value of the surface in the variable's units, or with a unit converted into them by UDUNITS-2 "
             "(10degC on a field in K), or a CT preset in Hounsfield units", .commands = "render export build csg animate"};
 inline constexpr Option variable{.key = "var", .kind = OptionKind::Text, .flag = "var", .argument = "NAME",

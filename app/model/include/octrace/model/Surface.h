@@ -91,8 +91,10 @@ vec4 displayToLinear(vec4 c);
 /// clause for the log: "Otsu's threshold of ..."): for an image volume (any field not on a
 /// longitude/latitude grid and not analytic: CT, MR, NRRD, ...), Otsu's threshold of its valid
 /// samples (256 bins over their range: the value that best splits them into two classes, the
-/// tissue from the background, as a radiologist's first threshold does); else the middle of
-/// the valid range. Throws as ScalarField::validRange.
+/// tissue from the background, as a radiologist's first threshold does); for a field on a
+/// longitude/latitude grid, the middle of its valid samples' range between their 0.5th and
+/// 99.5th percentiles (a few extreme samples would put the plain middle where no cell crosses
+/// it); for an analytic field, the middle of the valid range. Throws as ScalarField::validRange.
 std::pair<double, std::string> defaultIso(const ScalarField& field, const std::string& input);
 /// Refuses (InputError) a CT preset (`what`, e.g. "`iso` bone") for a field whose values are not
 /// Hounsfield units.
