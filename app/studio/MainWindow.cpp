@@ -16,6 +16,7 @@
 #include "octrace/csg/Solid.h"
 #include "octrace/util/Error.h"
 
+#include "octrace/io/FieldReader.h"
 #include "octrace/io/ImageWriter.h"
 #include "octrace/render/ImageCompare.h"
 #include "octrace/render/Renderer.h"
@@ -263,6 +264,12 @@ void MainWindow::buildMenus() {
     QMenu* file = menuBar()->addMenu(tr("&File"));
     QAction* open = file->addAction(tr("&Open..."), this, &MainWindow::chooseOpen);
     open->setShortcut(QKeySequence::Open);
+    // The inputs that are folders: a DICOM folder (its series) or a Zarr store.
+    QAction* openFolder = file->addAction(tr("Open &Folder..."), this, [this] {
+        const QString d = QFileDialog::getExistingDirectory(this, tr("Open a DICOM folder or a Zarr store"));
+        if (!d.isEmpty()) openInput(d);
+    });
+    openFolder->setShortcut(QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_O));
     file->addAction(tr("Open &Analytic Field..."), this, [this] {
         bool ok = false;
         QStringList names;
@@ -816,7 +823,11 @@ void MainWindow::showMessage(const QString& text, bool error) {
     }
 }
 
-void MainWindow::openInput(const QString& input) {
+void MainWindow::openInput(const QString& chosen) {
+    // A Zarr store's metadata file (picked in the Open dialog, which picks files, or dropped):
+    // the store is read by its folder.
+    const std::string store = io::zarrStoreOfMetadataFile(chosen.toStdString());
+    const QString input = store.empty() ? chosen : QString::fromStdString(store);
     StudioState s = state_;
     s.input = input.toStdString();
     s.variable.clear();
@@ -949,7 +960,8 @@ void MainWindow::updateRecentMenu() {
 void MainWindow::chooseOpen() {
     const QString f = QFileDialog::getOpenFileName(
         this, tr("Open input"), QString(),
-        tr("Volumes (*.nc *.cdf *.nc4 *.nrrd *.nhdr *.dcm *.mhd *.mha *.nii *.nii.gz *.hdr *.vti *.oct DICOMDIR);;All files (*)"));
+        tr("Volumes (*.nc *.cdf *.nc4 *.nrrd *.nhdr *.dcm *.mhd *.mha *.nii *.nii.gz *.hdr *.vti *.oct DICOMDIR);;"
+           "Zarr stores (.zgroup .zarray .zmetadata zarr.json);;All files (*)"));
     if (!f.isEmpty()) openInput(f);
 }
 

@@ -147,6 +147,26 @@ TEST(Zarr, CorruptChunkNamesTheStoreAndTheVariable) {
     EXPECT_THROW_WITH((void)io::describeInput(store), FileError, "cannot read variable 'TEMP'");
 }
 
+TEST(Zarr, AMetadataFileIsRefusedNamingItsStoresFolder) {
+    const std::string store = test::testData("invalid/invalid_corrupt_chunk.zarr");
+    for (const char* name : {".zgroup", ".zattrs", ".zmetadata"}) {
+        const std::string file = store + "/" + name;
+        EXPECT_EQ(io::zarrStoreOfMetadataFile(file), store);
+        EXPECT_THROW_WITH(io::readField(file, variable("SALT")), FormatNotSupported,
+                          file + ": a metadata file of the Zarr store " + store + "; a store is read by its folder: " + store);
+        EXPECT_THROW_WITH((void)io::describeInput(file), FormatNotSupported, "a store is read by its folder: " + store);
+    }
+    // An array's metadata: its folder, a Zarr v2 array.
+    EXPECT_EQ(io::zarrStoreOfMetadataFile(store + "/SALT/.zarray"), store + "/SALT");
+    // A chunk, the store itself, a metadata name outside any store: none.
+    EXPECT_EQ(io::zarrStoreOfMetadataFile(store + "/SALT/0.0.0"), "");
+    EXPECT_EQ(io::zarrStoreOfMetadataFile(store), "");
+    test::TempDir tmp;
+    std::ofstream(tmp.file(".zattrs")) << "{}";
+    EXPECT_EQ(io::zarrStoreOfMetadataFile(tmp.file(".zattrs")), "");
+    EXPECT_THROW_WITH(io::readField(tmp.file(".zattrs")), FormatNotSupported, "format not recognised");
+}
+
 TEST(Zarr, FoldersWithoutZarrMetadataAreStillDicom) {
     EXPECT_THROW_WITH(io::readField(test::testData("invalid/invalid_no_dicom_images")), FileError, "no DICOM image");
     test::TempDir tmp;

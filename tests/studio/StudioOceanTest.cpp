@@ -31,6 +31,7 @@
 #include <QtTest>
 
 #include "StudioTestSupport.h"
+#include "../ZarrStores.h"
 
 using namespace octrace::studio::test;
 using octrace::studio::Engine;
@@ -482,6 +483,24 @@ private slots:
         QVERIFY(slices->windowText().empty());
         QVERIFY(!slices->at(2));
         slices->setFourUp(false);
+    }
+
+    void aZarrStoresMetadataFileOpensTheStore() {
+        // The Open dialog picks files: a store's `.zgroup` (or its `zarr.json`) chosen there, or
+        // dropped on the window, opens the store's folder; File > Open Folder... opens folders.
+        std::string why;
+        bool unavailable = false;
+        const std::string dir = octrace::test::zarrStores(kLevitus.toStdString(), why, unavailable);
+        if (dir.empty() && unavailable) QSKIP(why.c_str());
+        QVERIFY2(!dir.empty(), why.c_str());
+        const std::string store = dir + "/levitus_gdal.zarr";
+        open(QString::fromStdString(store + "/.zgroup"));
+        QCOMPARE(window_->state().input, store);
+        QCOMPARE(window_->windowTitle(), QStringLiteral("levitus_gdal.zarr - octrace studio"));
+        bool folderAction = false;
+        for (QAction* a : window_->findChildren<QAction*>())
+            folderAction |= a->text() == QStringLiteral("Open &Folder...") && a->shortcut() == QKeySequence(QStringLiteral("Ctrl+Shift+O"));
+        QVERIFY(folderAction);
     }
 
     void cleanupTestCase() { delete window_; }

@@ -2,6 +2,7 @@
 
 #include "input/FormatSniffer.h"
 #include "input/InputFile.h"
+#include "zarr/ZarrStore.h"
 #include "octrace/io/DicomReader.h"
 #include "octrace/io/NetcdfReader.h"
 #include "octrace/io/NrrdReader.h"
@@ -36,6 +37,9 @@ FileKind kindOf(const std::string& path) {
     if (ext == ".nii" || ext == ".hdr" || detail::lower(path).ends_with(".nii.gz")) return FileKind::Nifti;
     if (ext == ".vti") return FileKind::Vti;
     if (ext == ".dcm" || ext == ".dicom" || std::filesystem::path(path).filename() == "DICOMDIR") return FileKind::Dicom;
+    const std::string store = zarrStoreOfMetadataFile(path);
+    if (!store.empty())
+        throw FormatNotSupported(path + ": a metadata file of the Zarr store " + store + "; a store is read by its folder: " + store);
     throw FormatNotSupported(path + ": format not recognised (file starts with '" + s.description + "'); " + kSupported);
 }
 
@@ -78,6 +82,16 @@ std::optional<VolumeReader::Format> volumeFormat(FileKind kind) {
 }
 
 }  // namespace
+
+std::string zarrStoreOfMetadataFile(const std::string& path) {
+    const std::filesystem::path p(path);
+    const std::string name = p.filename().string();
+    if (name != ".zgroup" && name != ".zarray" && name != ".zattrs" && name != ".zmetadata" && name != "zarr.json") return {};
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(p, ec)) return {};
+    const std::filesystem::path folder = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
+    return detail::isZarrFolder(folder.string()) ? folder.string() : std::string();
+}
 
 InputChoices listInputChoices(const std::string& path, const ReadHooks& hooks) {
     InputChoices c;

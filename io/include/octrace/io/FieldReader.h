@@ -27,11 +27,6 @@ namespace octrace::io {
 ///         is validated.
 ScalarField readField(const std::string& path, const FieldRequest& req = {});
 
-/// The text `octrace info INPUT` prints: format, variables with units, dims and valid value
-/// range, dims, spacing or axes, origin and world bounds; for DICOM every series, then the
-/// one `req.series` chooses. What would need more than `req.memoryBudget` bytes (0 = no
-/// limit) to read is left out of the text (NetCDF) or refused (NRRD, LimitError). Only
-/// `series` and `memoryBudget` of the request are used. Throws as readField().
 /// What a chooser (the studio's) can offer for an input: the 3-D variables of a NetCDF file
 /// (NetcdfReader::volumeVariables) and the image series of a DICOM input (listSeries); both
 /// empty for the formats that hold one field. Throws as readField() for an input that cannot
@@ -43,6 +38,17 @@ struct InputChoices {
 };
 InputChoices listInputChoices(const std::string& path, const ReadHooks& hooks = {});
 
+/// The text `octrace info INPUT` prints: format, variables with units, dims and valid value
+/// range, dims, spacing or axes, origin and world bounds; for DICOM every series, then the
+/// one `req.series` chooses. What would need more than `req.memoryBudget` bytes (0 = no
+/// limit) to read is left out of the text (NetCDF) or refused (NRRD, LimitError). Only
+/// `series` and `memoryBudget` of the request are used. Throws as readField().
 std::string describeInput(const std::string& path, const FieldRequest& req = {});
+
+/// The Zarr store a metadata file belongs to: for a file named `.zgroup`, `.zarray`, `.zattrs`,
+/// `.zmetadata` or `zarr.json` in a folder that is a Zarr store, that folder; else "". A store
+/// is read by its folder (readField refuses the file, naming the folder); a chooser that picks
+/// files (the studio's Open dialog) opens the folder instead. Never throws.
+std::string zarrStoreOfMetadataFile(const std::string& path);
 
 }  // namespace octrace::io
