@@ -17,6 +17,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <chrono>
+#include <fstream>
 #include <iterator>
 #include <tuple>
 
@@ -636,6 +638,68 @@ TEST(DicomReader, ReportsProgressPerFileAndStopsBetweenFilesWhenCancelled) {
     viaRequest.reported.clear();
     viaRequest.cancelAfter = 3;
     EXPECT_THROW(io::readField(sagittal, req), CancelledError);
+}
+
+// The headers of the last input scanned are kept while its files stay as they were (the studio
+// lists a folder's series, reads one and lists its volumes): a second scan reads none of them,
+// and a file added, changed or removed scans again.
+TEST(DicomReader, AFolderScannedAgainUnchangedIsNotReadAgain) {
+    test::TempDir dir;
+    const std::string folder = dir.file("series");
+    std::filesystem::copy(test::testData("dicom/two_series"), folder, std::filesystem::copy_options::recursive);
+    std::vector<std::string> said;
+    const log::Level level = log::level();
+    log::setLevel(log::Level::Debug);
+    log::setSink([&](log::Level, const std::string& text) { said.push_back(text); });
+    const auto kept = [&] {
+        return std::count_if(said.begin(), said.end(), [&](const std::string& t) { return t.find("the headers of the last scan") != std::string::npos; });
+    };
+    const auto first = io::DicomReader::listSeries(folder);
+    const auto before = kept();
+    EXPECT_EQ(io::DicomReader::listSeries(folder).size(), first.size());
+    EXPECT_EQ(io::DicomReader::read(folder).name, "CT");
+    EXPECT_EQ(kept(), before + 2);
+    // One file rewritten with another series description (same size: the time tells).
+    std::vector<std::filesystem::path> files;
+    for (const auto& e : std::filesystem::recursive_directory_iterator(folder))
+        if (e.is_regular_file()) files.push_back(e.path());
+    std::sort(files.begin(), files.end());
+    const std::string from = first.front().description;
+    ASSERT_FALSE(from.empty());
+    // The first file holding it.
+    std::string bytes;
+    std::size_t at = std::string::npos;
+    std::filesystem::path changed;
+    for (const auto& f : files) {
+        std::ifstream in(f, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+        at = bytes.find(from);
+        if (at != std::string::npos) {
+            changed = f;
+            break;
+        }
+    }
+    ASSERT_NE(at, std::string::npos);
+    std::string renamed = from;
+    renamed[0] = renamed[0] == 'x' ? 'y' : 'x';
+    bytes.replace(at, from.size(), renamed);
+    const auto stamp = std::filesystem::last_write_time(changed) + std::chrono::seconds(2);
+    {
+        std::ofstream out(changed, std::ios::binary | std::ios::trunc);
+        out << bytes;
+    }
+    std::filesystem::last_write_time(changed, stamp);  // later than before, whatever the clock's resolution
+    const auto again = io::DicomReader::listSeries(folder);
+    EXPECT_EQ(kept(), before + 2);
+    bool seen = false;
+    for (const auto& s : again) seen |= s.description.find(renamed) != std::string::npos;
+    EXPECT_TRUE(seen) << "the rewritten file's series description";
+    // A file removed: scanned again too.
+    std::filesystem::remove(changed == files.back() ? files.front() : files.back());
+    (void)io::DicomReader::listSeries(folder);
+    EXPECT_EQ(kept(), before + 2);
+    log::setSink({});
+    log::setLevel(level);
 }
 
 // A 4-D NIfTI image is read one volume at a time: per slice of the volume asked for (progress

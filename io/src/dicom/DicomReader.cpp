@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <mutex>
+#include <optional>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -79,9 +81,68 @@ std::vector<std::string> candidateFiles(const std::string& path, bool& folder) {
     return files;
 }
 
+// The last input's scan, kept while none of its files changes: the studio lists a folder's
+// series, reads one and lists its volumes, three scans of every header otherwise (a clinical
+// folder holds thousands of files). Keyed by the path as given and each candidate file's name,
+// size and modification time; one input kept, its headers (a few hundred bytes per file).
+struct FileStamp {
+    std::string file;
+    std::uintmax_t size = 0;
+    fs::file_time_type modified;
+    bool operator==(const FileStamp&) const = default;
+};
+
+struct ScanMemo {
+    std::string path;
+    std::vector<FileStamp> stamps;
+    Scan scan;
+};
+
+std::mutex scanMemoMutex;
+std::optional<ScanMemo> scanMemo;  // guarded by scanMemoMutex
+
+// The stamps of `files`, or nullopt when one cannot be read (then nothing is kept).
+std::optional<std::vector<FileStamp>> stampsOf(const std::vector<std::string>& files) {
+    std::vector<FileStamp> stamps;
+    stamps.reserve(files.size());
+    for (const std::string& f : files) {
+        std::error_code ec, ec2;
+        FileStamp st{f, fs::file_size(f, ec), fs::last_write_time(f, ec2)};
+        if (ec || ec2) return std::nullopt;
+        stamps.push_back(std::move(st));
+    }
+    return stamps;
+}
+
+Scan scanFiles(const std::string& path, const std::vector<std::string>& files, bool folder, const ReadHooks& hooks);
+
 Scan scan(const std::string& path, const ReadHooks& hooks = {}) {
+    bool folder = false;
+    const std::vector<std::string> files = candidateFiles(path, folder);
+    const std::optional<std::vector<FileStamp>> stamps = stampsOf(files);
+    if (stamps) {
+        const std::lock_guard lock(scanMemoMutex);
+        if (scanMemo && scanMemo->path == path && scanMemo->stamps == *stamps) {
+            // Reported and cancellable per file as a scan is, so that callers see one behaviour.
+            for (std::size_t i = 0; i < files.size(); ++i) {
+                hooks.checkCancelled(path);
+                hooks.report(kScanShare * double(i) / double(files.size()));
+            }
+            log::debug(path + ": the headers of the last scan (" + std::to_string(files.size()) + " files unchanged)");
+            return scanMemo->scan;
+        }
+    }
+    Scan s = scanFiles(path, files, folder, hooks);
+    if (stamps) {
+        const std::lock_guard lock(scanMemoMutex);
+        scanMemo = ScanMemo{path, *stamps, s};
+    }
+    return s;
+}
+
+Scan scanFiles(const std::string& path, const std::vector<std::string>& files, bool folder, const ReadHooks& hooks) {
     Scan s;
-    const std::vector<std::string> files = candidateFiles(path, s.folder);
+    s.folder = folder;
     std::map<std::string, Series> byUid;
     std::size_t skipped = 0, scanned = 0;
     for (const std::string& f : files) {
