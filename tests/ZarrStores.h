@@ -41,7 +41,7 @@ inline std::string zarrStores(const std::string& levitus, std::string& why, bool
     fs::remove_all(tmp, ec);
     fs::create_directories(tmp);
     const fs::path log = tmp.string() + ".log";
-    const std::string command = "'" + std::string(OCTRACE_TEST_PYTHON) + "' '" + script.string() + "' levitus '" +
+    const std::string command = std::string("'") + OCTRACE_TEST_PYTHON + "' '" + script.string() + "' levitus '" +
                                 levitus + "' '" + tmp.string() + "' >'" + log.string() + "' 2>&1";
     const int status = std::system(command.c_str());
     const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

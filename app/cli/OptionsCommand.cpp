@@ -30,7 +30,7 @@ int runOptions(const std::vector<std::string>& args) {
                 std::printf("%s\t### %s\t%s\n", o->docCommand().c_str(), flag.c_str(), o->docLine().c_str());
             continue;
         }
-        std::printf("%s\n", (flag.empty() ? o->key : flag + (*o->argument && o->kind != model::OptionKind::Flag ? " " + std::string(o->argument) : "")).c_str());
+        std::printf("%s\n", (flag.empty() ? o->key : flag + (*o->argument && o->kind != model::OptionKind::Flag ? std::string(" ") + o->argument : "")).c_str());
         std::printf("    key %s; %s\n", o->key, model::sayForCli(o->helpLine()).c_str());
         if (*o->session) std::printf("    session member %s\n", o->session);
         if (*o->label) std::printf("    studio control \"%s\"\n", o->label);

@@ -265,15 +265,15 @@ std::string sayForSession(std::string_view text) {
 std::string sayForStudio(std::string_view text) {
     return sayParameters(text, [](std::string_view key) -> std::optional<std::string> {
         const Option* o = findOption(key);
-        if (o && *o->label) return "'" + std::string(o->label) + "'";
+        if (o && *o->label) return enclosed(o->label, '\'');
         return spaced(key);
     });
 }
 
 std::string sayForPython(std::string_view text) {
     return sayParameters(text, [](std::string_view key) -> std::optional<std::string> {
-        if (key == opt::width.key || key == opt::height.key) return "'" + std::string(opt::size.key) + "'";
-        if (findOption(key)) return "'" + std::string(key) + "'";
+        if (key == opt::width.key || key == opt::height.key) return enclosed(opt::size.key, '\'');
+        if (findOption(key)) return enclosed(key, '\'');
         return spaced(key);
     });
 }

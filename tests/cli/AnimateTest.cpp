@@ -251,7 +251,7 @@ TEST(VideoWriter, KeepsEveryFrameWhateverTheCount) {
     if (!haveFfmpeg()) GTEST_SKIP() << "ffprobe/ffmpeg absent (Debian package ffmpeg, scripts/setup.sh)";
     Scratch s;
     for (int n = 1; n <= 9; ++n) {
-        const std::string mp4 = s.path("n" + std::to_string(n) + ".mp4");
+        const std::string mp4 = s.path(std::string("n") + std::to_string(n) + ".mp4");
         io::VideoWriter v(mp4, 64, 48, 12);
         for (int i = 0; i < n; ++i) v.add(std::vector<std::uint8_t>(64 * 48 * 4, std::uint8_t(i * 25)));
         v.finish();

@@ -104,18 +104,21 @@ void expectNoCollision(const FigureText& f, const std::string& what) {
         const bool room2 = std::any_of(a.places.begin(), a.places.end(), [&](const auto& p) {
             return p.first == a.span && roomFor(2, p, f.labelPx);
         });
-        if (a.candidates >= 2 && a.span < 0.5 * f.labelPx) EXPECT_EQ(drawn, 0u) << what << ": " << a.role << " is seen end on";
-        else if (a.span >= 3.0 * f.labelPx && a.candidates >= 3 && room3)
+        if (a.candidates >= 2 && a.span < 0.5 * f.labelPx) {
+            EXPECT_EQ(drawn, 0u) << what << ": " << a.role << " is seen end on";
+        } else if (a.span >= 3.0 * f.labelPx && a.candidates >= 3 && room3) {
             EXPECT_GE(drawn, 3u) << what << ": " << a.role << " keeps " << joined(f.texts(a.role)) << " of " << a.candidates << " over "
                                  << a.span << " px";
-        else if (a.candidates >= 2 && !room3 && room2)
+        } else if (a.candidates >= 2 && !room3 && room2) {
             EXPECT_GE(drawn, 2u) << what << ": " << a.role << ", too short for 3 labels, keeps " << joined(f.texts(a.role)) << " of "
                                  << a.candidates << " over " << a.span << " px";
+        }
     }
     for (const TextBox& b : f.boxes)
-        if (b.role == "letter")
+        if (b.role == "letter") {
             EXPECT_FALSE(b.x0 < f.plot[2] && f.plot[0] < b.x1 && b.y0 < f.plot[3] && f.plot[1] < b.y1)
                 << what << ": the letter " << b.text << " lies over the plot";
+        }
     for (std::size_t i = 0; i < f.boxes.size(); ++i) {
         const TextBox& a = f.boxes[i];
         EXPECT_TRUE(a.x0 >= 0 && a.y0 >= 0 && a.x1 <= f.width && a.y1 <= f.height)
@@ -142,8 +145,6 @@ std::vector<FigureText> figuresOf(const std::vector<std::string>& args) {
     EXPECT_FALSE(out.empty()) << "no figure text recorded";
     return out;
 }
-
-bool contains(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
 
 const char* kLevitus = "ocean/levitus_climatology.cdf";
 
@@ -318,7 +319,9 @@ TEST(FigureText, CityMoleculeAndAnalyticFiguresKeepTheirTextApart) {
             // Ticks a reader reads at a glance: no exponents (a city's projected metres count
             // from the box's corner instead).
             for (const TextBox& b : figs[0].boxes)
-                if (b.role.rfind("axis", 0) == 0) EXPECT_EQ(b.text.find("e+"), std::string::npos) << args[1] << ": " << b.text;
+                if (b.role.rfind("axis", 0) == 0) {
+                    EXPECT_EQ(b.text.find("e+"), std::string::npos) << args[1] << ": " << b.text;
+                }
         }
     }
 }
@@ -334,7 +337,7 @@ TEST(FigureText, SliceFiguresOfAVolumeAndOfAMapKeepTheirTextApart) {
     for (const auto& args : cases)
         for (const std::string size : {"480x360", "1200x1000"}) {
             std::vector<std::string> a = args;
-            for (const std::string x : {std::string("--figure"), std::string("--size"), size, std::string("-o"), s.path("s.png")})
+            for (const std::string& x : {std::string("--figure"), std::string("--size"), size, std::string("-o"), s.path("s.png")})
                 a.push_back(x);
             const auto figs = figuresOf(a);
             ASSERT_EQ(figs.size(), 1u);

@@ -78,7 +78,7 @@ TEST(OceanCli, SametAndBeamHitTheReferencesVoxelsOnTheLevitusTemperature) {
                                          "--look-at", "0,0,-681.068925", "--up", "0,0,1", "--fov", "30", "--quiet"};
     for (const std::string renderer : {"samet", "beam"}) {
         std::vector<std::string> args = scene;
-        for (const std::string& a : {"--renderer", renderer.c_str(), "--baseline", "full", "--verify", "--stats"}) args.push_back(a);
+        for (const char* a : {"--renderer", renderer.c_str(), "--baseline", "full", "--verify", "--stats"}) args.push_back(a);
         args.push_back(s.path(renderer + ".json"));
         args.push_back("-o");
         args.push_back(s.path(renderer + ".png"));

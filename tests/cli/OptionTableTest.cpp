@@ -113,7 +113,9 @@ TEST(OptionTable, KeysAndFlagsAreUniqueAndEveryHelpStatesItsDefault) {
         if (o->kind == model::OptionKind::Integer || o->kind == model::OptionKind::Number) {
             EXPECT_TRUE(o->defaultText[0] || o->inRange(o->defaultValue)) << o->key << ": the default is outside the range";
         }
-        if (o->kind == model::OptionKind::Choice) EXPECT_FALSE(o->defaultSaid().empty()) << o->key;
+        if (o->kind == model::OptionKind::Choice) {
+            EXPECT_FALSE(o->defaultSaid().empty()) << o->key;
+        }
         std::istringstream commands(o->commands);
         for (std::string c; commands >> c;) {
             for (const model::Option* p : model::allOptions()) {

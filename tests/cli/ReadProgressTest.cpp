@@ -81,7 +81,9 @@ TEST(SurfaceBuild, ReadingReportsItsOwnProgressToOneBeforeTheBuildStarts) {
         ASSERT_LT(firstBuild, seen.calls.size()) << "the build reported nothing";
         for (std::size_t i = 0; i < firstBuild; ++i) {
             EXPECT_EQ(seen.calls[i].first, 'r') << i;
-            if (i > 0) EXPECT_LE(seen.calls[i - 1].second, seen.calls[i].second) << i;
+            if (i > 0) {
+                EXPECT_LE(seen.calls[i - 1].second, seen.calls[i].second) << i;
+            }
         }
         EXPECT_EQ(seen.calls[firstBuild - 1].second, 1.0);
         for (std::size_t i = firstBuild; i < seen.calls.size(); ++i) EXPECT_EQ(seen.calls[i].first, 'b') << "read reported after the build began";

@@ -60,7 +60,9 @@ TEST(SingleImageCli, ACtImageIsShownInItsOwnPlaneWithTheWindowOfItsHounsfieldUni
         EXPECT_TRUE(has(js, "\"screen_up\": \"A\"")) << js;
         EXPECT_TRUE(has(js, "\"pixel_size\": 0.661468")) << js;
         EXPECT_TRUE(has(js, "\"valid_pixels\": 16384")) << js;
-        if (!*c.window) EXPECT_TRUE(has(js, "\"colour_source\": \"the volume's value range\"")) << js;
+        if (!*c.window) {
+            EXPECT_TRUE(has(js, "\"colour_source\": \"the volume's value range\"")) << js;
+        }
         const auto png = octrace::test::decodePng(octrace::test::readBytes(s.path("ct.png")));
         ASSERT_EQ(png.width, 128);
         ASSERT_EQ(png.height, 128);

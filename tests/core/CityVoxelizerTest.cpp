@@ -178,7 +178,9 @@ TEST(CityVoxelizer, TerrainStopsAtTheTerrainDepthAndBuildingsGoToTheDepth) {
     });
     EXPECT_EQ(level3, 64u - 16u);  // 8 x 8 ground cubes less the 4 x 4 the house's closed box touches
     uniform.forEachVoxel([&](const ivec3& c, std::uint32_t v) {
-        if (uniform.colours()[v] == packColour(vec3(1, 0, 0))) EXPECT_TRUE(fine.count({c.x, c.y, c.z})) << c.x << "," << c.y << "," << c.z;
+        if (uniform.colours()[v] == packColour(vec3(1, 0, 0))) {
+            EXPECT_TRUE(fine.count({c.x, c.y, c.z})) << c.x << "," << c.y << "," << c.z;
+        }
     });
     // The summaries count each coarse leaf once; the bounds cover the coarse leaves whole.
     mixed.computeSummaries();

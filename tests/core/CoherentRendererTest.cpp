@@ -218,14 +218,18 @@ TEST_F(RodAlone, MissCoherenceTakesThePixelsBetweenTwoMissesAsBackground) {
             }
         // Every pixel that differs from full traversal is one miss coherence took as background.
         for (std::size_t i = 0; i < on.flags.size(); ++i)
-            if (on.hitId[i] != full.hitId[i]) ASSERT_TRUE(on.flags[i] & Frame::kMissFilled) << i;
+            if (on.hitId[i] != full.hitId[i]) {
+                ASSERT_TRUE(on.flags[i] & Frame::kMissFilled) << i;
+            }
     }
     for (const char* name : {"linear-exact", "area-exact"}) {
         Frame f;
         EXPECT_GT(draw(name, tree, cam, f).missFilled, 0u) << name;  // the background around the rod
         EXPECT_EQ(differingHits(f, full), 0) << name;
         for (int y = 0; y < H; ++y)  // the rod between missing partners is traced, not taken as a miss
-            if (full.hitId[full.pixel(102, y)] != kNoHit) ASSERT_FALSE(f.flags[f.pixel(102, y)] & Frame::kMissFilled) << y;
+            if (full.hitId[full.pixel(102, y)] != kNoHit) {
+                ASSERT_FALSE(f.flags[f.pixel(102, y)] & Frame::kMissFilled) << y;
+            }
     }
 }
 

@@ -251,7 +251,9 @@ TEST(SphereRenderers, RaysCountsEverySampleWhoseRayMeetsTheSceneCube) {
                     expected += t0 <= t1 && t1 >= 0.0;
                 }
             EXPECT_EQ(st.rays, expected) << "camera " << k << ", samples " << samples;
-            if (k == 0 || k == 2) EXPECT_GT(expected, 0u);
+            if (k == 0 || k == 2) {
+                EXPECT_GT(expected, 0u);
+            }
         }
 }
 

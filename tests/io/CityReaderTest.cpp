@@ -423,7 +423,9 @@ TEST(CityScene, CombinesSourcesWithTheirDepthColourAndRole) {
         const bool second = i >= cube.objects.size();
         EXPECT_EQ(m.objects[i].colour, packColour(second ? vec3(0, 0, 1) : vec3(1, 0, 0)));
         EXPECT_EQ(m.objects[i].depth, second ? 3 : 0);
-        if (second) EXPECT_EQ(m.objects[i].role, CityRole::Terrain);
+        if (second) {
+            EXPECT_EQ(m.objects[i].role, CityRole::Terrain);
+        }
     }
     // The second source stops at level 3: coarse leaves, blue; the first goes to the depth.
     CityBuildOptions o;
@@ -432,7 +434,9 @@ TEST(CityScene, CombinesSourcesWithTheirDepthColourAndRole) {
     t.validate();
     ASSERT_TRUE(t.hasCoarseLeaves());
     t.forEachLeaf([&](const ivec3&, int shift, std::uint32_t v) {
-        if (shift > 0) EXPECT_EQ(t.colours()[v], packColour(vec3(0, 0, 1)));
+        if (shift > 0) {
+            EXPECT_EQ(t.colours()[v], packColour(vec3(0, 0, 1)));
+        }
     });
     o.depth = 2;
     EXPECT_THROW(voxelizeCity(m, o), UsageError);  // a source deeper than the octree

@@ -111,7 +111,9 @@ TEST(Gshhg, TasmaniasPiecesCloseIntoOneRing) {
         }
         for (const dvec2& p : c.lines[first]) lo = glm::min(lo, p), hi = glm::max(hi, p);
         // Low's bins are 10° (Tasmania lies in one); intermediate's and high's 5° cut it at 145°E.
-        if (r != GshhgResolution::Low) EXPECT_GT(pieces, 1u) << "Tasmania spans several bins";
+        if (r != GshhgResolution::Low) {
+            EXPECT_GT(pieces, 1u) << "Tasmania spans several bins";
+        }
         // Tasmania: 144.6°E (west coast) to 148.4°E, 40.6°S to 43.65°S.
         EXPECT_NEAR(lo.x, 144.6, 0.3) << gshhgResolutionName(r);
         EXPECT_NEAR(hi.x, 148.35, 0.3) << gshhgResolutionName(r);

@@ -126,10 +126,14 @@ TEST(CurvilinearGrid, LandIsNeverInterpolatedAcross) {
                 std::size_t n = f.index(i, j, k);
                 Place p = placeOf(f, i, j, k);
                 double d = std::hypot(p.lon - landLon, p.lat - landLat);  // in source cells, about
-                if (d < 0.3) EXPECT_FALSE(f.isValid(n)) << "next to the land point: " << p.lon << ", " << p.lat;
+                if (d < 0.3) {
+                    EXPECT_FALSE(f.isValid(n)) << "next to the land point: " << p.lon << ", " << p.lat;
+                }
                 if (d > 1.5) {
                     EXPECT_EQ(f.isValid(n), all.isValid(n)) << p.lon << ", " << p.lat;
-                    if (f.isValid(n)) EXPECT_EQ(f.values[n], all.values[n]);
+                    if (f.isValid(n)) {
+                        EXPECT_EQ(f.values[n], all.values[n]);
+                    }
                 }
                 if (f.isValid(n) && d <= 1.5) {  // only ocean corners: within the ocean values around
                     EXPECT_GT(f.values[n], all.values[n] - 12.0f);

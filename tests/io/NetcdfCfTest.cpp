@@ -89,7 +89,9 @@ TEST(NetcdfCf, PackedShortsAreMaskedBeforeUnpackingThenUnpacked) {
             for (int j = 0; j < 3; ++j)
                 for (int i = 0; i < 4; ++i) {
                     std::size_t idx = f.index(i, j, 2 - k);
-                    if (f.isValid(idx)) EXPECT_EQ(f.values[idx], float((100 * k + 10 * j + i) * 0.01 + 10.0)) << k << j << i;
+                    if (f.isValid(idx)) {
+                        EXPECT_EQ(f.values[idx], float((100 * k + 10 * j + i) * 0.01 + 10.0)) << k << j << i;
+                    }
                 }
     }
     // --var also takes the CF standard_name.

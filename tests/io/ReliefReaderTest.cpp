@@ -49,7 +49,9 @@ TEST(ReliefReader, ReadsAGeographicGeoTiffDem) {
     const auto valid = std::count_if(r.heights.begin(), r.heights.end(), [](float h) { return std::isfinite(h); });
     EXPECT_GT(valid, 4000);
     for (float h : r.heights)
-        if (std::isfinite(h)) EXPECT_TRUE(h > 100.0f && h < 700.0f) << h;
+        if (std::isfinite(h)) {
+            EXPECT_TRUE(h > 100.0f && h < 700.0f) << h;
+        }
 }
 
 TEST(ReliefReader, NegatesDepthsAndReversesRowsStoredNorthFirst) {

@@ -249,7 +249,10 @@ std::string CfMemorySource::attributeText(const VariableInfo& variable, const ch
     if (!a) return {};
     if (const auto* s = std::get_if<std::string>(&a->value)) return *s;
     std::string out;
-    for (double v : std::get<std::vector<double>>(a->value)) out += (out.empty() ? "" : " ") + num(v);
+    for (double v : std::get<std::vector<double>>(a->value)) {
+        if (!out.empty()) out += ' ';
+        out += num(v);
+    }
     return out;
 }
 

@@ -249,7 +249,10 @@ std::string NetcdfFile::attributeText(const VariableInfo& variable, const char* 
     }
     if (attr->GetDataType().GetClass() != GEDTC_NUMERIC) return {};
     std::string out;
-    for (double v : attr->ReadAsDoubleArray()) out += (out.empty() ? "" : " ") + num(v);
+    for (double v : attr->ReadAsDoubleArray()) {
+        if (!out.empty()) out += ' ';
+        out += num(v);
+    }
     return out;
 }
 

@@ -12,7 +12,7 @@ namespace octrace::io {
 namespace {
 
 std::string vector3(const dvec3& v) {
-    return "(" + detail::exactNumber(v.x) + "," + detail::exactNumber(v.y) + "," + detail::exactNumber(v.z) + ")";
+    return std::string("(") + detail::exactNumber(v.x) + "," + detail::exactNumber(v.y) + "," + detail::exactNumber(v.z) + ")";
 }
 
 // Header values must stay on one line.

@@ -110,7 +110,7 @@ void writeNifti(const ScalarField& f, const std::string& path, const VolumeWrite
     static std::atomic<unsigned> counter{0};
     const fs::path target(path);
     const std::string ext = detail::lower(path).ends_with(".nii.gz") ? ".nii.gz" : ".nii";
-    const fs::path temp = target.parent_path() / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
+    const fs::path temp = target.parent_path() / (std::string(".") + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
                                                   std::to_string(counter++) + ext);
     writer->SetFileName(temp.string().c_str());
     writer->Write();

@@ -13,8 +13,19 @@
 
 namespace octrace {
 
+/// `text` between two `mark`s. Appended rather than "'" + std::string(text) + "'", which draws
+/// a false -Wrestrict from GCC 12 (an overlap inside operator+(const char*, string&&)).
+inline std::string enclosed(std::string_view text, char mark) {
+    std::string s;
+    s.reserve(text.size() + 2);
+    s += mark;
+    s += text;
+    s += mark;
+    return s;
+}
+
 /// `key` as a message names it: "`key`".
-inline std::string param(std::string_view key) { return "`" + std::string(key) + "`"; }
+inline std::string param(std::string_view key) { return enclosed(key, '`'); }
 
 /// `text` with every "`key`" for which `say` returns a word replaced by that word; other
 /// backticked words (and an unmatched backtick) are kept as they are.

@@ -26,7 +26,8 @@ struct FrontierNode {
     /// Whether some pixel of columns x0 .. x1-1 and rows y0 .. y1-1 lies in the rectangle (a
     /// node projected between pixel centres has an empty one: no pixel's ray visits it).
     bool rectMeets(int x0, int y0, int x1, int y1) const {
-        return (std::max(this->x0, x0) <= std::min(this->x1, x1 - 1)) & (std::max(this->y0, y0) <= std::min(this->y1, y1 - 1));
+        // Both tests, without a branch between them.
+        return unsigned(std::max(this->x0, x0) <= std::min(this->x1, x1 - 1)) & unsigned(std::max(this->y0, y0) <= std::min(this->y1, y1 - 1));
     }
     /// Unused: with it every byte of the 40 is a member, so a copy moves the node in pieces at
     /// 0, 16 and 32 (without it, GCC's last piece overlapped the second, and reading a node just
