@@ -824,8 +824,8 @@ void MainWindow::showMessage(const QString& text, bool error) {
 }
 
 void MainWindow::openInput(const QString& chosen) {
-    // A Zarr store's metadata file (picked in the Open dialog, which picks files, or dropped):
-    // the store is read by its folder.
+    // A Zarr store's metadata file (typed or picked in the Open dialog, which picks files, or
+    // dropped): the store is read by its folder.
     const std::string store = io::zarrStoreOfMetadataFile(chosen.toStdString());
     const QString input = store.empty() ? chosen : QString::fromStdString(store);
     StudioState s = state_;
@@ -960,8 +960,7 @@ void MainWindow::updateRecentMenu() {
 void MainWindow::chooseOpen() {
     const QString f = QFileDialog::getOpenFileName(
         this, tr("Open input"), QString(),
-        tr("Volumes (*.nc *.cdf *.nc4 *.nrrd *.nhdr *.dcm *.mhd *.mha *.nii *.nii.gz *.hdr *.vti *.oct DICOMDIR);;"
-           "Zarr stores (.zgroup .zarray .zmetadata zarr.json);;All files (*)"));
+        tr("Volumes (*.nc *.cdf *.nc4 *.nrrd *.nhdr *.dcm *.mhd *.mha *.nii *.nii.gz *.hdr *.vti *.oct DICOMDIR);;All files (*)"));
     if (!f.isEmpty()) openInput(f);
 }
 

@@ -370,13 +370,13 @@ TEST(DefaultView, SameColouringComparesEverySettingTheSurfacesColourReads) {
 // The contrasting background is chosen from the surface's mean luminance, which the function
 // takes per cell layer when the colour depends on the height alone and per voxel otherwise: its
 // choice equals the one made from every voxel's own colour, for colour ranges swept across the
-// point where the choice flips, by height and by a single colour.
+// point where the choice flips, by height and by each voxel's value.
 TEST(DefaultView, TheContrastingBackgroundIsTheOneEveryVoxelsColourChooses) {
     using namespace octrace;
     BuildOptions o;
     o.depth = 6;
     o.iso = 0.0;
-    const Octree tree = buildShellOctree(makeAnalyticField("torus", 33), o);
+    Octree tree = buildShellOctree(makeAnalyticField("torus", 33), o);
     const auto byVoxel = [&](const RenderSettings& rs) {
         const Albedo albedo(tree, rs);
         const auto luminance = [](vec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
@@ -400,11 +400,25 @@ TEST(DefaultView, TheContrastingBackgroundIsTheOneEveryVoxelsColourChooses) {
         const vec4 want = byVoxel(rs), got = model::contrastingBackground(tree, rs);
         EXPECT_EQ(got, want) << "window from " << rs.colourMin;
         (want == vec4(1.0f) ? white : slate) += 1;
-        // One colour, darker to lighter.
-        RenderSettings one;
-        one.colour = vec3(float(i) / 40.0f);
-        EXPECT_EQ(model::contrastingBackground(tree, one), byVoxel(one)) << "grey " << one.colour.r;
     }
     EXPECT_GT(white, 3);  // the sweep crosses the point where the choice flips
+    EXPECT_GT(slate, 3);
+    // By each voxel's value (its cell's x, 0 .. 2^depth - 1: the colour no longer follows the
+    // height), a window of the values' width sliding across them.
+    std::vector<float> values(tree.voxels().size());
+    tree.forEachVoxel([&](const ivec3& cell, std::uint32_t v) { values[v] = float(cell.x); });
+    tree.setVoxelValues(std::move(values));
+    const float cells = float(1 << tree.depth);
+    white = slate = 0;
+    for (int i = 0; i <= 40; ++i) {
+        RenderSettings rs;
+        rs.colormap = "grey";
+        rs.colourMin = -cells + 2.0f * cells * float(i) / 40.0f;
+        rs.colourMax = rs.colourMin + cells;
+        const vec4 want = byVoxel(rs);
+        EXPECT_EQ(model::contrastingBackground(tree, rs), want) << "values from " << rs.colourMin;
+        (want == vec4(1.0f) ? white : slate) += 1;
+    }
+    EXPECT_GT(white, 3);
     EXPECT_GT(slate, 3);
 }

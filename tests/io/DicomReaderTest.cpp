@@ -18,7 +18,6 @@
 #include <filesystem>
 #include <fstream>
 #include <chrono>
-#include <fstream>
 #include <iterator>
 #include <tuple>
 
@@ -648,9 +647,18 @@ TEST(DicomReader, AFolderScannedAgainUnchangedIsNotReadAgain) {
     const std::string folder = dir.file("series");
     std::filesystem::copy(test::testData("dicom/two_series"), folder, std::filesystem::copy_options::recursive);
     std::vector<std::string> said;
-    const log::Level level = log::level();
-    log::setLevel(log::Level::Debug);
-    log::setSink([&](log::Level, const std::string& text) { said.push_back(text); });
+    // Every message, Debug included, until the test ends (or an assertion returns early).
+    struct Listen {
+        log::Level level = log::level();
+        explicit Listen(std::vector<std::string>& to) {
+            log::setLevel(log::Level::Debug);
+            log::setSink([&to](log::Level, const std::string& text) { to.push_back(text); });
+        }
+        ~Listen() {
+            log::setSink({});
+            log::setLevel(level);
+        }
+    } listen(said);
     const auto kept = [&] {
         return std::count_if(said.begin(), said.end(), [&](const std::string& t) { return t.find("the headers of the last scan") != std::string::npos; });
     };
@@ -698,8 +706,6 @@ TEST(DicomReader, AFolderScannedAgainUnchangedIsNotReadAgain) {
     std::filesystem::remove(changed == files.back() ? files.front() : files.back());
     (void)io::DicomReader::listSeries(folder);
     EXPECT_EQ(kept(), before + 2);
-    log::setSink({});
-    log::setLevel(level);
 }
 
 // A 4-D NIfTI image is read one volume at a time: per slice of the volume asked for (progress

@@ -153,8 +153,8 @@ TEST(Zarr, AMetadataFileIsRefusedNamingItsStoresFolder) {
         const std::string file = store + "/" + name;
         EXPECT_EQ(io::zarrStoreOfMetadataFile(file), store);
         EXPECT_THROW_WITH(io::readField(file, variable("SALT")), FormatNotSupported,
-                          file + ": a metadata file of the Zarr store " + store + "; a store is read by its folder: " + store);
-        EXPECT_THROW_WITH((void)io::describeInput(file), FormatNotSupported, "a store is read by its folder: " + store);
+                          file + ": a metadata file of a Zarr store, which is read by its folder: " + store);
+        EXPECT_THROW_WITH((void)io::describeInput(file), FormatNotSupported, "which is read by its folder: " + store);
     }
     // An array's metadata: its folder, a Zarr v2 array.
     EXPECT_EQ(io::zarrStoreOfMetadataFile(store + "/SALT/.zarray"), store + "/SALT");

@@ -486,8 +486,8 @@ private slots:
     }
 
     void aZarrStoresMetadataFileOpensTheStore() {
-        // The Open dialog picks files: a store's `.zgroup` (or its `zarr.json`) chosen there, or
-        // dropped on the window, opens the store's folder; File > Open Folder... opens folders.
+        // The Open dialog picks files: a store's `.zgroup` given there, or dropped on the window,
+        // opens the store's folder; File > Open Folder... opens folders.
         std::string why;
         bool unavailable = false;
         const std::string dir = octrace::test::zarrStores(kLevitus.toStdString(), why, unavailable);

@@ -84,7 +84,10 @@ std::vector<std::string> candidateFiles(const std::string& path, bool& folder) {
 // The last input's scan, kept while none of its files changes: the studio lists a folder's
 // series, reads one and lists its volumes, three scans of every header otherwise (a clinical
 // folder holds thousands of files). Keyed by the path as given and each candidate file's name,
-// size and modification time; one input kept, its headers (a few hundred bytes per file).
+// size and modification time; one input kept, its headers (a few hundred bytes per file, per
+// frame of a multi-frame file). A file rewritten with the same size within the file system's
+// time resolution (a second or two on FAT and some network shares), or copied back with its old
+// time, would be taken as unchanged.
 struct FileStamp {
     std::string file;
     std::uintmax_t size = 0;
@@ -120,17 +123,20 @@ Scan scan(const std::string& path, const ReadHooks& hooks = {}) {
     bool folder = false;
     const std::vector<std::string> files = candidateFiles(path, folder);
     const std::optional<std::vector<FileStamp>> stamps = stampsOf(files);
+    std::optional<Scan> kept;
     if (stamps) {
         const std::lock_guard lock(scanMemoMutex);
-        if (scanMemo && scanMemo->path == path && scanMemo->stamps == *stamps) {
-            // Reported and cancellable per file as a scan is, so that callers see one behaviour.
-            for (std::size_t i = 0; i < files.size(); ++i) {
-                hooks.checkCancelled(path);
-                hooks.report(kScanShare * double(i) / double(files.size()));
-            }
-            log::debug(path + ": the headers of the last scan (" + std::to_string(files.size()) + " files unchanged)");
-            return scanMemo->scan;
+        if (scanMemo && scanMemo->path == path && scanMemo->stamps == *stamps) kept = scanMemo->scan;
+    }
+    if (kept) {
+        // Reported and cancellable per file as a scan is (outside the lock: the caller's hooks
+        // run there), so that callers see one behaviour.
+        for (std::size_t i = 0; i < files.size(); ++i) {
+            hooks.checkCancelled(path);
+            hooks.report(kScanShare * double(i) / double(files.size()));
         }
+        log::debug(path + ": the headers of the last scan (" + std::to_string(files.size()) + " files unchanged)");
+        return std::move(*kept);
     }
     Scan s = scanFiles(path, files, folder, hooks);
     if (stamps) {

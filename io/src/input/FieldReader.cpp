@@ -39,7 +39,7 @@ FileKind kindOf(const std::string& path) {
     if (ext == ".dcm" || ext == ".dicom" || std::filesystem::path(path).filename() == "DICOMDIR") return FileKind::Dicom;
     const std::string store = zarrStoreOfMetadataFile(path);
     if (!store.empty())
-        throw FormatNotSupported(path + ": a metadata file of the Zarr store " + store + "; a store is read by its folder: " + store);
+        throw FormatNotSupported(path + ": a metadata file of a Zarr store, which is read by its folder: " + store);
     throw FormatNotSupported(path + ": format not recognised (file starts with '" + s.description + "'); " + kSupported);
 }
 

@@ -16,7 +16,9 @@ constexpr std::uint32_t kNoNeighbour = 0xFFFFFFFFu;
 /// 0, 1, 2), kNoNeighbour where that cell holds no voxel or lies outside the cube.
 /// Found level by level from the root: a child's neighbour at -a is its sibling when the child is
 /// on the high side of axis a, else the high-side child of its parent's neighbour at -a. Every
-/// neighbour precedes the voxel (a smaller Morton code).
+/// neighbour precedes the voxel (a smaller Morton code). Every voxel lies at the voxel level: a
+/// tree with coarse leaves (which files cannot hold: encodeOctreeFile refuses it first) would
+/// leave them out.
 std::vector<std::array<std::uint32_t, 3>> voxelNeighbours(const Octree& tree);
 
 }  // namespace octrace::io::detail

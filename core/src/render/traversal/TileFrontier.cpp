@@ -10,10 +10,14 @@
 // GCC 12's AVX-512 intrinsics pass an undefined register through (_mm512_undefined_pd) where
 // all lanes are written; inlined into the reductions below it reports that register as "may be
 // used uninitialized" at the header's line, where only a pragma around the header reaches it.
+#if defined(__clang__)
+#include <immintrin.h>
+#else
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <immintrin.h>
 #pragma GCC diagnostic pop
+#endif
 #define OCTRACE_FRONTIER_AVX512 1
 #endif
 
