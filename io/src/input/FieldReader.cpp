@@ -83,15 +83,7 @@ std::optional<VolumeReader::Format> volumeFormat(FileKind kind) {
 
 }  // namespace
 
-std::string zarrStoreOfMetadataFile(const std::string& path) {
-    const std::filesystem::path p(path);
-    const std::string name = p.filename().string();
-    if (name != ".zgroup" && name != ".zarray" && name != ".zattrs" && name != ".zmetadata" && name != "zarr.json") return {};
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(p, ec)) return {};
-    const std::filesystem::path folder = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
-    return detail::isZarrFolder(folder.string()) ? folder.string() : std::string();
-}
+std::string zarrStoreOfMetadataFile(const std::string& path) { return detail::storeOfMetadataFile(path); }
 
 InputChoices listInputChoices(const std::string& path, const ReadHooks& hooks) {
     InputChoices c;

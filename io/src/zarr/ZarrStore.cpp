@@ -4,7 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
+#include <iterator>
 #include <fstream>
 
 namespace fs = std::filesystem;
@@ -96,11 +98,28 @@ std::size_t consolidatedArrays(const std::string& store, const std::string& byte
 
 }  // namespace
 
+namespace {
+// The metadata files whose presence at a folder's root makes it a store.
+constexpr const char* kRootMetadata[] = {".zgroup", ".zarray", ".zmetadata", "zarr.json"};
+}  // namespace
+
 bool isZarrFolder(const std::string& folder) {
     std::error_code ec;
-    for (const char* name : {".zgroup", ".zarray", ".zmetadata", "zarr.json"})
+    for (const char* name : kRootMetadata)
         if (fs::is_regular_file(fs::path(folder) / name, ec)) return true;
     return false;
+}
+
+std::string storeOfMetadataFile(const std::string& path) {
+    const fs::path p(path);
+    const std::string name = p.filename().string();
+    // A store's own metadata files, and its attributes (which alone make no store).
+    const bool metadata = name == ".zattrs" || std::any_of(std::begin(kRootMetadata), std::end(kRootMetadata),
+                                                           [&](const char* m) { return name == m; });
+    std::error_code ec;
+    if (!metadata || !fs::is_regular_file(p, ec)) return {};
+    const fs::path folder = p.has_parent_path() ? p.parent_path() : fs::path(".");
+    return isZarrFolder(folder.string()) ? folder.string() : std::string();
 }
 
 ZarrMetadata readZarrMetadata(const std::string& folder) {

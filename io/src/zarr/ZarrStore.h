@@ -30,6 +30,10 @@ struct ZarrStoreInfo {
 /// or `zarr.json`). Never throws.
 bool isZarrFolder(const std::string& folder);
 
+/// io::zarrStoreOfMetadataFile (FieldReader.h): the folder of a store whose metadata file
+/// `path` is, else "". Never throws.
+std::string storeOfMetadataFile(const std::string& path);
+
 /// Reads the metadata files at `folder`'s root. Throws FileError naming the file when one is
 /// unreadable or larger than 256 MiB.
 ZarrMetadata readZarrMetadata(const std::string& folder);
