@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <future>
 #include <limits>
 #include <string>
@@ -260,6 +261,34 @@ TEST(VideoWriter, KeepsEveryFrameWhateverTheCount) {
                   std::to_string(n) + "\n")
             << n << " frames";
     }
+}
+
+// Whether this process has a library whose file name starts with `prefix` mapped.
+bool libraryMapped(const std::string& prefix) {
+    std::ifstream maps("/proc/self/maps");
+    for (std::string line; std::getline(maps, line);) {
+        const std::size_t slash = line.rfind('/');
+        if (slash != std::string::npos && line.compare(slash + 1, prefix.size(), prefix) == 0) return true;
+    }
+    return false;
+}
+
+TEST(VideoWriter, FfmpegIsLoadedOnlyWhenAVideoIsWritten) {
+    // ctest runs each test in a process of its own: nothing before this one wrote a video.
+    if (!std::ifstream("/proc/self/maps")) GTEST_SKIP() << "no /proc/self/maps";
+    if (!haveFfmpeg()) GTEST_SKIP() << "ffprobe/ffmpeg absent (Debian package ffmpeg, scripts/setup.sh)";
+    EXPECT_FALSE(libraryMapped("libavcodec.so")) << "FFmpeg is linked: every octrace process loads its 88 libraries at start";
+    EXPECT_FALSE(libraryMapped("libavformat.so"));
+    Scratch s;
+    io::VideoWriter v(s.path("one.mp4"), 16, 16, 12);
+    EXPECT_EQ(v.codec(), "libx264");
+    EXPECT_TRUE(libraryMapped("libavcodec.so"));
+    EXPECT_TRUE(libraryMapped("libswscale.so"));
+    v.add(std::vector<std::uint8_t>(16 * 16 * 4, 200));
+    v.finish();
+    EXPECT_EQ(capture("ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 " +
+                      quoteArg(s.path("one.mp4"))),
+              "1\n");
 }
 
 TEST(AnimateCli, WritesOneVideoFramePerStepInOrderWithTheDateInTheCaption) {
