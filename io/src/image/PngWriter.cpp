@@ -16,8 +16,14 @@
 namespace octrace::io {
 namespace {
 
-// Fixed so that the bytes never depend on libpng's defaults or heuristics changing.
+// Fixed so that the bytes never depend on libpng's defaults or heuristics changing. Each row
+// filtered by `sub` (the difference with the pixel to the left) and deflated for runs (Z_RLE):
+// renders are flat backgrounds and smooth shading, whose differences are runs of small values.
+// libpng's adaptive choice among all five filters with zlib's default strategy at level 6 took
+// 64-123 ms for a 1600x1200 render and this 15-25 ms, the files 9-28% larger (T, the molecule,
+// CT skin and bone at their default views: 147-684 KB against 170-771 KB).
 constexpr int kZlibLevel = 6;
+constexpr int kZlibRle = 3;  // Z_RLE
 
 // Everything libpng's callbacks touch. Plain data: libpng reports errors by longjmp, which
 // must not cross C++ frames with destructors, so the setjmp frame below holds no such objects
@@ -71,8 +77,8 @@ bool encodeRows(png_bytep* rows, std::uint32_t width, std::uint32_t height, int 
     png_set_write_fn(png, sink, onPngWrite, onPngFlush);
     png_set_compression_level(png, kZlibLevel);
     png_set_compression_mem_level(png, 8);
-    png_set_compression_strategy(png, 0 /* Z_DEFAULT_STRATEGY */);
-    png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_ALL_FILTERS);
+    png_set_compression_strategy(png, kZlibRle);
+    png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
     png_set_IHDR(png, info, width, height, 8, channels == 4 ? PNG_COLOR_TYPE_RGB_ALPHA : PNG_COLOR_TYPE_RGB,
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_BASE, PNG_FILTER_TYPE_BASE);
     // sRGB chunk, plus gAMA and cHRM for readers that ignore sRGB.
