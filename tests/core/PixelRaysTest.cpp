@@ -55,7 +55,9 @@ TEST(PixelRays, APixelSaidSurelyToMeetTheCubeHasAQuantizedRayThatMeetsIt) {
 
 TEST(PixelRays, RenderingIntoAUsedFrameGivesTheFreshFrame) {
     // The ray casters re-render into a frame of the same size without clearing it first (the
-    // CLI's --repeat, the studio's kept frames): every renderer a menu lists.
+    // CLI's --repeat, the studio's kept frames), and size a new frame without clearing it
+    // (Frame::reshape, DefaultInitAllocator): every field of every pixel must be written. Every
+    // renderer a menu lists, into a frame whose every field holds other values.
     const Octree& tree = torusTree();
     const Camera cam = Camera::framing(cubeOf(tree), 120, 90);
     const Camera other = makeCamera({-1.3, 1.1, -0.9}, {0.1, -0.05, 0.2}, {0, 1, 0}, 50, 120, 90);
@@ -67,6 +69,12 @@ TEST(PixelRays, RenderingIntoAUsedFrameGivesTheFreshFrame) {
         render(name, tree, cam, fresh);
         render(name, noiseTree(), other, used);  // another scene and view, same size
         ASSERT_EQ(used.width, fresh.width);
+        for (std::size_t p = 0; p < used.rgba.size(); ++p) {
+            used.rgba[p] = vec4(0.3f, float(p % 7), -1.0f, 0.25f);
+            used.depth[p] = float(p);
+            used.hitId[p] = std::uint32_t(p * 31);
+            used.flags[p] = std::uint8_t(p | 0x80);
+        }
         render(name, tree, cam, used);
         const FrameDiff d = diffFrames(used, fresh);
         EXPECT_TRUE(d.identical()) << d.first;
