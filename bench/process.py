@@ -3,8 +3,8 @@
 `octrace render` process (start-up, reading, building, the frame, encoding and writing the PNG),
 beside a baseline build of octrace in the same run. Raw JSON in docs/benchmarks/process/.
 
-Each case is run --runs times per binary, the binaries alternating; each figure is the fastest
-run (the machine is shared). Per run: the wall time from the spawn to the exit, the process's
+Each case is run --runs times per binary, the binaries alternating (which goes first alternates
+too); each figure is the fastest run (the machine is shared). Per run: the wall time from the spawn to the exit, the process's
 CPU time (user + system, from the kernel's accounting of the finished child), and the parts the
 stats JSON reports (load_ms, build_ms, render_ms); `rest` is the wall time outside them: the
 dynamic loader and the libraries' start-up, parsing, encoding and writing the image, the exit.
@@ -55,11 +55,17 @@ def main():
              ("T from its depth-9 octree file", "oct", ["render", oct_file] + common),
              ("T from the Levitus NetCDF file (depth 9)", "netcdf", ["render"] + field + common)]
     binaries = [(args.label, args.octrace)] + ([(args.baseline_label, args.baseline)] if args.baseline else [])
+    if args.baseline and args.label == args.baseline_label:
+        ap.error("--label and --baseline-label must differ")
     runs = {(c[1], b[0]): [] for c in cases for b in binaries}
     for r in range(args.runs):
         for _, key, argv in cases:
-            for label, exe in binaries:
+            # Alternating, and which goes first alternates too (the second run of a pair finds the
+            # input warmer).
+            for label, exe in (binaries if r % 2 == 0 else binaries[::-1]):
                 stats = os.path.join(tmp, "stats.json")
+                if os.path.exists(stats):
+                    os.remove(stats)  # a run that wrote none must not read the one before's
                 cmd = [exe] + argv + (["--stats", stats] if key != "version" else [])
                 load0 = os.getloadavg()[0]
                 wall, cpu = timed(cmd)

@@ -7,6 +7,7 @@
 #include "octrace/util/Log.h"
 
 #include <png.h>
+#include <zlib.h>
 
 #include <csetjmp>
 #include <cmath>
@@ -23,7 +24,6 @@ namespace {
 // 64-123 ms for a 1600x1200 render and this 15-25 ms, the files 9-28% larger (T, the molecule,
 // CT skin and bone at their default views: 147-684 KB against 170-771 KB).
 constexpr int kZlibLevel = 6;
-constexpr int kZlibRle = 3;  // Z_RLE
 
 // Everything libpng's callbacks touch. Plain data: libpng reports errors by longjmp, which
 // must not cross C++ frames with destructors, so the setjmp frame below holds no such objects
@@ -77,7 +77,7 @@ bool encodeRows(png_bytep* rows, std::uint32_t width, std::uint32_t height, int 
     png_set_write_fn(png, sink, onPngWrite, onPngFlush);
     png_set_compression_level(png, kZlibLevel);
     png_set_compression_mem_level(png, 8);
-    png_set_compression_strategy(png, kZlibRle);
+    png_set_compression_strategy(png, Z_RLE);
     png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
     png_set_IHDR(png, info, width, height, 8, channels == 4 ? PNG_COLOR_TYPE_RGB_ALPHA : PNG_COLOR_TYPE_RGB,
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_BASE, PNG_FILTER_TYPE_BASE);

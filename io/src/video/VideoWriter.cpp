@@ -133,8 +133,8 @@ const AVCodec* chooseEncoder(const Ffmpeg& ff, const std::string& path) {
                             "larger at the same quality)");
         return c;
     }
-    throw OutputError(path + ": FFmpeg's libavcodec has neither an H.264 nor an MPEG-4 encoder (Debian: libavcodec59 "
-                             "with libx264)");
+    throw OutputError(path + ": FFmpeg's libavcodec has neither an H.264 nor an MPEG-4 encoder (Debian: libavcodec" AV_STRINGIFY(
+                                 LIBAVCODEC_VERSION_MAJOR) " with libx264)");
 }
 
 }  // namespace
