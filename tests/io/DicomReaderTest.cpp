@@ -218,7 +218,7 @@ TEST(DicomReader, RefusesBrokenSeriesWithOneLineNamingTheInput) {
         {"invalid_huge_frame_count.dcm", "header declares 100000 frame(s) of 64x64 x 16 bits, which need at least 819200000 bytes, but only 8192 bytes follow the header"},
         {"invalid_zero_pixel_spacing.dcm", "PixelSpacing 0\\0.5 must be positive"},
         {"invalid_nan_position.dcm", "ImagePositionPatient 'NaN\\0\\1' of frame 2 is not 3 finite numbers"},
-        // GDCM aborts the process on these six; our structure walk (four), VR check and header checks refuse them first.
+        // GDCM aborts the process on these seven; our structure walk (five), VR check and header checks refuse them first.
         {"invalid_length_past_end.dcm",
          "DICOM structure broken at byte 492: element (0028,1052) DS declares 8456 bytes, only 104 remain in the file"},
         {"invalid_meta_group_only.dcm", "DICOM structure broken at byte 256: the file ends after its file meta group (no data set)"},
@@ -227,6 +227,8 @@ TEST(DicomReader, RefusesBrokenSeriesWithOneLineNamingTheInput) {
         {"invalid_vr_mismatch.dcm", "element (0028,0103) has VR UI, the DICOM dictionary's is US"},
         {"invalid_enhanced_without_orientation.dcm", "multi-frame image with functional groups but no ImageOrientationPatient (neither in them nor at the top level)"},
         {"invalid_tag_order.dcm", "DICOM structure broken at byte 422: element (0028,0103) comes after (FFD8,F4FD): elements below the pixel data (7FE0,0010) must come before those at or past it"},
+        {"invalid_jpeg_garbage_in_header.dcm",
+         "DICOM structure broken at byte 3090: a JPEG frame's header holds bytes other than a marker between its segments"},
     };
     for (const Case& c : cases) {
         const std::string path = test::testData(std::string("invalid/") + c.input);

@@ -275,6 +275,64 @@ TEST(DicomValidator, WalksEncapsulatedPixelDataFragmentByFragment) {
                   "encapsulated pixel data hold (0010,0010) where a fragment item (FFFE,E000) was expected");
 }
 
+namespace {
+/// A JPEG marker segment: FF, the marker, the length (itself included) and the parameters.
+std::string jpegSegment(unsigned marker, const std::string& params) {
+    return std::string{char(0xFF), char(marker)} + be16(std::uint16_t(params.size() + 2)) + params;
+}
+/// A JPEG stream of `nf` components at `precision` bits: SOI, `beforeSof`, DQT, SOFn, SOS, a few
+/// bytes of scan and EOI (even length, as a fragment must be).
+std::string jpegStream(unsigned sof = 0xC1, int precision = 12, int nf = 1, const std::string& beforeSof = "",
+                       const std::string& afterDqt = "") {
+    std::string components;
+    for (int c = 0; c < nf; ++c) components += std::string{char(c + 1), char(0x11), char(0)};
+    const std::string sofParams = std::string(1, char(precision)) + be16(4) + be16(4) + std::string(1, char(nf)) + components;
+    std::string s = std::string{char(0xFF), char(0xD8)} + beforeSof + jpegSegment(0xDB, std::string(65, '\x01')) + afterDqt +
+                    jpegSegment(sof, sofParams) + jpegSegment(0xDA, std::string{char(1), char(1), char(0), char(0), char(63), char(0)}) +
+                    "scan" + std::string{char(0xFF), char(0xD9)};
+    if (s.size() % 2) s.insert(s.size() - 2, 1, '\0');
+    return s;
+}
+}  // namespace
+
+TEST(DicomValidator, ChecksTheHeaderOfEveryJpegFrameAsGdcmsJpegCodecsReadIt) {
+    // GDCM reads a JPEG frame's header with the IJG library and asserts (aborting the process)
+    // when the library warns there (found by fuzz_dicom: garbage after a DQT segment of the
+    // real JPEG-lossy.dcm) and on values it does not handle.
+    const std::string start = part10("1.2.840.10008.1.2.4.51") + patient();
+    const std::string pixels = head(0x7FE0, 0x0010, "OB", kUndefined) + item("");
+    const std::size_t frame = start.size() + pixels.size() + 8;  // the stream's first byte
+    const auto file = [&](const std::string& jpeg, const std::string& ts = "1.2.840.10008.1.2.4.51") {
+        return part10(ts) + patient() + pixels + item(jpeg) + seqEnd();
+    };
+    EXPECT_TRUE(validate(file(jpegStream())));
+    EXPECT_TRUE(validate(file(jpegStream(0xC3, 16)))) << "lossless, 16 bits";
+    EXPECT_TRUE(validate(file(jpegStream(0xC0, 8, 3, jpegSegment(0xEE, std::string("Adobe") + std::string(6, '\0') + '\x01')))))
+        << "3 components, Adobe transform 1 (YCbCr)";
+    EXPECT_TRUE(validate(file(jpegStream(0xC1, 12, 1, "", std::string(3, char(0xFF)))))) << "fill bytes before a marker";
+    const std::size_t sofAt = frame + 2 + 69;  // after SOI and the DQT segment
+    expectRefused(file(jpegStream(0xC1, 12, 1, "", "junk")), sofAt,
+                  "a JPEG frame's header holds bytes other than a marker between its segments");
+    expectRefused(file(jpegStream(0xC1, 10)), sofAt, "JPEG frame header FFC1 declares a sample precision of 10 bits");
+    expectRefused(file(jpegStream(0xC1, 12, 2)), sofAt, "JPEG frame of 2 components (1, 3 or 4 are read)");
+    expectRefused(file(jpegStream(0xC9)), sofAt, "JPEG frame coded by FFC9 (hierarchical or arithmetic)");
+    const std::string jfif2 = jpegSegment(0xE0, std::string("JFIF") + '\0' + "\x02\x01" + std::string(7, '\0'));
+    expectRefused(file(jpegStream(0xC1, 12, 1, jfif2)), frame + 2, "JPEG frame with a JFIF segment of version 2.1 (1.x is read)");
+    const std::string adobe2 = jpegSegment(0xEE, std::string("Adobe") + std::string(6, '\0') + '\x02');
+    expectRefused(file(jpegStream(0xC0, 8, 3, adobe2)), sofAt + 16 + 19,
+                  "JPEG frame of 3 components with Adobe colour transform 2 (0 or 1 is read)");
+    // Cut before its scan: the fragment ends inside the SOF segment.
+    expectRefused(file(jpegStream().substr(0, 2 + 69 + 7)), sofAt, "JPEG marker segment FFC1 declares 11 bytes, 5 remain in its fragment");
+    expectRefused(file(jpegStream().substr(0, 2 + 69 + 1)), frame, "a JPEG frame's fragment ends before its scan");  // FF of SOF
+    const std::string eoiFirst = std::string{char(0xFF), char(0xD8), char(0xFF), char(0xD9)};
+    expectRefused(file(eoiFirst), frame + 2, "a JPEG frame's header holds EOI before its scan");
+    // Other codecs' streams are not JPEG (JPEG 2000 here): not looked into.
+    EXPECT_TRUE(validate(file(jpegStream(0xC1, 12, 1, "", "junk"), "1.2.840.10008.1.2.4.90")));
+    // The fuzzer's finding itself.
+    expectRefused(slurp(test::testData("invalid/invalid_jpeg_garbage_in_header.dcm")), 3090,
+                  "a JPEG frame's header holds bytes other than a marker between its segments");
+}
+
 TEST(DicomValidator, WalksImplicitVrLittleEndianIncludingItsSequences) {
     const std::string start = part10("1.2.840.10008.1.2") + iel(0x0010, 0x0010, "DOE^JOHN");
     const std::string nestedItem = item(iel(0x0020, 0x0032, "0\\0\\1 "));

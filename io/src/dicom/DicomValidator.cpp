@@ -87,6 +87,9 @@ public:
     }
     std::string_view bytes(std::size_t at, std::size_t n) const { return {reinterpret_cast<const char*>(d_ + at), n}; }
     std::size_t size() const { return size_; }
+    /// The pixel data's fragments are JPEG streams that GDCM decodes with the IJG library:
+    /// their headers are checked too (jpegHeader).
+    void setJpegFragments(bool on) { jpeg_ = on; }
 
     /// Elements from `at` to the container's end, or (`delimited`: an item of undefined length)
     /// up to and including the item delimitation. Returns where the walk ended.
@@ -238,14 +241,86 @@ private:
             if (n > c.end - (q + 8))
                 fail(q, "a pixel data fragment declares " + std::to_string(n) + " bytes, only " + std::to_string(c.end - (q + 8)) +
                             " remain in " + c.what);
+            // The first item is the offset table; a frame starts at a fragment that starts with SOI.
+            if (jpeg_ && q != valueAt && n >= 2 && d_[q + 8] == 0xFF && d_[q + 9] == 0xD8) jpegHeader(q + 8, q + 8 + n);
             q += 8 + std::size_t(n);
+        }
+    }
+
+    /// The header of the JPEG stream at [at, end) (ITU-T T.81 B.2-B.2.4: SOI, marker segments,
+    /// SOS), as GDCM's JPEG codecs read it with the IJG library before decoding. GDCM asserts
+    /// (and so aborts the process) when the library warns while reading a header, and on some
+    /// values it does not handle: bytes other than fill (FF) before a marker (found by
+    /// fuzz_dicom: garbage after a DQT segment), a stream that ends before its scan, a JFIF APP0
+    /// of another major version, an Adobe APP14 colour transform the library does not know or
+    /// GDCM does not handle (YCCK), a frame precision outside the standard's (whose refusal
+    /// GDCM asserts on) and a component count other than 1, 3 or 4. The header is looked for
+    /// in the frame's first fragment (encoders put it there).
+    void jpegHeader(std::size_t at, std::size_t end) const {
+        const auto marker = [](unsigned m) {
+            char text[8];
+            std::snprintf(text, sizeof text, "FF%02X", m);
+            return std::string(text);
+        };
+        int components = 0, adobeTransform = -1;
+        std::size_t q = at + 2;  // after SOI
+        for (;;) {
+            if (q >= end) fail(at, "a JPEG frame's fragment ends before its scan (no SOS marker in its header)");
+            if (d_[q] != 0xFF) fail(q, "a JPEG frame's header holds bytes other than a marker between its segments");
+            while (q < end && d_[q] == 0xFF) ++q;  // fill bytes
+            if (q >= end) fail(at, "a JPEG frame's fragment ends before its scan (no SOS marker in its header)");
+            const unsigned m = d_[q++];
+            const std::size_t markerAt = q - 2;
+            if (m == 0x00) fail(markerAt, "a JPEG frame's header holds bytes other than a marker between its segments");
+            if (m == 0x01 || (m >= 0xD0 && m <= 0xD7)) continue;  // TEM, RSTn: no segment
+            if (m == 0xD8 || m == 0xD9)
+                fail(markerAt, std::string("a JPEG frame's header holds ") + (m == 0xD8 ? "a second SOI" : "EOI") + " before its scan");
+            if (end - q < 2) fail(at, "a JPEG frame's fragment ends before its scan (no SOS marker in its header)");
+            const std::size_t length = std::size_t(d_[q]) << 8 | d_[q + 1];
+            if (length < 2 || length > end - q)
+                fail(markerAt, "JPEG marker segment " + marker(m) + " declares " + std::to_string(length) + " bytes, " +
+                                   std::to_string(end - q) + " remain in its fragment");
+            const std::uint8_t* v = d_ + q + 2;  // the segment's parameters
+            const std::size_t n = length - 2;
+            if (m >= 0xC0 && m <= 0xCF && m != 0xC4 && m != 0xC8 && m != 0xCC) {  // SOFn
+                if (m > 0xC3)
+                    fail(markerAt, "JPEG frame coded by " + marker(m) +
+                                       " (hierarchical or arithmetic): octrace reads baseline, extended, progressive and lossless JPEG");
+                if (n < 6) fail(markerAt, "JPEG frame header " + marker(m) + " of " + std::to_string(length) + " bytes");
+                const int precision = v[0];
+                if (m == 0xC3 ? precision < 2 || precision > 16 : precision != 8 && precision != 12)
+                    fail(markerAt, "JPEG frame header " + marker(m) + " declares a sample precision of " + std::to_string(precision) +
+                                       " bits (T.81: 8 or 12 for DCT coding, 2 to 16 for lossless)");
+                components = v[5];
+                if (components != 1 && components != 3 && components != 4)
+                    fail(markerAt, "JPEG frame of " + std::to_string(components) + " components (1, 3 or 4 are read)");
+            } else if (m == 0xE0 && n >= 14 && std::memcmp(v, "JFIF\0", 5) == 0 && v[5] != 1) {
+                fail(markerAt, "JPEG frame with a JFIF segment of version " + std::to_string(v[5]) + "." + std::to_string(v[6]) +
+                                   " (1.x is read)");
+            } else if (m == 0xEE && n >= 12 && std::memcmp(v, "Adobe", 5) == 0) {
+                adobeTransform = v[11];
+            } else if (m == 0xDA) {
+                // SOS: the header is complete. The colour transform as the library derives it.
+                if (adobeTransform >= 0 && ((components == 3 && adobeTransform > 1) || (components == 4 && adobeTransform != 0)))
+                    fail(markerAt, "JPEG frame of " + std::to_string(components) + " components with Adobe colour transform " +
+                                       std::to_string(adobeTransform) + (components == 4 ? " (CMYK, transform 0, is read)" : " (0 or 1 is read)"));
+                return;
+            }
+            q += length;
         }
     }
 
     const std::uint8_t* d_;
     std::size_t size_;
     const std::string& name_;
+    bool jpeg_ = false;
 };
+
+// The transfer syntaxes whose pixel data GDCM decodes with the IJG JPEG library (its JPEG
+// codecs): baseline, extended, the retired ones, progressive and lossless.
+constexpr std::string_view kIjgJpegSyntaxes[] = {"1.2.840.10008.1.2.4.50", "1.2.840.10008.1.2.4.51", "1.2.840.10008.1.2.4.52",
+                                                 "1.2.840.10008.1.2.4.53", "1.2.840.10008.1.2.4.55", "1.2.840.10008.1.2.4.57",
+                                                 "1.2.840.10008.1.2.4.70"};
 
 // The transfer syntaxes GDCM 3.0 knows whose data set is explicit VR little endian (natively
 // or with encapsulated pixel data: JPEG, JPEG-LS, JPEG 2000, JPIP, RLE, MPEG-2, H.264). GDCM
@@ -279,7 +354,7 @@ std::string uidText(std::string_view value) {
 bool validateDicomBytes(const std::uint8_t* data, std::size_t size, const std::string& name, std::string& whyNot) {
     const bool preamble = size >= 132 && std::memcmp(data + 128, "DICM", 4) == 0;
     std::size_t p = preamble ? 132 : 0;
-    const Walker w(data, size, name);
+    Walker w(data, size, name);
     const Container file{size, "the file"};
     if (!preamble) {
         // No preamble: GDCM also reads a file that starts with the meta group, or a bare little
@@ -311,6 +386,7 @@ bool validateDicomBytes(const std::uint8_t* data, std::size_t size, const std::s
         }
         if (!haveUid) w.fail(p, "the file meta group has no TransferSyntaxUID (0002,0010)");
         syntax = dataSetSyntax(w, p, uid);
+        w.setJpegFragments(among(uid, kIjgJpegSyntaxes));
         // GDCM's meta reader expects a next element (it asserts on the end of the file there).
         if (p == size) w.fail(p, "the file ends after its file meta group (no data set)");
     } else if (preamble) {
