@@ -218,7 +218,7 @@ def seeds():
         shutil.copy(os.path.join(HERE, name), out)
     for name in ["invalid_nan_position.dcm", "invalid_zero_pixel_spacing.dcm", "invalid_huge_frame_count.dcm",
                  "invalid_length_past_end.dcm", "invalid_meta_group_only.dcm", "invalid_unterminated_fragments.dcm", "invalid_vr_mismatch.dcm",
-                 "invalid_enhanced_without_orientation.dcm"]:
+                 "invalid_enhanced_without_orientation.dcm", "invalid_jpeg_garbage_in_header.dcm"]:
         shutil.copy(os.path.join(INVALID, name), out)
     tilted = [part10(slice_at("1.2.826.0.1.3680043.9.7777.60", "CT", 4, 4, k, 0,
                               extra={(0x0020, 0x0032): ("DS", ds(-10, -20 + 0.25 * k, k))}), CT_IMAGE) for k in range(4)]
