@@ -1,5 +1,6 @@
-"""What bench/lighting.py and bench/memory.py share: the repository root, JSON reading and the
-common command-line options (octrace binary, data folder) with the raw-JSON folder."""
+"""What bench/lighting.py, bench/memory.py and bench/process.py share: the repository root, JSON
+reading, the common command-line options (octrace binary, data folder) with the raw-JSON folder,
+and a scene's field options."""
 import argparse
 import json
 import os
@@ -19,6 +20,13 @@ def parser(doc):
     ap.add_argument("--octrace", default=os.path.join(ROOT, "build", "app", "octrace"))
     ap.add_argument("--data", default=os.path.join(ROOT, "..", "shared", "data"))
     return ap
+
+
+def field_args(scene, data):
+    """The input and field options of a bench/scenes NetCDF scene: the file under DATA, --var,
+    --iso and --region."""
+    return [os.path.join(data, scene["input"]), "--var", scene["var"], "--iso", str(scene["iso"]), "--region",
+            scene["region"]]
 
 
 def raw_dir(name):

@@ -18,7 +18,7 @@ import os
 import subprocess
 import tempfile
 
-from benchcommon import ROOT, load, parser, raw_dir
+from benchcommon import ROOT, field_args, load, parser, raw_dir
 SCENES = ["levitus_T.json", "levitus_S.json"]
 
 
@@ -38,9 +38,8 @@ def main():
             tag = "%s_d%d" % (scene["key"], depth)
             oct_path = os.path.join(tmp, tag + ".oct")
             build_json = os.path.join(outdir, tag + "_build.json")
-            cmd = [args.octrace, "build", os.path.join(args.data, scene["input"]), "--var", scene["var"], "--iso",
-                   str(scene["iso"]), "--region", scene["region"], "--depth", str(depth), "--bake", "--quiet",
-                   "--stats", build_json, "-o", oct_path]
+            cmd = [args.octrace, "build"] + field_args(scene, args.data) + ["--depth", str(depth), "--bake", "--quiet",
+                                                                           "--stats", build_json, "-o", oct_path]
             subprocess.run(cmd, check=True)
             best = {}
             for r in range(args.rounds):

@@ -20,7 +20,7 @@ import os
 import subprocess
 import tempfile
 
-from benchcommon import ROOT, load, parser, raw_dir
+from benchcommon import ROOT, field_args, load, parser, raw_dir
 # Paper A, its depth-8 isosurface: RAM and compressed size (MB) of the volume and shell forms.
 PAPER = {"volume": (22.0, 1.42), "shell": (12.0, 1.16)}
 # Its boundary voxel count is not stated; its shell took about 28 bytes per voxel (issue 9), so
@@ -35,8 +35,7 @@ def main():
     outdir = raw_dir("memory")
     tmp = tempfile.mkdtemp(prefix="octrace-memory-")
     scene = load(os.path.join(ROOT, "bench", "scenes", "levitus_T.json"))
-    field = [os.path.join(args.data, scene["input"]), "--var", scene["var"], "--iso", str(scene["iso"]), "--region",
-             scene["region"]]
+    field = field_args(scene, args.data)
     rows = {}
     # The forms: the paper's shell (voxels only), the volume form, and the default build's shell
     # (with each voxel's corner values, for smooth surfaces).

@@ -22,7 +22,7 @@ import subprocess
 import tempfile
 import time
 
-from benchcommon import ROOT, load, parser, raw_dir
+from benchcommon import ROOT, field_args, load, parser, raw_dir
 
 
 def timed(cmd):
@@ -45,8 +45,7 @@ def main():
     outdir = raw_dir("process")
     tmp = tempfile.mkdtemp(prefix="octrace-process-")
     scene = load(os.path.join(ROOT, "bench", "scenes", "levitus_T.json"))
-    field = [os.path.join(args.data, scene["input"]), "--var", scene["var"], "--iso", str(scene["iso"]), "--region",
-             scene["region"], "--depth", "9"]
+    field = field_args(scene, args.data) + ["--depth", "9"]
     oct_file = os.path.join(tmp, "T9.oct")
     subprocess.run([args.octrace, "build"] + field + ["--quiet", "-o", oct_file], check=True)
     png = os.path.join(tmp, "out.png")
