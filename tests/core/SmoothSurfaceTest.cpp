@@ -305,3 +305,53 @@ TEST(SmoothSurface, RaysTestedTogetherGetEachRaysOwnTestBitForBit) {
     EXPECT_GT(refused, compared / 10);
     EXPECT_GT(compared, 40000);
 }
+
+TEST(SmoothSurface, TheFirstOfThreeCrossingsInOneVoxelIsFound) {
+    // Along a voxel's diagonal the trilinear interpolant is the cubic whose Bernstein
+    // coefficients are the corner values averaged by their number of upper coordinates (0, 1, 2,
+    // 3). These corners give g(t) = 4 (t - 1/2)^3 - (t - 1/2) / 2: below at the entry, above at
+    // the exit, crossing at t = 0.146, 0.5 and 0.854, its derivative positive at both ends and
+    // negative between its extrema (t = 0.296, 0.704). The fast test must split the span at the
+    // extrema and find the first crossing, as the reference's march does; searched over the
+    // whole span at once (the end points alone on opposite sides), it found the middle one. Rays
+    // near the diagonal in both directions, carrying no side yet, and through each half.
+    const float b1 = -0.25f + 2.5f / 3.0f;  // g(0) + g'(0) / 3
+    const float values[8] = {-0.25f, b1, b1, -b1, b1, -b1, -b1, 0.25f};  // corner q = 4x + 2y + z
+    Octree tree = smoothSphere().copy();
+    std::vector<std::pair<ivec3, std::uint32_t>> voxels;
+    tree.forEachVoxel([&](const ivec3& cell, std::uint32_t v) {
+        if (tree.corners()[v] != 0) voxels.emplace_back(cell, v);
+    });
+    ASSERT_FALSE(voxels.empty());
+    const auto [cell, voxel] = voxels[voxels.size() / 2];
+    std::vector<std::uint64_t> corners = tree.corners();
+    corners[voxel] = encodeCorners(values, 0.0f);
+    tree.setCorners(std::move(corners));
+    const SmoothSurface surface(tree, smoothSettings());
+    ASSERT_TRUE(surface.active());
+    const double side = tree.voxelSize();
+    const dvec3 lo = tree.cubeOrigin + dvec3(cell) * side;
+    int tested = 0;
+    for (int k = 0; k < 40; ++k) {
+        // A point near the voxel's centre, a direction near the diagonal (forwards or backwards).
+        const double e = 0.01 * (k % 5 - 2), f = 0.01 * (k / 5 % 4 - 1.5);
+        const bool backwards = k % 2 != 0;
+        const dvec3 through = lo + side * dvec3(0.5 + e, 0.5 - e, 0.5 + f);
+        const dvec3 dir = glm::normalize(dvec3(1.0, 1.0 + e, 1.0 - f) * (backwards ? -1.0 : 1.0));
+        const Ray ray{through - 3.0 * side * dir, dir};
+        SmoothSurface::RayState fast(ray), ref(ray);
+        TraversalHit hitFast, hitRef;
+        hitFast.voxel = hitRef.voxel = voxel;
+        hitFast.cell = hitRef.cell = cell;
+        ASSERT_TRUE(surface.testReference(ref, hitRef)) << "ray " << k;
+        ASSERT_TRUE(surface.test(fast, hitFast)) << "ray " << k;
+        // The first crossing: about 0.146 of the diagonal past the entry corner, when the ray
+        // enters at the lower corner (forwards), about 0.146 past the upper one (backwards: g
+        // mirrored is -g, and from the upper corner the first crossing is the same distance in).
+        const double entry = glm::length(through - ray.origin) - 0.5 * std::sqrt(3.0) * side;
+        EXPECT_NEAR((hitRef.distance - entry) / (std::sqrt(3.0) * side), 0.146, 0.03) << "ray " << k;
+        EXPECT_NEAR(hitFast.distance, hitRef.distance, 1e-3 * side) << "ray " << k;
+        ++tested;
+    }
+    EXPECT_EQ(tested, 40);
+}

@@ -77,6 +77,11 @@ struct Cubic {
     /// The zeros of the derivative in (0, span), ascending; returns how many.
     int extrema(double span, double out[2]) const {
         const double A = 3.0 * c[3], B = 2.0 * c[2], C = c[1];
+        // The derivative on [0, span] in Bernstein form (a quadratic: C, C + B span / 2, its
+        // value at span): when the three lie strictly on one side, so does the derivative over
+        // the span (their convex combination), and the cubic is monotone there.
+        const double e0 = C, e1 = C + 0.5 * B * span, e2 = (A * span + B) * span + C;
+        if ((e0 > 0.0 && e1 > 0.0 && e2 > 0.0) || (e0 < 0.0 && e1 < 0.0 && e2 < 0.0)) return 0;
         double r[2];
         int n = 0;
         const double scale = std::max({std::abs(A), std::abs(B), std::abs(C)});
