@@ -355,3 +355,63 @@ TEST(SmoothSurface, TheFirstOfThreeCrossingsInOneVoxelIsFound) {
     }
     EXPECT_EQ(tested, 40);
 }
+
+TEST(SmoothSurface, TheNormalIsTheInterpolantsGradientAtTheHit) {
+    // At each accepted hit the normal points against the gradient of the voxel's trilinear
+    // interpolant at the hit point. The interpolant is linear along each axis, so a difference
+    // across the point gives each partial derivative exactly (up to rounding): an independent
+    // check of the gradient's formula, on voxels with random corner values (every corner term
+    // of the interpolant present), rays in random directions.
+    std::mt19937_64 rng(71);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    Octree tree = smoothSphere().copy();
+    std::vector<std::pair<ivec3, std::uint32_t>> voxels;
+    tree.forEachVoxel([&](const ivec3& cell, std::uint32_t v) {
+        if (tree.corners()[v] != 0) voxels.emplace_back(cell, v);
+    });
+    ASSERT_GE(voxels.size(), 40u);
+    std::vector<std::uint64_t> corners = tree.corners();
+    for (std::size_t i = 0; i < 40; ++i) {
+        float values[8];
+        for (float& v : values) v = float(unit(rng) * 2.0 - 1.0);
+        values[0] = -0.5f;  // both sides present
+        values[7] = 0.5f;
+        corners[voxels[i].second] = encodeCorners(values, 0.0f);
+    }
+    tree.setCorners(std::move(corners));
+    const SmoothSurface surface(tree, smoothSettings());
+    const double side = tree.voxelSize();
+    int accepted = 0;
+    for (std::size_t i = 0; i < 40; ++i) {
+        const auto [cell, voxel] = voxels[i];
+        double d[8];
+        decodeCorners(tree.corners()[voxel], d);
+        auto f = [&](const dvec3& p) {  // corner q = 4x + 2y + z
+            double sum = 0.0;
+            for (int q = 0; q < 8; ++q)
+                sum += d[q] * ((q & 4) ? p.x : 1.0 - p.x) * ((q & 2) ? p.y : 1.0 - p.y) * ((q & 1) ? p.z : 1.0 - p.z);
+            return sum;
+        };
+        const dvec3 lo = tree.cubeOrigin + dvec3(cell) * side;
+        for (int k = 0; k < 50; ++k) {
+            const dvec3 target = lo + side * dvec3(unit(rng), unit(rng), unit(rng));
+            const dvec3 dir = glm::normalize(dvec3(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5));
+            const Ray ray{target - 4.0 * side * dir, dir};
+            SmoothSurface::RayState state(ray);
+            TraversalHit hit;
+            hit.voxel = voxel;
+            hit.cell = cell;
+            if (!surface.test(state, hit)) continue;
+            const dvec3 p = (ray.origin + hit.distance * dir - lo) / side;
+            const double h = 1e-3;
+            const dvec3 g((f(p + dvec3(h, 0, 0)) - f(p - dvec3(h, 0, 0))) / (2 * h),
+                          (f(p + dvec3(0, h, 0)) - f(p - dvec3(0, h, 0))) / (2 * h),
+                          (f(p + dvec3(0, 0, h)) - f(p - dvec3(0, 0, h))) / (2 * h));
+            if (!(glm::length(g) > 1e-3)) continue;  // a flat point: the direction is not defined
+            const dvec3 want = -glm::normalize(g);
+            for (int a = 0; a < 3; ++a) EXPECT_NEAR(hit.normal[a], want[a], 1e-5) << "voxel " << i << " ray " << k << " axis " << a;
+            ++accepted;
+        }
+    }
+    EXPECT_GT(accepted, 200);
+}

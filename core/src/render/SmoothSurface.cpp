@@ -144,14 +144,15 @@ bool SmoothSurface::accept(const RayState& ray, TraversalHit& hit, const double 
     const dvec3 p = entry + u * ray.world.direction;
     // The interpolant's gradient (voxel coordinates; the voxel is a cube, so it points as the
     // world gradient does).
-    dvec3 g(0.0);
-    for (int q = 0; q < 8; ++q) {
-        const int x = (q >> 2) & 1, y = (q >> 1) & 1, z = q & 1;
-        const double wx = x ? p.x : 1.0 - p.x, wy = y ? p.y : 1.0 - p.y, wz = z ? p.z : 1.0 - p.z;
-        g.x += d[q] * (x ? 1.0 : -1.0) * wy * wz;
-        g.y += d[q] * (y ? 1.0 : -1.0) * wx * wz;
-        g.z += d[q] * (z ? 1.0 : -1.0) * wx * wy;
-    }
+    // Each component is the bilinear interpolant, over the other two axes, of the corners'
+    // differences along its own axis (corner q = 4x + 2y + z).
+    const double x0 = 1.0 - p.x, y0 = 1.0 - p.y, z0 = 1.0 - p.z;
+    auto bilinear = [](double a00, double a01, double a10, double a11, double s0, double s1, double t0, double t1) {
+        return (a00 * s0 + a10 * s1) * t0 + (a01 * s0 + a11 * s1) * t1;
+    };
+    const dvec3 g(bilinear(d[4] - d[0], d[5] - d[1], d[6] - d[2], d[7] - d[3], y0, p.y, z0, p.z),
+                  bilinear(d[2] - d[0], d[3] - d[1], d[6] - d[4], d[7] - d[5], x0, p.x, z0, p.z),
+                  bilinear(d[1] - d[0], d[3] - d[2], d[5] - d[4], d[7] - d[6], x0, p.x, y0, p.y));
     const double len = glm::length(g);
     hit.normal = len > 0.0 && std::isfinite(len) ? vec3(-g / len) : decodeNormal(tree_.voxels()[hit.voxel].normal);
     hit.distance = t0 + u * tree_.voxelSize();
