@@ -331,11 +331,10 @@ TEST(SmoothSurface, TheFirstOfThreeCrossingsInOneVoxelIsFound) {
     ASSERT_TRUE(surface.active());
     const double side = tree.voxelSize();
     const dvec3 lo = tree.cubeOrigin + dvec3(cell) * side;
-    int tested = 0;
     for (int k = 0; k < 40; ++k) {
         // A point near the voxel's centre, a direction near the diagonal (forwards or backwards).
-        const double e = 0.01 * (k % 5 - 2), f = 0.01 * (k / 5 % 4 - 1.5);
-        const bool backwards = k % 2 != 0;
+        const double e = 0.01 * (k % 5 - 2), f = 0.01 * (k / 10 - 1.5);  // 20 offsets, 40 distinct rays
+        const bool backwards = k / 5 % 2 != 0;
         const dvec3 through = lo + side * dvec3(0.5 + e, 0.5 - e, 0.5 + f);
         const dvec3 dir = glm::normalize(dvec3(1.0, 1.0 + e, 1.0 - f) * (backwards ? -1.0 : 1.0));
         const Ray ray{through - 3.0 * side * dir, dir};
@@ -351,9 +350,7 @@ TEST(SmoothSurface, TheFirstOfThreeCrossingsInOneVoxelIsFound) {
         const double entry = glm::length(through - ray.origin) - 0.5 * std::sqrt(3.0) * side;
         EXPECT_NEAR((hitRef.distance - entry) / (std::sqrt(3.0) * side), 0.146, 0.03) << "ray " << k;
         EXPECT_NEAR(hitFast.distance, hitRef.distance, 1e-3 * side) << "ray " << k;
-        ++tested;
     }
-    EXPECT_EQ(tested, 40);
 }
 
 TEST(SmoothSurface, TheNormalIsTheInterpolantsGradientAtTheHit) {

@@ -147,8 +147,8 @@ bool SmoothSurface::accept(const RayState& ray, TraversalHit& hit, const double 
     // Each component is the bilinear interpolant, over the other two axes, of the corners'
     // differences along its own axis (corner q = 4x + 2y + z).
     const double x0 = 1.0 - p.x, y0 = 1.0 - p.y, z0 = 1.0 - p.z;
-    auto bilinear = [](double a00, double a01, double a10, double a11, double s0, double s1, double t0, double t1) {
-        return (a00 * s0 + a10 * s1) * t0 + (a01 * s0 + a11 * s1) * t1;
+    auto bilinear = [](double a00, double a01, double a10, double a11, double s0, double s1, double w0, double w1) {
+        return (a00 * s0 + a10 * s1) * w0 + (a01 * s0 + a11 * s1) * w1;
     };
     const dvec3 g(bilinear(d[4] - d[0], d[5] - d[1], d[6] - d[2], d[7] - d[3], y0, p.y, z0, p.z),
                   bilinear(d[2] - d[0], d[3] - d[1], d[6] - d[4], d[7] - d[5], x0, p.x, z0, p.z),
