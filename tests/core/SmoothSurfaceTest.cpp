@@ -36,6 +36,15 @@ const Octree& smoothNoise() {
     return t;
 }
 
+/// The tree's voxels that have corner values (cell, voxel index), in the tree's order.
+std::vector<std::pair<ivec3, std::uint32_t>> voxelsWithCorners(const Octree& tree) {
+    std::vector<std::pair<ivec3, std::uint32_t>> out;
+    tree.forEachVoxel([&](const ivec3& cell, std::uint32_t v) {
+        if (tree.corners()[v] != 0) out.emplace_back(cell, v);
+    });
+    return out;
+}
+
 RenderSettings smoothSettings() {
     RenderSettings s;
     s.surface = SurfaceMode::Smooth;
@@ -235,10 +244,7 @@ TEST(SmoothSurface, RaysTestedTogetherGetEachRaysOwnTestBitForBit) {
     for (const Octree* tree : {&smoothNoise(), &smoothSphere(), &smoothTorus()}) {
         const SmoothSurface surface(*tree, smoothSettings());
         ASSERT_TRUE(surface.active());
-        std::vector<std::pair<ivec3, std::uint32_t>> voxels;
-        tree->forEachVoxel([&](const ivec3& cell, std::uint32_t v) {
-            if (tree->corners()[v] != 0) voxels.emplace_back(cell, v);
-        });
+        const auto voxels = voxelsWithCorners(*tree);
         ASSERT_FALSE(voxels.empty());
         const double side = tree->voxelSize();
         for (int trial = 0; trial < 3000; ++trial) {
@@ -318,10 +324,7 @@ TEST(SmoothSurface, TheFirstOfThreeCrossingsInOneVoxelIsFound) {
     const float b1 = -0.25f + 2.5f / 3.0f;  // g(0) + g'(0) / 3
     const float values[8] = {-0.25f, b1, b1, -b1, b1, -b1, -b1, 0.25f};  // corner q = 4x + 2y + z
     Octree tree = smoothSphere().copy();
-    std::vector<std::pair<ivec3, std::uint32_t>> voxels;
-    tree.forEachVoxel([&](const ivec3& cell, std::uint32_t v) {
-        if (tree.corners()[v] != 0) voxels.emplace_back(cell, v);
-    });
+    const auto voxels = voxelsWithCorners(tree);
     ASSERT_FALSE(voxels.empty());
     const auto [cell, voxel] = voxels[voxels.size() / 2];
     std::vector<std::uint64_t> corners = tree.corners();
@@ -362,10 +365,7 @@ TEST(SmoothSurface, TheNormalIsTheInterpolantsGradientAtTheHit) {
     std::mt19937_64 rng(71);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     Octree tree = smoothSphere().copy();
-    std::vector<std::pair<ivec3, std::uint32_t>> voxels;
-    tree.forEachVoxel([&](const ivec3& cell, std::uint32_t v) {
-        if (tree.corners()[v] != 0) voxels.emplace_back(cell, v);
-    });
+    const auto voxels = voxelsWithCorners(tree);
     ASSERT_GE(voxels.size(), 40u);
     std::vector<std::uint64_t> corners = tree.corners();
     for (std::size_t i = 0; i < 40; ++i) {
